@@ -1,0 +1,28 @@
+/* Compile-time sizes of the core. Every array in a node is sized here, so a node's RAM is known at
+ * build time; override any of them with -D on the compiler command line. */
+#ifndef CO_CONFIG_H
+#define CO_CONFIG_H
+
+#ifndef CO_CONFIG_RPDO_MAX
+#define CO_CONFIG_RPDO_MAX 8 /* RPDOs a node can have (1400h..) */
+#endif
+#ifndef CO_CONFIG_TPDO_MAX
+#define CO_CONFIG_TPDO_MAX 8 /* TPDOs a node can have (1800h..) */
+#endif
+#ifndef CO_CONFIG_PDO_MAP_MAX
+#define CO_CONFIG_PDO_MAP_MAX 8 /* mapping entries per PDO (sub 1..8) */
+#endif
+#ifndef CO_CONFIG_HB_CONSUMERS
+#define CO_CONFIG_HB_CONSUMERS 8 /* heartbeat consumers (1016h sub 1..) */
+#endif
+#ifndef CO_CONFIG_EMCY_HISTORY
+#define CO_CONFIG_EMCY_HISTORY 8 /* active errors remembered by the EMCY producer */
+#endif
+#ifndef CO_CONFIG_SDO_BUFFER
+#define CO_CONFIG_SDO_BUFFER 1024 /* largest segmented or block download, bytes */
+#endif
+#ifndef CO_CONFIG_SDO_TIMEOUT_US
+#define CO_CONFIG_SDO_TIMEOUT_US 1000000u /* default SDO server timeout */
+#endif
+
+#endif

@@ -1,0 +1,97 @@
+/* A CANopen node: one instance of the portable core. The application owns the co_node_t and its
+ * object dictionary data block, feeds received frames and the current monotonic time in, and gets
+ * frames out through its send callback. co_node_process() runs what is due and returns the next
+ * deadline, so a runtime sleeps exactly until then. No malloc, no OS calls, no globals. */
+#ifndef CO_NODE_H
+#define CO_NODE_H
+
+#include "co_config.h"
+#include "co_emcy.h"
+#include "co_guarding.h"
+#include "co_heartbeat.h"
+#include "co_nmt.h"
+#include "co_od.h"
+#include "co_pdo.h"
+#include "co_sdo.h"
+#include "co_store.h"
+#include "co_sync.h"
+#include "co_types.h"
+
+/* Transmits one frame. The core never waits for it: a runtime queues what it cannot send. */
+typedef void (*co_send_fn)(void *user, const co_frame_t *frame);
+
+/* Application callbacks; any of them may be NULL. */
+typedef struct co_app_hooks {
+    void (*nmt_state)(co_node_t *node, co_nmt_state_t state);
+    /* Before the reset of the given scope restores the dictionary (reset node: the application
+     * resets its own state too). */
+    void (*reset)(co_node_t *node, co_nmt_reset_t scope);
+    /* An RPDO (number 1..) was applied to the dictionary. */
+    void (*rpdo)(co_node_t *node, uint16_t pdo_number);
+    void (*sync)(co_node_t *node, uint8_t counter);
+    /* A monitored heartbeat producer was lost (lost = true) or came back (lost = false). */
+    void (*heartbeat)(co_node_t *node, uint8_t producer, bool lost);
+    /* Life guarding: the master stopped guarding this node (lost = true) or resumed. */
+    void (*guarding)(co_node_t *node, bool lost);
+    /* An entry was written by SDO or PDO and stored. */
+    void (*od_written)(co_node_t *node, const co_od_entry_t *entry, co_od_origin_t origin);
+} co_app_hooks_t;
+
+typedef struct co_node_config {
+    uint8_t node_id; /* 1..127 */
+    const co_od_t *od;
+    uint8_t *od_data; /* od->data_size bytes owned by the application */
+    co_send_fn send;
+    void *user;
+    const co_app_hooks_t *hooks; /* may be NULL */
+    const co_storage_t *storage; /* may be NULL: 1010h/1011h then abort 0x08000020 */
+} co_node_config_t;
+
+struct co_node {
+    uint8_t node_id;
+    co_nmt_state_t nmt_state;
+    const co_od_t *od;
+    uint8_t *od_data;
+    co_send_fn send;
+    void *user;
+    const co_app_hooks_t *hooks;
+    const co_storage_t *storage;
+    co_time_t now; /* time of the frame or process call being handled */
+
+    co_sdo_server_t sdo;
+    co_pdo_t pdo;
+    co_sync_t sync;
+    co_emcy_t emcy;
+    co_heartbeat_t heartbeat;
+    co_guarding_t guarding;
+};
+
+/* Results of co_node_init besides the object dictionary's own validation errors. */
+#define CO_NODE_ERR_NODE_ID 0x100 /* node-id outside 1..127 */
+#define CO_NODE_ERR_CONFIG 0x101  /* missing od, data block or send callback */
+
+/* Prepares a node in Initialising: validates the dictionary and loads its defaults. Sends
+ * nothing. Returns 0, a co_od_error_t, or a CO_NODE_ERR_* code. */
+int co_node_init(co_node_t *node, const co_node_config_t *config);
+
+/* Leaves Initialising: applies stored parameters, sends the boot-up frame, enters
+ * Pre-operational. */
+void co_node_start(co_node_t *node, co_time_t now);
+
+/* Handles one received frame. Malformed or foreign frames are ignored. */
+void co_node_receive(co_node_t *node, const co_frame_t *frame, co_time_t now);
+
+/* Runs every timer that is due at `now` and returns the next deadline (CO_TIME_NEVER when none).
+ * Call it after every received frame and every change the application makes to mapped data. */
+co_time_t co_node_process(co_node_t *node, co_time_t now);
+
+/* Sends a frame through the node's callback (used by the services). */
+void co_node_send(co_node_t *node, const co_frame_t *frame);
+
+/* Earlier of two deadlines. */
+static inline co_time_t co_time_min(co_time_t a, co_time_t b)
+{
+    return a < b ? a : b;
+}
+
+#endif

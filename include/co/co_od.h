@@ -1,0 +1,130 @@
+/* The object dictionary: a const table of entries sorted by (index, sub-index), found by binary
+ * search, whose values live in a per-node data block. The table is shared by every node built from
+ * the same EDS; the data block belongs to one node, so several nodes can run in one process.
+ *
+ * Values are kept in the data block as CANopen transmits them (little-endian), so SDO and PDO
+ * transfers are plain copies and the application reads and writes through co_od_value() and
+ * co_od_set_value(). */
+#ifndef CO_OD_H
+#define CO_OD_H
+
+#include "co_types.h"
+
+typedef struct co_node co_node_t;
+typedef struct co_od_entry co_od_entry_t;
+
+/* Entry flags. Access types follow CiA 306: ro, wo, rw, rwr, rww, const. */
+#define CO_OD_READ 0x0001u    /* readable by SDO */
+#define CO_OD_WRITE 0x0002u   /* writable by SDO */
+#define CO_OD_CONST 0x0004u   /* never changes (const access type) */
+#define CO_OD_TPDO 0x0008u    /* may be mapped into a TPDO */
+#define CO_OD_RPDO 0x0010u    /* may be mapped into an RPDO */
+#define CO_OD_NODEID 0x0020u  /* default value is relative to the node-id ($NODEID+...) */
+#define CO_OD_ZERO_OK 0x0040u /* 0 is accepted even below the low limit ("0 = disabled") */
+
+#define CO_OD_ACCESS_RO CO_OD_READ
+#define CO_OD_ACCESS_WO CO_OD_WRITE
+#define CO_OD_ACCESS_RW (CO_OD_READ | CO_OD_WRITE)
+#define CO_OD_ACCESS_CONST (CO_OD_READ | CO_OD_CONST)
+
+/* Where a write comes from, for hooks that treat them differently. */
+typedef enum co_od_origin {
+    CO_OD_ORIGIN_SDO, /* a client's SDO download */
+    CO_OD_ORIGIN_PDO, /* a received PDO */
+    CO_OD_ORIGIN_APP  /* the application or the stack itself */
+} co_od_origin_t;
+
+/* Returned by a write hook or a service write handler that stored (or consumed) the value itself:
+ * not a valid abort code, so it can share the return value. */
+#define CO_OD_HANDLED 1u
+
+/* Value limits of a numeric entry, as the raw value widened to 64 bits: signed types are
+ * sign-extended and compared as int64_t, unsigned types as uint64_t. */
+typedef struct co_od_limits {
+    uint64_t low;
+    uint64_t high;
+} co_od_limits_t;
+
+/* Device-specific behaviour of one entry, named in the EDS hooks file and linked by name. */
+typedef struct co_od_hook {
+    /* Before a write is stored (after type, length and limit checks): return 0 to store it,
+     * CO_OD_HANDLED if the hook stored or consumed it, or an SDO abort code to refuse it. */
+    uint32_t (*write)(co_node_t *node, const co_od_entry_t *entry, const uint8_t *data, size_t len,
+                      co_od_origin_t origin);
+    /* Before a read: may refresh the stored value. Return 0 or an SDO abort code. */
+    uint32_t (*read)(co_node_t *node, const co_od_entry_t *entry);
+} co_od_hook_t;
+
+struct co_od_entry {
+    uint16_t index;
+    uint8_t subindex;
+    uint8_t type;                 /* co_dtype_t */
+    uint16_t flags;               /* CO_OD_* */
+    uint16_t size;                /* bytes; the capacity for strings and domains */
+    uint32_t offset;              /* of the value in the node's data block */
+    const co_od_limits_t *limits; /* NULL: the whole range of the type */
+    const co_od_hook_t *hook;     /* NULL: plain storage */
+};
+
+/* One object dictionary: the sorted table and the image of its default values. */
+typedef struct co_od {
+    const char *name;
+    const co_od_entry_t *entries;
+    uint16_t count;
+    uint32_t data_size;      /* bytes of a node's data block */
+    const uint8_t *defaults; /* data_size bytes: default values, node-id terms excluded */
+} co_od_t;
+
+/* Result of co_od_validate(). */
+typedef enum co_od_error {
+    CO_OD_VALID = 0,
+    CO_OD_ERR_EMPTY,     /* no entries */
+    CO_OD_ERR_UNSORTED,  /* entry at position is not after its predecessor */
+    CO_OD_ERR_DUPLICATE, /* entry at position repeats its predecessor's key */
+    CO_OD_ERR_BOUNDS,    /* entry at position lies outside the data block */
+    CO_OD_ERR_SIZE       /* entry at position has a size that does not fit its type */
+} co_od_error_t;
+
+/* Checks the table once at start-up. On error *position is the offending entry. */
+co_od_error_t co_od_validate(const co_od_t *od, uint16_t *position);
+
+/* Binary search. NULL when absent. */
+const co_od_entry_t *co_od_find(const co_od_t *od, uint16_t index, uint8_t subindex);
+
+/* Like co_od_find, with the most specific abort code: SDO_ABORT_NO_OBJECT when no entry has that
+ * index, SDO_ABORT_NO_SUBINDEX when the index exists but not the sub-index. */
+uint32_t co_od_lookup(const co_od_t *od, uint16_t index, uint8_t subindex,
+                      const co_od_entry_t **entry);
+
+/* Byte size of a fixed-size type, 0 for strings and domains. */
+size_t co_od_type_size(uint8_t type);
+
+/* The stored bytes of an entry and their current length (strings: up to the first NUL). */
+uint8_t *co_od_bytes(const co_node_t *node, const co_od_entry_t *entry);
+size_t co_od_length(const co_node_t *node, const co_od_entry_t *entry);
+
+/* SDO-side read: lookup, read access, read hook. On success *entry is ready for co_od_bytes. */
+uint32_t co_od_read_check(co_node_t *node, uint16_t index, uint8_t subindex,
+                          const co_od_entry_t **entry);
+
+/* Full write path with every CiA 301 check: existence, write access, length against the type
+ * (0x06070010/12/13), limits (0x06090031/32), the entry's hook, the owning service's parameter
+ * rules, then storage and the application's write notification. Returns 0 or an abort code. */
+uint32_t co_od_write(co_node_t *node, uint16_t index, uint8_t subindex, const uint8_t *data,
+                     size_t len, co_od_origin_t origin);
+
+/* Stores bytes without any check (used by hooks and services after their own checks). */
+void co_od_store(co_node_t *node, const co_od_entry_t *entry, const uint8_t *data, size_t len);
+
+/* Numeric value of an entry of up to 8 bytes, sign-extended for signed types. */
+int64_t co_od_get(const co_node_t *node, const co_od_entry_t *entry);
+/* Application access by index; absent entries read as 0 and ignore writes (return false). */
+int64_t co_od_value(const co_node_t *node, uint16_t index, uint8_t subindex);
+bool co_od_set_value(co_node_t *node, uint16_t index, uint8_t subindex, int64_t value);
+/* Stores a numeric value into an entry without checks. */
+void co_od_set(co_node_t *node, const co_od_entry_t *entry, int64_t value);
+
+/* Restores defaults of the entries with index in [first, last], node-id terms added. */
+void co_od_restore_defaults(co_node_t *node, uint16_t first, uint16_t last);
+
+#endif

@@ -1,0 +1,107 @@
+/* Basic types shared by every module of the portable core: CAN frames, time, CiA 301 data types
+ * and the complete set of SDO abort codes. No OS headers, no globals. */
+#ifndef CO_TYPES_H
+#define CO_TYPES_H
+
+#include <stdbool.h>
+#include <stddef.h>
+#include <stdint.h>
+
+/* Monotonic time in microseconds, supplied by the caller. */
+typedef uint64_t co_time_t;
+
+/* "No deadline": the runtime may sleep until the next frame arrives. */
+#define CO_TIME_NEVER UINT64_MAX
+
+/* A classic CAN frame. Only 11-bit identifiers are used by the stack; 29-bit frames are ignored. */
+#define CO_FRAME_RTR 0x01u /* remote transmission request */
+#define CO_FRAME_EFF 0x02u /* 29-bit (extended) identifier */
+
+typedef struct co_frame {
+    uint32_t id;
+    uint8_t len; /* data length code, 0..8 */
+    uint8_t flags;
+    uint8_t data[8];
+} co_frame_t;
+
+/* CiA 301 table 44: static data types, by their object dictionary index. */
+typedef enum co_dtype {
+    CO_DT_BOOLEAN = 0x01,
+    CO_DT_INTEGER8 = 0x02,
+    CO_DT_INTEGER16 = 0x03,
+    CO_DT_INTEGER32 = 0x04,
+    CO_DT_UNSIGNED8 = 0x05,
+    CO_DT_UNSIGNED16 = 0x06,
+    CO_DT_UNSIGNED32 = 0x07,
+    CO_DT_REAL32 = 0x08,
+    CO_DT_VISIBLE_STRING = 0x09,
+    CO_DT_OCTET_STRING = 0x0A,
+    CO_DT_UNICODE_STRING = 0x0B,
+    CO_DT_DOMAIN = 0x0F,
+    CO_DT_REAL64 = 0x11,
+    CO_DT_INTEGER64 = 0x15,
+    CO_DT_UNSIGNED64 = 0x1B
+} co_dtype_t;
+
+/* CiA 301 v4.2 section 7.2.4.3.17: SDO abort codes, the complete set. */
+enum co_sdo_abort {
+    CO_SDO_OK = 0,
+    SDO_ABORT_TOGGLE = 0x05030000,
+    SDO_ABORT_TIMEOUT = 0x05040000,
+    SDO_ABORT_COMMAND = 0x05040001,
+    SDO_ABORT_BLOCK_SIZE = 0x05040002,
+    SDO_ABORT_SEQUENCE = 0x05040003,
+    SDO_ABORT_CRC = 0x05040004,
+    SDO_ABORT_NO_MEMORY = 0x05040005,
+    SDO_ABORT_UNSUPPORTED_ACCESS = 0x06010000,
+    SDO_ABORT_WRITE_ONLY = 0x06010001,
+    SDO_ABORT_READ_ONLY = 0x06010002,
+    SDO_ABORT_NO_OBJECT = 0x06020000,
+    SDO_ABORT_NOT_MAPPABLE = 0x06040041,
+    SDO_ABORT_PDO_LENGTH = 0x06040042,
+    SDO_ABORT_PARAM_INCOMPATIBLE = 0x06040043,
+    SDO_ABORT_INTERNAL_INCOMPATIBLE = 0x06040047,
+    SDO_ABORT_HARDWARE = 0x06060000,
+    SDO_ABORT_TYPE_LENGTH = 0x06070010,
+    SDO_ABORT_LENGTH_HIGH = 0x06070012,
+    SDO_ABORT_LENGTH_LOW = 0x06070013,
+    SDO_ABORT_NO_SUBINDEX = 0x06090011,
+    SDO_ABORT_VALUE_RANGE = 0x06090030,
+    SDO_ABORT_VALUE_HIGH = 0x06090031,
+    SDO_ABORT_VALUE_LOW = 0x06090032,
+    SDO_ABORT_MAX_LESS_MIN = 0x06090036,
+    SDO_ABORT_NO_RESOURCE = 0x060A0023,
+    SDO_ABORT_GENERAL = 0x08000000,
+    SDO_ABORT_DATA_STORE = 0x08000020,
+    SDO_ABORT_DATA_LOCAL = 0x08000021,
+    SDO_ABORT_DATA_STATE = 0x08000022,
+    SDO_ABORT_OD_MISSING = 0x08000023,
+    SDO_ABORT_NO_DATA = 0x08000024
+};
+
+/* Little-endian helpers for frame payloads (CANopen is little-endian on the wire). */
+static inline uint16_t co_get_u16(const uint8_t *p)
+{
+    return (uint16_t)(p[0] | (p[1] << 8));
+}
+
+static inline uint32_t co_get_u32(const uint8_t *p)
+{
+    return (uint32_t)p[0] | ((uint32_t)p[1] << 8) | ((uint32_t)p[2] << 16) | ((uint32_t)p[3] << 24);
+}
+
+static inline void co_put_u16(uint8_t *p, uint16_t v)
+{
+    p[0] = (uint8_t)v;
+    p[1] = (uint8_t)(v >> 8);
+}
+
+static inline void co_put_u32(uint8_t *p, uint32_t v)
+{
+    p[0] = (uint8_t)v;
+    p[1] = (uint8_t)(v >> 8);
+    p[2] = (uint8_t)(v >> 16);
+    p[3] = (uint8_t)(v >> 24);
+}
+
+#endif

@@ -1,0 +1,71 @@
+/* NMT slave state machine (CiA 301 section 7.3.2.2, figure 48). */
+#include "co/co_node.h"
+
+static void reset_services(co_node_t *node)
+{
+    co_sdo_reset(node);
+    co_sync_reset(node);
+    co_emcy_reset(node);
+    co_heartbeat_reset(node);
+    co_guarding_reset(node);
+    co_pdo_reset(node);
+}
+
+void co_nmt_enter(co_node_t *node, co_nmt_state_t state)
+{
+    if (node->nmt_state == state)
+        return;
+    node->nmt_state = state;
+    co_pdo_reset(node);
+    if (node->hooks != NULL && node->hooks->nmt_state != NULL)
+        node->hooks->nmt_state(node, state);
+}
+
+void co_nmt_reset(co_node_t *node, co_nmt_reset_t scope)
+{
+    node->nmt_state = CO_NMT_INITIALISING;
+    if (node->hooks != NULL && node->hooks->reset != NULL)
+        node->hooks->reset(node, scope);
+    if (scope == CO_NMT_RESET_NODE) {
+        co_od_restore_defaults(node, 0x2000, 0xFFFF);
+        co_store_apply(node, 0x2000, 0xFFFF);
+    }
+    co_od_restore_defaults(node, 0x1000, 0x1FFF);
+    co_store_apply(node, 0x1000, 0x1FFF);
+    reset_services(node);
+    co_frame_t boot = {.id = 0x700u + node->node_id, .len = 1, .data = {0}};
+    co_node_send(node, &boot);
+    co_nmt_enter(node, CO_NMT_PRE_OPERATIONAL);
+}
+
+bool co_nmt_receive(co_node_t *node, const co_frame_t *frame)
+{
+    if (frame->id != 0x000)
+        return false;
+    /* CiA 301 7.2.8.3.1: an NMT command is exactly two bytes; anything else is not one. */
+    if (frame->len != 2 || (frame->flags & CO_FRAME_RTR))
+        return true;
+    uint8_t target = frame->data[1];
+    if (target != 0 && target != node->node_id)
+        return true;
+    switch (frame->data[0]) {
+    case CO_NMT_CS_START:
+        co_nmt_enter(node, CO_NMT_OPERATIONAL);
+        break;
+    case CO_NMT_CS_STOP:
+        co_nmt_enter(node, CO_NMT_STOPPED);
+        break;
+    case CO_NMT_CS_ENTER_PRE_OPERATIONAL:
+        co_nmt_enter(node, CO_NMT_PRE_OPERATIONAL);
+        break;
+    case CO_NMT_CS_RESET_NODE:
+        co_nmt_reset(node, CO_NMT_RESET_NODE);
+        break;
+    case CO_NMT_CS_RESET_COMMUNICATION:
+        co_nmt_reset(node, CO_NMT_RESET_COMMUNICATION);
+        break;
+    default:
+        break;
+    }
+    return true;
+}

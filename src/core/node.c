@@ -1,0 +1,72 @@
+/* The node: initialisation, the routing of received frames to the services that the current NMT
+ * state allows (ATV312 manual, "NMT state" table; CiA 301 table 74), and the earliest deadline. */
+#include "co/co_node.h"
+
+#include <string.h>
+
+int co_node_init(co_node_t *node, const co_node_config_t *config)
+{
+    if (config->node_id < 1 || config->node_id > 127)
+        return CO_NODE_ERR_NODE_ID;
+    if (config->od == NULL || config->od_data == NULL || config->send == NULL)
+        return CO_NODE_ERR_CONFIG;
+    uint16_t position;
+    co_od_error_t err = co_od_validate(config->od, &position);
+    if (err != CO_OD_VALID)
+        return (int)err;
+    memset(node, 0, sizeof(*node));
+    node->node_id = config->node_id;
+    node->nmt_state = CO_NMT_INITIALISING;
+    node->od = config->od;
+    node->od_data = config->od_data;
+    node->send = config->send;
+    node->user = config->user;
+    node->hooks = config->hooks;
+    node->storage = config->storage;
+    node->sdo.timeout_us = CO_CONFIG_SDO_TIMEOUT_US;
+    co_od_restore_defaults(node, 0x0000, 0xFFFF);
+    return 0;
+}
+
+void co_node_start(co_node_t *node, co_time_t now)
+{
+    node->now = now;
+    co_nmt_reset(node, CO_NMT_RESET_NODE);
+}
+
+void co_node_send(co_node_t *node, const co_frame_t *frame)
+{
+    node->send(node->user, frame);
+}
+
+void co_node_receive(co_node_t *node, const co_frame_t *frame, co_time_t now)
+{
+    node->now = now;
+    if ((frame->flags & CO_FRAME_EFF) || frame->len > 8 || node->nmt_state == CO_NMT_INITIALISING)
+        return;
+    if (co_nmt_receive(node, frame))
+        return;
+    /* Node guarding and heartbeat consumption work in every state. */
+    if (co_guarding_receive(node, frame) || co_heartbeat_receive(node, frame))
+        return;
+    if (node->nmt_state == CO_NMT_STOPPED)
+        return;
+    if (co_sync_receive(node, frame) || co_sdo_receive(node, frame))
+        return;
+    if (node->nmt_state == CO_NMT_OPERATIONAL)
+        co_pdo_receive(node, frame);
+}
+
+co_time_t co_node_process(co_node_t *node, co_time_t now)
+{
+    node->now = now;
+    if (node->nmt_state == CO_NMT_INITIALISING)
+        return CO_TIME_NEVER;
+    co_time_t next = co_heartbeat_process(node, now);
+    next = co_time_min(next, co_guarding_process(node, now));
+    next = co_time_min(next, co_sdo_process(node, now));
+    next = co_time_min(next, co_sync_process(node, now));
+    next = co_time_min(next, co_emcy_process(node, now));
+    next = co_time_min(next, co_pdo_process(node, now));
+    return next;
+}

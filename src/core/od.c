@@ -1,0 +1,289 @@
+/* Object dictionary access: binary search over the const table, the generic SDO read and write
+ * checks of CiA 301, and the dispatch of communication-area writes to the service that owns the
+ * parameter. */
+#include "co/co_node.h"
+
+#include <string.h>
+
+static uint32_t entry_key(uint16_t index, uint8_t subindex)
+{
+    return ((uint32_t)index << 8) | subindex;
+}
+
+size_t co_od_type_size(uint8_t type)
+{
+    switch (type) {
+    case CO_DT_BOOLEAN:
+    case CO_DT_INTEGER8:
+    case CO_DT_UNSIGNED8:
+        return 1;
+    case CO_DT_INTEGER16:
+    case CO_DT_UNSIGNED16:
+        return 2;
+    case CO_DT_INTEGER32:
+    case CO_DT_UNSIGNED32:
+    case CO_DT_REAL32:
+        return 4;
+    case CO_DT_INTEGER64:
+    case CO_DT_UNSIGNED64:
+    case CO_DT_REAL64:
+        return 8;
+    default:
+        return 0;
+    }
+}
+
+static bool type_is_signed(uint8_t type)
+{
+    return type == CO_DT_INTEGER8 || type == CO_DT_INTEGER16 || type == CO_DT_INTEGER32 ||
+           type == CO_DT_INTEGER64;
+}
+
+static bool type_is_string(uint8_t type)
+{
+    return type == CO_DT_VISIBLE_STRING || type == CO_DT_UNICODE_STRING;
+}
+
+co_od_error_t co_od_validate(const co_od_t *od, uint16_t *position)
+{
+    *position = 0;
+    if (od == NULL || od->entries == NULL || od->count == 0)
+        return CO_OD_ERR_EMPTY;
+    for (uint16_t i = 0; i < od->count; i++) {
+        const co_od_entry_t *e = &od->entries[i];
+        *position = i;
+        if (i > 0) {
+            uint32_t prev = entry_key(od->entries[i - 1].index, od->entries[i - 1].subindex);
+            uint32_t key = entry_key(e->index, e->subindex);
+            if (key == prev)
+                return CO_OD_ERR_DUPLICATE;
+            if (key < prev)
+                return CO_OD_ERR_UNSORTED;
+        }
+        size_t fixed = co_od_type_size(e->type);
+        if (e->size == 0 || (fixed != 0 && e->size != fixed))
+            return CO_OD_ERR_SIZE;
+        if ((uint64_t)e->offset + e->size > od->data_size)
+            return CO_OD_ERR_BOUNDS;
+    }
+    return CO_OD_VALID;
+}
+
+/* First entry whose key is >= the wanted key, or od->count. */
+static uint16_t lower_bound(const co_od_t *od, uint32_t key)
+{
+    uint16_t lo = 0;
+    uint16_t hi = od->count;
+    while (lo < hi) {
+        uint16_t mid = (uint16_t)(lo + (hi - lo) / 2);
+        const co_od_entry_t *e = &od->entries[mid];
+        if (entry_key(e->index, e->subindex) < key)
+            lo = (uint16_t)(mid + 1);
+        else
+            hi = mid;
+    }
+    return lo;
+}
+
+const co_od_entry_t *co_od_find(const co_od_t *od, uint16_t index, uint8_t subindex)
+{
+    uint32_t key = entry_key(index, subindex);
+    uint16_t pos = lower_bound(od, key);
+    if (pos < od->count && entry_key(od->entries[pos].index, od->entries[pos].subindex) == key)
+        return &od->entries[pos];
+    return NULL;
+}
+
+uint32_t co_od_lookup(const co_od_t *od, uint16_t index, uint8_t subindex,
+                      const co_od_entry_t **entry)
+{
+    uint16_t pos = lower_bound(od, entry_key(index, 0));
+    *entry = co_od_find(od, index, subindex);
+    if (*entry != NULL)
+        return CO_SDO_OK;
+    if (pos < od->count && od->entries[pos].index == index)
+        return SDO_ABORT_NO_SUBINDEX;
+    return SDO_ABORT_NO_OBJECT;
+}
+
+uint8_t *co_od_bytes(const co_node_t *node, const co_od_entry_t *entry)
+{
+    return node->od_data + entry->offset;
+}
+
+size_t co_od_length(const co_node_t *node, const co_od_entry_t *entry)
+{
+    const uint8_t *p = co_od_bytes(node, entry);
+    if (!type_is_string(entry->type))
+        return entry->size;
+    size_t n = 0;
+    while (n < entry->size && p[n] != 0)
+        n++;
+    return n;
+}
+
+uint32_t co_od_read_check(co_node_t *node, uint16_t index, uint8_t subindex,
+                          const co_od_entry_t **entry)
+{
+    uint32_t abort = co_od_lookup(node->od, index, subindex, entry);
+    if (abort != CO_SDO_OK)
+        return abort;
+    if (!((*entry)->flags & CO_OD_READ))
+        return SDO_ABORT_WRITE_ONLY;
+    if ((*entry)->hook != NULL && (*entry)->hook->read != NULL)
+        return (*entry)->hook->read(node, *entry);
+    return CO_SDO_OK;
+}
+
+static uint64_t raw_value(const uint8_t *p, size_t size)
+{
+    uint64_t v = 0;
+    for (size_t i = size; i > 0; i--)
+        v = (v << 8) | p[i - 1];
+    return v;
+}
+
+static int64_t sign_extend(uint64_t v, size_t size)
+{
+    if (size < 8 && (v & ((uint64_t)1 << (size * 8 - 1))))
+        v |= ~(uint64_t)0 << (size * 8);
+    return (int64_t)v;
+}
+
+int64_t co_od_get(const co_node_t *node, const co_od_entry_t *entry)
+{
+    size_t size = entry->size < 8 ? entry->size : 8;
+    uint64_t v = raw_value(co_od_bytes(node, entry), size);
+    return type_is_signed(entry->type) ? sign_extend(v, size) : (int64_t)v;
+}
+
+void co_od_set(co_node_t *node, const co_od_entry_t *entry, int64_t value)
+{
+    uint8_t *p = co_od_bytes(node, entry);
+    size_t size = entry->size < 8 ? entry->size : 8;
+    uint64_t v = (uint64_t)value;
+    for (size_t i = 0; i < size; i++) {
+        p[i] = (uint8_t)v;
+        v >>= 8;
+    }
+}
+
+int64_t co_od_value(const co_node_t *node, uint16_t index, uint8_t subindex)
+{
+    const co_od_entry_t *e = co_od_find(node->od, index, subindex);
+    return e != NULL ? co_od_get(node, e) : 0;
+}
+
+bool co_od_set_value(co_node_t *node, uint16_t index, uint8_t subindex, int64_t value)
+{
+    const co_od_entry_t *e = co_od_find(node->od, index, subindex);
+    if (e == NULL)
+        return false;
+    co_od_set(node, e, value);
+    return true;
+}
+
+void co_od_store(co_node_t *node, const co_od_entry_t *entry, const uint8_t *data, size_t len)
+{
+    uint8_t *p = co_od_bytes(node, entry);
+    if (len > entry->size)
+        len = entry->size;
+    memcpy(p, data, len);
+    memset(p + len, 0, entry->size - len);
+}
+
+/* CiA 301 7.2.4.3.17: too long 0x06070012, too short 0x06070013; strings may be shorter. */
+static uint32_t check_length(const co_od_entry_t *e, size_t len)
+{
+    if (len > e->size)
+        return SDO_ABORT_LENGTH_HIGH;
+    if (co_od_type_size(e->type) != 0 && len < e->size)
+        return SDO_ABORT_LENGTH_LOW;
+    if (e->type == CO_DT_OCTET_STRING && len < e->size)
+        return SDO_ABORT_LENGTH_LOW;
+    return CO_SDO_OK;
+}
+
+static uint32_t check_limits(const co_od_entry_t *e, const uint8_t *data)
+{
+    size_t size = co_od_type_size(e->type);
+    if (e->type == CO_DT_BOOLEAN && data[0] > 1)
+        return SDO_ABORT_VALUE_RANGE;
+    if (e->limits == NULL || size == 0 || e->type == CO_DT_REAL32 || e->type == CO_DT_REAL64)
+        return CO_SDO_OK;
+    uint64_t raw = raw_value(data, size);
+    if (raw == 0 && (e->flags & CO_OD_ZERO_OK))
+        return CO_SDO_OK;
+    if (type_is_signed(e->type)) {
+        int64_t v = sign_extend(raw, size);
+        if (v > (int64_t)e->limits->high)
+            return SDO_ABORT_VALUE_HIGH;
+        if (v < (int64_t)e->limits->low)
+            return SDO_ABORT_VALUE_LOW;
+    } else {
+        if (raw > e->limits->high)
+            return SDO_ABORT_VALUE_HIGH;
+        if (raw < e->limits->low)
+            return SDO_ABORT_VALUE_LOW;
+    }
+    return CO_SDO_OK;
+}
+
+/* The service that owns a communication parameter enforces its CiA 301 rules. */
+static uint32_t service_write(co_node_t *node, const co_od_entry_t *e, const uint8_t *data,
+                              size_t len)
+{
+    uint16_t i = e->index;
+    if (i == 0x1003 || i == 0x1014 || i == 0x1015)
+        return co_emcy_od_write(node, e, data, len);
+    if (i == 0x1005 || i == 0x1006 || i == 0x1007 || i == 0x1019)
+        return co_sync_od_write(node, e, data, len);
+    if (i == 0x100C || i == 0x100D)
+        return co_guarding_od_write(node, e, data, len);
+    if (i == 0x1016 || i == 0x1017)
+        return co_heartbeat_od_write(node, e, data, len);
+    if (i == 0x1010 || i == 0x1011)
+        return co_store_od_write(node, e, data, len);
+    if (i >= 0x1200 && i <= 0x12FF)
+        return co_sdo_od_write(node, e, data, len);
+    if (i >= 0x1400 && i <= 0x1BFF)
+        return co_pdo_od_write(node, e, data, len);
+    return CO_SDO_OK;
+}
+
+uint32_t co_od_write(co_node_t *node, uint16_t index, uint8_t subindex, const uint8_t *data,
+                     size_t len, co_od_origin_t origin)
+{
+    const co_od_entry_t *e;
+    uint32_t abort = co_od_lookup(node->od, index, subindex, &e);
+    if (abort != CO_SDO_OK)
+        return abort;
+    if (!(e->flags & CO_OD_WRITE) && origin != CO_OD_ORIGIN_APP)
+        return SDO_ABORT_READ_ONLY;
+    abort = check_length(e, len);
+    if (abort == CO_SDO_OK)
+        abort = check_limits(e, data);
+    if (abort == CO_SDO_OK && e->hook != NULL && e->hook->write != NULL)
+        abort = e->hook->write(node, e, data, len, origin);
+    if (abort == CO_SDO_OK)
+        abort = service_write(node, e, data, len);
+    if (abort == CO_SDO_OK)
+        co_od_store(node, e, data, len);
+    else if (abort != CO_OD_HANDLED)
+        return abort;
+    if (node->hooks != NULL && node->hooks->od_written != NULL)
+        node->hooks->od_written(node, e, origin);
+    return CO_SDO_OK;
+}
+
+void co_od_restore_defaults(co_node_t *node, uint16_t first, uint16_t last)
+{
+    const co_od_t *od = node->od;
+    for (uint16_t i = lower_bound(od, entry_key(first, 0));
+         i < od->count && od->entries[i].index <= last; i++) {
+        const co_od_entry_t *e = &od->entries[i];
+        memcpy(co_od_bytes(node, e), od->defaults + e->offset, e->size);
+        if (e->flags & CO_OD_NODEID)
+            co_od_set(node, e, co_od_get(node, e) + node->node_id);
+    }
+}

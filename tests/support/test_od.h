@@ -1,0 +1,15 @@
+/* A test object dictionary shaped like the Altivar 312's (its communication objects, PDO1/PDO6,
+ * the CiA 402 words, ACC/DEC, LCR/OTR), plus 2000h: one test object of every data type, limits,
+ * a write-only entry and long strings for segmented and block transfers. Hand-written so the core
+ * tests do not depend on the EDS generator. */
+#ifndef TEST_OD_H
+#define TEST_OD_H
+
+#include "co/co_od.h"
+
+extern const co_od_t test_od;
+
+/* A hook on 2000:10 that refuses every write with SDO_ABORT_DATA_LOCAL, and counts reads. */
+extern unsigned test_od_hook_reads;
+
+#endif

@@ -1,31 +1,148 @@
-/* PLACEHOLDER until the sync service is implemented. */
+/* SYNC consumer and producer (CiA 301 section 7.2.5; parameters 7.5.2.5-7.5.2.7 and 7.5.2.41).
+ * Every SYNC, received or produced, is handed to the PDO engine and to the application. */
 #include "co/co_node.h"
+
+static uint32_t sync_cob_id(const co_node_t *node)
+{
+    return (uint32_t)co_od_value(node, 0x1005, 0);
+}
+
+static uint32_t sync_period_us(const co_node_t *node)
+{
+    return (uint32_t)co_od_value(node, 0x1006, 0);
+}
+
+static uint8_t sync_overflow(const co_node_t *node)
+{
+    return (uint8_t)co_od_value(node, 0x1019, 0);
+}
+
+static bool sync_production_allowed(const co_node_t *node)
+{
+    return node->nmt_state == CO_NMT_PRE_OPERATIONAL || node->nmt_state == CO_NMT_OPERATIONAL;
+}
+
+static bool sync_producer_configured(const co_node_t *node)
+{
+    return (sync_cob_id(node) & CO_SYNC_COBID_PRODUCER) && sync_period_us(node) != 0;
+}
+
+static void sync_event(co_node_t *node, uint8_t counter)
+{
+    co_pdo_sync(node, counter);
+    if (node->hooks != NULL && node->hooks->sync != NULL)
+        node->hooks->sync(node, counter);
+}
 
 void co_sync_reset(co_node_t *node)
 {
-    (void)node;
+    node->sync.counter = 0;
+    node->sync.next = CO_TIME_NEVER;
+    node->sync.length_error = false;
 }
 
-bool co_sync_receive(co_node_t *node, const co_frame_t *frame)
+/* The counter starts at 1 and wraps from the overflow value back to 1 (CiA 301 7.2.5.2). */
+static uint8_t sync_next_counter(uint8_t counter, uint8_t overflow)
 {
-    (void)node;
-    (void)frame;
-    return false;
+    return counter < overflow ? (uint8_t)(counter + 1) : 1;
+}
+
+static void sync_produce(co_node_t *node)
+{
+    uint8_t overflow = sync_overflow(node);
+    co_frame_t frame = {.id = sync_cob_id(node) & CO_SYNC_COBID_CAN_ID};
+    if (overflow != 0) {
+        node->sync.counter = sync_next_counter(node->sync.counter, overflow);
+        frame.len = 1;
+        frame.data[0] = node->sync.counter;
+    }
+    co_node_send(node, &frame);
+    sync_event(node, frame.data[0]);
 }
 
 co_time_t co_sync_process(co_node_t *node, co_time_t now)
 {
-    (void)node;
-    (void)now;
-    return CO_TIME_NEVER;
+    co_sync_t *sync = &node->sync;
+    if (!sync_production_allowed(node)) {
+        /* Leaving Pre-operational/Operational restarts the counter at 1. */
+        sync->counter = 0;
+        sync->next = CO_TIME_NEVER;
+        return CO_TIME_NEVER;
+    }
+    if (!sync_producer_configured(node)) {
+        sync->next = CO_TIME_NEVER;
+        return CO_TIME_NEVER;
+    }
+    uint32_t period = sync_period_us(node);
+    if (sync->next == CO_TIME_NEVER) {
+        sync->next = now + period;
+    } else if (now >= sync->next) {
+        sync_produce(node);
+        sync->next += period;
+        if (sync->next <= now)
+            sync->next = now + period;
+    }
+    return sync->next;
+}
+
+bool co_sync_receive(co_node_t *node, const co_frame_t *frame)
+{
+    if (frame->id != (sync_cob_id(node) & CO_SYNC_COBID_CAN_ID))
+        return false;
+    if (frame->flags & CO_FRAME_RTR)
+        return true;
+    uint8_t overflow = sync_overflow(node);
+    uint8_t expected = overflow != 0 ? 1 : 0;
+    if (frame->len != expected) {
+        /* CiA 301 table 21: unexpected SYNC data length; the SYNC is ignored. */
+        uint8_t msef[5] = {frame->len, expected, 0, 0, 0};
+        co_emcy_raise(node, CO_EMCY_SYNC_LENGTH, CO_ERR_REG_GENERIC | CO_ERR_REG_COMMUNICATION,
+                      msef);
+        node->sync.length_error = true;
+        return true;
+    }
+    if (node->sync.length_error) {
+        node->sync.length_error = false;
+        co_emcy_clear(node, CO_EMCY_SYNC_LENGTH);
+    }
+    sync_event(node, overflow != 0 ? frame->data[0] : 0);
+    return true;
+}
+
+/* CiA 301 7.5.2.5: 11-bit CAN-IDs only, and the CAN-ID may not change while this node produces
+ * the SYNC and keeps producing it. Bit 31 is "do not care". */
+static uint32_t sync_write_cob_id(co_node_t *node, uint32_t value)
+{
+    uint32_t old = sync_cob_id(node);
+    if (value & ~(0x80000000u | CO_SYNC_COBID_PRODUCER | CO_SYNC_COBID_CAN_ID))
+        return SDO_ABORT_VALUE_RANGE;
+    if ((old & CO_SYNC_COBID_PRODUCER) && (value & CO_SYNC_COBID_PRODUCER) &&
+        (old & CO_SYNC_COBID_CAN_ID) != (value & CO_SYNC_COBID_CAN_ID))
+        return SDO_ABORT_VALUE_RANGE;
+    return CO_SDO_OK;
+}
+
+/* CiA 301 7.5.2.41: 0 or 2..240, and only while no SYNC period is set (1006h = 0). */
+static uint32_t sync_write_overflow(co_node_t *node, uint8_t value)
+{
+    if (sync_period_us(node) != 0)
+        return SDO_ABORT_DATA_STATE;
+    if (value != 0 && (value < CO_SYNC_OVERFLOW_MIN || value > CO_SYNC_OVERFLOW_MAX))
+        return SDO_ABORT_VALUE_RANGE;
+    return CO_SDO_OK;
 }
 
 uint32_t co_sync_od_write(co_node_t *node, const co_od_entry_t *entry, const uint8_t *data,
                           size_t len)
 {
-    (void)node;
-    (void)entry;
-    (void)data;
     (void)len;
-    return 0;
+    uint32_t abort = CO_SDO_OK;
+    if (entry->index == 0x1005)
+        abort = sync_write_cob_id(node, co_get_u32(data));
+    else if (entry->index == 0x1019)
+        abort = sync_write_overflow(node, data[0]);
+    /* A new producer configuration starts a fresh period at the next co_sync_process(). */
+    if (abort == CO_SDO_OK && (entry->index == 0x1005 || entry->index == 0x1006))
+        node->sync.next = CO_TIME_NEVER;
+    return abort;
 }

@@ -18,6 +18,9 @@
 #ifndef CO_CONFIG_EMCY_HISTORY
 #define CO_CONFIG_EMCY_HISTORY 8 /* active errors remembered by the EMCY producer */
 #endif
+#ifndef CO_CONFIG_EMCY_QUEUE
+#define CO_CONFIG_EMCY_QUEUE 4 /* EMCY frames waiting for the inhibit time (1015h) */
+#endif
 #ifndef CO_CONFIG_SDO_BUFFER
 #define CO_CONFIG_SDO_BUFFER 1024 /* largest segmented or block download, bytes */
 #endif

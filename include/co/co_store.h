@@ -1,5 +1,29 @@
-/* Store and restore parameters (1010h / 1011h, CiA 301 section 7.5.2.13-14): the "save" and "load"
- * signatures and the storage interface the runtime implements (a file, a flash page...). */
+/* Store and restore parameters (1010h / 1011h, CiA 301 sections 7.5.2.13-14) and the storage
+ * interface the runtime implements (a file, a flash page...).
+ *
+ * 1010h:n = "save" stores group n, 1011h:n = "load" erases it so the defaults apply at the next
+ * reset; both read as 1 ("on command" / "restorable"). Group 1 is all parameters, 2 the
+ * communication area 1000h..1FFFh, 3 the standard profile area 6000h..9FFFh, 4 the manufacturer
+ * area 2000h..5FFFh. Any other value aborts 0x08000020, as does a node without storage or a
+ * sub-index above 4; a storage failure aborts 0x06060000.
+ *
+ * Storage works by AREA, never by group: the core passes only the area numbers 2 (1000h..1FFFh),
+ * 3 (6000h..9FFFh) and 4 (2000h..5FFFh) to the backend, and group 1 means the three of them.
+ *
+ * What is stored: every writable (CO_OD_WRITE) entry of the area, except the commands and the
+ * history that are not parameters (1003h, 1010h, 1011h), as a self-describing image:
+ *
+ *     "COS" 0x01                          4-byte header: magic and format version
+ *     index (u16 LE) sub (u8) len (u16 LE) value[len]     one record per entry, in table order
+ *
+ * The image ends with its last record; the backend keeps its length. At a reset (nmt.c) the
+ * defaults of an area are restored first, then co_store_apply() loads its image: the whole image
+ * is first checked (header, every record inside the image, the last one ending exactly at its
+ * end), then the records are applied; a record whose entry no longer exists, is no longer
+ * writable or changed size is skipped, so a dictionary change between versions never misloads.
+ * An image that fails the check, or that the backend reports damaged, is ignored entirely.
+ *
+ * The core needs no buffer: images are streamed from and to the dictionary's own bytes. */
 #ifndef CO_STORE_H
 #define CO_STORE_H
 
@@ -9,22 +33,42 @@
 #define CO_STORE_SIGNATURE_SAVE 0x65766173u /* "save" */
 #define CO_STORE_SIGNATURE_LOAD 0x64616F6Cu /* "load" */
 
-/* Implemented by the runtime. Groups follow the 1010h sub-indexes: 1 = all parameters,
- * 2 = communication, 3 = application, 4..127 = manufacturer-defined. */
+/* Storage areas passed to the backend. */
+#define CO_STORE_AREA_COMMUNICATION 2u /* 1000h..1FFFh */
+#define CO_STORE_AREA_PROFILE 3u       /* 6000h..9FFFh */
+#define CO_STORE_AREA_MANUFACTURER 4u  /* 2000h..5FFFh */
+
+/* Image format version 1: "COS" and the version byte. */
+#define CO_STORE_IMAGE_HEADER_SIZE 4u
+#define CO_STORE_RECORD_HEADER_SIZE 5u
+
+/* Implemented by the runtime; every callback gets `ctx`. Calls never nest and never interleave:
+ * a save is save_begin, save_write..., save_end; a load is load_size then load_read... of the
+ * same area. All callbacks return 0 (or a length) on success and -1 on failure. */
 typedef struct co_storage {
     void *ctx;
-    /* Replaces the stored image of a group atomically. Returns 0 on success. */
-    int (*save)(void *ctx, uint8_t group, const uint8_t *image, size_t len);
-    /* Copies a verified image of a group into buf. Returns its length, 0 when none is stored, or
-     * -1 when the stored image is damaged (it is then ignored, never partly applied). */
-    long (*load)(void *ctx, uint8_t group, uint8_t *buf, size_t cap);
-    /* Forgets a group, so the next reset applies the defaults. Returns 0 on success. */
-    int (*erase)(void *ctx, uint8_t group);
+    /* Starts a new image of an area; the previous image stays in force until save_end commits. */
+    int (*save_begin)(void *ctx, uint8_t area);
+    /* Appends bytes to the image being written. */
+    int (*save_write)(void *ctx, const uint8_t *data, size_t len);
+    /* commit = true: atomically replaces the stored image of the area by the written one (a
+     * crash before or during it leaves the old image, never a mix). commit = false: discards
+     * the written bytes (a save_write failed). */
+    int (*save_end)(void *ctx, bool commit);
+    /* Length of the stored image of an area after the backend verified it (CRC or the like): >
+     * 0, 0 when none is stored, -1 when the stored image is damaged (it is then ignored). */
+    long (*load_size)(void *ctx, uint8_t area);
+    /* Copies len bytes of the verified image at offset into buf. */
+    int (*load_read)(void *ctx, uint8_t area, uint32_t offset, uint8_t *buf, size_t len);
+    /* Forgets an area (no image: the defaults apply). Erasing a missing image succeeds. */
+    int (*erase)(void *ctx, uint8_t area);
 } co_storage_t;
 
+/* Write handler of 1010h / 1011h. */
 uint32_t co_store_od_write(co_node_t *node, const co_od_entry_t *entry, const uint8_t *data,
                            size_t len);
-/* Applies stored values of the entries in [first, last] after their defaults were restored. */
+/* Applies the stored values of the entries in [first, last] after their defaults were restored.
+ * Without storage, or without a usable image, the defaults stay. */
 void co_store_apply(co_node_t *node, uint16_t first, uint16_t last);
 
 #endif

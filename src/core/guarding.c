@@ -1,31 +1,88 @@
-/* PLACEHOLDER until the guarding service is implemented. */
+/* Node guarding and life guarding, CiA 301 section 7.2.8.3.1 and the ATV312 manual's "Node
+ * guarding protocol" (toggle starts at 0, reset only by Reset_Communication). */
 #include "co/co_node.h"
+
+#define GUARD_COB_BASE 0x700u
+#define GUARD_TOGGLE 0x80u
+
+static co_time_t life_time_us(uint16_t guard_time_ms, uint8_t life_time_factor)
+{
+    return (co_time_t)guard_time_ms * life_time_factor * 1000u;
+}
+
+static void restart_life_timer(co_node_t *node, co_time_t life_us)
+{
+    co_guarding_t *g = &node->guarding;
+    bool armed = g->started && !g->lost && life_us != 0;
+    g->deadline = armed ? node->now + life_us : CO_TIME_NEVER;
+}
+
+static void report(co_node_t *node, bool lost)
+{
+    if (node->hooks != NULL && node->hooks->guarding != NULL)
+        node->hooks->guarding(node, lost);
+}
 
 void co_guarding_reset(co_node_t *node)
 {
-    (void)node;
+    co_guarding_t *g = &node->guarding;
+    g->toggle = 0;
+    g->started = false;
+    g->lost = false;
+    g->deadline = CO_TIME_NEVER;
+}
+
+void co_guarding_stop(co_node_t *node)
+{
+    node->guarding.started = false;
+    node->guarding.deadline = CO_TIME_NEVER;
 }
 
 bool co_guarding_receive(co_node_t *node, const co_frame_t *frame)
 {
-    (void)node;
-    (void)frame;
-    return false;
+    if (frame->id != GUARD_COB_BASE + node->node_id || !(frame->flags & CO_FRAME_RTR))
+        return false;
+    /* A guarding request is a remote frame of DLC 0 or 1 (masters differ); the ATV312 runs only
+     * one error control protocol, so heartbeat production silences guarding. */
+    if (frame->len > 1 || co_heartbeat_producing(node))
+        return true;
+    co_guarding_t *g = &node->guarding;
+    co_frame_t reply = {.id = frame->id, .len = 1};
+    reply.data[0] = (uint8_t)(g->toggle | (uint8_t)node->nmt_state);
+    g->toggle ^= GUARD_TOGGLE;
+    co_node_send(node, &reply);
+    g->started = true;
+    bool resumed = g->lost;
+    g->lost = false;
+    restart_life_timer(node, life_time_us((uint16_t)co_od_value(node, 0x100C, 0),
+                                          (uint8_t)co_od_value(node, 0x100D, 0)));
+    if (resumed)
+        report(node, false);
+    return true;
 }
 
 co_time_t co_guarding_process(co_node_t *node, co_time_t now)
 {
-    (void)node;
-    (void)now;
+    co_guarding_t *g = &node->guarding;
+    if (now < g->deadline)
+        return g->deadline;
+    g->lost = true;
+    g->deadline = CO_TIME_NEVER;
+    report(node, true);
     return CO_TIME_NEVER;
 }
 
+/* The new guard time or life time factor is not stored yet: combine it with the other one. */
 uint32_t co_guarding_od_write(co_node_t *node, const co_od_entry_t *entry, const uint8_t *data,
                               size_t len)
 {
-    (void)node;
-    (void)entry;
-    (void)data;
     (void)len;
-    return 0;
+    uint16_t guard_time = (uint16_t)co_od_value(node, 0x100C, 0);
+    uint8_t factor = (uint8_t)co_od_value(node, 0x100D, 0);
+    if (entry->index == 0x100C)
+        guard_time = co_get_u16(data);
+    else
+        factor = data[0];
+    restart_life_timer(node, life_time_us(guard_time, factor));
+    return CO_SDO_OK;
 }

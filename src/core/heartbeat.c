@@ -1,31 +1,172 @@
-/* PLACEHOLDER until the heartbeat service is implemented. */
+/* Heartbeat producer (1017h) and consumers (1016h), CiA 301 section 7.2.8.3.2. */
 #include "co/co_node.h"
+
+#define HB_COB_BASE 0x700u
+#define HB_TIME_MASK 0xFFFFu
+#define HB_RESERVED_MASK 0xFF000000u /* CiA 301 1016h value definition: bits 24..31 are 0 */
+#define NODE_ID_MAX 127u
+
+static uint32_t consumer_node(uint32_t value)
+{
+    return (value >> 16) & 0xFFu;
+}
+
+/* CiA 301 1016h: an entry with time 0 or a node-id outside 1..127 is not used. */
+static bool consumer_in_use(uint32_t value)
+{
+    uint32_t id = consumer_node(value);
+    return (value & HB_TIME_MASK) != 0 && id >= 1 && id <= NODE_ID_MAX;
+}
+
+static co_time_t producer_period_us(uint16_t ms)
+{
+    return (co_time_t)ms * 1000u;
+}
+
+static void producer_restart(co_node_t *node, uint16_t ms)
+{
+    node->heartbeat.next_beat = ms != 0 ? node->now + producer_period_us(ms) : CO_TIME_NEVER;
+}
+
+static void consumer_configure(co_hb_consumer_t *c, uint32_t value)
+{
+    bool used = consumer_in_use(value);
+    c->node_id = used ? (uint8_t)consumer_node(value) : 0;
+    c->time_us = (uint32_t)(value & HB_TIME_MASK) * 1000u;
+    c->state = 0;
+    c->monitoring = false;
+    c->lost = false;
+    c->deadline = CO_TIME_NEVER;
+}
+
+bool co_heartbeat_producing(const co_node_t *node)
+{
+    return co_od_value(node, 0x1017, 0) != 0;
+}
 
 void co_heartbeat_reset(co_node_t *node)
 {
-    (void)node;
+    co_heartbeat_t *hb = &node->heartbeat;
+    producer_restart(node, (uint16_t)co_od_value(node, 0x1017, 0));
+    for (uint8_t i = 0; i < CO_CONFIG_HB_CONSUMERS; i++) {
+        const co_od_entry_t *e = co_od_find(node->od, 0x1016, (uint8_t)(i + 1));
+        consumer_configure(&hb->consumer[i], e != NULL ? (uint32_t)co_od_get(node, e) : 0);
+    }
+}
+
+static void report(co_node_t *node, uint8_t producer, bool lost)
+{
+    if (node->hooks != NULL && node->hooks->heartbeat != NULL)
+        node->hooks->heartbeat(node, producer, lost);
 }
 
 bool co_heartbeat_receive(co_node_t *node, const co_frame_t *frame)
 {
-    (void)node;
-    (void)frame;
-    return false;
+    /* A heartbeat (or boot-up) is exactly one data byte. */
+    if (frame->id <= HB_COB_BASE || frame->id > HB_COB_BASE + NODE_ID_MAX ||
+        (frame->flags & CO_FRAME_RTR) || frame->len != 1)
+        return false;
+    uint8_t producer = (uint8_t)(frame->id - HB_COB_BASE);
+    bool consumed = false;
+    for (uint8_t i = 0; i < CO_CONFIG_HB_CONSUMERS; i++) {
+        co_hb_consumer_t *c = &node->heartbeat.consumer[i];
+        if (c->node_id != producer)
+            continue;
+        consumed = true;
+        c->state = frame->data[0];
+        c->monitoring = true;
+        c->deadline = node->now + c->time_us;
+        if (c->lost) {
+            c->lost = false;
+            report(node, producer, false);
+        }
+    }
+    return consumed;
+}
+
+static co_time_t consumers_process(co_node_t *node, co_time_t now)
+{
+    co_time_t next = CO_TIME_NEVER;
+    for (uint8_t i = 0; i < CO_CONFIG_HB_CONSUMERS; i++) {
+        co_hb_consumer_t *c = &node->heartbeat.consumer[i];
+        if (!c->monitoring || c->lost)
+            continue;
+        if (now >= c->deadline) {
+            c->lost = true;
+            c->deadline = CO_TIME_NEVER;
+            report(node, c->node_id, true);
+        } else {
+            next = co_time_min(next, c->deadline);
+        }
+    }
+    return next;
+}
+
+static co_time_t producer_process(co_node_t *node, co_time_t now)
+{
+    co_heartbeat_t *hb = &node->heartbeat;
+    if (now < hb->next_beat)
+        return hb->next_beat;
+    co_frame_t beat = {.id = HB_COB_BASE + node->node_id, .len = 1};
+    beat.data[0] = (uint8_t)node->nmt_state;
+    co_node_send(node, &beat);
+    /* Next beat on the period grid, so the period stays exact; a late call skips beats. */
+    co_time_t period = producer_period_us((uint16_t)co_od_value(node, 0x1017, 0));
+    hb->next_beat += period;
+    if (hb->next_beat <= now)
+        hb->next_beat = now + period;
+    return hb->next_beat;
 }
 
 co_time_t co_heartbeat_process(co_node_t *node, co_time_t now)
 {
-    (void)node;
-    (void)now;
-    return CO_TIME_NEVER;
+    return co_time_min(producer_process(node, now), consumers_process(node, now));
+}
+
+/* CiA 301 1016h note: two entries monitoring the same node-id with non-zero times abort
+ * 0x06040043. */
+static uint32_t check_duplicate_consumer(co_node_t *node, uint8_t subindex, uint32_t value)
+{
+    if (!consumer_in_use(value))
+        return CO_SDO_OK;
+    for (uint16_t i = 0; i < node->od->count; i++) {
+        const co_od_entry_t *other = &node->od->entries[i];
+        if (other->index != 0x1016 || other->subindex == 0 || other->subindex == subindex)
+            continue;
+        uint32_t v = (uint32_t)co_od_get(node, other);
+        if (consumer_in_use(v) && consumer_node(v) == consumer_node(value))
+            return SDO_ABORT_PARAM_INCOMPATIBLE;
+    }
+    return CO_SDO_OK;
+}
+
+static uint32_t write_consumer(co_node_t *node, uint8_t subindex, uint32_t value)
+{
+    if (value & HB_RESERVED_MASK)
+        return SDO_ABORT_VALUE_RANGE;
+    uint32_t abort = check_duplicate_consumer(node, subindex, value);
+    if (abort != CO_SDO_OK)
+        return abort;
+    if (subindex > CO_CONFIG_HB_CONSUMERS) {
+        /* The dictionary has more entries than the node can monitor: refuse to enable one. */
+        return consumer_in_use(value) ? SDO_ABORT_INTERNAL_INCOMPATIBLE : CO_SDO_OK;
+    }
+    consumer_configure(&node->heartbeat.consumer[subindex - 1], value);
+    return CO_SDO_OK;
 }
 
 uint32_t co_heartbeat_od_write(co_node_t *node, const co_od_entry_t *entry, const uint8_t *data,
                                size_t len)
 {
-    (void)node;
-    (void)entry;
-    (void)data;
     (void)len;
-    return 0;
+    if (entry->index == 0x1017) {
+        uint16_t ms = co_get_u16(data);
+        producer_restart(node, ms);
+        if (ms != 0)
+            co_guarding_stop(node);
+        return CO_SDO_OK;
+    }
+    if (entry->subindex == 0)
+        return CO_SDO_OK;
+    return write_consumer(node, entry->subindex, co_get_u32(data));
 }

@@ -1,11 +1,17 @@
-/* NMT slave state machine (CiA 301 section 7.3.2.2, figure 48). */
+/* NMT slave state machine (CiA 301 section 7.3.2.2, figure 48; ATV312 manual, "Network
+ * management state chart"). */
 #include "co/co_node.h"
 
-static void reset_services(co_node_t *node)
+#define NMT_COB_ID 0x000u
+#define NMT_COMMAND_LEN 2u
+#define NMT_BROADCAST 0u
+#define BOOT_UP_COB_BASE 0x700u
+
+static void reset_services(co_node_t *node, co_nmt_reset_t scope)
 {
     co_sdo_reset(node);
     co_sync_reset(node);
-    co_emcy_reset(node);
+    co_emcy_reset(node, scope);
     co_heartbeat_reset(node);
     co_guarding_reset(node);
     co_pdo_reset(node);
@@ -21,6 +27,8 @@ void co_nmt_enter(co_node_t *node, co_nmt_state_t state)
         node->hooks->nmt_state(node, state);
 }
 
+/* CiA 301 7.3.2.2.2: reset node restores the whole dictionary, reset communication only the
+ * communication area; each area gets its defaults, then its stored values. */
 void co_nmt_reset(co_node_t *node, co_nmt_reset_t scope)
 {
     node->nmt_state = CO_NMT_INITIALISING;
@@ -32,21 +40,21 @@ void co_nmt_reset(co_node_t *node, co_nmt_reset_t scope)
     }
     co_od_restore_defaults(node, 0x1000, 0x1FFF);
     co_store_apply(node, 0x1000, 0x1FFF);
-    reset_services(node);
-    co_frame_t boot = {.id = 0x700u + node->node_id, .len = 1, .data = {0}};
+    reset_services(node, scope);
+    co_frame_t boot = {.id = BOOT_UP_COB_BASE + node->node_id, .len = 1, .data = {0}};
     co_node_send(node, &boot);
     co_nmt_enter(node, CO_NMT_PRE_OPERATIONAL);
 }
 
 bool co_nmt_receive(co_node_t *node, const co_frame_t *frame)
 {
-    if (frame->id != 0x000)
+    if (frame->id != NMT_COB_ID)
         return false;
     /* CiA 301 7.2.8.3.1: an NMT command is exactly two bytes; anything else is not one. */
-    if (frame->len != 2 || (frame->flags & CO_FRAME_RTR))
+    if (frame->len != NMT_COMMAND_LEN || (frame->flags & CO_FRAME_RTR))
         return true;
     uint8_t target = frame->data[1];
-    if (target != 0 && target != node->node_id)
+    if (target != NMT_BROADCAST && target != node->node_id)
         return true;
     switch (frame->data[0]) {
     case CO_NMT_CS_START:

@@ -173,3 +173,13 @@ uint32_t test_sdo_read(test_node_t *t, uint16_t index, uint8_t sub, uint32_t *va
     test_rx_frame(t, &f);
     return sdo_reply(t, value);
 }
+
+uint32_t test_write(test_node_t *t, uint16_t index, uint8_t sub, uint32_t value, uint8_t len)
+{
+    uint8_t data[4];
+    co_put_u32(data, value);
+    t->node.now = t->bus.now;
+    uint32_t abort = co_od_write(&t->node, index, sub, data, len, CO_OD_ORIGIN_SDO);
+    t->bus.deadline = co_node_process(&t->node, t->bus.now);
+    return abort;
+}

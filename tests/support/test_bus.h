@@ -55,4 +55,8 @@ void test_drain(test_node_t *t);
 uint32_t test_sdo_write(test_node_t *t, uint16_t index, uint8_t sub, uint32_t value, uint8_t len);
 uint32_t test_sdo_read(test_node_t *t, uint16_t index, uint8_t sub, uint32_t *value);
 
+/* Writes a numeric value of `len` bytes through co_od_write (SDO origin, every check, no SDO
+ * frames) at the current time, then runs co_node_process. Returns the abort code (0 on success). */
+uint32_t test_write(test_node_t *t, uint16_t index, uint8_t sub, uint32_t value, uint8_t len);
+
 #endif

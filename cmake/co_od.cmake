@@ -1,0 +1,47 @@
+# co_generate_od(<target> EDS <file> PREFIX <name> [HOOKS <file>])
+#
+# Generates the object dictionary <name>_od (tools/edstool.py generate) from an EDS at build time
+# into ${CMAKE_CURRENT_BINARY_DIR}/<target>_gen/ and wraps it in <target>, an OBJECT library whose
+# include directory (for <name>_od.h) is PUBLIC and which links canopen PUBLIC.
+#
+# Why an OBJECT library: the generated table refers to the hooks named in the hooks file, which
+# the application defines. Object files are linked directly into whatever links <target> (an
+# executable, or the archive of a static library), so the hooks resolve whatever the link order:
+# link <target> into the library or executable that defines the hooks (or into anything linked
+# together with it). Link <target> directly into one target per executable, or the table would be
+# defined twice.
+#
+# The command reruns when the EDS, the hooks file or edstool.py change.
+
+get_filename_component(CO_EDSTOOL ${CMAKE_CURRENT_LIST_DIR}/../tools/edstool.py ABSOLUTE)
+
+function(co_generate_od target)
+  cmake_parse_arguments(PARSE_ARGV 1 ARG "" "EDS;PREFIX;HOOKS" "")
+  if(NOT ARG_EDS OR NOT ARG_PREFIX)
+    message(FATAL_ERROR "co_generate_od(${target}): EDS <file> and PREFIX <name> are required")
+  endif()
+  if(ARG_UNPARSED_ARGUMENTS)
+    message(FATAL_ERROR "co_generate_od(${target}): unexpected arguments ${ARG_UNPARSED_ARGUMENTS}")
+  endif()
+  get_filename_component(eds ${ARG_EDS} ABSOLUTE)
+  set(out_dir ${CMAKE_CURRENT_BINARY_DIR}/${target}_gen)
+  set(outputs ${out_dir}/${ARG_PREFIX}_od.c ${out_dir}/${ARG_PREFIX}_od.h)
+  set(command ${Python3_EXECUTABLE} ${CO_EDSTOOL} generate ${eds} --prefix ${ARG_PREFIX}
+              --out-dir ${out_dir})
+  set(depends ${eds} ${CO_EDSTOOL})
+  if(ARG_HOOKS)
+    get_filename_component(hooks ${ARG_HOOKS} ABSOLUTE)
+    list(APPEND command --hooks ${hooks})
+    list(APPEND depends ${hooks})
+  endif()
+  add_custom_command(
+    OUTPUT ${outputs}
+    COMMAND ${command}
+    DEPENDS ${depends}
+    COMMENT "Generating ${ARG_PREFIX}_od from ${ARG_EDS}"
+    VERBATIM)
+  add_library(${target} OBJECT ${outputs})
+  target_include_directories(${target} PUBLIC ${out_dir})
+  target_link_libraries(${target} PUBLIC canopen)
+  target_compile_options(${target} PRIVATE ${CO_WARNINGS})
+endfunction()

@@ -1,0 +1,752 @@
+#!/usr/bin/env python3
+"""edstool: turns a CiA 306 EDS into the object dictionary table of the CANopen core, and checks
+EDS files against the rules of CiA 306 that real tools (python canopen among them) rely on.
+
+Python 3 standard library only. Exit codes: 0 success, 1 invalid input, 2 usage error."""
+
+import argparse
+import os
+import re
+import struct
+import sys
+
+EXIT_OK = 0
+EXIT_INVALID = 1
+EXIT_USAGE = 2
+
+# CiA 301 table 44: static data types, (name, bytes or None for variable size, kind).
+# kind: 'u' unsigned, 'i' signed, 'f' float, 'b' boolean, 'vs' visible string,
+# 'os' octet string, 'us' unicode string, 'd' domain, 't' time (not supported by the core).
+DATA_TYPES = {
+    0x01: ("BOOLEAN", 1, "b"),
+    0x02: ("INTEGER8", 1, "i"),
+    0x03: ("INTEGER16", 2, "i"),
+    0x04: ("INTEGER32", 4, "i"),
+    0x05: ("UNSIGNED8", 1, "u"),
+    0x06: ("UNSIGNED16", 2, "u"),
+    0x07: ("UNSIGNED32", 4, "u"),
+    0x08: ("REAL32", 4, "f"),
+    0x09: ("VISIBLE_STRING", None, "vs"),
+    0x0A: ("OCTET_STRING", None, "os"),
+    0x0B: ("UNICODE_STRING", None, "us"),
+    0x0C: ("TIME_OF_DAY", 6, "t"),
+    0x0D: ("TIME_DIFFERENCE", 6, "t"),
+    0x0F: ("DOMAIN", None, "d"),
+    0x10: ("INTEGER24", 3, "i"),
+    0x11: ("REAL64", 8, "f"),
+    0x12: ("INTEGER40", 5, "i"),
+    0x13: ("INTEGER48", 6, "i"),
+    0x14: ("INTEGER56", 7, "i"),
+    0x15: ("INTEGER64", 8, "i"),
+    0x16: ("UNSIGNED24", 3, "u"),
+    0x18: ("UNSIGNED40", 5, "u"),
+    0x19: ("UNSIGNED48", 6, "u"),
+    0x1A: ("UNSIGNED56", 7, "u"),
+    0x1B: ("UNSIGNED64", 8, "u"),
+}
+
+# The types of include/co/co_types.h (co_dtype_t): what the generator can represent.
+CORE_TYPES = {0x01, 0x02, 0x03, 0x04, 0x05, 0x06, 0x07, 0x08, 0x09, 0x0A, 0x0B, 0x0F, 0x11, 0x15,
+              0x1B}
+
+# CiA 306 object codes.
+OBJ_NULL, OBJ_DOMAIN, OBJ_DEFTYPE, OBJ_DEFSTRUCT, OBJ_VAR, OBJ_ARRAY, OBJ_RECORD = 0, 2, 5, 6, 7, 8, 9
+OBJECT_TYPES = {OBJ_NULL: "NULL", OBJ_DOMAIN: "DOMAIN", OBJ_DEFTYPE: "DEFTYPE",
+                OBJ_DEFSTRUCT: "DEFSTRUCT", OBJ_VAR: "VAR", OBJ_ARRAY: "ARRAY",
+                OBJ_RECORD: "RECORD"}
+
+ACCESS_TYPES = ("ro", "wo", "rw", "rwr", "rww", "const")
+
+# Flags of include/co/co_od.h.
+READ, WRITE, CONST, TPDO, RPDO, NODEID, ZERO_OK = 0x01, 0x02, 0x04, 0x08, 0x10, 0x20, 0x40
+FLAG_NAMES = ((READ, "CO_OD_READ"), (WRITE, "CO_OD_WRITE"), (CONST, "CO_OD_CONST"),
+              (TPDO, "CO_OD_TPDO"), (RPDO, "CO_OD_RPDO"), (NODEID, "CO_OD_NODEID"),
+              (ZERO_OK, "CO_OD_ZERO_OK"))
+
+ACCESS_FLAGS = {"ro": READ, "wo": WRITE, "rw": READ | WRITE, "rwr": READ | WRITE,
+                "rww": READ | WRITE, "const": READ | CONST}
+# PDOMapping=1: which PDO direction each access type may be mapped into.
+PDO_FLAGS = {"ro": TPDO, "const": TPDO, "rwr": TPDO, "rww": RPDO, "rw": TPDO | RPDO,
+             "wo": RPDO}
+
+OBJECT_LISTS = ("MandatoryObjects", "OptionalObjects", "ManufacturerObjects")
+
+# A comment line inside an object's section giving the capacity of a string or domain entry,
+# invisible to every other EDS reader: ";size=32".
+SIZE_DIRECTIVE = re.compile(r"^;\s*size\s*=\s*(\S+)\s*$", re.IGNORECASE)
+
+NODEID_FORMS = re.compile(r"^(?:\$NODEID\+(?P<after>.+)|(?P<before>.+)\+\$NODEID)$", re.IGNORECASE)
+HEX_NUMBER = re.compile(r"^-?0[xX][0-9a-fA-F]+$")
+DEC_NUMBER = re.compile(r"^-?(?:0|[1-9][0-9]*)$")
+OCTAL_LOOKING = re.compile(r"^-?0[0-9]+$")
+
+
+class EdsError(Exception):
+    """A problem with an input file, reported as 'file: [section] key: message'."""
+
+    def __init__(self, path, section, key, message):
+        super().__init__(message)
+        self.path = path
+        self.section = section
+        self.key = key
+        self.message = message
+
+    def __str__(self):
+        where = self.path + ":"
+        if self.section is not None:
+            where += " [%s]" % self.section
+        if self.key is not None:
+            where += " " + self.key + ":"
+        return "%s %s" % (where, self.message)
+
+
+class Key:
+    def __init__(self, name, value, line):
+        self.name = name
+        self.value = value
+        self.line = line
+
+
+class Section:
+    def __init__(self, name, line):
+        self.name = name
+        self.line = line
+        self.keys = {}          # lower-case key -> Key, in file order
+        self.size_directive = None
+
+    def get(self, key):
+        k = self.keys.get(key.lower())
+        return None if k is None else k.value
+
+    def has(self, key):
+        return key.lower() in self.keys
+
+    def label(self, key):
+        """'Key=value' as written, for messages."""
+        k = self.keys.get(key.lower())
+        return key if k is None else "%s=%s" % (k.name, k.value)
+
+
+class Eds:
+    def __init__(self, path):
+        self.path = path
+        self.sections = {}      # lower-case name -> Section, in file order
+
+    def section(self, name):
+        return self.sections.get(name.lower())
+
+    def error(self, section, key, message):
+        return EdsError(self.path, section, key, message)
+
+
+def parse_eds(path):
+    """Reads an EDS into sections of keys, keeping names as written and rejecting what INI
+    readers (python's configparser among them) would refuse: duplicate sections and keys."""
+    eds = Eds(path)
+    try:
+        with open(path, "rb") as f:
+            raw = f.read()
+    except OSError as e:
+        raise EdsError(path, None, None, "cannot read: %s" % e.strerror)
+    try:
+        text = raw.decode("utf-8")
+    except UnicodeDecodeError as e:
+        raise EdsError(path, None, None, "not UTF-8/ASCII text (byte %d)" % e.start)
+    current = None
+    for number, line in enumerate(text.splitlines(), 1):
+        stripped = line.strip()
+        if not stripped:
+            continue
+        if stripped.startswith(";") or stripped.startswith("#"):
+            m = SIZE_DIRECTIVE.match(stripped)
+            if m and current is not None:
+                current.size_directive = (m.group(1), number)
+            continue
+        if stripped.startswith("["):
+            if not stripped.endswith("]"):
+                raise EdsError(path, None, None, "line %d: malformed section header" % number)
+            name = stripped[1:-1].strip()
+            if name.lower() in eds.sections:
+                raise EdsError(path, name, None, "line %d: duplicate section" % number)
+            current = Section(name, number)
+            eds.sections[name.lower()] = current
+            continue
+        if "=" not in stripped:
+            raise EdsError(path, current.name if current else None, None,
+                           "line %d: expected key=value" % number)
+        if current is None:
+            raise EdsError(path, None, None, "line %d: key outside any section" % number)
+        key, value = stripped.split("=", 1)
+        key = key.strip()
+        # Inline comments as configparser reads them: ';' after whitespace.
+        value = re.split(r"\s;", value, maxsplit=1)[0].strip()
+        if key.lower() in current.keys:
+            raise EdsError(path, current.name, key, "line %d: duplicate key" % number)
+        current.keys[key.lower()] = Key(key, value, number)
+    return eds
+
+
+def parse_number(text):
+    """An integer as CiA 306 writes it and python canopen reads it: decimal or 0x hex, with an
+    optional '-'. Returns (value, is_hex). Raises ValueError with the reason."""
+    t = text.strip()
+    if HEX_NUMBER.match(t):
+        return int(t, 16), True
+    if DEC_NUMBER.match(t):
+        return int(t, 10), False
+    if OCTAL_LOOKING.match(t):
+        raise ValueError("leading zero in a decimal number (octal in CiA 306, refused by python "
+                         "canopen): write it without the zero or as 0x hex")
+    raise ValueError("not a number")
+
+
+def parse_value(text):
+    """A numeric value, possibly node-id relative: N, $NODEID+N or N+$NODEID.
+    Returns (value, is_hex, nodeid_relative)."""
+    t = text.replace(" ", "")
+    m = NODEID_FORMS.match(t)
+    if m:
+        value, is_hex = parse_number(m.group("after") or m.group("before"))
+        return value, is_hex, True
+    if t.upper() == "$NODEID":
+        return 0, False, True
+    if "$NODEID" in t.upper():
+        raise ValueError("unsupported $NODEID form: use $NODEID+N or N+$NODEID")
+    value, is_hex = parse_number(t)
+    return value, is_hex, False
+
+
+def type_range(dtype):
+    name, size, kind = DATA_TYPES[dtype]
+    if kind == "b":
+        return 0, 1
+    if kind == "u":
+        return 0, (1 << (8 * size)) - 1
+    if kind == "i":
+        return -(1 << (8 * size - 1)), (1 << (8 * size - 1)) - 1
+    return None
+
+
+def signed_limit(value, is_hex, dtype):
+    """python canopen reads a hex limit of a signed type as two's complement; so do we."""
+    name, size, kind = DATA_TYPES[dtype]
+    if kind == "i" and is_hex and value >= (1 << (8 * size - 1)) and value < (1 << (8 * size)):
+        return value - (1 << (8 * size))
+    return value
+
+
+def parse_index(text):
+    t = text.strip()
+    if t.lower().startswith("0x"):
+        t = t[2:]
+    if not re.match(r"^[0-9a-fA-F]{1,4}$", t):
+        raise ValueError("not a hex index")
+    return int(t, 16)
+
+
+SUB_SECTION = re.compile(r"^([0-9a-fA-F]{4})sub([0-9a-fA-F]{1,2})$", re.IGNORECASE)
+OBJECT_SECTION = re.compile(r"^[0-9a-fA-F]{4}$")
+
+
+# ---------------------------------------------------------------------------------------------
+# Generator
+# ---------------------------------------------------------------------------------------------
+
+class Entry:
+    def __init__(self, index, sub, name, section):
+        self.index = index
+        self.sub = sub
+        self.name = name
+        self.section = section
+        self.dtype = None
+        self.flags = 0
+        self.size = 0
+        self.offset = 0
+        self.default = b""
+        self.limits = None
+        self.hook = None
+
+
+def listed_objects(eds):
+    """Indexes listed in the three object lists, with the section/key that lists them."""
+    listed = {}
+    for list_name in OBJECT_LISTS:
+        sec = eds.section(list_name)
+        if sec is None:
+            continue
+        count_text = sec.get("SupportedObjects")
+        if count_text is None:
+            raise eds.error(list_name, "SupportedObjects", "missing")
+        try:
+            count, _ = parse_number(count_text)
+        except ValueError as e:
+            raise eds.error(list_name, sec.label("SupportedObjects"), str(e))
+        for n in range(1, count + 1):
+            text = sec.get(str(n))
+            if text is None:
+                raise eds.error(list_name, str(n), "missing (SupportedObjects=%d)" % count)
+            try:
+                index = parse_index(text)
+            except ValueError as e:
+                raise eds.error(list_name, sec.label(str(n)), str(e))
+            if index in listed:
+                raise eds.error(list_name, sec.label(str(n)), "object listed twice")
+            listed[index] = (list_name, str(n))
+    return listed
+
+
+def entry_size(eds, sec, dtype, default_len):
+    """Bytes of an entry: fixed for numeric types; for strings and domains the default's length
+    or the ';size=N' directive of the section if larger."""
+    size = DATA_TYPES[dtype][1]
+    if size is not None:
+        return size
+    size = default_len
+    if sec.size_directive is not None:
+        text, line = sec.size_directive
+        try:
+            capacity, _ = parse_number(text)
+        except ValueError as e:
+            raise eds.error(sec.name, ";size=" + text, str(e))
+        if capacity < default_len:
+            raise eds.error(sec.name, ";size=" + text,
+                            "smaller than the default value (%d bytes)" % default_len)
+        size = capacity
+    if size == 0:
+        raise eds.error(sec.name, "DefaultValue",
+                        "%s with no default value and no ';size=N' comment: its size is unknown"
+                        % DATA_TYPES[dtype][0])
+    if size > 0xFFFF:
+        raise eds.error(sec.name, "DefaultValue", "larger than 65535 bytes")
+    return size
+
+
+def encode_default(eds, sec, dtype, text):
+    """The default value as stored in the data block (little-endian), and whether it is
+    node-id relative."""
+    name, size, kind = DATA_TYPES[dtype]
+    label = sec.label("DefaultValue")
+    if kind == "vs":
+        try:
+            return (text or "").encode("ascii"), False
+        except UnicodeEncodeError:
+            raise eds.error(sec.name, label, "VISIBLE_STRING must be ASCII")
+    if kind == "us":
+        return (text or "").encode("utf-16-le"), False
+    if kind in ("os", "d"):
+        try:
+            return bytes.fromhex(text or ""), False
+        except ValueError:
+            raise eds.error(sec.name, label, "%s default must be hex bytes, e.g. 01A2FF" % name)
+    if text is None or text == "":
+        return bytes(size), False
+    if kind == "f":
+        try:
+            value = float(text)
+        except ValueError:
+            raise eds.error(sec.name, label, "not a floating-point number")
+        return struct.pack("<f" if size == 4 else "<d", value), False
+    try:
+        value, is_hex, nodeid = parse_value(text)
+    except ValueError as e:
+        raise eds.error(sec.name, label, str(e))
+    low, high = type_range(dtype)
+    if not low <= value <= high:
+        raise eds.error(sec.name, label, "outside the range of %s (%d..%d)" % (name, low, high))
+    return (value & ((1 << (8 * size)) - 1)).to_bytes(size, "little"), nodeid
+
+
+def parse_limit(eds, sec, dtype, key):
+    text = sec.get(key)
+    if text is None or text == "":
+        return None
+    try:
+        value, is_hex, nodeid = parse_value(text)
+    except ValueError as e:
+        raise eds.error(sec.name, sec.label(key), str(e))
+    if nodeid:
+        raise eds.error(sec.name, sec.label(key), "node-id relative limits cannot be represented")
+    value = signed_limit(value, is_hex, dtype)
+    low, high = type_range(dtype)
+    if not low <= value <= high:
+        raise eds.error(sec.name, sec.label(key), "outside the range of %s" % DATA_TYPES[dtype][0])
+    return value
+
+
+def build_entry(eds, sec, index, sub, fallback=None, default_override=None):
+    """One table entry from a VAR section or a sub-section. `fallback` is the section whose keys
+    a compact array's sub-entries inherit."""
+    src = fallback or sec
+    name = src.get("ParameterName") or ""
+    if fallback is not None:
+        name = "%s %d" % (name, sub)
+    entry = Entry(index, sub, name, sec.name)
+
+    dtype_text = src.get("DataType")
+    if dtype_text is None:
+        raise eds.error(src.name, "DataType", "missing")
+    try:
+        dtype, _ = parse_number(dtype_text)
+    except ValueError as e:
+        raise eds.error(src.name, src.label("DataType"), str(e))
+    if dtype not in DATA_TYPES or dtype not in CORE_TYPES:
+        raise eds.error(src.name, src.label("DataType"), "unsupported data type")
+    entry.dtype = dtype
+
+    access = (src.get("AccessType") or "").lower()
+    if access not in ACCESS_TYPES:
+        raise eds.error(src.name, src.label("AccessType"),
+                        "unknown access type (expected one of %s)" % ", ".join(ACCESS_TYPES))
+    entry.flags = ACCESS_FLAGS[access]
+    mapping_text = src.get("PDOMapping") or "0"
+    try:
+        mapping, _ = parse_number(mapping_text)
+    except ValueError as e:
+        raise eds.error(src.name, src.label("PDOMapping"), str(e))
+    if mapping not in (0, 1):
+        raise eds.error(src.name, src.label("PDOMapping"), "must be 0 or 1")
+    if mapping:
+        entry.flags |= PDO_FLAGS[access]
+
+    default_text = default_override if default_override is not None else src.get("DefaultValue")
+    entry.default, nodeid = encode_default(eds, src, dtype, default_text)
+    if nodeid:
+        entry.flags |= NODEID
+    entry.size = entry_size(eds, src, dtype, len(entry.default))
+    entry.default = entry.default + bytes(entry.size - len(entry.default))
+
+    low = parse_limit(eds, src, dtype, "LowLimit")
+    high = parse_limit(eds, src, dtype, "HighLimit")
+    if low is not None or high is not None:
+        kind = DATA_TYPES[dtype][2]
+        if kind not in ("u", "i", "b"):
+            key = "LowLimit" if low is not None else "HighLimit"
+            raise eds.error(src.name, src.label(key),
+                            "limits on %s are not enforced by the core" % DATA_TYPES[dtype][0])
+        type_low, type_high = type_range(dtype)
+        low = type_low if low is None else low
+        high = type_high if high is None else high
+        if low > high:
+            raise eds.error(src.name, src.label("LowLimit"), "LowLimit above HighLimit")
+        entry.limits = (low, high)
+    return entry
+
+
+def object_type_of(eds, sec):
+    text = sec.get("ObjectType")
+    if text is None:
+        return OBJ_VAR  # CiA 306: a missing ObjectType means VAR
+    try:
+        value, _ = parse_number(text)
+    except ValueError as e:
+        raise eds.error(sec.name, sec.label("ObjectType"), str(e))
+    return value
+
+
+def sub_sections(eds, index):
+    """{sub-index: Section} of one object."""
+    subs = {}
+    for sec in eds.sections.values():
+        m = SUB_SECTION.match(sec.name)
+        if m and int(m.group(1), 16) == index:
+            subs[int(m.group(2), 16)] = sec
+    return subs
+
+
+def compact_entries(eds, sec, index):
+    """CiA 306 compact storage of an ARRAY: CompactSubObj=N sub-entries sharing the object's
+    keys, with optional per-sub-index defaults in [<index>Value]."""
+    try:
+        count, _ = parse_number(sec.get("CompactSubObj"))
+    except ValueError as e:
+        raise eds.error(sec.name, sec.label("CompactSubObj"), str(e))
+    if not 1 <= count <= 254:
+        raise eds.error(sec.name, sec.label("CompactSubObj"), "must be 1..254")
+    values = eds.section("%04XValue" % index)
+    first = Entry(index, 0, "Highest sub-index supported", sec.name)
+    first.dtype = 0x05
+    first.flags = READ
+    first.size = 1
+    first.default = bytes([count])
+    entries = [first]
+    for sub in range(1, count + 1):
+        override = values.get(str(sub)) if values is not None else None
+        entries.append(build_entry(eds, sec, index, sub, fallback=sec, default_override=override))
+    return entries
+
+
+def build_entries(eds):
+    listed = listed_objects(eds)
+    present = {}
+    for sec in eds.sections.values():
+        if OBJECT_SECTION.match(sec.name):
+            present[int(sec.name, 16)] = sec
+    for index, (list_name, key) in sorted(listed.items()):
+        if index not in present:
+            raise eds.error(list_name, "%s=0x%04X" % (key, index), "object has no section")
+    for index, sec in sorted(present.items()):
+        if index not in listed:
+            raise eds.error(sec.name, None, "object not listed in any of %s" %
+                            "/".join(OBJECT_LISTS))
+    for sec in eds.sections.values():
+        m = SUB_SECTION.match(sec.name)
+        if m and int(m.group(1), 16) not in present:
+            raise eds.error(sec.name, None, "sub-index of an object that has no section")
+
+    entries = []
+    for index, sec in sorted(present.items()):
+        otype = object_type_of(eds, sec)
+        subs = sub_sections(eds, index)
+        if otype in (OBJ_VAR, OBJ_DOMAIN):
+            if subs:
+                raise eds.error(sec.name, sec.label("ObjectType"),
+                                "a VAR has no sub-index sections")
+            entries.append(build_entry(eds, sec, index, 0))
+        elif otype == OBJ_ARRAY and sec.has("CompactSubObj"):
+            entries.extend(compact_entries(eds, sec, index))
+        elif otype in (OBJ_ARRAY, OBJ_RECORD):
+            if 0 not in subs:
+                raise eds.error(sec.name, None, "%s without a sub-index 0 section"
+                                % OBJECT_TYPES[otype])
+            for sub, sub_sec in sorted(subs.items()):
+                entries.append(build_entry(eds, sub_sec, index, sub))
+        else:
+            raise eds.error(sec.name, sec.label("ObjectType"), "unsupported object type")
+    return entries
+
+
+HOOK_WORD = re.compile(r"^[A-Za-z_][A-Za-z0-9_]*$")
+
+
+def apply_hooks(entries, path):
+    """Reads a hooks file: 'INDEX[:SUB] WORD...' where WORD is zero-ok or the name of an
+    extern const co_od_hook_t."""
+    try:
+        with open(path, encoding="utf-8") as f:
+            lines = f.read().splitlines()
+    except (OSError, UnicodeDecodeError) as e:
+        raise EdsError(path, None, None, "cannot read: %s" % e)
+    name = os.path.basename(path)
+
+    def fail(number, message):
+        return EdsError(path, None, None, "line %d: %s" % (number, message))
+
+    for number, line in enumerate(lines, 1):
+        text = line.split("#", 1)[0].strip()
+        if not text:
+            continue
+        words = text.split()
+        where, actions = words[0], words[1:]
+        if not actions:
+            raise fail(number, "'%s' names no hook and no zero-ok" % where)
+        index_text, _, sub_text = where.partition(":")
+        try:
+            index = parse_index(index_text)
+        except ValueError:
+            raise fail(number, "'%s' is not a hex index like 0x203C" % index_text)
+        sub = None
+        if sub_text:
+            try:
+                sub = int(sub_text, 16) if sub_text.lower().startswith("0x") else int(sub_text, 10)
+            except ValueError:
+                raise fail(number, "'%s' is not a sub-index (0x02 or 2)" % sub_text)
+        targets = [e for e in entries if e.index == index and (sub is None or e.sub == sub)]
+        if not targets:
+            what = "0x%04X" % index if sub is None else "0x%04X:0x%02X" % (index, sub)
+            raise fail(number, "%s is not in the EDS" % what)
+        for word in actions:
+            if word == "zero-ok":
+                for e in targets:
+                    e.flags |= ZERO_OK
+            elif HOOK_WORD.match(word):
+                for e in targets:
+                    if e.hook is not None and e.hook != word:
+                        raise fail(number, "0x%04X:0x%02X already has hook %s"
+                                   % (e.index, e.sub, e.hook))
+                    e.hook = word
+            else:
+                raise fail(number, "'%s' is neither zero-ok nor a C identifier" % word)
+    return name
+
+
+def layout(entries):
+    offset = 0
+    for e in entries:
+        e.offset = offset
+        offset += e.size
+    return offset
+
+
+def c_flags(flags):
+    names = [n for bit, n in FLAG_NAMES if flags & bit]
+    return " | ".join(names) if names else "0"
+
+
+def c_limit(value, dtype):
+    if DATA_TYPES[dtype][2] == "i":
+        if value == -(1 << 63):
+            return "(uint64_t)INT64_MIN"
+        return "(uint64_t)INT64_C(%d)" % value
+    return "UINT64_C(%d)" % value
+
+
+def c_comment(text):
+    return text.replace("*/", "* /").replace("/*", "/ *")
+
+
+def render(entries, eds_name, prefix, data_size, hooks_name):
+    guard = prefix.upper() + "_OD_H"
+    macro = prefix.upper()
+    banner = ("/* Generated from %s%s by tools/edstool.py: do not edit. */\n"
+              % (eds_name, " and " + hooks_name if hooks_name else ""))
+    h = [banner,
+         "#ifndef %s\n#define %s\n\n" % (guard, guard),
+         '#include "co/co_od.h"\n\n',
+         "/* Bytes of a node's data block (co_node_config_t.od_data). */\n",
+         "#define %s_OD_DATA_SIZE %du\n" % (macro, data_size),
+         "/* Entries of the table, sub-indexes included. */\n",
+         "#define %s_OD_ENTRIES %du\n\n" % (macro, len(entries)),
+         "extern const co_od_t %s_od;\n" % prefix,
+         "/* Default values, little-endian, node-id terms excluded. */\n",
+         "extern const uint8_t %s_od_defaults[%s_OD_DATA_SIZE];\n\n" % (prefix, macro),
+         "#endif\n"]
+
+    c = [banner, '#include "%s_od.h"\n\n#include <stddef.h>\n#include <stdint.h>\n\n' % prefix]
+    hooks = sorted({e.hook for e in entries if e.hook})
+    if hooks:
+        c.append("/* Hooks named in %s, defined by the application. */\n" % hooks_name)
+        for hook in hooks:
+            c.append("extern const co_od_hook_t %s;\n" % hook)
+        c.append("\n")
+
+    limits = []
+    for e in entries:
+        if e.limits is not None:
+            key = (e.limits, DATA_TYPES[e.dtype][2] == "i")
+            if key not in limits:
+                limits.append(key)
+    if limits:
+        c.append("static const co_od_limits_t %s_od_limits[] = {\n" % prefix)
+        for n, ((low, high), signed) in enumerate(limits):
+            dtype = 0x04 if signed else 0x07
+            c.append("    {%s, %s}, /* %d: %d..%d */\n"
+                     % (c_limit(low, dtype), c_limit(high, dtype), n, low, high))
+        c.append("};\n\n")
+
+    c.append("const uint8_t %s_od_defaults[%s_OD_DATA_SIZE] = {\n" % (prefix, macro))
+    for e in entries:
+        data = e.default
+        for start in range(0, len(data), 16):
+            chunk = ", ".join("0x%02X" % b for b in data[start:start + 16])
+            label = "/* %04X:%02X */ " % (e.index, e.sub) if start == 0 else " " * 14
+            c.append("    %s%s,\n" % (label, chunk))
+    c.append("};\n\n")
+
+    c.append("static const co_od_entry_t %s_od_entries[%s_OD_ENTRIES] = {\n" % (prefix, macro))
+    for e in entries:
+        limit = "NULL"
+        if e.limits is not None:
+            limit = "&%s_od_limits[%d]" % (prefix, limits.index((e.limits,
+                                                                  DATA_TYPES[e.dtype][2] == "i")))
+        hook = "&" + e.hook if e.hook else "NULL"
+        c.append("    /* %04X:%02X %s */\n" % (e.index, e.sub, c_comment(e.name)))
+        c.append("    {0x%04X, 0x%02X, CO_DT_%s, %s, %d, %d, %s, %s},\n"
+                 % (e.index, e.sub, DATA_TYPES[e.dtype][0], c_flags(e.flags), e.size, e.offset,
+                    limit, hook))
+    c.append("};\n\n")
+    c.append('const co_od_t %s_od = {"%s", %s_od_entries, %s_OD_ENTRIES, %s_OD_DATA_SIZE,\n'
+             "    %s_od_defaults};\n" % (prefix, prefix, prefix, macro, macro, prefix))
+    return "".join(h), "".join(c)
+
+
+def write_if_changed(path, text):
+    """Leaves an unchanged file untouched so the build does not recompile it."""
+    try:
+        with open(path, encoding="utf-8") as f:
+            if f.read() == text:
+                return
+    except OSError:
+        pass
+    tmp = path + ".tmp"
+    with open(tmp, "w", encoding="utf-8", newline="\n") as f:
+        f.write(text)
+    os.replace(tmp, path)
+
+
+def generate(args):
+    if not re.match(r"^[A-Za-z_][A-Za-z0-9_]*$", args.prefix):
+        raise UsageError("--prefix %r is not a C identifier" % args.prefix)
+    eds = parse_eds(args.eds)
+    entries = build_entries(eds)
+    if not entries:
+        raise eds.error(None, None, "no objects")
+    if len(entries) > 0xFFFF:
+        raise eds.error(None, None, "more than 65535 entries")
+    hooks_name = apply_hooks(entries, args.hooks) if args.hooks else None
+    data_size = layout(entries)
+    header, source = render(entries, os.path.basename(args.eds), args.prefix, data_size,
+                            hooks_name)
+    try:
+        os.makedirs(args.out_dir, exist_ok=True)
+        write_if_changed(os.path.join(args.out_dir, args.prefix + "_od.h"), header)
+        write_if_changed(os.path.join(args.out_dir, args.prefix + "_od.c"), source)
+    except OSError as e:
+        raise UsageError("cannot write to %s: %s" % (args.out_dir, e.strerror))
+    return EXIT_OK
+
+
+# ---------------------------------------------------------------------------------------------
+# Command line
+# ---------------------------------------------------------------------------------------------
+
+class UsageError(Exception):
+    pass
+
+
+class Parser(argparse.ArgumentParser):
+    def error(self, message):
+        self.print_usage(sys.stderr)
+        sys.stderr.write("%s: error: %s\n" % (self.prog, message))
+        sys.exit(EXIT_USAGE)
+
+
+def make_parser():
+    parser = Parser(
+        prog="edstool.py",
+        description="Generate the CANopen core's object dictionary table from a CiA 306 EDS, "
+                    "or check EDS files.",
+        epilog="Exit codes: 0 success, 1 invalid input (messages name file, section and key), "
+               "2 usage error. See docs/eds-generator.md.")
+    sub = parser.add_subparsers(dest="command", metavar="COMMAND", parser_class=Parser)
+    sub.required = True
+    gen = sub.add_parser(
+        "generate", help="write PREFIX_od.h and PREFIX_od.c from an EDS",
+        description="Write DIR/PREFIX_od.h and DIR/PREFIX_od.c: the const co_od_t PREFIX_od "
+                    "(sorted entries, default-value image, limits, flags) for include/co/co_od.h. "
+                    "Files whose content would not change are left untouched.")
+    gen.add_argument("eds", metavar="EDS", help="the EDS file")
+    gen.add_argument("--prefix", required=True, metavar="NAME",
+                     help="C identifier prefixing every generated name (NAME_od, NAME_OD_...)")
+    gen.add_argument("--out-dir", required=True, metavar="DIR", help="output directory")
+    gen.add_argument("--hooks", metavar="FILE",
+                     help="hooks file: lines 'INDEX[:SUB] WORD...', WORD is zero-ok or the name "
+                          "of an extern const co_od_hook_t")
+    gen.set_defaults(run=generate)
+    return parser
+
+
+def main(argv=None):
+    parser = make_parser()
+    args = parser.parse_args(argv)
+    try:
+        return args.run(args)
+    except UsageError as e:
+        sys.stderr.write("edstool.py: error: %s\n" % e)
+        return EXIT_USAGE
+    except EdsError as e:
+        sys.stderr.write("%s\n" % e)
+        return EXIT_INVALID
+
+
+if __name__ == "__main__":
+    sys.exit(main())

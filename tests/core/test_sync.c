@@ -1,0 +1,226 @@
+/* SYNC: producer period and counter wrap, production only in Pre-operational and Operational,
+ * 1005h/1019h parameter rules, the consumer's counter and its wrong-length emergency, and the
+ * SYNC driving synchronous TPDOs. Frame-exact with injected time. */
+#include "test_bus.h"
+#include "test_od.h"
+
+#include <stdlib.h>
+
+#define MS 1000u
+
+static test_node_t t;
+static unsigned sync_calls;
+static uint8_t sync_counter;
+
+static void on_sync(co_node_t *node, uint8_t counter)
+{
+    (void)node;
+    sync_calls++;
+    sync_counter = counter;
+}
+
+static const co_app_hooks_t hooks = {.sync = on_sync};
+
+static uint32_t write_param(uint16_t index, uint8_t sub, uint32_t value, uint8_t len)
+{
+    uint8_t data[4];
+    co_put_u32(data, value);
+    t.node.now = t.bus.now;
+    uint32_t abort = co_od_write(&t.node, index, sub, data, len, CO_OD_ORIGIN_SDO);
+    t.bus.deadline = co_node_process(&t.node, t.bus.now);
+    return abort;
+}
+
+static void start(void)
+{
+    sync_calls = 0;
+    sync_counter = 0xFF;
+    test_node_start(&t, 4, &hooks, NULL);
+}
+
+/* Producer of a SYNC every `period_us`, with counter overflow `overflow` (0 = no counter). */
+static void start_producer(uint32_t period_us, uint8_t overflow)
+{
+    start();
+    ck_assert_uint_eq(write_param(0x1019, 0, overflow, 1), 0);
+    ck_assert_uint_eq(write_param(0x1006, 0, period_us, 4), 0);
+    ck_assert_uint_eq(write_param(0x1005, 0, 0x40000080, 4), 0);
+}
+
+START_TEST(producer_period_and_counter_wrap)
+{
+    start_producer(10 * MS, 3);
+    ck_assert_uint_eq(t.bus.deadline, 10 * MS);
+    test_advance(&t, 45 * MS);
+    ck_assert_uint_eq(test_expect(&t, "080#01"), 10 * MS);
+    ck_assert_uint_eq(test_expect(&t, "080#02"), 20 * MS);
+    ck_assert_uint_eq(test_expect(&t, "080#03"), 30 * MS);
+    ck_assert_uint_eq(test_expect(&t, "080#01"), 40 * MS);
+    test_expect_none(&t);
+    ck_assert_uint_eq(sync_calls, 4);
+    ck_assert_uint_eq(sync_counter, 1);
+}
+END_TEST
+
+START_TEST(producer_without_counter)
+{
+    start_producer(2500, 0);
+    test_advance(&t, 7500);
+    ck_assert_uint_eq(test_expect(&t, "080#"), 2500);
+    ck_assert_uint_eq(test_expect(&t, "080#"), 5000);
+    ck_assert_uint_eq(test_expect(&t, "080#"), 7500);
+    test_expect_none(&t);
+    ck_assert_uint_eq(sync_counter, 0);
+}
+END_TEST
+
+START_TEST(producer_stops_outside_pre_operational_and_operational)
+{
+    start_producer(10 * MS, 240);
+    test_advance(&t, 20 * MS);
+    test_expect(&t, "080#01");
+    test_expect(&t, "080#02");
+    test_advance(&t, 5 * MS);
+    test_rx(&t, "000#0204");
+    ck_assert_uint_eq(t.bus.deadline, CO_TIME_NEVER);
+    test_advance(&t, 100 * MS);
+    test_expect_none(&t);
+    /* Back in Pre-operational: a new period, and the counter restarts at 1. */
+    test_rx(&t, "000#8004");
+    test_advance(&t, 10 * MS);
+    ck_assert_uint_eq(test_expect(&t, "080#01"), 135 * MS);
+    test_rx(&t, "000#0104");
+    test_expect(&t, "184#0000");
+    test_advance(&t, 10 * MS);
+    ck_assert_uint_eq(test_expect(&t, "080#02"), 145 * MS);
+}
+END_TEST
+
+START_TEST(period_change_restarts_production)
+{
+    start_producer(10 * MS, 0);
+    test_advance(&t, 15 * MS);
+    test_expect(&t, "080#");
+    ck_assert_uint_eq(write_param(0x1006, 0, 3 * MS, 4), 0);
+    test_advance(&t, 3 * MS);
+    ck_assert_uint_eq(test_expect(&t, "080#"), 18 * MS);
+    ck_assert_uint_eq(write_param(0x1006, 0, 0, 4), 0);
+    ck_assert_uint_eq(t.bus.deadline, CO_TIME_NEVER);
+    test_advance(&t, 100 * MS);
+    test_expect_none(&t);
+}
+END_TEST
+
+START_TEST(overflow_value_rules)
+{
+    start();
+    ck_assert_uint_eq(write_param(0x1019, 0, 1, 1), SDO_ABORT_VALUE_RANGE);
+    ck_assert_uint_eq(write_param(0x1019, 0, 241, 1), SDO_ABORT_VALUE_RANGE);
+    ck_assert_uint_eq(write_param(0x1019, 0, 255, 1), SDO_ABORT_VALUE_RANGE);
+    ck_assert_uint_eq(write_param(0x1019, 0, 2, 1), 0);
+    ck_assert_uint_eq(write_param(0x1019, 0, 240, 1), 0);
+    ck_assert_uint_eq(write_param(0x1019, 0, 0, 1), 0);
+    ck_assert_uint_eq(write_param(0x1006, 0, 1000, 4), 0);
+    ck_assert_uint_eq(write_param(0x1019, 0, 10, 1), SDO_ABORT_DATA_STATE);
+    ck_assert_int_eq(co_od_value(&t.node, 0x1019, 0), 0);
+}
+END_TEST
+
+START_TEST(cob_id_rules)
+{
+    start();
+    ck_assert_uint_eq(write_param(0x1005, 0, 0x20000080, 4), SDO_ABORT_VALUE_RANGE);
+    ck_assert_uint_eq(write_param(0x1005, 0, 0x00000880, 4), SDO_ABORT_VALUE_RANGE);
+    ck_assert_uint_eq(write_param(0x1005, 0, 0x81, 4), 0);
+    ck_assert_uint_eq(write_param(0x1005, 0, 0x40000081, 4), 0);
+    ck_assert_uint_eq(write_param(0x1005, 0, 0x40000082, 4), SDO_ABORT_VALUE_RANGE);
+    ck_assert_int_eq(co_od_value(&t.node, 0x1005, 0), 0x40000081);
+    /* Stopping production and changing the CAN-ID in one write is allowed. */
+    ck_assert_uint_eq(write_param(0x1005, 0, 0x82, 4), 0);
+    ck_assert_uint_eq(write_param(0x1005, 0, 0x80000082, 4), 0);
+    /* The consumer follows the CAN-ID. */
+    test_rx(&t, "082#");
+    ck_assert_uint_eq(sync_calls, 1);
+    test_rx(&t, "080#");
+    ck_assert_uint_eq(sync_calls, 1);
+}
+END_TEST
+
+START_TEST(consumer_counter_and_hook)
+{
+    start();
+    ck_assert_uint_eq(write_param(0x1019, 0, 5, 1), 0);
+    test_rx(&t, "080#04");
+    ck_assert_uint_eq(sync_calls, 1);
+    ck_assert_uint_eq(sync_counter, 4);
+    test_rx(&t, "080#R");
+    ck_assert_uint_eq(sync_calls, 1);
+    test_expect_none(&t);
+}
+END_TEST
+
+START_TEST(consumer_wrong_length_emcy_8240)
+{
+    start();
+    test_rx(&t, "080#05");
+    ck_assert_uint_eq(sync_calls, 0);
+    test_expect(&t, "084#4082110100000000");
+    test_rx(&t, "080#05");
+    test_expect_none(&t);
+    test_rx(&t, "080#");
+    ck_assert_uint_eq(sync_calls, 1);
+    test_expect(&t, "084#0000000000000000");
+    ck_assert_uint_eq(write_param(0x1019, 0, 2, 1), 0);
+    test_rx(&t, "080#");
+    test_expect(&t, "084#4082110001000000");
+    ck_assert_uint_eq(sync_calls, 1);
+}
+END_TEST
+
+START_TEST(consumer_ignored_when_stopped)
+{
+    start();
+    test_rx(&t, "000#0204");
+    test_rx(&t, "080#");
+    ck_assert_uint_eq(sync_calls, 0);
+}
+END_TEST
+
+START_TEST(produced_sync_drives_synchronous_tpdo)
+{
+    start_producer(10 * MS, 0);
+    ck_assert_uint_eq(write_param(0x1800, 5, 0, 2), 0);
+    ck_assert_uint_eq(write_param(0x1805, 2, 1, 1), 0);
+    ck_assert_uint_eq(write_param(0x1805, 1, 0x284, 4), 0);
+    test_rx(&t, "000#0104");
+    test_expect(&t, "184#0000");
+    test_advance(&t, 20 * MS);
+    ck_assert_uint_eq(test_expect(&t, "080#"), 10 * MS);
+    ck_assert_uint_eq(test_expect(&t, "284#00000000"), 10 * MS);
+    ck_assert_uint_eq(test_expect(&t, "080#"), 20 * MS);
+    ck_assert_uint_eq(test_expect(&t, "284#00000000"), 20 * MS);
+    test_expect_none(&t);
+}
+END_TEST
+
+int main(void)
+{
+    Suite *s = suite_create("sync");
+    TCase *tc = tcase_create("sync");
+    tcase_add_test(tc, producer_period_and_counter_wrap);
+    tcase_add_test(tc, producer_without_counter);
+    tcase_add_test(tc, producer_stops_outside_pre_operational_and_operational);
+    tcase_add_test(tc, period_change_restarts_production);
+    tcase_add_test(tc, overflow_value_rules);
+    tcase_add_test(tc, cob_id_rules);
+    tcase_add_test(tc, consumer_counter_and_hook);
+    tcase_add_test(tc, consumer_wrong_length_emcy_8240);
+    tcase_add_test(tc, consumer_ignored_when_stopped);
+    tcase_add_test(tc, produced_sync_drives_synchronous_tpdo);
+    suite_add_tcase(s, tc);
+    SRunner *sr = srunner_create(s);
+    srunner_run_all(sr, CK_NORMAL);
+    int failed = srunner_ntests_failed(sr);
+    srunner_free(sr);
+    return failed == 0 ? EXIT_SUCCESS : EXIT_FAILURE;
+}

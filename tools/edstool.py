@@ -696,6 +696,404 @@ def generate(args):
 
 
 # ---------------------------------------------------------------------------------------------
+# Checker
+# ---------------------------------------------------------------------------------------------
+
+FILE_INFO_KEYS = ("FileName", "FileVersion", "FileRevision", "EDSVersion", "Description",
+                  "CreationTime", "CreationDate", "CreatedBy")
+DEVICE_INFO_KEYS = ("VendorName", "VendorNumber", "ProductName", "ProductNumber",
+                    "RevisionNumber", "OrderCode", "SimpleBootUpMaster", "SimpleBootUpSlave",
+                    "Granularity", "DynamicChannelsSupported", "GroupMessaging", "NrOfRXPDO",
+                    "NrOfTXPDO", "LSS_Supported")
+DEVICE_INFO_NUMBERS = ("VendorNumber", "ProductNumber", "RevisionNumber", "SimpleBootUpMaster",
+                       "SimpleBootUpSlave", "Granularity", "DynamicChannelsSupported",
+                       "GroupMessaging", "NrOfRXPDO", "NrOfTXPDO", "LSS_Supported")
+BAUD_RATES = (10, 20, 50, 125, 250, 500, 800, 1000)
+MANDATORY_OBJECTS = (0x1000, 0x1001, 0x1018)
+# Keys of an object description as CiA 306 spells them; python canopen reads them case-sensitively.
+OBJECT_KEYS = ("ParameterName", "ObjectType", "DataType", "AccessType", "DefaultValue",
+               "PDOMapping", "LowLimit", "HighLimit", "SubNumber", "CompactSubObj",
+               "ObjFlags", "ParameterValue", "Denotation", "StorageLocation")
+NODE_IDS = (1, 127)
+
+
+def is_cob_id_entry(index, sub):
+    """COB-ID entries whose default must be a valid 11-bit identifier (CiA 301 7.5.2)."""
+    if (index, sub) in ((0x1005, 0), (0x1012, 0), (0x1014, 0)):
+        return True
+    if 0x1200 <= index <= 0x12FF:
+        return sub in (1, 2)
+    return 0x1400 <= index <= 0x15FF and sub == 1 or 0x1800 <= index <= 0x19FF and sub == 1
+
+
+class Checker:
+    def __init__(self, path):
+        self.path = path
+        self.findings = []   # (severity, EdsError)
+        self.eds = None
+
+    def error(self, section, key, message):
+        self.findings.append(("error", EdsError(self.path, section, key, message)))
+
+    def warning(self, section, key, message):
+        self.findings.append(("warning", EdsError(self.path, section, key, message)))
+
+    def number(self, sec, key, required=False, node_id=None):
+        """The integer value of a key, or None (missing or reported)."""
+        text = sec.get(key)
+        if text is None or text == "":
+            if required:
+                self.error(sec.name, key, "missing")
+            return None
+        try:
+            return parse_number(text)[0]
+        except ValueError as e:
+            self.error(sec.name, sec.label(key), str(e))
+            return None
+
+    def run(self):
+        try:
+            self.eds = parse_eds(self.path)
+        except EdsError as e:
+            self.findings.append(("error", e))
+            return
+        self.check_file_info()
+        self.check_device_info()
+        objects = self.check_object_lists()
+        self.check_objects(objects)
+        self.check_pdo_counts(objects)
+
+    def check_file_info(self):
+        sec = self.eds.section("FileInfo")
+        if sec is None:
+            self.error("FileInfo", None, "required section missing")
+            return
+        for key in FILE_INFO_KEYS:
+            if not sec.has(key):
+                self.warning("FileInfo", key, "missing")
+        for key in ("FileVersion", "FileRevision"):
+            value = self.number(sec, key)
+            if value is not None and not 0 <= value <= 255:
+                self.error("FileInfo", sec.label(key), "must be an UNSIGNED8")
+        version = sec.get("EDSVersion")
+        if version is not None and not re.match(r"^\d+\.\d+$", version):
+            self.error("FileInfo", sec.label("EDSVersion"), "must read like 4.0")
+
+    def check_device_info(self):
+        sec = self.eds.section("DeviceInfo")
+        if sec is None:
+            self.error("DeviceInfo", None, "required section missing")
+            return
+        for key in DEVICE_INFO_KEYS:
+            if not sec.has(key):
+                self.warning("DeviceInfo", key, "missing")
+        for key in DEVICE_INFO_NUMBERS:
+            self.number(sec, key)
+        supported = 0
+        for rate in BAUD_RATES:
+            key = "BaudRate_%d" % rate
+            value = self.number(sec, key, required=True)
+            if value is not None and value not in (0, 1):
+                self.error("DeviceInfo", sec.label(key), "must be 0 or 1")
+            supported += value == 1
+        if supported == 0:
+            self.error("DeviceInfo", "BaudRate_*", "no baud rate supported")
+
+    def check_object_lists(self):
+        """{index: Section} of the object sections, after checking they match the lists."""
+        present = {}
+        for sec in self.eds.sections.values():
+            if OBJECT_SECTION.match(sec.name):
+                present[int(sec.name, 16)] = sec
+        listed = {}
+        for list_name in OBJECT_LISTS:
+            sec = self.eds.section(list_name)
+            if sec is None:
+                if list_name == "MandatoryObjects":
+                    self.error(list_name, None, "required section missing")
+                continue
+            count = self.number(sec, "SupportedObjects", required=True)
+            numbered = [k.name for k in sec.keys.values() if k.name.lower() != "supportedobjects"]
+            if count is not None:
+                wanted = [str(n) for n in range(1, count + 1)]
+                for key in wanted:
+                    if not sec.has(key):
+                        self.error(list_name, key, "missing (SupportedObjects=%d)" % count)
+                for key in numbered:
+                    if key not in wanted:
+                        self.error(list_name, key, "beyond SupportedObjects=%d" % count)
+            for key in numbered:
+                try:
+                    index = parse_index(sec.get(key))
+                except ValueError as e:
+                    self.error(list_name, sec.label(key), str(e))
+                    continue
+                if index in listed:
+                    self.error(list_name, sec.label(key), "already listed in [%s]" % listed[index])
+                    continue
+                listed[index] = list_name
+                if index not in present:
+                    self.error(list_name, sec.label(key), "listed object has no section")
+                expected = ("MandatoryObjects" if index in MANDATORY_OBJECTS else
+                            "ManufacturerObjects" if 0x2000 <= index <= 0x5FFF else
+                            "OptionalObjects")
+                if list_name != expected:
+                    self.error(list_name, sec.label(key), "belongs in [%s]" % expected)
+        for index in MANDATORY_OBJECTS:
+            if index not in present:
+                self.error("%04X" % index, None, "mandatory object missing")
+        for index, sec in sorted(present.items()):
+            if index not in listed:
+                self.error(sec.name, None, "object not listed in any of %s"
+                           % "/".join(OBJECT_LISTS))
+        for sec in self.eds.sections.values():
+            m = SUB_SECTION.match(sec.name)
+            if m and int(m.group(1), 16) not in present:
+                self.error(sec.name, None, "sub-index of an object that has no section")
+        return present
+
+    def check_keys_spelling(self, sec):
+        canonical = {k.lower(): k for k in OBJECT_KEYS}
+        for key in sec.keys.values():
+            right = canonical.get(key.name.lower())
+            if right is not None and key.name != right:
+                self.error(sec.name, key.name, "spell it %s (python canopen reads keys "
+                           "case-sensitively)" % right)
+
+    def check_objects(self, objects):
+        for index, sec in sorted(objects.items()):
+            self.check_keys_spelling(sec)
+            if not sec.get("ParameterName"):
+                self.error(sec.name, "ParameterName", "missing")
+            otype = self.number(sec, "ObjectType")
+            if otype is None:
+                otype = OBJ_VAR
+            if otype not in OBJECT_TYPES:
+                self.error(sec.name, sec.label("ObjectType"), "unknown object type")
+                continue
+            subs = sub_sections(self.eds, index)
+            for sub_sec in subs.values():
+                self.check_keys_spelling(sub_sec)
+                if not sub_sec.name[4:7] == "sub":
+                    self.error(sub_sec.name, None, "write the section name as %ssub%s "
+                               "(python canopen only reads 'sub')"
+                               % (sub_sec.name[:4], sub_sec.name[7:]))
+            if otype in (OBJ_DEFTYPE, OBJ_DEFSTRUCT):
+                self.warning(sec.name, sec.label("ObjectType"),
+                             "python canopen ignores %s objects" % OBJECT_TYPES[otype])
+            elif otype in (OBJ_VAR, OBJ_DOMAIN, OBJ_NULL):
+                if subs:
+                    self.error(sec.name, sec.label("ObjectType"),
+                               "a %s has no sub-index sections" % OBJECT_TYPES[otype])
+                if sec.has("SubNumber"):
+                    self.error(sec.name, sec.label("SubNumber"), "only ARRAY and RECORD have it")
+                self.check_variable(sec, index, 0)
+            elif otype == OBJ_ARRAY and sec.has("CompactSubObj"):
+                self.check_compact(sec, index, subs)
+            else:
+                self.check_structured(sec, index, otype, subs)
+
+    def check_structured(self, sec, index, otype, subs):
+        count = self.number(sec, "SubNumber", required=True)
+        if count is not None and count != len(subs):
+            self.error(sec.name, sec.label("SubNumber"), "%d sub-index sections found" % len(subs))
+        for key in ("DataType", "AccessType", "DefaultValue", "PDOMapping"):
+            if sec.has(key):
+                self.warning(sec.name, sec.label(key), "ignored on an %s: belongs in the "
+                             "sub-index sections" % OBJECT_TYPES[otype])
+        if 0 not in subs:
+            self.error(sec.name, None, "%s without a sub-index 0 section" % OBJECT_TYPES[otype])
+        for sub, sub_sec in sorted(subs.items()):
+            self.check_variable(sub_sec, index, sub)
+        if 0 in subs:
+            self.check_highest_sub(subs[0], max(subs))
+        if otype == OBJ_ARRAY:
+            types = {s.get("DataType") for n, s in subs.items() if n > 0}
+            if len(types) > 1:
+                self.error(sec.name, None, "ARRAY sub-indexes 1.. differ in DataType")
+
+    def check_highest_sub(self, sub0, highest):
+        dtype = self.number(sub0, "DataType")
+        if dtype is not None and dtype != 0x05:
+            self.error(sub0.name, sub0.label("DataType"), "sub-index 0 must be UNSIGNED8")
+        text = sub0.get("DefaultValue")
+        if text is None:
+            self.error(sub0.name, "DefaultValue", "missing: must be the highest sub-index (%d)"
+                       % highest)
+            return
+        try:
+            value, _, nodeid = parse_value(text)
+        except ValueError:
+            return  # reported by check_variable
+        # A writable sub-index 0 counts the entries in use (1003h errors, PDO mappings, CiA 301
+        # 7.4.8): up to the highest sub-index. A read-only one is the highest sub-index.
+        writable = (sub0.get("AccessType") or "").lower() not in ("ro", "const")
+        if nodeid or value > highest or (not writable and value != highest):
+            self.error(sub0.name, sub0.label("DefaultValue"), "%s sub-index present is %d"
+                       % ("highest" if not writable else "above the highest", highest))
+        limit = self.value_of(sub0, "HighLimit", 0x05) if writable else None
+        if limit is not None and limit[0] > highest:
+            self.error(sub0.name, sub0.label("HighLimit"), "highest sub-index present is %d"
+                       % highest)
+
+    def check_compact(self, sec, index, subs):
+        count = self.number(sec, "CompactSubObj")
+        if count is not None and not 1 <= count <= 254:
+            self.error(sec.name, sec.label("CompactSubObj"), "must be 1..254")
+        if subs:
+            self.error(sec.name, sec.label("CompactSubObj"),
+                       "a compact array has no sub-index sections")
+        self.check_variable(sec, index, 1)
+
+    def check_variable(self, sec, index, sub):
+        if not sec.get("ParameterName"):
+            self.error(sec.name, "ParameterName", "missing")
+        dtype = self.number(sec, "DataType", required=True)
+        if dtype is not None and dtype not in DATA_TYPES:
+            self.error(sec.name, sec.label("DataType"), "unknown data type")
+            dtype = None
+        access = sec.get("AccessType")
+        if access is None:
+            self.error(sec.name, "AccessType", "missing")
+        elif access.lower() not in ACCESS_TYPES:
+            self.error(sec.name, sec.label("AccessType"),
+                       "unknown access type (expected one of %s)" % ", ".join(ACCESS_TYPES))
+        mapping = self.number(sec, "PDOMapping")
+        if mapping is not None and mapping not in (0, 1):
+            self.error(sec.name, sec.label("PDOMapping"), "must be 0 or 1")
+        if dtype is None:
+            return
+        kind = DATA_TYPES[dtype][2]
+        if kind in ("vs", "os", "us", "d", "t", "f"):
+            self.check_non_integer(sec, dtype, mapping)
+            return
+        default = self.value_of(sec, "DefaultValue", dtype)
+        low = self.value_of(sec, "LowLimit", dtype)
+        high = self.value_of(sec, "HighLimit", dtype)
+        for node_id in NODE_IDS:
+            d, lo, hi = (None if v is None else v[0] + (node_id if v[1] else 0)
+                         for v in (default, low, high))
+            where = " with node-id %d" % node_id if any(v and v[1] for v in
+                                                        (default, low, high)) else ""
+            type_low, type_high = type_range(dtype)
+            for key, v in (("DefaultValue", d), ("LowLimit", lo), ("HighLimit", hi)):
+                if v is not None and not type_low <= v <= type_high:
+                    self.error(sec.name, sec.label(key), "outside the range of %s (%d..%d)%s"
+                               % (DATA_TYPES[dtype][0], type_low, type_high, where))
+            if lo is not None and hi is not None and lo > hi:
+                self.error(sec.name, sec.label("LowLimit"), "above HighLimit%s" % where)
+            if d is not None and lo is not None and d < lo:
+                self.error(sec.name, sec.label("DefaultValue"), "below LowLimit%s" % where)
+            if d is not None and hi is not None and d > hi:
+                self.error(sec.name, sec.label("DefaultValue"), "above HighLimit%s" % where)
+            if d is not None and is_cob_id_entry(index, sub):
+                self.check_cob_id(sec, d, node_id, where)
+            if not where:
+                break
+
+    def value_of(self, sec, key, dtype):
+        """(value, node-id relative) of a numeric key, or None."""
+        text = sec.get(key)
+        if text is None or text == "":
+            return None
+        try:
+            value, is_hex, nodeid = parse_value(text)
+        except ValueError as e:
+            self.error(sec.name, sec.label(key), str(e))
+            return None
+        if text.replace(" ", "").upper() == "$NODEID":
+            self.error(sec.name, sec.label(key),
+                       "python canopen cannot read a bare $NODEID: write $NODEID+0")
+        if key == "DefaultValue":
+            name, size, kind = DATA_TYPES[dtype]
+            if kind == "i" and is_hex and value > type_range(dtype)[1]:
+                self.error(sec.name, sec.label(key), "hex default above the %s maximum (python "
+                           "canopen does not read it as negative): write it in decimal" % name)
+                return None
+        else:
+            value = signed_limit(value, is_hex, dtype)
+        return value, nodeid
+
+    def check_cob_id(self, sec, value, node_id, where):
+        # CiA 301 7.5.2.5: bit 31 valid, bit 30 RTR (PDO) or frame (SYNC), bit 29 frame (29-bit
+        # identifier), bits 28..11 zero for an 11-bit identifier.
+        if value & (1 << 29):
+            self.error(sec.name, sec.label("DefaultValue"),
+                       "bit 29 set: 29-bit identifiers are not supported%s" % where)
+        elif value & 0x1FFFF800:
+            self.error(sec.name, sec.label("DefaultValue"),
+                       "0x%X is not an 11-bit identifier%s" % (value & 0x1FFFFFFF, where))
+
+    def check_non_integer(self, sec, dtype, mapping):
+        name, size, kind = DATA_TYPES[dtype]
+        for key in ("LowLimit", "HighLimit"):
+            if sec.get(key):
+                self.warning(sec.name, sec.label(key), "limits on %s are not checked" % name)
+        text = sec.get("DefaultValue")
+        length = size
+        if kind == "f":
+            if text:
+                try:
+                    float(text)
+                except ValueError:
+                    self.error(sec.name, sec.label("DefaultValue"), "not a floating-point number")
+        elif kind in ("os", "d"):
+            try:
+                length = len(bytes.fromhex(text or ""))
+            except ValueError:
+                self.error(sec.name, sec.label("DefaultValue"), "%s default must be hex bytes"
+                           % name)
+                length = 0
+        elif kind == "vs":
+            length = len((text or "").encode("utf-8"))
+            if text and not text.isascii():
+                self.error(sec.name, sec.label("DefaultValue"), "VISIBLE_STRING must be ASCII")
+        elif kind == "us":
+            length = len((text or "").encode("utf-16-le"))
+        if mapping == 1:
+            if kind == "d":
+                self.error(sec.name, sec.label("PDOMapping"), "a DOMAIN cannot be PDO-mapped")
+            elif length is not None and length > 8:
+                self.error(sec.name, sec.label("PDOMapping"),
+                           "%d bits: more than a PDO's 64" % (8 * length))
+
+    def check_pdo_counts(self, objects):
+        sec = self.eds.section("DeviceInfo")
+        if sec is None:
+            return
+        for key, first, last, mapping in (("NrOfRXPDO", 0x1400, 0x15FF, 0x200),
+                                          ("NrOfTXPDO", 0x1800, 0x19FF, 0x200)):
+            comm = [i for i in objects if first <= i <= last]
+            value = self.number(sec, key)
+            if value is not None and value != len(comm):
+                self.error("DeviceInfo", sec.label(key), "%d objects %04X..%04X present"
+                           % (len(comm), first, last))
+            for i in comm:
+                if i + mapping not in objects:
+                    self.error("%04X" % i, None, "PDO without its mapping object %04X"
+                               % (i + mapping))
+
+    def report(self, strict, out):
+        errors = 0
+        for severity, finding in self.findings:
+            if severity == "warning":
+                finding.message = "warning: " + finding.message
+            out.write("%s\n" % finding)
+            errors += severity == "error" or strict
+        return errors
+
+
+def check(args):
+    failed = False
+    for path in args.eds:
+        checker = Checker(path)
+        checker.run()
+        if checker.report(args.strict, sys.stdout):
+            failed = True
+    return EXIT_INVALID if failed else EXIT_OK
+
+
+# ---------------------------------------------------------------------------------------------
 # Command line
 # ---------------------------------------------------------------------------------------------
 
@@ -732,6 +1130,14 @@ def make_parser():
                      help="hooks file: lines 'INDEX[:SUB] WORD...', WORD is zero-ok or the name "
                           "of an extern const co_od_hook_t")
     gen.set_defaults(run=generate)
+    chk = sub.add_parser(
+        "check", help="check EDS files against CiA 306",
+        description="Check EDS files against CiA 306 and what python canopen needs. Prints one "
+                    "line per finding ('file: [section] key: message', warnings prefixed "
+                    "'warning: '); exits 1 if any error (or, with --strict, any warning).")
+    chk.add_argument("eds", metavar="EDS", nargs="+", help="EDS files")
+    chk.add_argument("--strict", action="store_true", help="treat warnings as errors")
+    chk.set_defaults(run=check)
     return parser
 
 

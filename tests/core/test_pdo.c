@@ -529,6 +529,23 @@ START_TEST(rpdo_deadline_emcy_8250)
 }
 END_TEST
 
+START_TEST(length_error_shared_by_rpdos_clears_last)
+{
+    start_quiet();
+    ck_assert_uint_eq(write_param(0x1405, 1, 0x304, 4), 0);
+    go_operational();
+    test_drain(&t);
+    test_rx(&t, "204#0F");
+    test_expect(&t, "084#1082110100010200");
+    test_rx(&t, "304#0F00");
+    test_expect_none(&t); /* 0x8210 is already active */
+    test_rx(&t, "204#0F00");
+    test_expect_none(&t); /* RPDO6 still holds it */
+    test_rx(&t, "304#0F00B004");
+    test_expect(&t, "084#0000000000000000");
+}
+END_TEST
+
 /* ---- Parameter rules ----------------------------------------------------------------- */
 
 START_TEST(cob_id_rules)
@@ -747,6 +764,7 @@ int main(void)
     tcase_add_test(tc, rpdo_short_frame_not_applied_emcy_8210);
     tcase_add_test(tc, rpdo_long_frame_applied_emcy_8220);
     tcase_add_test(tc, rpdo_deadline_emcy_8250);
+    tcase_add_test(tc, length_error_shared_by_rpdos_clears_last);
     tcase_add_test(tc, cob_id_rules);
     tcase_add_test(tc, transmission_type_rules);
     tcase_add_test(tc, inhibit_and_start_value_only_while_invalid);

@@ -96,6 +96,15 @@ START_TEST(producer_stops_outside_pre_operational_and_operational)
 }
 END_TEST
 
+START_TEST(late_runtime_gets_one_sync_not_a_burst)
+{
+    start_producer(10 * MS, 0);
+    ck_assert_uint_eq(co_node_process(&t.node, 55 * MS), 65 * MS);
+    test_expect(&t, "080#");
+    test_expect_none(&t);
+}
+END_TEST
+
 START_TEST(period_change_restarts_production)
 {
     start_producer(10 * MS, 0);
@@ -210,6 +219,7 @@ int main(void)
     tcase_add_test(tc, producer_period_and_counter_wrap);
     tcase_add_test(tc, producer_without_counter);
     tcase_add_test(tc, producer_stops_outside_pre_operational_and_operational);
+    tcase_add_test(tc, late_runtime_gets_one_sync_not_a_burst);
     tcase_add_test(tc, period_change_restarts_production);
     tcase_add_test(tc, overflow_value_rules);
     tcase_add_test(tc, cob_id_rules);

@@ -6,12 +6,37 @@
 #include "co_config.h"
 #include "co_od.h"
 
+/* Where the server is in a transfer; every state but IDLE waits for the client under the timeout.
+ */
+typedef enum co_sdo_state {
+    CO_SDO_IDLE = 0,
+    CO_SDO_DOWNLOAD_SEGMENT,   /* segmented download: waiting for the next segment */
+    CO_SDO_UPLOAD_SEGMENT,     /* segmented upload: waiting for the next segment request */
+    CO_SDO_BLOCK_DOWNLOAD_SUB, /* block download: receiving a sub-block */
+    CO_SDO_BLOCK_DOWNLOAD_END, /* block download: waiting for the end request */
+    CO_SDO_BLOCK_UPLOAD_START, /* block upload: waiting for the start command */
+    CO_SDO_BLOCK_UPLOAD_ACK,   /* block upload: sub-block sent, waiting for its acknowledge */
+    CO_SDO_BLOCK_UPLOAD_END    /* block upload: end sent, waiting for the end response */
+} co_sdo_state_t;
+
 typedef struct co_sdo_server {
-    uint8_t state;
+    uint8_t state; /* co_sdo_state_t */
     uint16_t index;
     uint8_t subindex;
+    uint16_t rx_id;       /* client -> server COB-ID, from 1200h:01 at reset */
+    uint16_t tx_id;       /* server -> client COB-ID, from 1200h:02 at reset */
     co_time_t timeout_us; /* protocol timeout, restarted by every received frame */
     co_time_t deadline;
+    uint8_t toggle;      /* segmented transfers: toggle bit expected in the next frame */
+    bool size_indicated; /* downloads: the client announced `size` */
+    bool crc;            /* block transfers: both sides use the CRC */
+    bool last_in_block;  /* block transfers: the final segment is in the current sub-block */
+    bool block_broken;   /* block download: a segment of this sub-block was out of sequence */
+    uint8_t blksize;     /* block transfers: segments in the current sub-block */
+    uint8_t seqno;       /* block transfers: last good (download) or last sent (upload) seqno */
+    uint8_t last_len;    /* block download: data bytes carried by the final segment's frame */
+    uint32_t size;       /* announced download size, or the upload's total size */
+    uint32_t offset;     /* bytes transferred and acknowledged so far */
     uint8_t buffer[CO_CONFIG_SDO_BUFFER];
 } co_sdo_server_t;
 
@@ -23,5 +48,8 @@ uint32_t co_sdo_od_write(co_node_t *node, const co_od_entry_t *entry, const uint
 
 /* Sets the server's protocol timeout (default CO_CONFIG_SDO_TIMEOUT_US). */
 void co_sdo_set_timeout(co_node_t *node, co_time_t timeout_us);
+
+/* CRC-16-CCITT (polynomial 0x1021, initial value 0) of SDO block transfers, CiA 301 7.2.4.3.16. */
+uint16_t co_sdo_crc16(const uint8_t *data, size_t len);
 
 #endif

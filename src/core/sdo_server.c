@@ -1,25 +1,89 @@
-/* PLACEHOLDER until the sdo service is implemented. */
+/* SDO server of the default channel (CiA 301 section 7.2.4): expedited, segmented and block
+ * transfers. Downloads other than expedited are collected in the server buffer and written to the
+ * dictionary in one co_od_write() when complete; uploads other than expedited take a snapshot of
+ * the value into the buffer at initiate, so the client reads one consistent value. */
 #include "co/co_node.h"
+
+#include <string.h>
+
+/* Command specifiers, bits 7..5 of byte 0 (CiA 301 7.2.4.3). */
+#define CCS_DOWNLOAD_SEGMENT 0u
+#define CCS_DOWNLOAD_INITIATE 1u
+#define CCS_UPLOAD_INITIATE 2u
+#define CCS_UPLOAD_SEGMENT 3u
+#define CCS_BLOCK_UPLOAD 5u
+#define CCS_BLOCK_DOWNLOAD 6u
+
+#define SCS_UPLOAD_SEGMENT 0x00u
+#define SCS_DOWNLOAD_SEGMENT 0x20u
+#define SCS_UPLOAD_INITIATE 0x40u
+#define SCS_DOWNLOAD_INITIATE 0x60u
+#define CS_ABORT 0x80u
+#define SCS_BLOCK_DOWNLOAD 0xA0u
+#define SCS_BLOCK_UPLOAD 0xC0u
+
+/* Bits of the initiate command bytes. */
+#define SDO_EXPEDITED 0x02u      /* e */
+#define SDO_SIZE_INDICATED 0x01u /* s */
+#define SDO_TOGGLE 0x10u         /* t */
+#define SDO_LAST 0x01u           /* c, segmented transfers */
+#define BLOCK_CRC 0x04u          /* cc / sc */
+#define BLOCK_SIZE_INDICATED 0x02u
+#define BLOCK_LAST 0x80u /* c, block segments */
+#define BLOCK_SEQNO 0x7Fu
+
+/* Sub-commands of block transfers, bits 1..0 (upload) or bit 0 (download) of byte 0. */
+#define BLOCK_UPLOAD_INITIATE 0u
+#define BLOCK_UPLOAD_END 1u
+#define BLOCK_UPLOAD_ACK 2u
+#define BLOCK_UPLOAD_START 3u
+#define BLOCK_DOWNLOAD_INITIATE 0u
+#define BLOCK_DOWNLOAD_END 1u
+#define BLOCK_DOWNLOAD_ACK 2u /* server's sub-block acknowledge */
+
+#define SEGMENT_BYTES 7u
+#define EXPEDITED_BYTES 4u
+#define BLKSIZE_MAX 127u
+
+/* Smallest frames carrying what each request needs: command + index + sub-index, + 4-byte size. */
+#define INITIATE_LEN 4u
+#define INITIATE_SIZE_LEN 8u
+#define BLOCK_UPLOAD_INITIATE_LEN 5u /* + blksize; pst is 0 when absent */
+#define BLOCK_ACK_LEN 3u             /* cs, ackseq, blksize */
+#define BLOCK_END_CRC_LEN 3u         /* cs, CRC */
+
+uint16_t co_sdo_crc16(const uint8_t *data, size_t len)
+{
+    uint16_t crc = 0;
+    for (size_t i = 0; i < len; i++) {
+        crc ^= (uint16_t)(data[i] << 8);
+        for (int bit = 0; bit < 8; bit++)
+            crc = (crc & 0x8000u) ? (uint16_t)((crc << 1) ^ 0x1021u) : (uint16_t)(crc << 1);
+    }
+    return crc;
+}
+
+static uint16_t channel_cob_id(co_node_t *node, uint8_t subindex, uint16_t fallback)
+{
+    const co_od_entry_t *e = co_od_find(node->od, 0x1200, subindex);
+    return e != NULL ? (uint16_t)(co_od_get(node, e) & 0x7FF) : fallback;
+}
 
 void co_sdo_reset(co_node_t *node)
 {
-    (void)node;
+    co_sdo_server_t *sdo = &node->sdo;
+    sdo->state = CO_SDO_IDLE;
+    sdo->rx_id = channel_cob_id(node, 1, (uint16_t)(0x600u + node->node_id));
+    sdo->tx_id = channel_cob_id(node, 2, (uint16_t)(0x580u + node->node_id));
 }
 
-bool co_sdo_receive(co_node_t *node, const co_frame_t *frame)
+void co_sdo_set_timeout(co_node_t *node, co_time_t timeout_us)
 {
-    (void)node;
-    (void)frame;
-    return false;
+    node->sdo.timeout_us = timeout_us;
 }
 
-co_time_t co_sdo_process(co_node_t *node, co_time_t now)
-{
-    (void)node;
-    (void)now;
-    return CO_TIME_NEVER;
-}
-
+/* 1200h is the default server channel, fixed by the node-id: CiA 301 7.5.2.33 makes its COB-IDs
+ * read-only, which the dictionary's access type already enforces in co_od_write. */
 uint32_t co_sdo_od_write(co_node_t *node, const co_od_entry_t *entry, const uint8_t *data,
                          size_t len)
 {
@@ -27,5 +91,524 @@ uint32_t co_sdo_od_write(co_node_t *node, const co_od_entry_t *entry, const uint
     (void)entry;
     (void)data;
     (void)len;
-    return 0;
+    return CO_SDO_OK;
+}
+
+static void send_response(co_node_t *node, const uint8_t payload[8])
+{
+    co_frame_t f = {.id = node->sdo.tx_id, .len = 8, .flags = 0};
+    memcpy(f.data, payload, 8);
+    co_node_send(node, &f);
+}
+
+/* Responses that echo the multiplexer (index, sub-index) in bytes 1..3. */
+static void send_with_mux(co_node_t *node, uint8_t command, uint32_t value)
+{
+    uint8_t p[8] = {command};
+    co_put_u16(&p[1], node->sdo.index);
+    p[3] = node->sdo.subindex;
+    co_put_u32(&p[4], value);
+    send_response(node, p);
+}
+
+static void transfer_abort(co_node_t *node, uint32_t code)
+{
+    send_with_mux(node, CS_ABORT, code);
+    node->sdo.state = CO_SDO_IDLE;
+}
+
+/* Ends a transfer with the result of a dictionary access: the response, or the abort code. */
+static void finish(co_node_t *node, uint32_t abort, uint8_t command, bool with_mux)
+{
+    if (abort != CO_SDO_OK) {
+        transfer_abort(node, abort);
+        return;
+    }
+    if (with_mux) {
+        send_with_mux(node, command, 0);
+    } else {
+        uint8_t p[8] = {command};
+        send_response(node, p);
+    }
+    node->sdo.state = CO_SDO_IDLE;
+}
+
+/* The target of a segmented or block download must exist and be writable before any data is
+ * accepted; the remaining checks run in co_od_write once the value is complete. */
+static uint32_t download_target_check(co_node_t *node)
+{
+    const co_od_entry_t *e;
+    uint32_t abort = co_od_lookup(node->od, node->sdo.index, node->sdo.subindex, &e);
+    if (abort == CO_SDO_OK && !(e->flags & CO_OD_WRITE))
+        abort = SDO_ABORT_READ_ONLY;
+    return abort;
+}
+
+/* Expedited download without size indicated (e = 1, s = 0): the entry's size for fixed types that
+ * fit in the frame, otherwise all four bytes. */
+static uint32_t unindicated_length(co_node_t *node, size_t *len)
+{
+    const co_od_entry_t *e;
+    uint32_t abort = co_od_lookup(node->od, node->sdo.index, node->sdo.subindex, &e);
+    size_t fixed = abort == CO_SDO_OK ? co_od_type_size(e->type) : 0;
+    *len = fixed != 0 && fixed <= EXPEDITED_BYTES ? fixed : EXPEDITED_BYTES;
+    return abort;
+}
+
+static void download_initiate(co_node_t *node, const co_frame_t *frame)
+{
+    co_sdo_server_t *sdo = &node->sdo;
+    uint8_t command = frame->data[0];
+    if (command & SDO_EXPEDITED) {
+        size_t len = EXPEDITED_BYTES - ((command >> 2) & 3u);
+        uint32_t abort = CO_SDO_OK;
+        if (!(command & SDO_SIZE_INDICATED))
+            abort = unindicated_length(node, &len);
+        if (abort == CO_SDO_OK && frame->len < INITIATE_LEN + len)
+            abort = SDO_ABORT_COMMAND;
+        if (abort == CO_SDO_OK)
+            abort = co_od_write(node, sdo->index, sdo->subindex, &frame->data[4], len,
+                                CO_OD_ORIGIN_SDO);
+        finish(node, abort, SCS_DOWNLOAD_INITIATE, true);
+        return;
+    }
+    sdo->size_indicated = (command & SDO_SIZE_INDICATED) != 0;
+    if (sdo->size_indicated && frame->len < INITIATE_SIZE_LEN) {
+        transfer_abort(node, SDO_ABORT_COMMAND);
+        return;
+    }
+    sdo->size = sdo->size_indicated ? co_get_u32(&frame->data[4]) : 0;
+    uint32_t abort = download_target_check(node);
+    if (abort == CO_SDO_OK && sdo->size > CO_CONFIG_SDO_BUFFER)
+        abort = SDO_ABORT_NO_MEMORY;
+    if (abort != CO_SDO_OK) {
+        transfer_abort(node, abort);
+        return;
+    }
+    sdo->offset = 0;
+    sdo->toggle = 0;
+    sdo->state = CO_SDO_DOWNLOAD_SEGMENT;
+    send_with_mux(node, SCS_DOWNLOAD_INITIATE, 0);
+}
+
+/* A completed segmented or block download: its length against the announced size, then the write
+ * (0x06070010 when the client sent another amount than it announced). */
+static uint32_t download_complete(co_node_t *node)
+{
+    co_sdo_server_t *sdo = &node->sdo;
+    if (sdo->size_indicated && sdo->offset != sdo->size)
+        return SDO_ABORT_TYPE_LENGTH;
+    return co_od_write(node, sdo->index, sdo->subindex, sdo->buffer, sdo->offset, CO_OD_ORIGIN_SDO);
+}
+
+static void download_segment(co_node_t *node, const co_frame_t *frame)
+{
+    co_sdo_server_t *sdo = &node->sdo;
+    uint8_t command = frame->data[0];
+    uint8_t toggle = command & SDO_TOGGLE;
+    size_t count = SEGMENT_BYTES - ((command >> 1) & 7u);
+    if (toggle != sdo->toggle) {
+        transfer_abort(node, SDO_ABORT_TOGGLE);
+        return;
+    }
+    if (frame->len < 1 + count) {
+        transfer_abort(node, SDO_ABORT_COMMAND);
+        return;
+    }
+    if (sdo->offset + count > CO_CONFIG_SDO_BUFFER) {
+        transfer_abort(node, SDO_ABORT_NO_MEMORY);
+        return;
+    }
+    memcpy(&sdo->buffer[sdo->offset], &frame->data[1], count);
+    sdo->offset += (uint32_t)count;
+    uint8_t response = (uint8_t)(SCS_DOWNLOAD_SEGMENT | toggle);
+    if (command & SDO_LAST) {
+        finish(node, download_complete(node), response, false);
+        return;
+    }
+    sdo->toggle ^= SDO_TOGGLE;
+    uint8_t p[8] = {response};
+    send_response(node, p);
+}
+
+/* Reads the whole value into the buffer; sdo->size is its current length (strings: up to NUL). */
+static uint32_t upload_snapshot(co_node_t *node)
+{
+    co_sdo_server_t *sdo = &node->sdo;
+    const co_od_entry_t *e;
+    uint32_t abort = co_od_read_check(node, sdo->index, sdo->subindex, &e);
+    if (abort != CO_SDO_OK)
+        return abort;
+    size_t len = co_od_length(node, e);
+    if (len > CO_CONFIG_SDO_BUFFER)
+        return SDO_ABORT_NO_MEMORY;
+    memcpy(sdo->buffer, co_od_bytes(node, e), len);
+    sdo->size = (uint32_t)len;
+    return CO_SDO_OK;
+}
+
+/* Expedited when 1..4 bytes, else segmented with the size indicated (an empty string too). */
+static void upload_response(co_node_t *node)
+{
+    co_sdo_server_t *sdo = &node->sdo;
+    if (sdo->size >= 1 && sdo->size <= EXPEDITED_BYTES) {
+        uint8_t p[8] = {(uint8_t)(SCS_UPLOAD_INITIATE | ((EXPEDITED_BYTES - sdo->size) << 2) |
+                                  SDO_EXPEDITED | SDO_SIZE_INDICATED)};
+        co_put_u16(&p[1], sdo->index);
+        p[3] = sdo->subindex;
+        memcpy(&p[4], sdo->buffer, sdo->size);
+        send_response(node, p);
+        sdo->state = CO_SDO_IDLE;
+        return;
+    }
+    sdo->offset = 0;
+    sdo->toggle = 0;
+    sdo->state = CO_SDO_UPLOAD_SEGMENT;
+    send_with_mux(node, SCS_UPLOAD_INITIATE | SDO_SIZE_INDICATED, sdo->size);
+}
+
+static void upload_initiate(co_node_t *node)
+{
+    uint32_t abort = upload_snapshot(node);
+    if (abort != CO_SDO_OK) {
+        transfer_abort(node, abort);
+        return;
+    }
+    upload_response(node);
+}
+
+static void upload_segment(co_node_t *node, const co_frame_t *frame)
+{
+    co_sdo_server_t *sdo = &node->sdo;
+    uint8_t toggle = frame->data[0] & SDO_TOGGLE;
+    if (toggle != sdo->toggle) {
+        transfer_abort(node, SDO_ABORT_TOGGLE);
+        return;
+    }
+    uint32_t count = sdo->size - sdo->offset;
+    if (count > SEGMENT_BYTES)
+        count = SEGMENT_BYTES;
+    bool last = sdo->offset + count == sdo->size;
+    uint8_t p[8] = {
+        (uint8_t)(SCS_UPLOAD_SEGMENT | toggle | ((SEGMENT_BYTES - count) << 1) | (last ? 1 : 0))};
+    memcpy(&p[1], &sdo->buffer[sdo->offset], count);
+    send_response(node, p);
+    sdo->offset += count;
+    sdo->toggle ^= SDO_TOGGLE;
+    if (last)
+        sdo->state = CO_SDO_IDLE;
+}
+
+/* The server's block size: up to 127 segments, no more than the buffer can still take. */
+static uint8_t download_blksize(const co_sdo_server_t *sdo)
+{
+    uint32_t room = sdo->offset < CO_CONFIG_SDO_BUFFER ? CO_CONFIG_SDO_BUFFER - sdo->offset : 0;
+    uint32_t segments = (room + SEGMENT_BYTES - 1) / SEGMENT_BYTES;
+    if (segments > BLKSIZE_MAX)
+        segments = BLKSIZE_MAX;
+    return (uint8_t)(segments == 0 ? 1 : segments);
+}
+
+static void block_download_initiate(co_node_t *node, const co_frame_t *frame)
+{
+    co_sdo_server_t *sdo = &node->sdo;
+    uint8_t command = frame->data[0];
+    sdo->size_indicated = (command & BLOCK_SIZE_INDICATED) != 0;
+    if (sdo->size_indicated && frame->len < INITIATE_SIZE_LEN) {
+        transfer_abort(node, SDO_ABORT_COMMAND);
+        return;
+    }
+    sdo->size = sdo->size_indicated ? co_get_u32(&frame->data[4]) : 0;
+    uint32_t abort = download_target_check(node);
+    if (abort == CO_SDO_OK && sdo->size > CO_CONFIG_SDO_BUFFER)
+        abort = SDO_ABORT_NO_MEMORY;
+    if (abort != CO_SDO_OK) {
+        transfer_abort(node, abort);
+        return;
+    }
+    sdo->crc = (command & BLOCK_CRC) != 0;
+    sdo->offset = 0;
+    sdo->seqno = 0;
+    sdo->block_broken = false;
+    sdo->last_in_block = false;
+    sdo->blksize = download_blksize(sdo);
+    sdo->state = CO_SDO_BLOCK_DOWNLOAD_SUB;
+    send_with_mux(node, SCS_BLOCK_DOWNLOAD | BLOCK_CRC, sdo->blksize);
+}
+
+/* Stores an in-sequence segment. Returns an abort code, 0 when stored. Only the final segment may
+ * be short or run past the buffer: its unused bytes are known only from the end request. */
+static uint32_t block_download_store(co_sdo_server_t *sdo, const co_frame_t *frame, bool last)
+{
+    uint32_t pos = sdo->offset + (uint32_t)(sdo->seqno) * SEGMENT_BYTES;
+    uint32_t count = (uint32_t)frame->len - 1;
+    if (!last && count < SEGMENT_BYTES)
+        return SDO_ABORT_COMMAND;
+    if (!last && pos + SEGMENT_BYTES > CO_CONFIG_SDO_BUFFER)
+        return SDO_ABORT_NO_MEMORY;
+    if (pos + count > CO_CONFIG_SDO_BUFFER)
+        count = pos < CO_CONFIG_SDO_BUFFER ? CO_CONFIG_SDO_BUFFER - pos : 0;
+    memcpy(&sdo->buffer[pos], &frame->data[1], count);
+    sdo->last_len = (uint8_t)(frame->len - 1);
+    return CO_SDO_OK;
+}
+
+/* CiA 301 7.2.4.3.9: after the last segment of a sub-block the server acknowledges the last
+ * segment received in sequence; the client resends from the one after it. */
+static void block_download_acknowledge(co_node_t *node)
+{
+    co_sdo_server_t *sdo = &node->sdo;
+    uint8_t ackseq = sdo->seqno;
+    sdo->offset += (uint32_t)ackseq * SEGMENT_BYTES;
+    sdo->blksize = download_blksize(sdo);
+    sdo->seqno = 0;
+    sdo->block_broken = false;
+    if (sdo->last_in_block)
+        sdo->state = CO_SDO_BLOCK_DOWNLOAD_END;
+    uint8_t p[8] = {SCS_BLOCK_DOWNLOAD | BLOCK_DOWNLOAD_ACK, ackseq, sdo->blksize};
+    send_response(node, p);
+}
+
+static void block_download_segment(co_node_t *node, const co_frame_t *frame)
+{
+    co_sdo_server_t *sdo = &node->sdo;
+    uint8_t seqno = frame->data[0] & BLOCK_SEQNO;
+    bool last = (frame->data[0] & BLOCK_LAST) != 0;
+    if (seqno == 0 || seqno > sdo->blksize) {
+        transfer_abort(node, SDO_ABORT_SEQUENCE);
+        return;
+    }
+    if (sdo->block_broken || seqno != sdo->seqno + 1) {
+        sdo->block_broken = true;
+    } else {
+        uint32_t abort = block_download_store(sdo, frame, last);
+        if (abort != CO_SDO_OK) {
+            transfer_abort(node, abort);
+            return;
+        }
+        sdo->seqno = seqno;
+        sdo->last_in_block = last;
+    }
+    if (last || seqno == sdo->blksize)
+        block_download_acknowledge(node);
+}
+
+static void block_download_end(co_node_t *node, const co_frame_t *frame)
+{
+    co_sdo_server_t *sdo = &node->sdo;
+    uint8_t unused = (frame->data[0] >> 2) & 7u;
+    if ((sdo->crc && frame->len < BLOCK_END_CRC_LEN) || SEGMENT_BYTES - unused > sdo->last_len) {
+        transfer_abort(node, SDO_ABORT_COMMAND);
+        return;
+    }
+    sdo->offset -= unused;
+    if (sdo->offset > CO_CONFIG_SDO_BUFFER) {
+        transfer_abort(node, SDO_ABORT_NO_MEMORY);
+        return;
+    }
+    if (sdo->crc && co_sdo_crc16(sdo->buffer, sdo->offset) != co_get_u16(&frame->data[1])) {
+        transfer_abort(node, SDO_ABORT_CRC);
+        return;
+    }
+    finish(node, download_complete(node), SCS_BLOCK_DOWNLOAD | BLOCK_DOWNLOAD_END, false);
+}
+
+static void block_upload_initiate(co_node_t *node, const co_frame_t *frame)
+{
+    co_sdo_server_t *sdo = &node->sdo;
+    if (frame->len < BLOCK_UPLOAD_INITIATE_LEN) {
+        transfer_abort(node, SDO_ABORT_COMMAND);
+        return;
+    }
+    uint8_t blksize = frame->data[4];
+    uint8_t pst = frame->len > BLOCK_UPLOAD_INITIATE_LEN ? frame->data[5] : 0;
+    uint32_t abort = upload_snapshot(node);
+    if (abort == CO_SDO_OK && (blksize == 0 || blksize > BLKSIZE_MAX))
+        abort = SDO_ABORT_BLOCK_SIZE;
+    if (abort != CO_SDO_OK) {
+        transfer_abort(node, abort);
+        return;
+    }
+    /* CiA 301 7.2.4.3.10: at or below the client's protocol switch threshold the server may
+     * answer with the plain upload protocol. */
+    if (pst != 0 && sdo->size <= pst) {
+        upload_response(node);
+        return;
+    }
+    sdo->crc = (frame->data[0] & BLOCK_CRC) != 0;
+    sdo->blksize = blksize;
+    sdo->offset = 0;
+    sdo->state = CO_SDO_BLOCK_UPLOAD_START;
+    send_with_mux(node, SCS_BLOCK_UPLOAD | BLOCK_CRC | BLOCK_SIZE_INDICATED, sdo->size);
+}
+
+/* Sends up to blksize segments from sdo->offset; the final segment of the value carries c = 1
+ * (an empty value is one segment with no data). */
+static void block_upload_send_subblock(co_node_t *node)
+{
+    co_sdo_server_t *sdo = &node->sdo;
+    sdo->last_in_block = false;
+    for (uint8_t seqno = 1; seqno <= sdo->blksize && !sdo->last_in_block; seqno++) {
+        uint32_t pos = sdo->offset + (uint32_t)(seqno - 1) * SEGMENT_BYTES;
+        uint32_t count = sdo->size - pos < SEGMENT_BYTES ? sdo->size - pos : SEGMENT_BYTES;
+        sdo->last_in_block = pos + count == sdo->size;
+        uint8_t p[8] = {(uint8_t)(seqno | (sdo->last_in_block ? BLOCK_LAST : 0))};
+        memcpy(&p[1], &sdo->buffer[pos], count);
+        send_response(node, p);
+        sdo->seqno = seqno;
+    }
+    sdo->state = CO_SDO_BLOCK_UPLOAD_ACK;
+}
+
+static void block_upload_end(co_node_t *node)
+{
+    co_sdo_server_t *sdo = &node->sdo;
+    uint32_t last_pos = sdo->offset + (uint32_t)(sdo->seqno - 1) * SEGMENT_BYTES;
+    uint32_t unused = SEGMENT_BYTES - (sdo->size - last_pos);
+    uint8_t p[8] = {(uint8_t)(SCS_BLOCK_UPLOAD | (unused << 2) | BLOCK_UPLOAD_END)};
+    if (sdo->crc)
+        co_put_u16(&p[1], co_sdo_crc16(sdo->buffer, sdo->size));
+    send_response(node, p);
+    sdo->state = CO_SDO_BLOCK_UPLOAD_END;
+}
+
+static void block_upload_acknowledged(co_node_t *node, const co_frame_t *frame)
+{
+    co_sdo_server_t *sdo = &node->sdo;
+    if (frame->len < BLOCK_ACK_LEN) {
+        transfer_abort(node, SDO_ABORT_COMMAND);
+        return;
+    }
+    uint8_t ackseq = frame->data[1];
+    uint8_t blksize = frame->data[2];
+    if (ackseq > sdo->seqno) {
+        transfer_abort(node, SDO_ABORT_SEQUENCE);
+        return;
+    }
+    if (blksize == 0 || blksize > BLKSIZE_MAX) {
+        transfer_abort(node, SDO_ABORT_BLOCK_SIZE);
+        return;
+    }
+    if (ackseq == sdo->seqno && sdo->last_in_block) {
+        block_upload_end(node);
+        return;
+    }
+    sdo->offset += (uint32_t)ackseq * SEGMENT_BYTES;
+    sdo->blksize = blksize;
+    block_upload_send_subblock(node);
+}
+
+static void block_upload_command(co_node_t *node, const co_frame_t *frame)
+{
+    co_sdo_server_t *sdo = &node->sdo;
+    uint8_t cs = frame->data[0] & 3u;
+    if (sdo->state == CO_SDO_BLOCK_UPLOAD_START && cs == BLOCK_UPLOAD_START)
+        block_upload_send_subblock(node);
+    else if (sdo->state == CO_SDO_BLOCK_UPLOAD_ACK && cs == BLOCK_UPLOAD_ACK)
+        block_upload_acknowledged(node, frame);
+    else if (sdo->state == CO_SDO_BLOCK_UPLOAD_END && cs == BLOCK_UPLOAD_END)
+        sdo->state = CO_SDO_IDLE;
+    else
+        transfer_abort(node, SDO_ABORT_COMMAND);
+}
+
+static bool is_initiate(uint8_t command)
+{
+    uint8_t ccs = command >> 5;
+    return ccs == CCS_DOWNLOAD_INITIATE || ccs == CCS_UPLOAD_INITIATE ||
+           (ccs == CCS_BLOCK_UPLOAD && (command & 3u) == BLOCK_UPLOAD_INITIATE) ||
+           (ccs == CCS_BLOCK_DOWNLOAD && (command & 1u) == BLOCK_DOWNLOAD_INITIATE);
+}
+
+/* A new request replaces whatever transfer was under way: the client has given up on it, and an
+ * abort for the old multiplexer would be taken by the client as the answer to its new request. */
+static void initiate(co_node_t *node, const co_frame_t *frame)
+{
+    co_sdo_server_t *sdo = &node->sdo;
+    uint8_t ccs = frame->data[0] >> 5;
+    sdo->state = CO_SDO_IDLE;
+    sdo->index = co_get_u16(&frame->data[1]);
+    sdo->subindex = frame->data[3];
+    if (ccs == CCS_DOWNLOAD_INITIATE)
+        download_initiate(node, frame);
+    else if (ccs == CCS_UPLOAD_INITIATE)
+        upload_initiate(node);
+    else if (ccs == CCS_BLOCK_DOWNLOAD)
+        block_download_initiate(node, frame);
+    else
+        block_upload_initiate(node, frame);
+}
+
+/* A command that does not belong to the current state. Outside a transfer there is no
+ * multiplexer to report, except for an unknown specifier shaped like an initiate. */
+static void unexpected_command(co_node_t *node, const co_frame_t *frame)
+{
+    co_sdo_server_t *sdo = &node->sdo;
+    if (sdo->state == CO_SDO_IDLE) {
+        bool has_mux = frame->len >= INITIATE_LEN && (frame->data[0] >> 5) == 7u;
+        sdo->index = has_mux ? co_get_u16(&frame->data[1]) : 0;
+        sdo->subindex = has_mux ? frame->data[3] : 0;
+    }
+    transfer_abort(node, SDO_ABORT_COMMAND);
+}
+
+static bool in_block_upload(const co_sdo_server_t *sdo)
+{
+    return sdo->state == CO_SDO_BLOCK_UPLOAD_START || sdo->state == CO_SDO_BLOCK_UPLOAD_ACK ||
+           sdo->state == CO_SDO_BLOCK_UPLOAD_END;
+}
+
+static void dispatch(co_node_t *node, const co_frame_t *frame)
+{
+    co_sdo_server_t *sdo = &node->sdo;
+    uint8_t ccs = frame->data[0] >> 5;
+    if (sdo->state == CO_SDO_DOWNLOAD_SEGMENT && ccs == CCS_DOWNLOAD_SEGMENT)
+        download_segment(node, frame);
+    else if (sdo->state == CO_SDO_UPLOAD_SEGMENT && ccs == CCS_UPLOAD_SEGMENT)
+        upload_segment(node, frame);
+    else if (sdo->state == CO_SDO_BLOCK_DOWNLOAD_END && ccs == CCS_BLOCK_DOWNLOAD)
+        block_download_end(node, frame);
+    else if (in_block_upload(sdo) && ccs == CCS_BLOCK_UPLOAD)
+        block_upload_command(node, frame);
+    else
+        unexpected_command(node, frame);
+}
+
+bool co_sdo_receive(co_node_t *node, const co_frame_t *frame)
+{
+    co_sdo_server_t *sdo = &node->sdo;
+    if (frame->id != sdo->rx_id)
+        return false;
+    if ((frame->flags & CO_FRAME_RTR) || frame->len == 0)
+        return true;
+    uint8_t command = frame->data[0];
+    /* An abort needs its full 8 bytes (the code); the client expects no answer. */
+    if (command == CS_ABORT && frame->len == 8) {
+        sdo->state = CO_SDO_IDLE;
+        return true;
+    }
+    if (sdo->state == CO_SDO_BLOCK_DOWNLOAD_SUB) {
+        block_download_segment(node, frame);
+    } else if (is_initiate(command)) {
+        /* Without index and sub-index there is nobody to answer. */
+        if (frame->len < INITIATE_LEN)
+            return true;
+        initiate(node, frame);
+    } else {
+        dispatch(node, frame);
+    }
+    sdo->deadline = node->now + sdo->timeout_us;
+    return true;
+}
+
+co_time_t co_sdo_process(co_node_t *node, co_time_t now)
+{
+    co_sdo_server_t *sdo = &node->sdo;
+    if (sdo->state == CO_SDO_IDLE)
+        return CO_TIME_NEVER;
+    if (now >= sdo->deadline) {
+        transfer_abort(node, SDO_ABORT_TIMEOUT);
+        return CO_TIME_NEVER;
+    }
+    return sdo->deadline;
 }

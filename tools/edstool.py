@@ -415,14 +415,15 @@ def build_entry(eds, sec, index, sub, fallback=None, default_override=None):
     entry.size = entry_size(eds, src, dtype, len(entry.default))
     entry.default = entry.default + bytes(entry.size - len(entry.default))
 
+    if DATA_TYPES[dtype][2] not in ("u", "i", "b"):
+        for key in ("LowLimit", "HighLimit"):
+            if src.get(key):
+                raise eds.error(src.name, src.label(key), "limits on %s are not enforced by "
+                                "the core" % DATA_TYPES[dtype][0])
+        return entry
     low = parse_limit(eds, src, dtype, "LowLimit")
     high = parse_limit(eds, src, dtype, "HighLimit")
     if low is not None or high is not None:
-        kind = DATA_TYPES[dtype][2]
-        if kind not in ("u", "i", "b"):
-            key = "LowLimit" if low is not None else "HighLimit"
-            raise eds.error(src.name, src.label(key),
-                            "limits on %s are not enforced by the core" % DATA_TYPES[dtype][0])
         type_low, type_high = type_range(dtype)
         low = type_low if low is None else low
         high = type_high if high is None else high

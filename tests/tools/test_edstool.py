@@ -1,0 +1,639 @@
+"""Unit tests of tools/edstool.py: the tables the generator writes, its refusals, the hooks file,
+every rule of the checker, and deterministic output. Standard library only; runs the tool with
+the interpreter running the tests."""
+import copy
+import os
+import subprocess
+import sys
+import tempfile
+import unittest
+
+HERE = os.path.dirname(os.path.abspath(__file__))
+TOOL = os.path.normpath(os.path.join(HERE, "..", "..", "tools", "edstool.py"))
+sys.path.insert(0, os.path.dirname(TOOL))
+import edstool  # noqa: E402
+
+
+def var(name, dtype, access, default=None, mapping=0, **extra):
+    keys = {"ParameterName": name, "ObjectType": "0x7", "DataType": dtype, "AccessType": access}
+    if default is not None:
+        keys["DefaultValue"] = default
+    keys["PDOMapping"] = str(mapping)
+    keys.update(extra)
+    return keys
+
+
+def record(name, count, otype="0x9"):
+    return {"ParameterName": name, "ObjectType": otype, "SubNumber": str(count)}
+
+
+# A small valid device: every checker rule passes, without warnings.
+BASE = {
+    "FileInfo": {"FileName": "t.eds", "FileVersion": "1", "FileRevision": "0",
+                 "EDSVersion": "4.0", "Description": "test", "CreationTime": "12:00PM",
+                 "CreationDate": "01-01-2024", "CreatedBy": "tests"},
+    "DeviceInfo": {"VendorName": "T", "VendorNumber": "0x5F", "ProductName": "P",
+                   "ProductNumber": "1", "RevisionNumber": "1", "OrderCode": "X",
+                   "BaudRate_10": "0", "BaudRate_20": "0", "BaudRate_50": "0",
+                   "BaudRate_125": "1", "BaudRate_250": "1", "BaudRate_500": "1",
+                   "BaudRate_800": "0", "BaudRate_1000": "1", "SimpleBootUpMaster": "0",
+                   "SimpleBootUpSlave": "1", "Granularity": "8",
+                   "DynamicChannelsSupported": "0", "GroupMessaging": "0", "NrOfRXPDO": "1",
+                   "NrOfTXPDO": "1", "LSS_Supported": "0"},
+    "MandatoryObjects": {"SupportedObjects": "3", "1": "0x1000", "2": "0x1001", "3": "0x1018"},
+    "OptionalObjects": {"SupportedObjects": "6", "1": "0x1008", "2": "0x1014", "3": "0x1400",
+                        "4": "0x1600", "5": "0x1800", "6": "0x1A00"},
+    "ManufacturerObjects": {"SupportedObjects": "2", "1": "0x2000", "2": "0x2001"},
+    "1000": var("Device type", "0x0007", "ro", "0x00010192"),
+    "1001": var("Error register", "0x0005", "ro", "0", mapping=1),
+    "1008": var("Device name", "0x0009", "const", "Dev"),
+    "1014": var("COB-ID EMCY", "0x0007", "rw", "$NODEID+0x80"),
+    "1018": record("Identity", 2),
+    "1018sub0": var("Highest sub-index supported", "0x0005", "ro", "1"),
+    "1018sub1": var("Vendor-ID", "0x0007", "ro", "0x5F"),
+    "1400": record("RPDO1 communication", 2),
+    "1400sub0": var("Highest sub-index supported", "0x0005", "ro", "1"),
+    "1400sub1": var("COB-ID", "0x0007", "rw", "$NODEID+0x200"),
+    "1600": record("RPDO1 mapping", 2, "0x8"),
+    "1600sub0": var("Number of mapped objects", "0x0005", "rw", "1", LowLimit="0",
+                    HighLimit="1"),
+    "1600sub1": var("Mapped object 1", "0x0007", "rw", "0x20010010"),
+    "1800": record("TPDO1 communication", 2),
+    "1800sub0": var("Highest sub-index supported", "0x0005", "ro", "1"),
+    "1800sub1": var("COB-ID", "0x0007", "rw", "0x180+$NODEID"),
+    "1A00": record("TPDO1 mapping", 2, "0x8"),
+    "1A00sub0": var("Number of mapped objects", "0x0005", "rw", "1"),
+    "1A00sub1": var("Mapped object 1", "0x0007", "rw", "0x20000110"),
+    "2000": record("Record", 3),
+    "2000sub0": var("Highest sub-index supported", "0x0005", "ro", "2"),
+    "2000sub1": var("Signed", "0x0003", "rw", "-10", mapping=1, LowLimit="-100",
+                    HighLimit="100"),
+    "2000sub2": var("Text", "0x0009", "ro", "abc", **{";size": "8"}),
+    "2001": var("Limited", "0x0006", "rww", "100", mapping=1, LowLimit="10", HighLimit="1000"),
+}
+
+
+def render(sections):
+    lines = []
+    for name, keys in sections.items():
+        lines.append("[%s]" % name)
+        lines.extend("%s=%s" % kv for kv in keys.items())
+        lines.append("")
+    return "\n".join(lines)
+
+
+class ToolCase(unittest.TestCase):
+    def setUp(self):
+        self.tmp = tempfile.TemporaryDirectory()
+        self.dir = self.tmp.name
+
+    def tearDown(self):
+        self.tmp.cleanup()
+
+    def write(self, name, text):
+        path = os.path.join(self.dir, name)
+        with open(path, "w") as f:
+            f.write(text)
+        return path
+
+    def eds(self, edit=None, name="t.eds"):
+        sections = copy.deepcopy(BASE)
+        if edit is not None:
+            edit(sections)
+        return self.write(name, render(sections))
+
+    def run_tool(self, *args):
+        p = subprocess.run([sys.executable, TOOL] + list(args), capture_output=True, text=True)
+        return p.returncode, p.stdout, p.stderr
+
+    def generate(self, path, hooks=None, out="gen"):
+        args = ["generate", path, "--prefix", "t", "--out-dir", os.path.join(self.dir, out)]
+        if hooks is not None:
+            args += ["--hooks", hooks]
+        return self.run_tool(*args)
+
+    def entries(self, path, hooks=None):
+        entries = edstool.build_entries(edstool.parse_eds(path))
+        if hooks is not None:
+            edstool.apply_hooks(entries, hooks)
+        edstool.layout(entries)
+        return {(e.index, e.sub): e for e in entries}
+
+    def read(self, name):
+        with open(os.path.join(self.dir, "gen", name)) as f:
+            return f.read()
+
+
+class GeneratedTable(ToolCase):
+    def test_entries_sorted_with_contiguous_offsets(self):
+        keys = list(self.entries(self.eds()))
+        self.assertEqual(keys, sorted(keys))
+        self.assertEqual(keys[:4], [(0x1000, 0), (0x1001, 0), (0x1008, 0), (0x1014, 0)])
+        self.assertIn((0x1018, 0), keys)
+        entries = list(self.entries(self.eds()).values())
+        offset = 0
+        for e in entries:
+            self.assertEqual(e.offset, offset)
+            offset += e.size
+
+    def test_header_declares_sizes_and_table(self):
+        self.assertEqual(self.generate(self.eds())[0], 0)
+        entries = list(self.entries(self.eds()).values())
+        size = sum(e.size for e in entries)
+        header = self.read("t_od.h")
+        self.assertIn("#define T_OD_DATA_SIZE %du\n" % size, header)
+        self.assertIn("#define T_OD_ENTRIES %du\n" % len(entries), header)
+        self.assertIn("extern const co_od_t t_od;", header)
+        self.assertIn("Generated from t.eds by tools/edstool.py: do not edit.", header)
+
+    def test_default_bytes_little_endian(self):
+        entries = self.entries(self.eds())
+        self.assertEqual(entries[(0x1000, 0)].default, bytes([0x92, 0x01, 0x01, 0x00]))
+        self.assertEqual(entries[(0x2000, 1)].default, (-10 & 0xFFFF).to_bytes(2, "little"))
+        self.assertEqual(entries[(0x2000, 2)].default, b"abc" + bytes(5))
+        source = (self.generate(self.eds()), self.read("t_od.c"))[1]
+        self.assertIn("/* 1000:00 */ 0x92, 0x01, 0x01, 0x00,", source)
+
+    def test_node_id_defaults_stored_without_node_id(self):
+        entries = self.entries(self.eds())
+        for key, base in (((0x1014, 0), 0x80), ((0x1400, 1), 0x200), ((0x1800, 1), 0x180)):
+            self.assertEqual(entries[key].default, base.to_bytes(4, "little"))
+            self.assertTrue(entries[key].flags & edstool.NODEID)
+        self.assertFalse(entries[(0x1000, 0)].flags & edstool.NODEID)
+        self.generate(self.eds())
+        self.assertIn("CO_OD_READ | CO_OD_WRITE | CO_OD_NODEID, 4,", self.read("t_od.c"))
+
+    def test_flags_from_access_type_and_pdo_mapping(self):
+        R, W, C, T, P = edstool.READ, edstool.WRITE, edstool.CONST, edstool.TPDO, edstool.RPDO
+        expected = {("ro", 0): R, ("ro", 1): R | T, ("const", 0): R | C, ("const", 1): R | C | T,
+                    ("wo", 0): W, ("wo", 1): W | P, ("rw", 0): R | W, ("rw", 1): R | W | T | P,
+                    ("rwr", 0): R | W, ("rwr", 1): R | W | T, ("rww", 0): R | W,
+                    ("rww", 1): R | W | P}
+        for (access, mapping), flags in expected.items():
+            def edit(s):
+                s["2001"]["AccessType"] = access
+                s["2001"]["PDOMapping"] = str(mapping)
+            with self.subTest(access=access, mapping=mapping):
+                self.assertEqual(self.entries(self.eds(edit))[(0x2001, 0)].flags, flags)
+
+    def test_limits(self):
+        entries = self.entries(self.eds())
+        self.assertEqual(entries[(0x2000, 1)].limits, (-100, 100))
+        self.assertEqual(entries[(0x2001, 0)].limits, (10, 1000))
+        self.assertIsNone(entries[(0x1000, 0)].limits)
+        self.generate(self.eds())
+        source = self.read("t_od.c")
+        self.assertIn("{(uint64_t)INT64_C(-100), (uint64_t)INT64_C(100)}", source)
+        self.assertIn("{UINT64_C(10), UINT64_C(1000)}", source)
+
+    def test_one_sided_and_hex_signed_limits(self):
+        def edit(s):
+            del s["2001"]["HighLimit"]
+            s["2000sub1"]["LowLimit"] = "0xFF9C"
+            s["2000sub1"]["HighLimit"] = "0x0064"
+        entries = self.entries(self.eds(edit))
+        self.assertEqual(entries[(0x2001, 0)].limits, (10, 0xFFFF))
+        self.assertEqual(entries[(0x2000, 1)].limits, (-100, 100))
+
+    def test_every_core_data_type(self):
+        cases = {"0x0001": ("1", b"\x01"), "0x0002": ("-1", b"\xFF"),
+                 "0x0004": ("-2", b"\xFE\xFF\xFF\xFF"), "0x0005": ("255", b"\xFF"),
+                 "0x0007": ("0x12345678", b"\x78\x56\x34\x12"),
+                 "0x0008": ("1.5", b"\x00\x00\xC0\x3F"),
+                 "0x000A": ("01A2", b"\x01\xA2"), "0x000B": ("Hi", b"H\x00i\x00"),
+                 "0x000F": ("0102", b"\x01\x02"),
+                 "0x0011": ("-0.25", b"\x00\x00\x00\x00\x00\x00\xD0\xBF"),
+                 "0x0015": ("-2", b"\xFE" + b"\xFF" * 7),
+                 "0x001B": ("0x0102030405060708", bytes(range(8, 0, -1)))}
+        for dtype, (text, data) in cases.items():
+            def edit(s):
+                s["2001"] = var("X", dtype, "rw", text)
+            with self.subTest(dtype=dtype):
+                e = self.entries(self.eds(edit))[(0x2001, 0)]
+                self.assertEqual(e.default, data)
+                self.assertEqual(e.size, len(data))
+                self.assertEqual(e.dtype, int(dtype, 16))
+
+    def test_string_capacity_directive(self):
+        e = self.entries(self.eds())[(0x2000, 2)]
+        self.assertEqual((e.size, e.default), (8, b"abc" + bytes(5)))
+
+        def no_directive(s):
+            del s["2000sub2"][";size"]
+        self.assertEqual(self.entries(self.eds(no_directive))[(0x2000, 2)].size, 3)
+
+    def test_domain_with_size_directive(self):
+        def edit(s):
+            s["2001"] = var("Blob", "0x000F", "rw", **{";size": "16"})
+        e = self.entries(self.eds(edit))[(0x2001, 0)]
+        self.assertEqual((e.size, e.default), (16, bytes(16)))
+
+    def test_compact_array(self):
+        def edit(s):
+            s["2001"] = var("Compact", "0x0006", "rw", "7", CompactSubObj="3", ObjectType="0x8")
+            s["2001Value"] = {"NrOfEntries": "1", "2": "9"}
+        entries = self.entries(self.eds(edit))
+        self.assertEqual(entries[(0x2001, 0)].default, b"\x03")
+        self.assertEqual([entries[(0x2001, n)].default for n in (1, 2, 3)],
+                         [b"\x07\x00", b"\x09\x00", b"\x07\x00"])
+        self.assertNotIn((0x2001, 4), entries)
+
+    def test_deterministic_output(self):
+        hooks = self.write("t.hooks", "0x2001 zero-ok app_hook\n")
+        self.assertEqual(self.generate(self.eds(), hooks, out="a")[0], 0)
+        self.assertEqual(self.generate(self.eds(), hooks, out="b")[0], 0)
+        for name in ("t_od.h", "t_od.c"):
+            with open(os.path.join(self.dir, "a", name), "rb") as a, \
+                    open(os.path.join(self.dir, "b", name), "rb") as b:
+                self.assertEqual(a.read(), b.read())
+
+    def test_unchanged_output_is_not_rewritten(self):
+        self.generate(self.eds())
+        path = os.path.join(self.dir, "gen", "t_od.c")
+        os.utime(path, (1000, 1000))
+        self.generate(self.eds())
+        self.assertEqual(os.stat(path).st_mtime, 1000)
+
+
+class Hooks(ToolCase):
+    def test_zero_ok_and_hook_names(self):
+        hooks = self.write("t.hooks", "# comment\n\n0x2001 zero-ok  # 0 = disabled\n"
+                                      "0x2000:0x01 signed_hook\n0x1018 identity_hook\n")
+        entries = self.entries(self.eds(), hooks)
+        self.assertTrue(entries[(0x2001, 0)].flags & edstool.ZERO_OK)
+        self.assertEqual(entries[(0x2000, 1)].hook, "signed_hook")
+        self.assertIsNone(entries[(0x2000, 2)].hook)
+        self.assertEqual([entries[(0x1018, n)].hook for n in (0, 1)], ["identity_hook"] * 2)
+        self.assertEqual(self.generate(self.eds(), hooks)[0], 0)
+        source = self.read("t_od.c")
+        self.assertIn("extern const co_od_hook_t identity_hook;\n", source)
+        self.assertIn("extern const co_od_hook_t signed_hook;\n", source)
+        self.assertIn("&t_od_limits[1], &signed_hook},", source)
+        self.assertIn("CO_OD_RPDO | CO_OD_ZERO_OK, 2,", source)
+
+    def test_decimal_sub_index(self):
+        hooks = self.write("t.hooks", "0x2000:2 text_hook\n")
+        self.assertEqual(self.entries(self.eds(), hooks)[(0x2000, 2)].hook, "text_hook")
+
+    def check_refused(self, text, message):
+        hooks = self.write("t.hooks", text)
+        code, out, err = self.generate(self.eds(), hooks)
+        self.assertEqual(code, 1)
+        self.assertIn(hooks + ": line", err)
+        self.assertIn(message, err)
+
+    def test_absent_object_refused(self):
+        self.check_refused("0x2001 zero-ok\n0x2002 zero-ok\n", "line 2: 0x2002 is not in the EDS")
+
+    def test_absent_sub_index_refused(self):
+        self.check_refused("0x2000:0x05 h\n", "line 1: 0x2000:0x05 is not in the EDS")
+
+    def test_bad_word_refused(self):
+        self.check_refused("0x2001 zero_ok-\n", "'zero_ok-' is neither zero-ok nor a C identifier")
+
+    def test_no_action_refused(self):
+        self.check_refused("0x2001\n", "names no hook and no zero-ok")
+
+    def test_two_hooks_refused(self):
+        self.check_refused("0x2001 a\n0x2001 b\n", "line 2: 0x2001:0x00 already has hook a")
+
+
+class GeneratorRefusals(ToolCase):
+    def refused(self, edit, message):
+        path = self.eds(edit)
+        code, out, err = self.generate(path)
+        self.assertEqual(code, 1, err)
+        self.assertEqual(err.strip(), path + ": " + message)
+        self.assertFalse(os.path.exists(os.path.join(self.dir, "gen")))
+
+    def test_unsupported_data_type(self):
+        self.refused(lambda s: s["1018sub1"].update(DataType="0x0020"),
+                     "[1018sub1] DataType=0x0020: unsupported data type")
+
+    def test_cia_type_missing_from_core(self):
+        self.refused(lambda s: s["2001"].update(DataType="0x0010"),
+                     "[2001] DataType=0x0010: unsupported data type")
+
+    def test_unknown_access_type(self):
+        self.refused(lambda s: s["2001"].update(AccessType="rx"),
+                     "[2001] AccessType=rx: unknown access type "
+                     "(expected one of ro, wo, rw, rwr, rww, const)")
+
+    def test_leading_zero_decimal(self):
+        self.refused(lambda s: s["2001"].update(DefaultValue="010"),
+                     "[2001] DefaultValue=010: leading zero in a decimal number (octal in CiA "
+                     "306, refused by python canopen): write it without the zero or as 0x hex")
+
+    def test_default_out_of_range(self):
+        self.refused(lambda s: s["1001"].update(DefaultValue="256"),
+                     "[1001] DefaultValue=256: outside the range of UNSIGNED8 (0..255)")
+
+    def test_domain_without_data(self):
+        self.refused(lambda s: s.update({"2001": var("Blob", "0x000F", "rw")}),
+                     "[2001] DefaultValue: DOMAIN with no default value and no ';size=N' "
+                     "comment: its size is unknown")
+
+    def test_size_directive_below_default(self):
+        self.refused(lambda s: s["2000sub2"].update({";size": "2"}),
+                     "[2000sub2] ;size=2: smaller than the default value (3 bytes)")
+
+    def test_limits_on_real(self):
+        self.refused(lambda s: s.update({"2001": var("R", "0x0008", "rw", "1", LowLimit="0")}),
+                     "[2001] LowLimit=0: limits on REAL32 are not enforced by the core")
+
+    def test_node_id_limit(self):
+        self.refused(lambda s: s["2001"].update(HighLimit="$NODEID+1"),
+                     "[2001] HighLimit=$NODEID+1: node-id relative limits cannot be represented")
+
+    def test_low_above_high(self):
+        self.refused(lambda s: s["2001"].update(LowLimit="2000"),
+                     "[2001] LowLimit=2000: LowLimit above HighLimit")
+
+    def test_listed_object_without_section(self):
+        self.refused(lambda s: s.pop("2001"), "[ManufacturerObjects] 2=0x2001: object has no "
+                                              "section")
+
+    def test_unlisted_object(self):
+        def edit(s):
+            s["2002"] = var("Extra", "0x0005", "rw", "0")
+        self.refused(edit, "[2002] object not listed in any of "
+                           "MandatoryObjects/OptionalObjects/ManufacturerObjects")
+
+    def test_record_without_sub0(self):
+        self.refused(lambda s: s.pop("2000sub0"), "[2000] RECORD without a sub-index 0 section")
+
+    def test_unsupported_object_type(self):
+        self.refused(lambda s: s["2001"].update(ObjectType="0x5"),
+                     "[2001] ObjectType=0x5: unsupported object type")
+
+    def test_non_ascii_visible_string(self):
+        self.refused(lambda s: s["1008"].update(DefaultValue="D\u00e9v"),
+                     "[1008] DefaultValue=D\u00e9v: VISIBLE_STRING must be ASCII")
+
+    def test_duplicate_key(self):
+        path = self.write("t.eds", render(BASE).replace("[2001]\n", "[2001]\nDataType=0x0005\n"))
+        code, _, err = self.generate(path)
+        self.assertEqual(code, 1)
+        self.assertRegex(err, r"\[2001\] DataType: line \d+: duplicate key")
+
+    def test_duplicate_section(self):
+        path = self.write("t.eds", render(BASE) + "[1000]\nParameterName=again\n")
+        code, _, err = self.generate(path)
+        self.assertEqual(code, 1)
+        self.assertRegex(err, r"\[1000\] line \d+: duplicate section")
+
+    def test_missing_file(self):
+        code, _, err = self.generate(os.path.join(self.dir, "none.eds"))
+        self.assertEqual(code, 1)
+        self.assertIn("none.eds: cannot read", err)
+
+
+class Usage(ToolCase):
+    def test_no_command(self):
+        self.assertEqual(self.run_tool()[0], 2)
+
+    def test_missing_prefix(self):
+        code, _, err = self.run_tool("generate", self.eds(), "--out-dir", self.dir)
+        self.assertEqual(code, 2)
+        self.assertIn("--prefix", err)
+
+    def test_prefix_not_identifier(self):
+        code, _, err = self.run_tool("generate", self.eds(), "--prefix", "1x", "--out-dir",
+                                     self.dir)
+        self.assertEqual(code, 2)
+        self.assertIn("'1x' is not a C identifier", err)
+
+    def test_help_exits_zero(self):
+        code, out, _ = self.run_tool("generate", "--help")
+        self.assertEqual(code, 0)
+        self.assertIn("--hooks", out)
+
+
+class Checker(ToolCase):
+    def check(self, *args):
+        return self.run_tool("check", *args)
+
+    def test_valid_file_has_no_finding(self):
+        self.assertEqual(self.check(self.eds()), (0, "", ""))
+
+    def test_fixture_and_real_files_pass(self):
+        fixture = os.path.join(HERE, "fixtures", "device.eds")
+        self.assertEqual(self.check("--strict", fixture)[:2], (0, ""))
+
+    def finds(self, edit, finding, strict=False):
+        path = self.eds(edit)
+        code, out, _ = self.check(*(["--strict", path] if strict else [path]))
+        self.assertEqual(code, 1, out)
+        self.assertIn(path + ": " + finding + "\n", out)
+
+    def test_required_sections(self):
+        for name in ("FileInfo", "DeviceInfo", "MandatoryObjects"):
+            with self.subTest(section=name):
+                self.finds(lambda s: s.pop(name), "[%s] required section missing" % name)
+
+    def test_mandatory_object_missing(self):
+        def edit(s):
+            s.pop("1001")
+            s["MandatoryObjects"] = {"SupportedObjects": "2", "1": "0x1000", "2": "0x1018"}
+        self.finds(edit, "[1001] mandatory object missing")
+
+    def test_listed_object_without_section(self):
+        self.finds(lambda s: s.pop("1014"), "[OptionalObjects] 2=0x1014: listed object has no "
+                                            "section")
+
+    def test_object_not_listed(self):
+        self.finds(lambda s: s.update({"2002": var("X", "0x0005", "rw", "0")}),
+                   "[2002] object not listed in any of "
+                   "MandatoryObjects/OptionalObjects/ManufacturerObjects")
+
+    def test_orphan_sub_section(self):
+        self.finds(lambda s: s.update({"2005sub0": var("X", "0x0005", "ro", "0")}),
+                   "[2005sub0] sub-index of an object that has no section")
+
+    def test_supported_objects_too_high(self):
+        self.finds(lambda s: s["ManufacturerObjects"].update(SupportedObjects="3"),
+                   "[ManufacturerObjects] 3: missing (SupportedObjects=3)")
+
+    def test_supported_objects_too_low(self):
+        def edit(s):
+            s["ManufacturerObjects"]["SupportedObjects"] = "1"
+        self.finds(edit, "[ManufacturerObjects] 2: beyond SupportedObjects=1")
+
+    def test_object_in_wrong_list(self):
+        def edit(s):
+            s["OptionalObjects"]["6"] = "0x2001"
+            s["ManufacturerObjects"]["2"] = "0x1A00"
+        self.finds(edit, "[OptionalObjects] 6=0x2001: belongs in [ManufacturerObjects]")
+
+    def test_object_listed_twice(self):
+        self.finds(lambda s: s["ManufacturerObjects"].update({"2": "0x2000"}),
+                   "[ManufacturerObjects] 2=0x2000: already listed in [ManufacturerObjects]")
+
+    def test_sub_number(self):
+        self.finds(lambda s: s["2000"].update(SubNumber="4"),
+                   "[2000] SubNumber=4: 3 sub-index sections found")
+
+    def test_var_with_sub_number(self):
+        self.finds(lambda s: s["2001"].update(SubNumber="1"),
+                   "[2001] SubNumber=1: only ARRAY and RECORD have it")
+
+    def test_read_only_sub0_is_highest_sub_index(self):
+        self.finds(lambda s: s["2000sub0"].update(DefaultValue="3"),
+                   "[2000sub0] DefaultValue=3: highest sub-index present is 2")
+
+    def test_writable_sub0_up_to_highest(self):
+        self.finds(lambda s: s["1600sub0"].update(DefaultValue="2", HighLimit="2"),
+                   "[1600sub0] DefaultValue=2: above the highest sub-index present is 1")
+        self.finds(lambda s: s["1600sub0"].update(HighLimit="8"),
+                   "[1600sub0] HighLimit=8: highest sub-index present is 1")
+
+    def test_sub0_type(self):
+        self.finds(lambda s: s["2000sub0"].update(DataType="0x0006"),
+                   "[2000sub0] DataType=0x0006: sub-index 0 must be UNSIGNED8")
+
+    def test_array_types_differ(self):
+        def edit(s):
+            s["1600"]["SubNumber"] = "3"
+            s["1600sub0"].update(DefaultValue="2", HighLimit="2")
+            s["1600sub2"] = var("Mapped object 2", "0x0006", "rw", "0")
+        self.finds(edit, "[1600] ARRAY sub-indexes 1.. differ in DataType")
+
+    def test_unknown_data_type(self):
+        self.finds(lambda s: s["2001"].update(DataType="0x0030"),
+                   "[2001] DataType=0x0030: unknown data type")
+
+    def test_unknown_access_type(self):
+        self.finds(lambda s: s["2001"].update(AccessType="read"),
+                   "[2001] AccessType=read: unknown access type "
+                   "(expected one of ro, wo, rw, rwr, rww, const)")
+
+    def test_unknown_object_type(self):
+        self.finds(lambda s: s["2001"].update(ObjectType="0x3"),
+                   "[2001] ObjectType=0x3: unknown object type")
+
+    def test_leading_zero_decimal(self):
+        self.finds(lambda s: s["2001"].update(LowLimit="010"),
+                   "[2001] LowLimit=010: leading zero in a decimal number (octal in CiA 306, "
+                   "refused by python canopen): write it without the zero or as 0x hex")
+
+    def test_not_a_number(self):
+        self.finds(lambda s: s["DeviceInfo"].update(VendorNumber="0x5G"),
+                   "[DeviceInfo] VendorNumber=0x5G: not a number")
+
+    def test_bare_node_id(self):
+        self.finds(lambda s: s["1014"].update(DefaultValue="$NODEID"),
+                   "[1014] DefaultValue=$NODEID: python canopen cannot read a bare $NODEID: "
+                   "write $NODEID+0")
+
+    def test_default_outside_type_range(self):
+        self.finds(lambda s: s["1001"].update(DefaultValue="-1"),
+                   "[1001] DefaultValue=-1: outside the range of UNSIGNED8 (0..255)")
+
+    def test_node_id_default_outside_range_at_127(self):
+        self.finds(lambda s: s["1001"].update(DefaultValue="$NODEID+200"),
+                   "[1001] DefaultValue=$NODEID+200: outside the range of UNSIGNED8 (0..255) "
+                   "with node-id 127")
+
+    def test_signed_hex_default(self):
+        self.finds(lambda s: s["2000sub1"].update(DefaultValue="0xFFF6", LowLimit="-100"),
+                   "[2000sub1] DefaultValue=0xFFF6: hex default above the INTEGER16 maximum "
+                   "(python canopen does not read it as negative): write it in decimal")
+
+    def test_limit_order(self):
+        self.finds(lambda s: s["2001"].update(LowLimit="2000"),
+                   "[2001] LowLimit=2000: above HighLimit")
+
+    def test_default_below_low_limit(self):
+        self.finds(lambda s: s["2001"].update(DefaultValue="5"),
+                   "[2001] DefaultValue=5: below LowLimit")
+
+    def test_default_above_high_limit(self):
+        self.finds(lambda s: s["2000sub1"].update(DefaultValue="101"),
+                   "[2000sub1] DefaultValue=101: above HighLimit")
+
+    def test_node_id_default_against_limits(self):
+        self.finds(lambda s: s["2001"].update(DefaultValue="$NODEID+900"),
+                   "[2001] DefaultValue=$NODEID+900: above HighLimit with node-id 127")
+
+    def test_mapped_string_longer_than_a_pdo(self):
+        self.finds(lambda s: s["1008"].update(DefaultValue="123456789", PDOMapping="1"),
+                   "[1008] PDOMapping=1: 72 bits: more than a PDO's 64")
+
+    def test_mapped_domain(self):
+        self.finds(lambda s: s.update({"2001": var("D", "0x000F", "rw", "01", mapping=1)}),
+                   "[2001] PDOMapping=1: a DOMAIN cannot be PDO-mapped")
+
+    def test_pdo_mapping_value(self):
+        self.finds(lambda s: s["2001"].update(PDOMapping="2"),
+                   "[2001] PDOMapping=2: must be 0 or 1")
+
+    def test_cob_id_beyond_11_bits_at_node_127(self):
+        self.finds(lambda s: s["1800sub1"].update(DefaultValue="$NODEID+0x7F0"),
+                   "[1800sub1] DefaultValue=$NODEID+0x7F0: 0x86F is not an 11-bit identifier "
+                   "with node-id 127")
+
+    def test_cob_id_bit_29(self):
+        self.finds(lambda s: s["1400sub1"].update(DefaultValue="0x20000200"),
+                   "[1400sub1] DefaultValue=0x20000200: bit 29 set: 29-bit identifiers are not "
+                   "supported")
+
+    def test_nr_of_pdos(self):
+        self.finds(lambda s: s["DeviceInfo"].update(NrOfRXPDO="2"),
+                   "[DeviceInfo] NrOfRXPDO=2: 1 objects 1400..15FF present")
+        self.finds(lambda s: s["DeviceInfo"].update(NrOfTXPDO="0"),
+                   "[DeviceInfo] NrOfTXPDO=0: 1 objects 1800..19FF present")
+
+    def test_pdo_without_mapping(self):
+        def edit(s):
+            for name in ("1A00", "1A00sub0", "1A00sub1"):
+                s.pop(name)
+            s["OptionalObjects"]["SupportedObjects"] = "5"
+            s["OptionalObjects"].pop("6")
+        self.finds(edit, "[1800] PDO without its mapping object 1A00")
+
+    def test_baud_rate_keys(self):
+        self.finds(lambda s: s["DeviceInfo"].pop("BaudRate_800"),
+                   "[DeviceInfo] BaudRate_800: missing")
+        self.finds(lambda s: s["DeviceInfo"].update(BaudRate_125="2"),
+                   "[DeviceInfo] BaudRate_125=2: must be 0 or 1")
+
+        def none(s):
+            for rate in edstool.BAUD_RATES:
+                s["DeviceInfo"]["BaudRate_%d" % rate] = "0"
+        self.finds(none, "[DeviceInfo] BaudRate_*: no baud rate supported")
+
+    def test_key_spelling(self):
+        def edit(s):
+            s["2001"]["Accesstype"] = s["2001"].pop("AccessType")
+        self.finds(edit, "[2001] Accesstype: spell it AccessType (python canopen reads keys "
+                         "case-sensitively)")
+
+    def test_sub_section_spelling(self):
+        def edit(s):
+            s["2000SUB1"] = s.pop("2000sub1")
+        self.finds(edit, "[2000SUB1] write the section name as 2000sub1 (python canopen only "
+                         "reads 'sub')")
+
+    def test_missing_parameter_name(self):
+        self.finds(lambda s: s["2001"].pop("ParameterName"), "[2001] ParameterName: missing")
+
+    def test_missing_file_info_key_is_warning(self):
+        path = self.eds(lambda s: s["FileInfo"].pop("CreatedBy"))
+        self.assertEqual(self.check(path)[:2], (0, path + ": [FileInfo] CreatedBy: warning: "
+                                                         "missing\n"))
+        self.assertEqual(self.check("--strict", path)[0], 1)
+
+    def test_every_file_is_checked(self):
+        good = self.eds()
+        bad = self.eds(lambda s: s["1001"].update(DefaultValue="-1"), name="bad.eds")
+        code, out, _ = self.check(bad, good)
+        self.assertEqual(code, 1)
+        self.assertEqual(out.count("\n"), 1)
+        self.assertTrue(out.startswith(bad + ": "))
+
+    def test_usage(self):
+        self.assertEqual(self.check()[0], 2)
+
+
+if __name__ == "__main__":
+    unittest.main()

@@ -49,7 +49,7 @@ uint32_t co_sdo_od_write(co_node_t *node, const co_od_entry_t *entry, const uint
 /* Sets the server's protocol timeout (default CO_CONFIG_SDO_TIMEOUT_US). */
 void co_sdo_set_timeout(co_node_t *node, co_time_t timeout_us);
 
-/* CRC-16-CCITT (polynomial 0x1021, initial value 0) of SDO block transfers, CiA 301 7.2.4.3.16. */
+/* CRC-16-CCITT (polynomial 0x1021, initial value 0) of SDO block transfers (CiA 301). */
 uint16_t co_sdo_crc16(const uint8_t *data, size_t len);
 
 #endif

@@ -82,8 +82,9 @@ void co_sdo_set_timeout(co_node_t *node, co_time_t timeout_us)
     node->sdo.timeout_us = timeout_us;
 }
 
-/* 1200h is the default server channel, fixed by the node-id: CiA 301 7.5.2.33 makes its COB-IDs
- * read-only, which the dictionary's access type already enforces in co_od_write. */
+/* 1200h is the default server channel, fixed by the node-id: CiA 301 (object 1200h, SDO server
+ * parameter) makes its COB-IDs read-only, which the dictionary's access type already enforces in
+ * co_od_write. A dictionary that makes them writable gets the new values at the next reset. */
 uint32_t co_sdo_od_write(co_node_t *node, const co_od_entry_t *entry, const uint8_t *data,
                          size_t len)
 {
@@ -133,14 +134,23 @@ static void finish(co_node_t *node, uint32_t abort, uint8_t command, bool with_m
     node->sdo.state = CO_SDO_IDLE;
 }
 
-/* The target of a segmented or block download must exist and be writable before any data is
- * accepted; the remaining checks run in co_od_write once the value is complete. */
-static uint32_t download_target_check(co_node_t *node)
+/* Initiate of a segmented or block download: an announced size must be in the frame and fit the
+ * buffer, and the target must exist and be writable before any data is accepted; the remaining
+ * checks run in co_od_write once the value is complete. */
+static uint32_t download_prepare(co_node_t *node, const co_frame_t *frame, bool size_indicated)
 {
+    co_sdo_server_t *sdo = &node->sdo;
+    if (size_indicated && frame->len < INITIATE_SIZE_LEN)
+        return SDO_ABORT_COMMAND;
+    sdo->size_indicated = size_indicated;
+    sdo->size = size_indicated ? co_get_u32(&frame->data[4]) : 0;
+    sdo->offset = 0;
     const co_od_entry_t *e;
-    uint32_t abort = co_od_lookup(node->od, node->sdo.index, node->sdo.subindex, &e);
+    uint32_t abort = co_od_lookup(node->od, sdo->index, sdo->subindex, &e);
     if (abort == CO_SDO_OK && !(e->flags & CO_OD_WRITE))
         abort = SDO_ABORT_READ_ONLY;
+    if (abort == CO_SDO_OK && sdo->size > CO_CONFIG_SDO_BUFFER)
+        abort = SDO_ABORT_NO_MEMORY;
     return abort;
 }
 
@@ -172,20 +182,11 @@ static void download_initiate(co_node_t *node, const co_frame_t *frame)
         finish(node, abort, SCS_DOWNLOAD_INITIATE, true);
         return;
     }
-    sdo->size_indicated = (command & SDO_SIZE_INDICATED) != 0;
-    if (sdo->size_indicated && frame->len < INITIATE_SIZE_LEN) {
-        transfer_abort(node, SDO_ABORT_COMMAND);
-        return;
-    }
-    sdo->size = sdo->size_indicated ? co_get_u32(&frame->data[4]) : 0;
-    uint32_t abort = download_target_check(node);
-    if (abort == CO_SDO_OK && sdo->size > CO_CONFIG_SDO_BUFFER)
-        abort = SDO_ABORT_NO_MEMORY;
+    uint32_t abort = download_prepare(node, frame, (command & SDO_SIZE_INDICATED) != 0);
     if (abort != CO_SDO_OK) {
         transfer_abort(node, abort);
         return;
     }
-    sdo->offset = 0;
     sdo->toggle = 0;
     sdo->state = CO_SDO_DOWNLOAD_SEGMENT;
     send_with_mux(node, SCS_DOWNLOAD_INITIATE, 0);
@@ -313,21 +314,12 @@ static void block_download_initiate(co_node_t *node, const co_frame_t *frame)
 {
     co_sdo_server_t *sdo = &node->sdo;
     uint8_t command = frame->data[0];
-    sdo->size_indicated = (command & BLOCK_SIZE_INDICATED) != 0;
-    if (sdo->size_indicated && frame->len < INITIATE_SIZE_LEN) {
-        transfer_abort(node, SDO_ABORT_COMMAND);
-        return;
-    }
-    sdo->size = sdo->size_indicated ? co_get_u32(&frame->data[4]) : 0;
-    uint32_t abort = download_target_check(node);
-    if (abort == CO_SDO_OK && sdo->size > CO_CONFIG_SDO_BUFFER)
-        abort = SDO_ABORT_NO_MEMORY;
+    uint32_t abort = download_prepare(node, frame, (command & BLOCK_SIZE_INDICATED) != 0);
     if (abort != CO_SDO_OK) {
         transfer_abort(node, abort);
         return;
     }
     sdo->crc = (command & BLOCK_CRC) != 0;
-    sdo->offset = 0;
     sdo->seqno = 0;
     sdo->block_broken = false;
     sdo->last_in_block = false;
@@ -353,8 +345,8 @@ static uint32_t block_download_store(co_sdo_server_t *sdo, const co_frame_t *fra
     return CO_SDO_OK;
 }
 
-/* CiA 301 7.2.4.3.9: after the last segment of a sub-block the server acknowledges the last
- * segment received in sequence; the client resends from the one after it. */
+/* CiA 301, download SDO block segment protocol: after the last segment of a sub-block the server
+ * acknowledges the last segment received in sequence; the client resends from the one after it. */
 static void block_download_acknowledge(co_node_t *node)
 {
     co_sdo_server_t *sdo = &node->sdo;
@@ -429,8 +421,8 @@ static void block_upload_initiate(co_node_t *node, const co_frame_t *frame)
         transfer_abort(node, abort);
         return;
     }
-    /* CiA 301 7.2.4.3.10: at or below the client's protocol switch threshold the server may
-     * answer with the plain upload protocol. */
+    /* CiA 301, initiate SDO block upload protocol: at or below the client's protocol switch
+     * threshold the server may answer with the plain upload protocol. */
     if (pst != 0 && sdo->size <= pst) {
         upload_response(node);
         return;

@@ -62,9 +62,9 @@ static size_t min7(size_t n)
     return n < 7 ? n : 7;
 }
 
-/* Segmented download (CiA 301 7.2.4.3.3/4): initiate, then segments with alternating toggle, the
- * server confirming each one; the final confirmation is left for the caller when `last_reply`
- * is false (to check an abort instead). */
+/* Segmented download (CiA 301 download initiate and segment protocols): initiate, then segments
+ * with alternating toggle, the server confirming each one; the final confirmation is left for the
+ * caller when `last_reply` is false (to check an abort instead). */
 static void segmented_download(uint16_t index, uint8_t sub, const uint8_t *data, size_t len,
                                bool indicate, bool last_reply)
 {
@@ -116,8 +116,8 @@ static void segmented_upload(uint16_t index, uint8_t sub, const uint8_t *data, s
     }
 }
 
-/* Block download (CiA 301 7.2.4.3.9..12). `blksizes` are the server's expected block sizes: the
- * initiate response's, then each acknowledge's. */
+/* Block download (CiA 301 block download protocols). `blksizes` are the server's expected block
+ * sizes: the initiate response's, then each acknowledge's. */
 static void block_download(uint16_t index, uint8_t sub, const uint8_t *data, size_t len, bool crc,
                            const uint8_t *blksizes, size_t acks)
 {

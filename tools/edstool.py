@@ -397,6 +397,7 @@ def build_entry(eds, sec, index, sub, fallback=None, default_override=None):
     if access not in ACCESS_TYPES:
         raise eds.error(src.name, src.label("AccessType"),
                         "unknown access type (expected one of %s)" % ", ".join(ACCESS_TYPES))
+    entry.access = access
     entry.flags = ACCESS_FLAGS[access]
     mapping_text = src.get("PDOMapping") or "0"
     try:
@@ -467,6 +468,7 @@ def compact_entries(eds, sec, index):
     first = Entry(index, 0, "Highest sub-index supported", sec.name)
     first.dtype = 0x05
     first.flags = READ
+    first.access = "ro"
     first.size = 1
     first.default = bytes([count])
     entries = [first]
@@ -1095,6 +1097,46 @@ def check(args):
 
 
 # ---------------------------------------------------------------------------------------------
+# Dump
+# ---------------------------------------------------------------------------------------------
+
+def shown_default(e):
+    kind = DATA_TYPES[e.dtype][2]
+    if kind == "vs":
+        return '"%s"' % e.default.rstrip(b"\0").decode("ascii")
+    if kind == "us":
+        return '"%s"' % e.default.decode("utf-16-le").rstrip("\0")
+    if kind in ("os", "d"):
+        return e.default.hex().upper() or "(empty)"
+    if kind == "f":
+        return repr(struct.unpack("<f" if e.size == 4 else "<d", e.default)[0])
+    value = int.from_bytes(e.default, "little", signed=kind == "i")
+    text = "0x%0*X" % (2 * e.size, value) if kind == "u" and value > 9 else str(value)
+    return "$NODEID+" + text if e.flags & NODEID else text
+
+
+def dump(args):
+    eds = parse_eds(args.eds)
+    entries = build_entries(eds)
+    if args.hooks:
+        apply_hooks(entries, args.hooks)
+    out = sys.stdout
+    out.write("| Index | Sub | Name | Type | Access | PDO | Default | Limits | Size |\n")
+    out.write("|---|---|---|---|---|---|---|---|---|\n")
+    for e in entries:
+        pdo = "/".join(n for bit, n in ((TPDO, "T"), (RPDO, "R")) if e.flags & bit) or "-"
+        limits = "%d..%d" % e.limits if e.limits else ""
+        if e.flags & ZERO_OK:
+            limits += " or 0"
+        if e.hook:
+            limits += " (hook %s)" % e.hook
+        out.write("| %04Xh | %d | %s | %s | %s | %s | %s | %s | %d |\n"
+                  % (e.index, e.sub, e.name.replace("|", "/"), DATA_TYPES[e.dtype][0], e.access,
+                     pdo, shown_default(e).replace("|", "/"), limits.strip(), e.size))
+    return EXIT_OK
+
+
+# ---------------------------------------------------------------------------------------------
 # Command line
 # ---------------------------------------------------------------------------------------------
 
@@ -1134,11 +1176,18 @@ def make_parser():
     chk = sub.add_parser(
         "check", help="check EDS files against CiA 306",
         description="Check EDS files against CiA 306 and what python canopen needs. Prints one "
-                    "line per finding ('file: [section] key: message', warnings prefixed "
-                    "'warning: '); exits 1 if any error (or, with --strict, any warning).")
+                    "line per finding ('file: [section] key: message', the message of a warning "
+                    "starting 'warning: '); exits 1 if any error (or, with --strict, any warning).")
     chk.add_argument("eds", metavar="EDS", nargs="+", help="EDS files")
     chk.add_argument("--strict", action="store_true", help="treat warnings as errors")
     chk.set_defaults(run=check)
+    dmp = sub.add_parser(
+        "dump", help="list the objects of an EDS as a Markdown table",
+        description="Print every entry the generator would produce as a Markdown table: index, "
+                    "sub-index, name, type, access, PDO direction, default, limits, size.")
+    dmp.add_argument("eds", metavar="EDS", help="the EDS file")
+    dmp.add_argument("--hooks", metavar="FILE", help="show the hooks and zero-ok of this file")
+    dmp.set_defaults(run=dump)
     return parser
 
 

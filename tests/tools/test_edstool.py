@@ -409,6 +409,19 @@ class Usage(ToolCase):
         self.assertIn("--hooks", out)
 
 
+class Dump(ToolCase):
+    def test_lists_every_entry(self):
+        hooks = self.write("t.hooks", "0x2001 zero-ok app_hook\n")
+        code, out, _ = self.run_tool("dump", self.eds(), "--hooks", hooks)
+        self.assertEqual(code, 0)
+        lines = out.splitlines()
+        self.assertEqual(len(lines), 2 + len(self.entries(self.eds())))
+        self.assertIn("| 1014h | 0 | COB-ID EMCY | UNSIGNED32 | rw | - | $NODEID+0x00000080 |  "
+                      "| 4 |", lines)
+        self.assertIn("| 2001h | 0 | Limited | UNSIGNED16 | rww | R | 0x0064 | 10..1000 or 0 "
+                      "(hook app_hook) | 2 |", lines)
+
+
 class Checker(ToolCase):
     def check(self, *args):
         return self.run_tool("check", *args)

@@ -45,7 +45,8 @@ static void segment_frame(uint8_t p[8], uint8_t command, const uint8_t *data, si
 {
     memset(p, 0, 8);
     p[0] = command;
-    memcpy(&p[1], data, count);
+    if (count > 0)
+        memcpy(&p[1], data, count);
 }
 
 static void initiate_frame(uint8_t p[8], uint8_t command, uint16_t index, uint8_t sub,

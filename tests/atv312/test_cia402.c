@@ -1,0 +1,287 @@
+/* CiA 402 / Drivecom power state machine of the ATV312 on its real dictionary: every command of
+ * the manual's table, every status value, quick stop vs fast stop, freewheel, the fault reset
+ * edge (seed-devicenet.md sections 1.2-1.4 and 6; SPEC section 3). */
+#include "bench.h"
+
+#include <stdlib.h>
+
+/* Status words with bit 9 (remote) and bit 10 (reference reached, motor at its target). */
+#define SW_SWITCH_ON_DISABLED 0x0640
+#define SW_READY 0x0621
+#define SW_SWITCHED_ON 0x0623
+#define SW_ENABLED 0x0627
+#define SW_QUICK_STOP 0x0607
+#define SW_FAULT 0x0608
+
+typedef struct step {
+    uint16_t control;
+    uint16_t status;
+} step_t;
+
+static void run_steps(bench_t *b, const step_t *steps, size_t n)
+{
+    for (size_t i = 0; i < n; i++) {
+        uint16_t status = bench_command(b, steps[i].control);
+        ck_assert_msg(status == steps[i].status,
+                      "step %zu: control %04X gave status %04X, not %04X", i, steps[i].control,
+                      status, steps[i].status);
+    }
+}
+
+START_TEST(boots_in_switch_on_disabled)
+{
+    bench_t b;
+    bench_start(&b);
+    ck_assert_uint_eq(bench_read(&b, 0x6041, 0), SW_SWITCH_ON_DISABLED);
+    ck_assert_uint_eq(bench_read(&b, 0x2002, 2), SW_SWITCH_ON_DISABLED);
+    ck_assert_str_eq(atv312_state_name(&b.drive), "Switch on disabled");
+    /* Enable operation and switch on are not shutdown: nothing happens. */
+    const step_t steps[] = {{0x000F, SW_SWITCH_ON_DISABLED}, {0x0007, SW_SWITCH_ON_DISABLED}};
+    run_steps(&b, steps, 2);
+}
+END_TEST
+
+/* Transitions 2, 3, 4, 5, 6, 7 (disable voltage and quick stop), 10 (both), 8, 9. */
+START_TEST(every_transition_of_the_command_table)
+{
+    bench_t b;
+    bench_start(&b);
+    const step_t steps[] = {
+        {0x0006, SW_READY},              /* 2 shutdown */
+        {0x0007, SW_SWITCHED_ON},        /* 3 switch on */
+        {0x000F, SW_ENABLED},            /* 4 enable operation */
+        {0x0007, SW_SWITCHED_ON},        /* 5 disable operation */
+        {0x0006, SW_READY},              /* 6 shutdown */
+        {0x0000, SW_SWITCH_ON_DISABLED}, /* 7 disable voltage */
+        {0x0006, SW_READY},
+        {0x0002, SW_SWITCH_ON_DISABLED}, /* 7 quick stop */
+        {0x0006, SW_READY},
+        {0x0007, SW_SWITCHED_ON},
+        {0x0000, SW_SWITCH_ON_DISABLED}, /* 10 disable voltage */
+        {0x0006, SW_READY},
+        {0x0007, SW_SWITCHED_ON},
+        {0x0002, SW_SWITCH_ON_DISABLED}, /* 10 quick stop */
+        {0x0006, SW_READY},
+        {0x000F, SW_ENABLED}, /* 3 then 4: the word is a level */
+        {0x0006, SW_READY},   /* 8 shutdown */
+        {0x000F, SW_ENABLED},
+        {0x0000, SW_SWITCH_ON_DISABLED}, /* 9 disable voltage */
+    };
+    run_steps(&b, steps, sizeof(steps) / sizeof(steps[0]));
+}
+END_TEST
+
+/* 11 then 12: quick stop locks until disable voltage; enable operation cannot restart it. */
+START_TEST(quick_stop_locks_until_disable_voltage)
+{
+    bench_t b;
+    bench_start(&b);
+    const step_t steps[] = {
+        {0x0006, SW_READY},      {0x000F, SW_ENABLED},    {0x0002, SW_QUICK_STOP}, /* 11 */
+        {0x000F, SW_QUICK_STOP}, /* no transition 16 */
+        {0x0006, SW_QUICK_STOP}, {0x0007, SW_QUICK_STOP}, {0x0000, SW_SWITCH_ON_DISABLED}, /* 12 */
+        {0x0006, SW_READY},      {0x000F, SW_ENABLED},
+    };
+    run_steps(&b, steps, sizeof(steps) / sizeof(steps[0]));
+    ck_assert_str_eq(atv312_state_name(&b.drive), "Operation enabled");
+}
+END_TEST
+
+/* Runs the motor at 1500 rpm (ACC 3.0 s, nominal 1500 rpm). */
+static void run_at_nominal(bench_t *b)
+{
+    ck_assert_uint_eq(bench_sdo_write(b, 0x6042, 0, 1500, 2), 0);
+    bench_command(b, 0x0006);
+    ck_assert_uint_eq(bench_command(b, 0x000F), 0x0227); /* accelerating */
+    bench_advance(b, 3000000);
+    ck_assert_int_eq(bench_speed(b), 1500);
+    ck_assert_uint_eq(bench_read(b, 0x6041, 0), SW_ENABLED);
+}
+
+/* Quick stop: DEC / 4 = 0.7 s ramp, then locked in Quick stop active with the motor stopped. */
+START_TEST(quick_stop_ramps_on_the_short_ramp)
+{
+    bench_t b;
+    bench_start(&b);
+    run_at_nominal(&b);
+    ck_assert_uint_eq(bench_command(&b, 0x0002), 0x0207);
+    bench_advance(&b, 350000);
+    ck_assert_int_eq(bench_speed(&b), 750);
+    bench_advance(&b, 350000);
+    ck_assert_int_eq(bench_speed(&b), 0);
+    ck_assert_uint_eq(bench_read(&b, 0x6041, 0), SW_QUICK_STOP);
+    ck_assert_uint_eq(bench_command(&b, 0x000F), SW_QUICK_STOP);
+    bench_advance(&b, 100000);
+    ck_assert_int_eq(bench_speed(&b), 0);
+}
+END_TEST
+
+/* Fast stop (bit 14): the same short ramp, but the drive stays in Operation enabled and a run
+ * command restarts it at once. */
+START_TEST(fast_stop_stays_enabled)
+{
+    bench_t b;
+    bench_start(&b);
+    run_at_nominal(&b);
+    ck_assert_uint_eq(bench_command(&b, 0x400F), 0x0227);
+    bench_advance(&b, 700000);
+    ck_assert_int_eq(bench_speed(&b), 0);
+    ck_assert_uint_eq(bench_read(&b, 0x6041, 0), SW_ENABLED);
+    ck_assert_uint_eq(bench_command(&b, 0x000F), 0x0227);
+    bench_advance(&b, 1000000);
+    ck_assert_int_eq(bench_speed(&b), 500);
+}
+END_TEST
+
+/* Shutdown (8) and disable voltage (9) from Operation enabled: freewheel, speed 0 at once. */
+START_TEST(shutdown_and_disable_voltage_freewheel)
+{
+    bench_t b;
+    bench_start(&b);
+    run_at_nominal(&b);
+    ck_assert_uint_eq(bench_command(&b, 0x0006), SW_READY);
+    ck_assert_int_eq(bench_speed(&b), 0);
+    ck_assert_uint_eq(bench_read(&b, 0x2002, 4), 0); /* no current */
+    run_at_nominal(&b);
+    ck_assert_uint_eq(bench_command(&b, 0x0000), SW_SWITCH_ON_DISABLED);
+    ck_assert_int_eq(bench_speed(&b), 0);
+}
+END_TEST
+
+/* Disable operation (5) stops on the DEC ramp (3.0 s) in Switched on. */
+START_TEST(disable_operation_ramps_down)
+{
+    bench_t b;
+    bench_start(&b);
+    run_at_nominal(&b);
+    ck_assert_uint_eq(bench_command(&b, 0x0007), 0x0223);
+    bench_advance(&b, 1500000);
+    ck_assert_int_eq(bench_speed(&b), 750);
+    bench_advance(&b, 1500000);
+    ck_assert_int_eq(bench_speed(&b), 0);
+    ck_assert_uint_eq(bench_read(&b, 0x6041, 0), SW_SWITCHED_ON);
+}
+END_TEST
+
+/* Bit 11 reverse: negative speed and status bit 15 (0x8227 ramping, 0x8627 at speed). */
+START_TEST(reverse_bit)
+{
+    bench_t b;
+    bench_start(&b);
+    ck_assert_uint_eq(bench_sdo_write(&b, 0x6042, 0, 1500, 2), 0);
+    bench_command(&b, 0x0006);
+    ck_assert_uint_eq(bench_command(&b, 0x080F), 0x8227);
+    bench_advance(&b, 3000000);
+    ck_assert_int_eq(bench_speed(&b), -1500);
+    ck_assert_uint_eq(bench_read(&b, 0x6041, 0), 0x8627);
+    /* A negative reference with bit 11 runs forward. */
+    ck_assert_uint_eq(bench_sdo_write(&b, 0x6042, 0, (uint16_t)-600, 2), 0);
+    bench_advance(&b, 5000000);
+    ck_assert_int_eq(bench_speed(&b), 600);
+    ck_assert_uint_eq(bench_read(&b, 0x6041, 0), SW_ENABLED);
+}
+END_TEST
+
+/* Bit 12 stop: DEC ramp to 0 in Operation enabled; releasing it runs again. */
+START_TEST(stop_bit_halts_on_the_ramp)
+{
+    bench_t b;
+    bench_start(&b);
+    run_at_nominal(&b);
+    ck_assert_uint_eq(bench_command(&b, 0x100F), 0x0227);
+    bench_advance(&b, 1500000);
+    ck_assert_int_eq(bench_speed(&b), 750);
+    bench_advance(&b, 1500000);
+    ck_assert_int_eq(bench_speed(&b), 0);
+    ck_assert_uint_eq(bench_read(&b, 0x6041, 0), SW_ENABLED);
+    ck_assert_uint_eq(bench_command(&b, 0x000F), 0x0227);
+}
+END_TEST
+
+/* Bit 13 DC injection stop: the short ramp, drive stays enabled. */
+START_TEST(dc_injection_bit_stops_fast)
+{
+    bench_t b;
+    bench_start(&b);
+    run_at_nominal(&b);
+    ck_assert_uint_eq(bench_command(&b, 0x200F), 0x0227);
+    bench_advance(&b, 700000);
+    ck_assert_int_eq(bench_speed(&b), 0);
+    ck_assert_uint_eq(bench_read(&b, 0x6041, 0), SW_ENABLED);
+}
+END_TEST
+
+/* Loses the heartbeat of node 1 (1016h:01 = node 1, 100 ms). */
+static void lose_heartbeat(bench_t *b)
+{
+    ck_assert_uint_eq(bench_sdo_write(b, 0x1016, 1, 0x00010064, 4), 0);
+    bench_rx(b, "701#05");
+    bench_advance(b, 100000);
+}
+
+/* Fault reset acts on the 0 -> 1 edge of bit 7 only, whatever the other bits. */
+START_TEST(fault_reset_on_the_rising_edge_only)
+{
+    bench_t b;
+    bench_start(&b);
+    run_at_nominal(&b);
+    lose_heartbeat(&b);
+    bench_expect(&b, "084#3081110000000000");
+    ck_assert_uint_eq(bench_read(&b, 0x6041, 0), SW_FAULT);
+    ck_assert_str_eq(atv312_state_name(&b.drive), "Fault");
+    const step_t locked[] = {{0x0006, SW_FAULT}, {0x000F, SW_FAULT}, {0x0000, SW_FAULT}};
+    run_steps(&b, locked, 3);
+    ck_assert_uint_eq(bench_command(&b, 0x0080), SW_SWITCH_ON_DISABLED); /* 15 */
+    bench_expect(&b, "084#0000000000000000");
+    /* A second fault: bit 7 still held is no edge. */
+    bench_rx(&b, "701#05");
+    bench_advance(&b, 100000);
+    bench_expect(&b, "084#3081110000000000");
+    ck_assert_uint_eq(bench_read(&b, 0x6041, 0), SW_FAULT);
+    ck_assert_uint_eq(bench_command(&b, 0x0080), SW_FAULT);
+    ck_assert_uint_eq(bench_command(&b, 0x0086), SW_FAULT);
+    ck_assert_uint_eq(bench_command(&b, 0x0006), SW_FAULT);
+    /* Edge with shutdown bits: reset (15) then shutdown (2). */
+    ck_assert_uint_eq(bench_command(&b, 0x0086), SW_READY);
+    bench_expect(&b, "084#0000000000000000");
+    bench_expect_none(&b);
+}
+END_TEST
+
+/* CMD (2037h:02, ADL 8501) is the same word as CMDD (6040h); ETA (2002h:02) is ETAD. */
+START_TEST(cmd_and_cmdd_are_one_word)
+{
+    bench_t b;
+    bench_start(&b);
+    ck_assert_uint_eq(bench_sdo_write(&b, 0x2037, 2, 0x0006, 2), 0);
+    ck_assert_uint_eq(bench_read(&b, 0x6041, 0), SW_READY);
+    ck_assert_uint_eq(bench_read(&b, 0x6040, 0), 0x0006);
+    ck_assert_uint_eq(bench_command(&b, 0x0007), SW_SWITCHED_ON);
+    ck_assert_uint_eq(bench_read(&b, 0x2037, 2), 0x0007);
+    ck_assert_uint_eq(bench_read(&b, 0x2002, 2), SW_SWITCHED_ON);
+}
+END_TEST
+
+int main(void)
+{
+    Suite *s = suite_create("atv312_cia402");
+    TCase *tc = tcase_create("cia402");
+    tcase_add_test(tc, boots_in_switch_on_disabled);
+    tcase_add_test(tc, every_transition_of_the_command_table);
+    tcase_add_test(tc, quick_stop_locks_until_disable_voltage);
+    tcase_add_test(tc, quick_stop_ramps_on_the_short_ramp);
+    tcase_add_test(tc, fast_stop_stays_enabled);
+    tcase_add_test(tc, shutdown_and_disable_voltage_freewheel);
+    tcase_add_test(tc, disable_operation_ramps_down);
+    tcase_add_test(tc, reverse_bit);
+    tcase_add_test(tc, stop_bit_halts_on_the_ramp);
+    tcase_add_test(tc, dc_injection_bit_stops_fast);
+    tcase_add_test(tc, fault_reset_on_the_rising_edge_only);
+    tcase_add_test(tc, cmd_and_cmdd_are_one_word);
+    suite_add_tcase(s, tc);
+    SRunner *sr = srunner_create(s);
+    srunner_run_all(sr, CK_NORMAL);
+    int failed = srunner_ntests_failed(sr);
+    srunner_free(sr);
+    return failed == 0 ? EXIT_SUCCESS : EXIT_FAILURE;
+}

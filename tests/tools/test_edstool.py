@@ -409,6 +409,32 @@ class Usage(ToolCase):
         self.assertIn("--hooks", out)
 
 
+class WorkedExample(ToolCase):
+    """docs/eds-generator.md shows the files generated from fixtures/example.eds: they must stay
+    what the tool really writes."""
+
+    def test_docs_show_real_output(self):
+        fixtures = os.path.join(HERE, "fixtures")
+        self.assertEqual(self.run_tool("check", "--strict",
+                                       os.path.join(fixtures, "example.eds"))[:2], (0, ""))
+        code, _, err = self.run_tool("generate", os.path.join(fixtures, "example.eds"),
+                                     "--prefix", "fan", "--out-dir", self.dir,
+                                     "--hooks", os.path.join(fixtures, "example.hooks"))
+        self.assertEqual(code, 0, err)
+        with open(os.path.join(HERE, "..", "..", "docs", "eds-generator.md")) as f:
+            doc = f.read()
+        with open(os.path.join(self.dir, "fan_od.h")) as f:
+            self.assertIn("```c\n" + f.read() + "```", doc)
+        with open(os.path.join(self.dir, "fan_od.c")) as f:
+            source = f.read().splitlines()
+        excerpt = doc.split("`gen/fan_od.c` (excerpt)", 1)[1].split("```c\n", 1)[1]
+        excerpt = excerpt.split("```", 1)[0].splitlines()
+        self.assertGreater(len(excerpt), 10)
+        for line in excerpt:
+            if line.strip() not in ("...", ""):
+                self.assertIn(line, source)
+
+
 class Dump(ToolCase):
     def test_lists_every_entry(self):
         hooks = self.write("t.hooks", "0x2001 zero-ok app_hook\n")

@@ -1,0 +1,41 @@
+/* Conversions between the core's co_frame_t and SocketCAN's struct can_frame. */
+#ifndef CO_LINUX_CAN_FRAME_H
+#define CO_LINUX_CAN_FRAME_H
+
+#include "co/co_types.h"
+
+#include <linux/can.h>
+#include <string.h>
+
+static inline void co_linux_frame_to_can(const co_frame_t *in, struct can_frame *out)
+{
+    memset(out, 0, sizeof *out);
+    if (in->flags & CO_FRAME_EFF)
+        out->can_id = (in->id & CAN_EFF_MASK) | CAN_EFF_FLAG;
+    else
+        out->can_id = in->id & CAN_SFF_MASK;
+    if (in->flags & CO_FRAME_RTR)
+        out->can_id |= CAN_RTR_FLAG;
+    out->len = in->len > CAN_MAX_DLEN ? CAN_MAX_DLEN : in->len;
+    if (!(in->flags & CO_FRAME_RTR))
+        memcpy(out->data, in->data, out->len);
+}
+
+/* Error frames are not CANopen frames: the caller handles CAN_ERR_FLAG before converting. */
+static inline void co_linux_frame_from_can(const struct can_frame *in, co_frame_t *out)
+{
+    memset(out, 0, sizeof *out);
+    if (in->can_id & CAN_EFF_FLAG) {
+        out->id = in->can_id & CAN_EFF_MASK;
+        out->flags |= CO_FRAME_EFF;
+    } else {
+        out->id = in->can_id & CAN_SFF_MASK;
+    }
+    if (in->can_id & CAN_RTR_FLAG)
+        out->flags |= CO_FRAME_RTR;
+    out->len = in->len > CAN_MAX_DLEN ? CAN_MAX_DLEN : in->len;
+    if (!(in->can_id & CAN_RTR_FLAG))
+        memcpy(out->data, in->data, out->len);
+}
+
+#endif

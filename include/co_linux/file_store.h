@@ -1,0 +1,84 @@
+/* The storage file behind `--store FILE`: the stored images of every node of the process, one
+ * record per (node-id, area), in one file that is replaced atomically (temporary file in the same
+ * directory, fsync, rename, fsync of the directory) and verified completely (magic, version,
+ * length, CRC-32, every record) before anything in it is used. A file that fails a check is
+ * reported with the reason and ignored as a whole; at the next save it is kept as FILE.bad and
+ * replaced. Format: docs/atv312d.md, "Storage file". */
+#ifndef CO_LINUX_FILE_STORE_H
+#define CO_LINUX_FILE_STORE_H
+
+#include "co/co_store.h"
+
+#include <stdbool.h>
+#include <stddef.h>
+#include <stdint.h>
+
+#define CO_FILE_STORE_MAGIC "CoSF"
+#define CO_FILE_STORE_VERSION 1u
+#define CO_FILE_STORE_HEADER_SIZE 12u       /* magic, version, record count, records length */
+#define CO_FILE_STORE_RECORD_HEADER_SIZE 8u /* node-id, area, reserved u16, length u32 */
+#define CO_FILE_STORE_CRC_SIZE 4u
+
+typedef struct co_file_record {
+    uint8_t node_id;
+    uint8_t area;
+    uint32_t len;
+    uint8_t *data;
+} co_file_record_t;
+
+typedef struct co_file_store {
+    char *path;
+    co_file_record_t *records; /* sorted by node-id, then area */
+    size_t count;
+    bool damaged;     /* the file on disk failed a check and was ignored */
+    char reason[160]; /* why it was ignored, or why the last operation failed */
+} co_file_store_t;
+
+/* Per-node view of the store, the ctx of that node's co_storage_t. */
+typedef struct co_file_store_node {
+    co_file_store_t *store;
+    uint8_t node_id;
+    uint8_t saving_area; /* 0 when no save is in progress */
+    uint8_t *image;      /* the image being written */
+    size_t image_len, image_cap;
+} co_file_store_node_t;
+
+typedef enum co_file_store_status {
+    CO_FILE_STORE_LOADED,  /* the file was read and verified (it may hold no record) */
+    CO_FILE_STORE_MISSING, /* no file yet: the first save creates it */
+    CO_FILE_STORE_IGNORED, /* the file failed a check: reason says which; nothing was loaded */
+    CO_FILE_STORE_ERROR    /* it could not be read (errno and reason say why) */
+} co_file_store_status_t;
+
+/* Reads and verifies the file. Nothing of a file that fails is kept. */
+co_file_store_status_t co_file_store_open(co_file_store_t *store, const char *path);
+
+void co_file_store_close(co_file_store_t *store);
+
+/* Checks a whole file image; on success, and only then, fills records (heap) and count. Returns
+ * false with the reason otherwise. */
+bool co_file_store_parse(const uint8_t *file, size_t size, co_file_record_t **records,
+                         size_t *count, char *reason, size_t reason_len);
+
+/* The record of a node's area, or NULL. */
+const co_file_record_t *co_file_store_find(const co_file_store_t *store, uint8_t node_id,
+                                           uint8_t area);
+
+/* Replaces (data != NULL) or removes (data == NULL) the record of a node's area and rewrites the
+ * file atomically. The store takes ownership of data in every case. 0, or -1 with the reason
+ * (the file and the records in memory then stay as they were). */
+int co_file_store_update(co_file_store_t *store, uint8_t node_id, uint8_t area, uint8_t *data,
+                         uint32_t len);
+
+/* Fills a co_storage_t for one node of the store. */
+void co_file_store_bind(co_file_store_t *store, uint8_t node_id, co_file_store_node_t *node,
+                        co_storage_t *storage);
+
+/* Releases a node's save buffer. */
+void co_file_store_unbind(co_file_store_node_t *node);
+
+/* CRC-32 as in IEEE 802.3 and zlib (reflected polynomial 0xEDB88320, initial and final value
+ * 0xFFFFFFFF). */
+uint32_t co_crc32(const uint8_t *data, size_t len);
+
+#endif

@@ -1,0 +1,230 @@
+#include "cli.h"
+
+#include <ctype.h>
+#include <errno.h>
+#include <net/if.h>
+#include <stdarg.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sysexits.h>
+
+static int usage_error(char *err, size_t err_len, const char *format, ...)
+    __attribute__((format(printf, 3, 4)));
+
+static int usage_error(char *err, size_t err_len, const char *format, ...)
+{
+    va_list args;
+    va_start(args, format);
+    vsnprintf(err, err_len, format, args);
+    va_end(args);
+    return EX_USAGE;
+}
+
+/* Decimal, or hexadecimal with 0x (CANopen people write both); no sign, no trailing text. */
+static bool parse_number(const char *text, size_t len, unsigned long *value)
+{
+    char buf[16];
+    if (len == 0 || len >= sizeof buf || !isdigit((unsigned char)text[0]))
+        return false;
+    memcpy(buf, text, len);
+    buf[len] = '\0';
+    int base = (len > 2 && buf[0] == '0' && (buf[1] == 'x' || buf[1] == 'X')) ? 16 : 10;
+    char *end;
+    errno = 0;
+    *value = strtoul(buf, &end, base);
+    return errno == 0 && *end == '\0' && end != buf + (base == 16 ? 2 : 0);
+}
+
+static int parse_node_id(const char *text, size_t len, unsigned long *id, char *err, size_t err_len)
+{
+    if (!parse_number(text, len, id))
+        return usage_error(err, err_len,
+                           "--node-id: '%.*s' is not a node-id: use a number %d..%d, a range "
+                           "like 4-9 or a list like 4,6",
+                           (int)len, text, ATV312D_NODE_ID_MIN, ATV312D_NODE_ID_MAX);
+    if (*id < ATV312D_NODE_ID_MIN || *id > ATV312D_NODE_ID_MAX)
+        return usage_error(err, err_len, "--node-id: %.*s is out of range: node-ids are %d..%d",
+                           (int)len, text, ATV312D_NODE_ID_MIN, ATV312D_NODE_ID_MAX);
+    return 0;
+}
+
+/* One --node-id value: "N", "A-B" or a comma-separated list of those. */
+static int parse_node_ids(const char *value, bool seen[ATV312D_NODE_ID_MAX + 1], char *err,
+                          size_t err_len)
+{
+    const char *item = value;
+    for (;;) {
+        size_t len = strcspn(item, ",");
+        const char *dash = memchr(item, '-', len);
+        unsigned long first, last;
+        int rc;
+        if (dash) {
+            rc = parse_node_id(item, (size_t)(dash - item), &first, err, err_len);
+            if (rc == 0)
+                rc = parse_node_id(dash + 1, len - (size_t)(dash - item) - 1, &last, err, err_len);
+            if (rc == 0 && first > last)
+                rc = usage_error(err, err_len,
+                                 "--node-id: range %.*s is backwards: write it as %lu-%lu",
+                                 (int)len, item, last, first);
+        } else {
+            rc = parse_node_id(item, len, &first, err, err_len);
+            last = first;
+        }
+        if (rc)
+            return rc;
+        for (unsigned long id = first; id <= last; id++) {
+            if (seen[id])
+                return usage_error(err, err_len,
+                                   "--node-id: node-id %lu is given twice: each drive needs "
+                                   "its own node-id in %d..%d",
+                                   id, ATV312D_NODE_ID_MIN, ATV312D_NODE_ID_MAX);
+            seen[id] = true;
+        }
+        if (item[len] == '\0')
+            return 0;
+        item += len + 1;
+    }
+}
+
+typedef enum { OPT_NODE_ID, OPT_STORE, OPT_TRACE, OPT_LOG_LEVEL, OPT_HELP, OPT_VERSION } opt_t;
+
+static const struct {
+    const char *name;
+    opt_t opt;
+    bool has_value;
+} options[] = {
+    {"--node-id", OPT_NODE_ID, true},  {"--store", OPT_STORE, true},
+    {"--trace", OPT_TRACE, true},      {"--log-level", OPT_LOG_LEVEL, true},
+    {"--help", OPT_HELP, false},       {"-h", OPT_HELP, false},
+    {"--version", OPT_VERSION, false}, {"-V", OPT_VERSION, false},
+};
+
+/* Finds the option of "--name" or "--name=value"; *inline_value points after '='. */
+static int find_option(const char *arg, const char **inline_value)
+{
+    for (size_t i = 0; i < sizeof options / sizeof options[0]; i++) {
+        size_t n = strlen(options[i].name);
+        if (strncmp(arg, options[i].name, n) != 0)
+            continue;
+        if (arg[n] == '\0') {
+            *inline_value = NULL;
+            return (int)i;
+        }
+        if (arg[n] == '=' && options[i].has_value) {
+            *inline_value = arg + n + 1;
+            return (int)i;
+        }
+    }
+    return -1;
+}
+
+static int apply_option(opt_t opt, const char *value, atv312d_options_t *opts,
+                        bool seen[ATV312D_NODE_ID_MAX + 1], char *err, size_t err_len)
+{
+    switch (opt) {
+    case OPT_NODE_ID:
+        return parse_node_ids(value, seen, err, err_len);
+    case OPT_STORE:
+        opts->store_path = value;
+        return 0;
+    case OPT_TRACE:
+        opts->trace_path = value;
+        return 0;
+    case OPT_LOG_LEVEL:
+        if (!co_log_level_parse(value, &opts->log_level))
+            return usage_error(err, err_len,
+                               "--log-level: unknown level '%s': use error, warn, info or debug",
+                               value);
+        return 0;
+    case OPT_HELP:
+        opts->help = true;
+        return 0;
+    case OPT_VERSION:
+        opts->version = true;
+        return 0;
+    }
+    return 0;
+}
+
+static int check_complete(atv312d_options_t *opts, const bool seen[ATV312D_NODE_ID_MAX + 1],
+                          char *err, size_t err_len)
+{
+    if (!opts->iface)
+        return usage_error(err, err_len,
+                           "missing interface: run atv312d IFACE --node-id N, e.g. atv312d vcan0 "
+                           "--node-id 4");
+    if (strlen(opts->iface) >= IFNAMSIZ)
+        return usage_error(err, err_len,
+                           "interface name '%s' is too long: Linux allows at most %d characters",
+                           opts->iface, IFNAMSIZ - 1);
+    for (int id = ATV312D_NODE_ID_MIN; id <= ATV312D_NODE_ID_MAX; id++) {
+        if (seen[id])
+            opts->node_ids[opts->node_count++] = (uint8_t)id;
+    }
+    if (opts->node_count == 0)
+        return usage_error(err, err_len,
+                           "missing --node-id: give the drive's node-id (%d..%d), e.g. --node-id 4",
+                           ATV312D_NODE_ID_MIN, ATV312D_NODE_ID_MAX);
+    return 0;
+}
+
+int atv312d_parse_args(int argc, char *const argv[], atv312d_options_t *opts, char *err,
+                       size_t err_len)
+{
+    memset(opts, 0, sizeof *opts);
+    opts->log_level = CO_LOG_INFO;
+    bool seen[ATV312D_NODE_ID_MAX + 1] = {false};
+    for (int i = 1; i < argc; i++) {
+        const char *arg = argv[i];
+        if (arg[0] != '-' || strcmp(arg, "-") == 0) {
+            if (opts->iface)
+                return usage_error(err, err_len,
+                                   "unexpected argument '%s': give one interface (it is '%s')", arg,
+                                   opts->iface);
+            opts->iface = arg;
+            continue;
+        }
+        const char *value;
+        int k = find_option(arg, &value);
+        if (k < 0)
+            return usage_error(err, err_len, "unknown option '%s' (see atv312d --help)", arg);
+        if (options[k].has_value && !value) {
+            if (i + 1 >= argc)
+                return usage_error(err, err_len, "option %s needs a value (see atv312d --help)",
+                                   options[k].name);
+            value = argv[++i];
+        }
+        if (options[k].has_value && value[0] == '\0')
+            return usage_error(err, err_len, "option %s needs a non-empty value", options[k].name);
+        int rc = apply_option(options[k].opt, value, opts, seen, err, err_len);
+        if (rc)
+            return rc;
+        if (opts->help || opts->version)
+            return 0;
+    }
+    return check_complete(opts, seen, err, err_len);
+}
+
+void atv312d_print_usage(FILE *out)
+{
+    fputs("usage: atv312d IFACE --node-id N [--node-id N...] [options]\n"
+          "\n"
+          "Puts emulated Schneider Altivar 312 drives (CANopen, CiA 402) on a SocketCAN\n"
+          "interface.\n"
+          "\n"
+          "  IFACE               SocketCAN interface, e.g. can0 or vcan0\n"
+          "  --node-id N         node-id 1..127 of a drive; a range 4-9 or a list 4,6 puts\n"
+          "                      several drives on one socket; may be repeated\n"
+          "  --store FILE        keep parameters saved with 1010h in FILE (all drives share\n"
+          "                      it, one record per node-id); without it 1010h aborts\n"
+          "  --trace FILE        write every frame in and out to FILE in candump -L format\n"
+          "                      ('-' = standard output)\n"
+          "  --log-level LEVEL   error, warn, info (default) or debug, on standard error\n"
+          "  -h, --help          show this help\n"
+          "  -V, --version       show the version\n"
+          "\n"
+          "Exit status: 0 after SIGINT/SIGTERM, 64 usage error, 69 interface or CAN support\n"
+          "missing, 70 internal error, 71 system error, 73 cannot create the trace or store\n"
+          "file, 74 I/O error on the store file. See docs/atv312d.md.\n",
+          out);
+}

@@ -1,0 +1,315 @@
+/* atv312d: emulated Schneider Altivar 312 drives on a SocketCAN interface, one process, one epoll
+ * loop, one socket for all of them. Usage and behaviour: docs/atv312d.md. */
+#include "atv312/atv312.h"
+#include "cli.h"
+#include "co_linux/file_store.h"
+#include "co_linux/log.h"
+#include "co_linux/loop.h"
+
+#include <errno.h>
+#include <signal.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sysexits.h>
+
+#define EMCY_COB_ID_INDEX 0x1014
+#define COB_ID_MASK 0x7FFu
+#define BOOTUP_COB_ID_BASE 0x700u
+
+/* One drive and what the runtime and the logs need around it. */
+typedef struct drive_slot {
+    atv312_t drive;
+    co_linux_device_t device;
+    co_file_store_node_t store_node;
+    co_storage_t storage;
+    co_nmt_state_t nmt_state; /* last logged */
+    const char *cia402_state; /* last logged */
+} drive_slot_t;
+
+static const char *nmt_state_name(co_nmt_state_t state)
+{
+    switch (state) {
+    case CO_NMT_INITIALISING:
+        return "Initialising";
+    case CO_NMT_STOPPED:
+        return "Stopped";
+    case CO_NMT_OPERATIONAL:
+        return "Operational";
+    case CO_NMT_PRE_OPERATIONAL:
+        return "Pre-operational";
+    }
+    return "unknown";
+}
+
+static uint8_t slot_node_id(const drive_slot_t *slot)
+{
+    return slot->drive.node.node_id;
+}
+
+/* State changes are logged by comparing after every call into the drive: the drive owns the
+ * core's application hooks. */
+static void log_state_changes(drive_slot_t *slot)
+{
+    co_nmt_state_t nmt = slot->drive.node.nmt_state;
+    if (nmt != slot->nmt_state) {
+        co_log(CO_LOG_INFO, "node %u: NMT %s -> %s", slot_node_id(slot),
+               nmt_state_name(slot->nmt_state), nmt_state_name(nmt));
+        slot->nmt_state = nmt;
+    }
+    const char *state = atv312_state_name(&slot->drive);
+    if (state != slot->cia402_state && strcmp(state, slot->cia402_state) != 0) {
+        co_log(CO_LOG_INFO, "node %u: CiA 402 %s -> %s", slot_node_id(slot), slot->cia402_state,
+               state);
+    }
+    slot->cia402_state = state;
+}
+
+static void log_emcy(const drive_slot_t *slot, const co_frame_t *frame)
+{
+    uint16_t code = co_get_u16(frame->data);
+    uint8_t reg = frame->data[2];
+    if (code == CO_EMCY_HEARTBEAT)
+        co_log(CO_LOG_WARN,
+               "node %u: communication loss (EMCY 8130, error register %02X): heartbeat or life "
+               "guarding timeout",
+               slot_node_id(slot), reg);
+    else if (code == 0)
+        co_log(CO_LOG_INFO, "node %u: EMCY 0000 error reset (error register %02X)",
+               slot_node_id(slot), reg);
+    else
+        co_log(CO_LOG_INFO, "node %u: EMCY %04X (error register %02X)", slot_node_id(slot), code,
+               reg);
+}
+
+/* The drive's send callback: notes boot-ups and emergencies for the log, then transmits. */
+static void drive_send(void *user, const co_frame_t *frame)
+{
+    drive_slot_t *slot = user;
+    co_node_t *node = &slot->drive.node;
+    if (frame->id == BOOTUP_COB_ID_BASE + node->node_id && frame->len == 1 && frame->data[0] == 0) {
+        co_log(CO_LOG_INFO, "node %u: boot-up", node->node_id);
+    } else if (frame->len == 8 &&
+               frame->id == ((uint32_t)co_od_value(node, EMCY_COB_ID_INDEX, 0) & COB_ID_MASK)) {
+        log_emcy(slot, frame);
+    }
+    co_linux_device_send(&slot->device, frame);
+}
+
+static void drive_start(void *ctx, co_time_t now)
+{
+    drive_slot_t *slot = ctx;
+    atv312_start(&slot->drive, now);
+    log_state_changes(slot);
+}
+
+/* After the interface was down, the master must learn that the drive is back and may have missed
+ * frames: the drive resets communication (CiA 301 NMT command 0x82 addressed to it), which sends
+ * the boot-up at once. Application state (motor, CiA 402) is kept. */
+static void drive_restart(void *ctx, co_time_t now)
+{
+    drive_slot_t *slot = ctx;
+    co_frame_t reset = {.id = 0, .len = 2, .data = {CO_NMT_CS_RESET_COMMUNICATION}};
+    reset.data[1] = slot_node_id(slot);
+    co_log(CO_LOG_INFO, "node %u: reset communication after the interface came back",
+           slot_node_id(slot));
+    atv312_receive(&slot->drive, &reset, now);
+    log_state_changes(slot);
+}
+
+static void drive_receive(void *ctx, const co_frame_t *frame, co_time_t now)
+{
+    drive_slot_t *slot = ctx;
+    atv312_receive(&slot->drive, frame, now);
+    log_state_changes(slot);
+}
+
+static co_time_t drive_process(void *ctx, co_time_t now)
+{
+    drive_slot_t *slot = ctx;
+    co_time_t next = atv312_process(&slot->drive, now);
+    log_state_changes(slot);
+    return next;
+}
+
+static void drive_bus_event(void *ctx, uint16_t emcy_code, bool active)
+{
+    drive_slot_t *slot = ctx;
+    atv312_bus_event(&slot->drive, emcy_code, active);
+}
+
+static const co_linux_device_ops_t drive_ops = {
+    .start = drive_start,
+    .restart = drive_restart,
+    .receive = drive_receive,
+    .process = drive_process,
+    .bus_event = drive_bus_event,
+};
+
+static int report_open_error(const co_linux_loop_t *loop, co_linux_open_result_t result)
+{
+    const char *iface = loop->iface;
+    const char *why = strerror(loop->open_errno);
+    switch (result) {
+    case CO_LINUX_OPEN_NO_CAN:
+        co_log(CO_LOG_ERROR,
+               "this kernel has no SocketCAN support (%s: %s): load it with modprobe can-raw "
+               "vcan, or run inside the sandbox: tools/vcan-run atv312d vcan0 --node-id 4",
+               loop->open_call, why);
+        return EX_UNAVAILABLE;
+    case CO_LINUX_OPEN_NO_IFACE:
+        co_log(CO_LOG_ERROR,
+               "no network interface '%s': create a virtual CAN bus with: ip link add dev %s "
+               "type vcan && ip link set up %s (as root), or list the CAN interfaces with: ip "
+               "link show type can",
+               iface, strncmp(iface, "vcan", 4) == 0 ? iface : "vcan0",
+               strncmp(iface, "vcan", 4) == 0 ? iface : "vcan0");
+        return EX_UNAVAILABLE;
+    case CO_LINUX_OPEN_NOT_CAN:
+        co_log(CO_LOG_ERROR,
+               "'%s' is not a CAN interface (%s: %s): give a SocketCAN interface such as can0 or "
+               "vcan0",
+               iface, loop->open_call, why);
+        return EX_UNAVAILABLE;
+    case CO_LINUX_OPEN_OS_ERROR:
+    case CO_LINUX_OPEN_OK:
+        break;
+    }
+    co_log(CO_LOG_ERROR, "%s on %s failed: %s", loop->open_call, iface, why);
+    return EX_OSERR;
+}
+
+static int open_trace(const char *path, FILE **trace)
+{
+    *trace = NULL;
+    if (!path)
+        return 0;
+    if (strcmp(path, "-") == 0) {
+        *trace = stdout;
+        return 0;
+    }
+    *trace = fopen(path, "we");
+    if (*trace)
+        return 0;
+    co_log(CO_LOG_ERROR, "cannot create the trace file '%s': %s", path, strerror(errno));
+    return EX_CANTCREAT;
+}
+
+static int open_store(const char *path, co_file_store_t *store)
+{
+    switch (co_file_store_open(store, path)) {
+    case CO_FILE_STORE_LOADED:
+        co_log(CO_LOG_INFO, "store %s: %zu stored image(s) loaded", path, store->count);
+        return 0;
+    case CO_FILE_STORE_MISSING:
+        co_log(CO_LOG_INFO, "store %s: no file yet, defaults apply until a save (1010h)", path);
+        return 0;
+    case CO_FILE_STORE_IGNORED:
+        co_log(CO_LOG_WARN, "store %s: ignored, defaults apply: %s", path, store->reason);
+        return 0;
+    case CO_FILE_STORE_ERROR:
+        break;
+    }
+    co_log(CO_LOG_ERROR, "store %s: cannot be read: %s", path, store->reason);
+    co_file_store_close(store);
+    return EX_IOERR;
+}
+
+static void format_node_ids(const atv312d_options_t *opts, char *buf, size_t len)
+{
+    size_t used = 0;
+    buf[0] = '\0';
+    for (size_t i = 0; i < opts->node_count && used < len; i++)
+        used += (size_t)snprintf(buf + used, len - used, "%s%u", i ? "," : "", opts->node_ids[i]);
+}
+
+static int init_drives(drive_slot_t *slots, const atv312d_options_t *opts, co_file_store_t *store,
+                       co_linux_loop_t *loop)
+{
+    for (size_t i = 0; i < opts->node_count; i++) {
+        drive_slot_t *slot = &slots[i];
+        const co_storage_t *storage = NULL;
+        if (store) {
+            co_file_store_bind(store, opts->node_ids[i], &slot->store_node, &slot->storage);
+            storage = &slot->storage;
+        }
+        int rc = atv312_init(&slot->drive, opts->node_ids[i], drive_send, slot, storage);
+        if (rc != 0) {
+            co_log(CO_LOG_ERROR, "node %u: the drive cannot be initialised (error 0x%X)",
+                   opts->node_ids[i], (unsigned)rc);
+            return EX_SOFTWARE;
+        }
+        slot->nmt_state = slot->drive.node.nmt_state;
+        slot->cia402_state = atv312_state_name(&slot->drive);
+        co_linux_loop_add(loop, &slot->device, &drive_ops, slot);
+    }
+    return 0;
+}
+
+static int run(const atv312d_options_t *opts, FILE *trace, co_file_store_t *store)
+{
+    static co_linux_loop_t loop;
+    co_linux_loop_config_t config = {.iface = opts->iface, .trace = trace};
+    co_linux_open_result_t opened = co_linux_loop_open(&loop, &config);
+    if (opened != CO_LINUX_OPEN_OK)
+        return report_open_error(&loop, opened);
+    drive_slot_t *slots = calloc(opts->node_count, sizeof *slots);
+    int rc = slots ? init_drives(slots, opts, store, &loop) : EX_OSERR;
+    if (rc == 0) {
+        char ids[512];
+        format_node_ids(opts, ids, sizeof ids);
+        co_log(CO_LOG_INFO, "atv312d %s started on %s: %zu drive(s), node-id %s", ATV312D_VERSION,
+               opts->iface, opts->node_count, ids);
+        rc = co_linux_loop_run(&loop);
+        co_log(CO_LOG_INFO,
+               "stopped: %llu wake-ups, %llu frames received, %llu sent, %llu dropped, %llu lost "
+               "while the interface was down, %llu error frames",
+               loop.stats.wakeups, loop.stats.rx, loop.stats.tx, loop.stats.tx_dropped,
+               loop.stats.down_dropped, loop.stats.error_frames);
+    }
+    co_linux_loop_close(&loop);
+    if (slots) {
+        for (size_t i = 0; i < opts->node_count; i++)
+            co_file_store_unbind(&slots[i].store_node);
+    }
+    free(slots);
+    return rc;
+}
+
+int main(int argc, char *argv[])
+{
+    atv312d_options_t opts;
+    char err[256];
+    co_log_setup("atv312d", CO_LOG_INFO);
+    int rc = atv312d_parse_args(argc, argv, &opts, err, sizeof err);
+    if (rc != 0) {
+        co_log(CO_LOG_ERROR, "%s", err);
+        return rc;
+    }
+    if (opts.help) {
+        atv312d_print_usage(stdout);
+        return 0;
+    }
+    if (opts.version) {
+        printf("atv312d %s\n", ATV312D_VERSION);
+        return 0;
+    }
+    co_log_setup("atv312d", opts.log_level);
+    /* A closed trace pipe must not kill the daemon: the write fails and tracing stops. */
+    signal(SIGPIPE, SIG_IGN);
+
+    FILE *trace;
+    rc = open_trace(opts.trace_path, &trace);
+    if (rc != 0)
+        return rc;
+    co_file_store_t store;
+    if (opts.store_path)
+        rc = open_store(opts.store_path, &store);
+    if (rc == 0) {
+        rc = run(&opts, trace, opts.store_path ? &store : NULL);
+        if (opts.store_path)
+            co_file_store_close(&store);
+    }
+    if (trace && trace != stdout)
+        fclose(trace);
+    return rc;
+}

@@ -1,0 +1,468 @@
+#include "co_linux/file_store.h"
+#include "co_linux/log.h"
+
+#include <errno.h>
+#include <fcntl.h>
+#include <limits.h>
+#include <stdarg.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
+/* Larger files are not store files: a node's image is a few hundred bytes. */
+#define FILE_SIZE_MAX (16u * 1024u * 1024u)
+
+uint32_t co_crc32(const uint8_t *data, size_t len)
+{
+    uint32_t crc = 0xFFFFFFFFu;
+    for (size_t i = 0; i < len; i++) {
+        crc ^= data[i];
+        for (int bit = 0; bit < 8; bit++)
+            crc = (crc >> 1) ^ (0xEDB88320u & (0u - (crc & 1u)));
+    }
+    return ~crc;
+}
+
+static bool fail(char *reason, size_t reason_len, const char *format, ...)
+    __attribute__((format(printf, 3, 4)));
+
+static bool fail(char *reason, size_t reason_len, const char *format, ...)
+{
+    va_list args;
+    va_start(args, format);
+    vsnprintf(reason, reason_len, format, args);
+    va_end(args);
+    return false;
+}
+
+static void free_records(co_file_record_t *records, size_t count)
+{
+    for (size_t i = 0; i < count; i++)
+        free(records[i].data);
+    free(records);
+}
+
+static int record_order(const co_file_record_t *a, uint8_t node_id, uint8_t area)
+{
+    if (a->node_id != node_id)
+        return a->node_id < node_id ? -1 : 1;
+    if (a->area != area)
+        return a->area < area ? -1 : 1;
+    return 0;
+}
+
+/* The header and the CRC, before any record is looked at. */
+static bool check_envelope(const uint8_t *file, size_t size, uint32_t *records_len, char *reason,
+                           size_t reason_len)
+{
+    size_t minimum = CO_FILE_STORE_HEADER_SIZE + CO_FILE_STORE_CRC_SIZE;
+    if (size < minimum)
+        return fail(reason, reason_len, "truncated: %zu bytes, a store file has at least %zu", size,
+                    minimum);
+    if (memcmp(file, CO_FILE_STORE_MAGIC, 4) != 0)
+        return fail(reason, reason_len, "wrong magic: not a store file (expected \"%s\")",
+                    CO_FILE_STORE_MAGIC);
+    uint16_t version = co_get_u16(file + 4);
+    if (version != CO_FILE_STORE_VERSION)
+        return fail(reason, reason_len, "unsupported format version %u (this build reads %u)",
+                    version, CO_FILE_STORE_VERSION);
+    *records_len = co_get_u32(file + 8);
+    if ((uint64_t)*records_len + minimum != size)
+        return fail(reason, reason_len,
+                    "%s: the header announces %u bytes of records, the file has %zu",
+                    (uint64_t)*records_len + minimum > size ? "truncated" : "length mismatch",
+                    *records_len, size - minimum);
+    uint32_t stored = co_get_u32(file + size - CO_FILE_STORE_CRC_SIZE);
+    uint32_t computed = co_crc32(file, size - CO_FILE_STORE_CRC_SIZE);
+    if (stored != computed)
+        return fail(reason, reason_len, "bad CRC-32: stored %08X, computed %08X", stored, computed);
+    return true;
+}
+
+/* Checks every record header; fills records only when all of them are valid. */
+static bool check_records(const uint8_t *p, uint32_t len, uint16_t count, co_file_record_t *records,
+                          char *reason, size_t reason_len)
+{
+    uint32_t offset = 0;
+    for (uint16_t i = 0; i < count; i++) {
+        if (len - offset < CO_FILE_STORE_RECORD_HEADER_SIZE)
+            return fail(reason, reason_len, "record %u of %u is cut short", i + 1, count);
+        const uint8_t *h = p + offset;
+        co_file_record_t r = {.node_id = h[0], .area = h[1], .len = co_get_u32(h + 4)};
+        offset += CO_FILE_STORE_RECORD_HEADER_SIZE;
+        if (r.node_id < 1 || r.node_id > 127 || r.area == 0 || co_get_u16(h + 2) != 0)
+            return fail(reason, reason_len,
+                        "record %u: node-id %u, area %u or reserved bytes are invalid", i + 1,
+                        r.node_id, r.area);
+        if (i > 0 && record_order(&records[i - 1], r.node_id, r.area) >= 0)
+            return fail(reason, reason_len, "record %u (node %u, area %u) is out of order", i + 1,
+                        r.node_id, r.area);
+        if (r.len > len - offset)
+            return fail(reason, reason_len, "record %u: %u bytes announced, %u left", i + 1, r.len,
+                        len - offset);
+        r.data = (uint8_t *)(p + offset); /* borrowed until copied */
+        records[i] = r;
+        offset += r.len;
+    }
+    if (offset != len)
+        return fail(reason, reason_len, "%u bytes follow the last of %u records", len - offset,
+                    count);
+    return true;
+}
+
+bool co_file_store_parse(const uint8_t *file, size_t size, co_file_record_t **records,
+                         size_t *count, char *reason, size_t reason_len)
+{
+    uint32_t records_len;
+    if (!check_envelope(file, size, &records_len, reason, reason_len))
+        return false;
+    uint16_t n = co_get_u16(file + 6);
+    co_file_record_t *parsed = calloc(n ? n : 1, sizeof *parsed);
+    if (!parsed)
+        return fail(reason, reason_len, "out of memory");
+    if (!check_records(file + CO_FILE_STORE_HEADER_SIZE, records_len, n, parsed, reason,
+                       reason_len)) {
+        free(parsed);
+        return false;
+    }
+    for (uint16_t i = 0; i < n; i++) {
+        uint8_t *copy = malloc(parsed[i].len ? parsed[i].len : 1);
+        if (!copy) {
+            for (uint16_t j = 0; j < i; j++)
+                free(parsed[j].data);
+            free(parsed);
+            return fail(reason, reason_len, "out of memory");
+        }
+        memcpy(copy, parsed[i].data, parsed[i].len);
+        parsed[i].data = copy;
+    }
+    *records = parsed;
+    *count = n;
+    return true;
+}
+
+static bool read_whole_file(int fd, uint8_t **content, size_t *size, char *reason,
+                            size_t reason_len)
+{
+    struct stat st;
+    if (fstat(fd, &st) != 0)
+        return fail(reason, reason_len, "fstat: %s", strerror(errno));
+    if (st.st_size > (off_t)FILE_SIZE_MAX)
+        return fail(reason, reason_len, "%lld bytes is too large for a store file",
+                    (long long)st.st_size);
+    *content = malloc((size_t)st.st_size + 1);
+    if (!*content)
+        return fail(reason, reason_len, "out of memory");
+    size_t done = 0;
+    while (done < (size_t)st.st_size) {
+        ssize_t n = read(fd, *content + done, (size_t)st.st_size - done);
+        if (n < 0 && errno == EINTR)
+            continue;
+        if (n <= 0)
+            break;
+        done += (size_t)n;
+    }
+    *size = done;
+    if (done != (size_t)st.st_size && errno) {
+        free(*content);
+        return fail(reason, reason_len, "read: %s", strerror(errno));
+    }
+    return true;
+}
+
+co_file_store_status_t co_file_store_open(co_file_store_t *store, const char *path)
+{
+    memset(store, 0, sizeof *store);
+    store->path = strdup(path);
+    int fd = open(path, O_RDONLY | O_CLOEXEC);
+    if (fd < 0) {
+        if (errno == ENOENT)
+            return CO_FILE_STORE_MISSING;
+        snprintf(store->reason, sizeof store->reason, "open: %s", strerror(errno));
+        return CO_FILE_STORE_ERROR;
+    }
+    uint8_t *content;
+    size_t size;
+    errno = 0;
+    bool read_ok = read_whole_file(fd, &content, &size, store->reason, sizeof store->reason);
+    close(fd);
+    if (!read_ok)
+        return CO_FILE_STORE_ERROR;
+    bool valid = co_file_store_parse(content, size, &store->records, &store->count, store->reason,
+                                     sizeof store->reason);
+    free(content);
+    if (!valid) {
+        store->damaged = true;
+        return CO_FILE_STORE_IGNORED;
+    }
+    return CO_FILE_STORE_LOADED;
+}
+
+void co_file_store_close(co_file_store_t *store)
+{
+    free_records(store->records, store->count);
+    free(store->path);
+    memset(store, 0, sizeof *store);
+}
+
+const co_file_record_t *co_file_store_find(const co_file_store_t *store, uint8_t node_id,
+                                           uint8_t area)
+{
+    for (size_t i = 0; i < store->count; i++) {
+        if (record_order(&store->records[i], node_id, area) == 0)
+            return &store->records[i];
+    }
+    return NULL;
+}
+
+static uint8_t *serialize(const co_file_record_t *records, size_t count, size_t *size)
+{
+    size_t records_len = 0;
+    for (size_t i = 0; i < count; i++)
+        records_len += CO_FILE_STORE_RECORD_HEADER_SIZE + records[i].len;
+    *size = CO_FILE_STORE_HEADER_SIZE + records_len + CO_FILE_STORE_CRC_SIZE;
+    uint8_t *file = malloc(*size);
+    if (!file)
+        return NULL;
+    memcpy(file, CO_FILE_STORE_MAGIC, 4);
+    co_put_u16(file + 4, CO_FILE_STORE_VERSION);
+    co_put_u16(file + 6, (uint16_t)count);
+    co_put_u32(file + 8, (uint32_t)records_len);
+    uint8_t *p = file + CO_FILE_STORE_HEADER_SIZE;
+    for (size_t i = 0; i < count; i++) {
+        p[0] = records[i].node_id;
+        p[1] = records[i].area;
+        co_put_u16(p + 2, 0);
+        co_put_u32(p + 4, records[i].len);
+        memcpy(p + CO_FILE_STORE_RECORD_HEADER_SIZE, records[i].data, records[i].len);
+        p += CO_FILE_STORE_RECORD_HEADER_SIZE + records[i].len;
+    }
+    co_put_u32(p, co_crc32(file, (size_t)(p - file)));
+    return file;
+}
+
+static int write_all(int fd, const uint8_t *data, size_t len)
+{
+    while (len) {
+        ssize_t n = write(fd, data, len);
+        if (n < 0 && errno == EINTR)
+            continue;
+        if (n < 0)
+            return -1;
+        data += n;
+        len -= (size_t)n;
+    }
+    return 0;
+}
+
+/* The rename is only durable once the directory entry is on disk too. */
+static int sync_directory(const char *path)
+{
+    char dir[PATH_MAX];
+    const char *slash = strrchr(path, '/');
+    if (!slash)
+        snprintf(dir, sizeof dir, ".");
+    else if (slash == path)
+        snprintf(dir, sizeof dir, "/");
+    else
+        snprintf(dir, sizeof dir, "%.*s", (int)(slash - path), path);
+    int fd = open(dir, O_RDONLY | O_DIRECTORY | O_CLOEXEC);
+    if (fd < 0)
+        return -1;
+    int rc = fsync(fd);
+    close(fd);
+    return rc;
+}
+
+static int replace_file(co_file_store_t *store, const uint8_t *content, size_t size)
+{
+    char tmp[PATH_MAX];
+    if (snprintf(tmp, sizeof tmp, "%s.XXXXXX", store->path) >= (int)sizeof tmp) {
+        fail(store->reason, sizeof store->reason, "path too long");
+        return -1;
+    }
+    int fd = mkostemp(tmp, O_CLOEXEC);
+    if (fd < 0) {
+        fail(store->reason, sizeof store->reason, "cannot create %s: %s", tmp, strerror(errno));
+        return -1;
+    }
+    const char *step = NULL;
+    if (write_all(fd, content, size) != 0)
+        step = "write";
+    else if (fchmod(fd, 0644) != 0)
+        step = "fchmod";
+    else if (fsync(fd) != 0)
+        step = "fsync";
+    int saved = errno;
+    if (close(fd) != 0 && !step) {
+        step = "close";
+        saved = errno;
+    }
+    if (!step && store->damaged) {
+        char bad[PATH_MAX];
+        snprintf(bad, sizeof bad, "%s.bad", store->path);
+        if (rename(store->path, bad) == 0)
+            co_log(CO_LOG_WARN, "store %s: the damaged file is kept as %s", store->path, bad);
+    }
+    if (!step && rename(tmp, store->path) != 0) {
+        step = "rename";
+        saved = errno;
+    }
+    if (step) {
+        unlink(tmp);
+        fail(store->reason, sizeof store->reason, "%s of %s: %s", step, tmp, strerror(saved));
+        return -1;
+    }
+    if (sync_directory(store->path) != 0)
+        co_log(CO_LOG_WARN, "store %s: fsync of its directory: %s", store->path, strerror(errno));
+    store->damaged = false;
+    return 0;
+}
+
+/* The record set with the change applied, sharing the unchanged records' data. */
+static co_file_record_t *changed_records(const co_file_store_t *store, uint8_t node_id,
+                                         uint8_t area, uint8_t *data, uint32_t len, size_t *count)
+{
+    co_file_record_t *out = calloc(store->count + 1, sizeof *out);
+    if (!out)
+        return NULL;
+    size_t n = 0;
+    bool placed = data == NULL;
+    for (size_t i = 0; i < store->count; i++) {
+        int order = record_order(&store->records[i], node_id, area);
+        if (!placed && order > 0) {
+            out[n++] = (co_file_record_t){node_id, area, len, data};
+            placed = true;
+        }
+        if (order != 0)
+            out[n++] = store->records[i];
+    }
+    if (!placed)
+        out[n++] = (co_file_record_t){node_id, area, len, data};
+    *count = n;
+    return out;
+}
+
+int co_file_store_update(co_file_store_t *store, uint8_t node_id, uint8_t area, uint8_t *data,
+                         uint32_t len)
+{
+    size_t count, size;
+    co_file_record_t *records = changed_records(store, node_id, area, data, len, &count);
+    uint8_t *content = records ? serialize(records, count, &size) : NULL;
+    int rc = -1;
+    if (!content)
+        fail(store->reason, sizeof store->reason, "out of memory");
+    else
+        rc = replace_file(store, content, size);
+    free(content);
+    if (rc != 0) {
+        co_log(CO_LOG_ERROR, "store %s: node %u area %u not saved: %s", store->path, node_id, area,
+               store->reason);
+        free(records);
+        free(data);
+        return -1;
+    }
+    const co_file_record_t *old = co_file_store_find(store, node_id, area);
+    if (old)
+        free(old->data);
+    free(store->records);
+    store->records = records;
+    store->count = count;
+    return 0;
+}
+
+static int node_save_begin(void *ctx, uint8_t area)
+{
+    co_file_store_node_t *node = ctx;
+    node->saving_area = area;
+    node->image_len = 0;
+    return 0;
+}
+
+static int node_save_write(void *ctx, const uint8_t *data, size_t len)
+{
+    co_file_store_node_t *node = ctx;
+    if (!node->saving_area || len > UINT32_MAX - node->image_len)
+        return -1;
+    if (node->image_len + len > node->image_cap) {
+        size_t cap = node->image_cap ? node->image_cap : 256;
+        while (cap < node->image_len + len)
+            cap *= 2;
+        uint8_t *grown = realloc(node->image, cap);
+        if (!grown)
+            return -1;
+        node->image = grown;
+        node->image_cap = cap;
+    }
+    memcpy(node->image + node->image_len, data, len);
+    node->image_len += len;
+    return 0;
+}
+
+static int node_save_end(void *ctx, bool commit)
+{
+    co_file_store_node_t *node = ctx;
+    uint8_t area = node->saving_area;
+    node->saving_area = 0;
+    if (!commit || !area)
+        return commit ? -1 : 0;
+    uint8_t *image = malloc(node->image_len ? node->image_len : 1);
+    if (!image)
+        return -1;
+    memcpy(image, node->image, node->image_len);
+    return co_file_store_update(node->store, node->node_id, area, image, (uint32_t)node->image_len);
+}
+
+static long node_load_size(void *ctx, uint8_t area)
+{
+    co_file_store_node_t *node = ctx;
+    const co_file_record_t *r = co_file_store_find(node->store, node->node_id, area);
+    if (r)
+        return (long)r->len;
+    /* Whatever the ignored file held for this area is lost: say so rather than "none". */
+    return node->store->damaged ? -1 : 0;
+}
+
+static int node_load_read(void *ctx, uint8_t area, uint32_t offset, uint8_t *buf, size_t len)
+{
+    co_file_store_node_t *node = ctx;
+    const co_file_record_t *r = co_file_store_find(node->store, node->node_id, area);
+    if (!r || offset > r->len || len > r->len - offset)
+        return -1;
+    memcpy(buf, r->data + offset, len);
+    return 0;
+}
+
+static int node_erase(void *ctx, uint8_t area)
+{
+    co_file_store_node_t *node = ctx;
+    if (!co_file_store_find(node->store, node->node_id, area) && !node->store->damaged)
+        return 0;
+    return co_file_store_update(node->store, node->node_id, area, NULL, 0);
+}
+
+void co_file_store_bind(co_file_store_t *store, uint8_t node_id, co_file_store_node_t *node,
+                        co_storage_t *storage)
+{
+    memset(node, 0, sizeof *node);
+    node->store = store;
+    node->node_id = node_id;
+    *storage = (co_storage_t){
+        .ctx = node,
+        .save_begin = node_save_begin,
+        .save_write = node_save_write,
+        .save_end = node_save_end,
+        .load_size = node_load_size,
+        .load_read = node_load_read,
+        .erase = node_erase,
+    };
+}
+
+void co_file_store_unbind(co_file_store_node_t *node)
+{
+    free(node->image);
+    node->image = NULL;
+    node->image_cap = node->image_len = 0;
+}

@@ -300,6 +300,14 @@ static void upload_segment(co_node_t *node, const co_frame_t *frame)
         sdo->state = CO_SDO_IDLE;
 }
 
+/* The server can always compute the CRC, but the CRC is used only when both sides support it, and
+ * clients (python-canopen among them) read the server's sc bit as "CRC in use": so sc echoes the
+ * client's cc. */
+static uint8_t crc_bit(const co_sdo_server_t *sdo)
+{
+    return sdo->crc ? BLOCK_CRC : 0;
+}
+
 /* The server's block size: up to 127 segments, no more than the buffer can still take. */
 static uint8_t download_blksize(const co_sdo_server_t *sdo)
 {
@@ -325,7 +333,7 @@ static void block_download_initiate(co_node_t *node, const co_frame_t *frame)
     sdo->last_in_block = false;
     sdo->blksize = download_blksize(sdo);
     sdo->state = CO_SDO_BLOCK_DOWNLOAD_SUB;
-    send_with_mux(node, SCS_BLOCK_DOWNLOAD | BLOCK_CRC, sdo->blksize);
+    send_with_mux(node, (uint8_t)(SCS_BLOCK_DOWNLOAD | crc_bit(sdo)), sdo->blksize);
 }
 
 /* Stores an in-sequence segment. Returns an abort code, 0 when stored. Only the final segment may
@@ -431,7 +439,8 @@ static void block_upload_initiate(co_node_t *node, const co_frame_t *frame)
     sdo->blksize = blksize;
     sdo->offset = 0;
     sdo->state = CO_SDO_BLOCK_UPLOAD_START;
-    send_with_mux(node, SCS_BLOCK_UPLOAD | BLOCK_CRC | BLOCK_SIZE_INDICATED, sdo->size);
+    send_with_mux(node, (uint8_t)(SCS_BLOCK_UPLOAD | crc_bit(sdo) | BLOCK_SIZE_INDICATED),
+                  sdo->size);
 }
 
 /* Sends up to blksize segments from sdo->offset; the final segment of the value carries c = 1

@@ -125,7 +125,7 @@ static void block_download(uint16_t index, uint8_t sub, const uint8_t *data, siz
     uint8_t p[8], r[8];
     initiate_frame(p, crc ? 0xC6 : 0xC2, index, sub, (uint32_t)len);
     rx8(p);
-    initiate_frame(r, 0xA4, index, sub, blksizes[0]);
+    initiate_frame(r, crc ? 0xA4 : 0xA0, index, sub, blksizes[0]);
     expect8(r);
     size_t off = 0, k = 0, count = 0;
     bool last = false;
@@ -164,7 +164,7 @@ static void block_upload(uint16_t index, uint8_t sub, const uint8_t *data, size_
     p[5] = 0;
     p[6] = p[7] = 0;
     rx8(p);
-    initiate_frame(r, 0xC6, index, sub, (uint32_t)len);
+    initiate_frame(r, crc ? 0xC6 : 0xC2, index, sub, (uint32_t)len);
     expect8(r);
     uint8_t start[8] = {0xA3};
     rx8(start);
@@ -577,9 +577,9 @@ END_TEST
 
 START_TEST(block_download_without_crc)
 {
-    /* The client does not use the CRC: the end request's CRC bytes are not checked. */
+    /* The client does not use the CRC: sc = 0, and the end request's CRC bytes are not checked. */
     test_rx(&t, "604#C200200C0F000000");
-    test_expect(&t, "584#A400200C7F000000");
+    test_expect(&t, "584#A000200C7F000000");
     test_rx(&t, "604#0148656C6C6F2C20");
     test_rx(&t, "604#0243414E6F70656E");
     test_rx(&t, "604#8321000000000000");
@@ -589,7 +589,7 @@ START_TEST(block_download_without_crc)
     ck_assert_mem_eq(entry_bytes(0x2000, 0x0C), hello, 16);
     /* Neither size nor CRC. */
     test_rx(&t, "604#C000200C00000000");
-    test_expect(&t, "584#A400200C7F000000");
+    test_expect(&t, "584#A000200C7F000000");
     test_rx(&t, "604#8178797A00000000");
     test_expect(&t, "584#A2017F0000000000");
     test_rx(&t, "604#D1");
@@ -746,14 +746,14 @@ START_TEST(block_download_initiate_aborts)
     test_expect(&t, "584#8004100000000206");
     /* The length rules of the entry apply at the end. */
     test_rx(&t, "604#C000200300000000");
-    test_expect(&t, "584#A40020037F000000");
+    test_expect(&t, "584#A00020037F000000");
     test_rx(&t, "604#8101020304050607");
     test_expect(&t, "584#A2017F0000000000");
     test_rx(&t, "604#C5");
     test_expect(&t, "584#8000200312000706");
     /* Announced 5, sent 6. */
     test_rx(&t, "604#C200200C05000000");
-    test_expect(&t, "584#A400200C7F000000");
+    test_expect(&t, "584#A000200C7F000000");
     test_rx(&t, "604#8141424344454600");
     test_expect(&t, "584#A2017F0000000000");
     test_rx(&t, "604#C5");
@@ -784,9 +784,9 @@ START_TEST(block_upload_with_and_without_crc)
     test_rx(&t, "604#A1");
     test_expect_none(&t);
     ck_assert_uint_eq(co_sdo_process(&t.node, t.bus.now), CO_TIME_NEVER);
-    /* Without CRC, the end carries zeros. */
+    /* Without CRC: sc = 0 and the end carries zeros. */
     test_rx(&t, "604#A000200C7F000000");
-    test_expect(&t, "584#C600200C0F000000");
+    test_expect(&t, "584#C200200C0F000000");
     test_rx(&t, "604#A3");
     test_expect(&t, "584#0148656C6C6F2C20");
     test_expect(&t, "584#0243414E6F70656E");

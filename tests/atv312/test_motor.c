@@ -1,0 +1,227 @@
+/* Motor model of the ATV312 on its real dictionary: ramps with exact times, the reference
+ * reached bit, LSP/HSP limits and their CiA 402 views, configuration parameters refused while
+ * running, plausible current and torque, deadlines only while ramping. */
+#include "bench.h"
+
+#include <stdlib.h>
+
+static void enable(bench_t *b, int16_t reference)
+{
+    ck_assert_uint_eq(bench_sdo_write(b, 0x6042, 0, (uint16_t)reference, 2), 0);
+    bench_command(b, 0x0006);
+    bench_command(b, 0x000F);
+}
+
+/* ACC = 3.0 s from 0 to nominal 1500 rpm: 1200 rpm is reached at exactly 2.4 s. */
+START_TEST(ramp_reaches_the_reference_on_time)
+{
+    bench_t b;
+    bench_start(&b);
+    ck_assert_uint_eq(b.deadline, CO_TIME_NEVER); /* idle: no wake-up */
+    enable(&b, 1200);
+    co_time_t start = b.now;
+    ck_assert_uint_eq(b.deadline, start + 10000);
+    bench_advance(&b, 1000000);
+    ck_assert_int_eq(bench_speed(&b), 500);
+    ck_assert_uint_eq(bench_read(&b, 0x6043, 0), 500);
+    bench_advance(&b, 1390000);
+    ck_assert_int_eq(bench_speed(&b), 1195);
+    ck_assert_uint_eq(bench_read(&b, 0x6041, 0), 0x0227);
+    ck_assert_uint_le(b.deadline - b.now, 10000);
+    bench_advance(&b, 10000);
+    ck_assert_uint_eq(b.now - start, 2400000);
+    ck_assert_int_eq(bench_speed(&b), 1200);
+    ck_assert_uint_eq(bench_read(&b, 0x6041, 0), 0x0627);
+    ck_assert_uint_eq(b.deadline, CO_TIME_NEVER);
+}
+END_TEST
+
+/* Deadlines fall every 10 ms while ramping, and exactly at the end of the ramp. */
+START_TEST(ramp_deadlines)
+{
+    bench_t b;
+    bench_start(&b);
+    ck_assert_uint_eq(bench_sdo_write(&b, 0x203C, 2, 7, 2), 0); /* 0.7 s: 1500 rpm in 700 ms */
+    enable(&b, 1000);                                           /* 466.67 ms */
+    co_time_t start = b.now;
+    unsigned wakeups = 0;
+    while (b.deadline != CO_TIME_NEVER) {
+        ck_assert_uint_le(b.deadline - b.now, 10000);
+        bench_advance(&b, b.deadline - b.now);
+        wakeups++;
+    }
+    ck_assert_uint_eq(b.now - start, 466667);
+    ck_assert_uint_eq(wakeups, 47);
+    ck_assert_int_eq(bench_speed(&b), 1000);
+}
+END_TEST
+
+/* A new ACC applies from the moment it is written. */
+START_TEST(ramp_time_change_mid_ramp)
+{
+    bench_t b;
+    bench_start(&b);
+    enable(&b, 1500);
+    bench_advance(&b, 1000000);
+    ck_assert_int_eq(bench_speed(&b), 500);
+    ck_assert_uint_eq(bench_sdo_write(&b, 0x203C, 2, 10, 2), 0); /* 1.0 s: 1500 rpm/s */
+    bench_advance(&b, 600000);
+    ck_assert_int_eq(bench_speed(&b), 1400);
+    bench_advance(&b, 70000);
+    ck_assert_int_eq(bench_speed(&b), 1500);
+}
+END_TEST
+
+/* Reversing decelerates on DEC to 0, then accelerates on ACC. */
+START_TEST(reversal_goes_through_zero)
+{
+    bench_t b;
+    bench_start(&b);
+    ck_assert_uint_eq(bench_sdo_write(&b, 0x203C, 3, 15, 2), 0); /* DEC 1.5 s */
+    enable(&b, 1500);
+    bench_advance(&b, 3000000);
+    ck_assert_uint_eq(bench_sdo_write(&b, 0x6042, 0, (uint16_t)-1500, 2), 0);
+    bench_advance(&b, 1500000);
+    ck_assert_int_eq(bench_speed(&b), 0);
+    bench_advance(&b, 1500000);
+    ck_assert_int_eq(bench_speed(&b), -750);
+    ck_assert_uint_eq(bench_read(&b, 0x6041, 0), 0x8227);
+}
+END_TEST
+
+/* HSP 40.0 Hz = 1200 rpm clips the reference (status bit 11); LSP 10.0 Hz = 300 rpm is the
+ * speed of a zero reference. 6046h shows both in rpm. */
+START_TEST(speed_limits)
+{
+    bench_t b;
+    bench_start(&b);
+    ck_assert_uint_eq(bench_read(&b, 0x6046, 2), 1500);
+    ck_assert_uint_eq(bench_sdo_write(&b, 0x2001, 5, 400, 2), 0);
+    ck_assert_uint_eq(bench_read(&b, 0x6046, 2), 1200);
+    enable(&b, 1500);
+    bench_advance(&b, 5000000);
+    ck_assert_int_eq(bench_speed(&b), 1200);
+    ck_assert_uint_eq(bench_read(&b, 0x6041, 0), 0x0E27);
+    ck_assert_uint_eq(bench_sdo_write(&b, 0x2001, 6, 100, 2), 0);
+    ck_assert_uint_eq(bench_read(&b, 0x6046, 1), 300);
+    ck_assert_uint_eq(bench_sdo_write(&b, 0x6042, 0, 0, 2), 0);
+    bench_advance(&b, 5000000);
+    ck_assert_int_eq(bench_speed(&b), 300);
+    ck_assert_uint_eq(bench_read(&b, 0x6041, 0), 0x0E27);
+    ck_assert_uint_eq(bench_sdo_write(&b, 0x6042, 0, 900, 2), 0);
+    bench_advance(&b, 5000000);
+    ck_assert_int_eq(bench_speed(&b), 900);
+    ck_assert_uint_eq(bench_read(&b, 0x6041, 0), 0x0627);
+}
+END_TEST
+
+START_TEST(speed_limit_writes_are_checked)
+{
+    bench_t b;
+    bench_start(&b);
+    ck_assert_uint_eq(bench_sdo_write(&b, 0x2001, 5, 400, 2), 0);
+    ck_assert_uint_eq(bench_sdo_write(&b, 0x2001, 6, 500, 2), SDO_ABORT_MAX_LESS_MIN);
+    ck_assert_uint_eq(bench_sdo_write(&b, 0x6046, 1, 1500, 4), SDO_ABORT_MAX_LESS_MIN);
+    ck_assert_uint_eq(bench_sdo_write(&b, 0x2001, 5, 5001, 2), SDO_ABORT_VALUE_HIGH);
+    ck_assert_uint_eq(bench_sdo_write(&b, 0x6046, 2, 16000, 4), SDO_ABORT_VALUE_HIGH);
+    ck_assert_uint_eq(bench_read(&b, 0x2001, 5), 400);
+    ck_assert_uint_eq(bench_sdo_write(&b, 0x6046, 2, 900, 4), 0);
+    ck_assert_uint_eq(bench_read(&b, 0x2001, 5), 300);
+    ck_assert_uint_eq(bench_sdo_write(&b, 0x6046, 1, 600, 4), 0);
+    ck_assert_uint_eq(bench_read(&b, 0x2001, 6), 200);
+    ck_assert_uint_eq(bench_sdo_write(&b, 0x2001, 5, 199, 2), SDO_ABORT_MAX_LESS_MIN);
+}
+END_TEST
+
+/* 6048h/6049h are ACC/DEC as delta speed / delta time (nominal speed / ramp time). */
+START_TEST(acceleration_objects_are_views_of_the_ramps)
+{
+    bench_t b;
+    bench_start(&b);
+    ck_assert_uint_eq(bench_read(&b, 0x6048, 1), 500);
+    ck_assert_uint_eq(bench_read(&b, 0x6048, 2), 1);
+    ck_assert_uint_eq(bench_sdo_write(&b, 0x6048, 2, 3, 2), 0);
+    ck_assert_uint_eq(bench_read(&b, 0x203C, 2), 90);
+    ck_assert_uint_eq(bench_sdo_write(&b, 0x6049, 1, 3000, 4), 0);
+    ck_assert_uint_eq(bench_read(&b, 0x203C, 3), 5);
+    ck_assert_uint_eq(bench_read(&b, 0x6049, 1), 3000);
+    ck_assert_uint_eq(bench_read(&b, 0x6049, 2), 1);
+    ck_assert_uint_eq(bench_sdo_write(&b, 0x203C, 2, 25, 2), 0);
+    ck_assert_uint_eq(bench_read(&b, 0x6048, 1), 600);
+    ck_assert_uint_eq(bench_read(&b, 0x6048, 2), 1);
+    ck_assert_uint_eq(bench_sdo_write(&b, 0x6048, 2, 60000, 2), SDO_ABORT_VALUE_HIGH);
+    ck_assert_uint_eq(bench_sdo_write(&b, 0x6048, 1, 0, 4), SDO_ABORT_VALUE_LOW);
+    ck_assert_uint_eq(bench_read(&b, 0x203C, 2), 25);
+}
+END_TEST
+
+/* Motor data (NSP, FRS, NCR) change only with the motor stopped, and send the drive back to
+ * Switch on disabled; adjustment parameters (ACC) change any time. */
+START_TEST(configuration_refused_while_running)
+{
+    bench_t b;
+    bench_start(&b);
+    enable(&b, 1500);
+    bench_advance(&b, 1000000);
+    ck_assert_uint_eq(bench_sdo_write(&b, 0x2042, 5, 1450, 2), SDO_ABORT_DATA_STATE);
+    ck_assert_uint_eq(bench_sdo_write(&b, 0x2042, 3, 600, 2), SDO_ABORT_DATA_STATE);
+    ck_assert_uint_eq(bench_read(&b, 0x2042, 5), 1500);
+    ck_assert_uint_eq(bench_sdo_write(&b, 0x203C, 2, 40, 2), 0);
+    ck_assert_uint_eq(bench_read(&b, 0x6041, 0), 0x0227);
+    /* Halted: motor stopped, the change is accepted and locks the drive. */
+    bench_command(&b, 0x100F);
+    ck_assert_uint_eq(bench_sdo_write(&b, 0x2042, 5, 1450, 2), SDO_ABORT_DATA_STATE);
+    bench_advance(&b, 3000000);
+    ck_assert_int_eq(bench_speed(&b), 0);
+    ck_assert_uint_eq(bench_sdo_write(&b, 0x2042, 5, 1450, 2), 0);
+    ck_assert_uint_eq(bench_read(&b, 0x6041, 0), 0x0640);
+    ck_assert_uint_eq(bench_read(&b, 0x2042, 5), 1450);
+    /* From Ready to switch on too. */
+    ck_assert_uint_eq(bench_command(&b, 0x0006), 0x0621);
+    ck_assert_uint_eq(bench_sdo_write(&b, 0x2042, 4, 52, 2), 0);
+    ck_assert_uint_eq(bench_read(&b, 0x6041, 0), 0x0640);
+}
+END_TEST
+
+/* Current (LCR, 0.1 A) and torque (OTR, %) follow the ramps: NCR = 4.0 A. */
+START_TEST(current_and_torque_are_plausible)
+{
+    bench_t b;
+    bench_start(&b);
+    ck_assert_uint_eq(bench_read(&b, 0x2002, 4), 0);
+    enable(&b, 1500);
+    bench_advance(&b, 1500000); /* 750 rpm, accelerating: 10 % load + 33 % */
+    ck_assert_int_eq((int16_t)bench_read(&b, 0x2002, 9), 43);
+    ck_assert_uint_eq(bench_read(&b, 0x2002, 4), 24);
+    bench_advance(&b, 1500000); /* steady at 1500 rpm: 20 % load */
+    ck_assert_int_eq((int16_t)bench_read(&b, 0x2002, 9), 20);
+    ck_assert_uint_eq(bench_read(&b, 0x2002, 4), 17);
+    bench_command(&b, 0x100F);
+    bench_advance(&b, 1500000); /* decelerating: braking torque */
+    ck_assert_int_eq((int16_t)bench_read(&b, 0x2002, 9), 10 - 33);
+    bench_advance(&b, 1500000); /* stopped, still enabled: magnetising current only */
+    ck_assert_int_eq((int16_t)bench_read(&b, 0x2002, 9), 0);
+    ck_assert_uint_eq(bench_read(&b, 0x2002, 4), 12);
+}
+END_TEST
+
+int main(void)
+{
+    Suite *s = suite_create("atv312_motor");
+    TCase *tc = tcase_create("motor");
+    tcase_add_test(tc, ramp_reaches_the_reference_on_time);
+    tcase_add_test(tc, ramp_deadlines);
+    tcase_add_test(tc, ramp_time_change_mid_ramp);
+    tcase_add_test(tc, reversal_goes_through_zero);
+    tcase_add_test(tc, speed_limits);
+    tcase_add_test(tc, speed_limit_writes_are_checked);
+    tcase_add_test(tc, acceleration_objects_are_views_of_the_ramps);
+    tcase_add_test(tc, configuration_refused_while_running);
+    tcase_add_test(tc, current_and_torque_are_plausible);
+    suite_add_tcase(s, tc);
+    SRunner *sr = srunner_create(s);
+    srunner_run_all(sr, CK_NORMAL);
+    int failed = srunner_ntests_failed(sr);
+    srunner_free(sr);
+    return failed == 0 ? EXIT_SUCCESS : EXIT_FAILURE;
+}

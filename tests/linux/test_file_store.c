@@ -1,0 +1,343 @@
+/* The storage file: save/load round trip through the co_storage_t callbacks, several nodes in
+ * one file, atomic replacement, and files that fail a check (truncated, bad CRC, wrong magic,
+ * unknown version, bad record) ignored as a whole with the reason. */
+#include "co_linux/file_store.h"
+
+#include <check.h>
+#include <dirent.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
+static char dir[64];
+static char path[128];
+
+static void setup(void)
+{
+    snprintf(dir, sizeof dir, "/tmp/co_file_store_XXXXXX");
+    ck_assert_ptr_nonnull(mkdtemp(dir));
+    snprintf(path, sizeof path, "%s/drives.store", dir);
+}
+
+static void teardown(void)
+{
+    DIR *d = opendir(dir);
+    struct dirent *e;
+    char name[512];
+    while (d && (e = readdir(d)) != NULL) {
+        if (e->d_name[0] == '.')
+            continue;
+        snprintf(name, sizeof name, "%s/%s", dir, e->d_name);
+        unlink(name);
+    }
+    if (d)
+        closedir(d);
+    rmdir(dir);
+}
+
+static size_t files_in_dir(void)
+{
+    size_t n = 0;
+    DIR *d = opendir(dir);
+    struct dirent *e;
+    while ((e = readdir(d)) != NULL)
+        n += e->d_name[0] != '.';
+    closedir(d);
+    return n;
+}
+
+static void save(const co_storage_t *s, uint8_t area, const char *image)
+{
+    ck_assert_int_eq(s->save_begin(s->ctx, area), 0);
+    /* In two pieces, as the core streams it. */
+    size_t half = strlen(image) / 2;
+    ck_assert_int_eq(s->save_write(s->ctx, (const uint8_t *)image, half), 0);
+    ck_assert_int_eq(s->save_write(s->ctx, (const uint8_t *)image + half, strlen(image) - half), 0);
+    ck_assert_int_eq(s->save_end(s->ctx, true), 0);
+}
+
+static void assert_loads(const co_storage_t *s, uint8_t area, const char *image)
+{
+    ck_assert_int_eq(s->load_size(s->ctx, area), (long)strlen(image));
+    char buf[64] = {0};
+    ck_assert_int_eq(s->load_read(s->ctx, area, 0, (uint8_t *)buf, strlen(image)), 0);
+    ck_assert_str_eq(buf, image);
+}
+
+static size_t read_file(uint8_t *buf, size_t cap)
+{
+    FILE *f = fopen(path, "rb");
+    ck_assert_ptr_nonnull(f);
+    size_t n = fread(buf, 1, cap, f);
+    fclose(f);
+    return n;
+}
+
+static void write_file(const uint8_t *buf, size_t len)
+{
+    FILE *f = fopen(path, "wb");
+    ck_assert_ptr_nonnull(f);
+    ck_assert_uint_eq(fwrite(buf, 1, len, f), len);
+    fclose(f);
+}
+
+/* A file holding node 4 area 2 = "COMM", node 5 area 4 = "MANUF". */
+static size_t make_valid_file(uint8_t *buf, size_t cap)
+{
+    co_file_store_t store;
+    co_file_store_node_t n4, n5;
+    co_storage_t s4, s5;
+    unlink(path);
+    ck_assert_int_eq(co_file_store_open(&store, path), CO_FILE_STORE_MISSING);
+    co_file_store_bind(&store, 4, &n4, &s4);
+    co_file_store_bind(&store, 5, &n5, &s5);
+    save(&s5, 4, "MANUF");
+    save(&s4, 2, "COMM");
+    co_file_store_unbind(&n4);
+    co_file_store_unbind(&n5);
+    co_file_store_close(&store);
+    return read_file(buf, cap);
+}
+
+/* Opens the file, expects it ignored with a reason containing `why`, and nothing loaded. */
+static void assert_ignored(const char *why)
+{
+    co_file_store_t store;
+    co_file_store_node_t n4;
+    co_storage_t s4;
+    ck_assert_int_eq(co_file_store_open(&store, path), CO_FILE_STORE_IGNORED);
+    ck_assert_msg(strstr(store.reason, why) != NULL, "reason \"%s\" lacks \"%s\"", store.reason,
+                  why);
+    ck_assert_uint_eq(store.count, 0);
+    co_file_store_bind(&store, 4, &n4, &s4);
+    ck_assert_int_eq(s4.load_size(s4.ctx, 2), -1);
+    co_file_store_close(&store);
+}
+
+START_TEST(round_trip_several_nodes)
+{
+    uint8_t buf[256];
+    make_valid_file(buf, sizeof buf);
+    co_file_store_t store;
+    co_file_store_node_t n4, n5, n6;
+    co_storage_t s4, s5, s6;
+    ck_assert_int_eq(co_file_store_open(&store, path), CO_FILE_STORE_LOADED);
+    ck_assert_uint_eq(store.count, 2);
+    co_file_store_bind(&store, 4, &n4, &s4);
+    co_file_store_bind(&store, 5, &n5, &s5);
+    co_file_store_bind(&store, 6, &n6, &s6);
+    assert_loads(&s4, 2, "COMM");
+    assert_loads(&s5, 4, "MANUF");
+    ck_assert_int_eq(s4.load_size(s4.ctx, 4), 0);
+    ck_assert_int_eq(s6.load_size(s6.ctx, 2), 0);
+    uint8_t out[8];
+    ck_assert_int_eq(s4.load_read(s4.ctx, 2, 2, out, 3), -1); /* beyond the image */
+    ck_assert_int_eq(s4.load_read(s4.ctx, 2, 2, out, 2), 0);
+    ck_assert_mem_eq(out, "MM", 2);
+    co_file_store_close(&store);
+}
+END_TEST
+
+START_TEST(exact_file_layout)
+{
+    co_file_store_t store;
+    co_file_store_node_t n;
+    co_storage_t s;
+    co_file_store_open(&store, path);
+    co_file_store_bind(&store, 0x7F, &n, &s);
+    save(&s, 3, "AB");
+    co_file_store_unbind(&n);
+    co_file_store_close(&store);
+    uint8_t buf[64];
+    ck_assert_uint_eq(read_file(buf, sizeof buf), 12 + 8 + 2 + 4);
+    static const uint8_t expected[22] = {'C', 'o',  'S', 'F', 1, 0, 1, 0, 10, 0,   0,
+                                         0,   0x7F, 3,   0,   0, 2, 0, 0, 0,  'A', 'B'};
+    ck_assert_mem_eq(buf, expected, sizeof expected);
+    uint32_t crc = co_crc32(buf, 22);
+    ck_assert_uint_eq(co_get_u32(buf + 22), crc);
+    /* The check value of CRC-32/ISO-HDLC. */
+    ck_assert_uint_eq(co_crc32((const uint8_t *)"123456789", 9), 0xCBF43926u);
+}
+END_TEST
+
+START_TEST(save_replaces_atomically)
+{
+    uint8_t buf[256];
+    make_valid_file(buf, sizeof buf);
+    struct stat before, after;
+    ck_assert_int_eq(stat(path, &before), 0);
+    co_file_store_t store;
+    co_file_store_node_t n4;
+    co_storage_t s4;
+    ck_assert_int_eq(co_file_store_open(&store, path), CO_FILE_STORE_LOADED);
+    co_file_store_bind(&store, 4, &n4, &s4);
+    save(&s4, 2, "NEWCOMM");
+    ck_assert_int_eq(stat(path, &after), 0);
+    /* A new file was renamed over the old one: never rewritten in place. */
+    ck_assert_uint_ne(before.st_ino, after.st_ino);
+    ck_assert_uint_eq(files_in_dir(), 1); /* no temporary file left */
+    co_file_store_unbind(&n4);
+    co_file_store_close(&store);
+
+    ck_assert_int_eq(co_file_store_open(&store, path), CO_FILE_STORE_LOADED);
+    co_file_store_bind(&store, 4, &n4, &s4);
+    assert_loads(&s4, 2, "NEWCOMM");
+    co_file_store_node_t n5;
+    co_storage_t s5;
+    co_file_store_bind(&store, 5, &n5, &s5);
+    assert_loads(&s5, 4, "MANUF"); /* the other node's record survives */
+    co_file_store_close(&store);
+}
+END_TEST
+
+START_TEST(failed_save_changes_nothing)
+{
+    co_file_store_t store;
+    co_file_store_node_t n4;
+    co_storage_t s4;
+    char missing[160];
+    snprintf(missing, sizeof missing, "%s/no-such-dir/drives.store", dir);
+    ck_assert_int_eq(co_file_store_open(&store, missing), CO_FILE_STORE_MISSING);
+    co_file_store_bind(&store, 4, &n4, &s4);
+    ck_assert_int_eq(s4.save_begin(s4.ctx, 2), 0);
+    ck_assert_int_eq(s4.save_write(s4.ctx, (const uint8_t *)"X", 1), 0);
+    ck_assert_int_eq(s4.save_end(s4.ctx, true), -1);
+    ck_assert(strstr(store.reason, "cannot create") != NULL);
+    ck_assert_int_eq(s4.load_size(s4.ctx, 2), 0);
+    co_file_store_unbind(&n4);
+    co_file_store_close(&store);
+}
+END_TEST
+
+START_TEST(discarded_save_and_erase)
+{
+    uint8_t buf[256];
+    make_valid_file(buf, sizeof buf);
+    co_file_store_t store;
+    co_file_store_node_t n4;
+    co_storage_t s4;
+    co_file_store_open(&store, path);
+    co_file_store_bind(&store, 4, &n4, &s4);
+    ck_assert_int_eq(s4.save_begin(s4.ctx, 2), 0);
+    ck_assert_int_eq(s4.save_write(s4.ctx, (const uint8_t *)"LOST", 4), 0);
+    ck_assert_int_eq(s4.save_end(s4.ctx, false), 0);
+    assert_loads(&s4, 2, "COMM");
+    ck_assert_int_eq(s4.erase(s4.ctx, 2), 0);
+    ck_assert_int_eq(s4.load_size(s4.ctx, 2), 0);
+    ck_assert_int_eq(s4.erase(s4.ctx, 3), 0); /* nothing stored: succeeds */
+    co_file_store_unbind(&n4);
+    co_file_store_close(&store);
+    ck_assert_int_eq(co_file_store_open(&store, path), CO_FILE_STORE_LOADED);
+    ck_assert_uint_eq(store.count, 1);
+    ck_assert_ptr_null(co_file_store_find(&store, 4, 2));
+    ck_assert_ptr_nonnull(co_file_store_find(&store, 5, 4));
+    co_file_store_close(&store);
+}
+END_TEST
+
+START_TEST(truncated_file_is_ignored)
+{
+    uint8_t buf[256];
+    size_t len = make_valid_file(buf, sizeof buf);
+    write_file(buf, len - 1);
+    assert_ignored("truncated");
+    write_file(buf, 10);
+    assert_ignored("truncated: 10 bytes");
+    write_file(buf, 0);
+    assert_ignored("truncated: 0 bytes");
+}
+END_TEST
+
+START_TEST(bad_crc_is_ignored)
+{
+    uint8_t buf[256];
+    size_t len = make_valid_file(buf, sizeof buf);
+    buf[len - 6] ^= 0x01; /* one bit of the last image */
+    write_file(buf, len);
+    assert_ignored("bad CRC-32");
+}
+END_TEST
+
+START_TEST(wrong_magic_or_version_is_ignored)
+{
+    uint8_t buf[256];
+    size_t len = make_valid_file(buf, sizeof buf);
+    uint8_t copy[256];
+    memcpy(copy, buf, len);
+    copy[0] = 'X';
+    write_file(copy, len);
+    assert_ignored("wrong magic");
+    memcpy(copy, buf, len);
+    copy[4] = 2;
+    write_file(copy, len);
+    assert_ignored("unsupported format version 2");
+}
+END_TEST
+
+START_TEST(bad_record_with_good_crc_is_ignored)
+{
+    uint8_t buf[256];
+    size_t len = make_valid_file(buf, sizeof buf);
+    buf[12] = 0; /* node-id 0 in the first record */
+    co_put_u32(buf + len - 4, co_crc32(buf, len - 4));
+    write_file(buf, len);
+    assert_ignored("node-id 0");
+
+    len = make_valid_file(buf, sizeof buf);
+    co_put_u16(buf + 6, 3); /* one record more than the file has */
+    co_put_u32(buf + len - 4, co_crc32(buf, len - 4));
+    write_file(buf, len);
+    assert_ignored("record 3 of 3 is cut short");
+}
+END_TEST
+
+START_TEST(damaged_file_is_kept_aside_at_next_save)
+{
+    uint8_t buf[256];
+    size_t len = make_valid_file(buf, sizeof buf);
+    buf[len - 1] ^= 0xFF;
+    write_file(buf, len);
+    co_file_store_t store;
+    co_file_store_node_t n4;
+    co_storage_t s4;
+    ck_assert_int_eq(co_file_store_open(&store, path), CO_FILE_STORE_IGNORED);
+    co_file_store_bind(&store, 4, &n4, &s4);
+    save(&s4, 3, "PROF");
+    ck_assert_int_eq(s4.load_size(s4.ctx, 2), 0); /* the file is sound again */
+    co_file_store_unbind(&n4);
+    co_file_store_close(&store);
+    char bad[160];
+    snprintf(bad, sizeof bad, "%s.bad", path);
+    struct stat st;
+    ck_assert_int_eq(stat(bad, &st), 0);
+    ck_assert_int_eq(st.st_size, (off_t)len);
+    ck_assert_int_eq(co_file_store_open(&store, path), CO_FILE_STORE_LOADED);
+    ck_assert_uint_eq(store.count, 1);
+    co_file_store_close(&store);
+}
+END_TEST
+
+int main(void)
+{
+    Suite *s = suite_create("file_store");
+    TCase *tc = tcase_create("file_store");
+    tcase_add_checked_fixture(tc, setup, teardown);
+    tcase_add_test(tc, round_trip_several_nodes);
+    tcase_add_test(tc, exact_file_layout);
+    tcase_add_test(tc, save_replaces_atomically);
+    tcase_add_test(tc, failed_save_changes_nothing);
+    tcase_add_test(tc, discarded_save_and_erase);
+    tcase_add_test(tc, truncated_file_is_ignored);
+    tcase_add_test(tc, bad_crc_is_ignored);
+    tcase_add_test(tc, wrong_magic_or_version_is_ignored);
+    tcase_add_test(tc, bad_record_with_good_crc_is_ignored);
+    tcase_add_test(tc, damaged_file_is_kept_aside_at_next_save);
+    suite_add_tcase(s, tc);
+    SRunner *sr = srunner_create(s);
+    srunner_run_all(sr, CK_NORMAL);
+    int failed = srunner_ntests_failed(sr);
+    srunner_free(sr);
+    return failed ? EXIT_FAILURE : EXIT_SUCCESS;
+}

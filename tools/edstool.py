@@ -160,7 +160,7 @@ def parse_eds(path):
         if stripped.startswith(";") or stripped.startswith("#"):
             m = SIZE_DIRECTIVE.match(stripped)
             if m and current is not None:
-                current.size_directive = (m.group(1), number)
+                current.size_directive = m.group(1)
             continue
         if stripped.startswith("["):
             if not stripped.endswith("]"):
@@ -303,7 +303,7 @@ def entry_size(eds, sec, dtype, default_len):
         return size
     size = default_len
     if sec.size_directive is not None:
-        text, line = sec.size_directive
+        text = sec.size_directive
         try:
             capacity, _ = parse_number(text)
         except ValueError as e:

@@ -11,6 +11,7 @@
 #include <stdlib.h>
 #include <string.h>
 #include <sysexits.h>
+#include <unistd.h>
 
 #define EMCY_COB_ID_INDEX 0x1014
 #define COB_ID_MASK 0x7FFu
@@ -194,8 +195,30 @@ static int open_trace(const char *path, FILE **trace)
     return EX_CANTCREAT;
 }
 
+/* A store that can never be saved is a mistake better reported at start than at the first 1010h
+ * write: the directory must exist and be writable. */
+static int check_store_directory(const char *path)
+{
+    char dir[4096];
+    const char *slash = strrchr(path, '/');
+    if (!slash)
+        snprintf(dir, sizeof dir, ".");
+    else
+        snprintf(dir, sizeof dir, "%.*s", slash == path ? 1 : (int)(slash - path), path);
+    if (access(dir, W_OK | X_OK) == 0)
+        return 0;
+    co_log(CO_LOG_ERROR,
+           "store %s: its directory %s is not usable (%s): create it or give a writable --store "
+           "path",
+           path, dir, strerror(errno));
+    return EX_CANTCREAT;
+}
+
 static int open_store(const char *path, co_file_store_t *store)
 {
+    int rc = check_store_directory(path);
+    if (rc != 0)
+        return rc;
     switch (co_file_store_open(store, path)) {
     case CO_FILE_STORE_LOADED:
         co_log(CO_LOG_INFO, "store %s: %zu stored image(s) loaded", path, store->count);

@@ -91,11 +91,21 @@ class FrameWatcher:
             self.seen.append(frame)
         return frame
 
-    def expect(self, can_id, data=None, timeout=REPLY_TIMEOUT, rtr=False):
+    def mark(self):
+        """A position in the frames seen so far, for expect(..., since=mark)."""
+        return len(self.seen)
+
+    def expect(self, can_id, data=None, timeout=REPLY_TIMEOUT, rtr=False, since=None):
         """Waits for a frame with can_id (and exactly data, when given); returns it.
 
-        Other frames seen meanwhile are skipped. Fails with what was seen when the deadline passes."""
+        With since (a mark()), a matching frame already seen after that mark counts too: for a frame
+        that may come before or after another one the test waits for first. Other frames seen
+        meanwhile are skipped. Fails with what was seen when the deadline passes."""
         data = as_data(data)
+        if since is not None:
+            for frame in self.seen[since:]:
+                if frame.can_id == can_id and frame.rtr == rtr and (data is None or frame.data == data):
+                    return frame
         deadline = time.monotonic() + timeout
         skipped = []
         while True:

@@ -70,8 +70,8 @@ def test_expedited_segmented_and_block_downloads(node):
     node.sdo.download(0x203C, 3, (70).to_bytes(2, "little"), force_segment=True)
     assert node.sdo[0x203C][3].raw == 70
     with node.sdo.open(0x6046, 2, "wb", size=4, block_transfer=True) as f:
-        f.write((1400).to_bytes(4, "little"))
-    assert node.sdo[0x6046][2].raw == 1400
+        f.write((1200).to_bytes(4, "little"))
+    assert node.sdo[0x6046][2].raw == 1200
 
 
 def test_sdo_abort_codes(node):

@@ -180,7 +180,8 @@ def test_life_guarding_fault_and_fault_reset(dump, drive):
     status = dump.expect(0x584)
     assert status.data[0:4] == bytes.fromhex("4B416000") and status.data[4] & 0x4F == 0x08, f"not Fault: {status}"
     sdo(dump, "604#2F0D100000000000", "584#600D100000000000")  # stop life guarding
+    mark = dump.mark()
     sdo(dump, "604#2B40600080000000", "584#6040600000000000")  # fault reset (bit 7 rising edge)
-    reset = dump.expect(0x084)
+    reset = dump.expect(0x084, since=mark)  # may come before the SDO reply
     assert reset.data[0:3] == bytes(3), f"want the EMCY error reset (code 0, register 0), got {reset}"
     sdo(dump, "604#4041600000000000", "584#4B41600040060000")  # Switch on disabled again

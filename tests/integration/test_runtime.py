@@ -87,7 +87,7 @@ def run_cli(*args):
 
 @pytest.mark.parametrize(
     "args, words",
-    [([], ["usage"]),
+    [([], ["--node-id"]),
      ([IFACE], ["--node-id"]),
      ([IFACE, "--node-id", "0"], ["1..127"]),
      ([IFACE, "--node-id", "128"], ["1..127"]),

@@ -11,6 +11,7 @@ import pytest
 from conftest import BOOT_TIMEOUT, EX_OK, EX_USAGE, IFACE, daemon_path
 
 NODE = 4
+EX_UNAVAILABLE = 69  # sysexits.h: interface or CAN support missing
 SAVE = 0x65766173  # "save" (CiA 301 1010h)
 LOAD = 0x64616F6C  # "load" (CiA 301 1011h)
 
@@ -25,8 +26,9 @@ def test_trace_file_is_in_candump_log_format(bus, start_daemon, tmp_path):
     assert lines, "empty trace"
     assert [l for l in lines if not line_format.match(l)] == []
     frames = [l.split(" ", 2)[2] for l in lines]
-    assert "704#00" in frames
-    assert "584#4300100092010100" in frames
+    assert "704#00" in frames  # out
+    assert "604#4000100000000000" in frames  # in
+    assert "584#4300100092010100" in frames  # out
     stamps = [float(l[1:18]) for l in lines]
     assert stamps == sorted(stamps)
     assert abs(stamps[0] - time.time()) < 60
@@ -105,7 +107,7 @@ def test_bad_command_line_exits_64_with_a_message(args, words):
 
 def test_missing_interface_says_how_to_create_it():
     result = run_cli("nosuch0", "--node-id", NODE)
-    assert result.returncode != EX_OK and 64 <= result.returncode <= 78, result  # sysexits.h range
+    assert result.returncode == EX_UNAVAILABLE, result
     assert "nosuch0" in result.stderr and "ip link add" in result.stderr, result.stderr
 
 
@@ -152,3 +154,15 @@ def test_corrupt_store_file_is_reported_and_ignored(bus, start_daemon, tmp_path)
     d = start_daemon(bus, "--node-id", NODE, "--store", store)
     assert bus.sdo_read(NODE, 0x203C, 2) == 30  # defaults, nothing half-loaded
     assert str(store.name) in d.log(), f"the bad store file is not reported:\n{d.log()}"
+
+
+def test_store_keeps_each_drive_of_a_bench_apart(bus, start_daemon, tmp_path):
+    store = tmp_path / "bench.store"
+    d = start_daemon(bus, "--node-id", "4-5", "--store", store)
+    bus.sdo_write(4, 0x203C, 2, 44, 2)
+    bus.sdo_write(5, 0x203C, 2, 55, 2)
+    bus.sdo_write(4, 0x1010, 1, SAVE, 4)  # only drive 4 saves
+    assert d.stop() == EX_OK
+    start_daemon(bus, "--node-id", "4-5", "--store", store)
+    assert bus.sdo_read(4, 0x203C, 2) == 44
+    assert bus.sdo_read(5, 0x203C, 2) == 30

@@ -150,6 +150,9 @@ def test_basenode402_to_operation_enabled_and_back(network, drive):
 
 
 # Readable objects whose value on a freshly booted drive is not the EDS default, each with why.
+# The values the drive computes live (6041 and 2002:02 status, 6043/6044 speeds, 2002:04 current,
+# 2002:09 torque, 1001 error register) ARE compared: on a fresh drive (Switch on disabled, motor
+# at rest, no error) the EDS defaults are exactly what they must read.
 NOT_COMPARED = {
     (0x1003, 1): "standard error field: only defined while an error is recorded; reading it with "
     "1003:00 = 0 may abort 0x08000024 (no data) -- checked separately below",

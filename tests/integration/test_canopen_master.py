@@ -2,6 +2,8 @@
 transfers of every kind, PDO configuration through its `pdo` API, its CiA 402 state machine, and
 every readable object of eds/ATV312.eds checked against the running daemon."""
 
+import time
+
 import canopen
 import pytest
 from canopen.profiles.p402 import BaseNode402
@@ -18,6 +20,7 @@ SDO_ABORT_VALUE_TOO_LOW = 0x06090032
 SDO_ABORT_LENGTH_TOO_HIGH = 0x06070012
 SDO_ABORT_LENGTH_TOO_LOW = 0x06070013
 SDO_ABORT_NO_DATA = 0x08000024
+SDO_ABORT_STATE = 0x08000022
 
 
 @pytest.fixture
@@ -145,8 +148,24 @@ def test_basenode402_to_operation_enabled_and_back(network, drive):
     node.state = "OPERATION ENABLED"
     assert node.state == "OPERATION ENABLED"
     assert node.sdo[0x6041].raw == 0x0627
+    node.sdo[0x6042].raw = 300
+    wait_until("the motor turns", lambda: node.sdo[0x6044].raw > 0)
+    # Configuration parameters (motor data, e.g. NSP 2042:05) change only with the motor stopped
+    # (SPEC section 3); ACC is an adjustment parameter, accepted while running.
+    assert abort_code(lambda: node.sdo.download(0x2042, 5, (1450).to_bytes(2, "little"))) == SDO_ABORT_STATE
+    assert node.sdo[0x2042][5].raw == 1500
+    node.sdo[0x203C][2].raw = 20
+    assert node.sdo[0x6041].raw & 0x6F == 0x27  # still Operation enabled
+    node.sdo[0x6042].raw = 0
+    wait_until("the motor stops", lambda: node.sdo[0x6044].raw == 0)
     node.state = "SWITCH ON DISABLED"
     assert node.sdo[0x6041].raw == 0x0640
+
+
+def wait_until(what, predicate, timeout=3.0):
+    deadline = time.monotonic() + timeout
+    while not predicate():
+        assert time.monotonic() < deadline, f"{what}: not within {timeout} s"
 
 
 # Readable objects whose value on a freshly booted drive is not the EDS default, each with why.

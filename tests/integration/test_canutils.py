@@ -185,3 +185,17 @@ def test_life_guarding_fault_and_fault_reset(dump, drive):
     reset = dump.expect(0x084, since=mark)  # may come before the SDO reply
     assert reset.data[0:3] == bytes(3), f"want the EMCY error reset (code 0, register 0), got {reset}"
     sdo(dump, "604#4041600000000000", "584#4B41600040060000")  # Switch on disabled again
+
+
+def test_heartbeat_consumer_timeout_faults_the_drive(dump, drive):
+    # 1016:01 = producer node 0x10, 200 ms. Armed by the first heartbeat of node 0x10 (CiA 301).
+    sdo(dump, "604#23161001C8001000", "584#6016100100000000")
+    start_node(dump)
+    dump.expect(0x184, "4006")
+    cansend("710#05")
+    sent = dump.expect(0x710, "05")
+    emcy = dump.expect(0x084, timeout=1.0)
+    assert emcy.data[0:2] == bytes.fromhex("3081") and emcy.data[2] & 0x11 == 0x11, f"EMCY {emcy}"
+    assert 0.195 <= emcy.timestamp - sent.timestamp <= 0.260, f"{emcy.timestamp - sent.timestamp:.3f} s"
+    fault = dump.expect(0x184)
+    assert int.from_bytes(fault.data[0:2], "little") & 0x4F == 0x08, f"not Fault: {fault}"

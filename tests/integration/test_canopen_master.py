@@ -26,6 +26,7 @@ SDO_ABORT_STATE = 0x08000022
 @pytest.fixture
 def network():
     net = canopen.Network()
+    net.NOTIFIER_CYCLE = 0.1  # its receive thread polls this often: disconnect waits for it
     net.connect(interface="socketcan", channel=IFACE)
     yield net
     net.disconnect()

@@ -427,8 +427,11 @@ static void handle_timer(co_linux_loop_t *loop)
     }
 }
 
-static void report_conditions(co_linux_loop_t *loop)
+/* Returns true when a device was told something (it may have sent frames, or a dropped frame may
+ * have raised another condition). */
+static bool report_conditions(co_linux_loop_t *loop)
 {
+    bool reported = false;
     co_linux_condition_t *overrun = &loop->conditions[COND_OVERRUN];
     if (overrun->wanted && overrun->reported && co_txq_count(&loop->txq) == 0 &&
         loop->traffic_since_overrun)
@@ -438,6 +441,7 @@ static void report_conditions(co_linux_loop_t *loop)
         if (c->wanted == c->reported)
             continue;
         c->reported = c->wanted;
+        reported = true;
         for (co_linux_device_t *dev = loop->devices; dev; dev = dev->next) {
             if (dev->ops->bus_event) {
                 dev->ops->bus_event(dev->ctx, c->emcy_code, c->wanted);
@@ -445,6 +449,7 @@ static void report_conditions(co_linux_loop_t *loop)
             }
         }
     }
+    return reported;
 }
 
 static void arm_timer(co_linux_loop_t *loop)
@@ -474,8 +479,9 @@ static void arm_timer(co_linux_loop_t *loop)
 static void settle(co_linux_loop_t *loop)
 {
     deliver_local(loop);
-    report_conditions(loop);
-    deliver_local(loop);
+    /* Bounded: each condition can change at most once per round. */
+    for (int round = 0; round < 3 && report_conditions(loop); round++)
+        deliver_local(loop);
     arm_timer(loop);
     flush_trace(loop);
 }

@@ -93,12 +93,14 @@ static int update_epoll(co_linux_loop_t *loop, bool want_out)
 
 static void set_tx_wait(co_linux_loop_t *loop, co_linux_tx_wait_t wait)
 {
+    /* Every refusal pushes the retry 1 ms on, also when already waiting to retry: a retry time
+     * left in the past would make the timer fire at once, forever. */
+    loop->retry_at = wait == CO_LINUX_TX_RETRY ? loop->now + ENOBUFS_RETRY_US : CO_TIME_NEVER;
     if (loop->tx_wait == wait)
         return;
     bool had_out = loop->tx_wait == CO_LINUX_TX_EPOLLOUT;
     bool want_out = wait == CO_LINUX_TX_EPOLLOUT;
     loop->tx_wait = wait;
-    loop->retry_at = wait == CO_LINUX_TX_RETRY ? loop->now + ENOBUFS_RETRY_US : CO_TIME_NEVER;
     if (had_out != want_out && loop->can_fd >= 0 && update_epoll(loop, want_out) != 0)
         co_log(CO_LOG_ERROR, "epoll_ctl: %s", strerror(errno));
 }
@@ -439,6 +441,10 @@ static bool report_conditions(co_linux_loop_t *loop)
     for (int i = 0; i < 3; i++) {
         co_linux_condition_t *c = &loop->conditions[i];
         if (c->wanted == c->reported)
+            continue;
+        /* An overrun is told once its EMCY can be queued: with the queue full it would be
+         * the next frame dropped, and the master would never see it. */
+        if (i == COND_OVERRUN && c->wanted && co_txq_count(&loop->txq) >= loop->txq.capacity)
             continue;
         c->reported = c->wanted;
         reported = true;

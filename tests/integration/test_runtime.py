@@ -3,12 +3,13 @@ errors (sysexits.h) and parameter storage (SPEC.md sections 1.2 and 3)."""
 
 import re
 import signal
+import socket
 import subprocess
 import time
 
 import pytest
 
-from conftest import BOOT_TIMEOUT, EX_OK, EX_USAGE, IFACE, daemon_path
+from conftest import BOOT_TIMEOUT, EX_OK, EX_USAGE, IFACE, cansend, daemon_path
 
 NODE = 4
 EX_UNAVAILABLE = 69  # sysexits.h: interface or CAN support missing
@@ -166,3 +167,116 @@ def test_store_keeps_each_drive_of_a_bench_apart(bus, start_daemon, tmp_path):
     start_daemon(bus, "--node-id", "4-5", "--store", store)
     assert bus.sdo_read(4, 0x203C, 2) == 44
     assert bus.sdo_read(5, 0x203C, 2) == 30
+
+
+# ---- CAN error frames (docs/runtime.md "Error frames") -------------------------------------------
+# On vcan an error frame written by a process reaches every socket whose error mask matches it,
+# as if a controller driver had reported it: the daemon cannot tell the difference.
+CAN_ERR_FLAG = 0x20000000
+CAN_ERR_CRTL, CAN_ERR_BUSOFF, CAN_ERR_RESTARTED = 0x004, 0x040, 0x100  # linux/can/error.h classes
+CRTL_RX_OVERFLOW, CRTL_RX_WARNING, CRTL_TX_PASSIVE, CRTL_ACTIVE = 0x01, 0x04, 0x20, 0x40  # data[1]
+EMCY = 0x080 + NODE
+COMMUNICATION_ERROR_REGISTER = 0x11  # 1001h: generic error + communication error
+
+
+def send_error_frame(error_class, controller_status=0):
+    cansend(f"{CAN_ERR_FLAG | error_class:08X}#00{controller_status:02X}000000000000")
+
+
+def emcy(code, register):
+    return code.to_bytes(2, "little") + bytes([register]) + bytes(5)
+
+
+@pytest.mark.parametrize(
+    "raise_it,clear_it,code",
+    [
+        ((CAN_ERR_BUSOFF, 0), (CAN_ERR_RESTARTED, 0), 0x8140),
+        ((CAN_ERR_CRTL, CRTL_TX_PASSIVE), (CAN_ERR_CRTL, CRTL_ACTIVE), 0x8120),
+    ],
+    ids=["bus-off then restarted", "error passive then active"],
+)
+def test_error_frames_raise_and_clear_an_emergency(bus, drive, raise_it, clear_it, code):
+    send_error_frame(*raise_it)
+    bus.expect(EMCY, emcy(code, COMMUNICATION_ERROR_REGISTER))
+    assert bus.sdo_read(NODE, 0x1001, 0) == COMMUNICATION_ERROR_REGISTER
+    assert bus.sdo_read(NODE, 0x1003, 1) == code  # newest entry of the error history
+    send_error_frame(*raise_it)  # the same condition again is not news
+    bus.expect_none(EMCY, 0.2)
+    send_error_frame(*clear_it)
+    bus.expect(EMCY, emcy(0x0000, 0x00))
+    assert bus.sdo_read(NODE, 0x1001, 0) == 0
+    assert drive.running()
+
+
+def test_controller_overflow_is_an_event_kept_in_the_error_history(bus, drive):
+    # Frames were lost once: the condition ends as soon as a frame is written again (here the EMCY
+    # itself), so the emergency and its reset come together and the history keeps the code.
+    send_error_frame(CAN_ERR_CRTL, CRTL_RX_OVERFLOW)
+    bus.expect(EMCY, emcy(0x8110, COMMUNICATION_ERROR_REGISTER))
+    bus.expect(EMCY, emcy(0x0000, 0x00))
+    assert bus.sdo_read(NODE, 0x1003, 1) == 0x8110
+
+
+# ---- transmit back-pressure (docs/runtime.md "Transmit path and back-pressure") -----------------
+# A plug queueing discipline on vcan0 holds every frame written after it is installed, up to its
+# byte limit, then refuses the rest with ENOBUFS: the state of a CAN interface whose queue is full.
+TXQ_CAPACITY = 256  # co_linux_loop_config_t.txq_capacity as atv312d sets it
+PLUG_LIMIT = 8 * 16  # bytes: eight struct can_frame
+SO_RCVBUFFORCE = 33  # asm-generic/socket.h (root may exceed net.core.rmem_max)
+
+
+def tc_plug(action, *options):
+    """`tc qdisc add|change dev vcan0 root plug OPTIONS...`, or `del` to remove it."""
+    plug = ["plug", *options] if action != "del" else []
+    subprocess.run(["tc", "qdisc", action, "dev", IFACE, "root", *plug], check=True, timeout=5)
+
+
+def wait_for_log(daemon, text, timeout):
+    deadline = time.monotonic() + timeout
+    while text not in daemon.log():
+        assert time.monotonic() < deadline, f"no {text!r} in the log within {timeout} s:\n{daemon.log()}"
+        time.sleep(0.01)
+
+
+def stopped_stats(daemon):
+    """The counters of the daemon's last log line: {'wake-ups': n, 'sent': n, 'dropped': n, ...}."""
+    line = daemon.log().strip().splitlines()[-1]
+    return {name: int(n) for n, name in re.findall(r"(\d+) (wake-ups|sent|dropped)", line)}
+
+
+def test_transmit_back_pressure_queues_in_order_then_drops_and_reports_the_overrun(bus, drive):
+    started = time.monotonic()
+    # The released queue arrives as one burst, more than a default receive buffer holds.
+    bus.bus.socket.setsockopt(socket.SOL_SOCKET, SO_RCVBUFFORCE, 4 << 20)
+    bus.sdo_write(NODE, 0x1017, 0, 1, 2)  # a heartbeat every 1 ms fills the queue in 0.26 s
+    bus.expect(0x704, "7F")
+    tc_plug("add", "limit", str(PLUG_LIMIT))
+    try:
+        wait_for_log(drive, "transmit queue full", timeout=5.0)
+        tc_plug("change", "release_indefinite")
+        released = bus.mark()
+        emcy_frame = bus.expect(EMCY, emcy(0x8110, COMMUNICATION_ERROR_REGISTER), timeout=5.0)
+    finally:
+        tc_plug("del")
+    before = bus.seen[released:-1]
+    # The whole queue went out, in order, before the EMCY queued behind it; nothing else got in.
+    assert len(before) >= TXQ_CAPACITY, f"only {len(before)} frames before {emcy_frame}"
+    assert {str(f) for f in before} == {"704#7F"}
+    bus.expect(EMCY, emcy(0x0000, 0x00))  # the queue is empty again
+    bus.sdo_write(NODE, 0x1017, 0, 0, 2)
+    assert bus.sdo_read(NODE, 0x1003, 1) == 0x8110
+    assert drive.stop() == EX_OK
+    lived_ms = (time.monotonic() - started) * 1000
+    stats = stopped_stats(drive)
+    assert stats["dropped"] > 0
+    # Refused writes are retried every 1 ms, not in a busy loop: at most a heartbeat and a retry
+    # per millisecond (a busy loop makes several wake-ups per millisecond even in User-Mode Linux).
+    assert stats["wake-ups"] <= 2 * lived_ms + 50, f"{stats['wake-ups']} wake-ups in {lived_ms:.0f} ms"
+
+
+def test_warning_level_is_logged_without_an_emergency(bus, drive):
+    send_error_frame(CAN_ERR_CRTL, CRTL_RX_WARNING)
+    bus.expect_none(EMCY, 0.3)
+    assert bus.sdo_read(NODE, 0x1001, 0) == 0
+    assert drive.stop() == EX_OK
+    assert "error warning level" in drive.log()

@@ -284,6 +284,7 @@ START_TEST(no_pdo_in_pre_operational_or_stopped)
     test_expect_none(&t);
     test_rx(&t, "000#0204");
     test_rx(&t, "204#0F00");
+    test_rx(&t, "184#R");
     test_rx(&t, "080#");
     test_advance(&t, 1000 * MS);
     test_expect_none(&t);
@@ -574,6 +575,29 @@ START_TEST(cob_id_rules)
 }
 END_TEST
 
+/* CiA 301 7.3.5 restricted CAN-IDs at both edges of every range, for an RPDO and a TPDO (the
+ * CCT's "Other 10"): refused for a valid PDO, accepted with bit 31 set and just outside. */
+START_TEST(restricted_can_ids_at_every_edge)
+{
+    static const uint16_t comm[] = {0x1400, 0x1800};
+    static const uint16_t restricted[] = {0x000, 0x07F, 0x101, 0x180, 0x581, 0x5FF,
+                                          0x601, 0x67F, 0x6E0, 0x6FF, 0x701, 0x7FF};
+    static const uint16_t allowed[] = {0x080, 0x100, 0x181, 0x580, 0x600, 0x680, 0x6DF, 0x700};
+    start_quiet();
+    for (size_t c = 0; c < sizeof(comm) / sizeof(comm[0]); c++) {
+        ck_assert_uint_eq(write_param(comm[c], 1, 0x80000000u, 4), 0);
+        for (size_t i = 0; i < sizeof(restricted) / sizeof(restricted[0]); i++) {
+            ck_assert_uint_eq(write_param(comm[c], 1, restricted[i], 4), SDO_ABORT_VALUE_RANGE);
+            ck_assert_uint_eq(write_param(comm[c], 1, 0x80000000u | restricted[i], 4), 0);
+        }
+        for (size_t i = 0; i < sizeof(allowed) / sizeof(allowed[0]); i++) {
+            ck_assert_uint_eq(write_param(comm[c], 1, allowed[i], 4), 0);
+            ck_assert_uint_eq(write_param(comm[c], 1, 0x80000000u | allowed[i], 4), 0);
+        }
+    }
+}
+END_TEST
+
 START_TEST(transmission_type_rules)
 {
     start_quiet();
@@ -766,6 +790,7 @@ int main(void)
     tcase_add_test(tc, rpdo_deadline_emcy_8250);
     tcase_add_test(tc, length_error_shared_by_rpdos_clears_last);
     tcase_add_test(tc, cob_id_rules);
+    tcase_add_test(tc, restricted_can_ids_at_every_edge);
     tcase_add_test(tc, transmission_type_rules);
     tcase_add_test(tc, inhibit_and_start_value_only_while_invalid);
     tcase_add_test(tc, inhibit_from_dictionary_applies);

@@ -346,6 +346,7 @@ START_TEST(dictionary_abort_codes)
         {"604#2B00201001000000", "584#8000201021000008"}, /* hook: local control */
         {"604#2300120108060000", "584#8000120102000106"}, /* 1200h is read-only */
         {"604#2304100000000000", "584#8004100000000206"},
+        {"604#400018FF00000000", "584#800018FF11000906"}, /* sub-index FFh: not supported */
     };
     for (size_t i = 0; i < sizeof(exchanges) / sizeof(exchanges[0]); i++) {
         test_rx(&t, exchanges[i][0]);
@@ -544,6 +545,30 @@ START_TEST(segmented_upload_toggle_and_unexpected)
     test_expect(&t, "584#6000200C00000000");
     test_rx(&t, "604#60");
     test_expect(&t, "584#8000200C01000405");
+    test_expect_none(&t);
+}
+END_TEST
+
+/* The CCT's SDO 14/15, 20/21 and 24/25: 100Ch and 1017h written segmented, then by block without
+ * and with CRC (2 bytes: one segment, n = 5). */
+START_TEST(segmented_and_block_writes_of_error_control_objects)
+{
+    static const uint8_t blksizes[] = {127, 127};
+    static const uint8_t guard_time[] = {0xF4, 0x01};    /* 500 ms */
+    static const uint8_t producer_time[] = {0x64, 0x00}; /* 100 ms */
+    static const uint8_t zero[] = {0, 0};
+    segmented_download(0x100C, 0, guard_time, 2, true, true);
+    segmented_download(0x1017, 0, producer_time, 2, true, true);
+    ck_assert_int_eq(co_od_value(&t.node, 0x100C, 0), 500);
+    ck_assert_int_eq(co_od_value(&t.node, 0x1017, 0), 100);
+    block_download(0x100C, 0, zero, 2, false, blksizes, 1);
+    block_download(0x1017, 0, zero, 2, false, blksizes, 1);
+    ck_assert_int_eq(co_od_value(&t.node, 0x100C, 0), 0);
+    ck_assert_int_eq(co_od_value(&t.node, 0x1017, 0), 0);
+    block_download(0x100C, 0, guard_time, 2, true, blksizes, 1);
+    block_download(0x1017, 0, producer_time, 2, true, blksizes, 1);
+    ck_assert_int_eq(co_od_value(&t.node, 0x100C, 0), 500);
+    ck_assert_int_eq(co_od_value(&t.node, 0x1017, 0), 100);
     test_expect_none(&t);
 }
 END_TEST
@@ -914,6 +939,29 @@ START_TEST(block_upload_aborts)
 }
 END_TEST
 
+/* The CCT's SDO 19 and 27 frames: 1000h by block upload without CRC (sc = 0, end with n = 3 and
+ * no CRC), then an acknowledge of segment 128, which was never sent. */
+START_TEST(block_upload_device_type_and_ackseq_128)
+{
+    test_rx(&t, "604#A000100014000000");
+    test_expect(&t, "584#C200100004000000");
+    test_rx(&t, "604#A300000000000000");
+    test_expect(&t, "584#8192010100000000");
+    test_rx(&t, "604#A201140000000000");
+    test_expect(&t, "584#CD00000000000000");
+    test_rx(&t, "604#A100000000000000");
+    test_expect_none(&t);
+    test_rx(&t, "604#A000100014000000");
+    test_expect(&t, "584#C200100004000000");
+    test_rx(&t, "604#A300000000000000");
+    test_expect(&t, "584#8192010100000000");
+    test_rx(&t, "604#A280140000000000");
+    test_expect(&t, "584#8000100003000405");
+    ck_assert_uint_eq(co_sdo_process(&t.node, t.bus.now), CO_TIME_NEVER);
+    test_expect_none(&t);
+}
+END_TEST
+
 /* ---- Timeout ------------------------------------------------------------------------------ */
 
 START_TEST(timeout_restarts_on_every_frame)
@@ -1170,6 +1218,7 @@ int main(void)
     tcase_add_test(tc, segmented_download_aborts);
     tcase_add_test(tc, segmented_download_overflows_buffer);
     tcase_add_test(tc, segmented_upload_toggle_and_unexpected);
+    tcase_add_test(tc, segmented_and_block_writes_of_error_control_objects);
     tcase_add_test(tc, crc16_ccitt_check_values);
     tcase_add_test(tc, block_download_with_crc);
     tcase_add_test(tc, block_download_without_crc);
@@ -1186,6 +1235,7 @@ int main(void)
     tcase_add_test(tc, block_upload_empty_string);
     tcase_add_test(tc, block_upload_protocol_switch);
     tcase_add_test(tc, block_upload_aborts);
+    tcase_add_test(tc, block_upload_device_type_and_ackseq_128);
     tcase_add_test(tc, timeout_restarts_on_every_frame);
     tcase_add_test(tc, timeout_settable_and_in_block_upload);
     tcase_add_test(tc, client_abort_returns_to_idle);

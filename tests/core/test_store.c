@@ -305,6 +305,23 @@ START_TEST(dictionary_change_never_misloads)
 }
 END_TEST
 
+/* The CCT's SYNC "save and reset": 1005h, 1006h, 1007h and 1019h are stored with the communication
+ * parameters. */
+START_TEST(sync_parameters_survive_reset_node)
+{
+    ck_assert_uint_eq(test_sdo_write(&t, 0x1005, 0, 0x81, 4), 0);
+    ck_assert_uint_eq(test_sdo_write(&t, 0x1019, 0, 7, 1), 0);
+    ck_assert_uint_eq(test_sdo_write(&t, 0x1006, 0, 10000, 4), 0);
+    ck_assert_uint_eq(test_sdo_write(&t, 0x1007, 0, 5000, 4), 0);
+    ck_assert_uint_eq(test_sdo_write(&t, 0x1010, 2, SAVE, 4), 0);
+    reset_node();
+    ck_assert_int_eq(co_od_value(&t.node, 0x1005, 0), 0x81);
+    ck_assert_int_eq(co_od_value(&t.node, 0x1006, 0), 10000);
+    ck_assert_int_eq(co_od_value(&t.node, 0x1007, 0), 5000);
+    ck_assert_int_eq(co_od_value(&t.node, 0x1019, 0), 7);
+}
+END_TEST
+
 START_TEST(no_image_keeps_defaults)
 {
     change_values();
@@ -329,6 +346,7 @@ int main(void)
     tcase_add_test(tc, malformed_image_ignored_entirely);
     tcase_add_test(tc, read_failure_while_applying_undoes_the_area);
     tcase_add_test(tc, dictionary_change_never_misloads);
+    tcase_add_test(tc, sync_parameters_survive_reset_node);
     tcase_add_test(tc, no_image_keeps_defaults);
     suite_add_tcase(s, tc);
     SRunner *sr = srunner_create(s);

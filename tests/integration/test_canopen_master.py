@@ -13,12 +13,15 @@ from conftest import EDS, IFACE
 
 NODE = 4
 
+SDO_ABORT_UNSUPPORTED_ACCESS = 0x06010000
 SDO_ABORT_READ_ONLY = 0x06010002
 SDO_ABORT_NO_OBJECT = 0x06020000
 SDO_ABORT_NO_SUBINDEX = 0x06090011
+SDO_ABORT_VALUE_RANGE = 0x06090030
 SDO_ABORT_VALUE_TOO_LOW = 0x06090032
 SDO_ABORT_LENGTH_TOO_HIGH = 0x06070012
 SDO_ABORT_LENGTH_TOO_LOW = 0x06070013
+SDO_ABORT_DATA_STORE = 0x08000020
 SDO_ABORT_NO_DATA = 0x08000024
 SDO_ABORT_STATE = 0x08000022
 
@@ -217,6 +220,29 @@ def test_every_readable_object_matches_the_eds(node):
         checked += 1
     assert not mismatches, "\n".join(mismatches)
     assert checked >= 60, f"only {checked} objects checked"
+
+
+# Writable objects that refuse their own value, each by a CiA 301 rule: 1 (what 1010h/1011h read) is
+# not the "save"/"load" signature; mapping entries change only while sub 0 is 0; the inhibit time of
+# a valid TPDO (TPDO1) is locked (docs/pdo.md).
+WRITE_BACK_REFUSED = {
+    **{(index, sub): SDO_ABORT_DATA_STORE for index in (0x1010, 0x1011) for sub in (1, 2, 3)},
+    **{(index, sub): SDO_ABORT_UNSUPPORTED_ACCESS for index in (0x1605, 0x1A05) for sub in (1, 2, 3, 4)},
+    (0x1800, 3): SDO_ABORT_VALUE_RANGE,
+}
+
+
+def test_every_writable_object_takes_back_the_value_read(node):
+    refused = {}
+    for var in readable_entries(node.object_dictionary):
+        if not (var.readable and var.writable):
+            continue
+        raw = node.sdo.upload(var.index, var.subindex)
+        try:
+            node.sdo.download(var.index, var.subindex, raw)
+        except SdoAbortedError as e:
+            refused[(var.index, var.subindex)] = e.code
+    assert refused == WRITE_BACK_REFUSED
 
 
 def test_error_field_empty_on_a_fresh_drive(node):

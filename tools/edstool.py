@@ -71,6 +71,13 @@ PDO_FLAGS = {"ro": TPDO, "const": TPDO, "rwr": TPDO, "rww": RPDO, "rw": TPDO | R
 
 OBJECT_LISTS = ("MandatoryObjects", "OptionalObjects", "ManufacturerObjects")
 
+# CiA 306 [DummyUsage]: DummyXXXX=1 declares that a PDO may map the data type XXXXh (0001h-0007h,
+# CiA 301 7.4.8.4) as a dummy entry. python canopen reads all seven keys, case-sensitively, as
+# decimal integers.
+DUMMY_SECTION = "DummyUsage"
+DUMMY_TYPES = range(0x01, 0x08)
+DUMMY_KEY = re.compile(r"^dummy([0-9a-f]{4})$", re.IGNORECASE)
+
 # A comment line inside an object's section giving the capacity of a string or domain entry,
 # invisible to every other EDS reader: ";size=32".
 SIZE_DIRECTIVE = re.compile(r"^;\s*size\s*=\s*(\S+)\s*$", re.IGNORECASE)
@@ -246,6 +253,36 @@ def parse_index(text):
 
 SUB_SECTION = re.compile(r"^([0-9a-fA-F]{4})sub([0-9a-fA-F]{1,2})$", re.IGNORECASE)
 OBJECT_SECTION = re.compile(r"^[0-9a-fA-F]{4}$")
+
+
+def read_dummy_usage(eds):
+    """The data types [DummyUsage] declares as dummies (value 1), and its problems as a list of
+    (section, key, message) as written. No section declares none."""
+    declared, problems = set(), []
+    sec = eds.section(DUMMY_SECTION)
+    if sec is None:
+        return declared, problems
+    for key in sec.keys.values():
+        m = DUMMY_KEY.match(key.name)
+        dtype = int(m.group(1), 16) if m else None
+        label = sec.label(key.name)
+        if dtype not in DUMMY_TYPES:
+            problems.append((sec.name, label, "not a dummy entry: the keys are "
+                                              "Dummy0001..Dummy0007"))
+            continue
+        if key.name != "Dummy%04X" % dtype:
+            problems.append((sec.name, label, "spell it Dummy%04X (python canopen reads keys "
+                                              "case-sensitively)" % dtype))
+            continue
+        if key.value not in ("0", "1"):
+            problems.append((sec.name, label, "must be 0 or 1"))
+        elif key.value == "1":
+            declared.add(dtype)
+    for dtype in DUMMY_TYPES:
+        if not sec.has("Dummy%04X" % dtype):
+            problems.append((sec.name, "Dummy%04X" % dtype,
+                             "missing (python canopen reads Dummy0001..Dummy0007)"))
+    return declared, problems
 
 
 # ---------------------------------------------------------------------------------------------
@@ -597,7 +634,20 @@ def c_comment(text):
     return text.replace("*/", "* /").replace("/*", "/ *")
 
 
-def render(entries, eds_name, prefix, data_size, hooks_name):
+def dummy_types(eds):
+    """co_od_t.dummy_types from [DummyUsage]: the data types 0002h..0007h an RPDO may map as
+    dummies. The core maps whole bytes, so a BOOLEAN dummy (Dummy0001=1) is refused."""
+    declared, problems = read_dummy_usage(eds)
+    if problems:
+        raise eds.error(*problems[0])
+    if 0x01 in declared:
+        sec = eds.section(DUMMY_SECTION)
+        raise eds.error(sec.name, sec.label("Dummy0001"), "BOOLEAN dummies are not supported: "
+                        "the core maps whole bytes")
+    return sorted(declared)
+
+
+def render(entries, eds_name, prefix, data_size, hooks_name, dummies):
     guard = prefix.upper() + "_OD_H"
     macro = prefix.upper()
     banner = ("/* Generated from %s%s by tools/edstool.py: do not edit. */\n"
@@ -657,8 +707,10 @@ def render(entries, eds_name, prefix, data_size, hooks_name):
                  % (e.index, e.sub, DATA_TYPES[e.dtype][0], c_flags(e.flags), e.size, e.offset,
                     limit, hook))
     c.append("};\n\n")
+    dummy = " | ".join("CO_OD_DUMMY(CO_DT_%s)" % DATA_TYPES[t][0] for t in dummies) or "0"
     c.append('const co_od_t %s_od = {"%s", %s_od_entries, %s_OD_ENTRIES, %s_OD_DATA_SIZE,\n'
-             "    %s_od_defaults};\n" % (prefix, prefix, prefix, macro, macro, prefix))
+             "    %s_od_defaults, /* [DummyUsage] */ %s};\n"
+             % (prefix, prefix, prefix, macro, macro, prefix, dummy))
     return "".join(h), "".join(c)
 
 
@@ -686,9 +738,10 @@ def generate(args):
     if len(entries) > 0xFFFF:
         raise eds.error(None, None, "more than 65535 entries")
     hooks_name = apply_hooks(entries, args.hooks) if args.hooks else None
+    dummies = dummy_types(eds)
     data_size = layout(entries)
     header, source = render(entries, os.path.basename(args.eds), args.prefix, data_size,
-                            hooks_name)
+                            hooks_name, dummies)
     try:
         os.makedirs(args.out_dir, exist_ok=True)
         write_if_changed(os.path.join(args.out_dir, args.prefix + "_od.h"), header)
@@ -762,6 +815,7 @@ class Checker:
             return
         self.check_file_info()
         self.check_device_info()
+        self.check_dummy_usage()
         objects = self.check_object_lists()
         self.check_objects(objects)
         self.check_pdo_counts(objects)
@@ -801,6 +855,10 @@ class Checker:
             supported += value == 1
         if supported == 0:
             self.error("DeviceInfo", "BaudRate_*", "no baud rate supported")
+
+    def check_dummy_usage(self):
+        for section, key, message in read_dummy_usage(self.eds)[1]:
+            self.error(section, key, message)
 
     def check_object_lists(self):
         """{index: Section} of the object sections, after checking they match the lists."""

@@ -1,7 +1,9 @@
 /* Node guarding and life guarding (CiA 301 section 7.2.8.3.1).
  *
- * A remote frame on 0x700 + node-id (DLC 0 or 1) is answered with the NMT state and a toggle bit
- * (bit 7) that starts at 0 and alternates; only reset communication sets it back to 0. The first
+ * A remote frame (DLC 0 or 1) on the guarding COB-ID is answered on the same CAN-ID with the NMT
+ * state and a toggle bit (bit 7) that starts at 0 and alternates; only reset communication sets it
+ * back to 0. The guarding COB-ID is 100Eh when the dictionary has that object (an 11-bit CAN-ID;
+ * reset communication restores it like the rest of 1000h-1FFFh), else 0x700 + node-id. The first
  * request starts life guarding: when no request arrives within the life time (100Ch guard time x
  * 100Dh life time factor, ms; 0 = off), hooks->guarding(lost = true) is called once, and
  * hooks->guarding(lost = false) when requests come again. Writing 100Ch or 100Dh restarts the

@@ -66,13 +66,21 @@ struct co_od_entry {
     const co_od_hook_t *hook;     /* NULL: plain storage */
 };
 
-/* One object dictionary: the sorted table and the image of its default values. */
+/* Bit of co_od_t.dummy_types for a data type index 0002h..0007h (co_dtype_t). */
+#define CO_OD_DUMMY(type) (1u << (type))
+
+/* One object dictionary: the sorted table, the image of its default values and the dummy entries
+ * it supports. */
 typedef struct co_od {
     const char *name;
     const co_od_entry_t *entries;
     uint16_t count;
     uint32_t data_size;      /* bytes of a node's data block */
     const uint8_t *defaults; /* data_size bytes: default values, node-id terms excluded */
+    /* Data types an RPDO may map as a dummy (CiA 301 7.4.8.4), as the EDS declares them in
+     * [DummyUsage] (CiA 306): CO_OD_DUMMY(n) set for data type 000nh, n = 2..7 (INTEGER8 ..
+     * UNSIGNED32; other bits are ignored: BOOLEAN is not a whole byte). 0: no dummy mapping. */
+    uint8_t dummy_types;
 } co_od_t;
 
 /* Result of co_od_validate(). */

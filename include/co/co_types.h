@@ -24,6 +24,17 @@ typedef struct co_frame {
     uint8_t data[8];
 } co_frame_t;
 
+/* CiA 301 7.3.5, table "restricted CAN-IDs": identifiers no configurable COB-ID (PDO, SYNC, EMCY)
+ * may use, since NMT, the default SDO channels and NMT error control own them, or they are
+ * reserved: 000h, 001h-07Fh, 101h-180h, 581h-5FFh, 601h-67Fh, 6E0h-6FFh, 701h-77Fh, 780h-7FFh.
+ * The defaults 080h (SYNC) and 081h-0FFh (EMCY) are allowed. `can_id` is the 11-bit CAN-ID. */
+static inline bool co_can_id_restricted(uint32_t can_id)
+{
+    return can_id <= 0x07Fu || (can_id >= 0x101u && can_id <= 0x180u) ||
+           (can_id >= 0x581u && can_id <= 0x5FFu) || (can_id >= 0x601u && can_id <= 0x67Fu) ||
+           (can_id >= 0x6E0u && can_id <= 0x6FFu) || (can_id >= 0x701u && can_id <= 0x7FFu);
+}
+
 /* CiA 301 table 44: static data types, by their object dictionary index. */
 typedef enum co_dtype {
     CO_DT_BOOLEAN = 0x01,

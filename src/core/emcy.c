@@ -155,13 +155,17 @@ void co_emcy_reset(co_node_t *node, co_nmt_reset_t scope)
 }
 
 /* CiA 301 1014h: the CAN-ID may change only while the EMCY is invalid (bit 31 set before or
- * after the write); 29-bit identifiers (bit 29) are not supported. */
+ * after the write); 29-bit identifiers (bit 29) are not supported. A restricted CAN-ID (7.3.5,
+ * co_can_id_restricted) is refused even with bit 31 set, so the EMCY can never be made valid on
+ * one; the default 080h + node-id (081h-0FFh) is allowed. */
 static uint32_t write_cobid(co_node_t *node, uint32_t cobid)
 {
     uint32_t old = (uint32_t)co_od_value(node, 0x1014, 0);
     if (cobid & COBID_FRAME)
         return SDO_ABORT_VALUE_RANGE;
     if ((cobid & COBID_CAN_ID) > CAN_ID_11BIT)
+        return SDO_ABORT_VALUE_RANGE;
+    if (co_can_id_restricted(cobid & CAN_ID_11BIT))
         return SDO_ABORT_VALUE_RANGE;
     bool stays_valid = !(cobid & COBID_INVALID) && !(old & COBID_INVALID);
     if (stays_valid && (cobid & COBID_CAN_ID) != (old & COBID_CAN_ID))

@@ -3,7 +3,17 @@
 #include "co/co_node.h"
 
 #define GUARD_COB_BASE 0x700u
+#define GUARD_COB_ID_11BIT 0x7FFu
 #define GUARD_TOGGLE 0x80u
+
+/* The CAN-ID of requests and replies: 100Eh (COB-ID node guarding, in the ATV312 manual's object
+ * table) when the dictionary has it, else 700h + node-id (CiA 301 7.2.8.3.1). Heartbeat and
+ * boot-up stay on 700h + node-id (nmt.c, heartbeat.c). */
+static uint32_t guarding_cob_id(const co_node_t *node)
+{
+    const co_od_entry_t *e = co_od_find(node->od, 0x100E, 0);
+    return e != NULL ? (uint32_t)co_od_get(node, e) : GUARD_COB_BASE + node->node_id;
+}
 
 static co_time_t life_time_us(uint16_t guard_time_ms, uint8_t life_time_factor)
 {
@@ -40,7 +50,7 @@ void co_guarding_stop(co_node_t *node)
 
 bool co_guarding_receive(co_node_t *node, const co_frame_t *frame)
 {
-    if (frame->id != GUARD_COB_BASE + node->node_id || !(frame->flags & CO_FRAME_RTR))
+    if (frame->id != guarding_cob_id(node) || !(frame->flags & CO_FRAME_RTR))
         return false;
     /* A guarding request is a remote frame of DLC 0 or 1 (masters differ); the ATV312 runs only
      * one error control protocol, so heartbeat production silences guarding. */
@@ -72,11 +82,17 @@ co_time_t co_guarding_process(co_node_t *node, co_time_t now)
     return CO_TIME_NEVER;
 }
 
-/* The new guard time or life time factor is not stored yet: combine it with the other one. */
+/* 100Eh (ATV312 manual, COB-ID node guarding): an 11-bit CAN-ID, bits 11-31 clear, else
+ * 0x06090030; it applies from the next request. Its default 700h + node-id lies in the CiA 301
+ * restricted range, which binds the configurable PDO/SYNC/EMCY COB-IDs only, so it is not checked.
+ * 100Ch/100Dh: the new guard time or life time factor is not stored yet: combine it with the
+ * other one and restart a running life timer. */
 uint32_t co_guarding_od_write(co_node_t *node, const co_od_entry_t *entry, const uint8_t *data,
                               size_t len)
 {
     (void)len;
+    if (entry->index == 0x100E)
+        return co_get_u32(data) & ~GUARD_COB_ID_11BIT ? SDO_ABORT_VALUE_RANGE : CO_SDO_OK;
     uint16_t guard_time = (uint16_t)co_od_value(node, 0x100C, 0);
     uint8_t factor = (uint8_t)co_od_value(node, 0x100D, 0);
     if (entry->index == 0x100C)

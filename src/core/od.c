@@ -238,7 +238,7 @@ static uint32_t service_write(co_node_t *node, const co_od_entry_t *e, const uin
         return co_emcy_od_write(node, e, data, len);
     if (i == 0x1005 || i == 0x1006 || i == 0x1007 || i == 0x1019)
         return co_sync_od_write(node, e, data, len);
-    if (i == 0x100C || i == 0x100D)
+    if (i == 0x100C || i == 0x100D || i == 0x100E)
         return co_guarding_od_write(node, e, data, len);
     if (i == 0x1016 || i == 0x1017)
         return co_heartbeat_od_write(node, e, data, len);

@@ -60,9 +60,18 @@ static bool pdo_type_is_sync(uint8_t type)
 
 /* ---- Mapping ---------------------------------------------------------------------------- */
 
+/* A data type index 0002h..0007h, sub-index 0, that this dictionary declares as a dummy. */
+static bool map_entry_is_dummy(const co_od_t *od, uint16_t index, uint8_t subindex)
+{
+    return index >= CO_DT_INTEGER8 && index <= CO_DT_UNSIGNED32 && subindex == 0 &&
+           (od->dummy_types & CO_OD_DUMMY(index)) != 0;
+}
+
 /* One mapping entry: index << 16 | sub-index << 8 | bit length. The object must exist and be
  * mappable in this direction (0x06040041), and be mapped whole (0x06040043). RPDOs may map a
- * data type index 0002h..0007h as a dummy that swallows bytes (CiA 301 7.4.8.4). */
+ * data type index 0002h..0007h as a dummy that swallows bytes (CiA 301 7.4.8.4), if the
+ * dictionary supports it ([DummyUsage] of CiA 306, co_od_t.dummy_types); otherwise it is an
+ * absent object (0x06040041). */
 static uint32_t map_entry_decode(const co_node_t *node, uint32_t value, pdo_dir_t dir,
                                  const co_od_entry_t **entry, uint8_t *size)
 {
@@ -70,7 +79,7 @@ static uint32_t map_entry_decode(const co_node_t *node, uint32_t value, pdo_dir_
     uint8_t subindex = (uint8_t)(value >> 8);
     uint32_t bits = value & 0xFFu;
     *entry = NULL;
-    if (dir == PDO_RX && index >= CO_DT_INTEGER8 && index <= CO_DT_UNSIGNED32 && subindex == 0) {
+    if (dir == PDO_RX && map_entry_is_dummy(node->od, index, subindex)) {
         if (bits != co_od_type_size((uint8_t)index) * 8u)
             return SDO_ABORT_PARAM_INCOMPATIBLE;
         *size = (uint8_t)(bits / 8u);
@@ -470,16 +479,9 @@ co_time_t co_pdo_process(co_node_t *node, co_time_t now)
 
 /* ---- Parameter writes (CiA 301 7.5.2.35-7.5.2.38) ----------------------------------------- */
 
-/* CiA 301 7.3.5 table 43: CAN-IDs reserved for NMT, SYNC/EMCY/TIME, SDO and NMT error control. */
-static bool can_id_restricted(uint32_t id)
-{
-    return id <= 0x07Fu || (id >= 0x101u && id <= 0x180u) || (id >= 0x581u && id <= 0x5FFu) ||
-           (id >= 0x601u && id <= 0x67Fu) || (id >= 0x6E0u && id <= 0x6FFu) || id >= 0x701u;
-}
-
-/* CiA 301 table 72: 11-bit CAN-IDs only (bit 29 and bits 28..11 clear), no restricted CAN-ID,
- * and the CAN-ID of a valid PDO may only change together with invalidating it. A TPDO that
- * answers RTRs (252/253) cannot forbid them (bit 30). */
+/* CiA 301 table 72: 11-bit CAN-IDs only (bit 29 and bits 28..11 clear), no restricted CAN-ID for
+ * a valid PDO (7.3.5, co_can_id_restricted), and the CAN-ID of a valid PDO may only change together
+ * with invalidating it. A TPDO that answers RTRs (252/253) cannot forbid them (bit 30). */
 static uint32_t pdo_write_cob_id(const co_node_t *node, uint16_t comm, uint32_t value,
                                  pdo_dir_t dir)
 {
@@ -490,7 +492,7 @@ static uint32_t pdo_write_cob_id(const co_node_t *node, uint16_t comm, uint32_t 
         return CO_SDO_OK;
     if (pdo_cob_id_valid(old) && (old & CO_PDO_COBID_CAN_ID) != (value & CO_PDO_COBID_CAN_ID))
         return SDO_ABORT_VALUE_RANGE;
-    if (can_id_restricted(value & CO_PDO_COBID_CAN_ID))
+    if (co_can_id_restricted(value & CO_PDO_COBID_CAN_ID))
         return SDO_ABORT_VALUE_RANGE;
     uint8_t type = (uint8_t)od_param(node, comm, PDO_SUB_TYPE, CO_PDO_TYPE_EVENT_PROFILE);
     if (dir == PDO_TX && (value & CO_PDO_COBID_NO_RTR) && tpdo_type_is_rtr(type))

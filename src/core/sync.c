@@ -109,12 +109,18 @@ bool co_sync_receive(co_node_t *node, const co_frame_t *frame)
     return true;
 }
 
-/* CiA 301 7.5.2.5: 11-bit CAN-IDs only, and the CAN-ID may not change while this node produces
- * the SYNC and keeps producing it. Bit 31 is "do not care". */
+/* CiA 301 7.5.2.5: 11-bit CAN-IDs only, no restricted CAN-ID (7.3.5, co_can_id_restricted; the
+ * default 080h is not one), and the CAN-ID may not change while this node produces the SYNC and
+ * keeps producing it. Bit 30 (producer) needs a communication cycle period: a dictionary without
+ * 1006h (7.5.2.6) could never produce, so it refuses the bit. Bit 31 is "do not care". */
 static uint32_t sync_write_cob_id(co_node_t *node, uint32_t value)
 {
     uint32_t old = sync_cob_id(node);
     if (value & ~(0x80000000u | CO_SYNC_COBID_PRODUCER | CO_SYNC_COBID_CAN_ID))
+        return SDO_ABORT_VALUE_RANGE;
+    if (co_can_id_restricted(value & CO_SYNC_COBID_CAN_ID))
+        return SDO_ABORT_VALUE_RANGE;
+    if ((value & CO_SYNC_COBID_PRODUCER) && co_od_find(node->od, 0x1006, 0) == NULL)
         return SDO_ABORT_VALUE_RANGE;
     if ((old & CO_SYNC_COBID_PRODUCER) && (value & CO_SYNC_COBID_PRODUCER) &&
         (old & CO_SYNC_COBID_CAN_ID) != (value & CO_SYNC_COBID_CAN_ID))

@@ -1,6 +1,7 @@
-/* The ATV312 on the bus: its dictionary as the manual tables it, the manual's frame vectors
- * (T31-02..15) on the real dictionary, TPDO1 following the status word, communication loss
- * (heartbeat, life guarding) as the CnF fault with its EMCY, CAN bus events, reset node. */
+/* The ATV312 on the bus: its dictionary as the manual tables it, the CiA 301 rules that depend on
+ * it, the manual's frame vectors (T31-02..15) on the real dictionary, TPDO1 following the status
+ * word, communication loss (heartbeat, life guarding) as the CnF fault with its EMCY, CAN bus
+ * events, reset node. */
 #include "bench.h"
 
 #include <stdlib.h>
@@ -67,6 +68,26 @@ START_TEST(pdo6_parameter_rules)
     ck_assert_uint_eq(bench_sdo_write(&b, 0x1805, 5, 0, 2), 0);
     ck_assert_uint_eq(bench_sdo_write(&b, 0x1800, 5, 9, 2), SDO_ABORT_VALUE_LOW);
     ck_assert_uint_eq(bench_sdo_write(&b, 0x1800, 5, 10, 2), 0);
+}
+END_TEST
+
+/* CiA 301 rules that depend on the dictionary, on the drive's: no 1006h, so 1005h bit 30 (SYNC
+ * producer) is refused; [DummyUsage] all 0, so RPDO6 maps no dummy; node guarding follows 100Eh. */
+START_TEST(dictionary_dependent_cia301_rules)
+{
+    bench_t b;
+    bench_start(&b);
+    ck_assert_uint_eq(bench_sdo_write(&b, 0x1005, 0, 0x40000080, 4), SDO_ABORT_VALUE_RANGE);
+    ck_assert_uint_eq(bench_sdo_write(&b, 0x1005, 0, 0x701, 4), SDO_ABORT_VALUE_RANGE);
+    ck_assert_uint_eq(bench_read(&b, 0x1005, 0), 0x80);
+    ck_assert_uint_eq(bench_sdo_write(&b, 0x1605, 0, 0, 1), 0);
+    ck_assert_uint_eq(bench_sdo_write(&b, 0x1605, 1, 0x00050008, 4), SDO_ABORT_NOT_MAPPABLE);
+    ck_assert_uint_eq(bench_sdo_write(&b, 0x100E, 0, 0x80000704, 4), SDO_ABORT_VALUE_RANGE);
+    ck_assert_uint_eq(bench_sdo_write(&b, 0x100E, 0, 0x123, 4), 0);
+    bench_rx(&b, "704#R");
+    bench_expect_none(&b);
+    bench_rx(&b, "123#R");
+    bench_expect(&b, "123#7F");
 }
 END_TEST
 
@@ -287,6 +308,7 @@ int main(void)
     TCase *tc = tcase_create("network");
     tcase_add_test(tc, dictionary_as_the_manual_tables_it);
     tcase_add_test(tc, pdo6_parameter_rules);
+    tcase_add_test(tc, dictionary_dependent_cia301_rules);
     tcase_add_test(tc, manual_sdo_vectors);
     tcase_add_test(tc, tpdo1_follows_the_status_word);
     tcase_add_test(tc, manual_pdo6_default_mappings);

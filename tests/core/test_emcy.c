@@ -158,6 +158,32 @@ START_TEST(invalid_cobid_silences_and_can_id_rules)
 }
 END_TEST
 
+/* CiA 301 7.3.5: 1014h refuses a restricted CAN-ID at both edges of every range, valid or not
+ * (bit 31), so an invalid EMCY cannot be prepared on one either; 080h + node-id and the other free
+ * CAN-IDs are taken. */
+START_TEST(restricted_can_ids_refused_even_when_invalid)
+{
+    test_rx(&t, "604#23141000FF050080"); /* 1014h = 800005FFh */
+    test_expect(&t, "584#8014100030000906");
+    for (size_t i = 0; i < TEST_RESTRICTED_CAN_IDS; i++) {
+        uint32_t id = test_restricted_can_id[i];
+        ck_assert_uint_eq(test_write(&t, 0x1014, 0, id, 4), SDO_ABORT_VALUE_RANGE);
+        ck_assert_uint_eq(test_write(&t, 0x1014, 0, 0x80000000u | id, 4), SDO_ABORT_VALUE_RANGE);
+    }
+    ck_assert_int_eq(co_od_value(&t.node, 0x1014, 0), 0x84);
+    for (size_t i = 0; i < TEST_FREE_CAN_IDS; i++) {
+        uint32_t id = test_free_can_id[i];
+        ck_assert_uint_eq(test_write(&t, 0x1014, 0, 0x80000000u | id, 4), 0);
+        ck_assert_uint_eq(test_write(&t, 0x1014, 0, id, 4), 0);
+        ck_assert_uint_eq(test_write(&t, 0x1014, 0, 0x80000000u | id, 4), 0);
+    }
+    ck_assert_uint_eq(test_write(&t, 0x1014, 0, 0x800000FF, 4), 0);
+    ck_assert_uint_eq(test_write(&t, 0x1014, 0, 0x000000FF, 4), 0);
+    raise_error(0x1000, 0);
+    test_expect(&t, "0FF#0010010000000000");
+}
+END_TEST
+
 START_TEST(not_sent_in_stopped)
 {
     ck_assert_uint_eq(test_write(&t, 0x1015, 0, 100, 2), 0);
@@ -207,6 +233,7 @@ int main(void)
     tcase_add_test(tc, inhibit_time_queues_with_exact_times);
     tcase_add_test(tc, queue_overflow_drops_newest);
     tcase_add_test(tc, invalid_cobid_silences_and_can_id_rules);
+    tcase_add_test(tc, restricted_can_ids_refused_even_when_invalid);
     tcase_add_test(tc, not_sent_in_stopped);
     tcase_add_test(tc, reset_scopes);
     suite_add_tcase(s, tc);

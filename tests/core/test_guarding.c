@@ -1,6 +1,7 @@
 /* Node guarding (toggle sequence, state bytes, DLC 0 or 1), life guarding (one event per loss,
  * resume, restart on 100Ch/100Dh writes) and the exclusion by the heartbeat producer. */
 #include "test_bus.h"
+#include "test_od.h"
 
 #include <stdlib.h>
 
@@ -196,6 +197,63 @@ START_TEST(atv312_guard_time_frames)
 }
 END_TEST
 
+/* 100Eh moves node guarding, request and reply, to its CAN-ID; boot-up and heartbeat stay on
+ * 700h + node-id; reset communication brings back the default. */
+START_TEST(cob_id_100e_moves_guarding)
+{
+    configure_life_time();
+    test_rx(&t, "604#230E100023010000"); /* 100Eh = 123h */
+    test_expect(&t, "584#600E100000000000");
+    test_rx(&t, "704#R");
+    test_expect_none(&t);
+    test_rx(&t, "123#R");
+    test_expect(&t, "123#7F");
+    test_rx(&t, "123#R1");
+    test_expect(&t, "123#FF");
+    test_advance(&t, 2000000); /* life guarding runs on the new CAN-ID */
+    ck_assert_uint_eq(event_count, 1);
+    ck_assert_uint_eq(test_write(&t, 0x1017, 0, 100, 2), 0);
+    test_advance(&t, 100000);
+    test_expect(&t, "704#7F");
+    ck_assert_uint_eq(test_write(&t, 0x1017, 0, 0, 2), 0);
+    test_rx(&t, "000#8204");
+    test_expect(&t, "704#00");
+    ck_assert_int_eq(co_od_value(&t.node, 0x100E, 0), 0x704);
+    test_rx(&t, "123#R");
+    test_expect_none(&t);
+    test_rx(&t, "704#R");
+    test_expect(&t, "704#7F");
+}
+END_TEST
+
+/* 100Eh holds an 11-bit CAN-ID: any of bits 11-31 set is refused with 0x06090030. */
+START_TEST(cob_id_100e_write_rules)
+{
+    test_rx(&t, "604#230E100000080000"); /* 100Eh = 800h */
+    test_expect(&t, "584#800E100030000906");
+    static const uint32_t refused[] = {0x00000800, 0x00010704, 0x20000704, 0x40000704, 0x80000704};
+    for (size_t i = 0; i < sizeof(refused) / sizeof(refused[0]); i++)
+        ck_assert_uint_eq(test_write(&t, 0x100E, 0, refused[i], 4), SDO_ABORT_VALUE_RANGE);
+    ck_assert_int_eq(co_od_value(&t.node, 0x100E, 0), 0x704);
+    ck_assert_uint_eq(test_write(&t, 0x100E, 0, 0x7FF, 4), 0);
+    test_rx(&t, "7FF#R");
+    test_expect(&t, "7FF#7F");
+}
+END_TEST
+
+/* A dictionary without 100Eh guards on 700h + node-id. */
+START_TEST(without_100e_guarding_on_700h_plus_node_id)
+{
+    test_node_start_od(&t, test_od_without(0x100E), 5, &hooks, NULL);
+    test_rx(&t, "705#R");
+    test_expect(&t, "705#7F");
+    ck_assert_uint_eq(test_write(&t, 0x100E, 0, 0x123, 4), SDO_ABORT_NO_OBJECT);
+    test_rx(&t, "123#R");
+    test_rx(&t, "704#R");
+    test_expect_none(&t);
+}
+END_TEST
+
 int main(void)
 {
     Suite *s = suite_create("guarding");
@@ -209,6 +267,9 @@ int main(void)
     tcase_add_test(tc, parameter_writes_restart_life_timer);
     tcase_add_test(tc, heartbeat_excludes_guarding);
     tcase_add_test(tc, atv312_guard_time_frames);
+    tcase_add_test(tc, cob_id_100e_moves_guarding);
+    tcase_add_test(tc, cob_id_100e_write_rules);
+    tcase_add_test(tc, without_100e_guarding_on_700h_plus_node_id);
     suite_add_tcase(s, tc);
     SRunner *sr = srunner_create(s);
     srunner_run_all(sr, CK_NORMAL);

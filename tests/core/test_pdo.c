@@ -48,12 +48,17 @@ static void app_set(uint16_t index, uint8_t sub, int64_t value)
     t.bus.deadline = co_node_process(&t.node, t.bus.now);
 }
 
-static void start(void)
+static void start_od(const co_od_t *od)
 {
     rpdo_calls = 0;
     rpdo_last = 0;
     pdo_writes = 0;
-    test_node_start(&t, 4, &hooks, NULL);
+    test_node_start_od(&t, od, 4, &hooks, NULL);
+}
+
+static void start(void)
+{
+    start_od(&test_od);
 }
 
 /* Node 4 with TPDO1's event timer off, so only changes make it transmit. */
@@ -580,19 +585,18 @@ END_TEST
 START_TEST(restricted_can_ids_at_every_edge)
 {
     static const uint16_t comm[] = {0x1400, 0x1800};
-    static const uint16_t restricted[] = {0x000, 0x07F, 0x101, 0x180, 0x581, 0x5FF,
-                                          0x601, 0x67F, 0x6E0, 0x6FF, 0x701, 0x7FF};
-    static const uint16_t allowed[] = {0x080, 0x100, 0x181, 0x580, 0x600, 0x680, 0x6DF, 0x700};
     start_quiet();
     for (size_t c = 0; c < sizeof(comm) / sizeof(comm[0]); c++) {
         ck_assert_uint_eq(write_param(comm[c], 1, 0x80000000u, 4), 0);
-        for (size_t i = 0; i < sizeof(restricted) / sizeof(restricted[0]); i++) {
-            ck_assert_uint_eq(write_param(comm[c], 1, restricted[i], 4), SDO_ABORT_VALUE_RANGE);
-            ck_assert_uint_eq(write_param(comm[c], 1, 0x80000000u | restricted[i], 4), 0);
+        for (size_t i = 0; i < TEST_RESTRICTED_CAN_IDS; i++) {
+            uint32_t id = test_restricted_can_id[i];
+            ck_assert_uint_eq(write_param(comm[c], 1, id, 4), SDO_ABORT_VALUE_RANGE);
+            ck_assert_uint_eq(write_param(comm[c], 1, 0x80000000u | id, 4), 0);
         }
-        for (size_t i = 0; i < sizeof(allowed) / sizeof(allowed[0]); i++) {
-            ck_assert_uint_eq(write_param(comm[c], 1, allowed[i], 4), 0);
-            ck_assert_uint_eq(write_param(comm[c], 1, 0x80000000u | allowed[i], 4), 0);
+        for (size_t i = 0; i < TEST_FREE_CAN_IDS; i++) {
+            uint32_t id = test_free_can_id[i];
+            ck_assert_uint_eq(write_param(comm[c], 1, id, 4), 0);
+            ck_assert_uint_eq(write_param(comm[c], 1, 0x80000000u | id, 4), 0);
         }
     }
 }
@@ -748,6 +752,38 @@ START_TEST(rpdo_dummy_mapping_skips_bytes)
 }
 END_TEST
 
+/* CiA 306 [DummyUsage]: an RPDO maps as dummies only the data types the dictionary declares
+ * (co_od_t.dummy_types); any other data type index is an object it does not have (0x06040041). */
+START_TEST(dummy_mapping_only_for_declared_types)
+{
+    static co_od_t od;
+    od = test_od;
+    od.dummy_types = 0;
+    start_od(&od);
+    ck_assert_uint_eq(write_param(0x1605, 0, 0, 1), 0);
+    test_rx(&t, "604#2305160108000500"); /* 1605h:01h = 00050008h */
+    test_expect(&t, "584#8005160141000406");
+    ck_assert_int_eq(co_od_value(&t.node, 0x1605, 1), 0x60400010);
+    for (uint8_t type = CO_DT_INTEGER8; type <= CO_DT_UNSIGNED32; type++) {
+        uint32_t entry = (uint32_t)type << 16 | (uint32_t)co_od_type_size(type) * 8u;
+        ck_assert_uint_eq(write_param(0x1605, 1, entry, 4), SDO_ABORT_NOT_MAPPABLE);
+    }
+    /* A dictionary that declares UNSIGNED8 only. */
+    od.dummy_types = CO_OD_DUMMY(CO_DT_UNSIGNED8);
+    start_od(&od);
+    ck_assert_uint_eq(write_param(0x1605, 0, 0, 1), 0);
+    ck_assert_uint_eq(write_param(0x1605, 1, 0x00070020, 4), SDO_ABORT_NOT_MAPPABLE);
+    ck_assert_uint_eq(write_param(0x1605, 1, 0x00050008, 4), 0);
+    ck_assert_uint_eq(write_param(0x1605, 0, 2, 1), 0);
+    ck_assert_uint_eq(write_param(0x1405, 1, 0x304, 4), 0);
+    go_operational();
+    test_drain(&t);
+    test_rx(&t, "304#AA3412");
+    ck_assert_int_eq(co_od_value(&t.node, 0x6042, 0), 0x1234);
+    ck_assert_uint_eq(pdo_writes, 1);
+}
+END_TEST
+
 START_TEST(zero_length_mapping_sends_empty_frame)
 {
     start_quiet();
@@ -798,6 +834,7 @@ int main(void)
     tcase_add_test(tc, mapping_entry_aborts);
     tcase_add_test(tc, mapping_longer_than_64_bits);
     tcase_add_test(tc, rpdo_dummy_mapping_skips_bytes);
+    tcase_add_test(tc, dummy_mapping_only_for_declared_types);
     tcase_add_test(tc, zero_length_mapping_sends_empty_frame);
     suite_add_tcase(s, tc);
     SRunner *sr = srunner_create(s);

@@ -322,6 +322,27 @@ START_TEST(sync_parameters_survive_reset_node)
 }
 END_TEST
 
+/* 100Eh is a communication parameter like the others: reset communication gives back the stored
+ * value, and the default once the stored one is erased; guarding follows it. */
+START_TEST(guarding_cob_id_stored_with_the_communication_parameters)
+{
+    ck_assert_uint_eq(test_sdo_write(&t, 0x100E, 0, 0x123, 4), 0);
+    ck_assert_uint_eq(test_sdo_write(&t, 0x1010, 2, SAVE, 4), 0);
+    ck_assert_uint_eq(test_sdo_write(&t, 0x100E, 0, 0x124, 4), 0);
+    test_rx(&t, "000#8204");
+    test_expect(&t, "704#00");
+    ck_assert_int_eq(co_od_value(&t.node, 0x100E, 0), 0x123);
+    test_rx(&t, "123#R");
+    test_expect(&t, "123#7F");
+    ck_assert_uint_eq(test_sdo_write(&t, 0x1011, 2, LOAD, 4), 0);
+    test_rx(&t, "000#8204");
+    test_expect(&t, "704#00");
+    ck_assert_int_eq(co_od_value(&t.node, 0x100E, 0), 0x704);
+    test_rx(&t, "704#R");
+    test_expect(&t, "704#7F");
+}
+END_TEST
+
 START_TEST(no_image_keeps_defaults)
 {
     change_values();
@@ -347,6 +368,7 @@ int main(void)
     tcase_add_test(tc, read_failure_while_applying_undoes_the_area);
     tcase_add_test(tc, dictionary_change_never_misloads);
     tcase_add_test(tc, sync_parameters_survive_reset_node);
+    tcase_add_test(tc, guarding_cob_id_stored_with_the_communication_parameters);
     tcase_add_test(tc, no_image_keeps_defaults);
     suite_add_tcase(s, tc);
     SRunner *sr = srunner_create(s);

@@ -155,6 +155,52 @@ START_TEST(cob_id_rules)
 }
 END_TEST
 
+/* CiA 301 7.3.5: 1005h refuses a restricted CAN-ID at both edges of every range, whatever bits 30
+ * and 31 say; the free CAN-IDs beside them are taken by a consumer and a producer. */
+START_TEST(restricted_can_ids_at_every_edge)
+{
+    start();
+    test_rx(&t, "604#23051000FF050000"); /* 1005h = 5FFh */
+    test_expect(&t, "584#8005100030000906");
+    for (size_t i = 0; i < TEST_RESTRICTED_CAN_IDS; i++) {
+        uint32_t id = test_restricted_can_id[i];
+        ck_assert_uint_eq(write_param(0x1005, 0, id, 4), SDO_ABORT_VALUE_RANGE);
+        ck_assert_uint_eq(write_param(0x1005, 0, 0x40000000u | id, 4), SDO_ABORT_VALUE_RANGE);
+        ck_assert_uint_eq(write_param(0x1005, 0, 0x80000000u | id, 4), SDO_ABORT_VALUE_RANGE);
+    }
+    ck_assert_int_eq(co_od_value(&t.node, 0x1005, 0), 0x80);
+    test_rx(&t, "080#");
+    ck_assert_uint_eq(sync_calls, 1);
+    for (size_t i = 0; i < TEST_FREE_CAN_IDS; i++) {
+        uint32_t id = test_free_can_id[i];
+        ck_assert_uint_eq(write_param(0x1005, 0, id, 4), 0);
+        ck_assert_uint_eq(write_param(0x1005, 0, 0x40000000u | id, 4), 0);
+        ck_assert_uint_eq(write_param(0x1005, 0, 0x80000000u | id, 4), 0);
+    }
+}
+END_TEST
+
+/* CiA 301 7.5.2.5/7.5.2.6: without 1006h nothing could be produced, so bit 30 is refused; the
+ * consumer works as before and no SYNC is ever sent. */
+START_TEST(producer_refused_without_1006)
+{
+    sync_calls = 0;
+    test_node_start_od(&t, test_od_without(0x1006), 4, &hooks, NULL);
+    test_rx(&t, "604#2305100080000040"); /* 1005h = 40000080h */
+    test_expect(&t, "584#8005100030000906");
+    ck_assert_uint_eq(write_param(0x1005, 0, 0x40000081, 4), SDO_ABORT_VALUE_RANGE);
+    ck_assert_uint_eq(write_param(0x1005, 0, 0xC0000080, 4), SDO_ABORT_VALUE_RANGE);
+    ck_assert_int_eq(co_od_value(&t.node, 0x1005, 0), 0x80);
+    ck_assert_uint_eq(write_param(0x1006, 0, 1000, 4), SDO_ABORT_NO_OBJECT);
+    ck_assert_uint_eq(write_param(0x1005, 0, 0x81, 4), 0);
+    test_rx(&t, "081#");
+    ck_assert_uint_eq(sync_calls, 1);
+    test_advance(&t, 10000 * MS);
+    test_expect_none(&t);
+    ck_assert_uint_eq(t.bus.deadline, CO_TIME_NEVER);
+}
+END_TEST
+
 START_TEST(consumer_counter_and_hook)
 {
     start();
@@ -223,6 +269,8 @@ int main(void)
     tcase_add_test(tc, period_change_restarts_production);
     tcase_add_test(tc, overflow_value_rules);
     tcase_add_test(tc, cob_id_rules);
+    tcase_add_test(tc, restricted_can_ids_at_every_edge);
+    tcase_add_test(tc, producer_refused_without_1006);
     tcase_add_test(tc, consumer_counter_and_hook);
     tcase_add_test(tc, consumer_wrong_length_emcy_8240);
     tcase_add_test(tc, consumer_ignored_when_stopped);

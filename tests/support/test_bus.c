@@ -6,6 +6,12 @@
 #include <stdlib.h>
 #include <string.h>
 
+const uint16_t test_restricted_can_id[TEST_RESTRICTED_CAN_IDS] = {
+    0x000, 0x001, 0x07F, 0x101, 0x180, 0x581, 0x5FF, 0x601,
+    0x67F, 0x6E0, 0x6FF, 0x701, 0x77F, 0x780, 0x7FF};
+const uint16_t test_free_can_id[TEST_FREE_CAN_IDS] = {0x080, 0x100, 0x181, 0x580,
+                                                      0x600, 0x680, 0x6DF, 0x700};
+
 static void bus_send(void *user, const co_frame_t *frame)
 {
     test_bus_t *bus = user;
@@ -18,11 +24,17 @@ static void bus_send(void *user, const co_frame_t *frame)
 void test_node_start(test_node_t *t, uint8_t node_id, const co_app_hooks_t *hooks,
                      const co_storage_t *storage)
 {
+    test_node_start_od(t, &test_od, node_id, hooks, storage);
+}
+
+void test_node_start_od(test_node_t *t, const co_od_t *od, uint8_t node_id,
+                        const co_app_hooks_t *hooks, const co_storage_t *storage)
+{
     memset(t, 0, sizeof(*t));
-    ck_assert_uint_le(test_od.data_size, sizeof(t->data));
+    ck_assert_uint_le(od->data_size, sizeof(t->data));
     co_node_config_t config = {
         .node_id = node_id,
-        .od = &test_od,
+        .od = od,
         .od_data = t->data,
         .send = bus_send,
         .user = &t->bus,

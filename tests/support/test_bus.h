@@ -29,6 +29,9 @@ typedef struct test_node {
  * it at time 0 and checks its boot-up frame. */
 void test_node_start(test_node_t *t, uint8_t node_id, const co_app_hooks_t *hooks,
                      const co_storage_t *storage);
+/* The same on another dictionary (a variant of the test OD), which must outlive the node. */
+void test_node_start_od(test_node_t *t, const co_od_t *od, uint8_t node_id,
+                        const co_app_hooks_t *hooks, const co_storage_t *storage);
 
 /* Parses "123#0102", "123#R" (RTR, len 0) or "123#R2" (RTR, len 2) into a frame. */
 co_frame_t test_frame(const char *text);
@@ -50,6 +53,13 @@ co_time_t test_expect_at(test_node_t *t, const char *text, const char *file, int
 void test_expect_none_at(test_node_t *t, const char *file, int line);
 /* Skips all unconsumed frames. */
 void test_drain(test_node_t *t);
+
+/* The CiA 301 7.3.5 restricted CAN-IDs at both edges of every range of the table, and the free
+ * CAN-IDs just beside them (080h, the SYNC default, among them), for the COB-ID rules. */
+#define TEST_RESTRICTED_CAN_IDS 15
+extern const uint16_t test_restricted_can_id[TEST_RESTRICTED_CAN_IDS];
+#define TEST_FREE_CAN_IDS 8
+extern const uint16_t test_free_can_id[TEST_FREE_CAN_IDS];
 
 /* Expedited SDO write/read helpers: return the abort code (0 on success). */
 uint32_t test_sdo_write(test_node_t *t, uint16_t index, uint8_t sub, uint32_t value, uint8_t len);

@@ -148,7 +148,7 @@ static const co_od_entry_t entries[] = {
     E(0x100B, 0, CO_DT_UNSIGNED32, RO | NID, x100b, NULL, NULL),
     E(0x100C, 0, CO_DT_UNSIGNED16, RW, x100c, NULL, NULL),
     E(0x100D, 0, CO_DT_UNSIGNED8, RW, x100d, NULL, NULL),
-    E(0x100E, 0, CO_DT_UNSIGNED32, RO | NID, x100e, NULL, NULL),
+    E(0x100E, 0, CO_DT_UNSIGNED32, RW | NID, x100e, NULL, NULL),
     E(0x1010, 0, CO_DT_UNSIGNED8, RO, x1010_0, NULL, NULL),
     E(0x1010, 1, CO_DT_UNSIGNED32, RW, x1010[0], NULL, NULL),
     E(0x1010, 2, CO_DT_UNSIGNED32, RW, x1010[1], NULL, NULL),
@@ -239,10 +239,30 @@ static const co_od_entry_t entries[] = {
     E(0x6044, 0x00, CO_DT_INTEGER16, ROT, x6044, NULL, NULL),
 };
 
+#define ENTRY_COUNT (sizeof(entries) / sizeof(entries[0]))
+
 const co_od_t test_od = {
     .name = "test",
     .entries = entries,
-    .count = sizeof(entries) / sizeof(entries[0]),
+    .count = ENTRY_COUNT,
     .data_size = sizeof(test_od_data_t),
     .defaults = (const uint8_t *)&defaults,
+    .dummy_types = CO_OD_DUMMY(CO_DT_INTEGER8) | CO_OD_DUMMY(CO_DT_INTEGER16) |
+                   CO_OD_DUMMY(CO_DT_INTEGER32) | CO_OD_DUMMY(CO_DT_UNSIGNED8) |
+                   CO_OD_DUMMY(CO_DT_UNSIGNED16) | CO_OD_DUMMY(CO_DT_UNSIGNED32),
 };
+
+const co_od_t *test_od_without(uint16_t index)
+{
+    static co_od_entry_t kept[ENTRY_COUNT];
+    static co_od_t od;
+    uint16_t count = 0;
+    for (size_t i = 0; i < ENTRY_COUNT; i++) {
+        if (entries[i].index != index)
+            kept[count++] = entries[i];
+    }
+    od = test_od;
+    od.entries = kept;
+    od.count = count;
+    return &od;
+}

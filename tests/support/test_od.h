@@ -1,13 +1,19 @@
 /* A test object dictionary shaped like the Altivar 312's (its communication objects, PDO1/PDO6,
  * the CiA 402 words, ACC/DEC, LCR/OTR), plus 2000h: one test object of every data type, limits,
- * a write-only entry and long strings for segmented and block transfers. Hand-written so the core
- * tests do not depend on the EDS generator. */
+ * a write-only entry and long strings for segmented and block transfers. Unlike the ATV312's it
+ * has 1006h/1007h (a SYNC producer), a writable 1014h and the dummy types 0002h..0007h.
+ * Hand-written so the core tests do not depend on the EDS generator. */
 #ifndef TEST_OD_H
 #define TEST_OD_H
 
 #include "co/co_od.h"
 
 extern const co_od_t test_od;
+
+/* test_od without the entries of one index, for the rules that depend on an optional object being
+ * absent (a dictionary without 1006h, say); the data block is laid out as test_od's. The result
+ * lives in static storage that the next call overwrites. */
+const co_od_t *test_od_without(uint16_t index);
 
 /* A hook on 2000:10 that refuses every write with SDO_ABORT_DATA_LOCAL, and counts reads. */
 extern unsigned test_od_hook_reads;

@@ -73,6 +73,14 @@ BASE = {
 }
 
 
+def dummy_usage(**values):
+    """An edit adding [DummyUsage] with every key 0, then `values` (Dummy0005="1", ...)."""
+    def edit(sections):
+        sections["DummyUsage"] = {"Dummy%04d" % n: "0" for n in range(1, 8)}
+        sections["DummyUsage"].update(values)
+    return edit
+
+
 def render(sections):
     lines = []
     for name, keys in sections.items():
@@ -238,6 +246,20 @@ class GeneratedTable(ToolCase):
                          [b"\x07\x00", b"\x09\x00", b"\x07\x00"])
         self.assertNotIn((0x2001, 4), entries)
 
+    def test_dummy_usage(self):
+        cases = ((None, "0"), (dummy_usage(), "0"),
+                 (dummy_usage(Dummy0007="1", Dummy0005="1"),
+                  "CO_OD_DUMMY(CO_DT_UNSIGNED8) | CO_OD_DUMMY(CO_DT_UNSIGNED32)"))
+        for edit, types in cases:
+            with self.subTest(types=types):
+                self.assertEqual(self.generate(self.eds(edit))[0], 0)
+                self.assertIn("    t_od_defaults, /* [DummyUsage] */ %s};\n" % types,
+                              self.read("t_od.c"))
+
+    def test_atv312_declares_no_dummy(self):
+        path = os.path.join(HERE, "..", "..", "eds", "ATV312.eds")
+        self.assertEqual(edstool.dummy_types(edstool.parse_eds(path)), [])
+
     def test_deterministic_output(self):
         hooks = self.write("t.hooks", "0x2001 zero-ok app_hook\n")
         self.assertEqual(self.generate(self.eds(), hooks, out="a")[0], 0)
@@ -369,6 +391,13 @@ class GeneratorRefusals(ToolCase):
     def test_non_ascii_visible_string(self):
         self.refused(lambda s: s["1008"].update(DefaultValue="D\u00e9v"),
                      "[1008] DefaultValue=D\u00e9v: VISIBLE_STRING must be ASCII")
+
+    def test_boolean_dummy(self):
+        self.refused(dummy_usage(Dummy0001="1"), "[DummyUsage] Dummy0001=1: BOOLEAN dummies are "
+                                                 "not supported: the core maps whole bytes")
+
+    def test_bad_dummy_usage(self):
+        self.refused(dummy_usage(Dummy0005="2"), "[DummyUsage] Dummy0005=2: must be 0 or 1")
 
     def test_duplicate_key(self):
         path = self.write("t.eds", render(BASE).replace("[2001]\n", "[2001]\nDataType=0x0005\n"))
@@ -640,6 +669,28 @@ class Checker(ToolCase):
             for rate in edstool.BAUD_RATES:
                 s["DeviceInfo"]["BaudRate_%d" % rate] = "0"
         self.finds(none, "[DeviceInfo] BaudRate_*: no baud rate supported")
+
+    def test_dummy_usage(self):
+        self.finds(dummy_usage(Dummy0005="2"), "[DummyUsage] Dummy0005=2: must be 0 or 1")
+        self.finds(dummy_usage(Dummy0005="0x1"), "[DummyUsage] Dummy0005=0x1: must be 0 or 1")
+        self.finds(dummy_usage(Dummy0008="1"), "[DummyUsage] Dummy0008=1: not a dummy entry: the "
+                                               "keys are Dummy0001..Dummy0007")
+
+        def lower_case(s):
+            dummy_usage()(s)
+            s["DummyUsage"]["dummy0005"] = s["DummyUsage"].pop("Dummy0005")
+        self.finds(lower_case, "[DummyUsage] dummy0005=0: spell it Dummy0005 (python canopen "
+                               "reads keys case-sensitively)")
+
+        def missing(s):
+            dummy_usage()(s)
+            s["DummyUsage"].pop("Dummy0003")
+        self.finds(missing, "[DummyUsage] Dummy0003: missing (python canopen reads "
+                            "Dummy0001..Dummy0007)")
+
+    def test_boolean_dummy_is_valid_cia_306(self):
+        self.assertEqual(self.check("--strict", self.eds(dummy_usage(Dummy0001="1"))),
+                         (0, "", ""))
 
     def test_key_spelling(self):
         def edit(s):

@@ -1,6 +1,6 @@
 /* The table edstool.py generates from fixtures/device.eds, used by a real node: it validates,
- * loads the EDS defaults with node-id terms added, enforces the EDS limits and the hooks file, and
- * answers SDO uploads with the EDS values. */
+ * loads the EDS defaults with node-id terms added, enforces the EDS limits and the hooks file,
+ * answers SDO uploads with the EDS values and maps the dummies of [DummyUsage]. */
 #include "co/co_node.h"
 #include "dev_od.h"
 
@@ -161,6 +161,29 @@ START_TEST(sdo_upload_of_string_gives_eds_default)
 }
 END_TEST
 
+static uint32_t write_value(uint16_t index, uint8_t sub, uint32_t value, size_t len)
+{
+    uint8_t v[4];
+    co_put_u32(v, value);
+    return co_od_write(&node, index, sub, v, len, CO_OD_ORIGIN_SDO);
+}
+
+/* [DummyUsage] declares UNSIGNED8 and UNSIGNED16: RPDO1 maps those as dummies, no other. */
+START_TEST(dummy_usage_reaches_the_pdo_engine)
+{
+    ck_assert_uint_eq(dev_od.dummy_types,
+                      CO_OD_DUMMY(CO_DT_UNSIGNED8) | CO_OD_DUMMY(CO_DT_UNSIGNED16));
+    start_node();
+    ck_assert_uint_eq(write_value(0x1400, 1, 0x80000000u + 0x200 + NODE_ID, 4), 0);
+    ck_assert_uint_eq(write_value(0x1600, 0, 0, 1), 0);
+    ck_assert_uint_eq(write_value(0x1600, 1, 0x00050008, 4), 0);
+    ck_assert_uint_eq(write_value(0x1600, 1, 0x00060010, 4), 0);
+    ck_assert_uint_eq(write_value(0x1600, 1, 0x00020008, 4), SDO_ABORT_NOT_MAPPABLE);
+    ck_assert_uint_eq(write_value(0x1600, 1, 0x00070020, 4), SDO_ABORT_NOT_MAPPABLE);
+    ck_assert_int_eq(co_od_value(&node, 0x1600, 1), 0x00060010);
+}
+END_TEST
+
 int main(void)
 {
     Suite *s = suite_create("generated_od");
@@ -170,6 +193,7 @@ int main(void)
     tcase_add_test(tc, limits_zero_ok_and_hooks_apply);
     tcase_add_test(tc, strings_keep_eds_default_and_capacity);
     tcase_add_test(tc, sdo_upload_of_string_gives_eds_default);
+    tcase_add_test(tc, dummy_usage_reaches_the_pdo_engine);
     suite_add_tcase(s, tc);
     SRunner *runner = srunner_create(s);
     srunner_run_all(runner, CK_NORMAL);

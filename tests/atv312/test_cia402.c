@@ -2,6 +2,7 @@
  * the manual's table, every status value, quick stop vs fast stop, freewheel, the fault reset
  * edge (seed-devicenet.md sections 1.2-1.4 and 6; SPEC section 3). */
 #include "bench.h"
+#include "check_main.h"
 
 #include <stdlib.h>
 
@@ -279,9 +280,5 @@ int main(void)
     tcase_add_test(tc, fault_reset_on_the_rising_edge_only);
     tcase_add_test(tc, cmd_and_cmdd_are_one_word);
     suite_add_tcase(s, tc);
-    SRunner *sr = srunner_create(s);
-    srunner_run_all(sr, CK_NORMAL);
-    int failed = srunner_ntests_failed(sr);
-    srunner_free(sr);
-    return failed == 0 ? EXIT_SUCCESS : EXIT_FAILURE;
+    return check_run_suite(s);
 }

@@ -2,6 +2,7 @@
  * reached bit, LSP/HSP limits and their CiA 402 views, configuration parameters refused while
  * running, plausible current and torque, deadlines only while ramping. */
 #include "bench.h"
+#include "check_main.h"
 
 #include <stdlib.h>
 
@@ -219,9 +220,5 @@ int main(void)
     tcase_add_test(tc, configuration_refused_while_running);
     tcase_add_test(tc, current_and_torque_are_plausible);
     suite_add_tcase(s, tc);
-    SRunner *sr = srunner_create(s);
-    srunner_run_all(sr, CK_NORMAL);
-    int failed = srunner_ntests_failed(sr);
-    srunner_free(sr);
-    return failed == 0 ? EXIT_SUCCESS : EXIT_FAILURE;
+    return check_run_suite(s);
 }

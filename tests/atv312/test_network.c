@@ -3,6 +3,7 @@
  * word, communication loss (heartbeat, life guarding) as the CnF fault with its EMCY, CAN bus
  * events, reset node. */
 #include "bench.h"
+#include "check_main.h"
 
 #include <stdlib.h>
 
@@ -319,9 +320,5 @@ int main(void)
     tcase_add_test(tc, bus_events_are_emergencies_only);
     tcase_add_test(tc, reset_node_resets_the_drive);
     suite_add_tcase(s, tc);
-    SRunner *sr = srunner_create(s);
-    srunner_run_all(sr, CK_NORMAL);
-    int failed = srunner_ntests_failed(sr);
-    srunner_free(sr);
-    return failed == 0 ? EXIT_SUCCESS : EXIT_FAILURE;
+    return check_run_suite(s);
 }

@@ -1,6 +1,7 @@
 /* EMCY producer: frame bytes, 1001h bits, 1003h history (order, cap, clear, bad value), the
  * error reset frame, the inhibit time queue with exact times, 1014h validity and CAN-ID rules,
  * states in which EMCY is sent. */
+#include "check_main.h"
 #include "test_bus.h"
 
 #include <stdio.h>
@@ -237,9 +238,5 @@ int main(void)
     tcase_add_test(tc, not_sent_in_stopped);
     tcase_add_test(tc, reset_scopes);
     suite_add_tcase(s, tc);
-    SRunner *sr = srunner_create(s);
-    srunner_run_all(sr, CK_NORMAL);
-    int failed = srunner_ntests_failed(sr);
-    srunner_free(sr);
-    return failed == 0 ? EXIT_SUCCESS : EXIT_FAILURE;
+    return check_run_suite(s);
 }

@@ -1,5 +1,6 @@
 /* Node guarding (toggle sequence, state bytes, DLC 0 or 1), life guarding (one event per loss,
  * resume, restart on 100Ch/100Dh writes) and the exclusion by the heartbeat producer. */
+#include "check_main.h"
 #include "test_bus.h"
 #include "test_od.h"
 
@@ -271,9 +272,5 @@ int main(void)
     tcase_add_test(tc, cob_id_100e_write_rules);
     tcase_add_test(tc, without_100e_guarding_on_700h_plus_node_id);
     suite_add_tcase(s, tc);
-    SRunner *sr = srunner_create(s);
-    srunner_run_all(sr, CK_NORMAL);
-    int failed = srunner_ntests_failed(sr);
-    srunner_free(sr);
-    return failed == 0 ? EXIT_SUCCESS : EXIT_FAILURE;
+    return check_run_suite(s);
 }

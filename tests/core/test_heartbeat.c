@@ -1,5 +1,6 @@
 /* Heartbeat producer (exact period, restart on write) and consumers (start on the first frame,
  * one loss report per loss, re-arm, duplicate entries, unused entries). */
+#include "check_main.h"
 #include "test_bus.h"
 
 #include <stdlib.h>
@@ -232,9 +233,5 @@ int main(void)
     tcase_add_test(tc, rewriting_an_entry_restarts_monitoring);
     tcase_add_test(tc, consumers_reloaded_by_reset_communication);
     suite_add_tcase(s, tc);
-    SRunner *sr = srunner_create(s);
-    srunner_run_all(sr, CK_NORMAL);
-    int failed = srunner_ntests_failed(sr);
-    srunner_free(sr);
-    return failed == 0 ? EXIT_SUCCESS : EXIT_FAILURE;
+    return check_run_suite(s);
 }

@@ -1,6 +1,7 @@
 /* NMT slave: every command to this node, to another node and broadcast, with the state seen in
  * the heartbeat and guarding replies; the boot-up frame; the scope of reset node and reset
  * communication; malformed commands; the application hooks. */
+#include "check_main.h"
 #include "test_bus.h"
 
 #include <stdlib.h>
@@ -204,9 +205,5 @@ int main(void)
     tcase_add_test(tc, reset_node_scope);
     tcase_add_test(tc, heartbeat_in_every_state);
     suite_add_tcase(s, tc);
-    SRunner *sr = srunner_create(s);
-    srunner_run_all(sr, CK_NORMAL);
-    int failed = srunner_ntests_failed(sr);
-    srunner_free(sr);
-    return failed == 0 ? EXIT_SUCCESS : EXIT_FAILURE;
+    return check_run_suite(s);
 }

@@ -1,6 +1,7 @@
 /* Object dictionary: table validation, binary search, type and limit checks of the write path,
  * defaults with node-id terms. */
 #include "test_od.h"
+#include "check_main.h"
 #include "test_bus.h"
 
 #include <stdlib.h>
@@ -151,9 +152,5 @@ int main(void)
     tcase_add_test(tc, strings_store_their_length);
     tcase_add_test(tc, hook_refuses_and_counts);
     suite_add_tcase(s, tc);
-    SRunner *sr = srunner_create(s);
-    srunner_run_all(sr, CK_NORMAL);
-    int failed = srunner_ntests_failed(sr);
-    srunner_free(sr);
-    return failed == 0 ? EXIT_SUCCESS : EXIT_FAILURE;
+    return check_run_suite(s);
 }

@@ -1,6 +1,7 @@
 /* PDO engine: ATV312 manual vectors T31-02..T31-07, transmission types, inhibit and event timers,
  * SYNC start value, RTR, the dynamic mapping procedure and every abort of it, RPDO length and
  * deadline emergencies, NMT gating. Frame-exact on the in-process bus, with injected time. */
+#include "check_main.h"
 #include "test_bus.h"
 #include "test_od.h"
 
@@ -837,9 +838,5 @@ int main(void)
     tcase_add_test(tc, dummy_mapping_only_for_declared_types);
     tcase_add_test(tc, zero_length_mapping_sends_empty_frame);
     suite_add_tcase(s, tc);
-    SRunner *sr = srunner_create(s);
-    srunner_run_all(sr, CK_NORMAL);
-    int failed = srunner_ntests_failed(sr);
-    srunner_free(sr);
-    return failed == 0 ? EXIT_SUCCESS : EXIT_FAILURE;
+    return check_run_suite(s);
 }

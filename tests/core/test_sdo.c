@@ -1,6 +1,7 @@
 /* SDO server, frame by frame on the in-process bus with the test dictionary, node-id 4: expedited,
  * segmented and block transfers of every type in 2000h, every abort code a request can provoke,
  * the protocol timeout, client aborts, NMT states, short frames and the ATV312 manual's frames. */
+#include "check_main.h"
 #include "test_bus.h"
 #include "test_od.h"
 
@@ -1245,9 +1246,5 @@ int main(void)
     tcase_add_test(tc, short_frames);
     tcase_add_test(tc, short_block_frames);
     suite_add_tcase(s, tc);
-    SRunner *sr = srunner_create(s);
-    srunner_run_all(sr, CK_NORMAL);
-    int failed = srunner_ntests_failed(sr);
-    srunner_free(sr);
-    return failed == 0 ? EXIT_SUCCESS : EXIT_FAILURE;
+    return check_run_suite(s);
 }

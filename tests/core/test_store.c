@@ -1,6 +1,7 @@
 /* Store and restore (1010h / 1011h) with an in-memory storage double: save then reset restores,
  * "load" then reset gives defaults, wrong signatures, no storage, storage failures, damaged or
  * malformed images, images from another dictionary version. */
+#include "check_main.h"
 #include "test_bus.h"
 
 #include <stdlib.h>
@@ -371,9 +372,5 @@ int main(void)
     tcase_add_test(tc, guarding_cob_id_stored_with_the_communication_parameters);
     tcase_add_test(tc, no_image_keeps_defaults);
     suite_add_tcase(s, tc);
-    SRunner *sr = srunner_create(s);
-    srunner_run_all(sr, CK_NORMAL);
-    int failed = srunner_ntests_failed(sr);
-    srunner_free(sr);
-    return failed == 0 ? EXIT_SUCCESS : EXIT_FAILURE;
+    return check_run_suite(s);
 }

@@ -1,6 +1,7 @@
 /* SYNC: producer period and counter wrap, production only in Pre-operational and Operational,
  * 1005h/1019h parameter rules, the consumer's counter and its wrong-length emergency, and the
  * SYNC driving synchronous TPDOs. Frame-exact with injected time. */
+#include "check_main.h"
 #include "test_bus.h"
 #include "test_od.h"
 
@@ -276,9 +277,5 @@ int main(void)
     tcase_add_test(tc, consumer_ignored_when_stopped);
     tcase_add_test(tc, produced_sync_drives_synchronous_tpdo);
     suite_add_tcase(s, tc);
-    SRunner *sr = srunner_create(s);
-    srunner_run_all(sr, CK_NORMAL);
-    int failed = srunner_ntests_failed(sr);
-    srunner_free(sr);
-    return failed == 0 ? EXIT_SUCCESS : EXIT_FAILURE;
+    return check_run_suite(s);
 }

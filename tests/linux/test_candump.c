@@ -1,5 +1,6 @@
 /* The candump -L trace format: exact lines for data, RTR, 29-bit and error frames, and parsing
  * back what it writes; malformed lines are refused. */
+#include "check_main.h"
 #include "co_linux/candump.h"
 
 #include <check.h>
@@ -139,9 +140,5 @@ int main(void)
     tcase_add_test(tc, parses_lower_case_and_no_newline);
     tcase_add_test(tc, refuses_malformed_lines);
     suite_add_tcase(s, tc);
-    SRunner *sr = srunner_create(s);
-    srunner_run_all(sr, CK_NORMAL);
-    int failed = srunner_ntests_failed(sr);
-    srunner_free(sr);
-    return failed ? EXIT_FAILURE : EXIT_SUCCESS;
+    return check_run_suite(s);
 }

@@ -1,5 +1,6 @@
 /* The atv312d command line: node-id forms, duplicates and ranges, every usage error with its
  * exit code and a message naming what would be right. */
+#include "check_main.h"
 #include "cli.h"
 
 #include <check.h>
@@ -155,9 +156,5 @@ int main(void)
     tcase_add_test(tc, unknown_options_and_extra_arguments);
     tcase_add_test(tc, help_and_version_win);
     suite_add_tcase(s, tc);
-    SRunner *sr = srunner_create(s);
-    srunner_run_all(sr, CK_NORMAL);
-    int failed = srunner_ntests_failed(sr);
-    srunner_free(sr);
-    return failed ? EXIT_FAILURE : EXIT_SUCCESS;
+    return check_run_suite(s);
 }

@@ -1,6 +1,7 @@
 /* The storage file: save/load round trip through the co_storage_t callbacks, several nodes in
  * one file, atomic replacement, and files that fail a check (truncated, bad CRC, wrong magic,
  * unknown version, bad record) ignored as a whole with the reason. */
+#include "check_main.h"
 #include "co_linux/file_store.h"
 
 #include <check.h>
@@ -335,9 +336,5 @@ int main(void)
     tcase_add_test(tc, bad_record_with_good_crc_is_ignored);
     tcase_add_test(tc, damaged_file_is_kept_aside_at_next_save);
     suite_add_tcase(s, tc);
-    SRunner *sr = srunner_create(s);
-    srunner_run_all(sr, CK_NORMAL);
-    int failed = srunner_ntests_failed(sr);
-    srunner_free(sr);
-    return failed ? EXIT_FAILURE : EXIT_SUCCESS;
+    return check_run_suite(s);
 }

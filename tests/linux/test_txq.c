@@ -1,4 +1,5 @@
 /* The bounded transmit queue: order, capacity, drops counted, wrap-around. */
+#include "check_main.h"
 #include "co_linux/txq.h"
 
 #include <check.h>
@@ -106,9 +107,5 @@ int main(void)
     tcase_add_test(tc, clear_reports_count_and_empties);
     tcase_add_test(tc, capacity_is_clamped);
     suite_add_tcase(s, tc);
-    SRunner *sr = srunner_create(s);
-    srunner_run_all(sr, CK_NORMAL);
-    int failed = srunner_ntests_failed(sr);
-    srunner_free(sr);
-    return failed ? EXIT_FAILURE : EXIT_SUCCESS;
+    return check_run_suite(s);
 }

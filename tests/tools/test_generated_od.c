@@ -1,6 +1,7 @@
 /* The table edstool.py generates from fixtures/device.eds, used by a real node: it validates,
  * loads the EDS defaults with node-id terms added, enforces the EDS limits and the hooks file,
  * answers SDO uploads with the EDS values and maps the dummies of [DummyUsage]. */
+#include "check_main.h"
 #include "co/co_node.h"
 #include "dev_od.h"
 
@@ -195,9 +196,5 @@ int main(void)
     tcase_add_test(tc, sdo_upload_of_string_gives_eds_default);
     tcase_add_test(tc, dummy_usage_reaches_the_pdo_engine);
     suite_add_tcase(s, tc);
-    SRunner *runner = srunner_create(s);
-    srunner_run_all(runner, CK_NORMAL);
-    int failed = srunner_ntests_failed(runner);
-    srunner_free(runner);
-    return failed == 0 ? EXIT_SUCCESS : EXIT_FAILURE;
+    return check_run_suite(s);
 }

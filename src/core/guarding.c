@@ -50,7 +50,8 @@ void co_guarding_stop(co_node_t *node)
 
 bool co_guarding_receive(co_node_t *node, const co_frame_t *frame)
 {
-    if (frame->id != guarding_cob_id(node) || !(frame->flags & CO_FRAME_RTR))
+    /* The RTR flag first: the COB-ID lookup is a dictionary search, and data frames are most. */
+    if (!(frame->flags & CO_FRAME_RTR) || frame->id != guarding_cob_id(node))
         return false;
     /* A guarding request is a remote frame of DLC 0 or 1 (masters differ); the ATV312 runs only
      * one error control protocol, so heartbeat production silences guarding. */

@@ -84,6 +84,18 @@ static void tpdo6_only(uint8_t type)
     ck_assert_uint_eq(write_param(0x1805, 1, 0x284, 4), 0);
 }
 
+/* RPDO6 on 304h with the given mapping entries (CiA 301 procedure), the node operational. */
+static void rpdo6_mapped(const uint32_t *entries, uint8_t count)
+{
+    ck_assert_uint_eq(write_param(0x1605, 0, 0, 1), 0);
+    for (uint8_t i = 0; i < count; i++)
+        ck_assert_uint_eq(write_param(0x1605, (uint8_t)(i + 1), entries[i], 4), 0);
+    ck_assert_uint_eq(write_param(0x1605, 0, count, 1), 0);
+    ck_assert_uint_eq(write_param(0x1405, 1, 0x304, 4), 0);
+    go_operational();
+    test_drain(&t);
+}
+
 static void sync_frame(const char *text)
 {
     test_rx(&t, text);
@@ -738,14 +750,8 @@ END_TEST
 START_TEST(rpdo_dummy_mapping_skips_bytes)
 {
     start_quiet();
-    ck_assert_uint_eq(write_param(0x1605, 0, 0, 1), 0);
-    ck_assert_uint_eq(write_param(0x1605, 1, 0x00050008, 4), 0);
-    ck_assert_uint_eq(write_param(0x1605, 2, 0x60400010, 4), 0);
-    ck_assert_uint_eq(write_param(0x1605, 3, 0x00070020, 4), 0);
-    ck_assert_uint_eq(write_param(0x1605, 0, 3, 1), 0);
-    ck_assert_uint_eq(write_param(0x1405, 1, 0x304, 4), 0);
-    go_operational();
-    test_drain(&t);
+    static const uint32_t mapping[] = {0x00050008, 0x60400010, 0x00070020};
+    rpdo6_mapped(mapping, 3);
     test_rx(&t, "304#AA0F0011223344");
     ck_assert_int_eq(co_od_value(&t.node, 0x6040, 0), 0x000F);
     ck_assert_uint_eq(pdo_writes, 1);
@@ -774,11 +780,8 @@ START_TEST(dummy_mapping_only_for_declared_types)
     start_od(&od);
     ck_assert_uint_eq(write_param(0x1605, 0, 0, 1), 0);
     ck_assert_uint_eq(write_param(0x1605, 1, 0x00070020, 4), SDO_ABORT_NOT_MAPPABLE);
-    ck_assert_uint_eq(write_param(0x1605, 1, 0x00050008, 4), 0);
-    ck_assert_uint_eq(write_param(0x1605, 0, 2, 1), 0);
-    ck_assert_uint_eq(write_param(0x1405, 1, 0x304, 4), 0);
-    go_operational();
-    test_drain(&t);
+    static const uint32_t mapping[] = {0x00050008, 0x60420010};
+    rpdo6_mapped(mapping, 2);
     test_rx(&t, "304#AA3412");
     ck_assert_int_eq(co_od_value(&t.node, 0x6042, 0), 0x1234);
     ck_assert_uint_eq(pdo_writes, 1);

@@ -80,15 +80,23 @@ static int32_t run_reference(atv312_t *drive)
     return reverse ? -(int32_t)speed : (int32_t)speed;
 }
 
+/* Only Operation enabled and Quick stop active drive the motor: in any other state the output is
+ * off and the motor coasts, whatever the transition that led there (freewheel on 8, 9, 12 and
+ * faults). In Operation enabled the motor follows the reference unless a stop is asked: bit 12
+ * on DEC, bits 13 and 14 on the fast ramp, a pending disable operation (5) on DEC; Quick stop
+ * active always stops on the fast ramp. */
 static void steer_motor(atv312_t *drive)
 {
-    uint16_t control = drive->cia402.control;
-    bool enabled = drive->cia402.state == ATV312_OPERATION_ENABLED;
+    const atv312_cia402_t *sm = &drive->cia402;
+    uint16_t control = sm->control;
+    bool enabled = sm->state == ATV312_OPERATION_ENABLED;
     bool stop_bits = control & (ATV312_CW_STOP | ATV312_CW_DC_INJECTION | ATV312_CW_FAST_STOP);
-    bool fast = drive->cia402.state == ATV312_QUICK_STOP_ACTIVE ||
+    bool fast = sm->state == ATV312_QUICK_STOP_ACTIVE ||
                 (enabled && (control & (ATV312_CW_DC_INJECTION | ATV312_CW_FAST_STOP)));
+    if (!atv312_cia402_drives_motor(sm))
+        atv312_motor_coast(&drive->motor);
     drive->limited = false;
-    int32_t target = enabled && !stop_bits ? run_reference(drive) : 0;
+    int32_t target = atv312_cia402_runs(sm) && !stop_bits ? run_reference(drive) : 0;
     atv312_ramp_t ramp = ramp_parameters(drive);
     atv312_motor_steer(&drive->motor, target, fast, &ramp);
 }
@@ -115,8 +123,10 @@ static void publish(atv312_t *drive)
     int32_t rpm = atv312_motor_rpm(&drive->motor);
     co_od_set_value(node, ATV312_IDX_VELOCITY_DEMAND, 0, rpm);
     co_od_set_value(node, ATV312_IDX_VELOCITY_ACTUAL, 0, rpm);
-    /* The output is on in Operation enabled and while a ramp stop runs. */
-    bool energised = drive->cia402.state == ATV312_OPERATION_ENABLED || drive->motor.speed != 0;
+    /* The output is on in Operation enabled, and in Quick stop active until the motor stopped
+     * (then the drive locks). */
+    bool energised = drive->cia402.state == ATV312_OPERATION_ENABLED ||
+                     (drive->cia402.state == ATV312_QUICK_STOP_ACTIVE && drive->motor.speed != 0);
     int16_t torque = energised ? atv312_motor_torque(&drive->motor) : 0;
     int32_t load = torque < 0 ? -torque : torque;
     int32_t nominal_current = atv312_param(drive, ATV312_IDX_MOTOR, ATV312_SUB_NCR);
@@ -132,12 +142,14 @@ static void publish(atv312_t *drive)
 
 void atv312_settle(atv312_t *drive)
 {
+    if (drive->motor.speed == 0)
+        atv312_cia402_motor_stopped(&drive->cia402);
     steer_motor(drive);
     publish(drive);
 }
 
-/* The ATV312 network fault (CnF / COF): freewheel stop, latched until a fault reset, reported
- * in 603Fh and by EMCY 0x8130 (which also records it in 1003h). */
+/* The ATV312 network fault (CnF / COF): freewheel stop (state Fault drives nothing), latched until
+ * a fault reset, reported in 603Fh and by EMCY 0x8130 (which also records it in 1003h). */
 static void network_fault(atv312_t *drive)
 {
     if (drive->cia402.state == ATV312_FAULT)
@@ -145,7 +157,6 @@ static void network_fault(atv312_t *drive)
     co_node_t *node = &drive->node;
     atv312_advance(drive, node->now);
     atv312_cia402_fault(&drive->cia402);
-    atv312_motor_coast(&drive->motor);
     co_od_set_value(node, ATV312_IDX_ERROR_CODE, 0, CO_EMCY_HEARTBEAT);
     co_emcy_raise(node, CO_EMCY_HEARTBEAT, COMMUNICATION_ERROR_REGISTER, NULL);
     atv312_settle(drive);
@@ -170,10 +181,7 @@ static void apply_control_word(atv312_t *drive, uint16_t control)
 {
     co_od_set_value(&drive->node, ATV312_IDX_CONTROLWORD, 0, control);
     co_od_set_value(&drive->node, ATV312_IDX_COMMAND, ATV312_SUB_CMD, control);
-    unsigned events = atv312_cia402_command(&drive->cia402, control);
-    if (events & ATV312_EVENT_FREEWHEEL)
-        atv312_motor_coast(&drive->motor);
-    if (events & ATV312_EVENT_FAULT_RESET)
+    if (atv312_cia402_command(&drive->cia402, control, drive->motor.speed == 0))
         acknowledge_fault(drive);
 }
 

@@ -24,8 +24,11 @@ static command_t decode(uint16_t control)
     return COMMAND_ENABLE_OPERATION;
 }
 
-/* One transition of the state chart; returns the new state and sets *events. */
-static atv312_state_t transition(atv312_state_t state, command_t command, unsigned *events)
+/* One transition of the state chart. Disable operation (5) is the only one that waits for the
+ * motor: the drive stays in Operation enabled while it stops on the DEC ramp (the DeviceNet
+ * manual's status table: "Operation enabled 0x0027" with "cmdd bit 3 = 0"), since Switched on
+ * applies no voltage to the motor. */
+static atv312_state_t transition(atv312_state_t state, command_t command, bool motor_stopped)
 {
     switch (state) {
     case ATV312_SWITCH_ON_DISABLED:
@@ -46,23 +49,19 @@ static atv312_state_t transition(atv312_state_t state, command_t command, unsign
         return state;
     case ATV312_OPERATION_ENABLED:
         /* "Exiting the Operation enabled status via a Disable voltage (9) or Shutdown (8)
-         * command causes a freewheel stop." */
-        if (command == COMMAND_DISABLE_VOLTAGE) {
-            *events |= ATV312_EVENT_FREEWHEEL;
+         * command causes a freewheel stop": the new state drives nothing. */
+        if (command == COMMAND_DISABLE_VOLTAGE)
             return ATV312_SWITCH_ON_DISABLED;
-        }
-        if (command == COMMAND_SHUTDOWN) {
-            *events |= ATV312_EVENT_FREEWHEEL;
+        if (command == COMMAND_SHUTDOWN)
             return ATV312_READY_TO_SWITCH_ON;
-        }
         if (command == COMMAND_QUICK_STOP)
             return ATV312_QUICK_STOP_ACTIVE;
-        if (command == COMMAND_SWITCH_ON)
+        if (command == COMMAND_SWITCH_ON && motor_stopped)
             return ATV312_SWITCHED_ON;
         return state;
     case ATV312_QUICK_STOP_ACTIVE:
         /* Locked: "restarting is only possible after the drive has changed to the Switch on
-         * disabled state" (no transition 16). */
+         * disabled state" (no transition 16). Disable voltage (12) cuts the output: freewheel. */
         return command == COMMAND_DISABLE_VOLTAGE ? ATV312_SWITCH_ON_DISABLED : state;
     case ATV312_FAULT:
         return state;
@@ -76,27 +75,41 @@ void atv312_cia402_reset(atv312_cia402_t *sm)
     sm->control = 0;
 }
 
-unsigned atv312_cia402_command(atv312_cia402_t *sm, uint16_t control)
+bool atv312_cia402_command(atv312_cia402_t *sm, uint16_t control, bool motor_stopped)
 {
-    unsigned events = 0;
     bool reset_edge = (control & ATV312_CW_FAULT_RESET) && !(sm->control & ATV312_CW_FAULT_RESET);
+    bool fault_reset = sm->state == ATV312_FAULT && reset_edge;
     sm->control = control;
-    if (sm->state == ATV312_FAULT) {
-        if (!reset_edge)
-            return events;
+    if (sm->state == ATV312_FAULT && !fault_reset)
+        return false;
+    if (fault_reset)
         sm->state = ATV312_SWITCH_ON_DISABLED;
-        events |= ATV312_EVENT_FAULT_RESET;
-    }
     /* The word is a level: follow it until the state is stable (0x000F from Ready to switch on
      * passes through Switched on to Operation enabled). Three steps reach any state. */
     command_t command = decode(control);
     for (int step = 0; step < 3; step++) {
-        atv312_state_t next = transition(sm->state, command, &events);
+        atv312_state_t next = transition(sm->state, command, motor_stopped);
         if (next == sm->state)
             break;
         sm->state = next;
     }
-    return events;
+    return fault_reset;
+}
+
+void atv312_cia402_motor_stopped(atv312_cia402_t *sm)
+{
+    if (sm->state == ATV312_OPERATION_ENABLED && decode(sm->control) == COMMAND_SWITCH_ON)
+        sm->state = ATV312_SWITCHED_ON;
+}
+
+bool atv312_cia402_drives_motor(const atv312_cia402_t *sm)
+{
+    return sm->state == ATV312_OPERATION_ENABLED || sm->state == ATV312_QUICK_STOP_ACTIVE;
+}
+
+bool atv312_cia402_runs(const atv312_cia402_t *sm)
+{
+    return sm->state == ATV312_OPERATION_ENABLED && decode(sm->control) == COMMAND_ENABLE_OPERATION;
 }
 
 void atv312_cia402_fault(atv312_cia402_t *sm)

@@ -24,13 +24,18 @@
 #define ATV312_SW_INTERNAL_LIMIT 0x0800u /* reference exceeded: clipped to LSP / HSP */
 #define ATV312_SW_REVERSE 0x8000u        /* direction of rotation */
 
-/* What a transition asks of the rest of the drive. */
-#define ATV312_EVENT_FREEWHEEL 0x01u   /* output off: the motor coasts (transitions 8, 9) */
-#define ATV312_EVENT_FAULT_RESET 0x02u /* transition 15: the fault is acknowledged */
-
 void atv312_cia402_reset(atv312_cia402_t *sm);
-/* Applies a control word written by SDO or RPDO. Returns ATV312_EVENT_* bits. */
-unsigned atv312_cia402_command(atv312_cia402_t *sm, uint16_t control);
+/* Applies a control word written by SDO or RPDO. Returns true when it acknowledged a fault
+ * (transition 15, on the 0 -> 1 edge of bit 7). */
+bool atv312_cia402_command(atv312_cia402_t *sm, uint16_t control, bool motor_stopped);
+/* The motor stands: completes a disable operation (5) that waited for the end of its ramp. */
+void atv312_cia402_motor_stopped(atv312_cia402_t *sm);
+/* Only Operation enabled and Quick stop active apply voltage to the motor; every other state
+ * leaves it to coast (freewheel). */
+bool atv312_cia402_drives_motor(const atv312_cia402_t *sm);
+/* Operation enabled with an enable operation command: the motor follows the reference (rather
+ * than stopping on the DEC ramp for a pending disable operation). */
+bool atv312_cia402_runs(const atv312_cia402_t *sm);
 /* Transitions 13 and 14: the fault reaction (a freewheel stop) is immediate. */
 void atv312_cia402_fault(atv312_cia402_t *sm);
 /* A configuration parameter changed: Ready to switch on, Switched on and Operation enabled

@@ -149,18 +149,121 @@ START_TEST(shutdown_and_disable_voltage_freewheel)
 }
 END_TEST
 
-/* Disable operation (5) stops on the DEC ramp (3.0 s) in Switched on. */
+/* Disable operation (5) stops on the DEC ramp (3.0 s): the drive stays in Operation enabled,
+ * output on, while the motor decelerates (the DeviceNet manual's 0x0027 with "cmdd bit 3 = 0"),
+ * and is Switched on, output off, once it stands. */
 START_TEST(disable_operation_ramps_down)
 {
     bench_t b;
     bench_start(&b);
     run_at_nominal(&b);
-    ck_assert_uint_eq(bench_command(&b, 0x0007), 0x0223);
+    ck_assert_uint_eq(bench_command(&b, 0x0007), 0x0227);
     bench_advance(&b, 1500000);
     ck_assert_int_eq(bench_speed(&b), 750);
+    ck_assert_uint_eq(bench_read(&b, 0x6041, 0), 0x0227);
+    ck_assert_uint_ne(bench_read(&b, 0x2002, 4), 0); /* current flows while it ramps */
     bench_advance(&b, 1500000);
     ck_assert_int_eq(bench_speed(&b), 0);
     ck_assert_uint_eq(bench_read(&b, 0x6041, 0), SW_SWITCHED_ON);
+    ck_assert_uint_eq(bench_read(&b, 0x2002, 4), 0);
+    ck_assert_uint_eq(bench_read(&b, 0x2002, 9), 0);
+}
+END_TEST
+
+/* Enable operation during the disable-operation ramp runs again at once. */
+START_TEST(enable_operation_cancels_disable_operation)
+{
+    bench_t b;
+    bench_start(&b);
+    run_at_nominal(&b);
+    ck_assert_uint_eq(bench_command(&b, 0x0007), 0x0227);
+    bench_advance(&b, 1500000);
+    ck_assert_int_eq(bench_speed(&b), 750);
+    ck_assert_uint_eq(bench_command(&b, 0x000F), 0x0227);
+    bench_advance(&b, 1500000);
+    ck_assert_int_eq(bench_speed(&b), 1500);
+    ck_assert_uint_eq(bench_read(&b, 0x6041, 0), SW_ENABLED);
+}
+END_TEST
+
+/* ACC 0.5 s, DEC 4.0 s (fast ramp 1.0 s), running at 1500 rpm. */
+static void run_with_slow_dec(bench_t *b)
+{
+    ck_assert_uint_eq(bench_sdo_write(b, 0x203C, 2, 5, 2), 0);
+    ck_assert_uint_eq(bench_sdo_write(b, 0x203C, 3, 40, 2), 0);
+    ck_assert_uint_eq(bench_sdo_write(b, 0x6042, 0, 1500, 2), 0);
+    bench_command(b, 0x0006);
+    bench_command(b, 0x000F);
+    bench_advance(b, 500000);
+    ck_assert_int_eq(bench_speed(b), 1500);
+}
+
+/* Quick stop (11) then disable voltage (12) mid-ramp: the output is cut, the motor coasts (it
+ * does not go on decelerating on DEC in Switch on disabled). */
+START_TEST(disable_voltage_during_quick_stop_freewheels)
+{
+    bench_t b;
+    bench_start(&b);
+    run_with_slow_dec(&b);
+    ck_assert_uint_eq(bench_command(&b, 0x0002), 0x0207);
+    bench_advance(&b, 20000);
+    ck_assert_int_eq(bench_speed(&b), 1470); /* fast ramp: 1500 rpm per second */
+    ck_assert_uint_ne(bench_read(&b, 0x2002, 4), 0);
+    ck_assert_uint_eq(bench_command(&b, 0x0000), SW_SWITCH_ON_DISABLED);
+    ck_assert_int_eq(bench_speed(&b), 0);
+    ck_assert_uint_eq(bench_read(&b, 0x2002, 4), 0);
+    ck_assert_uint_eq(bench_read(&b, 0x2002, 9), 0);
+    bench_advance(&b, 1000000);
+    ck_assert_int_eq(bench_speed(&b), 0);
+    ck_assert_uint_eq(bench_read(&b, 0x6041, 0), SW_SWITCH_ON_DISABLED);
+}
+END_TEST
+
+/* Disable operation (5) then disable voltage (9) mid-ramp: freewheel as well. */
+START_TEST(disable_voltage_during_disable_operation_freewheels)
+{
+    bench_t b;
+    bench_start(&b);
+    run_with_slow_dec(&b);
+    ck_assert_uint_eq(bench_command(&b, 0x0007), 0x0227);
+    bench_advance(&b, 400000);
+    ck_assert_int_eq(bench_speed(&b), 1350); /* DEC: 375 rpm per second */
+    ck_assert_uint_eq(bench_command(&b, 0x0000), SW_SWITCH_ON_DISABLED);
+    ck_assert_int_eq(bench_speed(&b), 0);
+    ck_assert_uint_eq(bench_read(&b, 0x2002, 4), 0);
+}
+END_TEST
+
+/* The rule behind the two tests above, for every pair of commands given while the motor runs:
+ * at every instant, a state other than Operation enabled and Quick stop active has speed,
+ * current and torque 0. */
+START_TEST(only_enabled_and_quick_stop_drive_the_motor)
+{
+    static const uint16_t commands[] = {0x0000, 0x0002, 0x0006, 0x0007, 0x000F, 0x400F};
+    const size_t n = sizeof(commands) / sizeof(commands[0]);
+    for (size_t first = 0; first < n; first++) {
+        for (size_t second = 0; second < n; second++) {
+            bench_t b;
+            bench_start(&b);
+            run_with_slow_dec(&b);
+            bench_command(&b, commands[first]);
+            bench_advance(&b, 200000);
+            bench_command(&b, commands[second]);
+            for (int sample = 0; sample < 24; sample++) {
+                uint16_t state = bench_read(&b, 0x6041, 0) & 0x006F;
+                int16_t speed = bench_speed(&b);
+                uint32_t current = bench_read(&b, 0x2002, 4);
+                uint32_t torque = bench_read(&b, 0x2002, 9);
+                if (state != 0x0027 && state != 0x0007)
+                    ck_assert_msg(speed == 0 && current == 0 && torque == 0,
+                                  "%04X then %04X, %d ms later: state %04X with %d rpm, LCR %u, "
+                                  "OTR %u",
+                                  commands[first], commands[second], sample * 250, state, speed,
+                                  current, torque);
+                bench_advance(&b, 250000);
+            }
+        }
+    }
 }
 END_TEST
 
@@ -274,6 +377,10 @@ int main(void)
     tcase_add_test(tc, fast_stop_stays_enabled);
     tcase_add_test(tc, shutdown_and_disable_voltage_freewheel);
     tcase_add_test(tc, disable_operation_ramps_down);
+    tcase_add_test(tc, enable_operation_cancels_disable_operation);
+    tcase_add_test(tc, disable_voltage_during_quick_stop_freewheels);
+    tcase_add_test(tc, disable_voltage_during_disable_operation_freewheels);
+    tcase_add_test(tc, only_enabled_and_quick_stop_drive_the_motor);
     tcase_add_test(tc, reverse_bit);
     tcase_add_test(tc, stop_bit_halts_on_the_ramp);
     tcase_add_test(tc, dc_injection_bit_stops_fast);

@@ -194,6 +194,29 @@ START_TEST(manual_tpdo6_user_mapping)
 }
 END_TEST
 
+/* The manual: TPDO6's status word and speed "can also be replaced with any two other variables",
+ * the readable-writable ones too (6040h, 6042h, CMD, ACC, DEC): the issue's frame maps 6042h. */
+START_TEST(tpdo6_maps_readable_writable_variables)
+{
+    bench_t b;
+    bench_start(&b);
+    bench_rx(&b, "604#2F051A0000000000");
+    bench_expect(&b, "584#60051A0000000000");
+    bench_rx(&b, "604#23051A0310004260");
+    bench_expect(&b, "584#60051A0300000000");
+    ck_assert_uint_eq(bench_sdo_write(&b, 0x1A05, 1, 0x60400010, 4), 0);
+    ck_assert_uint_eq(bench_sdo_write(&b, 0x1A05, 2, 0x20370210, 4), 0);
+    ck_assert_uint_eq(bench_sdo_write(&b, 0x1A05, 4, 0x203C0210, 4), 0);
+    ck_assert_uint_eq(bench_sdo_write(&b, 0x1A05, 0, 4, 1), 0);
+    enable_pdo6(&b);
+    ck_assert_uint_eq(bench_sdo_write(&b, 0x6042, 0, 1200, 2), 0);
+    bench_command(&b, 0x0006);
+    bench_operational(&b);
+    bench_expect(&b, "184#2106");
+    bench_expect(&b, "284#06000600B0041E00"); /* CMDD, CMD, LFRD 1200, ACC 30 */
+}
+END_TEST
+
 /* T31-07: RPDO6 mapped to CMDD, ACC and DEC (6 bytes). */
 START_TEST(manual_rpdo6_user_mapping)
 {
@@ -314,6 +337,7 @@ int main(void)
     tcase_add_test(tc, tpdo1_follows_the_status_word);
     tcase_add_test(tc, manual_pdo6_default_mappings);
     tcase_add_test(tc, manual_tpdo6_user_mapping);
+    tcase_add_test(tc, tpdo6_maps_readable_writable_variables);
     tcase_add_test(tc, manual_rpdo6_user_mapping);
     tcase_add_test(tc, heartbeat_loss_is_a_network_fault);
     tcase_add_test(tc, life_guarding_loss_is_a_network_fault);

@@ -58,10 +58,13 @@ OBJECT_TYPES = {OBJ_NULL: "NULL", OBJ_DOMAIN: "DOMAIN", OBJ_DEFTYPE: "DEFTYPE",
 ACCESS_TYPES = ("ro", "wo", "rw", "rwr", "rww", "const")
 
 # Flags of include/co/co_od.h.
-READ, WRITE, CONST, TPDO, RPDO, NODEID, ZERO_OK = 0x01, 0x02, 0x04, 0x08, 0x10, 0x20, 0x40
+READ, WRITE, CONST, TPDO, RPDO, NODEID, ZERO_OK, PROCESS = (0x01, 0x02, 0x04, 0x08, 0x10, 0x20,
+                                                            0x40, 0x80)
 FLAG_NAMES = ((READ, "CO_OD_READ"), (WRITE, "CO_OD_WRITE"), (CONST, "CO_OD_CONST"),
               (TPDO, "CO_OD_TPDO"), (RPDO, "CO_OD_RPDO"), (NODEID, "CO_OD_NODEID"),
-              (ZERO_OK, "CO_OD_ZERO_OK"))
+              (ZERO_OK, "CO_OD_ZERO_OK"), (PROCESS, "CO_OD_PROCESS"))
+# Words of a hooks file that set a flag rather than name a hook.
+HOOK_FLAG_WORDS = {"zero-ok": ZERO_OK, "process-data": PROCESS}
 
 ACCESS_FLAGS = {"ro": READ, "wo": WRITE, "rw": READ | WRITE, "rwr": READ | WRITE,
                 "rww": READ | WRITE, "const": READ | CONST}
@@ -559,8 +562,8 @@ HOOK_WORD = re.compile(r"^[A-Za-z_][A-Za-z0-9_]*$")
 
 
 def apply_hooks(entries, path):
-    """Reads a hooks file: 'INDEX[:SUB] WORD...' where WORD is zero-ok or the name of an
-    extern const co_od_hook_t."""
+    """Reads a hooks file: 'INDEX[:SUB] WORD...' where WORD is zero-ok, process-data or the name
+    of an extern const co_od_hook_t."""
     try:
         with open(path, encoding="utf-8") as f:
             lines = f.read().splitlines()
@@ -578,7 +581,7 @@ def apply_hooks(entries, path):
         words = text.split()
         where, actions = words[0], words[1:]
         if not actions:
-            raise fail(number, "'%s' names no hook and no zero-ok" % where)
+            raise fail(number, "'%s' names no hook, zero-ok or process-data" % where)
         index_text, _, sub_text = where.partition(":")
         try:
             index = parse_index(index_text)
@@ -595,9 +598,9 @@ def apply_hooks(entries, path):
             what = "0x%04X" % index if sub is None else "0x%04X:0x%02X" % (index, sub)
             raise fail(number, "%s is not in the EDS" % what)
         for word in actions:
-            if word == "zero-ok":
+            if word in HOOK_FLAG_WORDS:
                 for e in targets:
-                    e.flags |= ZERO_OK
+                    e.flags |= HOOK_FLAG_WORDS[word]
             elif HOOK_WORD.match(word):
                 for e in targets:
                     if e.hook is not None and e.hook != word:
@@ -605,7 +608,8 @@ def apply_hooks(entries, path):
                                    % (e.index, e.sub, e.hook))
                     e.hook = word
             else:
-                raise fail(number, "'%s' is neither zero-ok nor a C identifier" % word)
+                raise fail(number, "'%s' is neither zero-ok, process-data nor a C identifier"
+                           % word)
     return name
 
 
@@ -628,6 +632,21 @@ def c_limit(value, dtype):
             return "(uint64_t)INT64_MIN"
         return "(uint64_t)INT64_C(%d)" % value
     return "UINT64_C(%d)" % value
+
+
+def c_string(text):
+    """A C string literal of text: printable ASCII as is, quotes and backslashes escaped, any
+    other byte of its UTF-8 form in octal."""
+    out = []
+    for byte in text.encode("utf-8"):
+        ch = chr(byte)
+        if ch in '"\\?':
+            out.append("\\" + ch)
+        elif 0x20 <= byte < 0x7F:
+            out.append(ch)
+        else:
+            out.append("\\%03o" % byte)
+    return '"%s"' % "".join(out)
 
 
 def c_comment(text):
@@ -707,10 +726,15 @@ def render(entries, eds_name, prefix, data_size, hooks_name, dummies):
                  % (e.index, e.sub, DATA_TYPES[e.dtype][0], c_flags(e.flags), e.size, e.offset,
                     limit, hook))
     c.append("};\n\n")
+    c.append("/* ParameterName of each entry, for diagnostics. */\n")
+    c.append("static const char *const %s_od_names[%s_OD_ENTRIES] = {\n" % (prefix, macro))
+    for e in entries:
+        c.append("    %s,\n" % c_string(e.name))
+    c.append("};\n\n")
     dummy = " | ".join("CO_OD_DUMMY(CO_DT_%s)" % DATA_TYPES[t][0] for t in dummies) or "0"
     c.append('const co_od_t %s_od = {"%s", %s_od_entries, %s_OD_ENTRIES, %s_OD_DATA_SIZE,\n'
-             "    %s_od_defaults, /* [DummyUsage] */ %s};\n"
-             % (prefix, prefix, prefix, macro, macro, prefix, dummy))
+             "    %s_od_defaults, /* [DummyUsage] */ %s, %s_od_names};\n"
+             % (prefix, prefix, prefix, macro, macro, prefix, dummy, prefix))
     return "".join(h), "".join(c)
 
 
@@ -1186,6 +1210,8 @@ def dump(args):
         limits = "%d..%d" % e.limits if e.limits else ""
         if e.flags & ZERO_OK:
             limits += " or 0"
+        if e.flags & PROCESS:
+            limits += " (process data)"
         if e.hook:
             limits += " (hook %s)" % e.hook
         out.write("| %04Xh | %d | %s | %s | %s | %s | %s | %s | %d |\n"
@@ -1228,8 +1254,8 @@ def make_parser():
                      help="C identifier prefixing every generated name (NAME_od, NAME_OD_...)")
     gen.add_argument("--out-dir", required=True, metavar="DIR", help="output directory")
     gen.add_argument("--hooks", metavar="FILE",
-                     help="hooks file: lines 'INDEX[:SUB] WORD...', WORD is zero-ok or the name "
-                          "of an extern const co_od_hook_t")
+                     help="hooks file: lines 'INDEX[:SUB] WORD...', WORD is zero-ok, process-data "
+                          "or the name of an extern const co_od_hook_t")
     gen.set_defaults(run=generate)
     chk = sub.add_parser(
         "check", help="check EDS files against CiA 306",
@@ -1244,7 +1270,8 @@ def make_parser():
         description="Print every entry the generator would produce as a Markdown table: index, "
                     "sub-index, name, type, access, PDO direction, default, limits, size.")
     dmp.add_argument("eds", metavar="EDS", help="the EDS file")
-    dmp.add_argument("--hooks", metavar="FILE", help="show the hooks and zero-ok of this file")
+    dmp.add_argument("--hooks", metavar="FILE",
+                     help="show the hooks, zero-ok and process-data of this file")
     dmp.set_defaults(run=dump)
     return parser
 

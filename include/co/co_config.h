@@ -24,6 +24,9 @@
 #ifndef CO_CONFIG_SDO_BUFFER
 #define CO_CONFIG_SDO_BUFFER 1024 /* largest segmented or block download, bytes */
 #endif
+#ifndef CO_CONFIG_STORE_VALUE_MAX
+#define CO_CONFIG_STORE_VALUE_MAX 64 /* largest stored value checked at a reset, bytes */
+#endif
 #ifndef CO_CONFIG_SDO_TIMEOUT_US
 #define CO_CONFIG_SDO_TIMEOUT_US 1000000u /* default SDO server timeout */
 #endif

@@ -21,6 +21,7 @@ typedef struct co_od_entry co_od_entry_t;
 #define CO_OD_RPDO 0x0010u    /* may be mapped into an RPDO */
 #define CO_OD_NODEID 0x0020u  /* default value is relative to the node-id ($NODEID+...) */
 #define CO_OD_ZERO_OK 0x0040u /* 0 is accepted even below the low limit ("0 = disabled") */
+#define CO_OD_PROCESS 0x0080u /* process data (a command, a reference): never stored (1010h) */
 
 #define CO_OD_ACCESS_RO CO_OD_READ
 #define CO_OD_ACCESS_WO CO_OD_WRITE
@@ -29,9 +30,10 @@ typedef struct co_od_entry co_od_entry_t;
 
 /* Where a write comes from, for hooks that treat them differently. */
 typedef enum co_od_origin {
-    CO_OD_ORIGIN_SDO, /* a client's SDO download */
-    CO_OD_ORIGIN_PDO, /* a received PDO */
-    CO_OD_ORIGIN_APP  /* the application or the stack itself */
+    CO_OD_ORIGIN_SDO,  /* a client's SDO download */
+    CO_OD_ORIGIN_PDO,  /* a received PDO */
+    CO_OD_ORIGIN_APP,  /* the application or the stack itself */
+    CO_OD_ORIGIN_STORE /* a stored value applied at a reset (1010h / 1011h) */
 } co_od_origin_t;
 
 /* Returned by a write hook or a service write handler that stored (or consumed) the value itself:
@@ -81,6 +83,8 @@ typedef struct co_od {
      * [DummyUsage] (CiA 306): CO_OD_DUMMY(n) set for data type 000nh, n = 2..7 (INTEGER8 ..
      * UNSIGNED32; other bits are ignored: BOOLEAN is not a whole byte). 0: no dummy mapping. */
     uint8_t dummy_types;
+    /* ParameterName of each entry, in table order, for diagnostics; NULL when not generated. */
+    const char *const *names;
 } co_od_t;
 
 /* Result of co_od_validate(). */
@@ -95,6 +99,9 @@ typedef enum co_od_error {
 
 /* Checks the table once at start-up. On error *position is the offending entry. */
 co_od_error_t co_od_validate(const co_od_t *od, uint16_t *position);
+
+/* The entry's ParameterName, or NULL (no names in the dictionary, or no such entry). */
+const char *co_od_name(const co_od_t *od, uint16_t index, uint8_t subindex);
 
 /* Binary search. NULL when absent. */
 const co_od_entry_t *co_od_find(const co_od_t *od, uint16_t index, uint8_t subindex);

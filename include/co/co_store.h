@@ -10,20 +10,34 @@
  * Storage works by AREA, never by group: the core passes only the area numbers 2 (1000h..1FFFh),
  * 3 (6000h..9FFFh) and 4 (2000h..5FFFh) to the backend, and group 1 means the three of them.
  *
- * What is stored: every writable (CO_OD_WRITE) entry of the area, except the commands and the
- * history that are not parameters (1003h, 1010h, 1011h), as a self-describing image:
+ * What is stored: every parameter of the area, that is every writable (CO_OD_WRITE) entry except
+ * the process data the dictionary marks CO_OD_PROCESS (commands, references: they always start
+ * from their defaults) and the commands and history that are not parameters (1003h, 1010h,
+ * 1011h), as a self-describing image:
  *
- *     "COS" 0x01                          4-byte header: magic and format version
+ *     "COS" 0x02 sequence (u32 LE) kind (u8)              9-byte header
  *     index (u16 LE) sub (u8) len (u16 LE) value[len]     one record per entry, in table order
  *
- * The image ends with its last record; the backend keeps its length. At a reset (nmt.c) the
- * defaults of an area are restored first, then co_store_apply() loads its image: the whole image
- * is first checked (header, every record inside the image, the last one ending exactly at its
- * end), then the records are applied; a record whose entry no longer exists, is no longer
- * writable or changed size is skipped, so a dictionary change between versions never misloads.
- * An image that fails the check, or that the backend reports damaged, is ignored entirely.
+ * A view (an entry whose read hook computes it from others: 6046h of LSP/HSP) is stored as read.
+ * `sequence` orders the saves and restores of a node; `kind` is CO_STORE_IMAGE_VALUES, or
+ * CO_STORE_IMAGE_DEFAULTS (no records) for an area restored alone by 1011h (restoring all areas
+ * erases every image). Version 1 images ("COS" 0x01 then records) load as the oldest values.
  *
- * The core needs no buffer: images are streamed from and to the dictionary's own bytes. */
+ * At a reset (nmt.c) the defaults of the areas in scope are restored first; then their images
+ * apply, oldest first, so that when two areas cover one value (a view and what it stands for) the
+ * later save or restore wins. An image is first checked whole (header, every record inside it,
+ * the last one ending exactly at its end) and ignored entirely if it fails or the backend reports
+ * it damaged. Its records then go through the same checks, hooks and service rules as an SDO
+ * write (co_od_write, origin CO_OD_ORIGIN_STORE), in the order of the CiA 301 mapping procedure:
+ * every PDO the image configures is made invalid with an empty mapping, then the values are
+ * written, then the numbers of mapped objects, then the COB-IDs. A record refused because of
+ * another not yet applied is tried again after the others; a record still refused (unknown
+ * entry, size changed, process data, out of its limits, refused by a hook) is reported through
+ * `refused` and skipped, the entry keeping its value; a PDO whose COB-ID is refused stays
+ * invalid. A defaults image writes the default of each view of its area through its hook.
+ *
+ * Images are streamed from and to the dictionary's own bytes; a value is staged in a buffer of
+ * CO_CONFIG_STORE_VALUE_MAX bytes on the stack while it is checked. */
 #ifndef CO_STORE_H
 #define CO_STORE_H
 
@@ -38,9 +52,11 @@
 #define CO_STORE_AREA_PROFILE 3u       /* 6000h..9FFFh */
 #define CO_STORE_AREA_MANUFACTURER 4u  /* 2000h..5FFFh */
 
-/* Image format version 1: "COS" and the version byte. */
-#define CO_STORE_IMAGE_HEADER_SIZE 4u
+/* Image format version 2: "COS", the version byte, the sequence and the kind. */
+#define CO_STORE_IMAGE_HEADER_SIZE 9u
 #define CO_STORE_RECORD_HEADER_SIZE 5u
+#define CO_STORE_IMAGE_VALUES 0u   /* the records hold the area's saved values */
+#define CO_STORE_IMAGE_DEFAULTS 1u /* the area was restored: its defaults apply */
 
 /* Implemented by the runtime; every callback gets `ctx`. Calls never nest and never interleave:
  * a save is save_begin, save_write..., save_end; a load is load_size then load_read... of the
@@ -62,13 +78,18 @@ typedef struct co_storage {
     int (*load_read)(void *ctx, uint8_t area, uint32_t offset, uint8_t *buf, size_t len);
     /* Forgets an area (no image: the defaults apply). Erasing a missing image succeeds. */
     int (*erase)(void *ctx, uint8_t area);
+    /* Optional (may be NULL): a stored value was refused while an image was applied and skipped;
+     * `value` holds its len bytes (NULL when it could not be read), abort says why as an SDO
+     * abort code. co_od_name() names the entry. */
+    void (*refused)(void *ctx, const co_node_t *node, uint16_t index, uint8_t subindex,
+                    const uint8_t *value, size_t len, uint32_t abort);
 } co_storage_t;
 
 /* Write handler of 1010h / 1011h. */
 uint32_t co_store_od_write(co_node_t *node, const co_od_entry_t *entry, const uint8_t *data,
                            size_t len);
-/* Applies the stored values of the entries in [first, last] after their defaults were restored.
- * Without storage, or without a usable image, the defaults stay. */
+/* Applies the stored images of the areas that lie in [first, last], after their defaults were
+ * restored. Without storage, or without a usable image, the defaults stay. */
 void co_store_apply(co_node_t *node, uint16_t first, uint16_t last);
 
 #endif

@@ -90,6 +90,10 @@ enum co_sdo_abort {
     SDO_ABORT_NO_DATA = 0x08000024
 };
 
+/* What an abort code means, after CiA 301 table 22, for logs and tools ("unknown abort code" for
+ * a code outside the table). */
+const char *co_sdo_abort_text(uint32_t code);
+
 /* Little-endian helpers for frame payloads (CANopen is little-endian on the wire). */
 static inline uint16_t co_get_u16(const uint8_t *p)
 {

@@ -94,6 +94,12 @@ const co_od_entry_t *co_od_find(const co_od_t *od, uint16_t index, uint8_t subin
     return NULL;
 }
 
+const char *co_od_name(const co_od_t *od, uint16_t index, uint8_t subindex)
+{
+    const co_od_entry_t *e = co_od_find(od, index, subindex);
+    return e != NULL && od->names != NULL ? od->names[e - od->entries] : NULL;
+}
+
 uint32_t co_od_lookup(const co_od_t *od, uint16_t index, uint8_t subindex,
                       const co_od_entry_t **entry)
 {

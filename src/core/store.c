@@ -1,10 +1,18 @@
-/* Store and restore parameters: 1010h / 1011h (CiA 301 sections 7.5.2.13-14) and the
- * self-describing images described in co_store.h, streamed without a buffer. */
+/* Store and restore parameters: 1010h / 1011h (CiA 301 sections 7.5.2.13-14), the
+ * self-describing images described in co_store.h, and their application at a reset through the
+ * dictionary's write path. */
 #include "co/co_node.h"
+
+#include <string.h>
 
 #define STORE_GROUP_ALL 1u
 #define STORE_GROUP_LAST 4u
-#define IMAGE_VERSION 1u
+
+/* Image format: version 2 adds the save sequence and the kind; version 1 images (records only)
+ * still load, as the oldest values. */
+#define IMAGE_VERSION_1 1u
+#define IMAGE_VERSION 2u
+#define IMAGE_V1_HEADER_SIZE 4u
 
 typedef struct store_area {
     uint8_t area;
@@ -20,7 +28,7 @@ static const store_area_t areas[] = {
 
 #define AREA_COUNT (sizeof(areas) / sizeof(areas[0]))
 
-static const uint8_t image_header[CO_STORE_IMAGE_HEADER_SIZE] = {'C', 'O', 'S', IMAGE_VERSION};
+static const uint8_t image_magic[3] = {'C', 'O', 'S'};
 
 /* Group 1 is every area; groups 2..4 are one area each. */
 static bool group_has_area(uint8_t group, const store_area_t *a)
@@ -28,30 +36,94 @@ static bool group_has_area(uint8_t group, const store_area_t *a)
     return group == STORE_GROUP_ALL || group == a->area;
 }
 
-/* The error history and the store/restore commands are not parameters. */
+/* Parameters only: not the process data the application marks (commands, references), not the
+ * error history and the store/restore commands (1003h, 1010h, 1011h). */
 static bool entry_is_stored(const co_od_entry_t *e)
 {
-    return (e->flags & CO_OD_WRITE) && e->index != 0x1003 && e->index != 0x1010 &&
-           e->index != 0x1011;
+    return (e->flags & CO_OD_WRITE) && !(e->flags & CO_OD_PROCESS) && e->index != 0x1003 &&
+           e->index != 0x1010 && e->index != 0x1011;
 }
 
-static int save_area(co_node_t *node, const store_area_t *a)
+/* An entry whose read hook computes its value from other entries (6046h of LSP/HSP): its stored
+ * bytes are not its value, so it is saved as read and restored as written. */
+static bool entry_is_view(const co_od_entry_t *e)
+{
+    return e->hook != NULL && e->hook->read != NULL;
+}
+
+/* What an image header says. */
+typedef struct image_info {
+    uint32_t size;     /* bytes, 0: no usable image */
+    uint32_t sequence; /* order of the save or restore that wrote it */
+    uint8_t kind;      /* CO_STORE_IMAGE_VALUES or CO_STORE_IMAGE_DEFAULTS */
+    uint32_t records;  /* offset of the first record */
+} image_info_t;
+
+static bool read_header(const co_storage_t *s, uint8_t area, image_info_t *info)
+{
+    long size = s->load_size(s->ctx, area);
+    *info = (image_info_t){0};
+    if (size <= 0 || (unsigned long)size > UINT32_MAX)
+        return false;
+    uint8_t h[CO_STORE_IMAGE_HEADER_SIZE];
+    uint32_t want = (uint32_t)size < sizeof(h) ? (uint32_t)size : (uint32_t)sizeof(h);
+    if (want < IMAGE_V1_HEADER_SIZE || s->load_read(s->ctx, area, 0, h, want) != 0 ||
+        h[0] != image_magic[0] || h[1] != image_magic[1] || h[2] != image_magic[2])
+        return false;
+    if (h[3] == IMAGE_VERSION_1) {
+        *info = (image_info_t){(uint32_t)size, 0, CO_STORE_IMAGE_VALUES, IMAGE_V1_HEADER_SIZE};
+        return true;
+    }
+    if (h[3] != IMAGE_VERSION || want < sizeof(h) || h[8] > CO_STORE_IMAGE_DEFAULTS)
+        return false;
+    *info = (image_info_t){(uint32_t)size, co_get_u32(&h[4]), h[8], CO_STORE_IMAGE_HEADER_SIZE};
+    return true;
+}
+
+/* The sequence number of the next save or restore: after every image stored. */
+static uint32_t next_sequence(const co_node_t *node)
+{
+    uint32_t next = 1;
+    for (size_t i = 0; i < AREA_COUNT; i++) {
+        image_info_t info;
+        if (read_header(node->storage, areas[i].area, &info) && info.sequence >= next)
+            next = info.sequence + 1;
+    }
+    return next;
+}
+
+static int write_header(const co_storage_t *s, uint32_t sequence, uint8_t kind)
+{
+    uint8_t h[CO_STORE_IMAGE_HEADER_SIZE] = {image_magic[0], image_magic[1], image_magic[2],
+                                             IMAGE_VERSION};
+    co_put_u32(&h[4], sequence);
+    h[8] = kind;
+    return s->save_write(s->ctx, h, sizeof(h));
+}
+
+static int save_entry(co_node_t *node, const co_od_entry_t *e)
+{
+    const co_storage_t *s = node->storage;
+    if (entry_is_view(e) && e->hook->read(node, e) != CO_SDO_OK)
+        return -1;
+    uint8_t record[CO_STORE_RECORD_HEADER_SIZE];
+    co_put_u16(&record[0], e->index);
+    record[2] = e->subindex;
+    co_put_u16(&record[3], e->size);
+    int rc = s->save_write(s->ctx, record, sizeof(record));
+    return rc == 0 ? s->save_write(s->ctx, co_od_bytes(node, e), e->size) : rc;
+}
+
+static int save_area(co_node_t *node, const store_area_t *a, uint32_t sequence, uint8_t kind)
 {
     const co_storage_t *s = node->storage;
     if (s->save_begin(s->ctx, a->area) != 0)
         return -1;
-    int rc = s->save_write(s->ctx, image_header, sizeof(image_header));
-    for (uint16_t i = 0; rc == 0 && i < node->od->count; i++) {
+    int rc = write_header(s, sequence, kind);
+    for (uint16_t i = 0; rc == 0 && kind == CO_STORE_IMAGE_VALUES && i < node->od->count; i++) {
         const co_od_entry_t *e = &node->od->entries[i];
-        if (e->index < a->first || e->index > a->last || !entry_is_stored(e))
-            continue;
-        uint8_t record[CO_STORE_RECORD_HEADER_SIZE];
-        co_put_u16(&record[0], e->index);
-        record[2] = e->subindex;
-        co_put_u16(&record[3], e->size);
-        rc = s->save_write(s->ctx, record, sizeof(record));
-        if (rc == 0)
-            rc = s->save_write(s->ctx, co_od_bytes(node, e), e->size);
+        if (e->index >= a->first && e->index <= a->last && entry_is_stored(e))
+            rc = save_entry(node, e);
     }
     if (s->save_end(s->ctx, rc == 0) != 0)
         return -1;
@@ -60,18 +132,30 @@ static int save_area(co_node_t *node, const store_area_t *a)
 
 static uint32_t save_group(co_node_t *node, uint8_t group)
 {
+    uint32_t sequence = next_sequence(node);
     for (size_t i = 0; i < AREA_COUNT; i++)
-        if (group_has_area(group, &areas[i]) && save_area(node, &areas[i]) != 0)
+        if (group_has_area(group, &areas[i]) &&
+            save_area(node, &areas[i], sequence++, CO_STORE_IMAGE_VALUES) != 0)
             return SDO_ABORT_HARDWARE;
     return CO_SDO_OK;
 }
 
-static uint32_t erase_group(co_node_t *node, uint8_t group)
+/* Restoring every area forgets every image. Restoring one area stores a defaults image for it:
+ * the defaults then apply in their place in the save order, so they also win over older saved
+ * values of another area that its views stand for (1011h:03 restores 6046h, hence LSP/HSP). */
+static uint32_t restore_group(co_node_t *node, uint8_t group)
 {
     const co_storage_t *s = node->storage;
-    for (size_t i = 0; i < AREA_COUNT; i++)
-        if (group_has_area(group, &areas[i]) && s->erase(s->ctx, areas[i].area) != 0)
+    uint32_t sequence = group == STORE_GROUP_ALL ? 0 : next_sequence(node);
+    for (size_t i = 0; i < AREA_COUNT; i++) {
+        if (!group_has_area(group, &areas[i]))
+            continue;
+        int rc = group == STORE_GROUP_ALL
+                     ? s->erase(s->ctx, areas[i].area)
+                     : save_area(node, &areas[i], sequence, CO_STORE_IMAGE_DEFAULTS);
+        if (rc != 0)
             return SDO_ABORT_HARDWARE;
+    }
     return CO_SDO_OK;
 }
 
@@ -88,7 +172,8 @@ uint32_t co_store_od_write(co_node_t *node, const co_od_entry_t *entry, const ui
     if (co_get_u32(data) != signature || node->storage == NULL ||
         entry->subindex > STORE_GROUP_LAST)
         return SDO_ABORT_DATA_STORE;
-    uint32_t abort = save ? save_group(node, entry->subindex) : erase_group(node, entry->subindex);
+    uint32_t abort =
+        save ? save_group(node, entry->subindex) : restore_group(node, entry->subindex);
     return abort != CO_SDO_OK ? abort : CO_OD_HANDLED;
 }
 
@@ -117,51 +202,197 @@ static bool read_record(const co_storage_t *s, uint8_t area, uint32_t size, uint
 }
 
 /* The whole image must be well formed before any of it is applied. */
-static bool image_is_valid(const co_storage_t *s, uint8_t area, uint32_t size)
+static bool image_is_valid(const co_storage_t *s, uint8_t area, const image_info_t *info)
 {
-    uint8_t header[CO_STORE_IMAGE_HEADER_SIZE];
-    if (size < sizeof(header) || s->load_read(s->ctx, area, 0, header, sizeof(header)) != 0)
-        return false;
-    for (size_t i = 0; i < sizeof(header); i++)
-        if (header[i] != image_header[i])
-            return false;
-    uint32_t offset = sizeof(header);
+    uint32_t offset = info->records;
     image_record_t r;
-    while (offset < size)
-        if (!read_record(s, area, size, &offset, &r))
+    while (offset < info->size)
+        if (!read_record(s, area, info->size, &offset, &r))
             return false;
     return true;
 }
 
-static const co_od_entry_t *record_target(const co_node_t *node, const image_record_t *r,
-                                          uint16_t first, uint16_t last)
-{
-    if (r->index < first || r->index > last)
-        return NULL;
-    const co_od_entry_t *e = co_od_find(node->od, r->index, r->subindex);
-    if (e == NULL || !entry_is_stored(e) || e->size != r->len)
-        return NULL;
-    return e;
-}
-
-static void apply_area(co_node_t *node, const store_area_t *a, uint16_t first, uint16_t last)
+static void report_refused(co_node_t *node, uint16_t index, uint8_t subindex, const uint8_t *data,
+                           size_t len, uint32_t abort)
 {
     const co_storage_t *s = node->storage;
-    long size = s->load_size(s->ctx, a->area);
-    if (size <= 0 || (unsigned long)size > UINT32_MAX ||
-        !image_is_valid(s, a->area, (uint32_t)size))
-        return;
-    uint32_t offset = CO_STORE_IMAGE_HEADER_SIZE;
+    if (s->refused != NULL)
+        s->refused(s->ctx, node, index, subindex, data, len, abort);
+}
+
+/* The order of the CiA 301 configuration procedures. Some parameters may change only while
+ * another one disables what they configure: a PDO's mapping and timing while its COB-ID is
+ * invalid (7.5.2.35-38), the EMCY CAN-ID while 1014h is invalid (7.5.2.21), 1019h while 1006h is
+ * 0 (7.5.2.41); the mapping entries while the number of entries is 0. So the records apply in
+ * phases: the values, then the numbers of mapping entries (checked against the entries), then
+ * the enabling parameters (COB-IDs, the SYNC period). */
+enum record_phase { PHASE_VALUES, PHASE_MAP_COUNT, PHASE_ENABLE, PHASE_COUNT };
+
+/* Bit 31 of the PDO and EMCY COB-IDs: the object is invalid (disabled). */
+#define COBID_INVALID 0x80000000u
+
+static bool is_cob_id_with_valid_bit(uint16_t index, uint8_t subindex)
+{
+    bool pdo = subindex == 1 &&
+               ((index >= 0x1400 && index <= 0x15FF) || (index >= 0x1800 && index <= 0x19FF));
+    return pdo || (index == 0x1014 && subindex == 0);
+}
+
+static bool is_pdo_map_count(uint16_t index, uint8_t subindex)
+{
+    return subindex == 0 &&
+           ((index >= 0x1600 && index <= 0x17FF) || (index >= 0x1A00 && index <= 0x1BFF));
+}
+
+static enum record_phase record_phase(uint16_t index, uint8_t subindex)
+{
+    if (is_cob_id_with_valid_bit(index, subindex) || (index == 0x1006 && subindex == 0))
+        return PHASE_ENABLE;
+    if (is_pdo_map_count(index, subindex))
+        return PHASE_MAP_COUNT;
+    return PHASE_VALUES;
+}
+
+/* Opens the procedures of an image: each enabling parameter it holds is set to its disabled form
+ * (COB-ID invalid, SYNC period 0, no mapping entry), which the write rules always accept. */
+static void open_procedures(co_node_t *node, uint8_t area, const image_info_t *info)
+{
+    uint32_t offset = info->records;
     image_record_t r;
-    while (offset < (uint32_t)size) {
-        bool read = read_record(s, a->area, (uint32_t)size, &offset, &r);
-        const co_od_entry_t *e = read ? record_target(node, &r, first, last) : NULL;
-        if (!read || (e != NULL && s->load_read(s->ctx, a->area, r.value_offset,
-                                                co_od_bytes(node, e), r.len) != 0)) {
-            /* The image read fine a moment ago: undo the part applied, never keep half. */
-            co_od_restore_defaults(node, first, last);
-            return;
-        }
+    while (offset < info->size && read_record(node->storage, area, info->size, &offset, &r)) {
+        const co_od_entry_t *e = co_od_find(node->od, r.index, r.subindex);
+        if (e == NULL || !entry_is_stored(e) || record_phase(r.index, r.subindex) == PHASE_VALUES ||
+            e->size > sizeof(uint32_t))
+            continue;
+        uint32_t disabled = 0;
+        if (is_cob_id_with_valid_bit(r.index, r.subindex))
+            disabled = (uint32_t)co_od_get(node, e) | COBID_INVALID;
+        uint8_t data[sizeof(uint32_t)];
+        co_put_u32(data, disabled);
+        co_od_write(node, r.index, r.subindex, data, e->size, CO_OD_ORIGIN_STORE);
+    }
+}
+
+/* The checks of an entry before a stored value goes through the write path. */
+static uint32_t record_entry(const co_node_t *node, const image_record_t *r,
+                             const co_od_entry_t **entry)
+{
+    uint32_t abort = co_od_lookup(node->od, r->index, r->subindex, entry);
+    if (abort != CO_SDO_OK)
+        return abort;
+    if (!entry_is_stored(*entry))
+        return SDO_ABORT_DATA_STORE;
+    if ((*entry)->size != r->len)
+        return SDO_ABORT_TYPE_LENGTH;
+    /* A value longer than the stack buffer (a string, a domain: no limits, no service rule) loads
+     * in place; one with a hook cannot be checked. */
+    if (r->len > CO_CONFIG_STORE_VALUE_MAX && (*entry)->hook != NULL)
+        return SDO_ABORT_NO_MEMORY;
+    return CO_SDO_OK;
+}
+
+/* Loads a value longer than the stack buffer straight into its entry; on a read failure the
+ * entry gets its default back, never a part of the stored value. */
+static uint32_t load_in_place(co_node_t *node, uint8_t area, const image_record_t *r,
+                              const co_od_entry_t *e)
+{
+    const co_storage_t *s = node->storage;
+    if (s->load_read(s->ctx, area, r->value_offset, co_od_bytes(node, e), r->len) == 0)
+        return CO_SDO_OK;
+    co_od_restore_defaults(node, e->index, e->index);
+    return SDO_ABORT_HARDWARE;
+}
+
+typedef struct apply_pass {
+    unsigned refused; /* values refused */
+    bool report;      /* report the refused values */
+} apply_pass_t;
+
+/* Applies one stored (or default) value through the same checks and hooks as an SDO write. A
+ * value that equals the current one, as read, is already applied and is not written again. */
+static void apply_value(co_node_t *node, const co_od_entry_t *e, const uint8_t *value, size_t len,
+                        apply_pass_t *pass)
+{
+    uint32_t abort = entry_is_view(e) ? e->hook->read(node, e) : CO_SDO_OK;
+    if (abort == CO_SDO_OK && memcmp(co_od_bytes(node, e), value, len) == 0)
+        return;
+    if (abort == CO_SDO_OK)
+        abort = co_od_write(node, e->index, e->subindex, value, len, CO_OD_ORIGIN_STORE);
+    if (abort == CO_SDO_OK)
+        return;
+    pass->refused++;
+    if (pass->report)
+        report_refused(node, e->index, e->subindex, value, len, abort);
+}
+
+static void apply_record(co_node_t *node, uint8_t area, const image_record_t *r, apply_pass_t *pass)
+{
+    const co_storage_t *s = node->storage;
+    uint8_t value[CO_CONFIG_STORE_VALUE_MAX];
+    const co_od_entry_t *e = NULL;
+    uint32_t abort = record_entry(node, r, &e);
+    if (abort == CO_SDO_OK && r->len > sizeof(value))
+        abort = load_in_place(node, area, r, e);
+    else if (abort == CO_SDO_OK && s->load_read(s->ctx, area, r->value_offset, value, r->len) != 0)
+        abort = SDO_ABORT_HARDWARE;
+    else if (abort == CO_SDO_OK) {
+        apply_value(node, e, value, r->len, pass);
+        return;
+    }
+    if (abort == CO_SDO_OK)
+        return;
+    pass->refused++;
+    if (pass->report)
+        report_refused(node, r->index, r->subindex, NULL, 0, abort);
+}
+
+static void apply_phase(co_node_t *node, uint8_t area, const image_info_t *info,
+                        enum record_phase phase, apply_pass_t *pass)
+{
+    uint32_t offset = info->records;
+    image_record_t r;
+    while (offset < info->size && read_record(node->storage, area, info->size, &offset, &r))
+        if (record_phase(r.index, r.subindex) == phase)
+            apply_record(node, area, &r, pass);
+}
+
+static void apply_pass(co_node_t *node, uint8_t area, const image_info_t *info, apply_pass_t *pass)
+{
+    for (int phase = 0; phase < PHASE_COUNT; phase++)
+        apply_phase(node, area, info, (enum record_phase)phase, pass);
+}
+
+/* Applies an image's records in the order of the mapping procedure. A record refused because of
+ * another one not applied yet (LSP above the default HSP) is tried again: passes repeat while
+ * fewer records are refused; those still refused then are reported and skipped. */
+static void apply_values(co_node_t *node, uint8_t area, const image_info_t *info)
+{
+    open_procedures(node, area, info);
+    apply_pass_t pass = {0};
+    unsigned before;
+    do {
+        before = pass.refused;
+        pass = (apply_pass_t){0};
+        apply_pass(node, area, info, &pass);
+    } while (pass.refused > 0 && (before == 0 || pass.refused < before));
+    if (pass.refused > 0) {
+        pass = (apply_pass_t){.report = true};
+        apply_pass(node, area, info, &pass);
+    }
+}
+
+/* A restored area at its place in the save order: its defaults again (an older image of another
+ * area may have changed what its views stand for), and its views' defaults written through their
+ * hooks to what they stand for. */
+static void apply_area_defaults(co_node_t *node, const store_area_t *a)
+{
+    apply_pass_t pass = {.report = true};
+    const co_od_t *od = node->od;
+    co_od_restore_defaults(node, a->first, a->last);
+    for (uint16_t i = 0; i < od->count; i++) {
+        const co_od_entry_t *e = &od->entries[i];
+        if (e->index >= a->first && e->index <= a->last && entry_is_stored(e) && entry_is_view(e))
+            apply_value(node, e, od->defaults + e->offset, e->size, &pass);
     }
 }
 
@@ -169,12 +400,27 @@ void co_store_apply(co_node_t *node, uint16_t first, uint16_t last)
 {
     if (node->storage == NULL)
         return;
+    image_info_t info[AREA_COUNT];
     for (size_t i = 0; i < AREA_COUNT; i++) {
         const store_area_t *a = &areas[i];
-        if (a->last < first || a->first > last)
-            continue;
-        uint16_t from = a->first > first ? a->first : first;
-        uint16_t to = a->last < last ? a->last : last;
-        apply_area(node, a, from, to);
+        bool in_scope = a->first >= first && a->last <= last;
+        if (!in_scope || !read_header(node->storage, a->area, &info[i]) ||
+            !image_is_valid(node->storage, a->area, &info[i]))
+            info[i].size = 0;
+    }
+    /* Oldest first, so that of two areas covering one value (a view and what it stands for)
+     * the later save or restore wins. */
+    for (;;) {
+        size_t next = AREA_COUNT;
+        for (size_t i = 0; i < AREA_COUNT; i++)
+            if (info[i].size != 0 && (next == AREA_COUNT || info[i].sequence < info[next].sequence))
+                next = i;
+        if (next == AREA_COUNT)
+            return;
+        if (info[next].kind == CO_STORE_IMAGE_DEFAULTS)
+            apply_area_defaults(node, &areas[next]);
+        else
+            apply_values(node, areas[next].area, &info[next]);
+        info[next].size = 0;
     }
 }

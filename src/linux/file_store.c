@@ -1,4 +1,5 @@
 #include "co_linux/file_store.h"
+#include "co/co_node.h"
 #include "co_linux/log.h"
 
 #include <errno.h>
@@ -443,6 +444,28 @@ static int node_erase(void *ctx, uint8_t area)
     return co_file_store_update(node->store, node->node_id, area, NULL, 0);
 }
 
+/* A stored value the node refused while applying its image: logged by name, with the value and
+ * the reason; the entry keeps its value (the default, at a reset). */
+static void node_refused(void *ctx, const co_node_t *node, uint16_t index, uint8_t subindex,
+                         const uint8_t *value, size_t len, uint32_t abort)
+{
+    const co_file_store_node_t *n = ctx;
+    const char *name = co_od_name(node->od, index, subindex);
+    char shown[2 * CO_CONFIG_STORE_VALUE_MAX + 8] = "unreadable";
+    if (value != NULL && len > 0) {
+        size_t max = len <= CO_CONFIG_STORE_VALUE_MAX ? len : CO_CONFIG_STORE_VALUE_MAX;
+        /* Little-endian bytes shown most significant first, as the value reads. */
+        size_t at = (size_t)snprintf(shown, sizeof shown, "0x");
+        for (size_t i = max; i-- > 0;)
+            at += (size_t)snprintf(shown + at, sizeof shown - at, "%02X", value[i]);
+    }
+    co_log(CO_LOG_WARN,
+           "store %s: node %u: stored %04Xh:%02X%s%s%s = %s refused (SDO abort 0x%08X: %s); "
+           "skipped, it keeps its default",
+           n->store->path, n->node_id, index, subindex, name ? " (" : "", name ? name : "",
+           name ? ")" : "", shown, (unsigned)abort, co_sdo_abort_text(abort));
+}
+
 void co_file_store_bind(co_file_store_t *store, uint8_t node_id, co_file_store_node_t *node,
                         co_storage_t *storage)
 {
@@ -457,6 +480,7 @@ void co_file_store_bind(co_file_store_t *store, uint8_t node_id, co_file_store_n
         .load_size = node_load_size,
         .load_read = node_load_read,
         .erase = node_erase,
+        .refused = node_refused,
     };
 }
 

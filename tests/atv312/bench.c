@@ -16,8 +16,13 @@ static void bench_send(void *user, const co_frame_t *frame)
 
 void bench_start(bench_t *b)
 {
+    bench_start_stored(b, NULL);
+}
+
+void bench_start_stored(bench_t *b, const co_storage_t *storage)
+{
     memset(b, 0, sizeof(*b));
-    ck_assert_int_eq(atv312_init(&b->drive, BENCH_NODE_ID, bench_send, b, NULL), 0);
+    ck_assert_int_eq(atv312_init(&b->drive, BENCH_NODE_ID, bench_send, b, storage), 0);
     atv312_start(&b->drive, 0);
     b->deadline = atv312_process(&b->drive, 0);
     bench_expect(b, "704#00");

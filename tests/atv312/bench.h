@@ -22,6 +22,8 @@ typedef struct bench {
 
 /* Boots node 4 at time 0 and consumes its boot-up frame. */
 void bench_start(bench_t *b);
+/* The same with a storage backend (1010h / 1011h). */
+void bench_start_stored(bench_t *b, const co_storage_t *storage);
 /* Delivers a frame now, then runs atv312_process. */
 void bench_rx(bench_t *b, const char *text);
 /* Advances time by `us`, processing at every deadline on the way and at the end. */

@@ -1,7 +1,9 @@
 /* Store and restore (1010h / 1011h) with an in-memory storage double: save then reset restores,
  * "load" then reset gives defaults, wrong signatures, no storage, storage failures, damaged or
- * malformed images, images from another dictionary version. */
+ * malformed images, images from another dictionary version, process data never stored, stored
+ * values checked like SDO writes, views, PDOs restored by the mapping procedure. */
 #include "check_main.h"
+#include "memory_storage.h"
 #include "test_bus.h"
 
 #include <stdlib.h>
@@ -9,94 +11,15 @@
 
 static test_node_t t;
 
-#define AREAS 5
-#define IMAGE_MAX 4096
-
-/* The double: one committed image per area, a staging image for the save in progress. */
-typedef struct memory_storage {
-    uint8_t image[AREAS][IMAGE_MAX];
-    long size[AREAS]; /* 0: none */
-    uint8_t staging[IMAGE_MAX];
-    size_t staged;
-    uint8_t saving;
-    bool damaged;
-    bool fail_write;
-    bool fail_erase;
-    int reads_before_failure; /* < 0: never fail */
-    unsigned saves, erases;
-} memory_storage_t;
-
 static memory_storage_t mem;
-
-static int save_begin(void *ctx, uint8_t area)
-{
-    memory_storage_t *m = ctx;
-    ck_assert_uint_lt(area, AREAS);
-    m->saving = area;
-    m->staged = 0;
-    return 0;
-}
-
-static int save_write(void *ctx, const uint8_t *data, size_t len)
-{
-    memory_storage_t *m = ctx;
-    if (m->fail_write || m->staged + len > IMAGE_MAX)
-        return -1;
-    memcpy(m->staging + m->staged, data, len);
-    m->staged += len;
-    return 0;
-}
-
-static int save_end(void *ctx, bool commit)
-{
-    memory_storage_t *m = ctx;
-    if (commit) {
-        memcpy(m->image[m->saving], m->staging, m->staged);
-        m->size[m->saving] = (long)m->staged;
-        m->saves++;
-    }
-    return 0;
-}
-
-static long load_size(void *ctx, uint8_t area)
-{
-    memory_storage_t *m = ctx;
-    ck_assert_uint_lt(area, AREAS);
-    return m->damaged && m->size[area] != 0 ? -1 : m->size[area];
-}
-
-static int load_read(void *ctx, uint8_t area, uint32_t offset, uint8_t *buf, size_t len)
-{
-    memory_storage_t *m = ctx;
-    ck_assert_uint_le(offset + len, (size_t)m->size[area]);
-    if (m->reads_before_failure == 0)
-        return -1;
-    if (m->reads_before_failure > 0)
-        m->reads_before_failure--;
-    memcpy(buf, m->image[area] + offset, len);
-    return 0;
-}
-
-static int erase(void *ctx, uint8_t area)
-{
-    memory_storage_t *m = ctx;
-    if (m->fail_erase)
-        return -1;
-    m->size[area] = 0;
-    m->erases++;
-    return 0;
-}
-
-static const co_storage_t storage = {&mem,      save_begin, save_write, save_end,
-                                     load_size, load_read,  erase};
+static co_storage_t storage;
 
 #define SAVE CO_STORE_SIGNATURE_SAVE
 #define LOAD CO_STORE_SIGNATURE_LOAD
 
 static void setup(void)
 {
-    memset(&mem, 0, sizeof(mem));
-    mem.reads_before_failure = -1;
+    memory_storage_init(&mem, &storage);
     test_node_start(&t, 4, NULL, &storage);
 }
 
@@ -107,7 +30,7 @@ static void change_values(void)
     ck_assert_uint_eq(test_sdo_write(&t, 0x100C, 0, 250, 2), 0);
     ck_assert_uint_eq(test_sdo_write(&t, 0x2000, 0x07, 0x12345678, 4), 0);
     ck_assert_uint_eq(test_sdo_write(&t, 0x203C, 0x02, 1000, 2), 0);
-    ck_assert_uint_eq(test_sdo_write(&t, 0x6042, 0x00, 1500, 2), 0);
+    ck_assert_uint_eq(test_sdo_write(&t, 0x6046, 0x02, 2000, 4), 0);
 }
 
 static void reset_node(void)
@@ -122,7 +45,7 @@ static void expect_changed(bool comm, bool manufacturer, bool profile)
     ck_assert_int_eq(co_od_value(&t.node, 0x100C, 0), comm ? 250 : 0);
     ck_assert_int_eq(co_od_value(&t.node, 0x2000, 0x07), manufacturer ? 0x12345678 : 0);
     ck_assert_int_eq(co_od_value(&t.node, 0x203C, 0x02), manufacturer ? 1000 : 30);
-    ck_assert_int_eq(co_od_value(&t.node, 0x6042, 0), profile ? 1500 : 0);
+    ck_assert_int_eq(co_od_value(&t.node, 0x6046, 0x02), profile ? 2000 : 1500);
 }
 
 START_TEST(save_all_then_reset_restores)
@@ -167,17 +90,17 @@ START_TEST(stored_image_is_self_describing)
     ck_assert_uint_eq(test_sdo_write(&t, 0x1017, 0, 0x1234, 2), 0);
     ck_assert_uint_eq(test_sdo_write(&t, 0x1010, 2, SAVE, 4), 0);
     const uint8_t *img = mem.image[CO_STORE_AREA_COMMUNICATION];
-    ck_assert_mem_eq(img, "COS\x01", 4);
+    ck_assert_mem_eq(img, "COS\x02\x01\x00\x00\x00\x00", 9); /* version 2, sequence 1, values */
     /* Find the 1017h record: index, sub, length 2, value. */
     const uint8_t want[] = {0x17, 0x10, 0x00, 0x02, 0x00, 0x34, 0x12};
     bool found = false;
-    for (long i = 4; i + (long)sizeof(want) <= mem.size[CO_STORE_AREA_COMMUNICATION]; i++)
+    for (long i = 9; i + (long)sizeof(want) <= mem.size[CO_STORE_AREA_COMMUNICATION]; i++)
         found = found || memcmp(img + i, want, sizeof(want)) == 0;
     ck_assert(found);
     /* Every record is a writable parameter: not the 1003h history, not the 1010h/1011h
      * commands, no read-only entry. */
     unsigned records = 0;
-    for (long i = 4; i < mem.size[CO_STORE_AREA_COMMUNICATION]; records++) {
+    for (long i = 9; i < mem.size[CO_STORE_AREA_COMMUNICATION]; records++) {
         uint16_t index = co_get_u16(img + i);
         const co_od_entry_t *e = co_od_find(t.node.od, index, img[i + 2]);
         ck_assert_ptr_nonnull(e);
@@ -260,25 +183,185 @@ START_TEST(malformed_image_ignored_entirely)
     /* Wrong header. */
     change_values();
     ck_assert_uint_eq(test_sdo_write(&t, 0x1010, 4, SAVE, 4), 0);
-    mem.image[CO_STORE_AREA_MANUFACTURER][3] = 2;
+    mem.image[CO_STORE_AREA_MANUFACTURER][3] = 9; /* an unknown version */
     reset_node();
     expect_changed(false, false, false);
 }
 END_TEST
 
-START_TEST(read_failure_while_applying_undoes_the_area)
+/* The backend verified the image but one value cannot be read when it is applied: that record
+ * is reported and skipped, the others apply. */
+START_TEST(read_failure_while_applying_skips_the_record)
 {
     change_values();
     ck_assert_uint_eq(test_sdo_write(&t, 0x1010, 4, SAVE, 4), 0);
-    unsigned records = 0;
-    const uint8_t *img = mem.image[CO_STORE_AREA_MANUFACTURER];
-    for (long i = 4; i < mem.size[CO_STORE_AREA_MANUFACTURER]; records++)
-        i += 5 + co_get_u16(img + i + 3);
-    /* The check reads the header and each record header (1 + records), applying reads each
-     * record header and value (2 x records): let every read but the last value succeed. */
-    mem.reads_before_failure = (int)(3 * records);
+    mem.fail_offset = memory_storage_record(&mem, CO_STORE_AREA_MANUFACTURER, 0x203C, 0x02);
+    ck_assert_int_gt(mem.fail_offset, 0);
     reset_node();
-    expect_changed(false, false, false);
+    ck_assert_int_eq(co_od_value(&t.node, 0x203C, 0x02), 30);
+    ck_assert_int_eq(co_od_value(&t.node, 0x2000, 0x07), 0x12345678);
+    ck_assert_uint_eq(memory_storage_refusal(&mem, 0x203C, 0x02), SDO_ABORT_HARDWARE);
+    ck_assert_uint_eq(mem.refusals, 1);
+}
+END_TEST
+
+/* Process data (6040h, 6042h here) are never stored: after a save and a reset they are back at
+ * their defaults, whatever they held. */
+START_TEST(process_data_never_stored)
+{
+    ck_assert_uint_eq(test_sdo_write(&t, 0x6040, 0, 0x000F, 2), 0);
+    ck_assert_uint_eq(test_sdo_write(&t, 0x6042, 0, 1200, 2), 0);
+    ck_assert_uint_eq(test_sdo_write(&t, 0x1010, 1, SAVE, 4), 0);
+    ck_assert_int_eq(memory_storage_record(&mem, CO_STORE_AREA_PROFILE, 0x6040, 0), 0);
+    ck_assert_int_eq(memory_storage_record(&mem, CO_STORE_AREA_PROFILE, 0x6042, 0), 0);
+    ck_assert_int_gt(memory_storage_record(&mem, CO_STORE_AREA_PROFILE, 0x6046, 2), 0);
+    reset_node();
+    ck_assert_int_eq(co_od_value(&t.node, 0x6040, 0), 0);
+    ck_assert_int_eq(co_od_value(&t.node, 0x6042, 0), 0);
+    ck_assert_uint_eq(mem.refusals, 0);
+}
+END_TEST
+
+/* Writes a version 1 image (the format before process data and sequences) of one area. */
+static void put_v1_image(uint8_t area, const uint8_t *records, size_t len)
+{
+    memcpy(mem.image[area], "COS\x01", 4);
+    memcpy(mem.image[area] + 4, records, len);
+    mem.size[area] = (long)(4 + len);
+}
+
+/* An image written by an older build still loads its parameters; the process data it holds are
+ * reported and skipped. */
+START_TEST(version_1_image_loads_its_parameters_only)
+{
+    static const uint8_t records[] = {
+        0x40, 0x60, 0x00, 0x02, 0x00, 0x0F, 0x00,             /* 6040h = 0x000F */
+        0x42, 0x60, 0x00, 0x02, 0x00, 0xB0, 0x04,             /* 6042h = 1200 */
+        0x46, 0x60, 0x02, 0x04, 0x00, 0xD0, 0x07, 0x00, 0x00, /* 6046h:02 = 2000 */
+    };
+    put_v1_image(CO_STORE_AREA_PROFILE, records, sizeof(records));
+    reset_node();
+    ck_assert_int_eq(co_od_value(&t.node, 0x6046, 2), 2000);
+    ck_assert_int_eq(co_od_value(&t.node, 0x6040, 0), 0);
+    ck_assert_int_eq(co_od_value(&t.node, 0x6042, 0), 0);
+    ck_assert_uint_eq(memory_storage_refusal(&mem, 0x6040, 0), SDO_ABORT_DATA_STORE);
+    ck_assert_uint_eq(memory_storage_refusal(&mem, 0x6042, 0), SDO_ABORT_DATA_STORE);
+    ck_assert_uint_eq(mem.refusals, 2);
+}
+END_TEST
+
+/* A well-formed image with values a write would refuse (a hand edit, an older build): each is
+ * refused as an SDO write would be, reported with its value and skipped; the rest applies. */
+START_TEST(stored_values_checked_like_writes)
+{
+    change_values();
+    ck_assert_uint_eq(test_sdo_write(&t, 0x1010, 4, SAVE, 4), 0);
+    uint8_t *img = mem.image[CO_STORE_AREA_MANUFACTURER];
+    img[memory_storage_record(&mem, CO_STORE_AREA_MANUFACTURER, 0x2000, 0x05)] =
+        5; /* below 10..200 */
+    co_put_u16(img + memory_storage_record(&mem, CO_STORE_AREA_MANUFACTURER, 0x2000, 0x10),
+               7); /* hook refuses */
+    reset_node();
+    ck_assert_int_eq(co_od_value(&t.node, 0x2000, 0x05), 50);
+    ck_assert_int_eq(co_od_value(&t.node, 0x2000, 0x10), 0);
+    ck_assert_int_eq(co_od_value(&t.node, 0x2000, 0x07), 0x12345678);
+    ck_assert_int_eq(co_od_value(&t.node, 0x203C, 0x02), 1000);
+    ck_assert_uint_eq(memory_storage_refusal(&mem, 0x2000, 0x05), SDO_ABORT_VALUE_LOW);
+    ck_assert_uint_eq(memory_storage_refusal(&mem, 0x2000, 0x10), SDO_ABORT_DATA_LOCAL);
+    ck_assert_uint_eq(mem.refusals, 2);
+    ck_assert_uint_eq(mem.refused[0].len, 1);
+}
+END_TEST
+
+/* A view is saved as read and restored through its hook: 6046h:01 stands for 2000:06 x 10, so
+ * saving the profile area keeps 2000:06 even though the manufacturer area was not saved. */
+START_TEST(view_saved_as_read_and_restored_through_its_hook)
+{
+    ck_assert_uint_eq(test_sdo_write(&t, 0x6046, 1, 20000, 4), 0);
+    ck_assert_int_eq(co_od_value(&t.node, 0x2000, 0x06), 2000);
+    ck_assert_uint_eq(test_sdo_write(&t, 0x1010, 3, SAVE, 4), 0);
+    const uint8_t *img = mem.image[CO_STORE_AREA_PROFILE];
+    ck_assert_uint_eq(
+        co_get_u32(img + memory_storage_record(&mem, CO_STORE_AREA_PROFILE, 0x6046, 1)), 20000);
+    ck_assert_uint_eq(test_sdo_write(&t, 0x2000, 0x06, 1500, 2), 0); /* not saved */
+    reset_node();
+    ck_assert_int_eq(co_od_value(&t.node, 0x2000, 0x06), 2000);
+    uint32_t v;
+    ck_assert_uint_eq(test_sdo_read(&t, 0x6046, 1, &v), 0);
+    ck_assert_uint_eq(v, 20000);
+}
+END_TEST
+
+/* Two areas cover 2000:06 (itself, and the view 6046h:01): the later save or restore wins. */
+START_TEST(restoring_an_area_restores_what_its_views_stand_for)
+{
+    ck_assert_uint_eq(test_sdo_write(&t, 0x6046, 1, 20000, 4), 0);
+    ck_assert_uint_eq(test_sdo_write(&t, 0x1010, 1, SAVE, 4), 0);
+    ck_assert_uint_eq(test_sdo_write(&t, 0x1011, 3, LOAD, 4), 0);
+    reset_node();
+    ck_assert_int_eq(co_od_value(&t.node, 0x2000, 0x06), 1000);
+    /* Saved again, then the manufacturer area restored: the older profile image no longer
+     * brings 2000:06 back. */
+    ck_assert_uint_eq(test_sdo_write(&t, 0x6046, 1, 20000, 4), 0);
+    ck_assert_uint_eq(test_sdo_write(&t, 0x1010, 1, SAVE, 4), 0);
+    ck_assert_uint_eq(test_sdo_write(&t, 0x1011, 4, LOAD, 4), 0);
+    reset_node();
+    ck_assert_int_eq(co_od_value(&t.node, 0x2000, 0x06), 1000);
+    /* And a profile save after that wins again. */
+    ck_assert_uint_eq(test_sdo_write(&t, 0x6046, 1, 30000, 4), 0);
+    ck_assert_uint_eq(test_sdo_write(&t, 0x1010, 3, SAVE, 4), 0);
+    reset_node();
+    ck_assert_int_eq(co_od_value(&t.node, 0x2000, 0x06), 3000);
+    ck_assert_uint_eq(mem.refusals, 0);
+}
+END_TEST
+
+/* TPDO6 configured by the CiA 301 procedure and saved comes back valid, with its mapping, through
+ * the same write rules (the mapping could not be written while the PDO is valid). */
+START_TEST(pdo_restored_through_the_mapping_procedure)
+{
+    ck_assert_uint_eq(test_sdo_write(&t, 0x1A05, 0, 0, 1), 0);
+    ck_assert_uint_eq(test_sdo_write(&t, 0x1A05, 1, 0x20000720, 4), 0);
+    ck_assert_uint_eq(test_sdo_write(&t, 0x1A05, 0, 1, 1), 0);
+    ck_assert_uint_eq(test_sdo_write(&t, 0x1805, 2, 1, 1), 0);
+    ck_assert_uint_eq(test_sdo_write(&t, 0x1805, 1, 0x285, 4), 0);
+    ck_assert_uint_eq(test_sdo_write(&t, 0x1010, 2, SAVE, 4), 0);
+    reset_node();
+    ck_assert_uint_eq(mem.refusals, 0);
+    ck_assert_int_eq(co_od_value(&t.node, 0x1805, 1), 0x285);
+    ck_assert_int_eq(co_od_value(&t.node, 0x1A05, 0), 1);
+    ck_assert_int_eq(co_od_value(&t.node, 0x1A05, 1), 0x20000720);
+    ck_assert_uint_eq(test_sdo_write(&t, 0x2000, 0x07, 0x0A0B0C0D, 4), 0);
+    test_rx(&t, "000#0104");
+    test_expect(&t, "184#0000"); /* TPDO1 on entering Operational */
+    test_rx(&t, "080#");
+    test_expect(&t, "285#0D0C0B0A");
+}
+END_TEST
+
+/* The EMCY CAN-ID changes only while 1014h is invalid: a stored new CAN-ID goes through that
+ * procedure too. */
+START_TEST(emcy_cob_id_restored_through_its_procedure)
+{
+    ck_assert_uint_eq(test_sdo_write(&t, 0x1014, 0, 0x80000090, 4), 0);
+    ck_assert_uint_eq(test_sdo_write(&t, 0x1014, 0, 0x90, 4), 0);
+    ck_assert_uint_eq(test_sdo_write(&t, 0x1010, 2, SAVE, 4), 0);
+    reset_node();
+    ck_assert_uint_eq(mem.refusals, 0);
+    ck_assert_int_eq(co_od_value(&t.node, 0x1014, 0), 0x90);
+}
+END_TEST
+
+/* A stored COB-ID the write rules refuse (a restricted CAN-ID) leaves its PDO invalid. */
+START_TEST(refused_pdo_cob_id_leaves_the_pdo_invalid)
+{
+    ck_assert_uint_eq(test_sdo_write(&t, 0x1805, 1, 0x285, 4), 0);
+    ck_assert_uint_eq(test_sdo_write(&t, 0x1010, 2, SAVE, 4), 0);
+    uint8_t *img = mem.image[CO_STORE_AREA_COMMUNICATION];
+    co_put_u32(img + memory_storage_record(&mem, CO_STORE_AREA_COMMUNICATION, 0x1805, 1), 0x701);
+    reset_node();
+    ck_assert_uint_eq(memory_storage_refusal(&mem, 0x1805, 1), SDO_ABORT_VALUE_RANGE);
+    ck_assert_int_eq(co_od_value(&t.node, 0x1805, 1), (int64_t)0x80000284);
 }
 END_TEST
 
@@ -289,7 +372,7 @@ START_TEST(dictionary_change_never_misloads)
     ck_assert_uint_eq(test_sdo_write(&t, 0x1010, 4, SAVE, 4), 0);
     uint8_t *img = mem.image[CO_STORE_AREA_MANUFACTURER];
     long size = mem.size[CO_STORE_AREA_MANUFACTURER];
-    for (long i = 4; i < size; i += 5 + co_get_u16(img + i + 3)) {
+    for (long i = CO_STORE_IMAGE_HEADER_SIZE; i < size; i += 5 + co_get_u16(img + i + 3)) {
         uint16_t index = co_get_u16(img + i);
         uint8_t sub = img[i + 2];
         if (index == 0x2000 && sub == 0x07)
@@ -303,6 +386,9 @@ START_TEST(dictionary_change_never_misloads)
     ck_assert_int_eq(co_od_value(&t.node, 0x2000, 0x07), 0);
     ck_assert_int_eq(co_od_value(&t.node, 0x203C, 0x02), 30);
     ck_assert_int_eq(co_od_value(&t.node, 0x203C, 0x03), 30);
+    ck_assert_uint_eq(memory_storage_refusal(&mem, 0x2000, 0x7F), SDO_ABORT_NO_SUBINDEX);
+    ck_assert_uint_eq(memory_storage_refusal(&mem, 0x2000, 0x07), SDO_ABORT_TYPE_LENGTH);
+    ck_assert_uint_eq(mem.refusals, 2);
 }
 END_TEST
 
@@ -366,11 +452,19 @@ int main(void)
     tcase_add_test(tc, storage_failures_abort_hardware);
     tcase_add_test(tc, damaged_image_ignored_entirely);
     tcase_add_test(tc, malformed_image_ignored_entirely);
-    tcase_add_test(tc, read_failure_while_applying_undoes_the_area);
+    tcase_add_test(tc, read_failure_while_applying_skips_the_record);
     tcase_add_test(tc, dictionary_change_never_misloads);
     tcase_add_test(tc, sync_parameters_survive_reset_node);
     tcase_add_test(tc, guarding_cob_id_stored_with_the_communication_parameters);
     tcase_add_test(tc, no_image_keeps_defaults);
+    tcase_add_test(tc, process_data_never_stored);
+    tcase_add_test(tc, version_1_image_loads_its_parameters_only);
+    tcase_add_test(tc, stored_values_checked_like_writes);
+    tcase_add_test(tc, view_saved_as_read_and_restored_through_its_hook);
+    tcase_add_test(tc, restoring_an_area_restores_what_its_views_stand_for);
+    tcase_add_test(tc, pdo_restored_through_the_mapping_procedure);
+    tcase_add_test(tc, emcy_cob_id_restored_through_its_procedure);
+    tcase_add_test(tc, refused_pdo_cob_id_leaves_the_pdo_invalid);
     suite_add_tcase(s, tc);
     return check_run_suite(s);
 }

@@ -19,7 +19,7 @@ typedef struct test_od_data {
     uint8_t r32[4], boolean[1], wo[4], vstring[32], ostring[200], i16lim[2], u16zero[2];
     uint8_t hooked[2], r64[8], bigstring[1000];
     uint8_t x2002_0[1], lcr[2], otr[2], x203c_0[1], acc[2], dec[2];
-    uint8_t x6040[2], x6041[2], x6042[2], x6044[2];
+    uint8_t x6040[2], x6041[2], x6042[2], x6044[2], x6046_0[1], x6046[2][4];
 } test_od_data_t;
 
 #define U8(v)                                                                                      \
@@ -85,6 +85,8 @@ static const test_od_data_t defaults = {
     .x203c_0 = U8(3),
     .acc = U16(30),
     .dec = U16(30),
+    .x6046_0 = U8(2),
+    .x6046 = {U32(10000), U32(1500)},
 };
 
 #define E(idx, sub, type, flags, field, limits, hook)                                              \
@@ -130,6 +132,28 @@ static uint32_t count_read(co_node_t *node, const co_od_entry_t *entry)
 }
 
 static const co_od_hook_t hook_refuse = {refuse_write, count_read};
+
+/* 6046h:01 is a view of 2000:06 (u16lim) x 10, like the ATV312's 6046h of LSP/HSP. */
+#define VIEW_SCALE 10u
+
+static uint32_t view_write(co_node_t *node, const co_od_entry_t *entry, const uint8_t *data,
+                           size_t len, co_od_origin_t origin)
+{
+    (void)entry, (void)len, (void)origin;
+    uint32_t value = co_get_u32(data) / VIEW_SCALE;
+    uint8_t raw[2];
+    co_put_u16(raw, (uint16_t)(value > UINT16_MAX ? UINT16_MAX : value));
+    uint32_t abort = co_od_write(node, 0x2000, 0x06, raw, sizeof(raw), CO_OD_ORIGIN_APP);
+    return abort == CO_SDO_OK ? CO_OD_HANDLED : abort;
+}
+
+static uint32_t view_read(co_node_t *node, const co_od_entry_t *entry)
+{
+    co_od_set(node, entry, co_od_value(node, 0x2000, 0x06) * VIEW_SCALE);
+    return CO_SDO_OK;
+}
+
+static const co_od_hook_t hook_view = {view_write, view_read};
 
 static const co_od_entry_t entries[] = {
     E(0x1000, 0, CO_DT_UNSIGNED32, RO, x1000, NULL, NULL),
@@ -233,10 +257,13 @@ static const co_od_entry_t entries[] = {
     E(0x203C, 0x00, CO_DT_UNSIGNED8, RO, x203c_0, NULL, NULL),
     E(0x203C, 0x02, CO_DT_UNSIGNED16, RWW, acc, NULL, NULL),
     E(0x203C, 0x03, CO_DT_UNSIGNED16, RWW, dec, NULL, NULL),
-    E(0x6040, 0x00, CO_DT_UNSIGNED16, RWW, x6040, NULL, NULL),
+    E(0x6040, 0x00, CO_DT_UNSIGNED16, RWW | CO_OD_PROCESS, x6040, NULL, NULL),
     E(0x6041, 0x00, CO_DT_UNSIGNED16, ROT, x6041, NULL, NULL),
-    E(0x6042, 0x00, CO_DT_INTEGER16, RWW, x6042, NULL, NULL),
+    E(0x6042, 0x00, CO_DT_INTEGER16, RWW | CO_OD_PROCESS, x6042, NULL, NULL),
     E(0x6044, 0x00, CO_DT_INTEGER16, ROT, x6044, NULL, NULL),
+    E(0x6046, 0x00, CO_DT_UNSIGNED8, RO, x6046_0, NULL, NULL),
+    E(0x6046, 0x01, CO_DT_UNSIGNED32, RW, x6046[0], NULL, &hook_view),
+    E(0x6046, 0x02, CO_DT_UNSIGNED32, RW, x6046[1], NULL, NULL),
 };
 
 #define ENTRY_COUNT (sizeof(entries) / sizeof(entries[0]))

@@ -253,7 +253,7 @@ class GeneratedTable(ToolCase):
         for edit, types in cases:
             with self.subTest(types=types):
                 self.assertEqual(self.generate(self.eds(edit))[0], 0)
-                self.assertIn("    t_od_defaults, /* [DummyUsage] */ %s};\n" % types,
+                self.assertIn("    t_od_defaults, /* [DummyUsage] */ %s, t_od_names};\n" % types,
                               self.read("t_od.c"))
 
     def test_atv312_declares_no_dummy(self):
@@ -311,10 +311,10 @@ class Hooks(ToolCase):
         self.check_refused("0x2000:0x05 h\n", "line 1: 0x2000:0x05 is not in the EDS")
 
     def test_bad_word_refused(self):
-        self.check_refused("0x2001 zero_ok-\n", "'zero_ok-' is neither zero-ok nor a C identifier")
+        self.check_refused("0x2001 zero_ok-\n", "'zero_ok-' is neither zero-ok, process-data nor a C identifier")
 
     def test_no_action_refused(self):
-        self.check_refused("0x2001\n", "names no hook and no zero-ok")
+        self.check_refused("0x2001\n", "names no hook, zero-ok or process-data")
 
     def test_two_hooks_refused(self):
         self.check_refused("0x2001 a\n0x2001 b\n", "line 2: 0x2001:0x00 already has hook a")

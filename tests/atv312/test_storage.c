@@ -1,0 +1,142 @@
+/* What storage keeps of the drive (SPEC section 3, "Storage"): parameters, never process data;
+ * the values the CiA 402 views stand for; every stored value checked like an SDO write. Reset node
+ * (000#8104) reloads the dictionary as a restart of the daemon does. */
+#include "bench.h"
+#include "check_main.h"
+#include "memory_storage.h"
+
+static memory_storage_t mem;
+static co_storage_t storage;
+static bench_t b;
+
+static void setup(void)
+{
+    memory_storage_init(&mem, &storage);
+    bench_start_stored(&b, &storage);
+}
+
+static void reset_node(void)
+{
+    bench_rx(&b, "000#8104");
+    bench_expect(&b, "704#00");
+}
+
+/* The issue's frames: save all while running at 1200 rpm; after the reset the control word, CMD
+ * and the reference are back at 0, and 0x0006, 0x0007, 0x000F never run the motor. */
+START_TEST(process_data_never_come_back_from_storage)
+{
+    ck_assert_uint_eq(bench_sdo_write(&b, 0x6042, 0, 1200, 2), 0);
+    bench_command(&b, 0x0006);
+    bench_command(&b, 0x000F);
+    bench_advance(&b, 3000000);
+    ck_assert_int_eq(bench_speed(&b), 1200);
+    bench_rx(&b, "604#2310100173617665");
+    bench_expect(&b, "584#6010100100000000");
+    reset_node();
+    ck_assert_uint_eq(bench_read(&b, 0x6040, 0), 0);
+    ck_assert_uint_eq(bench_read(&b, 0x2037, 2), 0);
+    ck_assert_uint_eq(bench_read(&b, 0x2037, 5), 0);
+    ck_assert_uint_eq(bench_read(&b, 0x6042, 0), 0);
+    ck_assert_uint_eq(bench_read(&b, 0x6041, 0), 0x0640);
+    bench_command(&b, 0x0006);
+    bench_command(&b, 0x0007);
+    ck_assert_uint_eq(bench_command(&b, 0x000F), 0x0627);
+    bench_advance(&b, 3000000);
+    ck_assert_int_eq(bench_speed(&b), 0);
+    ck_assert_uint_eq(mem.refusals, 0);
+}
+END_TEST
+
+/* 1010h:03 saves the profile area: 6040h must not come back as 0x0006 while CMD reads 0. */
+START_TEST(control_word_and_cmd_stay_one_word_across_a_save)
+{
+    bench_command(&b, 0x0006);
+    ck_assert_uint_eq(bench_sdo_write(&b, 0x1010, 3, CO_STORE_SIGNATURE_SAVE, 4), 0);
+    ck_assert_int_eq(memory_storage_record(&mem, CO_STORE_AREA_PROFILE, 0x6040, 0), 0);
+    reset_node();
+    ck_assert_uint_eq(bench_read(&b, 0x6040, 0), bench_read(&b, 0x2037, 2));
+    ck_assert_uint_eq(bench_read(&b, 0x6040, 0), 0);
+}
+END_TEST
+
+/* 1010h:03 keeps what 6046h, 6048h and 6049h stand for (LSP/HSP, ACC, DEC). */
+START_TEST(profile_save_keeps_what_the_views_stand_for)
+{
+    ck_assert_uint_eq(bench_sdo_write(&b, 0x6046, 2, 1200, 4), 0);
+    ck_assert_uint_eq(bench_sdo_write(&b, 0x6048, 1, 1250, 4), 0); /* ACC 1.2 s */
+    ck_assert_uint_eq(bench_sdo_write(&b, 0x6049, 2, 2, 2), 0);    /* DEC 6.0 s */
+    ck_assert_uint_eq(bench_read(&b, 0x203C, 2), 12);
+    ck_assert_uint_eq(bench_read(&b, 0x203C, 3), 60);
+    ck_assert_uint_eq(bench_sdo_write(&b, 0x1010, 3, CO_STORE_SIGNATURE_SAVE, 4), 0);
+    reset_node();
+    ck_assert_uint_eq(bench_read(&b, 0x6046, 2), 1200);
+    ck_assert_uint_eq(bench_read(&b, 0x2001, 5), 400);
+    ck_assert_uint_eq(bench_read(&b, 0x203C, 2), 12);
+    ck_assert_uint_eq(bench_read(&b, 0x203C, 3), 60);
+    ck_assert_uint_eq(mem.refusals, 0);
+}
+END_TEST
+
+/* Save all, then 1011h:03 and reset: the views' defaults apply to what they stand for. */
+START_TEST(profile_restore_restores_what_the_views_stand_for)
+{
+    ck_assert_uint_eq(bench_sdo_write(&b, 0x6046, 2, 1200, 4), 0);
+    ck_assert_uint_eq(bench_sdo_write(&b, 0x6048, 1, 1250, 4), 0);
+    bench_rx(&b, "604#2310100173617665");
+    bench_expect(&b, "584#6010100100000000");
+    ck_assert_uint_eq(bench_sdo_write(&b, 0x1011, 3, CO_STORE_SIGNATURE_LOAD, 4), 0);
+    reset_node();
+    ck_assert_uint_eq(bench_read(&b, 0x6046, 2), 1500);
+    ck_assert_uint_eq(bench_read(&b, 0x2001, 5), 500);
+    ck_assert_uint_eq(bench_read(&b, 0x203C, 2), 30);
+    ck_assert_uint_eq(mem.refusals, 0);
+}
+END_TEST
+
+/* Min above the default max: refused at first, applied once the max is (the values were valid
+ * together when saved). */
+START_TEST(values_valid_together_load_whatever_their_order)
+{
+    ck_assert_uint_eq(bench_sdo_write(&b, 0x6046, 2, 1800, 4), 0);
+    ck_assert_uint_eq(bench_sdo_write(&b, 0x6046, 1, 1650, 4), 0);
+    ck_assert_uint_eq(bench_sdo_write(&b, 0x1010, 3, CO_STORE_SIGNATURE_SAVE, 4), 0);
+    reset_node();
+    ck_assert_uint_eq(bench_read(&b, 0x6046, 1), 1650);
+    ck_assert_uint_eq(bench_read(&b, 0x6046, 2), 1800);
+    ck_assert_uint_eq(mem.refusals, 0);
+}
+END_TEST
+
+/* A well-formed image holding NSP = 0 (limits 1..32767): refused and reported, NSP keeps its
+ * default, and 6048h:02 = 1 (which divides by the ramp rate) is answered, not a crash. */
+START_TEST(stored_value_outside_its_limits_is_skipped)
+{
+    ck_assert_uint_eq(bench_sdo_write(&b, 0x203C, 2, 50, 2), 0);
+    ck_assert_uint_eq(bench_sdo_write(&b, 0x1010, 1, CO_STORE_SIGNATURE_SAVE, 4), 0);
+    long nsp = memory_storage_record(&mem, CO_STORE_AREA_MANUFACTURER, 0x2042, 5);
+    ck_assert_int_gt(nsp, 0);
+    co_put_u16(mem.image[CO_STORE_AREA_MANUFACTURER] + nsp, 0);
+    reset_node();
+    ck_assert_uint_eq(memory_storage_refusal(&mem, 0x2042, 5), SDO_ABORT_VALUE_LOW);
+    ck_assert_uint_eq(mem.refusals, 1);
+    ck_assert_uint_eq(bench_read(&b, 0x2042, 5), 1500);
+    ck_assert_uint_eq(bench_read(&b, 0x203C, 2), 50);
+    bench_rx(&b, "604#2B48600201000000");
+    bench_expect(&b, "584#6048600200000000");
+}
+END_TEST
+
+int main(void)
+{
+    Suite *s = suite_create("atv312_storage");
+    TCase *tc = tcase_create("storage");
+    tcase_add_checked_fixture(tc, setup, NULL);
+    tcase_add_test(tc, process_data_never_come_back_from_storage);
+    tcase_add_test(tc, control_word_and_cmd_stay_one_word_across_a_save);
+    tcase_add_test(tc, profile_save_keeps_what_the_views_stand_for);
+    tcase_add_test(tc, profile_restore_restores_what_the_views_stand_for);
+    tcase_add_test(tc, values_valid_together_load_whatever_their_order);
+    tcase_add_test(tc, stored_value_outside_its_limits_is_skipped);
+    suite_add_tcase(s, tc);
+    return check_run_suite(s);
+}

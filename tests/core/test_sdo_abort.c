@@ -1,0 +1,71 @@
+/* Every CiA 301 abort code has its own meaning for logs and tools; anything else is unknown. */
+#include "check_main.h"
+#include "co/co_types.h"
+
+#include <string.h>
+
+static const uint32_t codes[] = {
+    SDO_ABORT_TOGGLE,
+    SDO_ABORT_TIMEOUT,
+    SDO_ABORT_COMMAND,
+    SDO_ABORT_BLOCK_SIZE,
+    SDO_ABORT_SEQUENCE,
+    SDO_ABORT_CRC,
+    SDO_ABORT_NO_MEMORY,
+    SDO_ABORT_UNSUPPORTED_ACCESS,
+    SDO_ABORT_WRITE_ONLY,
+    SDO_ABORT_READ_ONLY,
+    SDO_ABORT_NO_OBJECT,
+    SDO_ABORT_NOT_MAPPABLE,
+    SDO_ABORT_PDO_LENGTH,
+    SDO_ABORT_PARAM_INCOMPATIBLE,
+    SDO_ABORT_INTERNAL_INCOMPATIBLE,
+    SDO_ABORT_HARDWARE,
+    SDO_ABORT_TYPE_LENGTH,
+    SDO_ABORT_LENGTH_HIGH,
+    SDO_ABORT_LENGTH_LOW,
+    SDO_ABORT_NO_SUBINDEX,
+    SDO_ABORT_VALUE_RANGE,
+    SDO_ABORT_VALUE_HIGH,
+    SDO_ABORT_VALUE_LOW,
+    SDO_ABORT_MAX_LESS_MIN,
+    SDO_ABORT_NO_RESOURCE,
+    SDO_ABORT_GENERAL,
+    SDO_ABORT_DATA_STORE,
+    SDO_ABORT_DATA_LOCAL,
+    SDO_ABORT_DATA_STATE,
+    SDO_ABORT_OD_MISSING,
+    SDO_ABORT_NO_DATA,
+};
+
+START_TEST(every_code_has_its_own_text)
+{
+    const size_t n = sizeof(codes) / sizeof(codes[0]);
+    for (size_t i = 0; i < n; i++) {
+        const char *text = co_sdo_abort_text(codes[i]);
+        ck_assert_str_ne(text, "unknown abort code");
+        for (size_t j = 0; j < i; j++)
+            ck_assert_msg(strcmp(text, co_sdo_abort_text(codes[j])) != 0, "%08X and %08X share %s",
+                          codes[i], codes[j], text);
+    }
+    ck_assert_str_eq(co_sdo_abort_text(SDO_ABORT_VALUE_LOW), "value of parameter written too low");
+}
+END_TEST
+
+START_TEST(other_codes_are_unknown)
+{
+    ck_assert_str_eq(co_sdo_abort_text(0), "unknown abort code");
+    ck_assert_str_eq(co_sdo_abort_text(0x06090033), "unknown abort code");
+    ck_assert_str_eq(co_sdo_abort_text(0xFFFFFFFF), "unknown abort code");
+}
+END_TEST
+
+int main(void)
+{
+    Suite *s = suite_create("sdo_abort");
+    TCase *tc = tcase_create("sdo_abort");
+    tcase_add_test(tc, every_code_has_its_own_text);
+    tcase_add_test(tc, other_codes_are_unknown);
+    suite_add_tcase(s, tc);
+    return check_run_suite(s);
+}

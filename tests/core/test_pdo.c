@@ -565,6 +565,32 @@ START_TEST(length_error_shared_by_rpdos_clears_last)
 }
 END_TEST
 
+/* Issue 7, item 6, with its frames (node 5): reset node ends RPDO1's length error together with
+ * its EMCY, so the same short frame after the reset raises the EMCY again. */
+START_TEST(rpdo_length_error_raised_again_after_reset_node)
+{
+    uint32_t reg;
+    test_node_start(&t, 5, &hooks, NULL);
+    test_rx(&t, "000#0105");
+    test_expect(&t, "185#0000");
+    test_rx(&t, "205#06");
+    test_expect(&t, "085#1082110100010200");
+    test_rx(&t, "000#8105");
+    test_expect(&t, "705#00");
+    ck_assert_uint_eq(test_sdo_read(&t, 0x1001, 0, &reg), 0);
+    ck_assert_uint_eq(reg, 0);
+    test_rx(&t, "000#0105");
+    test_expect(&t, "185#0000");
+    test_rx(&t, "205#06");
+    test_expect(&t, "085#1082110100010200");
+    ck_assert_uint_eq(test_sdo_read(&t, 0x1001, 0, &reg), 0);
+    ck_assert_uint_eq(reg, 0x11);
+    test_rx(&t, "205#0600");
+    test_expect(&t, "085#0000000000000000");
+    test_expect_none(&t);
+}
+END_TEST
+
 /* ---- Parameter rules ----------------------------------------------------------------- */
 
 START_TEST(cob_id_rules)
@@ -829,6 +855,7 @@ int main(void)
     tcase_add_test(tc, rpdo_long_frame_applied_emcy_8220);
     tcase_add_test(tc, rpdo_deadline_emcy_8250);
     tcase_add_test(tc, length_error_shared_by_rpdos_clears_last);
+    tcase_add_test(tc, rpdo_length_error_raised_again_after_reset_node);
     tcase_add_test(tc, cob_id_rules);
     tcase_add_test(tc, restricted_can_ids_at_every_edge);
     tcase_add_test(tc, transmission_type_rules);

@@ -591,11 +591,15 @@ static uint32_t pdo_write_map(co_node_t *node, const co_od_entry_t *entry, const
 }
 
 /* Stores an accepted parameter and reconfigures its PDO: a changed COB-ID, type or mapping
- * restarts the PDO; a new event timer only restarts the timer. */
+ * restarts the PDO; a new event timer only restarts the timer. An RPDO made invalid receives
+ * nothing, so no frame could end its errors: they end now (docs/error-control.md). */
 static void rpdo_written(co_node_t *node, uint16_t n)
 {
+    co_rpdo_t *r = &node->pdo.rpdo[n];
     rpdo_load(node, n);
-    rpdo_restart(&node->pdo.rpdo[n]);
+    rpdo_restart(r);
+    if (!r->valid)
+        rpdo_errors_end(node, r);
 }
 
 static void tpdo_written(co_node_t *node, uint16_t n, bool event_timer)

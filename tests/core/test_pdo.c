@@ -591,6 +591,41 @@ START_TEST(rpdo_length_error_raised_again_after_reset_node)
 }
 END_TEST
 
+/* An invalid RPDO receives nothing, so no frame could end its errors any more: they end when it
+ * is made invalid, each EMCY unless another RPDO still holds it. */
+START_TEST(rpdo_errors_end_when_it_is_invalidated)
+{
+    start_quiet();
+    ck_assert_uint_eq(write_param(0x1405, 5, 100, 2), 0);
+    ck_assert_uint_eq(write_param(0x1405, 1, 0x304, 4), 0);
+    go_operational();
+    test_drain(&t);
+    test_rx(&t, "304#0F");
+    test_expect(&t, "084#1082110600010400");
+    ck_assert_uint_eq(write_param(0x1405, 1, 0x80000304, 4), 0);
+    test_expect(&t, "084#0000000000000000");
+    ck_assert_int_eq(co_od_value(&t.node, 0x1001, 0), 0);
+    /* The timeout likewise. */
+    ck_assert_uint_eq(write_param(0x1405, 1, 0x304, 4), 0);
+    test_rx(&t, "304#0F00B004");
+    test_advance(&t, 100 * MS);
+    test_expect(&t, "084#5082110600000400");
+    ck_assert_uint_eq(write_param(0x1405, 1, 0x80000304, 4), 0);
+    test_expect(&t, "084#0000000000000000");
+    /* RPDO1 still holds 0x8210: it stays until RPDO1's next right frame. */
+    ck_assert_uint_eq(write_param(0x1405, 1, 0x304, 4), 0);
+    test_rx(&t, "204#0F");
+    test_expect(&t, "084#1082110100010200");
+    test_rx(&t, "304#0F");
+    ck_assert_uint_eq(write_param(0x1405, 1, 0x80000304, 4), 0);
+    test_expect_none(&t);
+    ck_assert(co_emcy_is_active(&t.node, CO_EMCY_PDO_LENGTH));
+    test_rx(&t, "204#0F00");
+    test_expect(&t, "084#0000000000000000");
+    test_expect_none(&t);
+}
+END_TEST
+
 /* ---- Parameter rules ----------------------------------------------------------------- */
 
 START_TEST(cob_id_rules)
@@ -856,6 +891,7 @@ int main(void)
     tcase_add_test(tc, rpdo_deadline_emcy_8250);
     tcase_add_test(tc, length_error_shared_by_rpdos_clears_last);
     tcase_add_test(tc, rpdo_length_error_raised_again_after_reset_node);
+    tcase_add_test(tc, rpdo_errors_end_when_it_is_invalidated);
     tcase_add_test(tc, cob_id_rules);
     tcase_add_test(tc, restricted_can_ids_at_every_edge);
     tcase_add_test(tc, transmission_type_rules);

@@ -51,9 +51,10 @@ typedef struct co_emcy {
     co_time_t inhibit_end; /* no EMCY may be sent before this time */
 } co_emcy_t;
 
-/* Reset communication keeps the active errors (the conditions still exist) and recomputes 1001h
- * after the dictionary was restored; reset node forgets them (the application restarts). Queued
- * frames and the inhibit time are dropped by both. */
+/* Reset communication keeps the active errors and recomputes 1001h after the dictionary was
+ * restored: the PDO engine and the SYNC consumer end theirs in their own reset, the application's
+ * stay (it is not reset). Reset node forgets them all (the application restarts). Queued frames
+ * and the inhibit time are dropped by both (docs/error-control.md, "Errors and resets"). */
 void co_emcy_reset(co_node_t *node, co_nmt_reset_t scope);
 /* Sends queued frames whose inhibit time elapsed; returns when the next one may go. */
 co_time_t co_emcy_process(co_node_t *node, co_time_t now);

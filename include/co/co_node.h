@@ -24,14 +24,17 @@ typedef void (*co_send_fn)(void *user, const co_frame_t *frame);
 typedef struct co_app_hooks {
     void (*nmt_state)(co_node_t *node, co_nmt_state_t state);
     /* Before the reset of the given scope restores the dictionary (reset node: the application
-     * resets its own state too). */
+     * resets its own state too, and the EMCY producer forgets the errors it raised; reset
+     * communication keeps them). */
     void (*reset)(co_node_t *node, co_nmt_reset_t scope);
     /* An RPDO (number 1..) was applied to the dictionary. */
     void (*rpdo)(co_node_t *node, uint16_t pdo_number);
     void (*sync)(co_node_t *node, uint8_t counter);
-    /* A monitored heartbeat producer was lost (lost = true) or came back (lost = false). */
+    /* A monitored heartbeat producer was lost (lost = true) or came back (lost = false). A reset
+     * restarts monitoring without a call: no lost = false follows a loss then. */
     void (*heartbeat)(co_node_t *node, uint8_t producer, bool lost);
-    /* Life guarding: the master stopped guarding this node (lost = true) or resumed. */
+    /* Life guarding: the master stopped guarding this node (lost = true) or resumed; a reset
+     * restarts it without a call, as for heartbeat. */
     void (*guarding)(co_node_t *node, bool lost);
     /* An entry was written by SDO or PDO and stored. */
     void (*od_written)(co_node_t *node, const co_od_entry_t *entry, co_od_origin_t origin);

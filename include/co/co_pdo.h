@@ -2,8 +2,8 @@
  * inhibit and event timers, SYNC start value, change-of-state detection and the CiA 301 dynamic
  * mapping procedure (CiA 301 section 7.2.2).
  *
- * The engine keeps a decoded copy of each PDO's parameters, re-read from the dictionary at
- * co_pdo_reset() and after every write of a PDO parameter through co_od_write(). */
+ * The engine keeps a decoded copy of each PDO's parameters, re-read from the dictionary at every
+ * reset and NMT state change and after every write of a PDO parameter through co_od_write(). */
 #ifndef CO_PDO_H
 #define CO_PDO_H
 
@@ -74,10 +74,14 @@ typedef struct co_pdo {
     co_time_t sync_at; /* time of the last SYNC, start of the synchronous window (1007h) */
 } co_pdo_t;
 
-/* Re-reads every PDO's parameters and forgets all transmission state (timers, pending requests,
- * buffered data): called on every NMT state change, so that the first transmission after entering
- * Operational is immediate. */
+/* Reset node and reset communication: co_pdo_restart(), and the RPDOs' errors end with their
+ * EMCYs (0x8210, 0x8220, 0x8250), so that the next fault raises its EMCY again. */
 void co_pdo_reset(co_node_t *node);
+/* An NMT state change: re-reads every PDO's parameters and forgets all transmission state (timers,
+ * pending requests, buffered data), so that the first transmission after entering Operational is
+ * immediate. The RPDOs' errors and their EMCYs stay: the configuration they were detected with is
+ * unchanged, and the next frame of the RPDO ends them. */
+void co_pdo_restart(co_node_t *node);
 /* An RPDO, or an RTR for a TPDO. Returns true when the frame belonged to a PDO. */
 bool co_pdo_receive(co_node_t *node, const co_frame_t *frame);
 /* Change-of-state detection, inhibit and event timers, synchronous transmissions, RPDO deadline

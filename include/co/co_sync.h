@@ -20,6 +20,8 @@ typedef struct co_sync {
     bool length_error; /* EMCY 0x8240 raised */
 } co_sync_t;
 
+/* Reset node and reset communication: the producer restarts, and the consumer's length error
+ * ends with its EMCY 0x8240, so that the next wrong SYNC raises it again. */
 void co_sync_reset(co_node_t *node);
 bool co_sync_receive(co_node_t *node, const co_frame_t *frame);
 /* Produces the SYNC when due; returns the next one (CO_TIME_NEVER when not producing). */

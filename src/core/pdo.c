@@ -141,6 +141,39 @@ static void map_read(co_node_t *node, const co_pdo_map_t *map, uint8_t *data)
     }
 }
 
+/* ---- RPDO errors ------------------------------------------------------------------------ */
+
+static bool rpdo_error_held(const co_node_t *node, uint16_t code)
+{
+    for (uint16_t n = 0; n < CO_CONFIG_RPDO_MAX; n++) {
+        const co_rpdo_t *r = &node->pdo.rpdo[n];
+        if (r->length_error == code || (r->timed_out && code == CO_EMCY_RPDO_TIMEOUT))
+            return true;
+    }
+    return false;
+}
+
+/* An error code is shared by all RPDOs: it clears when no RPDO holds it any more. */
+static void rpdo_error_release(co_node_t *node, uint16_t code)
+{
+    if (!rpdo_error_held(node, code))
+        co_emcy_clear(node, code);
+}
+
+/* Ends an RPDO's errors: its flags, and each EMCY that no other RPDO holds. The two go together:
+ * a flag left without its EMCY makes the RPDO take the next fault for one already reported. */
+static void rpdo_errors_end(co_node_t *node, co_rpdo_t *r)
+{
+    uint16_t length_error = r->length_error;
+    bool timed_out = r->timed_out;
+    r->length_error = 0;
+    r->timed_out = false;
+    if (length_error != 0)
+        rpdo_error_release(node, length_error);
+    if (timed_out)
+        rpdo_error_release(node, CO_EMCY_RPDO_TIMEOUT);
+}
+
 /* ---- Configuration ---------------------------------------------------------------------- */
 
 static void rpdo_load(co_node_t *node, uint16_t n)
@@ -191,7 +224,7 @@ static void tpdo_restart(co_tpdo_t *t)
     t->event_due = CO_TIME_NEVER;
 }
 
-void co_pdo_reset(co_node_t *node)
+void co_pdo_restart(co_node_t *node)
 {
     for (uint16_t n = 0; n < CO_CONFIG_RPDO_MAX; n++) {
         rpdo_load(node, n);
@@ -201,6 +234,16 @@ void co_pdo_reset(co_node_t *node)
         tpdo_load(node, n);
         tpdo_restart(&node->pdo.tpdo[n]);
     }
+}
+
+/* The errors were detected by the communication that the reset restarts from its restored
+ * parameters: none of them is detected any more (docs/error-control.md, "Errors and resets"). The
+ * node is in Initialising, so clearing their EMCYs sends no error reset: the boot-up says it. */
+void co_pdo_reset(co_node_t *node)
+{
+    for (uint16_t n = 0; n < CO_CONFIG_RPDO_MAX; n++)
+        rpdo_errors_end(node, &node->pdo.rpdo[n]);
+    co_pdo_restart(node);
 }
 
 /* ---- TPDO transmission ------------------------------------------------------------------ */
@@ -318,23 +361,6 @@ void co_tpdo_request(co_node_t *node, uint16_t pdo_number)
 }
 
 /* ---- RPDO reception --------------------------------------------------------------------- */
-
-static bool rpdo_error_held(const co_node_t *node, uint16_t code)
-{
-    for (uint16_t n = 0; n < CO_CONFIG_RPDO_MAX; n++) {
-        const co_rpdo_t *r = &node->pdo.rpdo[n];
-        if (r->length_error == code || (r->timed_out && code == CO_EMCY_RPDO_TIMEOUT))
-            return true;
-    }
-    return false;
-}
-
-/* An error code is shared by all RPDOs: it clears when no RPDO holds it any more. */
-static void rpdo_error_release(co_node_t *node, uint16_t code)
-{
-    if (!rpdo_error_held(node, code))
-        co_emcy_clear(node, code);
-}
 
 static void rpdo_emcy(co_node_t *node, uint16_t n, uint16_t code, uint8_t received)
 {
@@ -565,11 +591,15 @@ static uint32_t pdo_write_map(co_node_t *node, const co_od_entry_t *entry, const
 }
 
 /* Stores an accepted parameter and reconfigures its PDO: a changed COB-ID, type or mapping
- * restarts the PDO; a new event timer only restarts the timer. */
+ * restarts the PDO; a new event timer only restarts the timer. An RPDO made invalid receives
+ * nothing, so no frame could end its errors: they end now (docs/error-control.md). */
 static void rpdo_written(co_node_t *node, uint16_t n)
 {
+    co_rpdo_t *r = &node->pdo.rpdo[n];
     rpdo_load(node, n);
-    rpdo_restart(&node->pdo.rpdo[n]);
+    rpdo_restart(r);
+    if (!r->valid)
+        rpdo_errors_end(node, r);
 }
 
 static void tpdo_written(co_node_t *node, uint16_t n, bool event_timer)

@@ -583,8 +583,11 @@ bool co_sdo_receive(co_node_t *node, const co_frame_t *frame)
     if ((frame->flags & CO_FRAME_RTR) || frame->len == 0)
         return true;
     uint8_t command = frame->data[0];
-    /* An abort needs its full 8 bytes (the code); the client expects no answer. */
-    if (command == CS_ABORT && frame->len == 8) {
+    /* 0x80 means abort in every state, and nothing else: inside a block download sub-block it
+     * would be segment 0, which does not exist. An abort is unconfirmed, so whatever its DLC
+     * (SPEC: tolerant of short frames where the meaning is unambiguous) the transfer ends
+     * silently; the server has no use for the multiplexer or the code. */
+    if (command == CS_ABORT) {
         sdo->state = CO_SDO_IDLE;
         return true;
     }

@@ -34,11 +34,24 @@ static void sync_event(co_node_t *node, uint8_t counter)
         node->hooks->sync(node, counter);
 }
 
+/* The length error and its EMCY end together: a flag left without its EMCY would swallow the
+ * next wrong SYNC's EMCY, an EMCY left without its flag would never be cleared. */
+static void sync_length_error_end(co_node_t *node)
+{
+    if (!node->sync.length_error)
+        return;
+    node->sync.length_error = false;
+    co_emcy_clear(node, CO_EMCY_SYNC_LENGTH);
+}
+
+/* Reset node and reset communication restart the consumer from restored parameters, so a length
+ * error it detected is no longer detected (docs/error-control.md, "Errors and resets"). The node
+ * is in Initialising: clearing the EMCY sends no error reset, the boot-up says it. */
 void co_sync_reset(co_node_t *node)
 {
     node->sync.counter = 0;
     node->sync.next = CO_TIME_NEVER;
-    node->sync.length_error = false;
+    sync_length_error_end(node);
 }
 
 /* The counter starts at 1 and wraps from the overflow value back to 1 (CiA 301 7.2.5.2). */
@@ -101,10 +114,7 @@ bool co_sync_receive(co_node_t *node, const co_frame_t *frame)
         node->sync.length_error = true;
         return true;
     }
-    if (node->sync.length_error) {
-        node->sync.length_error = false;
-        co_emcy_clear(node, CO_EMCY_SYNC_LENGTH);
-    }
+    sync_length_error_end(node);
     sync_event(node, overflow != 0 ? frame->data[0] : 0);
     return true;
 }

@@ -565,6 +565,67 @@ START_TEST(length_error_shared_by_rpdos_clears_last)
 }
 END_TEST
 
+/* Issue 7, item 6, with its frames (node 5): reset node ends RPDO1's length error together with
+ * its EMCY, so the same short frame after the reset raises the EMCY again. */
+START_TEST(rpdo_length_error_raised_again_after_reset_node)
+{
+    uint32_t reg;
+    test_node_start(&t, 5, &hooks, NULL);
+    test_rx(&t, "000#0105");
+    test_expect(&t, "185#0000");
+    test_rx(&t, "205#06");
+    test_expect(&t, "085#1082110100010200");
+    test_rx(&t, "000#8105");
+    test_expect(&t, "705#00");
+    ck_assert_uint_eq(test_sdo_read(&t, 0x1001, 0, &reg), 0);
+    ck_assert_uint_eq(reg, 0);
+    test_rx(&t, "000#0105");
+    test_expect(&t, "185#0000");
+    test_rx(&t, "205#06");
+    test_expect(&t, "085#1082110100010200");
+    ck_assert_uint_eq(test_sdo_read(&t, 0x1001, 0, &reg), 0);
+    ck_assert_uint_eq(reg, 0x11);
+    test_rx(&t, "205#0600");
+    test_expect(&t, "085#0000000000000000");
+    test_expect_none(&t);
+}
+END_TEST
+
+/* An invalid RPDO receives nothing, so no frame could end its errors any more: they end when it
+ * is made invalid, each EMCY unless another RPDO still holds it. */
+START_TEST(rpdo_errors_end_when_it_is_invalidated)
+{
+    start_quiet();
+    ck_assert_uint_eq(write_param(0x1405, 5, 100, 2), 0);
+    ck_assert_uint_eq(write_param(0x1405, 1, 0x304, 4), 0);
+    go_operational();
+    test_drain(&t);
+    test_rx(&t, "304#0F");
+    test_expect(&t, "084#1082110600010400");
+    ck_assert_uint_eq(write_param(0x1405, 1, 0x80000304, 4), 0);
+    test_expect(&t, "084#0000000000000000");
+    ck_assert_int_eq(co_od_value(&t.node, 0x1001, 0), 0);
+    /* The timeout likewise. */
+    ck_assert_uint_eq(write_param(0x1405, 1, 0x304, 4), 0);
+    test_rx(&t, "304#0F00B004");
+    test_advance(&t, 100 * MS);
+    test_expect(&t, "084#5082110600000400");
+    ck_assert_uint_eq(write_param(0x1405, 1, 0x80000304, 4), 0);
+    test_expect(&t, "084#0000000000000000");
+    /* RPDO1 still holds 0x8210: it stays until RPDO1's next right frame. */
+    ck_assert_uint_eq(write_param(0x1405, 1, 0x304, 4), 0);
+    test_rx(&t, "204#0F");
+    test_expect(&t, "084#1082110100010200");
+    test_rx(&t, "304#0F");
+    ck_assert_uint_eq(write_param(0x1405, 1, 0x80000304, 4), 0);
+    test_expect_none(&t);
+    ck_assert(co_emcy_is_active(&t.node, CO_EMCY_PDO_LENGTH));
+    test_rx(&t, "204#0F00");
+    test_expect(&t, "084#0000000000000000");
+    test_expect_none(&t);
+}
+END_TEST
+
 /* ---- Parameter rules ----------------------------------------------------------------- */
 
 START_TEST(cob_id_rules)
@@ -829,6 +890,8 @@ int main(void)
     tcase_add_test(tc, rpdo_long_frame_applied_emcy_8220);
     tcase_add_test(tc, rpdo_deadline_emcy_8250);
     tcase_add_test(tc, length_error_shared_by_rpdos_clears_last);
+    tcase_add_test(tc, rpdo_length_error_raised_again_after_reset_node);
+    tcase_add_test(tc, rpdo_errors_end_when_it_is_invalidated);
     tcase_add_test(tc, cob_id_rules);
     tcase_add_test(tc, restricted_can_ids_at_every_edge);
     tcase_add_test(tc, transmission_type_rules);

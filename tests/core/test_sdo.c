@@ -677,11 +677,6 @@ START_TEST(block_download_invalid_seqno)
     test_rx(&t, "604#0148656C6C6F2C20");
     test_rx(&t, "604#0043414E6F70656E");
     test_expect(&t, "584#8000200C03000405");
-    /* A short 0x80 in a sub-block is segment 0, not an abort. */
-    test_rx(&t, "604#C600200C0F000000");
-    test_expect(&t, "584#A400200C7F000000");
-    test_rx(&t, "604#80");
-    test_expect(&t, "584#8000200C03000405");
     test_expect_none(&t);
 }
 END_TEST
@@ -1133,11 +1128,81 @@ START_TEST(short_frames)
     test_rx(&t, "604#0B6162");
     test_expect(&t, "584#2000000000000000");
     ck_assert_mem_eq(entry_bytes(0x2000, 0x0C), "ab", 3);
-    /* An abort needs its 8 bytes. */
+    test_expect_none(&t);
+}
+END_TEST
+
+/* The server is idle: no answer, and no deadline left for a timeout abort. */
+static void expect_idle(const char *state)
+{
+    test_expect_none(&t);
+    ck_assert_msg(co_sdo_process(&t.node, t.bus.now) == CO_TIME_NEVER, "%s: transfer still open",
+                  state);
+}
+
+/* A client abort of `len` bytes: 0x80, then the multiplexer and the code as far as they fit. */
+static void client_abort(uint16_t index, uint8_t sub, size_t len)
+{
+    uint8_t p[8];
+    char text[32];
+    initiate_frame(p, 0x80, index, sub, SDO_ABORT_GENERAL);
+    frame_text(text, RX_ID, p, len);
+    test_rx(&t, text);
+}
+
+/* SPEC: command byte 0x80 can only be an abort (unconfirmed), so it ends any transfer silently
+ * whatever its DLC: the issue's frame first, then every DLC in every state of the server. */
+START_TEST(short_client_abort_ends_any_transfer_silently)
+{
     test_rx(&t, "604#4008100000000000");
     test_expect(&t, "584#4108100006000000");
-    test_rx(&t, "604#80081000000000");
-    test_expect(&t, "584#8008100001000405");
+    test_rx(&t, "604#80081000");
+    expect_idle("segmented upload, DLC 4");
+    test_rx(&t, "604#60");
+    test_expect(&t, "584#8000000001000405"); /* no transfer left to continue */
+    for (size_t len = 1; len <= 8; len++) {
+        client_abort(0x0000, 0, len);
+        expect_idle("idle");
+        test_rx(&t, "604#4008100000000000");
+        test_expect(&t, "584#4108100006000000");
+        client_abort(0x1008, 0, len);
+        expect_idle("segmented upload");
+        test_rx(&t, "604#2100200C05000000");
+        test_expect(&t, "584#6000200C00000000");
+        client_abort(0x2000, 0x0C, len);
+        expect_idle("segmented download");
+        test_rx(&t, "604#C600200C0F000000");
+        test_expect(&t, "584#A400200C7F000000");
+        test_rx(&t, "604#0148656C6C6F2C20");
+        client_abort(0x2000, 0x0C, len);
+        expect_idle("block download sub-block");
+        test_rx(&t, "604#C400200C00000000");
+        test_expect(&t, "584#A400200C7F000000");
+        test_rx(&t, "604#8178797A00000000");
+        test_expect(&t, "584#A2017F0000000000");
+        client_abort(0x2000, 0x0C, len);
+        expect_idle("block download end");
+        test_rx(&t, "604#A400200C7F000000");
+        test_expect(&t, "584#C600200C05000000");
+        client_abort(0x2000, 0x0C, len);
+        expect_idle("block upload start");
+        test_rx(&t, "604#A400200C7F000000");
+        test_expect(&t, "584#C600200C05000000");
+        test_rx(&t, "604#A3");
+        test_expect(&t, "584#8173686F72740000");
+        client_abort(0x2000, 0x0C, len);
+        expect_idle("block upload acknowledge");
+        test_rx(&t, "604#A400200C7F000000");
+        test_expect(&t, "584#C600200C05000000");
+        test_rx(&t, "604#A3");
+        test_expect(&t, "584#8173686F72740000");
+        test_rx(&t, "604#A2017F");
+        test_expect(&t, "584#C937C80000000000");
+        client_abort(0x2000, 0x0C, len);
+        expect_idle("block upload end");
+    }
+    ck_assert_mem_eq(entry_bytes(0x2000, 0x0C), "short", 6);
+    test_advance(&t, 2000000);
     test_expect_none(&t);
 }
 END_TEST
@@ -1244,6 +1309,7 @@ int main(void)
     tcase_add_test(tc, no_sdo_when_stopped);
     tcase_add_test(tc, state_change_and_reset_return_to_idle);
     tcase_add_test(tc, short_frames);
+    tcase_add_test(tc, short_client_abort_ends_any_transfer_silently);
     tcase_add_test(tc, short_block_frames);
     suite_add_tcase(s, tc);
     return check_run_suite(s);

@@ -233,6 +233,31 @@ START_TEST(consumer_wrong_length_emcy_8240)
 }
 END_TEST
 
+/* Issue 7, item 7, with its frames (node 5): reset communication ends the SYNC length error
+ * together with its EMCY, so 1001h does not keep bits that no correct SYNC would ever clear, and
+ * the next wrong SYNC raises the EMCY again. */
+START_TEST(sync_length_error_ends_with_reset_communication)
+{
+    uint32_t reg;
+    sync_calls = 0;
+    test_node_start(&t, 5, &hooks, NULL);
+    test_rx(&t, "080#01");
+    test_expect(&t, "085#4082110100000000");
+    test_rx(&t, "000#8205");
+    test_expect(&t, "705#00");
+    ck_assert_uint_eq(test_sdo_read(&t, 0x1001, 0, &reg), 0);
+    ck_assert_uint_eq(reg, 0);
+    test_rx(&t, "080#");
+    test_rx(&t, "080#");
+    ck_assert_uint_eq(sync_calls, 2);
+    test_rx(&t, "080#01");
+    test_expect(&t, "085#4082110100000000");
+    test_rx(&t, "080#");
+    test_expect(&t, "085#0000000000000000");
+    test_expect_none(&t);
+}
+END_TEST
+
 START_TEST(consumer_ignored_when_stopped)
 {
     start();
@@ -274,6 +299,7 @@ int main(void)
     tcase_add_test(tc, producer_refused_without_1006);
     tcase_add_test(tc, consumer_counter_and_hook);
     tcase_add_test(tc, consumer_wrong_length_emcy_8240);
+    tcase_add_test(tc, sync_length_error_ends_with_reset_communication);
     tcase_add_test(tc, consumer_ignored_when_stopped);
     tcase_add_test(tc, produced_sync_drives_synchronous_tpdo);
     suite_add_tcase(s, tc);

@@ -56,7 +56,7 @@ static int parse_node_ids(const char *value, bool seen[ATV312D_NODE_ID_MAX + 1],
     for (;;) {
         size_t len = strcspn(item, ",");
         const char *dash = memchr(item, '-', len);
-        unsigned long first, last;
+        unsigned long first = 0, last = 0;
         int rc;
         if (dash) {
             rc = parse_node_id(item, (size_t)(dash - item), &first, err, err_len);

@@ -54,10 +54,11 @@ static int record_order(const co_file_record_t *a, uint8_t node_id, uint8_t area
     return 0;
 }
 
-/* The header and the CRC, before any record is looked at. */
+/* The header and the CRC, before any record is looked at. *records_len is set on every path. */
 static bool check_envelope(const uint8_t *file, size_t size, uint32_t *records_len, char *reason,
                            size_t reason_len)
 {
+    *records_len = 0;
     size_t minimum = CO_FILE_STORE_HEADER_SIZE + CO_FILE_STORE_CRC_SIZE;
     if (size < minimum)
         return fail(reason, reason_len, "truncated: %zu bytes, a store file has at least %zu", size,
@@ -144,9 +145,12 @@ bool co_file_store_parse(const uint8_t *file, size_t size, co_file_record_t **re
     return true;
 }
 
+/* *content (NULL on failure, the caller frees it otherwise) and *size are set on every path. */
 static bool read_whole_file(int fd, uint8_t **content, size_t *size, char *reason,
                             size_t reason_len)
 {
+    *content = NULL;
+    *size = 0;
     struct stat st;
     if (fstat(fd, &st) != 0)
         return fail(reason, reason_len, "fstat: %s", strerror(errno));
@@ -168,6 +172,7 @@ static bool read_whole_file(int fd, uint8_t **content, size_t *size, char *reaso
     *size = done;
     if (done != (size_t)st.st_size && errno) {
         free(*content);
+        *content = NULL;
         return fail(reason, reason_len, "read: %s", strerror(errno));
     }
     return true;
@@ -349,7 +354,7 @@ static co_file_record_t *changed_records(const co_file_store_t *store, uint8_t n
 int co_file_store_update(co_file_store_t *store, uint8_t node_id, uint8_t area, uint8_t *data,
                          uint32_t len)
 {
-    size_t count, size;
+    size_t count = 0, size = 0;
     co_file_record_t *records = changed_records(store, node_id, area, data, len, &count);
     uint8_t *content = records ? serialize(records, count, &size) : NULL;
     int rc = -1;

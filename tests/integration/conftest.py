@@ -2,7 +2,9 @@
 
 These tests run where a `vcan0` interface is up: ctest starts them through `tools/vcan-run`, which
 boots User-Mode Linux once for the whole run when the host kernel has no vcan. The daemon under test
-is `$ATV312D` (set by ctest to the built `atv312d`).
+is `$ATV312D`: ctest sets it to the `atv312d` of the build it runs in (tools/run-tests runs these
+tests against build/ and build-matrix/gcc-Release/); by hand it defaults to build/'s. The session's
+header names it.
 
 Every wait here is deadline based: a test waits for the frame it expects, never sleeps and hopes.
 """
@@ -38,14 +40,20 @@ EX_OK = 0
 EX_USAGE = 64
 
 
+# Without ATV312D: build/'s daemon. One build's, never "the newest of build*/": after
+# tools/run-tests that would be build-asan/'s, which cannot run inside User-Mode Linux.
+DEFAULT_DAEMON = ROOT / "build" / "src" / "atv312d" / "atv312d"
+
+
 def daemon_path():
-    path = os.environ.get("ATV312D")
-    if not path:
-        candidates = sorted(ROOT.glob("build*/src/atv312d/atv312d"), key=lambda p: p.stat().st_mtime)
-        path = str(candidates[-1]) if candidates else ""
-    if not path or not os.access(path, os.X_OK):
+    path = os.environ.get("ATV312D") or str(DEFAULT_DAEMON)
+    if not os.access(path, os.X_OK):
         pytest.fail(f"the daemon is not built: set ATV312D to the atv312d binary (got {path!r})")
     return path
+
+
+def pytest_report_header(config):
+    return f"atv312d under test: {os.environ.get('ATV312D') or DEFAULT_DAEMON}"
 
 
 # ---- frames --------------------------------------------------------------------------------------

@@ -45,12 +45,18 @@ typedef struct atv312_motor {
     atv312_ramp_t ramp; /* parameters used since `updated` */
 } atv312_motor_t;
 
+/* CAN conditions the runtime reports at once (overrun, error passive, bus off). */
+#define ATV312_BUS_EVENTS_MAX 4
+
 typedef struct atv312 {
     co_node_t node;
     uint8_t od_data[ATV312_OD_DATA_SIZE];
     atv312_cia402_t cia402;
     atv312_motor_t motor;
     bool limited; /* the reference is outside LSP..HSP (status word bit 11) */
+    /* Bus conditions still present: a reset node forgets their EMCYs, not the conditions. */
+    uint16_t bus_events[ATV312_BUS_EVENTS_MAX];
+    uint8_t bus_event_count;
 } atv312_t;
 
 /* 0 or the co_node_init error. Sends nothing; call atv312_start next. */
@@ -63,7 +69,8 @@ void atv312_receive(atv312_t *drive, const co_frame_t *frame, co_time_t now);
  * motor is steady and the core has nothing due). */
 co_time_t atv312_process(atv312_t *drive, co_time_t now);
 /* CAN errors seen by the runtime (0x8110 overrun, 0x8120 passive, 0x8140 bus-off): raises
- * (active) or clears the EMCY. They do not fault the drive. */
+ * (active) or clears the EMCY, and raises it again after a reset node while it lasts. They do not
+ * fault the drive. */
 void atv312_bus_event(atv312_t *drive, uint16_t emcy_code, bool active);
 /* For logs: "Switch on disabled", "Operation enabled", ... */
 const char *atv312_state_name(const atv312_t *drive);

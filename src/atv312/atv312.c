@@ -220,7 +220,19 @@ static void on_reset(co_node_t *node, co_nmt_reset_t scope)
     drive->limited = false;
 }
 
+/* The bus conditions still present are errors again once a reset node has emptied the EMCY
+ * producer's active errors (the boot-up comes first, then their EMCYs). Raising an active error
+ * again does nothing, so every entry into Pre-operational may do it. */
+static void on_nmt_state(co_node_t *node, co_nmt_state_t state)
+{
+    (void)state;
+    atv312_t *drive = atv312_of(node);
+    for (uint8_t i = 0; i < drive->bus_event_count; i++)
+        co_emcy_raise(node, drive->bus_events[i], COMMUNICATION_ERROR_REGISTER, NULL);
+}
+
 static const co_app_hooks_t drive_hooks = {
+    .nmt_state = on_nmt_state,
     .reset = on_reset,
     .heartbeat = on_heartbeat,
     .guarding = on_guarding,
@@ -245,6 +257,7 @@ int atv312_init(atv312_t *drive, uint8_t node_id, co_send_fn send, void *send_us
     atv312_cia402_reset(&drive->cia402);
     atv312_motor_reset(&drive->motor, 0);
     drive->limited = false;
+    drive->bus_event_count = 0;
     return 0;
 }
 
@@ -267,8 +280,22 @@ co_time_t atv312_process(atv312_t *drive, co_time_t now)
     return co_time_min(next, atv312_motor_deadline(&drive->motor));
 }
 
+static void remember_bus_event(atv312_t *drive, uint16_t emcy_code, bool active)
+{
+    for (uint8_t i = 0; i < drive->bus_event_count; i++) {
+        if (drive->bus_events[i] == emcy_code) {
+            if (!active)
+                drive->bus_events[i] = drive->bus_events[--drive->bus_event_count];
+            return;
+        }
+    }
+    if (active && drive->bus_event_count < ATV312_BUS_EVENTS_MAX)
+        drive->bus_events[drive->bus_event_count++] = emcy_code;
+}
+
 void atv312_bus_event(atv312_t *drive, uint16_t emcy_code, bool active)
 {
+    remember_bus_event(drive, emcy_code, active);
     if (active)
         co_emcy_raise(&drive->node, emcy_code, COMMUNICATION_ERROR_REGISTER, NULL);
     else

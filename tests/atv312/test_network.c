@@ -304,6 +304,31 @@ START_TEST(bus_events_are_emergencies_only)
 }
 END_TEST
 
+/* A reset node empties the EMCY producer, not the bus: a condition that lasts is an error again
+ * after the boot-up, and its end still sends the error reset; reset communication keeps it. */
+START_TEST(bus_condition_outlives_reset_node)
+{
+    bench_t b;
+    bench_start(&b);
+    atv312_bus_event(&b.drive, 0x8120, true);
+    bench_expect(&b, "084#2081110000000000");
+    bench_rx(&b, "000#8104");
+    bench_expect(&b, "704#00");
+    bench_expect(&b, "084#2081110000000000");
+    ck_assert_uint_eq(bench_read(&b, 0x1001, 0), 0x11);
+    bench_rx(&b, "000#8204");
+    bench_expect(&b, "704#00");
+    bench_expect_none(&b);
+    ck_assert_uint_eq(bench_read(&b, 0x1001, 0), 0x11);
+    atv312_bus_event(&b.drive, 0x8120, false);
+    bench_expect(&b, "084#0000000000000000");
+    bench_rx(&b, "000#8104");
+    bench_expect(&b, "704#00");
+    bench_expect_none(&b);
+    ck_assert_uint_eq(bench_read(&b, 0x1001, 0), 0);
+}
+END_TEST
+
 /* Reset node restarts the drive: boot-up, Switch on disabled, motor stopped, defaults back. */
 START_TEST(reset_node_resets_the_drive)
 {
@@ -342,6 +367,7 @@ int main(void)
     tcase_add_test(tc, heartbeat_loss_is_a_network_fault);
     tcase_add_test(tc, life_guarding_loss_is_a_network_fault);
     tcase_add_test(tc, bus_events_are_emergencies_only);
+    tcase_add_test(tc, bus_condition_outlives_reset_node);
     tcase_add_test(tc, reset_node_resets_the_drive);
     suite_add_tcase(s, tc);
     return check_run_suite(s);

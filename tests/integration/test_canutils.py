@@ -105,16 +105,23 @@ def test_tpdo1_event_timer_100ms(dump, drive):
 
 
 def test_tpdo1_sent_on_status_change_after_inhibit_time(dump, drive, bus):
+    # Event timer off, so a TPDO1 after the first one can only be the change being detected.
+    sdo(dump, "604#2B00180500000000", "584#6000180500000000")
     start_node(dump)
     previous = dump.expect(0x184, "4006")
     bus.send("204#0600")  # shutdown: status becomes Ready to switch on
     rpdo = dump.expect(0x204, "0600")
     changed = dump.expect(0x184, "2106")
     # Sent on the change as soon as the inhibit time (1800:03 = 300 x 100 us) since the previous
-    # TPDO1 allows, not at the next event-timer tick 100 ms after the previous one.
+    # TPDO1 allows. The daemon times the inhibit from its wake-up; the kernel stamps each frame
+    # when its write completes, and the first TPDO1 left after the NMT log line of the same
+    # wake-up (a slow write under User-Mode Linux), so the gap seen on the bus may be shorter by
+    # that write: 2 ms are allowed for it. The upper bound only keeps a stalled daemon from
+    # passing.
     due = max(rpdo.timestamp, previous.timestamp + 0.030)
-    assert changed.timestamp - previous.timestamp >= 0.0295, "inhibit time not respected"
-    assert changed.timestamp - due <= 0.015, f"{changed.timestamp - due:.3f} s late"
+    assert changed.timestamp - previous.timestamp >= 0.028, "inhibit time not respected"
+    assert changed.timestamp - due <= 0.100, f"{changed.timestamp - due:.3f} s late"
+    dump.expect_none(0x184, 0.3)  # nothing more: no event timer, no other change
 
 
 def test_pdo6_mapping_from_the_manual(dump, drive):

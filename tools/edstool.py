@@ -86,6 +86,10 @@ NODEID_FORMS = re.compile(r"^(?:\$NODEID\+(?P<after>.+)|(?P<before>.+)\+\$NODEID
 HEX_NUMBER = re.compile(r"^-?0[xX][0-9a-fA-F]+$")
 DEC_NUMBER = re.compile(r"^-?(?:0|[1-9][0-9]*)$")
 OCTAL_LOOKING = re.compile(r"^-?0[0-9]+$")
+# No CiA 301 integer is wider than 64 bits; nothing wider gets past parse_number.
+NUMBER_LIMIT = 1 << 64
+# Objects an object list can hold: one per 16-bit index but 0000h.
+MAX_LISTED = 0xFFFF
 
 
 class EdsError(Exception):
@@ -198,13 +202,33 @@ def parse_number(text):
     optional '-'. Returns (value, is_hex). Raises ValueError with the reason."""
     t = text.strip()
     if HEX_NUMBER.match(t):
-        return int(t, 16), True
-    if DEC_NUMBER.match(t):
-        return int(t, 10), False
-    if OCTAL_LOOKING.match(t):
+        value, is_hex = int(t, 16), True
+    elif DEC_NUMBER.match(t):
+        # 21 characters hold any 64-bit decimal; int() is slow (and refuses) on thousands of digits.
+        value, is_hex = int(t, 10) if len(t) <= 21 else NUMBER_LIMIT, False
+    elif OCTAL_LOOKING.match(t):
         raise ValueError("leading zero in a decimal number (octal in CiA 306, refused by python "
                          "canopen): write it without the zero or as 0x hex")
-    raise ValueError("not a number")
+    else:
+        raise ValueError("not a number")
+    if not -NUMBER_LIMIT < value < NUMBER_LIMIT:
+        raise ValueError("wider than 64 bits")
+    return value, is_hex
+
+
+def read_count(eds, sec, key, low, high):
+    """A count the file gives (SupportedObjects, CompactSubObj), which the tool loops over:
+    required, and within low..high."""
+    text = sec.get(key)
+    if text is None:
+        raise eds.error(sec.name, key, "missing")
+    try:
+        count, _ = parse_number(text)
+    except ValueError as e:
+        raise eds.error(sec.name, sec.label(key), str(e))
+    if not low <= count <= high:
+        raise eds.error(sec.name, sec.label(key), "must be %d..%d" % (low, high))
+    return count
 
 
 def parse_value(text):
@@ -311,13 +335,7 @@ def listed_objects(eds):
         sec = eds.section(list_name)
         if sec is None:
             continue
-        count_text = sec.get("SupportedObjects")
-        if count_text is None:
-            raise eds.error(list_name, "SupportedObjects", "missing")
-        try:
-            count, _ = parse_number(count_text)
-        except ValueError as e:
-            raise eds.error(list_name, sec.label("SupportedObjects"), str(e))
+        count = read_count(eds, sec, "SupportedObjects", 0, MAX_LISTED)
         for n in range(1, count + 1):
             text = sec.get(str(n))
             if text is None:
@@ -495,12 +513,7 @@ def sub_sections(eds, index):
 def compact_entries(eds, sec, index):
     """CiA 306 compact storage of an ARRAY: CompactSubObj=N sub-entries sharing the object's
     keys, with optional per-sub-index defaults in [<index>Value]."""
-    try:
-        count, _ = parse_number(sec.get("CompactSubObj"))
-    except ValueError as e:
-        raise eds.error(sec.name, sec.label("CompactSubObj"), str(e))
-    if not 1 <= count <= 254:
-        raise eds.error(sec.name, sec.label("CompactSubObj"), "must be 1..254")
+    count = read_count(eds, sec, "CompactSubObj", 1, 254)
     values = eds.section("%04XValue" % index)
     first = Entry(index, 0, "Highest sub-index supported", sec.name)
     first.dtype = 0x05
@@ -794,6 +807,15 @@ class Checker:
     def warning(self, section, key, message):
         self.findings.append(("warning", EdsError(self.path, section, key, message)))
 
+    def shared(self, rule, *args):
+        """Runs a rule the generator applies too (it raises EdsError), so that check refuses what
+        generate refuses, with the same message. Returns the rule's result, or None."""
+        try:
+            return rule(*args)
+        except EdsError as e:
+            self.findings.append(("error", e))
+            return None
+
     def number(self, sec, key, required=False, node_id=None):
         """The integer value of a key, or None (missing or reported)."""
         text = sec.get(key)
@@ -873,16 +895,10 @@ class Checker:
                 if list_name == "MandatoryObjects":
                     self.error(list_name, None, "required section missing")
                 continue
-            count = self.number(sec, "SupportedObjects", required=True)
+            count = self.shared(read_count, self.eds, sec, "SupportedObjects", 0, MAX_LISTED)
             numbered = [k.name for k in sec.keys.values() if k.name.lower() != "supportedobjects"]
             if count is not None:
-                wanted = [str(n) for n in range(1, count + 1)]
-                for key in wanted:
-                    if not sec.has(key):
-                        self.error(list_name, key, "missing (SupportedObjects=%d)" % count)
-                for key in numbered:
-                    if key not in wanted:
-                        self.error(list_name, key, "beyond SupportedObjects=%d" % count)
+                self.check_list_keys(sec, count, numbered)
             for key in numbered:
                 try:
                     index = parse_index(sec.get(key))
@@ -912,6 +928,21 @@ class Checker:
             if m and int(m.group(1), 16) not in present:
                 self.error(sec.name, None, "sub-index of an object that has no section")
         return present
+
+    def check_list_keys(self, sec, count, numbered):
+        """Keys 1..count present (one finding per run of missing keys), and no other."""
+        first_missing = None
+        for n in range(1, count + 2):
+            if n <= count and not sec.has(str(n)):
+                first_missing = first_missing or n
+            elif first_missing is not None:
+                keys = "%d..%d" % (first_missing, n - 1) if n - 1 > first_missing else str(n - 1)
+                self.error(sec.name, keys, "missing (SupportedObjects=%d)" % count)
+                first_missing = None
+        wanted = {str(n) for n in range(1, count + 1)}
+        for key in numbered:
+            if key not in wanted:
+                self.error(sec.name, key, "beyond SupportedObjects=%d" % count)
 
     def check_keys_spelling(self, sec):
         canonical = {k.lower(): k for k in OBJECT_KEYS}
@@ -998,9 +1029,7 @@ class Checker:
                        % highest)
 
     def check_compact(self, sec, index, subs):
-        count = self.number(sec, "CompactSubObj")
-        if count is not None and not 1 <= count <= 254:
-            self.error(sec.name, sec.label("CompactSubObj"), "must be 1..254")
+        self.shared(read_count, self.eds, sec, "CompactSubObj", 1, 254)
         if subs:
             self.error(sec.name, sec.label("CompactSubObj"),
                        "a compact array has no sub-index sections")

@@ -3,6 +3,7 @@ every rule of the checker, and deterministic output. Standard library only; runs
 the interpreter running the tests."""
 import copy
 import os
+import resource
 import subprocess
 import sys
 import tempfile
@@ -81,6 +82,12 @@ def dummy_usage(**values):
     return edit
 
 
+def limit_memory():
+    """In the tool's process: a run-away allocation fails there instead of exhausting the
+    machine."""
+    resource.setrlimit(resource.RLIMIT_AS, (1 << 30, 1 << 30))
+
+
 def render(sections):
     lines = []
     for name, keys in sections.items():
@@ -111,7 +118,8 @@ class ToolCase(unittest.TestCase):
         return self.write(name, render(sections))
 
     def run_tool(self, *args):
-        p = subprocess.run([sys.executable, TOOL] + list(args), capture_output=True, text=True)
+        p = subprocess.run([sys.executable, TOOL] + list(args), capture_output=True, text=True,
+                           preexec_fn=limit_memory, timeout=60)
         return p.returncode, p.stdout, p.stderr
 
     def generate(self, path, hooks=None, out="gen"):
@@ -417,6 +425,41 @@ class GeneratorRefusals(ToolCase):
         self.assertIn("none.eds: cannot read", err)
 
 
+class BadEds(ToolCase):
+    """A bad EDS gets one line naming file, section and key, and exit code 1, from check, generate
+    and dump alike: never a traceback, never unbounded memory or time (run_tool's limits)."""
+
+    def refused(self, edit, message):
+        path = self.eds(edit)
+        line = path + ": " + message + "\n"
+        out_dir = os.path.join(self.dir, "gen")
+        for command, extra, expected in (("check", [], (line, "")),
+                                         ("generate", ["--prefix", "t", "--out-dir", out_dir],
+                                          ("", line)),
+                                         ("dump", [], ("", line))):
+            with self.subTest(command=command):
+                code, out, err = self.run_tool(command, path, *extra)
+                self.assertNotIn("Traceback", err)
+                self.assertEqual((code, out, err), (1,) + expected)
+        self.assertFalse(os.path.exists(out_dir))
+
+    def test_supported_objects_beyond_an_index_per_object(self):
+        self.refused(lambda s: s["ManufacturerObjects"].update(SupportedObjects="0x100000000"),
+                     "[ManufacturerObjects] SupportedObjects=0x100000000: must be 0..65535")
+
+    def test_number_wider_than_64_bits(self):
+        hex_text, dec_text = "0x" + "F" * 5000, "9" * 5000
+        self.refused(lambda s: s["ManufacturerObjects"].update(SupportedObjects=hex_text),
+                     "[ManufacturerObjects] SupportedObjects=%s: wider than 64 bits" % hex_text)
+        self.refused(lambda s: s["2001"].update(PDOMapping=dec_text),
+                     "[2001] PDOMapping=%s: wider than 64 bits" % dec_text)
+
+    def test_compact_sub_obj_empty(self):
+        def edit(s):
+            s["2001"] = var("Compact", "0x0006", "rw", "7", CompactSubObj="", ObjectType="0x8")
+        self.refused(edit, "[2001] CompactSubObj=: not a number")
+
+
 class Usage(ToolCase):
     def test_no_command(self):
         self.assertEqual(self.run_tool()[0], 2)
@@ -521,6 +564,13 @@ class Checker(ToolCase):
     def test_supported_objects_too_high(self):
         self.finds(lambda s: s["ManufacturerObjects"].update(SupportedObjects="3"),
                    "[ManufacturerObjects] 3: missing (SupportedObjects=3)")
+
+    def test_supported_objects_missing_run(self):
+        path = self.eds(lambda s: s["ManufacturerObjects"].update(SupportedObjects="65535"))
+        code, out, _ = self.check(path)
+        self.assertEqual((code, out.count("\n")), (1, 1))
+        self.assertEqual(out, path + ": [ManufacturerObjects] 3..65535: missing "
+                                     "(SupportedObjects=65535)\n")
 
     def test_supported_objects_too_low(self):
         def edit(s):

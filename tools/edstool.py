@@ -5,6 +5,7 @@ EDS files against the rules of CiA 306 that real tools (python canopen among the
 Python 3 standard library only. Exit codes: 0 success, 1 invalid input, 2 usage error."""
 
 import argparse
+import math
 import os
 import re
 import struct
@@ -86,6 +87,10 @@ NODEID_FORMS = re.compile(r"^(?:\$NODEID\+(?P<after>.+)|(?P<before>.+)\+\$NODEID
 HEX_NUMBER = re.compile(r"^-?0[xX][0-9a-fA-F]+$")
 DEC_NUMBER = re.compile(r"^-?(?:0|[1-9][0-9]*)$")
 OCTAL_LOOKING = re.compile(r"^-?0[0-9]+$")
+# REAL32/REAL64 defaults: decimal only (no NaN, infinity or Python's 1_000), and the struct format
+# and largest magnitude of each size.
+FLOAT_NUMBER = re.compile(r"^[+-]?(?:[0-9]+\.?[0-9]*|\.[0-9]+)(?:[eE][+-]?[0-9]+)?$")
+REAL_FORMATS = {4: ("<f", "3.4028235e+38"), 8: ("<d", "1.7976931348623157e+308")}
 # No CiA 301 integer is wider than 64 bits; nothing wider gets past parse_number.
 NUMBER_LIMIT = 1 << 64
 # Objects an object list can hold: one per 16-bit index but 0000h.
@@ -396,11 +401,14 @@ def encode_default(eds, sec, dtype, text):
     if text is None or text == "":
         return bytes(size), False
     if kind == "f":
-        try:
-            value = float(text)
-        except ValueError:
-            raise eds.error(sec.name, label, "not a floating-point number")
-        return struct.pack("<f" if size == 4 else "<d", value), False
+        if not FLOAT_NUMBER.match(text):
+            raise eds.error(sec.name, label, "not a finite decimal number like -1.5e3")
+        data = pack_real(float(text), size)
+        if data is None:
+            largest = REAL_FORMATS[size][1]
+            raise eds.error(sec.name, label, "outside the range of %s (-%s..%s)"
+                            % (name, largest, largest))
+        return data, False
     try:
         value, is_hex, nodeid = parse_value(text)
     except ValueError as e:
@@ -409,6 +417,17 @@ def encode_default(eds, sec, dtype, text):
     if not low <= value <= high:
         raise eds.error(sec.name, label, "outside the range of %s (%d..%d)" % (name, low, high))
     return (value & ((1 << (8 * size)) - 1)).to_bytes(size, "little"), nodeid
+
+
+def pack_real(value, size):
+    """The IEEE 754 bytes of a REAL32/REAL64 value, or None beyond the type's range (float() gives
+    an infinity beyond REAL64's; struct refuses what rounds beyond REAL32's)."""
+    if math.isinf(value):
+        return None
+    try:
+        return struct.pack(REAL_FORMATS[size][0], value)
+    except OverflowError:
+        return None
 
 
 def parse_limit(eds, sec, dtype, key):
@@ -809,11 +828,14 @@ class Checker:
 
     def shared(self, rule, *args):
         """Runs a rule the generator applies too (it raises EdsError), so that check refuses what
-        generate refuses, with the same message. Returns the rule's result, or None."""
+        generate refuses, with the same message: a finding unless check's own rules already
+        found an error at that section and key. Returns the rule's result, or None."""
         try:
             return rule(*args)
         except EdsError as e:
-            self.findings.append(("error", e))
+            if not any(severity == "error" and (f.section, f.key) == (e.section, e.key)
+                       for severity, f in self.findings):
+                self.findings.append(("error", e))
             return None
 
     def number(self, sec, key, required=False, node_id=None):
@@ -1080,6 +1102,16 @@ class Checker:
                 self.check_cob_id(sec, d, node_id, where)
             if not where:
                 break
+        self.encoded_default(sec, dtype)
+
+    def encoded_default(self, sec, dtype):
+        """The default value as generate stores it, or None: generate's rules for the default and
+        the size of an entry."""
+        encoded = self.shared(encode_default, self.eds, sec, dtype, sec.get("DefaultValue"))
+        if encoded is None:
+            return None
+        self.shared(entry_size, self.eds, sec, dtype, len(encoded[0]))
+        return encoded[0]
 
     def value_of(self, sec, key, dtype):
         """(value, node-id relative) of a numeric key, or None."""
@@ -1115,37 +1147,19 @@ class Checker:
                        "0x%X is not an 11-bit identifier%s" % (value & 0x1FFFFFFF, where))
 
     def check_non_integer(self, sec, dtype, mapping):
-        name, size, kind = DATA_TYPES[dtype]
+        name, _, kind = DATA_TYPES[dtype]
         for key in ("LowLimit", "HighLimit"):
             if sec.get(key):
                 self.warning(sec.name, sec.label(key), "limits on %s are not checked" % name)
-        text = sec.get("DefaultValue")
-        length = size
-        if kind == "f":
-            if text:
-                try:
-                    float(text)
-                except ValueError:
-                    self.error(sec.name, sec.label("DefaultValue"), "not a floating-point number")
-        elif kind in ("os", "d"):
-            try:
-                length = len(bytes.fromhex(text or ""))
-            except ValueError:
-                self.error(sec.name, sec.label("DefaultValue"), "%s default must be hex bytes"
-                           % name)
-                length = 0
-        elif kind == "vs":
-            length = len((text or "").encode("utf-8"))
-            if text and not text.isascii():
-                self.error(sec.name, sec.label("DefaultValue"), "VISIBLE_STRING must be ASCII")
-        elif kind == "us":
-            length = len((text or "").encode("utf-16-le"))
+        if kind == "t":
+            return  # no default encoding: the core and the generator do not support these types
+        default = self.encoded_default(sec, dtype)
         if mapping == 1:
             if kind == "d":
                 self.error(sec.name, sec.label("PDOMapping"), "a DOMAIN cannot be PDO-mapped")
-            elif length is not None and length > 8:
+            elif default is not None and len(default) > 8:
                 self.error(sec.name, sec.label("PDOMapping"),
-                           "%d bits: more than a PDO's 64" % (8 * length))
+                           "%d bits: more than a PDO's 64" % (8 * len(default)))
 
     def check_pdo_counts(self, objects):
         sec = self.eds.section("DeviceInfo")

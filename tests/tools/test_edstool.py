@@ -230,6 +230,18 @@ class GeneratedTable(ToolCase):
                 self.assertEqual(e.size, len(data))
                 self.assertEqual(e.dtype, int(dtype, 16))
 
+    def test_real_range_ends(self):
+        cases = {("0x0008", "3.4028235e38"): b"\xFF\xFF\x7F\x7F",
+                 ("0x0008", "-3.4028235e+38"): b"\xFF\xFF\x7F\xFF",
+                 ("0x0008", "1e-50"): bytes(4),
+                 ("0x0011", "1.7976931348623157e308"): b"\xFF" * 6 + b"\xEF\x7F"}
+        for (dtype, text), data in cases.items():
+            def edit(s):
+                s["2001"] = var("R", dtype, "rw", text)
+            with self.subTest(text=text):
+                self.assertEqual(self.run_tool("check", self.eds(edit)), (0, "", ""))
+                self.assertEqual(self.entries(self.eds(edit))[(0x2001, 0)].default, data)
+
     def test_string_capacity_directive(self):
         e = self.entries(self.eds())[(0x2000, 2)]
         self.assertEqual((e.size, e.default), (8, b"abc" + bytes(5)))
@@ -453,6 +465,28 @@ class BadEds(ToolCase):
                      "[ManufacturerObjects] SupportedObjects=%s: wider than 64 bits" % hex_text)
         self.refused(lambda s: s["2001"].update(PDOMapping=dec_text),
                      "[2001] PDOMapping=%s: wider than 64 bits" % dec_text)
+
+    def test_real32_beyond_its_range(self):
+        self.refused(lambda s: s.update({"2001": var("R", "0x0008", "rw", "1e300")}),
+                     "[2001] DefaultValue=1e300: outside the range of REAL32 "
+                     "(-3.4028235e+38..3.4028235e+38)")
+
+    def test_real64_beyond_its_range(self):
+        self.refused(lambda s: s.update({"2001": var("R", "0x0011", "rw", "-1e309")}),
+                     "[2001] DefaultValue=-1e309: outside the range of REAL64 "
+                     "(-1.7976931348623157e+308..1.7976931348623157e+308)")
+
+    def test_real_not_a_finite_decimal(self):
+        for text in ("nan", "inf", "-Infinity", "1_000.5", "0x1p3"):
+            with self.subTest(text=text):
+                self.refused(lambda s: s.update({"2001": var("R", "0x0008", "rw", text)}),
+                             "[2001] DefaultValue=%s: not a finite decimal number like -1.5e3"
+                             % text)
+
+    def test_node_id_default_stored_below_zero(self):
+        # Within UNSIGNED8 once node-id 1..127 is added, but the table stores it without it.
+        self.refused(lambda s: s["1001"].update(DefaultValue="$NODEID+-1"),
+                     "[1001] DefaultValue=$NODEID+-1: outside the range of UNSIGNED8 (0..255)")
 
     def test_compact_sub_obj_empty(self):
         def edit(s):

@@ -80,8 +80,9 @@ DUMMY_TYPES = range(0x01, 0x08)
 DUMMY_KEY = re.compile(r"^dummy([0-9a-f]{4})$", re.IGNORECASE)
 
 # A comment line inside an object's section giving the capacity of a string or domain entry,
-# invisible to every other EDS reader: ";size=32".
-SIZE_DIRECTIVE = re.compile(r"^;\s*size\s*=\s*(\S+)\s*$", re.IGNORECASE)
+# invisible to every other EDS reader: ";size=32". Whatever follows '=' is its value, so that
+# ";size=32 bytes" is refused rather than ignored.
+SIZE_DIRECTIVE = re.compile(r"^;\s*size\s*=\s*(.*?)\s*$", re.IGNORECASE)
 
 NODEID_FORMS = re.compile(r"^(?:\$NODEID\+(?P<after>.+)|(?P<before>.+)\+\$NODEID)$", re.IGNORECASE)
 HEX_NUMBER = re.compile(r"^-?0[xX][0-9a-fA-F]+$")
@@ -93,6 +94,8 @@ FLOAT_NUMBER = re.compile(r"^[+-]?(?:[0-9]+\.?[0-9]*|\.[0-9]+)(?:[eE][+-]?[0-9]+
 REAL_FORMATS = {4: ("<f", "3.4028235e+38"), 8: ("<d", "1.7976931348623157e+308")}
 # No CiA 301 integer is wider than 64 bits; nothing wider gets past parse_number.
 NUMBER_LIMIT = 1 << 64
+# Bytes of a string or domain entry (co_od_entry_t.size is a uint16_t).
+MAX_ENTRY_SIZE = 0xFFFF
 # Objects an object list can hold: one per 16-bit index but 0000h.
 MAX_LISTED = 0xFFFF
 
@@ -356,28 +359,29 @@ def listed_objects(eds):
 
 
 def entry_size(eds, sec, dtype, default_len):
-    """Bytes of an entry: fixed for numeric types; for strings and domains the default's length
-    or the ';size=N' directive of the section if larger."""
-    size = DATA_TYPES[dtype][1]
+    """Bytes of an entry: fixed for numeric types; for strings and domains the ';size=N'
+    directive of the section, or else the default's length."""
+    name, size, kind = DATA_TYPES[dtype]
     if size is not None:
         return size
-    size = default_len
-    if sec.size_directive is not None:
-        text = sec.size_directive
-        try:
-            capacity, _ = parse_number(text)
-        except ValueError as e:
-            raise eds.error(sec.name, ";size=" + text, str(e))
-        if capacity < default_len:
-            raise eds.error(sec.name, ";size=" + text,
-                            "smaller than the default value (%d bytes)" % default_len)
-        size = capacity
-    if size == 0:
-        raise eds.error(sec.name, "DefaultValue",
-                        "%s with no default value and no ';size=N' comment: its size is unknown"
-                        % DATA_TYPES[dtype][0])
-    if size > 0xFFFF:
-        raise eds.error(sec.name, "DefaultValue", "larger than 65535 bytes")
+    if sec.size_directive is None:
+        if default_len == 0:
+            raise eds.error(sec.name, "DefaultValue", "%s with no default value and no ';size=N' "
+                            "comment: its size is unknown" % name)
+        if default_len > MAX_ENTRY_SIZE:
+            raise eds.error(sec.name, "DefaultValue", "larger than %d bytes" % MAX_ENTRY_SIZE)
+        return default_len
+    key = ";size=" + sec.size_directive
+    try:
+        size, _ = parse_number(sec.size_directive)
+    except ValueError as e:
+        raise eds.error(sec.name, key, str(e))
+    if not 1 <= size <= MAX_ENTRY_SIZE:
+        raise eds.error(sec.name, key, "must be 1..%d" % MAX_ENTRY_SIZE)
+    if size < default_len:
+        raise eds.error(sec.name, key, "smaller than the default value (%d bytes)" % default_len)
+    if kind == "us" and size % 2:
+        raise eds.error(sec.name, key, "must be even: UNICODE_STRING characters take 2 bytes")
     return size
 
 

@@ -250,6 +250,15 @@ class GeneratedTable(ToolCase):
             del s["2000sub2"][";size"]
         self.assertEqual(self.entries(self.eds(no_directive))[(0x2000, 2)].size, 3)
 
+    def test_unicode_string_capacity(self):
+        def edit(s):
+            s["2001"] = var("U", "0x000B", "rw", "Hi", **{";size": "6"})
+        e = self.entries(self.eds(edit))[(0x2001, 0)]
+        self.assertEqual((e.size, e.default), (6, b"H\x00i\x00\x00\x00"))
+        code, out, _ = self.run_tool("dump", self.eds(edit))
+        self.assertEqual(code, 0)
+        self.assertIn('| 2001h | 0 | U | UNICODE_STRING | rw | - | "Hi" |  | 6 |\n', out)
+
     def test_domain_with_size_directive(self):
         def edit(s):
             s["2001"] = var("Blob", "0x000F", "rw", **{";size": "16"})
@@ -482,6 +491,24 @@ class BadEds(ToolCase):
                 self.refused(lambda s: s.update({"2001": var("R", "0x0008", "rw", text)}),
                              "[2001] DefaultValue=%s: not a finite decimal number like -1.5e3"
                              % text)
+
+    def test_unicode_string_odd_size(self):
+        self.refused(lambda s: s.update({"2001": var("U", "0x000B", "rw", "Hi",
+                                                     **{";size": "5"})}),
+                     "[2001] ;size=5: must be even: UNICODE_STRING characters take 2 bytes")
+
+    def test_size_directive_not_a_number(self):
+        self.refused(lambda s: s["2000sub2"].update({";size": "8 bytes"}),
+                     "[2000sub2] ;size=8 bytes: not a number")
+        self.refused(lambda s: s["2000sub2"].update({";size": "eight"}),
+                     "[2000sub2] ;size=eight: not a number")
+
+    def test_size_directive_beyond_an_entry(self):
+        for text in ("0x10000", "0", "-1"):
+            with self.subTest(size=text):
+                self.refused(lambda s: s.update({"2001": var("D", "0x000F", "rw",
+                                                             **{";size": text})}),
+                             "[2001] ;size=%s: must be 1..65535" % text)
 
     def test_node_id_default_stored_below_zero(self):
         # Within UNSIGNED8 once node-id 1..127 is added, but the table stores it without it.

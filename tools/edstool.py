@@ -385,11 +385,12 @@ def entry_size(eds, sec, dtype, default_len):
     return size
 
 
-def encode_default(eds, sec, dtype, text):
-    """The default value as stored in the data block (little-endian), and whether it is
-    node-id relative."""
+def encode_default(eds, sec, key, dtype):
+    """The default value `key` of `sec` as stored in the data block (little-endian), and whether
+    it is node-id relative."""
     name, size, kind = DATA_TYPES[dtype]
-    label = sec.label("DefaultValue")
+    text = sec.get(key)
+    label = sec.label(key)
     if kind == "vs":
         try:
             return (text or "").encode("ascii"), False
@@ -451,9 +452,16 @@ def parse_limit(eds, sec, dtype, key):
     return value
 
 
-def build_entry(eds, sec, index, sub, fallback=None, default_override=None):
+def compact_value(eds, index, sub):
+    """(section, key) of a compact array sub-entry's own default in [XXXXValue], or None."""
+    values = eds.section("%04XValue" % index)
+    return (values, str(sub)) if values is not None and values.has(str(sub)) else None
+
+
+def build_entry(eds, sec, index, sub, fallback=None, value=None):
     """One table entry from a VAR section or a sub-section. `fallback` is the section whose keys
-    a compact array's sub-entries inherit."""
+    a compact array's sub-entries inherit, `value` the (section, key) of the default when it is
+    not DefaultValue (compact_value())."""
     src = fallback or sec
     name = src.get("ParameterName") or ""
     if fallback is not None:
@@ -487,8 +495,7 @@ def build_entry(eds, sec, index, sub, fallback=None, default_override=None):
     if mapping:
         entry.flags |= PDO_FLAGS[access]
 
-    default_text = default_override if default_override is not None else src.get("DefaultValue")
-    entry.default, nodeid = encode_default(eds, src, dtype, default_text)
+    entry.default, nodeid = encode_default(eds, *(value or (src, "DefaultValue")), dtype)
     if nodeid:
         entry.flags |= NODEID
     entry.size = entry_size(eds, src, dtype, len(entry.default))
@@ -537,7 +544,6 @@ def compact_entries(eds, sec, index):
     """CiA 306 compact storage of an ARRAY: CompactSubObj=N sub-entries sharing the object's
     keys, with optional per-sub-index defaults in [<index>Value]."""
     count = read_count(eds, sec, "CompactSubObj", 1, 254)
-    values = eds.section("%04XValue" % index)
     first = Entry(index, 0, "Highest sub-index supported", sec.name)
     first.dtype = 0x05
     first.flags = READ
@@ -546,8 +552,8 @@ def compact_entries(eds, sec, index):
     first.default = bytes([count])
     entries = [first]
     for sub in range(1, count + 1):
-        override = values.get(str(sub)) if values is not None else None
-        entries.append(build_entry(eds, sec, index, sub, fallback=sec, default_override=override))
+        entries.append(build_entry(eds, sec, index, sub, fallback=sec,
+                                   value=compact_value(eds, index, sub)))
     return entries
 
 
@@ -1055,13 +1061,20 @@ class Checker:
                        % highest)
 
     def check_compact(self, sec, index, subs):
-        self.shared(read_count, self.eds, sec, "CompactSubObj", 1, 254)
+        count = self.shared(read_count, self.eds, sec, "CompactSubObj", 1, 254)
         if subs:
             self.error(sec.name, sec.label("CompactSubObj"),
                        "a compact array has no sub-index sections")
-        self.check_variable(sec, index, 1)
+        dtype = self.check_variable(sec, index, 1)
+        if dtype is None or count is None:
+            return
+        for sub in range(1, count + 1):
+            value = compact_value(self.eds, index, sub)
+            if value is not None:
+                self.encoded_default(sec, dtype, value)
 
     def check_variable(self, sec, index, sub):
+        """Checks a VAR or a sub-section; returns its data type, or None if unusable."""
         if not sec.get("ParameterName"):
             self.error(sec.name, "ParameterName", "missing")
         dtype = self.number(sec, "DataType", required=True)
@@ -1078,11 +1091,11 @@ class Checker:
         if mapping is not None and mapping not in (0, 1):
             self.error(sec.name, sec.label("PDOMapping"), "must be 0 or 1")
         if dtype is None:
-            return
+            return None
         kind = DATA_TYPES[dtype][2]
         if kind in ("vs", "os", "us", "d", "t", "f"):
             self.check_non_integer(sec, dtype, mapping)
-            return
+            return dtype
         default = self.value_of(sec, "DefaultValue", dtype)
         low = self.value_of(sec, "LowLimit", dtype)
         high = self.value_of(sec, "HighLimit", dtype)
@@ -1107,11 +1120,15 @@ class Checker:
             if not where:
                 break
         self.encoded_default(sec, dtype)
+        return dtype
 
-    def encoded_default(self, sec, dtype):
-        """The default value as generate stores it, or None: generate's rules for the default and
-        the size of an entry."""
-        encoded = self.shared(encode_default, self.eds, sec, dtype, sec.get("DefaultValue"))
+    def encoded_default(self, sec, dtype, value=None):
+        """The default value as generate stores it, or None: generate's rules for the default
+        (DefaultValue, or `value` as build_entry() takes it) and the size of an entry. TIME_OF_DAY
+        and TIME_DIFFERENCE have no encoding (neither the core nor generate supports them)."""
+        if DATA_TYPES[dtype][2] == "t":
+            return None
+        encoded = self.shared(encode_default, self.eds, *(value or (sec, "DefaultValue")), dtype)
         if encoded is None:
             return None
         self.shared(entry_size, self.eds, sec, dtype, len(encoded[0]))
@@ -1155,8 +1172,6 @@ class Checker:
         for key in ("LowLimit", "HighLimit"):
             if sec.get(key):
                 self.warning(sec.name, sec.label(key), "limits on %s are not checked" % name)
-        if kind == "t":
-            return  # no default encoding: the core and the generator do not support these types
         default = self.encoded_default(sec, dtype)
         if mapping == 1:
             if kind == "d":

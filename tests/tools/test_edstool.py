@@ -515,6 +515,18 @@ class BadEds(ToolCase):
         self.refused(lambda s: s["1001"].update(DefaultValue="$NODEID+-1"),
                      "[1001] DefaultValue=$NODEID+-1: outside the range of UNSIGNED8 (0..255)")
 
+    def test_compact_array_value_section(self):
+        def bad_number(s):
+            s["2001"] = var("Compact", "0x0006", "rw", "7", CompactSubObj="3", ObjectType="0x8")
+            s["2001Value"] = {"NrOfEntries": "1", "2": "abc"}
+        self.refused(bad_number, "[2001Value] 2=abc: not a number")
+
+        def beyond_size(s):
+            s["2001"] = var("Compact", "0x0009", "rw", "ab", CompactSubObj="3", ObjectType="0x8",
+                            **{";size": "4"})
+            s["2001Value"] = {"NrOfEntries": "1", "2": "toolong"}
+        self.refused(beyond_size, "[2001] ;size=4: smaller than the default value (7 bytes)")
+
     def test_compact_sub_obj_empty(self):
         def edit(s):
             s["2001"] = var("Compact", "0x0006", "rw", "7", CompactSubObj="", ObjectType="0x8")

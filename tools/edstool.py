@@ -150,9 +150,14 @@ class Eds:
     def __init__(self, path):
         self.path = path
         self.sections = {}      # lower-case name -> Section, in file order
+        self.subs = {}          # object index -> {sub-index: Section}, the XXXXsubN sections
 
     def section(self, name):
         return self.sections.get(name.lower())
+
+    def sub_sections(self, index):
+        """{sub-index: Section} of one object."""
+        return self.subs.get(index, {})
 
     def error(self, section, key, message):
         return EdsError(self.path, section, key, message)
@@ -189,6 +194,9 @@ def parse_eds(path):
                 raise EdsError(path, name, None, "line %d: duplicate section" % number)
             current = Section(name, number)
             eds.sections[name.lower()] = current
+            m = SUB_SECTION.match(name)
+            if m:
+                eds.subs.setdefault(int(m.group(1), 16), {})[int(m.group(2), 16)] = current
             continue
         if "=" not in stripped:
             raise EdsError(path, current.name if current else None, None,
@@ -530,16 +538,6 @@ def object_type_of(eds, sec):
     return value
 
 
-def sub_sections(eds, index):
-    """{sub-index: Section} of one object."""
-    subs = {}
-    for sec in eds.sections.values():
-        m = SUB_SECTION.match(sec.name)
-        if m and int(m.group(1), 16) == index:
-            subs[int(m.group(2), 16)] = sec
-    return subs
-
-
 def compact_entries(eds, sec, index):
     """CiA 306 compact storage of an ARRAY: CompactSubObj=N sub-entries sharing the object's
     keys, with optional per-sub-index defaults in [<index>Value]."""
@@ -578,7 +576,7 @@ def build_entries(eds):
     entries = []
     for index, sec in sorted(present.items()):
         otype = object_type_of(eds, sec)
-        subs = sub_sections(eds, index)
+        subs = eds.sub_sections(index)
         if otype in (OBJ_VAR, OBJ_DOMAIN):
             if subs:
                 raise eds.error(sec.name, sec.label("ObjectType"),
@@ -714,12 +712,10 @@ def render(entries, eds_name, prefix, data_size, hooks_name, dummies):
             c.append("extern const co_od_hook_t %s;\n" % hook)
         c.append("\n")
 
-    limits = []
+    limits = {}  # (limits, signed) -> position in the array, in order of first use
     for e in entries:
         if e.limits is not None:
-            key = (e.limits, DATA_TYPES[e.dtype][2] == "i")
-            if key not in limits:
-                limits.append(key)
+            limits.setdefault((e.limits, DATA_TYPES[e.dtype][2] == "i"), len(limits))
     if limits:
         c.append("static const co_od_limits_t %s_od_limits[] = {\n" % prefix)
         for n, ((low, high), signed) in enumerate(limits):
@@ -741,8 +737,8 @@ def render(entries, eds_name, prefix, data_size, hooks_name, dummies):
     for e in entries:
         limit = "NULL"
         if e.limits is not None:
-            limit = "&%s_od_limits[%d]" % (prefix, limits.index((e.limits,
-                                                                  DATA_TYPES[e.dtype][2] == "i")))
+            limit = "&%s_od_limits[%d]" % (prefix, limits[(e.limits,
+                                                            DATA_TYPES[e.dtype][2] == "i")])
         hook = "&" + e.hook if e.hook else "NULL"
         c.append("    /* %04X:%02X %s */\n" % (e.index, e.sub, c_comment(e.name)))
         c.append("    {0x%04X, 0x%02X, CO_DT_%s, %s, %d, %d, %s, %s},\n"
@@ -995,7 +991,7 @@ class Checker:
             if otype not in OBJECT_TYPES:
                 self.error(sec.name, sec.label("ObjectType"), "unknown object type")
                 continue
-            subs = sub_sections(self.eds, index)
+            subs = self.eds.sub_sections(index)
             for sub_sec in subs.values():
                 self.check_keys_spelling(sub_sec)
                 if not sub_sec.name[4:7] == "sub":

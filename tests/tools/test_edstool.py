@@ -117,9 +117,9 @@ class ToolCase(unittest.TestCase):
             edit(sections)
         return self.write(name, render(sections))
 
-    def run_tool(self, *args):
+    def run_tool(self, *args, timeout=60):
         p = subprocess.run([sys.executable, TOOL] + list(args), capture_output=True, text=True,
-                           preexec_fn=limit_memory, timeout=60)
+                           preexec_fn=limit_memory, timeout=timeout)
         return p.returncode, p.stdout, p.stderr
 
     def generate(self, path, hooks=None, out="gen"):
@@ -531,6 +531,24 @@ class BadEds(ToolCase):
         def edit(s):
             s["2001"] = var("Compact", "0x0006", "rw", "7", CompactSubObj="", ObjectType="0x8")
         self.refused(edit, "[2001] CompactSubObj=: not a number")
+
+
+class LargeFile(ToolCase):
+    def test_every_manufacturer_index_in_linear_time(self):
+        """16384 objects with distinct limits: about a second for each command; looking up
+        sub-sections and limits by scanning them all (once minutes) would hit the timeout."""
+        def edit(s):
+            objects = s["ManufacturerObjects"]
+            for index in range(0x2002, 0x6000):
+                s["%04X" % index] = var("V", "0x0006", "rw", "0", HighLimit=str(index))
+                objects[str(len(objects))] = "0x%04X" % index
+            objects["SupportedObjects"] = str(len(objects) - 1)
+        path = self.eds(edit)
+        out_dir = os.path.join(self.dir, "gen")
+        for args in (["check", path], ["dump", path],
+                     ["generate", path, "--prefix", "t", "--out-dir", out_dir]):
+            with self.subTest(command=args[0]):
+                self.assertEqual(self.run_tool(*args, timeout=20)[0], 0)
 
 
 class Usage(ToolCase):

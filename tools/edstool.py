@@ -1321,4 +1321,6 @@ def main(argv=None):
 
 
 if __name__ == "__main__":
+    # Names and values from the EDS reach stdout whatever its encoding (stderr already escapes).
+    sys.stdout.reconfigure(errors="backslashreplace")
     sys.exit(main())

@@ -117,9 +117,11 @@ class ToolCase(unittest.TestCase):
             edit(sections)
         return self.write(name, render(sections))
 
-    def run_tool(self, *args, timeout=60):
+    def run_tool(self, *args, timeout=60, encoding=None):
+        """Runs the tool; `encoding` is that of its standard streams (PYTHONIOENCODING)."""
+        env = dict(os.environ, PYTHONIOENCODING=encoding) if encoding else None
         p = subprocess.run([sys.executable, TOOL] + list(args), capture_output=True, text=True,
-                           preexec_fn=limit_memory, timeout=timeout)
+                           preexec_fn=limit_memory, timeout=timeout, env=env)
         return p.returncode, p.stdout, p.stderr
 
     def generate(self, path, hooks=None, out="gen"):
@@ -527,6 +529,12 @@ class BadEds(ToolCase):
             s["2001Value"] = {"NrOfEntries": "1", "2": "toolong"}
         self.refused(beyond_size, "[2001] ;size=4: smaller than the default value (7 bytes)")
 
+    def test_non_ascii_value_on_an_ascii_terminal(self):
+        path = self.eds(lambda s: s["1008"].update(DefaultValue="D\u00e9v"))
+        code, out, err = self.run_tool("check", path, encoding="ascii")
+        self.assertEqual((code, out, err), (1, path + ": [1008] DefaultValue=D\\xe9v: "
+                                                      "VISIBLE_STRING must be ASCII\n", ""))
+
     def test_compact_sub_obj_empty(self):
         def edit(s):
             s["2001"] = var("Compact", "0x0006", "rw", "7", CompactSubObj="", ObjectType="0x8")
@@ -609,6 +617,13 @@ class Dump(ToolCase):
                       "| 4 |", lines)
         self.assertIn("| 2001h | 0 | Limited | UNSIGNED16 | rww | R | 0x0064 | 10..1000 or 0 "
                       "(hook app_hook) | 2 |", lines)
+
+
+    def test_non_ascii_name_on_an_ascii_terminal(self):
+        path = self.eds(lambda s: s["1008"].update(ParameterName="Fan \u2603"))
+        code, out, err = self.run_tool("dump", path, encoding="ascii")
+        self.assertEqual((code, err), (0, ""))
+        self.assertIn("| 1008h | 0 | Fan \\u2603 | VISIBLE_STRING |", out)
 
 
 class Checker(ToolCase):

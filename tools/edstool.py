@@ -985,9 +985,9 @@ class Checker:
             self.check_keys_spelling(sec)
             if not sec.get("ParameterName"):
                 self.error(sec.name, "ParameterName", "missing")
-            otype = self.number(sec, "ObjectType")
+            otype = self.shared(object_type_of, self.eds, sec)
             if otype is None:
-                otype = OBJ_VAR
+                continue
             if otype not in OBJECT_TYPES:
                 self.error(sec.name, sec.label("ObjectType"), "unknown object type")
                 continue

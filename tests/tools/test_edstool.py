@@ -535,6 +535,10 @@ class BadEds(ToolCase):
         self.assertEqual((code, out, err), (1, path + ": [1008] DefaultValue=D\\xe9v: "
                                                       "VISIBLE_STRING must be ASCII\n", ""))
 
+    def test_empty_object_type(self):
+        # python canopen fails on it too (int("", 0)); only a missing ObjectType means VAR.
+        self.refused(lambda s: s["2001"].update(ObjectType=""), "[2001] ObjectType=: not a number")
+
     def test_compact_sub_obj_empty(self):
         def edit(s):
             s["2001"] = var("Compact", "0x0006", "rw", "7", CompactSubObj="", ObjectType="0x8")

@@ -687,6 +687,17 @@ def dummy_types(eds):
     return sorted(declared)
 
 
+def build_dictionary(eds):
+    """The table entries and dummy types of an EDS, for generate and dump alike, so that both
+    refuse the same files."""
+    entries = build_entries(eds)
+    if not entries:
+        raise eds.error(None, None, "no objects")
+    if len(entries) > 0xFFFF:
+        raise eds.error(None, None, "more than 65535 entries")
+    return entries, dummy_types(eds)
+
+
 def render(entries, eds_name, prefix, data_size, hooks_name, dummies):
     guard = prefix.upper() + "_OD_H"
     macro = prefix.upper()
@@ -770,13 +781,8 @@ def generate(args):
     if not re.match(r"^[A-Za-z_][A-Za-z0-9_]*$", args.prefix):
         raise UsageError("--prefix %r is not a C identifier" % args.prefix)
     eds = parse_eds(args.eds)
-    entries = build_entries(eds)
-    if not entries:
-        raise eds.error(None, None, "no objects")
-    if len(entries) > 0xFFFF:
-        raise eds.error(None, None, "more than 65535 entries")
+    entries, dummies = build_dictionary(eds)
     hooks_name = apply_hooks(entries, args.hooks) if args.hooks else None
-    dummies = dummy_types(eds)
     data_size = layout(entries)
     header, source = render(entries, os.path.basename(args.eds), args.prefix, data_size,
                             hooks_name, dummies)
@@ -1232,8 +1238,7 @@ def shown_default(e):
 
 
 def dump(args):
-    eds = parse_eds(args.eds)
-    entries = build_entries(eds)
+    entries, _ = build_dictionary(parse_eds(args.eds))
     if args.hooks:
         apply_hooks(entries, args.hooks)
     out = sys.stdout

@@ -539,6 +539,9 @@ class BadEds(ToolCase):
         # python canopen fails on it too (int("", 0)); only a missing ObjectType means VAR.
         self.refused(lambda s: s["2001"].update(ObjectType=""), "[2001] ObjectType=: not a number")
 
+    def test_bad_dummy_usage(self):
+        self.refused(dummy_usage(Dummy0004="0x1"), "[DummyUsage] Dummy0004=0x1: must be 0 or 1")
+
     def test_compact_sub_obj_empty(self):
         def edit(s):
             s["2001"] = var("Compact", "0x0006", "rw", "7", CompactSubObj="", ObjectType="0x8")

@@ -1,9 +1,14 @@
 """Unit tests of tools/edstool.py: the tables the generator writes, its refusals, the hooks file,
 every rule of the checker, and deterministic output. Standard library only; runs the tool with
 the interpreter running the tests."""
+import contextlib
 import copy
+import io
 import os
+import random
+import re
 import resource
+import signal
 import subprocess
 import sys
 import tempfile
@@ -82,10 +87,31 @@ def dummy_usage(**values):
     return edit
 
 
+MEMORY_LIMIT = 1 << 30
+
+
 def limit_memory():
     """In the tool's process: a run-away allocation fails there instead of exhausting the
     machine."""
-    resource.setrlimit(resource.RLIMIT_AS, (1 << 30, 1 << 30))
+    resource.setrlimit(resource.RLIMIT_AS, (MEMORY_LIMIT, MEMORY_LIMIT))
+
+
+@contextlib.contextmanager
+def bounded(seconds):
+    """The limits of run_tool() for the tool run in this process: a run-away allocation raises
+    MemoryError, a run-away loop TimeoutError."""
+    def timeout(signum, frame):
+        raise TimeoutError("still running after %d s" % seconds)
+    memory = resource.getrlimit(resource.RLIMIT_AS)
+    handler = signal.signal(signal.SIGALRM, timeout)
+    resource.setrlimit(resource.RLIMIT_AS, (MEMORY_LIMIT, memory[1]))
+    signal.alarm(seconds)
+    try:
+        yield
+    finally:
+        signal.alarm(0)
+        signal.signal(signal.SIGALRM, handler)
+        resource.setrlimit(resource.RLIMIT_AS, memory)
 
 
 def render(sections):
@@ -564,6 +590,78 @@ class LargeFile(ToolCase):
                      ["generate", path, "--prefix", "t", "--out-dir", out_dir]):
             with self.subTest(command=args[0]):
                 self.assertEqual(self.run_tool(*args, timeout=20)[0], 0)
+
+
+class Fuzz(ToolCase):
+    """fixtures/device.eds with one or two keys set to values from a list of bad ones, from a
+    fixed seed: every command ends with exit code 0 or 1, never an exception, and a refusal is
+    the same one line from generate and dump, which check --strict refuses too unless it is a
+    feature CiA 306 has and the core lacks."""
+
+    CASES = 400
+    KEYS = ("ObjectType", "DataType", "AccessType", "DefaultValue", "PDOMapping", "LowLimit",
+            "HighLimit", "SubNumber", "CompactSubObj", "SupportedObjects", ";size", "1", "2")
+    VALUES = ("", "0", "1", "-1", "5", "254", "256", "65535", "0x10000", "0x100000000",
+              "0x" + "F" * 40, "9" * 5000, "010", "0x", "abc", "1.5", "1e300", "-1e309", "nan",
+              "inf", "1_0", "$NODEID", "$NODEID+-1", "$NODEID+0x80", "0x0", "0x5", "0x7", "0x8",
+              "0x9", "0x0008", "0x000B", "0x000C", "0x000F", "0x0010", "rw", "D\u00e9v",
+              "\u2603", "01A2", "0102F")
+    # Refusals of generate for what CiA 306 allows but the core does not support.
+    UNSUPPORTED = ("unsupported data type", "unsupported object type",
+                   "node-id relative limits cannot be represented",
+                   "BOOLEAN dummies are not supported: the core maps whole bytes")
+
+    def mutate(self, rng, lines):
+        """A copy of `lines` with a key of a random section set (or added) to a random value, and
+        what was set where."""
+        lines = list(lines)
+        heads = [n for n, line in enumerate(lines) if line.startswith("[")]
+        head = rng.choice(heads)
+        end = next((n for n in heads if n > head), len(lines))
+        own = [line.split("=", 1)[0] for line in lines[head + 1:end] if "=" in line]
+        key = rng.choice(self.KEYS + tuple(own))
+        line = "%s=%s" % (key, rng.choice(self.VALUES))
+        same = [n for n in range(head + 1, end)
+                if lines[n].split("=", 1)[0].lower() == key.lower()]
+        if same:
+            lines[same[0]] = line
+        else:
+            lines.insert(head + 1, line)
+        return lines, "%s: %s" % (lines[head], line[:40])
+
+    def run_in_process(self, *args):
+        out, err = io.StringIO(), io.StringIO()
+        with contextlib.redirect_stdout(out), contextlib.redirect_stderr(err):
+            code = edstool.main(list(args))
+        return code, out.getvalue(), err.getvalue()
+
+    def test_mutated_fixture(self):
+        rng = random.Random(306)
+        with open(os.path.join(HERE, "fixtures", "device.eds")) as f:
+            fixture = f.read().splitlines()
+        path = os.path.join(self.dir, "f.eds")
+        out_dir = os.path.join(self.dir, "gen")
+        for _ in range(self.CASES):
+            lines, edits = fixture, []
+            for _ in range(rng.randint(1, 2)):
+                lines, edit = self.mutate(rng, lines)
+                edits.append(edit)
+            with open(path, "w") as f:
+                f.write("\n".join(lines) + "\n")
+            with self.subTest(edits=edits), bounded(20):
+                check = self.run_in_process("check", "--strict", path)
+                generate = self.run_in_process("generate", path, "--prefix", "f",
+                                               "--out-dir", out_dir)
+                dump = self.run_in_process("dump", path)
+                self.assertIn(check[0], (0, 1))
+                self.assertTrue(all(line.startswith(path + ": ")
+                                    for line in check[1].splitlines()), check[1])
+                self.assertIn(generate[0], (0, 1))
+                self.assertEqual((dump[0], dump[2]), (generate[0], generate[2]))
+                if generate[0] == 1:
+                    self.assertRegex(generate[2], r"\A%s: [^\n]*\n\Z" % re.escape(path))
+                    if not generate[2].rstrip().endswith(self.UNSUPPORTED):
+                        self.assertEqual(check[0], 1, generate[2])
 
 
 class Usage(ToolCase):

@@ -764,16 +764,18 @@ def render(entries, eds_name, prefix, data_size, hooks_name, dummies):
 
 
 def write_if_changed(path, text):
-    """Leaves an unchanged file untouched so the build does not recompile it."""
+    """Leaves an unchanged file untouched so the build does not recompile it (whatever the file
+    holds: it is compared byte for byte)."""
+    data = text.encode("utf-8")
     try:
-        with open(path, encoding="utf-8") as f:
-            if f.read() == text:
+        with open(path, "rb") as f:
+            if f.read() == data:
                 return
     except OSError:
         pass
     tmp = path + ".tmp"
-    with open(tmp, "w", encoding="utf-8", newline="\n") as f:
-        f.write(text)
+    with open(tmp, "wb") as f:
+        f.write(data)
     os.replace(tmp, path)
 
 

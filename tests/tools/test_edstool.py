@@ -326,6 +326,13 @@ class GeneratedTable(ToolCase):
                     open(os.path.join(self.dir, "b", name), "rb") as b:
                 self.assertEqual(a.read(), b.read())
 
+    def test_output_that_is_not_utf8_is_replaced(self):
+        os.makedirs(os.path.join(self.dir, "gen"))
+        with open(os.path.join(self.dir, "gen", "t_od.c"), "wb") as f:
+            f.write(b"\xff\xfe")
+        self.assertEqual(self.generate(self.eds()), (0, "", ""))
+        self.assertIn("const co_od_t t_od = {", self.read("t_od.c"))
+
     def test_unchanged_output_is_not_rewritten(self):
         self.generate(self.eds())
         path = os.path.join(self.dir, "gen", "t_od.c")

@@ -5,6 +5,7 @@ EDS files against the rules of CiA 306 that real tools (python canopen among the
 Python 3 standard library only. Exit codes: 0 success, 1 invalid input, 2 usage error."""
 
 import argparse
+import math
 import os
 import re
 import struct
@@ -82,13 +83,24 @@ DUMMY_TYPES = range(0x01, 0x08)
 DUMMY_KEY = re.compile(r"^dummy([0-9a-f]{4})$", re.IGNORECASE)
 
 # A comment line inside an object's section giving the capacity of a string or domain entry,
-# invisible to every other EDS reader: ";size=32".
-SIZE_DIRECTIVE = re.compile(r"^;\s*size\s*=\s*(\S+)\s*$", re.IGNORECASE)
+# invisible to every other EDS reader: ";size=32". Whatever follows '=' is its value, so that
+# ";size=32 bytes" is refused rather than ignored.
+SIZE_DIRECTIVE = re.compile(r"^;\s*size\s*=\s*(.*?)\s*$", re.IGNORECASE)
 
 NODEID_FORMS = re.compile(r"^(?:\$NODEID\+(?P<after>.+)|(?P<before>.+)\+\$NODEID)$", re.IGNORECASE)
 HEX_NUMBER = re.compile(r"^-?0[xX][0-9a-fA-F]+$")
 DEC_NUMBER = re.compile(r"^-?(?:0|[1-9][0-9]*)$")
 OCTAL_LOOKING = re.compile(r"^-?0[0-9]+$")
+# REAL32/REAL64 defaults: decimal only (no NaN, infinity or Python's 1_000), and the struct format
+# and largest magnitude of each size.
+FLOAT_NUMBER = re.compile(r"^[+-]?(?:[0-9]+\.?[0-9]*|\.[0-9]+)(?:[eE][+-]?[0-9]+)?$")
+REAL_FORMATS = {4: ("<f", "3.4028235e+38"), 8: ("<d", "1.7976931348623157e+308")}
+# No CiA 301 integer is wider than 64 bits; nothing wider gets past parse_number.
+NUMBER_LIMIT = 1 << 64
+# Bytes of a string or domain entry (co_od_entry_t.size is a uint16_t).
+MAX_ENTRY_SIZE = 0xFFFF
+# Objects an object list can hold: one per 16-bit index but 0000h.
+MAX_LISTED = 0xFFFF
 
 
 class EdsError(Exception):
@@ -141,9 +153,14 @@ class Eds:
     def __init__(self, path):
         self.path = path
         self.sections = {}      # lower-case name -> Section, in file order
+        self.subs = {}          # object index -> {sub-index: Section}, the XXXXsubN sections
 
     def section(self, name):
         return self.sections.get(name.lower())
+
+    def sub_sections(self, index):
+        """{sub-index: Section} of one object."""
+        return self.subs.get(index, {})
 
     def error(self, section, key, message):
         return EdsError(self.path, section, key, message)
@@ -180,6 +197,9 @@ def parse_eds(path):
                 raise EdsError(path, name, None, "line %d: duplicate section" % number)
             current = Section(name, number)
             eds.sections[name.lower()] = current
+            m = SUB_SECTION.match(name)
+            if m:
+                eds.subs.setdefault(int(m.group(1), 16), {})[int(m.group(2), 16)] = current
             continue
         if "=" not in stripped:
             raise EdsError(path, current.name if current else None, None,
@@ -201,13 +221,33 @@ def parse_number(text):
     optional '-'. Returns (value, is_hex). Raises ValueError with the reason."""
     t = text.strip()
     if HEX_NUMBER.match(t):
-        return int(t, 16), True
-    if DEC_NUMBER.match(t):
-        return int(t, 10), False
-    if OCTAL_LOOKING.match(t):
+        value, is_hex = int(t, 16), True
+    elif DEC_NUMBER.match(t):
+        # 21 characters hold any 64-bit decimal; int() is slow (and refuses) on thousands of digits.
+        value, is_hex = int(t, 10) if len(t) <= 21 else NUMBER_LIMIT, False
+    elif OCTAL_LOOKING.match(t):
         raise ValueError("leading zero in a decimal number (octal in CiA 306, refused by python "
                          "canopen): write it without the zero or as 0x hex")
-    raise ValueError("not a number")
+    else:
+        raise ValueError("not a number")
+    if not -NUMBER_LIMIT < value < NUMBER_LIMIT:
+        raise ValueError("wider than 64 bits")
+    return value, is_hex
+
+
+def read_count(eds, sec, key, low, high):
+    """A count the file gives (SupportedObjects, CompactSubObj), which the tool loops over:
+    required, and within low..high."""
+    text = sec.get(key)
+    if text is None:
+        raise eds.error(sec.name, key, "missing")
+    try:
+        count, _ = parse_number(text)
+    except ValueError as e:
+        raise eds.error(sec.name, sec.label(key), str(e))
+    if not low <= count <= high:
+        raise eds.error(sec.name, sec.label(key), "must be %d..%d" % (low, high))
+    return count
 
 
 def parse_value(text):
@@ -314,13 +354,7 @@ def listed_objects(eds):
         sec = eds.section(list_name)
         if sec is None:
             continue
-        count_text = sec.get("SupportedObjects")
-        if count_text is None:
-            raise eds.error(list_name, "SupportedObjects", "missing")
-        try:
-            count, _ = parse_number(count_text)
-        except ValueError as e:
-            raise eds.error(list_name, sec.label("SupportedObjects"), str(e))
+        count = read_count(eds, sec, "SupportedObjects", 0, MAX_LISTED)
         for n in range(1, count + 1):
             text = sec.get(str(n))
             if text is None:
@@ -336,36 +370,38 @@ def listed_objects(eds):
 
 
 def entry_size(eds, sec, dtype, default_len):
-    """Bytes of an entry: fixed for numeric types; for strings and domains the default's length
-    or the ';size=N' directive of the section if larger."""
-    size = DATA_TYPES[dtype][1]
+    """Bytes of an entry: fixed for numeric types; for strings and domains the ';size=N'
+    directive of the section, or else the default's length."""
+    name, size, kind = DATA_TYPES[dtype]
     if size is not None:
         return size
-    size = default_len
-    if sec.size_directive is not None:
-        text = sec.size_directive
-        try:
-            capacity, _ = parse_number(text)
-        except ValueError as e:
-            raise eds.error(sec.name, ";size=" + text, str(e))
-        if capacity < default_len:
-            raise eds.error(sec.name, ";size=" + text,
-                            "smaller than the default value (%d bytes)" % default_len)
-        size = capacity
-    if size == 0:
-        raise eds.error(sec.name, "DefaultValue",
-                        "%s with no default value and no ';size=N' comment: its size is unknown"
-                        % DATA_TYPES[dtype][0])
-    if size > 0xFFFF:
-        raise eds.error(sec.name, "DefaultValue", "larger than 65535 bytes")
+    if sec.size_directive is None:
+        if default_len == 0:
+            raise eds.error(sec.name, "DefaultValue", "%s with no default value and no ';size=N' "
+                            "comment: its size is unknown" % name)
+        if default_len > MAX_ENTRY_SIZE:
+            raise eds.error(sec.name, "DefaultValue", "larger than %d bytes" % MAX_ENTRY_SIZE)
+        return default_len
+    key = ";size=" + sec.size_directive
+    try:
+        size, _ = parse_number(sec.size_directive)
+    except ValueError as e:
+        raise eds.error(sec.name, key, str(e))
+    if not 1 <= size <= MAX_ENTRY_SIZE:
+        raise eds.error(sec.name, key, "must be 1..%d" % MAX_ENTRY_SIZE)
+    if size < default_len:
+        raise eds.error(sec.name, key, "smaller than the default value (%d bytes)" % default_len)
+    if kind == "us" and size % 2:
+        raise eds.error(sec.name, key, "must be even: UNICODE_STRING characters take 2 bytes")
     return size
 
 
-def encode_default(eds, sec, dtype, text):
-    """The default value as stored in the data block (little-endian), and whether it is
-    node-id relative."""
+def encode_default(eds, sec, key, dtype):
+    """The default value `key` of `sec` as stored in the data block (little-endian), and whether
+    it is node-id relative."""
     name, size, kind = DATA_TYPES[dtype]
-    label = sec.label("DefaultValue")
+    text = sec.get(key)
+    label = sec.label(key)
     if kind == "vs":
         try:
             return (text or "").encode("ascii"), False
@@ -381,11 +417,14 @@ def encode_default(eds, sec, dtype, text):
     if text is None or text == "":
         return bytes(size), False
     if kind == "f":
-        try:
-            value = float(text)
-        except ValueError:
-            raise eds.error(sec.name, label, "not a floating-point number")
-        return struct.pack("<f" if size == 4 else "<d", value), False
+        if not FLOAT_NUMBER.match(text):
+            raise eds.error(sec.name, label, "not a finite decimal number like -1.5e3")
+        data = pack_real(float(text), size)
+        if data is None:
+            largest = REAL_FORMATS[size][1]
+            raise eds.error(sec.name, label, "outside the range of %s (-%s..%s)"
+                            % (name, largest, largest))
+        return data, False
     try:
         value, is_hex, nodeid = parse_value(text)
     except ValueError as e:
@@ -394,6 +433,17 @@ def encode_default(eds, sec, dtype, text):
     if not low <= value <= high:
         raise eds.error(sec.name, label, "outside the range of %s (%d..%d)" % (name, low, high))
     return (value & ((1 << (8 * size)) - 1)).to_bytes(size, "little"), nodeid
+
+
+def pack_real(value, size):
+    """The IEEE 754 bytes of a REAL32/REAL64 value, or None beyond the type's range (float() gives
+    an infinity beyond REAL64's; struct refuses what rounds beyond REAL32's)."""
+    if math.isinf(value):
+        return None
+    try:
+        return struct.pack(REAL_FORMATS[size][0], value)
+    except OverflowError:
+        return None
 
 
 def parse_limit(eds, sec, dtype, key):
@@ -413,9 +463,16 @@ def parse_limit(eds, sec, dtype, key):
     return value
 
 
-def build_entry(eds, sec, index, sub, fallback=None, default_override=None):
+def compact_value(eds, index, sub):
+    """(section, key) of a compact array sub-entry's own default in [XXXXValue], or None."""
+    values = eds.section("%04XValue" % index)
+    return (values, str(sub)) if values is not None and values.has(str(sub)) else None
+
+
+def build_entry(eds, sec, index, sub, fallback=None, value=None):
     """One table entry from a VAR section or a sub-section. `fallback` is the section whose keys
-    a compact array's sub-entries inherit."""
+    a compact array's sub-entries inherit, `value` the (section, key) of the default when it is
+    not DefaultValue (compact_value())."""
     src = fallback or sec
     name = src.get("ParameterName") or ""
     if fallback is not None:
@@ -449,8 +506,7 @@ def build_entry(eds, sec, index, sub, fallback=None, default_override=None):
     if mapping:
         entry.flags |= PDO_FLAGS[access]
 
-    default_text = default_override if default_override is not None else src.get("DefaultValue")
-    entry.default, nodeid = encode_default(eds, src, dtype, default_text)
+    entry.default, nodeid = encode_default(eds, *(value or (src, "DefaultValue")), dtype)
     if nodeid:
         entry.flags |= NODEID
     entry.size = entry_size(eds, src, dtype, len(entry.default))
@@ -485,26 +541,10 @@ def object_type_of(eds, sec):
     return value
 
 
-def sub_sections(eds, index):
-    """{sub-index: Section} of one object."""
-    subs = {}
-    for sec in eds.sections.values():
-        m = SUB_SECTION.match(sec.name)
-        if m and int(m.group(1), 16) == index:
-            subs[int(m.group(2), 16)] = sec
-    return subs
-
-
 def compact_entries(eds, sec, index):
     """CiA 306 compact storage of an ARRAY: CompactSubObj=N sub-entries sharing the object's
     keys, with optional per-sub-index defaults in [<index>Value]."""
-    try:
-        count, _ = parse_number(sec.get("CompactSubObj"))
-    except ValueError as e:
-        raise eds.error(sec.name, sec.label("CompactSubObj"), str(e))
-    if not 1 <= count <= 254:
-        raise eds.error(sec.name, sec.label("CompactSubObj"), "must be 1..254")
-    values = eds.section("%04XValue" % index)
+    count = read_count(eds, sec, "CompactSubObj", 1, 254)
     first = Entry(index, 0, "Highest sub-index supported", sec.name)
     first.dtype = 0x05
     first.flags = READ
@@ -513,8 +553,8 @@ def compact_entries(eds, sec, index):
     first.default = bytes([count])
     entries = [first]
     for sub in range(1, count + 1):
-        override = values.get(str(sub)) if values is not None else None
-        entries.append(build_entry(eds, sec, index, sub, fallback=sec, default_override=override))
+        entries.append(build_entry(eds, sec, index, sub, fallback=sec,
+                                   value=compact_value(eds, index, sub)))
     return entries
 
 
@@ -539,7 +579,7 @@ def build_entries(eds):
     entries = []
     for index, sec in sorted(present.items()):
         otype = object_type_of(eds, sec)
-        subs = sub_sections(eds, index)
+        subs = eds.sub_sections(index)
         if otype in (OBJ_VAR, OBJ_DOMAIN):
             if subs:
                 raise eds.error(sec.name, sec.label("ObjectType"),
@@ -666,6 +706,17 @@ def dummy_types(eds):
     return sorted(declared)
 
 
+def build_dictionary(eds):
+    """The table entries and dummy types of an EDS, for generate and dump alike, so that both
+    refuse the same files."""
+    entries = build_entries(eds)
+    if not entries:
+        raise eds.error(None, None, "no objects")
+    if len(entries) > 0xFFFF:
+        raise eds.error(None, None, "more than 65535 entries")
+    return entries, dummy_types(eds)
+
+
 def render(entries, eds_name, prefix, data_size, hooks_name, dummies):
     guard = prefix.upper() + "_OD_H"
     macro = prefix.upper()
@@ -691,12 +742,10 @@ def render(entries, eds_name, prefix, data_size, hooks_name, dummies):
             c.append("extern const co_od_hook_t %s;\n" % hook)
         c.append("\n")
 
-    limits = []
+    limits = {}  # (limits, signed) -> position in the array, in order of first use
     for e in entries:
         if e.limits is not None:
-            key = (e.limits, DATA_TYPES[e.dtype][2] == "i")
-            if key not in limits:
-                limits.append(key)
+            limits.setdefault((e.limits, DATA_TYPES[e.dtype][2] == "i"), len(limits))
     if limits:
         c.append("static const co_od_limits_t %s_od_limits[] = {\n" % prefix)
         for n, ((low, high), signed) in enumerate(limits):
@@ -718,8 +767,8 @@ def render(entries, eds_name, prefix, data_size, hooks_name, dummies):
     for e in entries:
         limit = "NULL"
         if e.limits is not None:
-            limit = "&%s_od_limits[%d]" % (prefix, limits.index((e.limits,
-                                                                  DATA_TYPES[e.dtype][2] == "i")))
+            limit = "&%s_od_limits[%d]" % (prefix, limits[(e.limits,
+                                                            DATA_TYPES[e.dtype][2] == "i")])
         hook = "&" + e.hook if e.hook else "NULL"
         c.append("    /* %04X:%02X %s */\n" % (e.index, e.sub, c_comment(e.name)))
         c.append("    {0x%04X, 0x%02X, CO_DT_%s, %s, %d, %d, %s, %s},\n"
@@ -739,16 +788,18 @@ def render(entries, eds_name, prefix, data_size, hooks_name, dummies):
 
 
 def write_if_changed(path, text):
-    """Leaves an unchanged file untouched so the build does not recompile it."""
+    """Leaves an unchanged file untouched so the build does not recompile it (whatever the file
+    holds: it is compared byte for byte)."""
+    data = text.encode("utf-8")
     try:
-        with open(path, encoding="utf-8") as f:
-            if f.read() == text:
+        with open(path, "rb") as f:
+            if f.read() == data:
                 return
     except OSError:
         pass
     tmp = path + ".tmp"
-    with open(tmp, "w", encoding="utf-8", newline="\n") as f:
-        f.write(text)
+    with open(tmp, "wb") as f:
+        f.write(data)
     os.replace(tmp, path)
 
 
@@ -756,13 +807,8 @@ def generate(args):
     if not re.match(r"^[A-Za-z_][A-Za-z0-9_]*$", args.prefix):
         raise UsageError("--prefix %r is not a C identifier" % args.prefix)
     eds = parse_eds(args.eds)
-    entries = build_entries(eds)
-    if not entries:
-        raise eds.error(None, None, "no objects")
-    if len(entries) > 0xFFFF:
-        raise eds.error(None, None, "more than 65535 entries")
+    entries, dummies = build_dictionary(eds)
     hooks_name = apply_hooks(entries, args.hooks) if args.hooks else None
-    dummies = dummy_types(eds)
     data_size = layout(entries)
     header, source = render(entries, os.path.basename(args.eds), args.prefix, data_size,
                             hooks_name, dummies)
@@ -817,6 +863,18 @@ class Checker:
 
     def warning(self, section, key, message):
         self.findings.append(("warning", EdsError(self.path, section, key, message)))
+
+    def shared(self, rule, *args):
+        """Runs a rule the generator applies too (it raises EdsError), so that check refuses what
+        generate refuses, with the same message: a finding unless check's own rules already
+        found an error at that section and key. Returns the rule's result, or None."""
+        try:
+            return rule(*args)
+        except EdsError as e:
+            if not any(severity == "error" and (f.section, f.key) == (e.section, e.key)
+                       for severity, f in self.findings):
+                self.findings.append(("error", e))
+            return None
 
     def number(self, sec, key, required=False, node_id=None):
         """The integer value of a key, or None (missing or reported)."""
@@ -897,16 +955,10 @@ class Checker:
                 if list_name == "MandatoryObjects":
                     self.error(list_name, None, "required section missing")
                 continue
-            count = self.number(sec, "SupportedObjects", required=True)
+            count = self.shared(read_count, self.eds, sec, "SupportedObjects", 0, MAX_LISTED)
             numbered = [k.name for k in sec.keys.values() if k.name.lower() != "supportedobjects"]
             if count is not None:
-                wanted = [str(n) for n in range(1, count + 1)]
-                for key in wanted:
-                    if not sec.has(key):
-                        self.error(list_name, key, "missing (SupportedObjects=%d)" % count)
-                for key in numbered:
-                    if key not in wanted:
-                        self.error(list_name, key, "beyond SupportedObjects=%d" % count)
+                self.check_list_keys(sec, count, numbered)
             for key in numbered:
                 try:
                     index = parse_index(sec.get(key))
@@ -937,6 +989,21 @@ class Checker:
                 self.error(sec.name, None, "sub-index of an object that has no section")
         return present
 
+    def check_list_keys(self, sec, count, numbered):
+        """Keys 1..count present (one finding per run of missing keys), and no other."""
+        first_missing = None
+        for n in range(1, count + 2):
+            if n <= count and not sec.has(str(n)):
+                first_missing = first_missing or n
+            elif first_missing is not None:
+                keys = "%d..%d" % (first_missing, n - 1) if n - 1 > first_missing else str(n - 1)
+                self.error(sec.name, keys, "missing (SupportedObjects=%d)" % count)
+                first_missing = None
+        wanted = {str(n) for n in range(1, count + 1)}
+        for key in numbered:
+            if key not in wanted:
+                self.error(sec.name, key, "beyond SupportedObjects=%d" % count)
+
     def check_keys_spelling(self, sec):
         canonical = {k.lower(): k for k in OBJECT_KEYS}
         for key in sec.keys.values():
@@ -950,13 +1017,13 @@ class Checker:
             self.check_keys_spelling(sec)
             if not sec.get("ParameterName"):
                 self.error(sec.name, "ParameterName", "missing")
-            otype = self.number(sec, "ObjectType")
+            otype = self.shared(object_type_of, self.eds, sec)
             if otype is None:
-                otype = OBJ_VAR
+                continue
             if otype not in OBJECT_TYPES:
                 self.error(sec.name, sec.label("ObjectType"), "unknown object type")
                 continue
-            subs = sub_sections(self.eds, index)
+            subs = self.eds.sub_sections(index)
             for sub_sec in subs.values():
                 self.check_keys_spelling(sub_sec)
                 if not sub_sec.name[4:7] == "sub":
@@ -1022,15 +1089,20 @@ class Checker:
                        % highest)
 
     def check_compact(self, sec, index, subs):
-        count = self.number(sec, "CompactSubObj")
-        if count is not None and not 1 <= count <= 254:
-            self.error(sec.name, sec.label("CompactSubObj"), "must be 1..254")
+        count = self.shared(read_count, self.eds, sec, "CompactSubObj", 1, 254)
         if subs:
             self.error(sec.name, sec.label("CompactSubObj"),
                        "a compact array has no sub-index sections")
-        self.check_variable(sec, index, 1)
+        dtype = self.check_variable(sec, index, 1)
+        if dtype is None or count is None:
+            return
+        for sub in range(1, count + 1):
+            value = compact_value(self.eds, index, sub)
+            if value is not None:
+                self.encoded_default(sec, dtype, value)
 
     def check_variable(self, sec, index, sub):
+        """Checks a VAR or a sub-section; returns its data type, or None if unusable."""
         if not sec.get("ParameterName"):
             self.error(sec.name, "ParameterName", "missing")
         dtype = self.number(sec, "DataType", required=True)
@@ -1047,11 +1119,11 @@ class Checker:
         if mapping is not None and mapping not in (0, 1):
             self.error(sec.name, sec.label("PDOMapping"), "must be 0 or 1")
         if dtype is None:
-            return
+            return None
         kind = DATA_TYPES[dtype][2]
         if kind in ("vs", "os", "us", "d", "t", "f"):
             self.check_non_integer(sec, dtype, mapping)
-            return
+            return dtype
         default = self.value_of(sec, "DefaultValue", dtype)
         low = self.value_of(sec, "LowLimit", dtype)
         high = self.value_of(sec, "HighLimit", dtype)
@@ -1075,6 +1147,20 @@ class Checker:
                 self.check_cob_id(sec, d, node_id, where)
             if not where:
                 break
+        self.encoded_default(sec, dtype)
+        return dtype
+
+    def encoded_default(self, sec, dtype, value=None):
+        """The default value as generate stores it, or None: generate's rules for the default
+        (DefaultValue, or `value` as build_entry() takes it) and the size of an entry. TIME_OF_DAY
+        and TIME_DIFFERENCE have no encoding (neither the core nor generate supports them)."""
+        if DATA_TYPES[dtype][2] == "t":
+            return None
+        encoded = self.shared(encode_default, self.eds, *(value or (sec, "DefaultValue")), dtype)
+        if encoded is None:
+            return None
+        self.shared(entry_size, self.eds, sec, dtype, len(encoded[0]))
+        return encoded[0]
 
     def value_of(self, sec, key, dtype):
         """(value, node-id relative) of a numeric key, or None."""
@@ -1110,37 +1196,17 @@ class Checker:
                        "0x%X is not an 11-bit identifier%s" % (value & 0x1FFFFFFF, where))
 
     def check_non_integer(self, sec, dtype, mapping):
-        name, size, kind = DATA_TYPES[dtype]
+        name, _, kind = DATA_TYPES[dtype]
         for key in ("LowLimit", "HighLimit"):
             if sec.get(key):
                 self.warning(sec.name, sec.label(key), "limits on %s are not checked" % name)
-        text = sec.get("DefaultValue")
-        length = size
-        if kind == "f":
-            if text:
-                try:
-                    float(text)
-                except ValueError:
-                    self.error(sec.name, sec.label("DefaultValue"), "not a floating-point number")
-        elif kind in ("os", "d"):
-            try:
-                length = len(bytes.fromhex(text or ""))
-            except ValueError:
-                self.error(sec.name, sec.label("DefaultValue"), "%s default must be hex bytes"
-                           % name)
-                length = 0
-        elif kind == "vs":
-            length = len((text or "").encode("utf-8"))
-            if text and not text.isascii():
-                self.error(sec.name, sec.label("DefaultValue"), "VISIBLE_STRING must be ASCII")
-        elif kind == "us":
-            length = len((text or "").encode("utf-16-le"))
+        default = self.encoded_default(sec, dtype)
         if mapping == 1:
             if kind == "d":
                 self.error(sec.name, sec.label("PDOMapping"), "a DOMAIN cannot be PDO-mapped")
-            elif length is not None and length > 8:
+            elif default is not None and len(default) > 8:
                 self.error(sec.name, sec.label("PDOMapping"),
-                           "%d bits: more than a PDO's 64" % (8 * length))
+                           "%d bits: more than a PDO's 64" % (8 * len(default)))
 
     def check_pdo_counts(self, objects):
         sec = self.eds.section("DeviceInfo")
@@ -1198,8 +1264,7 @@ def shown_default(e):
 
 
 def dump(args):
-    eds = parse_eds(args.eds)
-    entries = build_entries(eds)
+    entries, _ = build_dictionary(parse_eds(args.eds))
     if args.hooks:
         apply_hooks(entries, args.hooks)
     out = sys.stdout
@@ -1290,4 +1355,6 @@ def main(argv=None):
 
 
 if __name__ == "__main__":
+    # Names and values from the EDS reach stdout whatever its encoding (stderr already escapes).
+    sys.stdout.reconfigure(errors="backslashreplace")
     sys.exit(main())

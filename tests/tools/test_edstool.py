@@ -1,8 +1,14 @@
 """Unit tests of tools/edstool.py: the tables the generator writes, its refusals, the hooks file,
 every rule of the checker, and deterministic output. Standard library only; runs the tool with
 the interpreter running the tests."""
+import contextlib
 import copy
+import io
 import os
+import random
+import re
+import resource
+import signal
 import subprocess
 import sys
 import tempfile
@@ -81,6 +87,33 @@ def dummy_usage(**values):
     return edit
 
 
+MEMORY_LIMIT = 1 << 30
+
+
+def limit_memory():
+    """In the tool's process: a run-away allocation fails there instead of exhausting the
+    machine."""
+    resource.setrlimit(resource.RLIMIT_AS, (MEMORY_LIMIT, MEMORY_LIMIT))
+
+
+@contextlib.contextmanager
+def bounded(seconds):
+    """The limits of run_tool() for the tool run in this process: a run-away allocation raises
+    MemoryError, a run-away loop TimeoutError."""
+    def timeout(signum, frame):
+        raise TimeoutError("still running after %d s" % seconds)
+    memory = resource.getrlimit(resource.RLIMIT_AS)
+    handler = signal.signal(signal.SIGALRM, timeout)
+    resource.setrlimit(resource.RLIMIT_AS, (MEMORY_LIMIT, memory[1]))
+    signal.alarm(seconds)
+    try:
+        yield
+    finally:
+        signal.alarm(0)
+        signal.signal(signal.SIGALRM, handler)
+        resource.setrlimit(resource.RLIMIT_AS, memory)
+
+
 def render(sections):
     lines = []
     for name, keys in sections.items():
@@ -110,8 +143,11 @@ class ToolCase(unittest.TestCase):
             edit(sections)
         return self.write(name, render(sections))
 
-    def run_tool(self, *args):
-        p = subprocess.run([sys.executable, TOOL] + list(args), capture_output=True, text=True)
+    def run_tool(self, *args, timeout=60, encoding=None):
+        """Runs the tool; `encoding` is that of its standard streams (PYTHONIOENCODING)."""
+        env = dict(os.environ, PYTHONIOENCODING=encoding) if encoding else None
+        p = subprocess.run([sys.executable, TOOL] + list(args), capture_output=True, text=True,
+                           preexec_fn=limit_memory, timeout=timeout, env=env)
         return p.returncode, p.stdout, p.stderr
 
     def generate(self, path, hooks=None, out="gen"):
@@ -222,6 +258,18 @@ class GeneratedTable(ToolCase):
                 self.assertEqual(e.size, len(data))
                 self.assertEqual(e.dtype, int(dtype, 16))
 
+    def test_real_range_ends(self):
+        cases = {("0x0008", "3.4028235e38"): b"\xFF\xFF\x7F\x7F",
+                 ("0x0008", "-3.4028235e+38"): b"\xFF\xFF\x7F\xFF",
+                 ("0x0008", "1e-50"): bytes(4),
+                 ("0x0011", "1.7976931348623157e308"): b"\xFF" * 6 + b"\xEF\x7F"}
+        for (dtype, text), data in cases.items():
+            def edit(s):
+                s["2001"] = var("R", dtype, "rw", text)
+            with self.subTest(text=text):
+                self.assertEqual(self.run_tool("check", self.eds(edit)), (0, "", ""))
+                self.assertEqual(self.entries(self.eds(edit))[(0x2001, 0)].default, data)
+
     def test_string_capacity_directive(self):
         e = self.entries(self.eds())[(0x2000, 2)]
         self.assertEqual((e.size, e.default), (8, b"abc" + bytes(5)))
@@ -229,6 +277,15 @@ class GeneratedTable(ToolCase):
         def no_directive(s):
             del s["2000sub2"][";size"]
         self.assertEqual(self.entries(self.eds(no_directive))[(0x2000, 2)].size, 3)
+
+    def test_unicode_string_capacity(self):
+        def edit(s):
+            s["2001"] = var("U", "0x000B", "rw", "Hi", **{";size": "6"})
+        e = self.entries(self.eds(edit))[(0x2001, 0)]
+        self.assertEqual((e.size, e.default), (6, b"H\x00i\x00\x00\x00"))
+        code, out, _ = self.run_tool("dump", self.eds(edit))
+        self.assertEqual(code, 0)
+        self.assertIn('| 2001h | 0 | U | UNICODE_STRING | rw | - | "Hi" |  | 6 |\n', out)
 
     def test_domain_with_size_directive(self):
         def edit(s):
@@ -268,6 +325,13 @@ class GeneratedTable(ToolCase):
             with open(os.path.join(self.dir, "a", name), "rb") as a, \
                     open(os.path.join(self.dir, "b", name), "rb") as b:
                 self.assertEqual(a.read(), b.read())
+
+    def test_output_that_is_not_utf8_is_replaced(self):
+        os.makedirs(os.path.join(self.dir, "gen"))
+        with open(os.path.join(self.dir, "gen", "t_od.c"), "wb") as f:
+            f.write(b"\xff\xfe")
+        self.assertEqual(self.generate(self.eds()), (0, "", ""))
+        self.assertIn("const co_od_t t_od = {", self.read("t_od.c"))
 
     def test_unchanged_output_is_not_rewritten(self):
         self.generate(self.eds())
@@ -417,6 +481,196 @@ class GeneratorRefusals(ToolCase):
         self.assertIn("none.eds: cannot read", err)
 
 
+class BadEds(ToolCase):
+    """A bad EDS gets one line naming file, section and key, and exit code 1, from check, generate
+    and dump alike: never a traceback, never unbounded memory or time (run_tool's limits)."""
+
+    def refused(self, edit, message):
+        path = self.eds(edit)
+        line = path + ": " + message + "\n"
+        out_dir = os.path.join(self.dir, "gen")
+        for command, extra, expected in (("check", [], (line, "")),
+                                         ("generate", ["--prefix", "t", "--out-dir", out_dir],
+                                          ("", line)),
+                                         ("dump", [], ("", line))):
+            with self.subTest(command=command):
+                code, out, err = self.run_tool(command, path, *extra)
+                self.assertNotIn("Traceback", err)
+                self.assertEqual((code, out, err), (1,) + expected)
+        self.assertFalse(os.path.exists(out_dir))
+
+    def test_supported_objects_beyond_an_index_per_object(self):
+        self.refused(lambda s: s["ManufacturerObjects"].update(SupportedObjects="0x100000000"),
+                     "[ManufacturerObjects] SupportedObjects=0x100000000: must be 0..65535")
+
+    def test_number_wider_than_64_bits(self):
+        hex_text, dec_text = "0x" + "F" * 5000, "9" * 5000
+        self.refused(lambda s: s["ManufacturerObjects"].update(SupportedObjects=hex_text),
+                     "[ManufacturerObjects] SupportedObjects=%s: wider than 64 bits" % hex_text)
+        self.refused(lambda s: s["2001"].update(PDOMapping=dec_text),
+                     "[2001] PDOMapping=%s: wider than 64 bits" % dec_text)
+
+    def test_real32_beyond_its_range(self):
+        self.refused(lambda s: s.update({"2001": var("R", "0x0008", "rw", "1e300")}),
+                     "[2001] DefaultValue=1e300: outside the range of REAL32 "
+                     "(-3.4028235e+38..3.4028235e+38)")
+
+    def test_real64_beyond_its_range(self):
+        self.refused(lambda s: s.update({"2001": var("R", "0x0011", "rw", "-1e309")}),
+                     "[2001] DefaultValue=-1e309: outside the range of REAL64 "
+                     "(-1.7976931348623157e+308..1.7976931348623157e+308)")
+
+    def test_real_not_a_finite_decimal(self):
+        for text in ("nan", "inf", "-Infinity", "1_000.5", "0x1p3"):
+            with self.subTest(text=text):
+                self.refused(lambda s: s.update({"2001": var("R", "0x0008", "rw", text)}),
+                             "[2001] DefaultValue=%s: not a finite decimal number like -1.5e3"
+                             % text)
+
+    def test_unicode_string_odd_size(self):
+        self.refused(lambda s: s.update({"2001": var("U", "0x000B", "rw", "Hi",
+                                                     **{";size": "5"})}),
+                     "[2001] ;size=5: must be even: UNICODE_STRING characters take 2 bytes")
+
+    def test_size_directive_not_a_number(self):
+        self.refused(lambda s: s["2000sub2"].update({";size": "8 bytes"}),
+                     "[2000sub2] ;size=8 bytes: not a number")
+        self.refused(lambda s: s["2000sub2"].update({";size": "eight"}),
+                     "[2000sub2] ;size=eight: not a number")
+
+    def test_size_directive_beyond_an_entry(self):
+        for text in ("0x10000", "0", "-1"):
+            with self.subTest(size=text):
+                self.refused(lambda s: s.update({"2001": var("D", "0x000F", "rw",
+                                                             **{";size": text})}),
+                             "[2001] ;size=%s: must be 1..65535" % text)
+
+    def test_node_id_default_stored_below_zero(self):
+        # Within UNSIGNED8 once node-id 1..127 is added, but the table stores it without it.
+        self.refused(lambda s: s["1001"].update(DefaultValue="$NODEID+-1"),
+                     "[1001] DefaultValue=$NODEID+-1: outside the range of UNSIGNED8 (0..255)")
+
+    def test_compact_array_value_section(self):
+        def bad_number(s):
+            s["2001"] = var("Compact", "0x0006", "rw", "7", CompactSubObj="3", ObjectType="0x8")
+            s["2001Value"] = {"NrOfEntries": "1", "2": "abc"}
+        self.refused(bad_number, "[2001Value] 2=abc: not a number")
+
+        def beyond_size(s):
+            s["2001"] = var("Compact", "0x0009", "rw", "ab", CompactSubObj="3", ObjectType="0x8",
+                            **{";size": "4"})
+            s["2001Value"] = {"NrOfEntries": "1", "2": "toolong"}
+        self.refused(beyond_size, "[2001] ;size=4: smaller than the default value (7 bytes)")
+
+    def test_non_ascii_value_on_an_ascii_terminal(self):
+        path = self.eds(lambda s: s["1008"].update(DefaultValue="D\u00e9v"))
+        code, out, err = self.run_tool("check", path, encoding="ascii")
+        self.assertEqual((code, out, err), (1, path + ": [1008] DefaultValue=D\\xe9v: "
+                                                      "VISIBLE_STRING must be ASCII\n", ""))
+
+    def test_empty_object_type(self):
+        # python canopen fails on it too (int("", 0)); only a missing ObjectType means VAR.
+        self.refused(lambda s: s["2001"].update(ObjectType=""), "[2001] ObjectType=: not a number")
+
+    def test_bad_dummy_usage(self):
+        self.refused(dummy_usage(Dummy0004="0x1"), "[DummyUsage] Dummy0004=0x1: must be 0 or 1")
+
+    def test_compact_sub_obj_empty(self):
+        def edit(s):
+            s["2001"] = var("Compact", "0x0006", "rw", "7", CompactSubObj="", ObjectType="0x8")
+        self.refused(edit, "[2001] CompactSubObj=: not a number")
+
+
+class LargeFile(ToolCase):
+    def test_every_manufacturer_index_in_linear_time(self):
+        """16384 objects with distinct limits: about a second for each command; looking up
+        sub-sections and limits by scanning them all (once minutes) would hit the timeout."""
+        def edit(s):
+            objects = s["ManufacturerObjects"]
+            for index in range(0x2002, 0x6000):
+                s["%04X" % index] = var("V", "0x0006", "rw", "0", HighLimit=str(index))
+                objects[str(len(objects))] = "0x%04X" % index
+            objects["SupportedObjects"] = str(len(objects) - 1)
+        path = self.eds(edit)
+        out_dir = os.path.join(self.dir, "gen")
+        for args in (["check", path], ["dump", path],
+                     ["generate", path, "--prefix", "t", "--out-dir", out_dir]):
+            with self.subTest(command=args[0]):
+                self.assertEqual(self.run_tool(*args, timeout=20)[0], 0)
+
+
+class Fuzz(ToolCase):
+    """fixtures/device.eds with one or two keys set to values from a list of bad ones, from a
+    fixed seed: every command ends with exit code 0 or 1, never an exception, and a refusal is
+    the same one line from generate and dump, which check --strict refuses too unless it is a
+    feature CiA 306 has and the core lacks."""
+
+    CASES = 400
+    KEYS = ("ObjectType", "DataType", "AccessType", "DefaultValue", "PDOMapping", "LowLimit",
+            "HighLimit", "SubNumber", "CompactSubObj", "SupportedObjects", ";size", "1", "2")
+    VALUES = ("", "0", "1", "-1", "5", "254", "256", "65535", "0x10000", "0x100000000",
+              "0x" + "F" * 40, "9" * 5000, "010", "0x", "abc", "1.5", "1e300", "-1e309", "nan",
+              "inf", "1_0", "$NODEID", "$NODEID+-1", "$NODEID+0x80", "0x0", "0x5", "0x7", "0x8",
+              "0x9", "0x0008", "0x000B", "0x000C", "0x000F", "0x0010", "rw", "D\u00e9v",
+              "\u2603", "01A2", "0102F")
+    # Refusals of generate for what CiA 306 allows but the core does not support.
+    UNSUPPORTED = ("unsupported data type", "unsupported object type",
+                   "node-id relative limits cannot be represented",
+                   "BOOLEAN dummies are not supported: the core maps whole bytes")
+
+    def mutate(self, rng, lines):
+        """A copy of `lines` with a key of a random section set (or added) to a random value, and
+        what was set where."""
+        lines = list(lines)
+        heads = [n for n, line in enumerate(lines) if line.startswith("[")]
+        head = rng.choice(heads)
+        end = next((n for n in heads if n > head), len(lines))
+        own = [line.split("=", 1)[0] for line in lines[head + 1:end] if "=" in line]
+        key = rng.choice(self.KEYS + tuple(own))
+        line = "%s=%s" % (key, rng.choice(self.VALUES))
+        same = [n for n in range(head + 1, end)
+                if lines[n].split("=", 1)[0].lower() == key.lower()]
+        if same:
+            lines[same[0]] = line
+        else:
+            lines.insert(head + 1, line)
+        return lines, "%s: %s" % (lines[head], line[:40])
+
+    def run_in_process(self, *args):
+        out, err = io.StringIO(), io.StringIO()
+        with contextlib.redirect_stdout(out), contextlib.redirect_stderr(err):
+            code = edstool.main(list(args))
+        return code, out.getvalue(), err.getvalue()
+
+    def test_mutated_fixture(self):
+        rng = random.Random(306)
+        with open(os.path.join(HERE, "fixtures", "device.eds")) as f:
+            fixture = f.read().splitlines()
+        path = os.path.join(self.dir, "f.eds")
+        out_dir = os.path.join(self.dir, "gen")
+        for _ in range(self.CASES):
+            lines, edits = fixture, []
+            for _ in range(rng.randint(1, 2)):
+                lines, edit = self.mutate(rng, lines)
+                edits.append(edit)
+            with open(path, "w") as f:
+                f.write("\n".join(lines) + "\n")
+            with self.subTest(edits=edits), bounded(20):
+                check = self.run_in_process("check", "--strict", path)
+                generate = self.run_in_process("generate", path, "--prefix", "f",
+                                               "--out-dir", out_dir)
+                dump = self.run_in_process("dump", path)
+                self.assertIn(check[0], (0, 1))
+                self.assertTrue(all(line.startswith(path + ": ")
+                                    for line in check[1].splitlines()), check[1])
+                self.assertIn(generate[0], (0, 1))
+                self.assertEqual((dump[0], dump[2]), (generate[0], generate[2]))
+                if generate[0] == 1:
+                    self.assertRegex(generate[2], r"\A%s: [^\n]*\n\Z" % re.escape(path))
+                    if not generate[2].rstrip().endswith(self.UNSUPPORTED):
+                        self.assertEqual(check[0], 1, generate[2])
+
+
 class Usage(ToolCase):
     def test_no_command(self):
         self.assertEqual(self.run_tool()[0], 2)
@@ -477,6 +731,13 @@ class Dump(ToolCase):
                       "(hook app_hook) | 2 |", lines)
 
 
+    def test_non_ascii_name_on_an_ascii_terminal(self):
+        path = self.eds(lambda s: s["1008"].update(ParameterName="Fan \u2603"))
+        code, out, err = self.run_tool("dump", path, encoding="ascii")
+        self.assertEqual((code, err), (0, ""))
+        self.assertIn("| 1008h | 0 | Fan \\u2603 | VISIBLE_STRING |", out)
+
+
 class Checker(ToolCase):
     def check(self, *args):
         return self.run_tool("check", *args)
@@ -521,6 +782,13 @@ class Checker(ToolCase):
     def test_supported_objects_too_high(self):
         self.finds(lambda s: s["ManufacturerObjects"].update(SupportedObjects="3"),
                    "[ManufacturerObjects] 3: missing (SupportedObjects=3)")
+
+    def test_supported_objects_missing_run(self):
+        path = self.eds(lambda s: s["ManufacturerObjects"].update(SupportedObjects="65535"))
+        code, out, _ = self.check(path)
+        self.assertEqual((code, out.count("\n")), (1, 1))
+        self.assertEqual(out, path + ": [ManufacturerObjects] 3..65535: missing "
+                                     "(SupportedObjects=65535)\n")
 
     def test_supported_objects_too_low(self):
         def edit(s):

@@ -14,10 +14,11 @@
 # The command reruns when the EDS, the hooks file or the generator change.
 #
 # Whoever includes this file says which generator to run: CO_EDSTOOL (the script, a dependency of
-# the command) and CO_EDSTOOL_COMMAND (how to run it): the source tree runs tools/edstool.py with
-# its Python (CMakeLists.txt). Both are kept as global properties, so that co_generate_od() works
-# in any directory, also outside the one that included this file (a project including this one
-# with add_subdirectory()).
+# the command) and CO_EDSTOOL_COMMAND (how to run it). The source tree runs tools/edstool.py with
+# its Python (CMakeLists.txt); the installed package runs the installed co-edstool
+# (cmake/canopenConfig.cmake.in). Both are kept as global properties, so that co_generate_od()
+# works in any directory, also outside the one that included this file (a project including this
+# one with add_subdirectory(), or calling find_package() in a subdirectory).
 
 if(NOT CO_EDSTOOL OR NOT CO_EDSTOOL_COMMAND)
   message(FATAL_ERROR "co_od.cmake: set CO_EDSTOOL and CO_EDSTOOL_COMMAND before including it")

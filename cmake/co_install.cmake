@@ -1,5 +1,5 @@
-# What `cmake --install` puts where (GNUInstallDirs; relative to the prefix, /usr/local by default).
-# README.md, Install.
+# What `cmake --install` puts where (GNUInstallDirs; relative to the prefix, /usr/local by default,
+# /usr in the Debian package), and the Debian package itself (`cpack -G DEB`). README.md, Install.
 #
 #   include/<every folder of include/>     the public headers (co/, co_linux/, ...)
 #   lib/libcanopen.a                       canopen::core, the portable core
@@ -62,7 +62,7 @@ install(FILES ${PROJECT_SOURCE_DIR}/README.md ${CO_INSTALL_DOCS}
 
 # co_install_configured(<template> <destination>): installs <template> without its .in into
 # <destination>, configured (@ONLY) when installing, so that the paths it names are those of this
-# installation (cmake --install --prefix), not the prefix configured: @CO_PREFIX@,
+# installation (cmake --install --prefix, cpack's /usr), not the prefix configured: @CO_PREFIX@,
 # @CO_BINDIR@, @CO_LIBDIR@, @CO_INCLUDEDIR@, @CO_EDSDIR@, @CO_DOCDIR@ (absolute) and
 # @PROJECT_VERSION@.
 function(co_install_configured template destination)
@@ -144,3 +144,27 @@ iproute2 packages when the host has no vcan."
   DEPENDS ${PROJECT_SOURCE_DIR}/tools/vcan-run)
 add_custom_target(man ALL DEPENDS ${CO_MAN_PAGES})
 
+# The Debian package (cpack -G DEB in the build directory): everything above, in /usr. Only for
+# the top-level project: CPack's configuration is the whole build's.
+if(NOT CO_TOP_LEVEL)
+  return()
+endif()
+set(CPACK_PACKAGE_NAME ${PROJECT_NAME})
+set(CPACK_PACKAGE_CONTACT "canopen-atv312 maintainers <maintainers@canopen-atv312.invalid>"
+    CACHE STRING "Maintainer field of the Debian package")
+set(CPACK_PACKAGE_DESCRIPTION_SUMMARY
+    "CANopen (CiA 301) stack in C and emulated Altivar 312 drives on SocketCAN")
+set(CPACK_PACKAGE_DESCRIPTION "The portable CANopen core (libcanopen.a) and its Linux runtime
+(libco_linux.a) with their headers, CMake package (find_package(canopen)) and pkg-config files;
+co-edstool, which generates a dictionary from an EDS; atv312d, a daemon putting emulated
+Schneider Altivar 312 drives (CiA 402) on a SocketCAN interface; vcan-run, which runs it where
+the kernel has no vcan.")
+set(CPACK_GENERATOR DEB)
+set(CPACK_DEBIAN_FILE_NAME DEB-DEFAULT)
+set(CPACK_DEBIAN_PACKAGE_SECTION devel)
+# libc from the daemon's own dependencies (dpkg-shlibdeps); python3 for co-edstool.
+set(CPACK_DEBIAN_PACKAGE_SHLIBDEPS ON)
+set(CPACK_DEBIAN_PACKAGE_DEPENDS "python3")
+set(CPACK_DEBIAN_PACKAGE_RECOMMENDS "can-utils")
+set(CPACK_DEBIAN_PACKAGE_SUGGESTS "cmake, pkg-config, user-mode-linux, kmod, iproute2")
+include(CPack)

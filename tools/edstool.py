@@ -1302,7 +1302,6 @@ class Parser(argparse.ArgumentParser):
 
 def make_parser():
     parser = Parser(
-        prog="edstool.py",
         description="Generate the CANopen core's object dictionary table from a CiA 306 EDS, "
                     "or check EDS files.",
         epilog="Exit codes: 0 success, 1 invalid input (messages name file, section and key), "
@@ -1347,7 +1346,7 @@ def main(argv=None):
     try:
         return args.run(args)
     except UsageError as e:
-        sys.stderr.write("edstool.py: error: %s\n" % e)
+        sys.stderr.write("%s: error: %s\n" % (parser.prog, e))
         return EXIT_USAGE
     except EdsError as e:
         sys.stderr.write("%s\n" % e)

@@ -1,6 +1,5 @@
-/* atv312d: emulated Schneider Altivar 312 drives on a SocketCAN interface, one process, one epoll
+/* atv312d: emulated Schneider Altivar drives on a SocketCAN interface, one process, one epoll
  * loop, one socket for all of them. Usage and behaviour: docs/atv312d.md. */
-#include "atv312/atv312.h"
 #include "cli.h"
 #include "co_linux/file_store.h"
 #include "co_linux/log.h"
@@ -239,21 +238,29 @@ static int open_store(const char *path, co_file_store_t *store)
     return EX_IOERR;
 }
 
+/* "4,5 (atv312)" or, on a mixed bench, "4,5 (atv312), 6 (atv31)": node-ids ascending, each run
+ * of one model followed by its name. */
 static void format_node_ids(const atv312d_options_t *opts, char *buf, size_t len)
 {
     size_t used = 0;
     buf[0] = '\0';
-    for (size_t i = 0; i < opts->node_count && used < len; i++)
-        used += (size_t)snprintf(buf + used, len - used, "%s%u", i ? "," : "", opts->node_ids[i]);
+    for (size_t i = 0; i < opts->node_count && used < len; i++) {
+        const char *separator = i == 0 ? "" : opts->models[i] == opts->models[i - 1] ? "," : ", ";
+        used += (size_t)snprintf(buf + used, len - used, "%s%u", separator, opts->node_ids[i]);
+        bool run_ends = i + 1 == opts->node_count || opts->models[i + 1] != opts->models[i];
+        if (run_ends && used < len)
+            used += (size_t)snprintf(buf + used, len - used, " (%s)", opts->models[i]->name);
+    }
 }
 
-static int init_drive(drive_slot_t *slot, uint8_t node_id, const co_storage_t *storage)
+static int init_drive(drive_slot_t *slot, uint8_t node_id, const atv312d_model_t *model,
+                      const co_storage_t *storage)
 {
-    slot->od_data = calloc(1, atv312_profile.od->data_size);
+    slot->od_data = calloc(1, model->profile->od->data_size);
     if (!slot->od_data)
         return EX_OSERR;
     drive_config_t config = {
-        .profile = &atv312_profile,
+        .profile = model->profile,
         .od_data = slot->od_data,
         .node_id = node_id,
         .send = slot_send,
@@ -263,8 +270,8 @@ static int init_drive(drive_slot_t *slot, uint8_t node_id, const co_storage_t *s
     int rc = drive_init(&slot->drive, &config);
     if (rc == 0)
         return 0;
-    co_log(CO_LOG_ERROR, "node %u: the drive cannot be initialised (error 0x%X)", node_id,
-           (unsigned)rc);
+    co_log(CO_LOG_ERROR, "node %u: the %s drive cannot be initialised (error 0x%X)", node_id,
+           model->name, (unsigned)rc);
     return EX_SOFTWARE;
 }
 
@@ -278,7 +285,7 @@ static int init_drives(drive_slot_t *slots, const atv312d_options_t *opts, co_fi
             co_file_store_bind(store, opts->node_ids[i], &slot->store_node, &slot->storage);
             storage = &slot->storage;
         }
-        int rc = init_drive(slot, opts->node_ids[i], storage);
+        int rc = init_drive(slot, opts->node_ids[i], opts->models[i], storage);
         if (rc != 0)
             return rc;
         slot->nmt_state = slot->drive.node.nmt_state;
@@ -298,7 +305,7 @@ static int run(const atv312d_options_t *opts, FILE *trace, co_file_store_t *stor
     drive_slot_t *slots = calloc(opts->node_count, sizeof *slots);
     int rc = slots ? init_drives(slots, opts, store, &loop) : EX_OSERR;
     if (rc == 0) {
-        char ids[512];
+        char ids[2048];
         format_node_ids(opts, ids, sizeof ids);
         co_log(CO_LOG_INFO, "atv312d %s started on %s: %zu drive(s), node-id %s", ATV312D_VERSION,
                opts->iface, opts->node_count, ids);

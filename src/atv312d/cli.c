@@ -48,10 +48,18 @@ static int parse_node_id(const char *text, size_t len, unsigned long *id, char *
     return 0;
 }
 
-/* One --node-id value: "N", "A-B" or a comma-separated list of those. */
-static int parse_node_ids(const char *value, bool seen[ATV312D_NODE_ID_MAX + 1], char *err,
-                          size_t err_len)
+/* The drives given so far: each --node-id option is a group, and a --model after it names the
+ * model of that group. Every group adds at least one node-id, so there are at most 127. */
+typedef struct node_groups {
+    uint8_t group_of[ATV312D_NODE_ID_MAX + 1]; /* 0: not given; n: given by the n-th --node-id */
+    const atv312d_model_t *model_of[ATV312D_NODE_ID_MAX + 1]; /* per group; NULL: default */
+    uint8_t count;                                            /* --node-id options so far */
+} node_groups_t;
+
+/* One --node-id value: "N", "A-B" or a comma-separated list of those, a new group. */
+static int parse_node_ids(const char *value, node_groups_t *groups, char *err, size_t err_len)
 {
+    groups->count++;
     const char *item = value;
     for (;;) {
         size_t len = strcspn(item, ",");
@@ -73,12 +81,12 @@ static int parse_node_ids(const char *value, bool seen[ATV312D_NODE_ID_MAX + 1],
         if (rc)
             return rc;
         for (unsigned long id = first; id <= last; id++) {
-            if (seen[id])
+            if (groups->group_of[id])
                 return usage_error(err, err_len,
                                    "--node-id: node-id %lu is given twice: each drive needs "
                                    "its own node-id in %d..%d",
                                    id, ATV312D_NODE_ID_MIN, ATV312D_NODE_ID_MAX);
-            seen[id] = true;
+            groups->group_of[id] = groups->count;
         }
         if (item[len] == '\0')
             return 0;
@@ -86,17 +94,64 @@ static int parse_node_ids(const char *value, bool seen[ATV312D_NODE_ID_MAX + 1],
     }
 }
 
-typedef enum { OPT_NODE_ID, OPT_STORE, OPT_TRACE, OPT_LOG_LEVEL, OPT_HELP, OPT_VERSION } opt_t;
+/* "atv312" or "atv312, atv31, atv58": the names --model takes. */
+static void list_models(char *buf, size_t len)
+{
+    size_t used = 0;
+    buf[0] = '\0';
+    for (size_t i = 0; i < atv312d_model_count && used < len; i++)
+        used +=
+            (size_t)snprintf(buf + used, len - used, "%s%s", i ? ", " : "", atv312d_models[i].name);
+}
+
+/* --model names the model of the drives of the --node-id just before it. */
+static int parse_model(const char *name, node_groups_t *groups, char *err, size_t err_len)
+{
+    const atv312d_model_t *model = atv312d_find_model(name);
+    if (!model) {
+        char names[128];
+        list_models(names, sizeof names);
+        return usage_error(err, err_len, "--model: unknown model '%s': the models are %s", name,
+                           names);
+    }
+    if (groups->count == 0)
+        return usage_error(err, err_len,
+                           "--model %s: no --node-id before it: a model follows the node-ids of "
+                           "its drives, e.g. --node-id 4 --model %s",
+                           name, name);
+    if (groups->model_of[groups->count])
+        return usage_error(err, err_len,
+                           "--model %s: the drives of the --node-id before it are already %s: "
+                           "give one --model after each --node-id",
+                           name, groups->model_of[groups->count]->name);
+    groups->model_of[groups->count] = model;
+    return 0;
+}
+
+typedef enum {
+    OPT_NODE_ID,
+    OPT_MODEL,
+    OPT_STORE,
+    OPT_TRACE,
+    OPT_LOG_LEVEL,
+    OPT_HELP,
+    OPT_VERSION
+} opt_t;
 
 static const struct {
     const char *name;
     opt_t opt;
     bool has_value;
 } options[] = {
-    {"--node-id", OPT_NODE_ID, true},  {"--store", OPT_STORE, true},
-    {"--trace", OPT_TRACE, true},      {"--log-level", OPT_LOG_LEVEL, true},
-    {"--help", OPT_HELP, false},       {"-h", OPT_HELP, false},
-    {"--version", OPT_VERSION, false}, {"-V", OPT_VERSION, false},
+    {"--node-id", OPT_NODE_ID, true},
+    {"--model", OPT_MODEL, true},
+    {"--store", OPT_STORE, true},
+    {"--trace", OPT_TRACE, true},
+    {"--log-level", OPT_LOG_LEVEL, true},
+    {"--help", OPT_HELP, false},
+    {"-h", OPT_HELP, false},
+    {"--version", OPT_VERSION, false},
+    {"-V", OPT_VERSION, false},
 };
 
 /* Finds the option of "--name" or "--name=value"; *inline_value points after '='. */
@@ -119,11 +174,13 @@ static int find_option(const char *arg, const char **inline_value)
 }
 
 static int apply_option(opt_t opt, const char *value, atv312d_options_t *opts,
-                        bool seen[ATV312D_NODE_ID_MAX + 1], char *err, size_t err_len)
+                        node_groups_t *groups, char *err, size_t err_len)
 {
     switch (opt) {
     case OPT_NODE_ID:
-        return parse_node_ids(value, seen, err, err_len);
+        return parse_node_ids(value, groups, err, err_len);
+    case OPT_MODEL:
+        return parse_model(value, groups, err, err_len);
     case OPT_STORE:
         opts->store_path = value;
         return 0;
@@ -146,8 +203,8 @@ static int apply_option(opt_t opt, const char *value, atv312d_options_t *opts,
     return 0;
 }
 
-static int check_complete(atv312d_options_t *opts, const bool seen[ATV312D_NODE_ID_MAX + 1],
-                          char *err, size_t err_len)
+static int check_complete(atv312d_options_t *opts, const node_groups_t *groups, char *err,
+                          size_t err_len)
 {
     if (!opts->iface)
         return usage_error(err, err_len,
@@ -158,8 +215,12 @@ static int check_complete(atv312d_options_t *opts, const bool seen[ATV312D_NODE_
                            "interface name '%s' is too long: Linux allows at most %d characters",
                            opts->iface, IFNAMSIZ - 1);
     for (int id = ATV312D_NODE_ID_MIN; id <= ATV312D_NODE_ID_MAX; id++) {
-        if (seen[id])
-            opts->node_ids[opts->node_count++] = (uint8_t)id;
+        uint8_t group = groups->group_of[id];
+        if (!group)
+            continue;
+        const atv312d_model_t *model = groups->model_of[group];
+        opts->models[opts->node_count] = model ? model : &atv312d_models[0];
+        opts->node_ids[opts->node_count++] = (uint8_t)id;
     }
     if (opts->node_count == 0)
         return usage_error(err, err_len,
@@ -173,7 +234,7 @@ int atv312d_parse_args(int argc, char *const argv[], atv312d_options_t *opts, ch
 {
     memset(opts, 0, sizeof *opts);
     opts->log_level = CO_LOG_INFO;
-    bool seen[ATV312D_NODE_ID_MAX + 1] = {false};
+    node_groups_t groups = {0};
     for (int i = 1; i < argc; i++) {
         const char *arg = argv[i];
         if (arg[0] != '-' || strcmp(arg, "-") == 0) {
@@ -196,32 +257,40 @@ int atv312d_parse_args(int argc, char *const argv[], atv312d_options_t *opts, ch
         }
         if (options[k].has_value && value[0] == '\0')
             return usage_error(err, err_len, "option %s needs a non-empty value", options[k].name);
-        int rc = apply_option(options[k].opt, value, opts, seen, err, err_len);
+        int rc = apply_option(options[k].opt, value, opts, &groups, err, err_len);
         if (rc)
             return rc;
         if (opts->help || opts->version)
             return 0;
     }
-    return check_complete(opts, seen, err, err_len);
+    return check_complete(opts, &groups, err, err_len);
 }
 
 void atv312d_print_usage(FILE *out)
 {
-    fputs("usage: atv312d IFACE --node-id N [--node-id N...] [options]\n"
+    fputs("usage: atv312d IFACE --node-id N [--model M] [--node-id N [--model M]...] [options]\n"
           "\n"
-          "Puts emulated Schneider Altivar 312 drives (CANopen, CiA 402) on a SocketCAN\n"
+          "Puts emulated Schneider Altivar drives (CANopen, CiA 402) on a SocketCAN\n"
           "interface.\n"
           "\n"
           "  IFACE               SocketCAN interface, e.g. can0 or vcan0\n"
           "  --node-id N         node-id 1..127 of a drive; a range 4-9 or a list 4,6 puts\n"
           "                      several drives on one socket; may be repeated\n"
-          "  --store FILE        keep parameters saved with 1010h in FILE (all drives share\n"
+          "  --model M           model of the drives of the --node-id just before it\n",
+          out);
+    fprintf(out, "                      (default %s), one of:\n", atv312d_models[0].name);
+    for (size_t i = 0; i < atv312d_model_count; i++)
+        fprintf(out, "                        %-8s %s\n", atv312d_models[i].name,
+                atv312d_models[i].description);
+    fputs("  --store FILE        keep parameters saved with 1010h in FILE (all drives share\n"
           "                      it, one record per node-id); without it 1010h aborts\n"
           "  --trace FILE        write every frame in and out to FILE in candump -L format\n"
           "                      ('-' = standard output)\n"
           "  --log-level LEVEL   error, warn, info (default) or debug, on standard error\n"
           "  -h, --help          show this help\n"
           "  -V, --version       show the version\n"
+          "\n"
+          "Example: atv312d vcan0 --node-id 4-5 --model atv312 --node-id 6\n"
           "\n"
           "Exit status: 0 after SIGINT/SIGTERM, 64 usage error, 69 interface or CAN support\n"
           "missing, 70 internal error, 71 system error, 73 cannot create the trace or store\n"

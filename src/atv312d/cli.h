@@ -1,9 +1,10 @@
-/* The command line of atv312d: `atv312d IFACE --node-id N [options]`. Parsing is separate from
- * main() so the unit tests can check every error and its exit code. */
+/* The command line of atv312d: `atv312d IFACE --node-id N [--model M] [options]`. Parsing is
+ * separate from main() so the unit tests can check every error and its exit code. */
 #ifndef ATV312D_CLI_H
 #define ATV312D_CLI_H
 
 #include "co_linux/log.h"
+#include "models.h"
 
 #include <stdbool.h>
 #include <stddef.h>
@@ -15,7 +16,8 @@
 
 typedef struct atv312d_options {
     const char *iface;
-    uint8_t node_ids[ATV312D_NODE_ID_MAX]; /* ascending, each once */
+    uint8_t node_ids[ATV312D_NODE_ID_MAX];              /* ascending, each once */
+    const atv312d_model_t *models[ATV312D_NODE_ID_MAX]; /* the model of node_ids[i] */
     size_t node_count;
     const char *store_path; /* NULL: no storage, 1010h aborts */
     const char *trace_path; /* NULL: no trace; "-": stdout */

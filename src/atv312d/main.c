@@ -1,10 +1,10 @@
-/* atv312d: emulated Schneider Altivar 312 drives on a SocketCAN interface, one process, one epoll
+/* atv312d: emulated Schneider Altivar drives on a SocketCAN interface, one process, one epoll
  * loop, one socket for all of them. Usage and behaviour: docs/atv312d.md. */
-#include "atv312/atv312.h"
 #include "cli.h"
 #include "co_linux/file_store.h"
 #include "co_linux/log.h"
 #include "co_linux/loop.h"
+#include "drive/drive.h"
 
 #include <errno.h>
 #include <signal.h>
@@ -19,7 +19,8 @@
 
 /* One drive and what the runtime and the logs need around it. */
 typedef struct drive_slot {
-    atv312_t drive;
+    drive_t drive;
+    uint8_t *od_data; /* the drive's dictionary data block, of its model's size */
     co_linux_device_t device;
     co_file_store_node_t store_node;
     co_storage_t storage;
@@ -57,7 +58,7 @@ static void log_state_changes(drive_slot_t *slot)
                nmt_state_name(slot->nmt_state), nmt_state_name(nmt));
         slot->nmt_state = nmt;
     }
-    const char *state = atv312_state_name(&slot->drive);
+    const char *state = drive_state_name(&slot->drive);
     if (state != slot->cia402_state && strcmp(state, slot->cia402_state) != 0) {
         co_log(CO_LOG_INFO, "node %u: CiA 402 %s -> %s", slot_node_id(slot), slot->cia402_state,
                state);
@@ -83,7 +84,7 @@ static void log_emcy(const drive_slot_t *slot, const co_frame_t *frame)
 }
 
 /* The drive's send callback: notes boot-ups and emergencies for the log, then transmits. */
-static void drive_send(void *user, const co_frame_t *frame)
+static void slot_send(void *user, const co_frame_t *frame)
 {
     drive_slot_t *slot = user;
     co_node_t *node = &slot->drive.node;
@@ -96,54 +97,54 @@ static void drive_send(void *user, const co_frame_t *frame)
     co_linux_device_send(&slot->device, frame);
 }
 
-static void drive_start(void *ctx, co_time_t now)
+static void slot_start(void *ctx, co_time_t now)
 {
     drive_slot_t *slot = ctx;
-    atv312_start(&slot->drive, now);
+    drive_start(&slot->drive, now);
     log_state_changes(slot);
 }
 
 /* After the interface was down, the master must learn that the drive is back and may have missed
  * frames: the drive resets communication (CiA 301 NMT command 0x82 addressed to it), which sends
  * the boot-up at once. Application state (motor, CiA 402) is kept. */
-static void drive_restart(void *ctx, co_time_t now)
+static void slot_restart(void *ctx, co_time_t now)
 {
     drive_slot_t *slot = ctx;
     co_frame_t reset = {.id = 0, .len = 2, .data = {CO_NMT_CS_RESET_COMMUNICATION}};
     reset.data[1] = slot_node_id(slot);
     co_log(CO_LOG_INFO, "node %u: reset communication after the interface came back",
            slot_node_id(slot));
-    atv312_receive(&slot->drive, &reset, now);
+    drive_receive(&slot->drive, &reset, now);
     log_state_changes(slot);
 }
 
-static void drive_receive(void *ctx, const co_frame_t *frame, co_time_t now)
+static void slot_receive(void *ctx, const co_frame_t *frame, co_time_t now)
 {
     drive_slot_t *slot = ctx;
-    atv312_receive(&slot->drive, frame, now);
+    drive_receive(&slot->drive, frame, now);
     log_state_changes(slot);
 }
 
-static co_time_t drive_process(void *ctx, co_time_t now)
+static co_time_t slot_process(void *ctx, co_time_t now)
 {
     drive_slot_t *slot = ctx;
-    co_time_t next = atv312_process(&slot->drive, now);
+    co_time_t next = drive_process(&slot->drive, now);
     log_state_changes(slot);
     return next;
 }
 
-static void drive_bus_event(void *ctx, uint16_t emcy_code, bool active)
+static void slot_bus_event(void *ctx, uint16_t emcy_code, bool active)
 {
     drive_slot_t *slot = ctx;
-    atv312_bus_event(&slot->drive, emcy_code, active);
+    drive_bus_event(&slot->drive, emcy_code, active);
 }
 
-static const co_linux_device_ops_t drive_ops = {
-    .start = drive_start,
-    .restart = drive_restart,
-    .receive = drive_receive,
-    .process = drive_process,
-    .bus_event = drive_bus_event,
+static const co_linux_device_ops_t slot_ops = {
+    .start = slot_start,
+    .restart = slot_restart,
+    .receive = slot_receive,
+    .process = slot_process,
+    .bus_event = slot_bus_event,
 };
 
 static int report_open_error(const co_linux_loop_t *loop, co_linux_open_result_t result)
@@ -237,12 +238,41 @@ static int open_store(const char *path, co_file_store_t *store)
     return EX_IOERR;
 }
 
+/* "4,5 (atv312)" or, on a mixed bench, "4,5 (atv312), 6 (atv31)": node-ids ascending, each run
+ * of one model followed by its name. */
 static void format_node_ids(const atv312d_options_t *opts, char *buf, size_t len)
 {
     size_t used = 0;
     buf[0] = '\0';
-    for (size_t i = 0; i < opts->node_count && used < len; i++)
-        used += (size_t)snprintf(buf + used, len - used, "%s%u", i ? "," : "", opts->node_ids[i]);
+    for (size_t i = 0; i < opts->node_count && used < len; i++) {
+        const char *separator = i == 0 ? "" : opts->models[i] == opts->models[i - 1] ? "," : ", ";
+        used += (size_t)snprintf(buf + used, len - used, "%s%u", separator, opts->node_ids[i]);
+        bool run_ends = i + 1 == opts->node_count || opts->models[i + 1] != opts->models[i];
+        if (run_ends && used < len)
+            used += (size_t)snprintf(buf + used, len - used, " (%s)", opts->models[i]->name);
+    }
+}
+
+static int init_drive(drive_slot_t *slot, uint8_t node_id, const atv312d_model_t *model,
+                      const co_storage_t *storage)
+{
+    slot->od_data = calloc(1, model->profile->od->data_size);
+    if (!slot->od_data)
+        return EX_OSERR;
+    drive_config_t config = {
+        .profile = model->profile,
+        .od_data = slot->od_data,
+        .node_id = node_id,
+        .send = slot_send,
+        .send_user = slot,
+        .storage = storage,
+    };
+    int rc = drive_init(&slot->drive, &config);
+    if (rc == 0)
+        return 0;
+    co_log(CO_LOG_ERROR, "node %u: the %s drive cannot be initialised (error 0x%X)", node_id,
+           model->name, (unsigned)rc);
+    return EX_SOFTWARE;
 }
 
 static int init_drives(drive_slot_t *slots, const atv312d_options_t *opts, co_file_store_t *store,
@@ -255,15 +285,12 @@ static int init_drives(drive_slot_t *slots, const atv312d_options_t *opts, co_fi
             co_file_store_bind(store, opts->node_ids[i], &slot->store_node, &slot->storage);
             storage = &slot->storage;
         }
-        int rc = atv312_init(&slot->drive, opts->node_ids[i], drive_send, slot, storage);
-        if (rc != 0) {
-            co_log(CO_LOG_ERROR, "node %u: the drive cannot be initialised (error 0x%X)",
-                   opts->node_ids[i], (unsigned)rc);
-            return EX_SOFTWARE;
-        }
+        int rc = init_drive(slot, opts->node_ids[i], opts->models[i], storage);
+        if (rc != 0)
+            return rc;
         slot->nmt_state = slot->drive.node.nmt_state;
-        slot->cia402_state = atv312_state_name(&slot->drive);
-        co_linux_loop_add(loop, &slot->device, &drive_ops, slot);
+        slot->cia402_state = drive_state_name(&slot->drive);
+        co_linux_loop_add(loop, &slot->device, &slot_ops, slot);
     }
     return 0;
 }
@@ -278,7 +305,7 @@ static int run(const atv312d_options_t *opts, FILE *trace, co_file_store_t *stor
     drive_slot_t *slots = calloc(opts->node_count, sizeof *slots);
     int rc = slots ? init_drives(slots, opts, store, &loop) : EX_OSERR;
     if (rc == 0) {
-        char ids[512];
+        char ids[2048];
         format_node_ids(opts, ids, sizeof ids);
         co_log(CO_LOG_INFO, "atv312d %s started on %s: %zu drive(s), node-id %s", ATV312D_VERSION,
                opts->iface, opts->node_count, ids);
@@ -291,8 +318,10 @@ static int run(const atv312d_options_t *opts, FILE *trace, co_file_store_t *stor
     }
     co_linux_loop_close(&loop);
     if (slots) {
-        for (size_t i = 0; i < opts->node_count; i++)
+        for (size_t i = 0; i < opts->node_count; i++) {
             co_file_store_unbind(&slots[i].store_node);
+            free(slots[i].od_data);
+        }
     }
     free(slots);
     return rc;

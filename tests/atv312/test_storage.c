@@ -1,7 +1,7 @@
 /* What storage keeps of the drive (SPEC section 3, "Storage"): parameters, never process data;
  * the values the CiA 402 views stand for; every stored value checked like an SDO write. Reset node
  * (000#8104) reloads the dictionary as a restart of the daemon does. */
-#include "bench.h"
+#include "atv312_bench.h"
 #include "check_main.h"
 #include "memory_storage.h"
 
@@ -12,7 +12,7 @@ static bench_t b;
 static void setup(void)
 {
     memory_storage_init(&mem, &storage);
-    bench_start_stored(&b, &storage);
+    bench_start_model(&b, &atv312_profile, &storage);
 }
 
 static void reset_node(void)

@@ -16,8 +16,9 @@ def read_request(node, index, sub):
     "args, nodes",
     [(["--node-id", "4-6"], [4, 5, 6]),
      (["--node-id", "4", "--node-id", "9"], [4, 9]),
-     (["--node-id", "7,5"], [5, 7])],
-    ids=["range", "repeated", "list"],
+     (["--node-id", "7,5"], [5, 7]),
+     (["--node-id", "4-5", "--model", "atv312", "--node-id", "6"], [4, 5, 6])],
+    ids=["range", "repeated", "list", "models"],
 )
 def test_each_drive_boots_and_answers_sdo_on_its_own_id(bus, start_daemon, args, nodes):
     start_daemon(bus, *args, boot_ids=nodes)
@@ -29,6 +30,11 @@ def test_each_drive_boots_and_answers_sdo_on_its_own_id(bus, start_daemon, args,
     others = [n for n in range(1, 12) if n not in nodes]
     bus.send(read_request(others[0], 0x1000, 0))
     bus.expect_none(0x580 + others[0], 0.3)
+
+
+def test_start_line_names_the_model_of_each_drive(bus, start_daemon):
+    d = start_daemon(bus, "--node-id", "4-5", "--model=atv312", "--node-id", "6")
+    assert "3 drive(s), node-id 4,5,6 (atv312)" in d.log(), d.log()
 
 
 def test_broadcast_nmt_reaches_every_drive_and_a_single_one_only_its_own(bus, start_daemon):

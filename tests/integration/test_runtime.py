@@ -96,8 +96,11 @@ def run_cli(*args):
      ([IFACE, "--node-id", "128"], ["1..127"]),
      ([IFACE, "--node-id", "four"], ["four"]),
      ([IFACE, "--node-id", "4", "--bogus"], ["--bogus"]),
-     ([IFACE, "--node-id", "4", "--log-level", "loud"], ["loud"])],
-    ids=["nothing", "no-node-id", "node-id-0", "node-id-128", "node-id-text", "unknown-option", "bad-log-level"],
+     ([IFACE, "--node-id", "4", "--log-level", "loud"], ["loud"]),
+     ([IFACE, "--node-id", "4", "--model", "atv99"], ["unknown model 'atv99'", "atv312"]),
+     ([IFACE, "--model", "atv312", "--node-id", "4"], ["no --node-id before it"])],
+    ids=["nothing", "no-node-id", "node-id-0", "node-id-128", "node-id-text", "unknown-option", "bad-log-level",
+         "unknown-model", "model-before-node-id"],
 )
 def test_bad_command_line_exits_64_with_a_message(args, words):
     result = run_cli(*args)
@@ -115,6 +118,7 @@ def test_missing_interface_says_how_to_create_it():
 def test_help_and_version_exit_0():
     shown = run_cli("--help")
     assert shown.returncode == EX_OK and "--node-id" in shown.stdout
+    assert "--model" in shown.stdout and "atv312" in shown.stdout
     version = run_cli("--version")
     assert version.returncode == EX_OK and re.search(r"\d+\.\d+", version.stdout)
 

@@ -1,5 +1,6 @@
-/* The atv312d command line: node-id forms, duplicates and ranges, every usage error with its
- * exit code and a message naming what would be right. */
+/* The atv312d command line: node-id forms, duplicates and ranges, the model of each --node-id,
+ * every usage error with its exit code and a message naming what would be right. */
+#include "atv312/atv312.h"
 #include "check_main.h"
 #include "cli.h"
 
@@ -41,6 +42,58 @@ START_TEST(single_node_with_defaults)
     ck_assert_ptr_null(opts.trace_path);
     ck_assert_int_eq(opts.log_level, CO_LOG_INFO);
     ck_assert(!opts.help && !opts.version);
+    ck_assert_str_eq(opts.models[0]->name, "atv312");
+    ck_assert_ptr_eq(opts.models[0]->profile, &atv312_profile);
+}
+END_TEST
+
+/* --model names the model of the node-ids of the --node-id just before it; the others are the
+ * default's. */
+START_TEST(model_of_each_node_id_group)
+{
+    const atv312d_model_t *atv312 = atv312d_find_model("atv312");
+    ck_assert_ptr_nonnull(atv312);
+    ck_assert_ptr_eq(atv312, &atv312d_models[0]);
+    ck_assert_int_eq(parse("vcan0", "--node-id", "6", "--node-id", "4-5", "--model=atv312", NULL),
+                     0);
+    assert_ids(3, (const uint8_t[]){4, 5, 6});
+    for (size_t i = 0; i < 3; i++)
+        ck_assert_ptr_eq(opts.models[i], atv312);
+    ck_assert_int_eq(parse("--node-id", "4", "--model", "atv312", "vcan0", NULL), 0);
+    ck_assert_ptr_eq(opts.models[0], atv312);
+    ck_assert_ptr_null(atv312d_find_model("ATV312"));
+}
+END_TEST
+
+START_TEST(model_errors)
+{
+    ck_assert_int_eq(parse("vcan0", "--node-id", "4", "--model", "atv99", NULL), EX_USAGE);
+    ck_assert_str_eq(err, "--model: unknown model 'atv99': the models are atv312");
+    ck_assert_int_eq(parse("vcan0", "--model", "atv312", "--node-id", "4", NULL), EX_USAGE);
+    ck_assert_str_eq(err, "--model atv312: no --node-id before it: a model follows the node-ids "
+                          "of its drives, e.g. --node-id 4 --model atv312");
+    ck_assert_int_eq(
+        parse("vcan0", "--node-id", "4", "--model", "atv312", "--model", "atv312", NULL), EX_USAGE);
+    ck_assert_str_eq(err, "--model atv312: the drives of the --node-id before it are already "
+                          "atv312: give one --model after each --node-id");
+    ck_assert_int_eq(parse("vcan0", "--node-id", "4", "--model", NULL), EX_USAGE);
+    ck_assert_str_eq(err, "option --model needs a value (see atv312d --help)");
+}
+END_TEST
+
+/* --help lists every model with its description, the default first. */
+START_TEST(help_lists_the_models)
+{
+    char *text = NULL;
+    size_t size = 0;
+    FILE *out = open_memstream(&text, &size);
+    ck_assert_ptr_nonnull(out);
+    atv312d_print_usage(out);
+    fclose(out);
+    ck_assert_msg(strstr(text, "(default atv312)") != NULL, "%s", text);
+    for (size_t i = 0; i < atv312d_model_count; i++)
+        ck_assert_msg(strstr(text, atv312d_models[i].description) != NULL, "%s", text);
+    free(text);
 }
 END_TEST
 
@@ -147,6 +200,9 @@ int main(void)
     Suite *s = suite_create("cli");
     TCase *tc = tcase_create("cli");
     tcase_add_test(tc, single_node_with_defaults);
+    tcase_add_test(tc, model_of_each_node_id_group);
+    tcase_add_test(tc, model_errors);
+    tcase_add_test(tc, help_lists_the_models);
     tcase_add_test(tc, every_option_in_both_spellings);
     tcase_add_test(tc, ranges_lists_and_repeats_are_sorted);
     tcase_add_test(tc, out_of_range_names_the_range);

@@ -1,7 +1,7 @@
 /* Motor model. The speed is kept in milli-rpm and every ramp division carries its remainder to
  * the next interval, so a ramp reaches the same speed at the same time however often it is
  * sampled (ACC = 3.0 s to 1500 rpm gives exactly 1200 rpm at 2.4 s). */
-#include "motor.h"
+#include "drive/motor.h"
 
 #define MILLI 1000
 #define RAMP_UNIT_US 100000u   /* ramp times are in 0.1 s */
@@ -13,13 +13,13 @@ static int64_t magnitude(int64_t v)
     return v < 0 ? -v : v;
 }
 
-void atv312_motor_reset(atv312_motor_t *motor, co_time_t now)
+void drive_motor_reset(drive_motor_t *motor, co_time_t now)
 {
-    *motor = (atv312_motor_t){.updated = now};
+    *motor = (drive_motor_t){.updated = now};
 }
 
 /* Where the current ramp segment ends: the target, or zero first when the direction reverses. */
-static int64_t segment_goal(const atv312_motor_t *motor)
+static int64_t segment_goal(const drive_motor_t *motor)
 {
     int64_t goal = (int64_t)motor->target * MILLI;
     if ((motor->speed > 0 && goal < 0) || (motor->speed < 0 && goal > 0))
@@ -27,26 +27,26 @@ static int64_t segment_goal(const atv312_motor_t *motor)
     return goal;
 }
 
-static bool segment_accelerates(const atv312_motor_t *motor, int64_t goal)
+static bool segment_accelerates(const drive_motor_t *motor, int64_t goal)
 {
     return magnitude(goal) > magnitude(motor->speed);
 }
 
 /* Ramp time of the segment, in microseconds for a change of nominal speed. */
-static uint64_t segment_period(const atv312_motor_t *motor, bool accelerates)
+static uint64_t segment_period(const drive_motor_t *motor, bool accelerates)
 {
     uint16_t ramp =
         accelerates ? motor->ramp.acc : (motor->fast ? motor->ramp.fast_dec : motor->ramp.dec);
     return (uint64_t)(ramp ? ramp : 1) * RAMP_UNIT_US;
 }
 
-static uint64_t segment_rate(const atv312_motor_t *motor)
+static uint64_t segment_rate(const drive_motor_t *motor)
 {
     return (uint64_t)(motor->ramp.nominal_rpm ? motor->ramp.nominal_rpm : 1) * MILLI;
 }
 
 /* Microseconds until the segment reaches its goal. */
-static uint64_t segment_time_left(const atv312_motor_t *motor, int64_t goal)
+static uint64_t segment_time_left(const drive_motor_t *motor, int64_t goal)
 {
     uint64_t period = segment_period(motor, segment_accelerates(motor, goal));
     uint64_t rate = segment_rate(motor);
@@ -54,7 +54,7 @@ static uint64_t segment_time_left(const atv312_motor_t *motor, int64_t goal)
     return (distance + rate - 1) / rate;
 }
 
-void atv312_motor_advance(atv312_motor_t *motor, co_time_t now)
+void drive_motor_advance(drive_motor_t *motor, co_time_t now)
 {
     if (now <= motor->updated)
         return;
@@ -79,12 +79,12 @@ void atv312_motor_advance(atv312_motor_t *motor, co_time_t now)
         motor->speed += goal > motor->speed ? step : -step;
         elapsed = 0;
     }
-    if (atv312_motor_at_target(motor))
+    if (drive_motor_at_target(motor))
         motor->phase = 0;
 }
 
-void atv312_motor_steer(atv312_motor_t *motor, int32_t target_rpm, bool fast,
-                        const atv312_ramp_t *ramp)
+void drive_motor_steer(drive_motor_t *motor, int32_t target_rpm, bool fast,
+                       const drive_ramp_t *ramp)
 {
     bool same_ramp = motor->ramp.acc == ramp->acc && motor->ramp.dec == ramp->dec &&
                      motor->ramp.fast_dec == ramp->fast_dec &&
@@ -98,32 +98,47 @@ void atv312_motor_steer(atv312_motor_t *motor, int32_t target_rpm, bool fast,
     motor->ramp = *ramp;
 }
 
-void atv312_motor_coast(atv312_motor_t *motor)
+void drive_motor_coast(drive_motor_t *motor)
 {
     motor->speed = 0;
     motor->remainder = 0;
     motor->phase = 0;
 }
 
-int32_t atv312_motor_rpm(const atv312_motor_t *motor)
+int32_t drive_motor_rpm(const drive_motor_t *motor)
 {
     return (int32_t)(motor->speed / MILLI);
 }
 
-bool atv312_motor_at_target(const atv312_motor_t *motor)
+bool drive_motor_stands(const drive_motor_t *motor)
+{
+    return motor->speed == 0;
+}
+
+bool drive_motor_running(const drive_motor_t *motor)
+{
+    return motor->speed != 0 || motor->target != 0;
+}
+
+bool drive_motor_reverse(const drive_motor_t *motor)
+{
+    return motor->speed < 0 || (motor->speed == 0 && motor->target < 0);
+}
+
+bool drive_motor_at_target(const drive_motor_t *motor)
 {
     return motor->speed == (int64_t)motor->target * MILLI;
 }
 
-co_time_t atv312_motor_deadline(const atv312_motor_t *motor)
+co_time_t drive_motor_deadline(const drive_motor_t *motor)
 {
-    if (atv312_motor_at_target(motor))
+    if (drive_motor_at_target(motor))
         return CO_TIME_NEVER;
     uint64_t left = segment_time_left(motor, segment_goal(motor));
-    return motor->updated + (left < ATV312_MOTOR_TICK_US ? left : ATV312_MOTOR_TICK_US);
+    return motor->updated + (left < DRIVE_MOTOR_TICK_US ? left : DRIVE_MOTOR_TICK_US);
 }
 
-int16_t atv312_motor_torque(const atv312_motor_t *motor)
+int16_t drive_motor_torque(const drive_motor_t *motor)
 {
     int64_t nominal = motor->ramp.nominal_rpm ? motor->ramp.nominal_rpm : 1;
     int64_t torque = LOAD_TORQUE_PERCENT * magnitude(motor->speed) / (nominal * MILLI);

@@ -1,4 +1,4 @@
-#include "bench.h"
+#include "drive_bench.h"
 
 #include "test_bus.h"
 
@@ -14,25 +14,29 @@ static void bench_send(void *user, const co_frame_t *frame)
     b->count++;
 }
 
-void bench_start(bench_t *b)
-{
-    bench_start_stored(b, NULL);
-}
-
-void bench_start_stored(bench_t *b, const co_storage_t *storage)
+void bench_start_model(bench_t *b, const drive_profile_t *profile, const co_storage_t *storage)
 {
     memset(b, 0, sizeof(*b));
-    ck_assert_int_eq(atv312_init(&b->drive, BENCH_NODE_ID, bench_send, b, storage), 0);
-    atv312_start(&b->drive, 0);
-    b->deadline = atv312_process(&b->drive, 0);
+    ck_assert_uint_le(profile->od->data_size, sizeof b->od_data);
+    drive_config_t config = {
+        .profile = profile,
+        .od_data = b->od_data,
+        .node_id = BENCH_NODE_ID,
+        .send = bench_send,
+        .send_user = b,
+        .storage = storage,
+    };
+    ck_assert_int_eq(drive_init(&b->drive, &config), 0);
+    drive_start(&b->drive, 0);
+    b->deadline = drive_process(&b->drive, 0);
     bench_expect(b, "704#00");
 }
 
 void bench_rx(bench_t *b, const char *text)
 {
     co_frame_t frame = test_frame(text);
-    atv312_receive(&b->drive, &frame, b->now);
-    b->deadline = atv312_process(&b->drive, b->now);
+    drive_receive(&b->drive, &frame, b->now);
+    b->deadline = drive_process(&b->drive, b->now);
 }
 
 void bench_advance(bench_t *b, co_time_t us)
@@ -41,10 +45,10 @@ void bench_advance(bench_t *b, co_time_t us)
     while (b->deadline <= end) {
         ck_assert_msg(b->deadline >= b->now, "deadline in the past");
         b->now = b->deadline;
-        b->deadline = atv312_process(&b->drive, b->now);
+        b->deadline = drive_process(&b->drive, b->now);
     }
     b->now = end;
-    b->deadline = atv312_process(&b->drive, b->now);
+    b->deadline = drive_process(&b->drive, b->now);
 }
 
 co_time_t bench_expect_at(bench_t *b, const char *text, const char *file, int line)
@@ -66,11 +70,6 @@ void bench_expect_none_at(bench_t *b, const char *file, int line)
     if (b->next < b->count)
         ck_abort_msg("%s:%d: unexpected frame %s", file, line,
                      test_format(&b->frame[b->next], got));
-}
-
-void bench_drain(bench_t *b)
-{
-    b->next = b->count;
 }
 
 /* Takes the SDO answer out of the recorded frames; frames sent around it (an EMCY the request
@@ -97,8 +96,8 @@ static void sdo_request(bench_t *b, uint8_t command, uint16_t index, uint8_t sub
     co_put_u16(&f.data[1], index);
     f.data[3] = sub;
     co_put_u32(&f.data[4], value);
-    atv312_receive(&b->drive, &f, b->now);
-    b->deadline = atv312_process(&b->drive, b->now);
+    drive_receive(&b->drive, &f, b->now);
+    b->deadline = drive_process(&b->drive, b->now);
 }
 
 uint32_t bench_sdo_write(bench_t *b, uint16_t index, uint8_t sub, uint32_t value, uint8_t len)
@@ -139,11 +138,4 @@ uint16_t bench_command(bench_t *b, uint16_t control)
 int16_t bench_speed(bench_t *b)
 {
     return (int16_t)bench_read(b, 0x6044, 0);
-}
-
-void bench_operational(bench_t *b)
-{
-    ck_assert_uint_eq(bench_sdo_write(b, 0x1800, 5, 0, 2), 0);
-    ck_assert_uint_eq(bench_sdo_write(b, 0x1805, 5, 0, 2), 0);
-    bench_rx(b, "000#0104");
 }

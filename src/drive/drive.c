@@ -1,0 +1,306 @@
+/* The drive: a CANopen node on a model's dictionary whose control word drives the CiA 402 state
+ * machine and whose motor model publishes status, speed, current and torque. Communication loss
+ * (heartbeat consumer or life guarding) is the network fault. */
+#include "drive_internal.h"
+
+#include <stddef.h>
+
+/* The EMCY error register of a communication fault: 1001h bit 0 (generic, "error (1)" in the
+ * ATV312 table) and bit 4 (communication), CiA 301 table 48. */
+#define COMMUNICATION_ERROR_REGISTER (CO_ERR_REG_GENERIC | CO_ERR_REG_COMMUNICATION)
+
+/* Magnetising current at standstill, in % of nominal current; 100 % torque needs 100 %. */
+#define MAGNETISING_CURRENT_PERCENT 30
+
+drive_t *drive_of(co_node_t *node)
+{
+    return (drive_t *)(void *)((char *)node - offsetof(drive_t, node));
+}
+
+uint32_t drive_param_value(const drive_t *drive, drive_param_t param)
+{
+    return (uint32_t)co_od_value(&drive->node, param.index, param.subindex);
+}
+
+uint32_t drive_frequency_to_rpm(const drive_t *drive, uint32_t decihertz)
+{
+    uint32_t frs = drive_param_value(drive, drive->profile->nominal_frequency);
+    uint32_t nsp = drive_param_value(drive, drive->profile->nominal_speed);
+    return frs ? (decihertz * nsp + frs / 2) / frs : 0;
+}
+
+uint32_t drive_rpm_to_frequency(const drive_t *drive, uint32_t rpm)
+{
+    uint64_t frs = drive_param_value(drive, drive->profile->nominal_frequency);
+    uint64_t nsp = drive_param_value(drive, drive->profile->nominal_speed);
+    uint64_t decihertz = nsp ? ((uint64_t)rpm * frs + nsp / 2) / nsp : 0;
+    return decihertz > UINT32_MAX ? UINT32_MAX : (uint32_t)decihertz;
+}
+
+static drive_ramp_t ramp_parameters(const drive_t *drive)
+{
+    const drive_profile_t *profile = drive->profile;
+    uint32_t dec = drive_param_value(drive, profile->deceleration);
+    uint32_t fast_dec = profile->fast_ramp_divider ? dec / profile->fast_ramp_divider : dec;
+    return (drive_ramp_t){
+        .acc = (uint16_t)drive_param_value(drive, profile->acceleration),
+        .dec = (uint16_t)dec,
+        .fast_dec = (uint16_t)(fast_dec ? fast_dec : 1),
+        .nominal_rpm = (uint16_t)drive_param_value(drive, profile->nominal_speed),
+    };
+}
+
+/* The reference of a running drive: 6042h, reversed by the model's reverse bit, its magnitude
+ * held between the low and high speed (the drive runs at low speed with a zero reference). */
+static int32_t run_reference(drive_t *drive)
+{
+    const drive_profile_t *profile = drive->profile;
+    int32_t reference = (int16_t)co_od_value(&drive->node, CIA402_IDX_TARGET_VELOCITY, 0);
+    bool reverse = (reference < 0) != ((drive->cia402.control & profile->control_reverse) != 0);
+    uint32_t wanted = (uint32_t)(reference < 0 ? -reference : reference);
+    uint32_t high = drive_frequency_to_rpm(drive, drive_param_value(drive, profile->high_speed));
+    uint32_t low = drive_frequency_to_rpm(drive, drive_param_value(drive, profile->low_speed));
+    uint32_t speed = wanted > high ? high : (wanted < low ? low : wanted);
+    drive->limited = speed != wanted;
+    return reverse ? -(int32_t)speed : (int32_t)speed;
+}
+
+/* Only Operation enabled and Quick stop active drive the motor: in any other state the output is
+ * off and the motor coasts, whatever the transition that led there (freewheel on 8, 9, 12 and
+ * faults). In Operation enabled the motor follows the reference unless a stop is asked: the ramp
+ * stop bit on the deceleration ramp, the fast stop bits on the fast ramp, a pending disable
+ * operation (5) on the deceleration ramp; Quick stop active always stops on the fast ramp. */
+static void steer_motor(drive_t *drive)
+{
+    const drive_profile_t *profile = drive->profile;
+    const cia402_state_machine_t *sm = &drive->cia402;
+    bool enabled = sm->state == CIA402_OPERATION_ENABLED;
+    bool fast_stop = (sm->control & profile->control_fast_stop) != 0;
+    bool ramp_stop = (sm->control & profile->control_ramp_stop) != 0;
+    bool fast = sm->state == CIA402_QUICK_STOP_ACTIVE || (enabled && fast_stop);
+    if (!cia402_drives_motor(sm))
+        drive_motor_coast(&drive->motor);
+    drive->limited = false;
+    int32_t target = cia402_runs(sm) && !fast_stop && !ramp_stop ? run_reference(drive) : 0;
+    drive_ramp_t ramp = ramp_parameters(drive);
+    drive_motor_steer(&drive->motor, target, fast, &ramp);
+}
+
+static uint16_t status_word(const drive_t *drive)
+{
+    const drive_motor_t *motor = &drive->motor;
+    uint16_t status = cia402_status(&drive->cia402) | CIA402_SW_REMOTE;
+    if (drive_motor_at_target(motor))
+        status |= CIA402_SW_TARGET_REACHED;
+    if (drive->limited)
+        status |= CIA402_SW_INTERNAL_LIMIT;
+    if (drive_motor_reverse(motor))
+        status |= drive->profile->status_reverse;
+    return status;
+}
+
+/* The output is on in Operation enabled, and in Quick stop active until the motor stopped (then
+ * the drive locks). */
+static bool output_on(const drive_t *drive)
+{
+    cia402_state_t state = drive->cia402.state;
+    return state == CIA402_OPERATION_ENABLED ||
+           (state == CIA402_QUICK_STOP_ACTIVE && !drive_motor_stands(&drive->motor));
+}
+
+/* Current (0.1 A) of a given torque: the magnetising current plus the torque's share. */
+static int32_t motor_current(const drive_t *drive, int16_t torque)
+{
+    int32_t load = torque < 0 ? -torque : torque;
+    int32_t nominal = (int32_t)drive_param_value(drive, drive->profile->nominal_current);
+    return nominal *
+           (MAGNETISING_CURRENT_PERCENT + (100 - MAGNETISING_CURRENT_PERCENT) * load / 100) / 100;
+}
+
+static void publish(drive_t *drive)
+{
+    co_node_t *node = &drive->node;
+    const drive_profile_t *profile = drive->profile;
+    uint16_t status = status_word(drive);
+    co_od_set_value(node, CIA402_IDX_STATUSWORD, 0, status);
+    co_od_set_value(node, profile->status_word_copy.index, profile->status_word_copy.subindex,
+                    status);
+    int32_t rpm = drive_motor_rpm(&drive->motor);
+    co_od_set_value(node, CIA402_IDX_VELOCITY_DEMAND, 0, rpm);
+    co_od_set_value(node, CIA402_IDX_VELOCITY_ACTUAL, 0, rpm);
+    bool on = output_on(drive);
+    int16_t torque = on ? drive_motor_torque(&drive->motor) : 0;
+    int32_t current = on ? motor_current(drive, torque) : 0;
+    co_od_set_value(node, profile->motor_torque.index, profile->motor_torque.subindex, torque);
+    co_od_set_value(node, profile->motor_current.index, profile->motor_current.subindex, current);
+}
+
+void drive_settle(drive_t *drive)
+{
+    if (drive_motor_stands(&drive->motor))
+        cia402_motor_stopped(&drive->cia402);
+    steer_motor(drive);
+    publish(drive);
+}
+
+/* The network fault (the Altivars' CnF / COF): freewheel stop (state Fault drives nothing),
+ * latched until a fault reset, reported in 603Fh and by EMCY 0x8130 (which also records it in
+ * 1003h). */
+static void communication_fault(drive_t *drive)
+{
+    if (drive->cia402.state == CIA402_FAULT)
+        return;
+    co_node_t *node = &drive->node;
+    drive_motor_advance(&drive->motor, node->now);
+    cia402_fault(&drive->cia402);
+    co_od_set_value(node, CIA402_IDX_ERROR_CODE, 0, CO_EMCY_HEARTBEAT);
+    co_emcy_raise(node, CO_EMCY_HEARTBEAT, COMMUNICATION_ERROR_REGISTER, NULL);
+    drive_settle(drive);
+}
+
+static void acknowledge_fault(drive_t *drive)
+{
+    co_node_t *node = &drive->node;
+    uint16_t code = (uint16_t)co_od_value(node, CIA402_IDX_ERROR_CODE, 0);
+    co_od_set_value(node, CIA402_IDX_ERROR_CODE, 0, 0);
+    co_emcy_clear(node, code);
+}
+
+static bool is_control_word(const drive_t *drive, const co_od_entry_t *entry)
+{
+    drive_param_t copy = drive->profile->control_word_copy;
+    return (entry->index == CIA402_IDX_CONTROLWORD && entry->subindex == 0) ||
+           (entry->index == copy.index && entry->subindex == copy.subindex);
+}
+
+/* 6040h and the model's copy are the same word: both are kept equal. */
+static void apply_control_word(drive_t *drive, uint16_t control)
+{
+    drive_param_t copy = drive->profile->control_word_copy;
+    co_od_set_value(&drive->node, CIA402_IDX_CONTROLWORD, 0, control);
+    co_od_set_value(&drive->node, copy.index, copy.subindex, control);
+    if (cia402_command(&drive->cia402, control, drive_motor_stands(&drive->motor)))
+        acknowledge_fault(drive);
+}
+
+static void on_written(co_node_t *node, const co_od_entry_t *entry, co_od_origin_t origin)
+{
+    (void)origin;
+    drive_t *drive = drive_of(node);
+    drive_motor_advance(&drive->motor, node->now);
+    if (is_control_word(drive, entry))
+        apply_control_word(drive, (uint16_t)co_od_get(node, entry));
+    drive_settle(drive);
+}
+
+static void on_heartbeat(co_node_t *node, uint8_t producer, bool lost)
+{
+    (void)producer;
+    if (lost)
+        communication_fault(drive_of(node));
+}
+
+static void on_guarding(co_node_t *node, bool lost)
+{
+    if (lost)
+        communication_fault(drive_of(node));
+}
+
+/* Reset node restarts the drive too: Switch on disabled, motor stopped (the dictionary's
+ * defaults, restored right after this, describe that state). */
+static void on_reset(co_node_t *node, co_nmt_reset_t scope)
+{
+    if (scope != CO_NMT_RESET_NODE)
+        return;
+    drive_t *drive = drive_of(node);
+    cia402_reset(&drive->cia402);
+    drive_motor_reset(&drive->motor, node->now);
+    drive->limited = false;
+}
+
+/* The bus conditions still present are errors again once a reset node has emptied the EMCY
+ * producer's active errors (the boot-up comes first, then their EMCYs). Raising an active error
+ * again does nothing, so every entry into Pre-operational may do it. */
+static void on_nmt_state(co_node_t *node, co_nmt_state_t state)
+{
+    (void)state;
+    drive_t *drive = drive_of(node);
+    for (uint8_t i = 0; i < drive->bus_event_count; i++)
+        co_emcy_raise(node, drive->bus_events[i], COMMUNICATION_ERROR_REGISTER, NULL);
+}
+
+static const co_app_hooks_t drive_hooks = {
+    .nmt_state = on_nmt_state,
+    .reset = on_reset,
+    .heartbeat = on_heartbeat,
+    .guarding = on_guarding,
+    .od_written = on_written,
+};
+
+int drive_init(drive_t *drive, const drive_config_t *config)
+{
+    co_node_config_t node_config = {
+        .node_id = config->node_id,
+        .od = config->profile->od,
+        .od_data = config->od_data,
+        .send = config->send,
+        .user = config->send_user,
+        .hooks = &drive_hooks,
+        .storage = config->storage,
+    };
+    drive->profile = config->profile;
+    int err = co_node_init(&drive->node, &node_config);
+    if (err != 0)
+        return err;
+    cia402_reset(&drive->cia402);
+    drive_motor_reset(&drive->motor, 0);
+    drive->limited = false;
+    drive->bus_event_count = 0;
+    return 0;
+}
+
+void drive_start(drive_t *drive, co_time_t now)
+{
+    co_node_start(&drive->node, now);
+    drive_settle(drive);
+}
+
+void drive_receive(drive_t *drive, const co_frame_t *frame, co_time_t now)
+{
+    co_node_receive(&drive->node, frame, now);
+}
+
+co_time_t drive_process(drive_t *drive, co_time_t now)
+{
+    drive_motor_advance(&drive->motor, now);
+    drive_settle(drive);
+    co_time_t next = co_node_process(&drive->node, now);
+    return co_time_min(next, drive_motor_deadline(&drive->motor));
+}
+
+static void remember_bus_event(drive_t *drive, uint16_t emcy_code, bool active)
+{
+    for (uint8_t i = 0; i < drive->bus_event_count; i++) {
+        if (drive->bus_events[i] == emcy_code) {
+            if (!active)
+                drive->bus_events[i] = drive->bus_events[--drive->bus_event_count];
+            return;
+        }
+    }
+    if (active && drive->bus_event_count < DRIVE_BUS_EVENTS_MAX)
+        drive->bus_events[drive->bus_event_count++] = emcy_code;
+}
+
+void drive_bus_event(drive_t *drive, uint16_t emcy_code, bool active)
+{
+    remember_bus_event(drive, emcy_code, active);
+    if (active)
+        co_emcy_raise(&drive->node, emcy_code, COMMUNICATION_ERROR_REGISTER, NULL);
+    else
+        co_emcy_clear(&drive->node, emcy_code);
+}
+
+const char *drive_state_name(const drive_t *drive)
+{
+    return cia402_state_name(drive->cia402.state);
+}

@@ -1,0 +1,27 @@
+/* Internal interface between the drive's glue (drive.c) and its dictionary hooks
+ * (parameters.c). */
+#ifndef DRIVE_INTERNAL_H
+#define DRIVE_INTERNAL_H
+
+#include "drive/drive.h"
+
+/* CiA 402 objects of the velocity mode ("vl") every model has at these addresses. */
+#define CIA402_IDX_ERROR_CODE 0x603Fu
+#define CIA402_IDX_CONTROLWORD 0x6040u
+#define CIA402_IDX_STATUSWORD 0x6041u
+#define CIA402_IDX_TARGET_VELOCITY 0x6042u
+#define CIA402_IDX_VELOCITY_DEMAND 0x6043u
+#define CIA402_IDX_VELOCITY_ACTUAL 0x6044u
+#define CIA402_IDX_VELOCITY_ACCELERATION 0x6048u
+
+drive_t *drive_of(co_node_t *node);
+/* Recomputes the motor's target from the state and the dictionary, and publishes the status
+ * word, speeds, current and torque. */
+void drive_settle(drive_t *drive);
+/* A parameter of the profile, unsigned. */
+uint32_t drive_param_value(const drive_t *drive, drive_param_t param);
+/* Conversions between 0.1 Hz and rpm through the motor's nominal frequency and speed. */
+uint32_t drive_frequency_to_rpm(const drive_t *drive, uint32_t decihertz);
+uint32_t drive_rpm_to_frequency(const drive_t *drive, uint32_t rpm);
+
+#endif

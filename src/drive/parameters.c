@@ -1,0 +1,159 @@
+/* Dictionary hooks a model's hooks file names on the entries its profile points at: the rules of
+ * the drive's own parameters, and the CiA 402 objects that are views of them (6046h of the speed
+ * limits, 6048h/6049h of the ramps). */
+#include "drive_internal.h"
+
+/* Motor data are configuration parameters (ATV312 DeviceNet manual, drive state machine): they
+ * change only with the motor stopped, and a change returns the drive to Switch on disabled. */
+static uint32_t configuration_write(co_node_t *node, const co_od_entry_t *entry,
+                                    const uint8_t *data, size_t len, co_od_origin_t origin)
+{
+    (void)entry, (void)data, (void)len, (void)origin;
+    drive_t *drive = drive_of(node);
+    drive_motor_advance(&drive->motor, node->now);
+    if (drive_motor_running(&drive->motor))
+        return SDO_ABORT_DATA_STATE;
+    cia402_configuration_changed(&drive->cia402);
+    return CO_SDO_OK;
+}
+
+const co_od_hook_t drive_configuration_parameter = {configuration_write, NULL};
+
+static bool is_param(const co_od_entry_t *entry, drive_param_t param)
+{
+    return entry->index == param.index && entry->subindex == param.subindex;
+}
+
+/* The value a hook is given, of an unsigned entry of 1, 2 or 4 bytes. */
+static uint32_t written_value(const uint8_t *data, size_t len)
+{
+    return len == 4 ? co_get_u32(data) : len == 2 ? co_get_u16(data) : data[0];
+}
+
+/* The low speed may not exceed the high speed (CiA 301 abort "maximum value is less than minimum
+ * value"). */
+static uint32_t speed_limit_write(co_node_t *node, const co_od_entry_t *entry, const uint8_t *data,
+                                  size_t len, co_od_origin_t origin)
+{
+    (void)origin;
+    drive_t *drive = drive_of(node);
+    const drive_profile_t *profile = drive->profile;
+    uint32_t value = written_value(data, len);
+    bool is_high = is_param(entry, profile->high_speed);
+    uint32_t other = drive_param_value(drive, is_high ? profile->low_speed : profile->high_speed);
+    uint32_t low = is_high ? other : value;
+    uint32_t high = is_high ? value : other;
+    return low > high ? SDO_ABORT_MAX_LESS_MIN : CO_SDO_OK;
+}
+
+const co_od_hook_t drive_speed_limit = {speed_limit_write, NULL};
+
+/* A view's write goes through the full write path of the parameter it stands for (its limits,
+ * its hook), so the view refuses what the parameter refuses, with the same abort code. */
+static uint32_t write_param(co_node_t *node, drive_param_t param, uint64_t value)
+{
+    const co_od_entry_t *entry;
+    uint32_t abort = co_od_lookup(node->od, param.index, param.subindex, &entry);
+    if (abort != CO_SDO_OK)
+        return abort;
+    uint8_t bytes[8];
+    if (entry->size > sizeof bytes ||
+        (entry->size < sizeof bytes && value >> (8u * entry->size) != 0))
+        return SDO_ABORT_VALUE_HIGH;
+    co_put_u32(bytes, (uint32_t)value);
+    co_put_u32(bytes + 4, (uint32_t)(value >> 32));
+    abort = co_od_write(node, param.index, param.subindex, bytes, entry->size, CO_OD_ORIGIN_APP);
+    return abort == CO_SDO_OK ? CO_OD_HANDLED : abort;
+}
+
+/* 6046h sub 1 (min) is the low speed and sub 2 (max) the high speed, converted to rpm. */
+static drive_param_t limit_of(const drive_t *drive, const co_od_entry_t *entry)
+{
+    return entry->subindex == 1 ? drive->profile->low_speed : drive->profile->high_speed;
+}
+
+static uint32_t velocity_limits_read(co_node_t *node, const co_od_entry_t *entry)
+{
+    drive_t *drive = drive_of(node);
+    uint32_t decihertz = drive_param_value(drive, limit_of(drive, entry));
+    co_od_set(node, entry, drive_frequency_to_rpm(drive, decihertz));
+    return CO_SDO_OK;
+}
+
+static uint32_t velocity_limits_write(co_node_t *node, const co_od_entry_t *entry,
+                                      const uint8_t *data, size_t len, co_od_origin_t origin)
+{
+    (void)origin;
+    drive_t *drive = drive_of(node);
+    uint32_t decihertz = drive_rpm_to_frequency(drive, written_value(data, len));
+    return write_param(node, limit_of(drive, entry), decihertz);
+}
+
+const co_od_hook_t drive_velocity_limits = {.write = velocity_limits_write,
+                                            .read = velocity_limits_read};
+
+/* 6048h is the acceleration and 6049h the deceleration: delta speed / delta time = nominal speed /
+ * ramp time, kept as the reduced fraction (nominal speed x 10) / ramp so that any ramp time is
+ * represented exactly. */
+static drive_param_t ramp_of(const drive_t *drive, const co_od_entry_t *entry)
+{
+    return entry->index == CIA402_IDX_VELOCITY_ACCELERATION ? drive->profile->acceleration
+                                                            : drive->profile->deceleration;
+}
+
+static uint32_t greatest_common_divisor(uint32_t a, uint32_t b)
+{
+    while (b != 0) {
+        uint32_t r = a % b;
+        a = b;
+        b = r;
+    }
+    return a;
+}
+
+typedef struct ramp_rate {
+    uint32_t delta_speed; /* rpm */
+    uint32_t delta_time;  /* s */
+} ramp_rate_t;
+
+static ramp_rate_t ramp_rate_of(const drive_t *drive, drive_param_t ramp)
+{
+    uint32_t speed = 10u * drive_param_value(drive, drive->profile->nominal_speed);
+    uint32_t time = drive_param_value(drive, ramp);
+    uint32_t divisor = greatest_common_divisor(speed, time);
+    if (divisor == 0)
+        divisor = 1;
+    return (ramp_rate_t){speed / divisor, time / divisor};
+}
+
+static uint32_t ramp_rate_read(co_node_t *node, const co_od_entry_t *entry)
+{
+    drive_t *drive = drive_of(node);
+    ramp_rate_t rate = ramp_rate_of(drive, ramp_of(drive, entry));
+    co_od_set(node, entry, entry->subindex == 1 ? rate.delta_speed : rate.delta_time);
+    return CO_SDO_OK;
+}
+
+static uint32_t ramp_rate_write(co_node_t *node, const co_od_entry_t *entry, const uint8_t *data,
+                                size_t len, co_od_origin_t origin)
+{
+    (void)origin;
+    drive_t *drive = drive_of(node);
+    drive_param_t ramp = ramp_of(drive, entry);
+    ramp_rate_t rate = ramp_rate_of(drive, ramp);
+    uint32_t value = written_value(data, len);
+    if (entry->subindex == 1)
+        rate.delta_speed = value;
+    else
+        rate.delta_time = value;
+    /* A zero delta speed would be an endless ramp; the dictionary's low limit should refuse it. */
+    if (rate.delta_speed == 0)
+        return SDO_ABORT_VALUE_LOW;
+    uint64_t nominal = drive_param_value(drive, drive->profile->nominal_speed);
+    /* ramp (0.1 s) = delta time x 10 x nominal speed / delta speed, rounded. */
+    uint64_t time =
+        ((uint64_t)rate.delta_time * 10u * nominal + rate.delta_speed / 2) / rate.delta_speed;
+    return write_param(node, ramp, time);
+}
+
+const co_od_hook_t drive_ramp_rate = {.write = ramp_rate_write, .read = ramp_rate_read};

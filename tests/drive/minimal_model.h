@@ -1,0 +1,38 @@
+/* A minimal model of the CiA 402 velocity drive, for the drive layer's tests: the dictionary of
+ * minimal_model.eds (parameters at 3000h, outputs at 3001h, no manufacturer copies of the CiA 402
+ * words) and a profile whose control word bits and fast ramp differ from every Altivar's, so that
+ * a test passing here passes on what the profile says, not on an Altivar's habits. */
+#ifndef MINIMAL_MODEL_H
+#define MINIMAL_MODEL_H
+
+#include "drive_bench.h"
+#include "minimal_od.h" /* generated */
+
+extern const drive_profile_t minimal_profile;
+
+/* The profile's manufacturer-specific bits (bits 11-15 of the control word, 14 of the status). */
+#define CW_REVERSE 0x8000u
+#define CW_RAMP_STOP 0x0800u
+#define CW_FAST_STOP 0x1000u
+#define SW_REVERSE 0x4000u
+
+/* Its parameters (3000h) and outputs (3001h). */
+#define PARAMS 0x3000
+#define ACC 1 /* 0.1 s, default 30 */
+#define DEC 2 /* 0.1 s, default 30: the fast ramp is DEC / 2 */
+#define LSP 3 /* 0.1 Hz, default 0 */
+#define HSP 4 /* 0.1 Hz, default 500 */
+#define FRS 5 /* 0.1 Hz, default 500 */
+#define NSP 6 /* rpm, default 1500 */
+#define NCR 7 /* 0.1 A, default 40 */
+#define OUTPUTS 0x3001
+#define CURRENT 1 /* 0.1 A */
+#define TORQUE 2  /* % */
+
+/* Boots node 4 of the minimal model at time 0 and consumes its boot-up frame. */
+static inline void bench_start(bench_t *b)
+{
+    bench_start_model(b, &minimal_profile, NULL);
+}
+
+#endif

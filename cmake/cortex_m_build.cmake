@@ -1,20 +1,39 @@
-# ctest script: configures and builds the portable core with arm-none-eabi-gcc for a Cortex-M4
-# (-Os, -Wall -Wextra -pedantic and, whatever the calling build's CO_WERROR, -Werror) and prints its
-# size. Fails when the toolchain is missing.
-#   cmake -DSOURCE_DIR=<repo> -DBINARY_DIR=<dir> -P cmake/cortex_m_build.cmake
+# ctest script: configures and builds the portable core with arm-none-eabi-gcc for one Cortex-M
+# (-Os, -Wall -Wextra -pedantic and, whatever the calling build's CO_WERROR, -Werror) and prints
+# its size: text / data / bss of each module, then the RAM of one node in the default
+# configuration (include/co/co_config.h) as the target's compiler lays it out. Fails when the
+# toolchain is missing.
+#   cmake -DSOURCE_DIR=<repo> -DBINARY_DIR=<dir> -DCPU=cortex-m0 -P cmake/cortex_m_build.cmake
 find_program(ARM_GCC arm-none-eabi-gcc)
-if(NOT ARM_GCC)
+find_program(ARM_NM arm-none-eabi-nm)
+if(NOT ARM_GCC OR NOT ARM_NM)
   message(FATAL_ERROR "arm-none-eabi-gcc not found: install Debian's gcc-arm-none-eabi (tools/setup)")
+endif()
+if(NOT CPU)
+  set(CPU cortex-m4)
 endif()
 execute_process(
   COMMAND ${CMAKE_COMMAND} -S ${SOURCE_DIR} -B ${BINARY_DIR} -DCO_CORE_ONLY=ON -DCO_WERROR=ON
           -DCMAKE_BUILD_TYPE=MinSizeRel -DCMAKE_TOOLCHAIN_FILE=${SOURCE_DIR}/cmake/arm-none-eabi.cmake
+          -DCO_CORTEX_CPU=${CPU}
   RESULT_VARIABLE configured)
 if(NOT configured EQUAL 0)
-  message(FATAL_ERROR "configuring the Cortex-M4 build failed")
+  message(FATAL_ERROR "configuring the ${CPU} build failed")
 endif()
 execute_process(COMMAND ${CMAKE_COMMAND} --build ${BINARY_DIR} RESULT_VARIABLE built)
 if(NOT built EQUAL 0)
-  message(FATAL_ERROR "the core does not build for Cortex-M4")
+  message(FATAL_ERROR "the core does not build for ${CPU}")
 endif()
 execute_process(COMMAND arm-none-eabi-size -t ${BINARY_DIR}/libcanopen.a)
+
+# sizeof(co_node_t) for this CPU, without running anything on it: the size of a variable of that
+# type in an object file.
+file(WRITE ${BINARY_DIR}/node_size.c "#include \"co/co_node.h\"\nco_node_t co_node_size;\n")
+execute_process(
+  COMMAND ${ARM_GCC} -mcpu=${CPU} -mthumb -Os -std=c11 -fno-common -I${SOURCE_DIR}/include -c
+          ${BINARY_DIR}/node_size.c -o ${BINARY_DIR}/node_size.o RESULT_VARIABLE compiled)
+execute_process(COMMAND ${ARM_NM} -S -t d ${BINARY_DIR}/node_size.o OUTPUT_VARIABLE symbols)
+if(NOT compiled EQUAL 0 OR NOT symbols MATCHES "[0-9]+ 0*([0-9]+) B co_node_size")
+  message(FATAL_ERROR "could not measure sizeof(co_node_t) for ${CPU}")
+endif()
+message("${CPU}: sizeof(co_node_t) = ${CMAKE_MATCH_1} bytes (default co_config.h)")

@@ -1,5 +1,7 @@
 /* Compile-time sizes of the core. Every array in a node is sized here, so a node's RAM is known at
- * build time; override any of them with -D on the compiler command line. */
+ * build time; override any of them with -D on the compiler command line, for instance to the PDOs
+ * of a firmware's one dictionary (co_node_init refuses a dictionary with more: CO_NODE_ERR_TABLES).
+ * The core's library and everything including co_node.h must see the same values. */
 #ifndef CO_CONFIG_H
 #define CO_CONFIG_H
 
@@ -22,7 +24,10 @@
 #define CO_CONFIG_EMCY_QUEUE 4 /* EMCY frames waiting for the inhibit time (1015h) */
 #endif
 #ifndef CO_CONFIG_SDO_BUFFER
-#define CO_CONFIG_SDO_BUFFER 1024 /* largest segmented or block download, bytes */
+/* Each node's own SDO transfer buffer, used when the application gives none
+ * (co_node_config_t.sdo_buffer): its largest segmented or block transfer, bytes. 0 removes it from
+ * co_node_t, and every node then needs an application buffer, which several nodes may share. */
+#define CO_CONFIG_SDO_BUFFER 1024
 #endif
 #ifndef CO_CONFIG_STORE_VALUE_MAX
 #define CO_CONFIG_STORE_VALUE_MAX 64 /* largest stored value checked at a reset, bytes */

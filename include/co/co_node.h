@@ -48,6 +48,9 @@ typedef struct co_node_config {
     void *user;
     const co_app_hooks_t *hooks; /* may be NULL */
     const co_storage_t *storage; /* may be NULL: 1010h/1011h then abort 0x08000020 */
+    /* SDO transfer buffer, which several nodes may share (co_sdo_buffer_t). NULL: the node's own
+     * CO_CONFIG_SDO_BUFFER bytes; required when CO_CONFIG_SDO_BUFFER is 0. */
+    co_sdo_buffer_t *sdo_buffer;
 } co_node_config_t;
 
 struct co_node {
@@ -71,7 +74,10 @@ struct co_node {
 
 /* Results of co_node_init besides the object dictionary's own validation errors. */
 #define CO_NODE_ERR_NODE_ID 0x100 /* node-id outside 1..127 */
-#define CO_NODE_ERR_CONFIG 0x101  /* missing od, data block or send callback */
+#define CO_NODE_ERR_CONFIG 0x101  /* missing od, data block, send callback or SDO buffer */
+/* The dictionary has more RPDOs or TPDOs than co_config.h gives a node (CO_CONFIG_RPDO_MAX,
+ * CO_CONFIG_TPDO_MAX). */
+#define CO_NODE_ERR_TABLES 0x102
 
 /* Prepares a node in Initialising: validates the dictionary and loads its defaults. Sends
  * nothing. Returns 0, a co_od_error_t, or a CO_NODE_ERR_* code. */

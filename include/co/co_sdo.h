@@ -19,6 +19,19 @@ typedef enum co_sdo_state {
     CO_SDO_BLOCK_UPLOAD_END    /* block upload: end sent, waiting for the end response */
 } co_sdo_state_t;
 
+/* The transfer buffer of segmented and block transfers: a download is collected in it, an upload's
+ * value is copied into it at initiate. One buffer may serve several nodes of an application (their
+ * co_node_config_t.sdo_buffer), since a node needs it only during such a transfer: the transfer
+ * holds it from its initiate until it ends (completed, aborted, timed out, replaced by a new
+ * request or by a reset), and another node's transfer that needs it meanwhile is refused with
+ * SDO_ABORT_NO_RESOURCE. Expedited transfers never use it. The nodes sharing a buffer must be run
+ * from one thread, like the calls of one node. Set `data` and `size`, and `owner` to NULL. */
+typedef struct co_sdo_buffer {
+    uint8_t *data;
+    uint32_t size;          /* largest segmented or block transfer, bytes */
+    const co_node_t *owner; /* the node whose transfer holds the buffer, NULL when free */
+} co_sdo_buffer_t;
+
 typedef struct co_sdo_server {
     uint8_t state; /* co_sdo_state_t */
     uint16_t index;
@@ -27,17 +40,22 @@ typedef struct co_sdo_server {
     uint16_t tx_id;       /* server -> client COB-ID, from 1200h:02 at reset */
     co_time_t timeout_us; /* protocol timeout, restarted by every received frame */
     co_time_t deadline;
-    uint8_t toggle;      /* segmented transfers: toggle bit expected in the next frame */
-    bool size_indicated; /* downloads: the client announced `size` */
-    bool crc;            /* block transfers: both sides use the CRC */
-    bool last_in_block;  /* block transfers: the final segment is in the current sub-block */
-    bool block_broken;   /* block download: a segment of this sub-block was out of sequence */
-    uint8_t blksize;     /* block transfers: segments in the current sub-block */
-    uint8_t seqno;       /* block transfers: last good (download) or last sent (upload) seqno */
-    uint8_t last_len;    /* block download: data bytes carried by the final segment's frame */
-    uint32_t size;       /* announced download size, or the upload's total size */
-    uint32_t offset;     /* bytes transferred and acknowledged so far */
-    uint8_t buffer[CO_CONFIG_SDO_BUFFER];
+    uint8_t toggle;          /* segmented transfers: toggle bit expected in the next frame */
+    bool size_indicated;     /* downloads: the client announced `size` */
+    bool crc;                /* block transfers: both sides use the CRC */
+    bool last_in_block;      /* block transfers: the final segment is in the current sub-block */
+    bool block_broken;       /* block download: a segment of this sub-block was out of sequence */
+    uint8_t blksize;         /* block transfers: segments in the current sub-block */
+    uint8_t seqno;           /* block transfers: last good (download) or last sent (upload) seqno */
+    uint8_t last_len;        /* block download: data bytes carried by the final segment's frame */
+    uint32_t size;           /* announced download size, or the upload's total size */
+    uint32_t offset;         /* bytes transferred and acknowledged so far */
+    co_sdo_buffer_t *buffer; /* the application's (co_node_config_t.sdo_buffer) or `own` */
+#if CO_CONFIG_SDO_BUFFER > 0
+    /* The node's own buffer, for an application that gives none. */
+    co_sdo_buffer_t own;
+    uint8_t own_data[CO_CONFIG_SDO_BUFFER];
+#endif
 } co_sdo_server_t;
 
 void co_sdo_reset(co_node_t *node);

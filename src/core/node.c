@@ -4,16 +4,46 @@
 
 #include <string.h>
 
+/* CiA 301 7.5.2: the RPDO communication (1400h), RPDO mapping (1600h), TPDO communication (1800h)
+ * and TPDO mapping (1A00h) parameters each span 512 indexes. */
+#define PDO_INDEX_SPAN 0x200u
+
+static bool beyond(uint16_t index, uint16_t base, uint16_t max)
+{
+    return index >= base + max && index < base + PDO_INDEX_SPAN;
+}
+
+/* Every PDO of the dictionary has its place in co_node_t, whose tables a firmware may size to its
+ * dictionary (CO_CONFIG_RPDO_MAX, CO_CONFIG_TPDO_MAX): one too many would be a PDO that silently
+ * does nothing. (A heartbeat consumer beyond CO_CONFIG_HB_CONSUMERS is refused when it is enabled,
+ * 0x06040047, so that a dictionary may offer more than a node monitors.) */
+static bool tables_fit(const co_od_t *od)
+{
+    for (uint16_t i = 0; i < od->count; i++) {
+        const co_od_entry_t *e = &od->entries[i];
+        if (beyond(e->index, 0x1400, CO_CONFIG_RPDO_MAX) ||
+            beyond(e->index, 0x1600, CO_CONFIG_RPDO_MAX) ||
+            beyond(e->index, 0x1800, CO_CONFIG_TPDO_MAX) ||
+            beyond(e->index, 0x1A00, CO_CONFIG_TPDO_MAX))
+            return false;
+    }
+    return true;
+}
+
 int co_node_init(co_node_t *node, const co_node_config_t *config)
 {
     if (config->node_id < 1 || config->node_id > 127)
         return CO_NODE_ERR_NODE_ID;
     if (config->od == NULL || config->od_data == NULL || config->send == NULL)
         return CO_NODE_ERR_CONFIG;
+    if (config->sdo_buffer != NULL ? config->sdo_buffer->data == NULL : CO_CONFIG_SDO_BUFFER == 0)
+        return CO_NODE_ERR_CONFIG;
     uint16_t position;
     co_od_error_t err = co_od_validate(config->od, &position);
     if (err != CO_OD_VALID)
         return (int)err;
+    if (!tables_fit(config->od))
+        return CO_NODE_ERR_TABLES;
     memset(node, 0, sizeof(*node));
     node->node_id = config->node_id;
     node->nmt_state = CO_NMT_INITIALISING;
@@ -24,6 +54,13 @@ int co_node_init(co_node_t *node, const co_node_config_t *config)
     node->hooks = config->hooks;
     node->storage = config->storage;
     node->sdo.timeout_us = CO_CONFIG_SDO_TIMEOUT_US;
+    node->sdo.buffer = config->sdo_buffer;
+#if CO_CONFIG_SDO_BUFFER > 0
+    if (node->sdo.buffer == NULL) {
+        node->sdo.own = (co_sdo_buffer_t){.data = node->sdo.own_data, .size = CO_CONFIG_SDO_BUFFER};
+        node->sdo.buffer = &node->sdo.own;
+    }
+#endif
     co_od_restore_defaults(node, 0x0000, 0xFFFF);
     return 0;
 }

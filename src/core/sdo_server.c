@@ -1,7 +1,8 @@
 /* SDO server of the default channel (CiA 301 section 7.2.4): expedited, segmented and block
- * transfers. Downloads other than expedited are collected in the server buffer and written to the
- * dictionary in one co_od_write() when complete; uploads other than expedited take a snapshot of
- * the value into the buffer at initiate, so the client reads one consistent value. */
+ * transfers. Downloads other than expedited are collected in the transfer buffer and written to
+ * the dictionary in one co_od_write() when complete; uploads other than expedited take a snapshot
+ * of the value into the buffer at initiate, so the client reads one consistent value. The buffer
+ * may be shared by several nodes (co_sdo_buffer_t): a transfer holds it until it goes idle. */
 #include "co/co_node.h"
 
 #include <string.h>
@@ -63,6 +64,27 @@ uint16_t co_sdo_crc16(const uint8_t *data, size_t len)
     return crc;
 }
 
+/* Every end of a transfer comes here, so that a shared buffer is never left held. */
+static void transfer_idle(co_node_t *node)
+{
+    co_sdo_server_t *sdo = &node->sdo;
+    sdo->state = CO_SDO_IDLE;
+    if (sdo->buffer->owner == node)
+        sdo->buffer->owner = NULL;
+}
+
+/* Takes the transfer buffer for the transfer being initiated, and checks that `size` bytes fit. */
+static uint32_t buffer_take(co_node_t *node, uint32_t size)
+{
+    co_sdo_buffer_t *buffer = node->sdo.buffer;
+    if (buffer->owner != NULL && buffer->owner != node)
+        return SDO_ABORT_NO_RESOURCE;
+    if (size > buffer->size)
+        return SDO_ABORT_NO_MEMORY;
+    buffer->owner = node;
+    return CO_SDO_OK;
+}
+
 static uint16_t channel_cob_id(co_node_t *node, uint8_t subindex, uint16_t fallback)
 {
     const co_od_entry_t *e = co_od_find(node->od, 0x1200, subindex);
@@ -72,7 +94,7 @@ static uint16_t channel_cob_id(co_node_t *node, uint8_t subindex, uint16_t fallb
 void co_sdo_reset(co_node_t *node)
 {
     co_sdo_server_t *sdo = &node->sdo;
-    sdo->state = CO_SDO_IDLE;
+    transfer_idle(node);
     sdo->rx_id = channel_cob_id(node, 1, (uint16_t)(0x600u + node->node_id));
     sdo->tx_id = channel_cob_id(node, 2, (uint16_t)(0x580u + node->node_id));
 }
@@ -115,7 +137,7 @@ static void send_with_mux(co_node_t *node, uint8_t command, uint32_t value)
 static void transfer_abort(co_node_t *node, uint32_t code)
 {
     send_with_mux(node, CS_ABORT, code);
-    node->sdo.state = CO_SDO_IDLE;
+    transfer_idle(node);
 }
 
 /* Ends a transfer with the result of a dictionary access: the response, or the abort code. */
@@ -131,12 +153,12 @@ static void finish(co_node_t *node, uint32_t abort, uint8_t command, bool with_m
         uint8_t p[8] = {command};
         send_response(node, p);
     }
-    node->sdo.state = CO_SDO_IDLE;
+    transfer_idle(node);
 }
 
 /* Initiate of a segmented or block download: an announced size must be in the frame and fit the
- * buffer, and the target must exist and be writable before any data is accepted; the remaining
- * checks run in co_od_write once the value is complete. */
+ * buffer, the target must exist and be writable and the buffer must be free before any data is
+ * accepted; the remaining checks run in co_od_write once the value is complete. */
 static uint32_t download_prepare(co_node_t *node, const co_frame_t *frame, bool size_indicated)
 {
     co_sdo_server_t *sdo = &node->sdo;
@@ -149,8 +171,8 @@ static uint32_t download_prepare(co_node_t *node, const co_frame_t *frame, bool 
     uint32_t abort = co_od_lookup(node->od, sdo->index, sdo->subindex, &e);
     if (abort == CO_SDO_OK && !(e->flags & CO_OD_WRITE))
         abort = SDO_ABORT_READ_ONLY;
-    if (abort == CO_SDO_OK && sdo->size > CO_CONFIG_SDO_BUFFER)
-        abort = SDO_ABORT_NO_MEMORY;
+    if (abort == CO_SDO_OK)
+        abort = buffer_take(node, sdo->size);
     return abort;
 }
 
@@ -199,7 +221,8 @@ static uint32_t download_complete(co_node_t *node)
     co_sdo_server_t *sdo = &node->sdo;
     if (sdo->size_indicated && sdo->offset != sdo->size)
         return SDO_ABORT_TYPE_LENGTH;
-    return co_od_write(node, sdo->index, sdo->subindex, sdo->buffer, sdo->offset, CO_OD_ORIGIN_SDO);
+    return co_od_write(node, sdo->index, sdo->subindex, sdo->buffer->data, sdo->offset,
+                       CO_OD_ORIGIN_SDO);
 }
 
 static void download_segment(co_node_t *node, const co_frame_t *frame)
@@ -216,11 +239,11 @@ static void download_segment(co_node_t *node, const co_frame_t *frame)
         transfer_abort(node, SDO_ABORT_COMMAND);
         return;
     }
-    if (sdo->offset + count > CO_CONFIG_SDO_BUFFER) {
+    if (sdo->offset + count > sdo->buffer->size) {
         transfer_abort(node, SDO_ABORT_NO_MEMORY);
         return;
     }
-    memcpy(&sdo->buffer[sdo->offset], &frame->data[1], count);
+    memcpy(&sdo->buffer->data[sdo->offset], &frame->data[1], count);
     sdo->offset += (uint32_t)count;
     uint8_t response = (uint8_t)(SCS_DOWNLOAD_SEGMENT | toggle);
     if (command & SDO_LAST) {
@@ -233,33 +256,37 @@ static void download_segment(co_node_t *node, const co_frame_t *frame)
 }
 
 /* Reads the whole value into the buffer; sdo->size is its current length (strings: up to NUL). */
-static uint32_t upload_snapshot(co_node_t *node)
+static uint32_t upload_snapshot(co_node_t *node, const co_od_entry_t *entry)
 {
     co_sdo_server_t *sdo = &node->sdo;
-    const co_od_entry_t *e;
-    uint32_t abort = co_od_read_check(node, sdo->index, sdo->subindex, &e);
+    size_t len = co_od_length(node, entry);
+    uint32_t abort = buffer_take(node, len > UINT32_MAX ? UINT32_MAX : (uint32_t)len);
     if (abort != CO_SDO_OK)
         return abort;
-    size_t len = co_od_length(node, e);
-    if (len > CO_CONFIG_SDO_BUFFER)
-        return SDO_ABORT_NO_MEMORY;
-    memcpy(sdo->buffer, co_od_bytes(node, e), len);
+    memcpy(sdo->buffer->data, co_od_bytes(node, entry), len);
     sdo->size = (uint32_t)len;
     return CO_SDO_OK;
 }
 
-/* Expedited when 1..4 bytes, else segmented with the size indicated (an empty string too). */
+static void upload_expedited(co_node_t *node, const uint8_t *value, size_t len)
+{
+    co_sdo_server_t *sdo = &node->sdo;
+    uint8_t p[8] = {(uint8_t)(SCS_UPLOAD_INITIATE | ((EXPEDITED_BYTES - len) << 2) | SDO_EXPEDITED |
+                              SDO_SIZE_INDICATED)};
+    co_put_u16(&p[1], sdo->index);
+    p[3] = sdo->subindex;
+    memcpy(&p[4], value, len);
+    send_response(node, p);
+    transfer_idle(node);
+}
+
+/* Expedited when 1..4 bytes, else segmented with the size indicated (an empty string too): a
+ * value of the snapshot in the buffer. */
 static void upload_response(co_node_t *node)
 {
     co_sdo_server_t *sdo = &node->sdo;
     if (sdo->size >= 1 && sdo->size <= EXPEDITED_BYTES) {
-        uint8_t p[8] = {(uint8_t)(SCS_UPLOAD_INITIATE | ((EXPEDITED_BYTES - sdo->size) << 2) |
-                                  SDO_EXPEDITED | SDO_SIZE_INDICATED)};
-        co_put_u16(&p[1], sdo->index);
-        p[3] = sdo->subindex;
-        memcpy(&p[4], sdo->buffer, sdo->size);
-        send_response(node, p);
-        sdo->state = CO_SDO_IDLE;
+        upload_expedited(node, sdo->buffer->data, sdo->size);
         return;
     }
     sdo->offset = 0;
@@ -268,9 +295,19 @@ static void upload_response(co_node_t *node)
     send_with_mux(node, SCS_UPLOAD_INITIATE | SDO_SIZE_INDICATED, sdo->size);
 }
 
+/* A value of 1..4 bytes goes out expedited straight from the dictionary: the buffer, which
+ * another node may hold, is needed only for a segmented upload. */
 static void upload_initiate(co_node_t *node)
 {
-    uint32_t abort = upload_snapshot(node);
+    const co_od_entry_t *e;
+    uint32_t abort = co_od_read_check(node, node->sdo.index, node->sdo.subindex, &e);
+    size_t len = abort == CO_SDO_OK ? co_od_length(node, e) : 0;
+    if (abort == CO_SDO_OK && len >= 1 && len <= EXPEDITED_BYTES) {
+        upload_expedited(node, co_od_bytes(node, e), len);
+        return;
+    }
+    if (abort == CO_SDO_OK)
+        abort = upload_snapshot(node, e);
     if (abort != CO_SDO_OK) {
         transfer_abort(node, abort);
         return;
@@ -292,12 +329,12 @@ static void upload_segment(co_node_t *node, const co_frame_t *frame)
     bool last = sdo->offset + count == sdo->size;
     uint8_t p[8] = {
         (uint8_t)(SCS_UPLOAD_SEGMENT | toggle | ((SEGMENT_BYTES - count) << 1) | (last ? 1 : 0))};
-    memcpy(&p[1], &sdo->buffer[sdo->offset], count);
+    memcpy(&p[1], &sdo->buffer->data[sdo->offset], count);
     send_response(node, p);
     sdo->offset += count;
     sdo->toggle ^= SDO_TOGGLE;
     if (last)
-        sdo->state = CO_SDO_IDLE;
+        transfer_idle(node);
 }
 
 /* The server can always compute the CRC, but the CRC is used only when both sides support it, and
@@ -311,7 +348,8 @@ static uint8_t crc_bit(const co_sdo_server_t *sdo)
 /* The server's block size: up to 127 segments, no more than the buffer can still take. */
 static uint8_t download_blksize(const co_sdo_server_t *sdo)
 {
-    uint32_t room = sdo->offset < CO_CONFIG_SDO_BUFFER ? CO_CONFIG_SDO_BUFFER - sdo->offset : 0;
+    uint32_t capacity = sdo->buffer->size;
+    uint32_t room = sdo->offset < capacity ? capacity - sdo->offset : 0;
     uint32_t segments = (room + SEGMENT_BYTES - 1) / SEGMENT_BYTES;
     if (segments > BLKSIZE_MAX)
         segments = BLKSIZE_MAX;
@@ -344,11 +382,12 @@ static uint32_t block_download_store(co_sdo_server_t *sdo, const co_frame_t *fra
     uint32_t count = (uint32_t)frame->len - 1;
     if (!last && count < SEGMENT_BYTES)
         return SDO_ABORT_COMMAND;
-    if (!last && pos + SEGMENT_BYTES > CO_CONFIG_SDO_BUFFER)
+    uint32_t capacity = sdo->buffer->size;
+    if (!last && pos + SEGMENT_BYTES > capacity)
         return SDO_ABORT_NO_MEMORY;
-    if (pos + count > CO_CONFIG_SDO_BUFFER)
-        count = pos < CO_CONFIG_SDO_BUFFER ? CO_CONFIG_SDO_BUFFER - pos : 0;
-    memcpy(&sdo->buffer[pos], &frame->data[1], count);
+    if (pos + count > capacity)
+        count = pos < capacity ? capacity - pos : 0;
+    memcpy(&sdo->buffer->data[pos], &frame->data[1], count);
     sdo->last_len = (uint8_t)(frame->len - 1);
     return CO_SDO_OK;
 }
@@ -402,11 +441,11 @@ static void block_download_end(co_node_t *node, const co_frame_t *frame)
         return;
     }
     sdo->offset -= unused;
-    if (sdo->offset > CO_CONFIG_SDO_BUFFER) {
+    if (sdo->offset > sdo->buffer->size) {
         transfer_abort(node, SDO_ABORT_NO_MEMORY);
         return;
     }
-    if (sdo->crc && co_sdo_crc16(sdo->buffer, sdo->offset) != co_get_u16(&frame->data[1])) {
+    if (sdo->crc && co_sdo_crc16(sdo->buffer->data, sdo->offset) != co_get_u16(&frame->data[1])) {
         transfer_abort(node, SDO_ABORT_CRC);
         return;
     }
@@ -422,7 +461,10 @@ static void block_upload_initiate(co_node_t *node, const co_frame_t *frame)
     }
     uint8_t blksize = frame->data[4];
     uint8_t pst = frame->len > BLOCK_UPLOAD_INITIATE_LEN ? frame->data[5] : 0;
-    uint32_t abort = upload_snapshot(node);
+    const co_od_entry_t *e;
+    uint32_t abort = co_od_read_check(node, sdo->index, sdo->subindex, &e);
+    if (abort == CO_SDO_OK)
+        abort = upload_snapshot(node, e);
     if (abort == CO_SDO_OK && (blksize == 0 || blksize > BLKSIZE_MAX))
         abort = SDO_ABORT_BLOCK_SIZE;
     if (abort != CO_SDO_OK) {
@@ -454,7 +496,7 @@ static void block_upload_send_subblock(co_node_t *node)
         uint32_t count = sdo->size - pos < SEGMENT_BYTES ? sdo->size - pos : SEGMENT_BYTES;
         sdo->last_in_block = pos + count == sdo->size;
         uint8_t p[8] = {(uint8_t)(seqno | (sdo->last_in_block ? BLOCK_LAST : 0))};
-        memcpy(&p[1], &sdo->buffer[pos], count);
+        memcpy(&p[1], &sdo->buffer->data[pos], count);
         send_response(node, p);
         sdo->seqno = seqno;
     }
@@ -468,7 +510,7 @@ static void block_upload_end(co_node_t *node)
     uint32_t unused = SEGMENT_BYTES - (sdo->size - last_pos);
     uint8_t p[8] = {(uint8_t)(SCS_BLOCK_UPLOAD | (unused << 2) | BLOCK_UPLOAD_END)};
     if (sdo->crc)
-        co_put_u16(&p[1], co_sdo_crc16(sdo->buffer, sdo->size));
+        co_put_u16(&p[1], co_sdo_crc16(sdo->buffer->data, sdo->size));
     send_response(node, p);
     sdo->state = CO_SDO_BLOCK_UPLOAD_END;
 }
@@ -508,7 +550,7 @@ static void block_upload_command(co_node_t *node, const co_frame_t *frame)
     else if (sdo->state == CO_SDO_BLOCK_UPLOAD_ACK && cs == BLOCK_UPLOAD_ACK)
         block_upload_acknowledged(node, frame);
     else if (sdo->state == CO_SDO_BLOCK_UPLOAD_END && cs == BLOCK_UPLOAD_END)
-        sdo->state = CO_SDO_IDLE;
+        transfer_idle(node);
     else
         transfer_abort(node, SDO_ABORT_COMMAND);
 }
@@ -527,7 +569,7 @@ static void initiate(co_node_t *node, const co_frame_t *frame)
 {
     co_sdo_server_t *sdo = &node->sdo;
     uint8_t ccs = frame->data[0] >> 5;
-    sdo->state = CO_SDO_IDLE;
+    transfer_idle(node);
     sdo->index = co_get_u16(&frame->data[1]);
     sdo->subindex = frame->data[3];
     if (ccs == CCS_DOWNLOAD_INITIATE)
@@ -588,7 +630,7 @@ bool co_sdo_receive(co_node_t *node, const co_frame_t *frame)
      * (SPEC: tolerant of short frames where the meaning is unambiguous) the transfer ends
      * silently; the server has no use for the multiplexer or the code. */
     if (command == CS_ABORT) {
-        sdo->state = CO_SDO_IDLE;
+        transfer_idle(node);
         return true;
     }
     if (sdo->state == CO_SDO_BLOCK_DOWNLOAD_SUB) {

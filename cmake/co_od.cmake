@@ -1,6 +1,7 @@
-# co_generate_od(<target> EDS <file> PREFIX <name> [HOOKS <file>])
+# co_generate_od(<target> EDS <file> PREFIX <name> [HOOKS <file>] [OMIT <index>...])
 #
-# Generates the object dictionary <name>_od (edstool generate) from an EDS at build time into
+# Generates the object dictionary <name>_od (edstool generate) from an EDS at build time, without
+# the objects OMIT lists (a variant of the device that lacks them), into
 # ${CMAKE_CURRENT_BINARY_DIR}/<target>_gen/ and wraps it in <target>, an OBJECT library whose
 # include directory (for <name>_od.h) is PUBLIC and which links canopen::core PUBLIC.
 #
@@ -27,7 +28,7 @@ set_property(GLOBAL PROPERTY CO_EDSTOOL ${CO_EDSTOOL})
 set_property(GLOBAL PROPERTY CO_EDSTOOL_COMMAND ${CO_EDSTOOL_COMMAND})
 
 function(co_generate_od target)
-  cmake_parse_arguments(PARSE_ARGV 1 ARG "" "EDS;PREFIX;HOOKS" "")
+  cmake_parse_arguments(PARSE_ARGV 1 ARG "" "EDS;PREFIX;HOOKS" "OMIT")
   if(NOT ARG_EDS OR NOT ARG_PREFIX)
     message(FATAL_ERROR "co_generate_od(${target}): EDS <file> and PREFIX <name> are required")
   endif()
@@ -45,6 +46,9 @@ function(co_generate_od target)
     get_filename_component(hooks ${ARG_HOOKS} ABSOLUTE)
     list(APPEND command --hooks ${hooks})
     list(APPEND depends ${hooks})
+  endif()
+  if(ARG_OMIT)
+    list(APPEND command --omit ${ARG_OMIT})
   endif()
   add_custom_command(
     OUTPUT ${outputs}

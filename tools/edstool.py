@@ -803,11 +803,33 @@ def write_if_changed(path, text):
     os.replace(tmp, path)
 
 
+def omit_objects(entries, indexes):
+    """The entries without the objects of indexes (a variant of a device that lacks them: an
+    Altivar 31 before firmware V1.2 has no heartbeat objects), each of which must be in the EDS,
+    so that a misspelt index is not silently a dictionary with the object still in it."""
+    present = {e.index for e in entries}
+    for index in indexes:
+        if index not in present:
+            raise UsageError("--omit %04Xh: no such object in the EDS" % index)
+    kept = [e for e in entries if e.index not in indexes]
+    if not kept:
+        raise UsageError("--omit leaves no objects")
+    return kept
+
+
+def omit_index(text):
+    try:
+        return parse_index(text)
+    except ValueError:
+        raise argparse.ArgumentTypeError("%r is not an object index" % text)
+
+
 def generate(args):
     if not re.match(r"^[A-Za-z_][A-Za-z0-9_]*$", args.prefix):
         raise UsageError("--prefix %r is not a C identifier" % args.prefix)
     eds = parse_eds(args.eds)
     entries, dummies = build_dictionary(eds)
+    entries = omit_objects(entries, args.omit)
     hooks_name = apply_hooks(entries, args.hooks) if args.hooks else None
     data_size = layout(entries)
     header, source = render(entries, os.path.basename(args.eds), args.prefix, data_size,
@@ -1320,6 +1342,9 @@ def make_parser():
     gen.add_argument("--hooks", metavar="FILE",
                      help="hooks file: lines 'INDEX[:SUB] WORD...', WORD is zero-ok, process-data "
                           "or the name of an extern const co_od_hook_t")
+    gen.add_argument("--omit", nargs="+", default=[], type=omit_index, metavar="INDEX",
+                     help="leave these objects (hex indexes, e.g. 0x1016) out of the dictionary: "
+                          "a variant of the device that lacks them")
     gen.set_defaults(run=generate)
     chk = sub.add_parser(
         "check", help="check EDS files against CiA 306",

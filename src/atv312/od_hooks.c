@@ -1,5 +1,6 @@
-/* Hooks of the ATV312's own, named in atv312.hooks: the transmission types SPEC section 2 allows
- * its PDO6. The drive's parameter hooks are the drive layer's (drive/drive.h). */
+/* Hooks of the ATV312's own, named in atv312.hooks (which the ATV31's dictionary is generated with
+ * too, src/atv31/CMakeLists.txt): the transmission types SPEC section 2 allows its PDO6. The
+ * drive's parameter hooks are the drive layer's (drive/drive.h). */
 #include "atv312/atv312.h"
 
 /* SPEC section 2: RPDO6 accepts 1-240 (synchronous), 254 and 255 (asynchronous). */

@@ -280,7 +280,7 @@ void atv312d_print_usage(FILE *out)
           out);
     fprintf(out, "                      (default %s), one of:\n", atv312d_models[0].name);
     for (size_t i = 0; i < atv312d_model_count; i++)
-        fprintf(out, "                        %-8s %s\n", atv312d_models[i].name,
+        fprintf(out, "                        %-10s %s\n", atv312d_models[i].name,
                 atv312d_models[i].description);
     fputs("  --store FILE        keep parameters saved with 1010h in FILE (all drives share\n"
           "                      it, one record per node-id); without it 1010h aborts\n"

@@ -1,5 +1,6 @@
 /* The atv312d command line: node-id forms, duplicates and ranges, the model of each --node-id,
  * every usage error with its exit code and a message naming what would be right. */
+#include "atv31/atv31.h"
 #include "atv312/atv312.h"
 #include "check_main.h"
 #include "cli.h"
@@ -62,13 +63,22 @@ START_TEST(model_of_each_node_id_group)
     ck_assert_int_eq(parse("--node-id", "4", "--model", "atv312", "vcan0", NULL), 0);
     ck_assert_ptr_eq(opts.models[0], atv312);
     ck_assert_ptr_null(atv312d_find_model("ATV312"));
+    /* A mixed bench: the ATV31 of firmware V1.2 and the one before, beside the default. */
+    ck_assert_int_eq(parse("vcan0", "--node-id", "4", "--node-id", "5", "--model", "atv31",
+                           "--node-id", "6", "--model", "atv31-v1.1", NULL),
+                     0);
+    assert_ids(3, (const uint8_t[]){4, 5, 6});
+    ck_assert_ptr_eq(opts.models[0]->profile, &atv312_profile);
+    ck_assert_ptr_eq(opts.models[1]->profile, &atv31_profile);
+    ck_assert_ptr_eq(opts.models[2]->profile, &atv31_v11_profile);
 }
 END_TEST
 
 START_TEST(model_errors)
 {
     ck_assert_int_eq(parse("vcan0", "--node-id", "4", "--model", "atv99", NULL), EX_USAGE);
-    ck_assert_str_eq(err, "--model: unknown model 'atv99': the models are atv312");
+    ck_assert_str_eq(err,
+                     "--model: unknown model 'atv99': the models are atv312, atv31, atv31-v1.1");
     ck_assert_int_eq(parse("vcan0", "--model", "atv312", "--node-id", "4", NULL), EX_USAGE);
     ck_assert_str_eq(err, "--model atv312: no --node-id before it: a model follows the node-ids "
                           "of its drives, e.g. --node-id 4 --model atv312");

@@ -190,6 +190,25 @@ class GeneratedTable(ToolCase):
         self.assertIn("extern const co_od_t t_od;", header)
         self.assertIn("Generated from t.eds by tools/edstool.py: do not edit.", header)
 
+    def test_omit_leaves_objects_out(self):
+        code, _, err = self.run_tool("generate", self.eds(), "--prefix", "t", "--out-dir",
+                                     os.path.join(self.dir, "gen"), "--omit", "0x1014", "2000")
+        self.assertEqual((code, err), (0, ""))
+        source = self.read("t_od.c")
+        self.assertNotIn("/* 1014:00 */", source)
+        self.assertNotIn("/* 2000:01 */", source)
+        self.assertIn("/* 1018:00 */", source)
+
+    def test_omit_refuses_an_object_the_eds_lacks(self):
+        code, _, err = self.run_tool("generate", self.eds(), "--prefix", "t", "--out-dir",
+                                     os.path.join(self.dir, "gen"), "--omit", "0x1017")
+        self.assertEqual(code, 2)
+        self.assertIn("--omit 1017h: no such object in the EDS", err)
+        code, _, err = self.run_tool("generate", self.eds(), "--prefix", "t", "--out-dir",
+                                     os.path.join(self.dir, "gen"), "--omit", "heartbeat")
+        self.assertEqual(code, 2)
+        self.assertIn("'heartbeat' is not an object index", err)
+
     def test_default_bytes_little_endian(self):
         entries = self.entries(self.eds())
         self.assertEqual(entries[(0x1000, 0)].default, bytes([0x92, 0x01, 0x01, 0x00]))

@@ -1,0 +1,20 @@
+/* The Schneider Altivar 31 model of the CiA 402 velocity drive (drive/drive.h). The ATV31 is the
+ * ATV312 under another name (its manual's tables are the ATV312's but for 1008h "ATV31"), so its
+ * profiles are the family's (atv312/atv312.h) on its own dictionaries, both generated from
+ * eds/ATV31.eds with the ATV312's hooks:
+ * - atv31_profile, atv31_od (ATV31_OD_DATA_SIZE bytes a node): firmware V1.2 and later, with the
+ *   heartbeat objects 1016h/1017h;
+ * - atv31_v11_profile, atv31_v11_od (ATV31_V11_OD_DATA_SIZE): before V1.2, which has no heartbeat
+ *   (manual, foreword): 1016h and 1017h do not exist, error control is node guarding only.
+ * Portable like the core: no malloc, no OS calls, no globals. */
+#ifndef ATV31_H
+#define ATV31_H
+
+#include "atv312/atv312.h"
+#include "atv31_od.h"     /* generated */
+#include "atv31_v11_od.h" /* generated */
+
+extern const drive_profile_t atv31_profile;
+extern const drive_profile_t atv31_v11_profile;
+
+#endif

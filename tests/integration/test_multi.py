@@ -37,6 +37,36 @@ def test_start_line_names_the_model_of_each_drive(bus, start_daemon):
     assert "3 drive(s), node-id 4,5,6 (atv312)" in d.log(), d.log()
 
 
+def upload_device_name(bus, node):
+    """1008h by segmented upload, as raw frames: the initiate reply gives the size, one segment of
+    up to 7 bytes the name (both models' names are shorter)."""
+    reply = bus.request(read_request(node, 0x1008, 0), 0x580 + node)
+    assert reply.data[:4] == bytes([0x41, 0x08, 0x10, 0x00]), reply
+    size = int.from_bytes(reply.data[4:8], "little")
+    segment = bus.request(Frame(0x600 + node, bytes([0x60]) + bytes(7)), 0x580 + node)
+    assert segment.data[0] == 0x01 | (7 - size) << 1, segment  # last segment, 7 - size unused
+    return segment.data[1:1 + size].decode()
+
+
+def test_mixed_bench_of_atv312_and_atv31(bus, start_daemon):
+    d = start_daemon(bus, "--node-id", "4", "--model", "atv312", "--node-id", "5", "--model", "atv31",
+                     "--node-id", "6", "--model", "atv31-v1.1")
+    assert "3 drive(s), node-id 4 (atv312), 5 (atv31), 6 (atv31-v1.1)" in d.log(), d.log()
+    assert [upload_device_name(bus, node) for node in (4, 5, 6)] == ["ATV312", "ATV31", "ATV31"]
+    # Heartbeat from the ATV31 of firmware V1.2 on; the one before has no 1017h.
+    bus.sdo_write(5, 0x1017, 0, 100, 2)
+    bus.expect(0x705, "7F")
+    assert bus.sdo_abort_code(6, "2B17100064000000") == 0x06020000  # object does not exist
+    # The three run the same drive: each answers its own RPDO1 with its TPDO1.
+    bus.nmt(0x01, 0)
+    for node in (4, 5, 6):
+        bus.expect(0x180 + node, "4006")
+    bus.send("205#0600")
+    bus.expect(0x185, "2106")
+    assert bus.sdo_read(4, 0x6041, 0) == 0x0640
+    assert bus.sdo_read(6, 0x6041, 0) == 0x0640
+
+
 def test_broadcast_nmt_reaches_every_drive_and_a_single_one_only_its_own(bus, start_daemon):
     start_daemon(bus, "--node-id", "4-6")
     bus.nmt(0x01, 5)  # start node 5 only

@@ -122,7 +122,7 @@ endfunction()
 
 set(CO_DOCS_INSTALLED "${CMAKE_INSTALL_DOCDIR} under the installation prefix (docs/ in the source)")
 co_man_page(atv312d
-  SUMMARY "emulated Schneider Altivar 312 drives (CANopen, CiA 402) on SocketCAN"
+  SUMMARY "emulated Schneider Altivar drives (ATV312 and ATV31, CANopen, CiA 402) on SocketCAN"
   SEE_ALSO "co-edstool(1), vcan-run(1), candump(1), cansend(1). The full documentation (every \
 log message, the storage file, the systemd unit) is atv312d.md in ${CO_DOCS_INSTALLED}, the \
 example unit examples/atv312d.service there."
@@ -153,11 +153,11 @@ set(CPACK_PACKAGE_NAME ${PROJECT_NAME})
 set(CPACK_PACKAGE_CONTACT "canopen-atv312 maintainers <maintainers@canopen-atv312.invalid>"
     CACHE STRING "Maintainer field of the Debian package")
 set(CPACK_PACKAGE_DESCRIPTION_SUMMARY
-    "CANopen (CiA 301) stack in C and emulated Altivar 312 drives on SocketCAN")
+    "CANopen (CiA 301) stack in C and emulated Altivar drives on SocketCAN")
 set(CPACK_PACKAGE_DESCRIPTION "The portable CANopen core (libcanopen.a) and its Linux runtime
 (libco_linux.a) with their headers, CMake package (find_package(canopen)) and pkg-config files;
 co-edstool, which generates a dictionary from an EDS; atv312d, a daemon putting emulated
-Schneider Altivar 312 drives (CiA 402) on a SocketCAN interface; vcan-run, which runs it where
+Schneider Altivar drives (ATV312 and ATV31, CiA 402) on a SocketCAN interface; vcan-run, which runs it where
 the kernel has no vcan.")
 set(CPACK_GENERATOR DEB)
 set(CPACK_DEBIAN_FILE_NAME DEB-DEFAULT)

@@ -1,12 +1,25 @@
 #include "memory_storage.h"
 
 #include <check.h>
+#include <stdio.h>
+#include <stdlib.h>
 #include <string.h>
+
+/* The core's side of the storage contract (co_store.h). Checked with abort rather than ck_assert:
+ * the fuzz harnesses (fuzz/) run these callbacks outside any Check test, where ck_assert exits. */
+#define REQUIRE(cond) require(cond, #cond, __LINE__)
+static void require(bool ok, const char *what, int line)
+{
+    if (!ok) {
+        fprintf(stderr, "memory_storage.c:%d: storage contract broken: %s\n", line, what);
+        abort();
+    }
+}
 
 static int save_begin(void *ctx, uint8_t area)
 {
     memory_storage_t *m = ctx;
-    ck_assert_uint_lt(area, MEMORY_STORAGE_AREAS);
+    REQUIRE(area < MEMORY_STORAGE_AREAS);
     m->saving = area;
     m->staged = 0;
     return 0;
@@ -36,14 +49,14 @@ static int save_end(void *ctx, bool commit)
 static long load_size(void *ctx, uint8_t area)
 {
     memory_storage_t *m = ctx;
-    ck_assert_uint_lt(area, MEMORY_STORAGE_AREAS);
+    REQUIRE(area < MEMORY_STORAGE_AREAS);
     return m->damaged && m->size[area] != 0 ? -1 : m->size[area];
 }
 
 static int load_read(void *ctx, uint8_t area, uint32_t offset, uint8_t *buf, size_t len)
 {
     memory_storage_t *m = ctx;
-    ck_assert_uint_le(offset + len, (size_t)m->size[area]);
+    REQUIRE(offset + len <= (size_t)m->size[area]);
     if (m->fail_offset > 0 && offset == (uint32_t)m->fail_offset)
         return -1;
     memcpy(buf, m->image[area] + offset, len);
@@ -64,10 +77,11 @@ static void refused(void *ctx, const co_node_t *node, uint16_t index, uint8_t su
                     const uint8_t *value, size_t len, uint32_t abort)
 {
     memory_storage_t *m = ctx;
-    ck_assert_ptr_nonnull(node);
-    ck_assert(len == 0 || value != NULL);
-    ck_assert_uint_lt(m->refusals, MEMORY_STORAGE_REFUSALS);
-    m->refused[m->refusals++] = (memory_refusal_t){index, subindex, len, abort};
+    REQUIRE(node != NULL);
+    REQUIRE(len == 0 || value != NULL);
+    if (m->refusals < MEMORY_STORAGE_REFUSALS)
+        m->refused[m->refusals] = (memory_refusal_t){index, subindex, len, abort};
+    m->refusals++;
 }
 
 void memory_storage_init(memory_storage_t *m, co_storage_t *storage)
@@ -90,7 +104,7 @@ long memory_storage_record(const memory_storage_t *m, uint8_t area, uint16_t ind
 
 uint32_t memory_storage_refusal(const memory_storage_t *m, uint16_t index, uint8_t subindex)
 {
-    for (unsigned i = 0; i < m->refusals; i++)
+    for (unsigned i = 0; i < m->refusals && i < MEMORY_STORAGE_REFUSALS; i++)
         if (m->refused[i].index == index && m->refused[i].subindex == subindex)
             return m->refused[i].abort;
     ck_abort_msg("no refusal reported for %04X:%02X", index, subindex);

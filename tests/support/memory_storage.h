@@ -27,8 +27,8 @@ typedef struct memory_storage {
     bool fail_erase;  /* erase fails */
     long fail_offset; /* > 0: reads at this offset fail */
     unsigned saves, erases;
-    memory_refusal_t refused[MEMORY_STORAGE_REFUSALS];
-    unsigned refusals;
+    memory_refusal_t refused[MEMORY_STORAGE_REFUSALS]; /* the first ones */
+    unsigned refusals;                                 /* every one reported */
 } memory_storage_t;
 
 /* Empties the storage and fills *storage with callbacks on it. */

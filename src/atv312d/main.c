@@ -1,6 +1,7 @@
 /* atv312d: emulated Schneider Altivar drives on a SocketCAN interface, one process, one epoll
  * loop, one socket for all of them. Usage and behaviour: docs/atv312d.md. */
 #include "cli.h"
+#include "co/co_store.h"
 #include "co_linux/file_store.h"
 #include "co_linux/log.h"
 #include "co_linux/loop.h"
@@ -215,6 +216,35 @@ static int check_store_directory(const char *path)
     return EX_CANTCREAT;
 }
 
+/* One line per node of a loaded store: which save wrote each image, so that after a crash the log
+ * says whether the old or the new parameters came back. "area 2 save 7, area 3 save 8 (defaults)"
+ * (co_store.h: the sequence and kind of each image header; "format 1" images have neither). */
+static void log_store_images(const char *path, const co_file_store_t *store)
+{
+    for (size_t i = 0; i < store->count;) {
+        uint8_t node_id = store->records[i].node_id;
+        char line[512];
+        size_t used = 0;
+        for (; i < store->count && store->records[i].node_id == node_id; i++) {
+            const co_file_record_t *r = &store->records[i];
+            const char *sep = used ? ", " : "";
+            if (used >= sizeof line)
+                continue;
+            if (r->len >= CO_STORE_IMAGE_HEADER_SIZE && memcmp(r->data, "COS\x02", 4) == 0)
+                used +=
+                    (size_t)snprintf(line + used, sizeof line - used, "%sarea %u save %lu%s", sep,
+                                     r->area, (unsigned long)co_get_u32(r->data + 4),
+                                     r->data[8] == CO_STORE_IMAGE_DEFAULTS ? " (defaults)" : "");
+            else
+                used += (size_t)snprintf(
+                    line + used, sizeof line - used, "%sarea %u %s", sep, r->area,
+                    r->len >= 4 && memcmp(r->data, "COS\x01", 4) == 0 ? "format 1"
+                                                                      : "unknown format");
+        }
+        co_log(CO_LOG_INFO, "store %s: node %u: %s", path, node_id, line);
+    }
+}
+
 static int open_store(const char *path, co_file_store_t *store)
 {
     int rc = check_store_directory(path);
@@ -223,6 +253,7 @@ static int open_store(const char *path, co_file_store_t *store)
     switch (co_file_store_open(store, path)) {
     case CO_FILE_STORE_LOADED:
         co_log(CO_LOG_INFO, "store %s: %zu stored image(s) loaded", path, store->count);
+        log_store_images(path, store);
         return 0;
     case CO_FILE_STORE_MISSING:
         co_log(CO_LOG_INFO, "store %s: no file yet, defaults apply until a save (1010h)", path);

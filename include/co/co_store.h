@@ -83,6 +83,15 @@ typedef struct co_storage {
      * abort code. co_od_name() names the entry. */
     void (*refused)(void *ctx, const co_node_t *node, uint16_t index, uint8_t subindex,
                     const uint8_t *value, size_t len, uint32_t abort);
+    /* Optional (both or neither may be NULL): bracket the areas that one 1010h or 1011h write
+     * saves or erases (1010h:01 saves three, 1011h:01 erases three). Between them, save_end(true)
+     * and erase only stage their change; group_end(ctx, true) then makes every staged change
+     * durable at once, atomically (a crash before or during it leaves every old image, never
+     * some areas old and some new), and group_end(ctx, false) discards them (an area failed).
+     * Loads see the committed images only. Without them each area commits alone, and a crash
+     * between two areas of one write leaves a mixture of the old and the new parameters. */
+    int (*group_begin)(void *ctx);
+    int (*group_end)(void *ctx, bool commit);
 } co_storage_t;
 
 /* Write handler of 1010h / 1011h. */

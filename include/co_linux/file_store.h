@@ -41,6 +41,9 @@ typedef struct co_file_store_node {
     uint8_t saving_area; /* 0 when no save is in progress */
     uint8_t *image;      /* the image being written */
     size_t image_len, image_cap;
+    bool grouping;              /* between group_begin and group_end (co_store.h) */
+    co_file_record_t staged[3]; /* the areas saved or erased in the group, written at its end */
+    size_t staged_count;
 } co_file_store_node_t;
 
 typedef enum co_file_store_status {
@@ -70,7 +73,12 @@ const co_file_record_t *co_file_store_find(const co_file_store_t *store, uint8_t
 int co_file_store_update(co_file_store_t *store, uint8_t node_id, uint8_t area, uint8_t *data,
                          uint32_t len);
 
-/* Fills a co_storage_t for one node of the store. */
+/* Applies several such changes (in order) and rewrites the file once: all of them or none. The
+ * store takes ownership of every change's data. */
+int co_file_store_update_many(co_file_store_t *store, const co_file_record_t *changes, size_t n);
+
+/* Fills a co_storage_t for one node of the store: the areas of one 1010h / 1011h write are
+ * staged and written together in one file replacement (group_begin / group_end). */
 void co_file_store_bind(co_file_store_t *store, uint8_t node_id, co_file_store_node_t *node,
                         co_storage_t *storage);
 

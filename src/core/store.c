@@ -130,14 +130,30 @@ static int save_area(co_node_t *node, const store_area_t *a, uint32_t sequence, 
     return rc;
 }
 
+/* The areas of one 1010h / 1011h write commit together when the backend can (group_begin). */
+static uint32_t group_begin(const co_storage_t *s)
+{
+    return s->group_begin != NULL && s->group_begin(s->ctx) != 0 ? SDO_ABORT_HARDWARE : CO_SDO_OK;
+}
+
+static uint32_t group_end(const co_storage_t *s, uint32_t abort)
+{
+    if (s->group_end != NULL && s->group_end(s->ctx, abort == CO_SDO_OK) != 0 && abort == CO_SDO_OK)
+        return SDO_ABORT_HARDWARE;
+    return abort;
+}
+
 static uint32_t save_group(co_node_t *node, uint8_t group)
 {
     uint32_t sequence = next_sequence(node);
-    for (size_t i = 0; i < AREA_COUNT; i++)
+    uint32_t abort = group_begin(node->storage);
+    if (abort != CO_SDO_OK)
+        return abort;
+    for (size_t i = 0; i < AREA_COUNT && abort == CO_SDO_OK; i++)
         if (group_has_area(group, &areas[i]) &&
             save_area(node, &areas[i], sequence++, CO_STORE_IMAGE_VALUES) != 0)
-            return SDO_ABORT_HARDWARE;
-    return CO_SDO_OK;
+            abort = SDO_ABORT_HARDWARE;
+    return group_end(node->storage, abort);
 }
 
 /* Restoring every area forgets every image. Restoring one area stores a defaults image for it:
@@ -147,16 +163,19 @@ static uint32_t restore_group(co_node_t *node, uint8_t group)
 {
     const co_storage_t *s = node->storage;
     uint32_t sequence = group == STORE_GROUP_ALL ? 0 : next_sequence(node);
-    for (size_t i = 0; i < AREA_COUNT; i++) {
+    uint32_t abort = group_begin(s);
+    if (abort != CO_SDO_OK)
+        return abort;
+    for (size_t i = 0; i < AREA_COUNT && abort == CO_SDO_OK; i++) {
         if (!group_has_area(group, &areas[i]))
             continue;
         int rc = group == STORE_GROUP_ALL
                      ? s->erase(s->ctx, areas[i].area)
                      : save_area(node, &areas[i], sequence, CO_STORE_IMAGE_DEFAULTS);
         if (rc != 0)
-            return SDO_ABORT_HARDWARE;
+            abort = SDO_ABORT_HARDWARE;
     }
-    return CO_SDO_OK;
+    return group_end(s, abort);
 }
 
 /* CiA 301 1010h / 1011h: only the "save" / "load" signature is accepted (0x08000020 otherwise,

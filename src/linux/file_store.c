@@ -327,55 +327,117 @@ static int replace_file(co_file_store_t *store, const uint8_t *content, size_t s
     return 0;
 }
 
-/* The record set with the change applied, sharing the unchanged records' data. */
-static co_file_record_t *changed_records(const co_file_store_t *store, uint8_t node_id,
-                                         uint8_t area, uint8_t *data, uint32_t len, size_t *count)
+/* The record set with one change applied (data NULL: the record removed), sharing the other
+ * records' data. */
+static co_file_record_t *changed_records(const co_file_record_t *in, size_t in_count,
+                                         const co_file_record_t *change, size_t *count)
 {
-    co_file_record_t *out = calloc(store->count + 1, sizeof *out);
+    co_file_record_t *out = calloc(in_count + 1, sizeof *out);
     if (!out)
         return NULL;
     size_t n = 0;
-    bool placed = data == NULL;
-    for (size_t i = 0; i < store->count; i++) {
-        int order = record_order(&store->records[i], node_id, area);
+    bool placed = change->data == NULL;
+    for (size_t i = 0; i < in_count; i++) {
+        int order = record_order(&in[i], change->node_id, change->area);
         if (!placed && order > 0) {
-            out[n++] = (co_file_record_t){node_id, area, len, data};
+            out[n++] = *change;
             placed = true;
         }
         if (order != 0)
-            out[n++] = store->records[i];
+            out[n++] = in[i];
     }
     if (!placed)
-        out[n++] = (co_file_record_t){node_id, area, len, data};
+        out[n++] = *change;
     *count = n;
     return out;
+}
+
+int co_file_store_update_many(co_file_store_t *store, const co_file_record_t *changes, size_t n)
+{
+    size_t count = store->count, size = 0;
+    co_file_record_t *records = NULL;
+    bool ok = true;
+    for (size_t i = 0; i < n && ok; i++) {
+        co_file_record_t *next =
+            changed_records(records ? records : store->records, count, &changes[i], &count);
+        free(records); /* the previous step's array only: the data is shared */
+        records = next;
+        ok = next != NULL;
+    }
+    uint8_t *content = ok && records ? serialize(records, count, &size) : NULL;
+    int rc = -1;
+    if (n == 0)
+        rc = 0;
+    else if (!content)
+        fail(store->reason, sizeof store->reason, "out of memory");
+    else
+        rc = replace_file(store, content, size);
+    free(content);
+    if (rc != 0 || n == 0) {
+        if (rc != 0) {
+            char areas[32] = "";
+            for (size_t i = 0, used = 0; i < n && used < sizeof areas; i++)
+                used += (size_t)snprintf(areas + used, sizeof areas - used, "%s%u", i ? ", " : "",
+                                         changes[i].area);
+            co_log(CO_LOG_ERROR, "store %s: node %u area%s %s not saved: %s", store->path,
+                   n ? changes[0].node_id : 0, n > 1 ? "s" : "", areas, store->reason);
+        }
+        free(records);
+        for (size_t i = 0; i < n; i++)
+            free(changes[i].data);
+        return rc;
+    }
+    for (size_t i = 0; i < n; i++) {
+        const co_file_record_t *old =
+            co_file_store_find(store, changes[i].node_id, changes[i].area);
+        if (old)
+            free(old->data);
+    }
+    free(store->records);
+    store->records = records;
+    store->count = count;
+    return 0;
 }
 
 int co_file_store_update(co_file_store_t *store, uint8_t node_id, uint8_t area, uint8_t *data,
                          uint32_t len)
 {
-    size_t count = 0, size = 0;
-    co_file_record_t *records = changed_records(store, node_id, area, data, len, &count);
-    uint8_t *content = records ? serialize(records, count, &size) : NULL;
-    int rc = -1;
-    if (!content)
-        fail(store->reason, sizeof store->reason, "out of memory");
-    else
-        rc = replace_file(store, content, size);
-    free(content);
-    if (rc != 0) {
-        co_log(CO_LOG_ERROR, "store %s: node %u area %u not saved: %s", store->path, node_id, area,
-               store->reason);
-        free(records);
+    co_file_record_t change = {node_id, area, len, data};
+    return co_file_store_update_many(store, &change, 1);
+}
+
+/* A change of the node's area: written at once, or staged while a group is open. */
+static int node_change(co_file_store_node_t *node, uint8_t area, uint8_t *data, uint32_t len)
+{
+    if (!node->grouping)
+        return co_file_store_update(node->store, node->node_id, area, data, len);
+    if (node->staged_count == sizeof node->staged / sizeof node->staged[0]) {
         free(data);
         return -1;
     }
-    const co_file_record_t *old = co_file_store_find(store, node_id, area);
-    if (old)
-        free(old->data);
-    free(store->records);
-    store->records = records;
-    store->count = count;
+    node->staged[node->staged_count++] = (co_file_record_t){node->node_id, area, len, data};
+    return 0;
+}
+
+static int node_group_begin(void *ctx)
+{
+    co_file_store_node_t *node = ctx;
+    node->grouping = true;
+    node->staged_count = 0;
+    return 0;
+}
+
+/* Every area of one 1010h / 1011h write in one file replacement: all or nothing. */
+static int node_group_end(void *ctx, bool commit)
+{
+    co_file_store_node_t *node = ctx;
+    size_t n = node->staged_count;
+    node->grouping = false;
+    node->staged_count = 0;
+    if (commit)
+        return co_file_store_update_many(node->store, node->staged, n);
+    for (size_t i = 0; i < n; i++)
+        free(node->staged[i].data);
     return 0;
 }
 
@@ -418,7 +480,7 @@ static int node_save_end(void *ctx, bool commit)
     if (!image)
         return -1;
     memcpy(image, node->image, node->image_len);
-    return co_file_store_update(node->store, node->node_id, area, image, (uint32_t)node->image_len);
+    return node_change(node, area, image, (uint32_t)node->image_len);
 }
 
 static long node_load_size(void *ctx, uint8_t area)
@@ -446,7 +508,7 @@ static int node_erase(void *ctx, uint8_t area)
     co_file_store_node_t *node = ctx;
     if (!co_file_store_find(node->store, node->node_id, area) && !node->store->damaged)
         return 0;
-    return co_file_store_update(node->store, node->node_id, area, NULL, 0);
+    return node_change(node, area, NULL, 0);
 }
 
 /* A stored value the node refused while applying its image: logged by name, with the value and
@@ -486,11 +548,16 @@ void co_file_store_bind(co_file_store_t *store, uint8_t node_id, co_file_store_n
         .load_read = node_load_read,
         .erase = node_erase,
         .refused = node_refused,
+        .group_begin = node_group_begin,
+        .group_end = node_group_end,
     };
 }
 
 void co_file_store_unbind(co_file_store_node_t *node)
 {
+    for (size_t i = 0; i < node->staged_count; i++)
+        free(node->staged[i].data);
+    node->staged_count = 0;
     free(node->image);
     node->image = NULL;
     node->image_cap = node->image_len = 0;

@@ -87,8 +87,8 @@ static void refused(void *ctx, const co_node_t *node, uint16_t index, uint8_t su
 void memory_storage_init(memory_storage_t *m, co_storage_t *storage)
 {
     memset(m, 0, sizeof(*m));
-    *storage =
-        (co_storage_t){m, save_begin, save_write, save_end, load_size, load_read, erase, refused};
+    *storage = (co_storage_t){m,         save_begin, save_write, save_end, load_size,
+                              load_read, erase,      refused,    NULL,     NULL};
 }
 
 long memory_storage_record(const memory_storage_t *m, uint8_t area, uint16_t index,

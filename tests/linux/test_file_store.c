@@ -193,6 +193,44 @@ START_TEST(save_replaces_atomically)
 }
 END_TEST
 
+/* The areas of one 1010h write (group_begin .. group_end) reach the file together: until
+ * group_end the file on disk is untouched, then one replacement holds them all; a discarded group
+ * leaves nothing. */
+START_TEST(grouped_saves_replace_the_file_once)
+{
+    uint8_t buf[256];
+    make_valid_file(buf, sizeof buf);
+    struct stat before, during, after;
+    ck_assert_int_eq(stat(path, &before), 0);
+    co_file_store_t store;
+    co_file_store_node_t n4;
+    co_storage_t s4;
+    ck_assert_int_eq(co_file_store_open(&store, path), CO_FILE_STORE_LOADED);
+    co_file_store_bind(&store, 4, &n4, &s4);
+    ck_assert_int_eq(s4.group_begin(s4.ctx), 0);
+    save(&s4, 2, "GROUPCOMM");
+    save(&s4, 4, "GROUPMANUF");
+    ck_assert_int_eq(stat(path, &during), 0);
+    ck_assert_uint_eq(before.st_ino, during.st_ino); /* nothing written yet */
+    ck_assert_int_eq(s4.group_end(s4.ctx, true), 0);
+    ck_assert_int_eq(stat(path, &after), 0);
+    ck_assert_uint_ne(before.st_ino, after.st_ino);
+    ck_assert_uint_eq(files_in_dir(), 1);
+    ck_assert_int_eq(s4.group_begin(s4.ctx), 0);
+    save(&s4, 2, "DISCARDED");
+    ck_assert_int_eq(s4.group_end(s4.ctx, false), 0);
+    co_file_store_unbind(&n4);
+    co_file_store_close(&store);
+
+    ck_assert_int_eq(co_file_store_open(&store, path), CO_FILE_STORE_LOADED);
+    co_file_store_bind(&store, 4, &n4, &s4);
+    assert_loads(&s4, 2, "GROUPCOMM");
+    assert_loads(&s4, 4, "GROUPMANUF");
+    co_file_store_unbind(&n4);
+    co_file_store_close(&store);
+}
+END_TEST
+
 START_TEST(failed_save_changes_nothing)
 {
     co_file_store_t store;
@@ -328,6 +366,7 @@ int main(void)
     tcase_add_test(tc, round_trip_several_nodes);
     tcase_add_test(tc, exact_file_layout);
     tcase_add_test(tc, save_replaces_atomically);
+    tcase_add_test(tc, grouped_saves_replace_the_file_once);
     tcase_add_test(tc, failed_save_changes_nothing);
     tcase_add_test(tc, discarded_save_and_erase);
     tcase_add_test(tc, truncated_file_is_ignored);

@@ -100,6 +100,8 @@ co_install_configured(${PROJECT_SOURCE_DIR}/tools/atv312d.service.in
 # co_man_page(<name> SUMMARY <line> SEE_ALSO <text> [SUBCOMMANDS <sub>...] COMMAND <argv>...
 #             DEPENDS <file or target>...)
 set(CO_MAN_PAGES)
+# Ninja creates the directory of an output, the Makefile generators do not.
+file(MAKE_DIRECTORY ${PROJECT_BINARY_DIR}/man)
 function(co_man_page name)
   cmake_parse_arguments(PARSE_ARGV 1 ARG "" "SUMMARY;SEE_ALSO" "SUBCOMMANDS;COMMAND;DEPENDS")
   set(page ${PROJECT_BINARY_DIR}/man/${name}.1)

@@ -206,16 +206,20 @@ static void on_guarding(co_node_t *node, bool lost)
         communication_fault(drive_of(node));
 }
 
-/* Reset node restarts the drive too: Switch on disabled, motor stopped (the dictionary's
- * defaults, restored right after this, describe that state). */
+/* Switch on disabled, motor stopped: the state the dictionary's defaults describe. The bus
+ * conditions are not the drive's state: they outlive a reset node. */
+static void restart_drive(drive_t *drive, co_time_t now)
+{
+    cia402_reset(&drive->cia402);
+    drive_motor_reset(&drive->motor, now);
+    drive->limited = false;
+}
+
+/* Reset node restarts the drive too (the defaults are restored right after this). */
 static void on_reset(co_node_t *node, co_nmt_reset_t scope)
 {
-    if (scope != CO_NMT_RESET_NODE)
-        return;
-    drive_t *drive = drive_of(node);
-    cia402_reset(&drive->cia402);
-    drive_motor_reset(&drive->motor, node->now);
-    drive->limited = false;
+    if (scope == CO_NMT_RESET_NODE)
+        restart_drive(drive_of(node), node->now);
 }
 
 /* The bus conditions still present are errors again once a reset node has emptied the EMCY
@@ -252,9 +256,7 @@ int drive_init(drive_t *drive, const drive_config_t *config)
     int err = co_node_init(&drive->node, &node_config);
     if (err != 0)
         return err;
-    cia402_reset(&drive->cia402);
-    drive_motor_reset(&drive->motor, 0);
-    drive->limited = false;
+    restart_drive(drive, 0);
     drive->bus_event_count = 0;
     return 0;
 }

@@ -1,12 +1,15 @@
 # What `cmake --install` puts where (GNUInstallDirs; relative to the prefix, /usr/local by default,
 # /usr in the Debian package), and the Debian package itself (`cpack -G DEB`). README.md, Install.
 #
-#   include/<every folder of include/>     the public headers (co/, co_linux/, ...)
+#   include/co/, co_linux/, drive/        the public headers of the three libraries
 #   lib/libcanopen.a                       canopen::core, the portable core
 #   lib/libco_linux.a                      canopen::linux, the Linux runtime (links canopen::core)
+#   lib/libco_drive.a                      canopen::drive, the generic CiA 402 velocity drive
+#                                          (portable; links canopen::core)
 #   lib/cmake/canopen/                     find_package(canopen): those targets and co_generate_od()
 #   lib/pkgconfig/canopen.pc               pkg-config: the core (variables edstool and edsdir)
 #   lib/pkgconfig/canopen-linux.pc         pkg-config: the Linux runtime (requires canopen)
+#   lib/pkgconfig/canopen-drive.pc         pkg-config: the drive (requires canopen)
 #   bin/atv312d, bin/co-edstool, bin/vcan-run
 #                                          the daemon, tools/edstool.py, tools/vcan-run
 #   share/man/man1/<program>.1             their man pages, written from their --help text
@@ -25,14 +28,19 @@ endif()
 set(CO_INSTALL_CMAKEDIR ${CMAKE_INSTALL_LIBDIR}/cmake/canopen)
 set(CO_INSTALL_EDSDIR ${CMAKE_INSTALL_DATADIR}/${PROJECT_NAME}/eds)
 
-# Libraries and headers. Every folder of include/ is public, so a new one is installed too.
+# Libraries and their headers. The models' folders of include/ (atv312/, ...) are the daemon's:
+# their libraries are not installed, so neither are their headers.
+set(CO_INSTALL_HEADER_DIRS co co_linux drive)
 set_target_properties(canopen PROPERTIES EXPORT_NAME core)
 set_target_properties(co_linux PROPERTIES EXPORT_NAME linux)
-install(TARGETS canopen co_linux EXPORT canopenTargets
+set_target_properties(co_drive PROPERTIES EXPORT_NAME drive)
+install(TARGETS canopen co_linux co_drive EXPORT canopenTargets
         ARCHIVE DESTINATION ${CMAKE_INSTALL_LIBDIR}
         INCLUDES DESTINATION ${CMAKE_INSTALL_INCLUDEDIR})
-install(DIRECTORY ${PROJECT_SOURCE_DIR}/include/ DESTINATION ${CMAKE_INSTALL_INCLUDEDIR}
-        FILES_MATCHING PATTERN "*.h")
+foreach(dir ${CO_INSTALL_HEADER_DIRS})
+  install(DIRECTORY ${PROJECT_SOURCE_DIR}/include/${dir} DESTINATION ${CMAKE_INSTALL_INCLUDEDIR}
+          FILES_MATCHING PATTERN "*.h")
+endforeach()
 
 # The CMake package: the exported targets, co_generate_od() running the installed co-edstool.
 install(EXPORT canopenTargets NAMESPACE canopen:: DESTINATION ${CO_INSTALL_CMAKEDIR})
@@ -91,6 +99,8 @@ endfunction()
 co_install_configured(${PROJECT_SOURCE_DIR}/cmake/canopen.pc.in
                       ${CMAKE_INSTALL_LIBDIR}/pkgconfig)
 co_install_configured(${PROJECT_SOURCE_DIR}/cmake/canopen-linux.pc.in
+                      ${CMAKE_INSTALL_LIBDIR}/pkgconfig)
+co_install_configured(${PROJECT_SOURCE_DIR}/cmake/canopen-drive.pc.in
                       ${CMAKE_INSTALL_LIBDIR}/pkgconfig)
 co_install_configured(${PROJECT_SOURCE_DIR}/tools/atv312d.service.in
                       ${CMAKE_INSTALL_DOCDIR}/examples)

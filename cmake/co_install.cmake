@@ -134,7 +134,7 @@ endfunction()
 
 set(CO_DOCS_INSTALLED "${CMAKE_INSTALL_DOCDIR} under the installation prefix (docs/ in the source)")
 co_man_page(atv312d
-  SUMMARY "emulated Schneider Altivar drives (ATV312 and ATV31, CANopen, CiA 402) on SocketCAN"
+  SUMMARY "emulated Schneider Altivar drives (ATV312, ATV31 and ATV58, CANopen, CiA 402) on SocketCAN"
   SEE_ALSO "co-edstool(1), vcan-run(1), candump(1), cansend(1). The full documentation (every \
 log message, the storage file, the systemd unit) is atv312d.md in ${CO_DOCS_INSTALLED}, the \
 example unit examples/atv312d.service there."
@@ -169,8 +169,8 @@ set(CPACK_PACKAGE_DESCRIPTION_SUMMARY
 set(CPACK_PACKAGE_DESCRIPTION "The portable CANopen core (libcanopen.a) and its Linux runtime
 (libco_linux.a) with their headers, CMake package (find_package(canopen)) and pkg-config files;
 co-edstool, which generates a dictionary from an EDS; atv312d, a daemon putting emulated
-Schneider Altivar drives (ATV312 and ATV31, CiA 402) on a SocketCAN interface; vcan-run, which runs it where
-the kernel has no vcan.")
+Schneider Altivar drives (ATV312, ATV31 and ATV58, CiA 402) on a SocketCAN interface;
+vcan-run, which runs it where the kernel has no vcan.")
 set(CPACK_GENERATOR DEB)
 set(CPACK_DEBIAN_FILE_NAME DEB-DEFAULT)
 set(CPACK_DEBIAN_PACKAGE_SECTION devel)

@@ -5,10 +5,6 @@
 
 #include <stddef.h>
 
-/* The EMCY error register of a communication fault: 1001h bit 0 (generic, "error (1)" in the
- * ATV312 table) and bit 4 (communication), CiA 301 table 48. */
-#define COMMUNICATION_ERROR_REGISTER (CO_ERR_REG_GENERIC | CO_ERR_REG_COMMUNICATION)
-
 /* Magnetising current at standstill, in % of nominal current; 100 % torque needs 100 %. */
 #define MAGNETISING_CURRENT_PERCENT 30
 
@@ -19,6 +15,8 @@ drive_t *drive_of(co_node_t *node)
 
 uint32_t drive_param_value(const drive_t *drive, drive_param_t param)
 {
+    if (param.index == 0)
+        return param.fixed;
     return (uint32_t)co_od_value(&drive->node, param.index, param.subindex);
 }
 
@@ -153,17 +151,18 @@ static void communication_fault(drive_t *drive)
     co_node_t *node = &drive->node;
     drive_motor_advance(&drive->motor, node->now);
     cia402_fault(&drive->cia402);
+    drive->fault = CO_EMCY_HEARTBEAT;
     co_od_set_value(node, CIA402_IDX_ERROR_CODE, 0, CO_EMCY_HEARTBEAT);
-    co_emcy_raise(node, CO_EMCY_HEARTBEAT, COMMUNICATION_ERROR_REGISTER, NULL);
+    co_emcy_raise(node, CO_EMCY_HEARTBEAT, drive->profile->fault_error_register, NULL);
     drive_settle(drive);
 }
 
 static void acknowledge_fault(drive_t *drive)
 {
     co_node_t *node = &drive->node;
-    uint16_t code = (uint16_t)co_od_value(node, CIA402_IDX_ERROR_CODE, 0);
     co_od_set_value(node, CIA402_IDX_ERROR_CODE, 0, 0);
-    co_emcy_clear(node, code);
+    co_emcy_clear(node, drive->fault);
+    drive->fault = 0;
 }
 
 static bool is_control_word(const drive_t *drive, const co_od_entry_t *entry)
@@ -211,6 +210,7 @@ static void on_guarding(co_node_t *node, bool lost)
 static void restart_drive(drive_t *drive, co_time_t now)
 {
     cia402_reset(&drive->cia402);
+    drive->fault = 0;
     drive_motor_reset(&drive->motor, now);
     drive->limited = false;
 }
@@ -230,7 +230,7 @@ static void on_nmt_state(co_node_t *node, co_nmt_state_t state)
     (void)state;
     drive_t *drive = drive_of(node);
     for (uint8_t i = 0; i < drive->bus_event_count; i++)
-        co_emcy_raise(node, drive->bus_events[i], COMMUNICATION_ERROR_REGISTER, NULL);
+        co_emcy_raise(node, drive->bus_events[i], drive->profile->fault_error_register, NULL);
 }
 
 static const co_app_hooks_t drive_hooks = {
@@ -251,6 +251,7 @@ int drive_init(drive_t *drive, const drive_config_t *config)
         .user = config->send_user,
         .hooks = &drive_hooks,
         .storage = config->storage,
+        .options = config->profile->node_options,
     };
     drive->profile = config->profile;
     int err = co_node_init(&drive->node, &node_config);
@@ -297,7 +298,7 @@ void drive_bus_event(drive_t *drive, uint16_t emcy_code, bool active)
 {
     remember_bus_event(drive, emcy_code, active);
     if (active)
-        co_emcy_raise(&drive->node, emcy_code, COMMUNICATION_ERROR_REGISTER, NULL);
+        co_emcy_raise(&drive->node, emcy_code, drive->profile->fault_error_register, NULL);
     else
         co_emcy_clear(&drive->node, emcy_code);
 }

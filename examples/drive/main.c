@@ -20,14 +20,14 @@
 /* Where the conveyor's parameters are (conveyor.eds, 3000h and 3001h). */
 static const drive_profile_t conveyor_profile = {
     .od = &conveyor_od,
-    .acceleration = {0x3000, 1},
-    .deceleration = {0x3000, 2},
-    .high_speed = {0x3000, 3},
-    .nominal_frequency = {0x3000, 4},
-    .nominal_speed = {0x3000, 5},
-    .nominal_current = {0x3000, 6},
-    .motor_current = {0x3001, 1},
-    .motor_torque = {0x3001, 2},
+    .acceleration = DRIVE_PARAM(0x3000, 1),
+    .deceleration = DRIVE_PARAM(0x3000, 2),
+    .high_speed = DRIVE_PARAM(0x3000, 3),
+    .nominal_frequency = DRIVE_PARAM(0x3000, 4),
+    .nominal_speed = DRIVE_PARAM(0x3000, 5),
+    .nominal_current = DRIVE_PARAM(0x3000, 6),
+    .motor_current = DRIVE_PARAM(0x3001, 1),
+    .motor_torque = DRIVE_PARAM(0x3001, 2),
 };
 
 typedef struct bench {

@@ -1,8 +1,9 @@
 /* NMT master: exact command frames, node states from boot-up, heartbeat and guarding frames, the
  * heartbeat consumer of 127 nodes (lost exactly at the consumer time, resumed), node guarding
  * (requests on the guard time grid, toggle check, loss after the life time, reset of the toggle),
- * the standalone SYNC producer (counter wrap, exact times, no drift), and the master against the
- * project's own slave node on the in-process bus. Time is injected; no sleeps. */
+ * random frames that must leave every state valid, the standalone SYNC producer (counter wrap,
+ * exact times, no drift), and the master against the project's own slave node on the in-process
+ * bus. Time is injected; no sleeps. */
 #include "check_main.h"
 #include "co/co_nmt_master.h"
 #include "test_bus.h"
@@ -508,6 +509,65 @@ START_TEST(guarding_off_sends_nothing)
 }
 END_TEST
 
+/* xorshift32: the same sequence every run. */
+static uint32_t random_next(uint32_t *state)
+{
+    *state ^= *state << 13;
+    *state ^= *state >> 17;
+    *state ^= *state << 5;
+    return *state;
+}
+
+static bool state_is_known_or_unknown(uint8_t state)
+{
+    return state == CO_NMT_MASTER_STATE_UNKNOWN || state == CO_NMT_STOPPED ||
+           state == CO_NMT_OPERATIONAL || state == CO_NMT_PRE_OPERATIONAL;
+}
+
+START_TEST(random_frames_never_corrupt_the_states)
+{
+    for (uint8_t id = 1; id <= 4; id++) {
+        ck_assert(co_nmt_master_heartbeat(&master, id, 20));
+        ck_assert(co_nmt_master_guard(&master, (uint8_t)(id + 4), 10, 2, now));
+    }
+    uint32_t seed = 0x12345678u;
+    size_t requests = 0;
+    unsigned kinds[CO_NMT_MASTER_RESUMED + 1] = {0};
+    static const uint8_t states[] = {0x00, 0x04, 0x05, 0x7F};
+    for (int i = 0; i < 5000; i++) {
+        /* Frames on 700h-7FFh for the 8 nodes watched and others, mostly 1 byte, half of them with
+         * a state byte and a random toggle bit, some RTR or 29-bit, at random intervals. */
+        co_frame_t f = {.len = 1};
+        bool watched = random_next(&seed) % 2;
+        f.id = 0x700u + (watched ? 1 + random_next(&seed) % 8 : random_next(&seed) % 0x100);
+        if (random_next(&seed) % 4 == 0)
+            f.len = (uint8_t)(random_next(&seed) % 16);
+        if (random_next(&seed) % 8 == 0)
+            f.flags = (uint8_t)(random_next(&seed) % 4);
+        for (int b = 0; b < 8; b++)
+            f.data[b] = (uint8_t)random_next(&seed);
+        if (random_next(&seed) % 2) {
+            uint8_t state = states[random_next(&seed) % 4];
+            f.data[0] = (uint8_t)(state | (random_next(&seed) % 2) << 7);
+        }
+        now += random_next(&seed) % 30000;
+        co_nmt_master_receive(&master, &f, now);
+        master_deadline = co_nmt_master_process(&master, now);
+        ck_assert_uint_gt(master_deadline, now);
+        requests += sent_count;
+        sent_count = sent_next = 0;
+        for (size_t e = 0; e < event_count; e++)
+            kinds[events[e].event.kind]++;
+        event_count = 0;
+    }
+    for (unsigned id = 0; id <= 255; id++)
+        ck_assert(state_is_known_or_unknown(co_nmt_master_state(&master, (uint8_t)id)));
+    ck_assert_uint_gt(requests, 1000);
+    for (int kind = CO_NMT_MASTER_BOOT_UP; kind <= CO_NMT_MASTER_RESUMED; kind++)
+        ck_assert_msg(kinds[kind] > 10, "event %d: %u", kind, kinds[kind]);
+}
+END_TEST
+
 /* The SYNC producer a master program runs without a node. */
 static co_sync_producer_t sync;
 
@@ -711,6 +771,7 @@ int main(void)
     tcase_add_test(tc, guarding_one_wrong_toggle_within_life_time_is_tolerated);
     tcase_add_test(tc, reset_communication_restarts_the_toggle);
     tcase_add_test(tc, guarding_off_sends_nothing);
+    tcase_add_test(tc, random_frames_never_corrupt_the_states);
     tcase_add_test(tc, sync_producer_parameters);
     tcase_add_test(tc, sync_producer_counter_wraps_at_overflow);
     tcase_add_test(tc, sync_producer_without_counter_on_its_cob_id);

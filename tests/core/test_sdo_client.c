@@ -14,7 +14,7 @@
 
 #define BIG_SIZE 65535u /* a DOMAIN's largest size (co_od_entry_t.size is 16 bits) */
 #define STRING_SIZE 1000u
-#define LOG_MAX 40000u
+#define LOG_MAX 40000u /* frames of one test (a 65535-byte segmented round trip: 37452) */
 #define SCRIPTED_ID 9u /* no node: the test answers as the server */
 #define ALPHABET "ABCDEFGHIJKLMNOPQRSTUVWXYZ"
 
@@ -800,6 +800,118 @@ START_TEST(several_clients)
 }
 END_TEST
 
+/* 100 kB both ways by block transfer, with a scripted server (the core's own server holds at most
+ * 65535 bytes): sub-blocks of 127 segments, n and the CRC of the end frames. */
+#define HUNDRED_KB 102400u
+
+static uint8_t big_tx[HUNDRED_KB], big_rx[HUNDRED_KB];
+
+static void reply(const uint8_t p[8])
+{
+    co_frame_t f = {.id = 0x580u + SCRIPTED_ID, .len = 8};
+    memcpy(f.data, p, 8);
+    bus_send(NULL, &f);
+    pump();
+}
+
+/* The next frame the client sent, skipping the scripted server's own. */
+static co_frame_t next_request(void)
+{
+    for (;;) {
+        ck_assert_msg(bus.next < bus.count, "the client is quiet");
+        co_frame_t f = bus.log[bus.next++];
+        if (f.id == 0x600u + SCRIPTED_ID)
+            return f;
+    }
+}
+
+START_TEST(hundred_kilobytes_block_download)
+{
+    client_t *c = &clients[1];
+    for (size_t i = 0; i < HUNDRED_KB; i++)
+        big_tx[i] = (uint8_t)(i * 31 + (i >> 8));
+    c->results = 0;
+    ck_assert_int_eq(
+        co_sdo_client_download(&c->sdo, 0x2000, 6, big_tx, HUNDRED_KB, CO_SDO_CLIENT_BLOCK, 100, 0),
+        0);
+    co_frame_t f = next_request();
+    ck_assert_uint_eq(f.data[0], 0xC6);
+    ck_assert_uint_eq(co_get_u32(&f.data[4]), HUNDRED_KB);
+    reply((const uint8_t[8]){0xA4, 0x00, 0x20, 0x06, 127});
+    uint32_t offset = 0;
+    unsigned subblocks = 0;
+    bool last = false;
+    while (!last) {
+        f = next_request();
+        uint8_t seqno = f.data[0] & 0x7F;
+        last = (f.data[0] & 0x80) != 0;
+        uint32_t pos = offset + (uint32_t)(seqno - 1) * 7;
+        memcpy(&big_rx[pos], &f.data[1], HUNDRED_KB - pos < 7 ? HUNDRED_KB - pos : 7);
+        if (seqno == 127 || last) {
+            reply((const uint8_t[8]){0xA2, seqno, 127});
+            offset += seqno * 7u;
+            subblocks++;
+        }
+    }
+    f = next_request();
+    uint32_t unused = (f.data[0] >> 2) & 7u;
+    ck_assert_uint_eq(f.data[0] & 0xE3u, 0xC1);
+    ck_assert_uint_eq(offset - unused, HUNDRED_KB);
+    ck_assert_uint_eq(co_get_u16(&f.data[1]), co_sdo_crc16(big_tx, HUNDRED_KB));
+    ck_assert_uint_eq(subblocks, (HUNDRED_KB / 7 + 1 + 126) / 127);
+    reply((const uint8_t[8]){0xA1});
+    expect_result(c, CO_SDO_CLIENT_OK, 0, HUNDRED_KB);
+    ck_assert_mem_eq(big_rx, big_tx, HUNDRED_KB);
+}
+END_TEST
+
+START_TEST(hundred_kilobytes_block_upload)
+{
+    client_t *c = &clients[1];
+    for (size_t i = 0; i < HUNDRED_KB; i++)
+        big_tx[i] = (uint8_t)(i * 17 + (i >> 9));
+    c->results = 0;
+    ck_assert_int_eq(
+        co_sdo_client_upload(&c->sdo, 0x2000, 6, big_rx, HUNDRED_KB, CO_SDO_CLIENT_BLOCK, 100, 0),
+        0);
+    co_frame_t f = next_request();
+    ck_assert_uint_eq(f.data[0], 0xA4);
+    uint8_t blksize = f.data[4];
+    ck_assert_uint_eq(blksize, 127);
+    uint8_t p[8] = {0xC6, 0x00, 0x20, 0x06};
+    co_put_u32(&p[4], HUNDRED_KB);
+    reply(p);
+    ck_assert_uint_eq(next_request().data[0], 0xA3);
+    uint32_t offset = 0;
+    for (;;) {
+        uint8_t sent = 0;
+        bool last = false;
+        while (sent < blksize && !last) {
+            uint32_t pos = offset + sent * 7u;
+            uint32_t count = HUNDRED_KB - pos < 7 ? HUNDRED_KB - pos : 7;
+            last = pos + count == HUNDRED_KB;
+            sent++;
+            uint8_t segment[8] = {(uint8_t)(sent | (last ? 0x80 : 0))};
+            memcpy(&segment[1], &big_tx[pos], count);
+            reply(segment);
+        }
+        f = next_request();
+        ck_assert_uint_eq(f.data[0], 0xA2);
+        ck_assert_uint_eq(f.data[1], sent);
+        blksize = f.data[2];
+        offset += sent * 7u;
+        if (last)
+            break;
+    }
+    uint8_t end[8] = {(uint8_t)(0xC1 | (offset - HUNDRED_KB) << 2)};
+    co_put_u16(&end[1], co_sdo_crc16(big_tx, HUNDRED_KB));
+    reply(end);
+    ck_assert_uint_eq(next_request().data[0], 0xA1);
+    expect_result(c, CO_SDO_CLIENT_OK, 0, HUNDRED_KB);
+    ck_assert_mem_eq(big_rx, big_tx, HUNDRED_KB);
+}
+END_TEST
+
 /* Bad requests and configurations are refused without a frame. */
 START_TEST(refused_requests)
 {
@@ -859,6 +971,8 @@ int main(void)
     tcase_add_test(tc, block_upload_lost_segment);
     tcase_add_test(tc, block_size_negotiation);
     tcase_add_test(tc, several_clients);
+    tcase_add_test(tc, hundred_kilobytes_block_download);
+    tcase_add_test(tc, hundred_kilobytes_block_upload);
     tcase_add_test(tc, refused_requests);
     suite_add_tcase(s, tc);
     return check_run_suite(s);

@@ -444,6 +444,9 @@ START_TEST(server_aborts)
                 upload(&clients[0], cases[i].index, cases[i].sub, sizeof(rx),
                        (co_sdo_client_mode_t)mode);
             expect_result(&clients[0], CO_SDO_CLIENT_SERVER_ABORT, cases[i].code, 0);
+            /* The server's abort is the last frame: the client does not answer it. */
+            ck_assert_uint_eq(bus.log[bus.count - 1].id, 0x584);
+            ck_assert_uint_eq(bus.log[bus.count - 1].data[0], 0x80);
             ck_assert_str_eq(co_sdo_abort_text(clients[0].result.abort_code), cases[i].text);
             ck_assert_uint_eq(clients[0].result.index, cases[i].index);
             ck_assert_uint_eq(clients[0].result.subindex, cases[i].sub);
@@ -912,6 +915,90 @@ START_TEST(hundred_kilobytes_block_upload)
 }
 END_TEST
 
+/* A plausible answer for the client's state, with random fields (and now and then a random
+ * command byte), so that the random answers below reach every state. */
+static uint8_t plausible_command(const co_sdo_client_t *sdo, uint8_t r)
+{
+    if (r % 8 == 0)
+        return (uint8_t)(r * 37);
+    switch (sdo->state) {
+    case CO_SDO_CLIENT_DOWNLOAD_EXPEDITED:
+    case CO_SDO_CLIENT_DOWNLOAD_INITIATE:
+        return 0x60;
+    case CO_SDO_CLIENT_DOWNLOAD_SEGMENT:
+        return (uint8_t)(0x20 | (r & 0x10));
+    case CO_SDO_CLIENT_UPLOAD_INITIATE:
+    case CO_SDO_CLIENT_BLOCK_UPLOAD_INITIATE:
+        return (uint8_t)(r & 0x40 ? 0x40 | (r & 0x0F) : 0xC0 | (r & 0x06));
+    case CO_SDO_CLIENT_UPLOAD_SEGMENT:
+        return (uint8_t)(r & 0x1F);
+    case CO_SDO_CLIENT_BLOCK_DOWNLOAD_INITIATE:
+        return (uint8_t)(0xA0 | (r & 0x04));
+    case CO_SDO_CLIENT_BLOCK_DOWNLOAD_ACK:
+        return 0xA2;
+    case CO_SDO_CLIENT_BLOCK_DOWNLOAD_END:
+        return 0xA1;
+    case CO_SDO_CLIENT_BLOCK_UPLOAD_SUB:
+        return (uint8_t)((r % 5) | (r & 0x80));
+    default:
+        return (uint8_t)(0xC1 | (r & 0x1C));
+    }
+}
+
+/* Random answers from the scripted server in every state: the client never writes outside the
+ * application's buffer, reports at most `cap` bytes, and every transfer ends with one result. */
+START_TEST(random_answers)
+{
+    client_t *c = &clients[1];
+    uint32_t seed = 12345;
+    unsigned ok = 0;
+    for (unsigned run = 0; run < 2000; run++) {
+        bus.count = bus.delivered = bus.next = 0;
+        seed = seed * 1103515245u + 12345u;
+        uint32_t cap = (seed >> 8) % 40;
+        co_sdo_client_mode_t mode = (co_sdo_client_mode_t)((seed >> 20) % 3);
+        memset(rx, 0xEE, 64);
+        c->results = 0;
+        if (seed & 0x10000)
+            ck_assert_int_eq(co_sdo_client_upload(&c->sdo, 0x2000, 5, rx, cap, mode, 10, 0), 0);
+        else
+            ck_assert_int_eq(co_sdo_client_download(&c->sdo, 0x2000, 5, tx, cap, mode, 10, 0), 0);
+        for (unsigned k = 0; k < 60 && c->results == 0; k++) {
+            co_frame_t f = {.id = 0x580u + SCRIPTED_ID};
+            uint8_t r[9];
+            for (int i = 0; i < 9; i++) {
+                seed = seed * 1103515245u + 12345u;
+                r[i] = (uint8_t)(seed >> 16);
+            }
+            f.len = (uint8_t)(r[8] % 16 < 12 ? 8 : 1 + r[8] % 8);
+            memcpy(f.data, r, 8);
+            f.data[0] = plausible_command(&c->sdo, r[0]);
+            if (f.data[0] != 0xA2 && (f.data[0] & 0xE0) != 0 && r[1] % 4 != 0) {
+                /* the multiplexer, and a size or block size near the buffer's */
+                co_put_u16(&f.data[1], 0x2000);
+                f.data[3] = 5;
+                co_put_u32(&f.data[4], r[4] % 48);
+            } else if (f.data[0] == 0xA2) {
+                f.data[1] = r[1] % 6;
+                f.data[2] = r[2] % 6;
+            }
+            co_sdo_client_receive(&c->sdo, &f, 0);
+        }
+        if (c->results == 0)
+            co_sdo_client_process(&c->sdo, 10000);
+        ck_assert_uint_eq(c->results, 1);
+        ck_assert(!co_sdo_client_busy(&c->sdo));
+        if (c->result.status == CO_SDO_CLIENT_OK) {
+            ck_assert_uint_le(c->result.size, cap);
+            ok++;
+        }
+        for (uint32_t i = cap; i < 64; i++)
+            ck_assert_msg(rx[i] == 0xEE, "run %u: byte %u beyond cap %u written", run, i, cap);
+    }
+    ck_assert_uint_gt(ok, 100); /* the answers reach the end of transfers, not only initiates */
+}
+END_TEST
+
 /* Bad requests and configurations are refused without a frame. */
 START_TEST(refused_requests)
 {
@@ -973,6 +1060,7 @@ int main(void)
     tcase_add_test(tc, several_clients);
     tcase_add_test(tc, hundred_kilobytes_block_download);
     tcase_add_test(tc, hundred_kilobytes_block_upload);
+    tcase_add_test(tc, random_answers);
     tcase_add_test(tc, refused_requests);
     suite_add_tcase(s, tc);
     return check_run_suite(s);

@@ -10,6 +10,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/stat.h>
 #include <sysexits.h>
 #include <time.h>
 
@@ -173,10 +174,25 @@ static int decode_stream(cotrace_decoder_t *dec, FILE *in, const char *name, boo
     return rc;
 }
 
+/* A pipe or a terminal is read as it comes (`atv312d --trace - | cotrace`): each line is written
+ * at once. Files are decoded with full buffering. */
+static void buffer_output_for(FILE *in)
+{
+    struct stat st;
+    if (fstat(fileno(in), &st) == 0 && !S_ISREG(st.st_mode))
+        setvbuf(stdout, NULL, _IOLBF, 0);
+}
+
 static int decode_files(cotrace_decoder_t *dec, const options_t *opts)
 {
-    if (opts->file_count == 0)
+    if (opts->file_count == 0) {
+        buffer_output_for(stdin);
         return decode_stream(dec, stdin, "<stdin>", opts->strict);
+    }
+    for (int i = 0; i < opts->file_count; i++) {
+        if (strcmp(opts->files[i], "-") == 0)
+            buffer_output_for(stdin);
+    }
     int rc = 0;
     for (int i = 0; i < opts->file_count; i++) {
         const char *path = opts->files[i];

@@ -371,6 +371,13 @@ static void sdo_block_segment(text_t *t, cotrace_sdo_t *s, const uint8_t *data, 
         s->in_subblock = false;
 }
 
+/* In a sub-block the data direction sends segments, sequence numbers 1..127; 0x80 there is an
+ * abort (sequence number 0 does not exist), and a segment is always 8 bytes. */
+static bool is_block_segment(const cotrace_sdo_t *s, const struct can_frame *f)
+{
+    return s->in_subblock && f->len == 8 && (f->data[0] & 0x7Fu) != 0;
+}
+
 /* A block acknowledgement: the segments up to ackseq arrived; what follows them is resent. */
 static void sdo_block_ack(text_t *t, cotrace_sdo_t *s, const uint8_t *data, const char *what)
 {
@@ -406,7 +413,7 @@ static void sdo_request(cotrace_decoder_t *dec, uint8_t node, const struct can_f
     cotrace_sdo_t *s = &dec->sdo[node];
     const uint8_t *d = f->data;
     say(t, "SDO %u request: ", node);
-    if (s->kind == COTRACE_SDO_BLOCK_DOWNLOAD && s->in_subblock) {
+    if (s->kind == COTRACE_SDO_BLOCK_DOWNLOAD && is_block_segment(s, f)) {
         sdo_block_segment(t, s, d, "block download");
         return;
     }
@@ -492,7 +499,7 @@ static void sdo_reply(cotrace_decoder_t *dec, uint8_t node, const struct can_fra
     cotrace_sdo_t *s = &dec->sdo[node];
     const uint8_t *d = f->data;
     say(t, "SDO %u reply: ", node);
-    if (s->kind == COTRACE_SDO_BLOCK_UPLOAD && s->in_subblock) {
+    if (s->kind == COTRACE_SDO_BLOCK_UPLOAD && is_block_segment(s, f)) {
         sdo_block_segment(t, s, d, "block upload");
         return;
     }

@@ -2,6 +2,7 @@
 expected, malformed lines reported with their line number, usage errors, exit codes."""
 
 import os
+import select
 import subprocess
 import tempfile
 import unittest
@@ -40,6 +41,22 @@ class RecordedTrace(unittest.TestCase):
 
 GOOD = "(1700000000.000100) vcan0 000#0104\n"
 GOOD_OUT = "(1700000000.000100) vcan0 000#0104              NMT Start remote node, node 4\n"
+
+
+class Pipe(unittest.TestCase):
+    def test_each_line_written_as_it_comes(self):
+        """`atv312d --trace - | cotrace`: a frame's line comes out before the next is written."""
+        proc = subprocess.Popen([COTRACE], stdin=subprocess.PIPE, stdout=subprocess.PIPE, text=True)
+        try:
+            proc.stdin.write(GOOD)
+            proc.stdin.flush()
+            ready = select.select([proc.stdout], [], [], 10.0)[0]
+            self.assertEqual(ready, [proc.stdout], "no line while the pipe stays open")
+            self.assertEqual(proc.stdout.readline(), GOOD_OUT)
+        finally:
+            proc.stdin.close()
+            self.assertEqual(proc.wait(timeout=10), 0)
+            proc.stdout.close()
 
 
 class MalformedLines(unittest.TestCase):

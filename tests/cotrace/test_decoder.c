@@ -213,6 +213,23 @@ START_TEST(sdo_block_upload_followed)
 }
 END_TEST
 
+/* An abort in the middle of a sub-block is an abort (sequence number 0 does not exist), a short
+ * frame there is not a segment, and the transfer ends. */
+START_TEST(sdo_block_abort_in_subblock)
+{
+    static const step_t steps[] = {
+        {"604#C6501F0110000000", "SDO 4 request: block download 1F50:01, 16 bytes, CRC"},
+        {"584#A4501F0102000000",
+         "SDO 4 reply: block download 1F50:01 accepted, blocks of 2 segments"},
+        {"604#0101", "SDO 4 request: malformed: 2 bytes, an SDO request has 8"},
+        {"604#80501F0100000405", "SDO 4 request: abort 1F50:01: 0x05040000 SDO protocol timed out"},
+        {"604#0101020304050607", "SDO 4 request: download segment, toggle 0, 7 bytes: 01 02 03 "
+                                 "04 05 06 07, last"},
+    };
+    PLAY(&dec, steps);
+}
+END_TEST
+
 /* Transfers of different nodes interleave without mixing. */
 START_TEST(sdo_transfers_per_node)
 {
@@ -369,6 +386,7 @@ int main(void)
     tcase_add_test(tc, sdo_segmented_download_followed);
     tcase_add_test(tc, sdo_block_download_followed);
     tcase_add_test(tc, sdo_block_upload_followed);
+    tcase_add_test(tc, sdo_block_abort_in_subblock);
     tcase_add_test(tc, sdo_transfers_per_node);
     tcase_add_test(tc, pdos_without_eds);
     tcase_add_test(tc, pdos_with_eds);

@@ -10,8 +10,9 @@
 #   lib/pkgconfig/canopen.pc               pkg-config: the core (variables edstool and edsdir)
 #   lib/pkgconfig/canopen-linux.pc         pkg-config: the Linux runtime (requires canopen)
 #   lib/pkgconfig/canopen-drive.pc         pkg-config: the drive (requires canopen)
-#   bin/atv312d, bin/co-edstool, bin/vcan-run
-#                                          the daemon, tools/edstool.py, tools/vcan-run
+#   bin/atv312d, bin/cotrace, bin/co-edstool, bin/vcan-run
+#                                          the daemon, the trace decoder, tools/edstool.py,
+#                                          tools/vcan-run
 #   share/man/man1/<program>.1             their man pages, written from their --help text
 #   share/canopen-atv312/eds/*.eds         the EDS files of eds/
 #   share/doc/canopen-atv312/              README.md, docs/*.md, examples/atv312d.service
@@ -58,7 +59,7 @@ install(FILES ${PROJECT_BINARY_DIR}/canopenConfig.cmake
         DESTINATION ${CO_INSTALL_CMAKEDIR})
 
 # The daemon and the tools.
-install(TARGETS atv312d RUNTIME DESTINATION ${CMAKE_INSTALL_BINDIR})
+install(TARGETS atv312d cotrace RUNTIME DESTINATION ${CMAKE_INSTALL_BINDIR})
 install(PROGRAMS ${CO_EDSTOOL} DESTINATION ${CMAKE_INSTALL_BINDIR} RENAME co-edstool)
 install(PROGRAMS ${PROJECT_SOURCE_DIR}/tools/vcan-run DESTINATION ${CMAKE_INSTALL_BINDIR})
 
@@ -140,6 +141,13 @@ log message, the storage file, the systemd unit) is atv312d.md in ${CO_DOCS_INST
 example unit examples/atv312d.service there."
   COMMAND $<TARGET_FILE:atv312d>
   DEPENDS atv312d)
+co_man_page(cotrace
+  SUMMARY "say what every CANopen frame of a candump -L log or a SocketCAN interface means"
+  SEE_ALSO "atv312d(1), candump(1). The output format and examples are cotrace.md in \
+${CO_DOCS_INSTALLED}. The EDS files of the package, for --eds, are in ${CO_INSTALL_EDSDIR} under \
+the installation prefix."
+  COMMAND $<TARGET_FILE:cotrace>
+  DEPENDS cotrace)
 co_man_page(co-edstool
   SUMMARY "generate the CANopen core's object dictionary from an EDS, check EDS files"
   SEE_ALSO "atv312d(1). eds-generator.md in ${CO_DOCS_INSTALLED}. The CMake package canopen runs \
@@ -169,8 +177,9 @@ set(CPACK_PACKAGE_DESCRIPTION_SUMMARY
 set(CPACK_PACKAGE_DESCRIPTION "The portable CANopen core (libcanopen.a) and its Linux runtime
 (libco_linux.a) with their headers, CMake package (find_package(canopen)) and pkg-config files;
 co-edstool, which generates a dictionary from an EDS; atv312d, a daemon putting emulated
-Schneider Altivar drives (ATV312, ATV31 and ATV58, CiA 402) on a SocketCAN interface;
-vcan-run, which runs it where the kernel has no vcan.")
+Schneider Altivar drives (ATV312, ATV31 and ATV58, CiA 402) on a SocketCAN interface; cotrace,
+which says what every frame of a candump -L log or a live interface means; vcan-run, which runs it
+where the kernel has no vcan.")
 set(CPACK_GENERATOR DEB)
 set(CPACK_DEBIAN_FILE_NAME DEB-DEFAULT)
 set(CPACK_DEBIAN_PACKAGE_SECTION devel)

@@ -9,6 +9,10 @@
 #include "atv312_od.h" /* generated */
 #include "drive/drive.h"
 
+/* The faults of the Altivar 31/312 family, their EMCY codes and reset classes (src/atv312/faults.c,
+ * docs/atv312.md). */
+extern const drive_fault_table_t atv312_family_faults;
+
 /* The profile of an Altivar 31/312 on the dictionary `dictionary`. The family's default
  * assignment of control word bits 11-14 (DeviceNet manual, "CMD control word": "CMD = 16#080F:
  * reverse operation" ...): bit 11 reverses, bit 12 stops on the ramp (Stt), bits 13 (DC injection
@@ -27,6 +31,7 @@
         .nominal_current = {0x2042, 4}, .nominal_speed = {0x2042, 5},                              \
         .motor_current = {0x2002, 4}, .motor_torque = {0x2002, 9},                                 \
         .control_word_copy = {0x2037, 2}, .status_word_copy = {0x2002, 2},                         \
+        .faults = &atv312_family_faults,                                                           \
     }
 
 extern const drive_profile_t atv312_profile;

@@ -12,6 +12,7 @@
 
 #include "co/co_node.h"
 #include "drive/cia402.h"
+#include "drive/faults.h"
 #include "drive/motor.h"
 
 /* Where a parameter lives in a model's dictionary; {0, 0} where the model has none (it then reads
@@ -46,6 +47,8 @@ typedef struct drive_profile {
     /* Manufacturer copies of the CiA 402 words: one word at two addresses, kept equal. */
     drive_param_t control_word_copy;
     drive_param_t status_word_copy;
+    /* The faults of the model's manuals (faults.h); required. */
+    const drive_fault_table_t *faults;
 } drive_profile_t;
 
 /* CAN conditions the runtime reports at once (overrun, error passive, bus off). */
@@ -60,7 +63,15 @@ typedef struct drive {
     /* Bus conditions still present: a reset node forgets their EMCYs, not the conditions. */
     uint16_t bus_events[DRIVE_BUS_EVENTS_MAX];
     uint8_t bus_event_count;
+    /* Faults, one bit per entry of the profile's table: raised and not yet reset, and those
+     * whose cause is present (injected and not removed). */
+    uint32_t faults_active;
+    uint32_t fault_causes;
+    uint8_t fault_latched; /* the entry in 603Fh and on the display while faults_active */
 } drive_t;
+
+/* drive_init's error for a profile without a valid fault table. */
+#define DRIVE_INIT_BAD_FAULTS 0x200
 
 typedef struct drive_config {
     const drive_profile_t *profile;
@@ -71,7 +82,7 @@ typedef struct drive_config {
     const co_storage_t *storage; /* may be NULL: 1010h/1011h then abort */
 } drive_config_t;
 
-/* 0 or the co_node_init error. Sends nothing; call drive_start next. */
+/* 0, the co_node_init error, or DRIVE_INIT_BAD_FAULTS. Sends nothing; call drive_start next. */
 int drive_init(drive_t *drive, const drive_config_t *config);
 /* Boot-up: Pre-operational, the power state machine in Switch on disabled. */
 void drive_start(drive_t *drive, co_time_t now);
@@ -83,6 +94,18 @@ co_time_t drive_process(drive_t *drive, co_time_t now);
  * (active) or clears the EMCY, and raises it again after a reset node while it lasts. They do not
  * fault the drive. */
 void drive_bus_event(drive_t *drive, uint16_t emcy_code, bool active);
+/* Faults (faults.h). The index of the model's fault whose code is `code`, compared without
+ * case ("ohf" finds OHF), or -1. */
+int drive_fault_find(const drive_t *drive, const char *code);
+/* The cause of fault `index` appears at `now`: the drive faults unless that fault is active
+ * already. Other faults may be active too: each sends its EMCY; the first stays in 603Fh. */
+void drive_fault_inject(drive_t *drive, uint8_t index, co_time_t now);
+/* The cause of fault `index` is gone at `now`: a fault of the automatic class resets itself (the
+ * drive leaves Fault when no other fault is active); the others may now be reset. */
+void drive_fault_remove_cause(drive_t *drive, uint8_t index, co_time_t now);
+bool drive_fault_cause_present(const drive_t *drive, uint8_t index);
+/* The fault in 603Fh while the drive is in Fault, else NULL. */
+const drive_fault_def_t *drive_fault_latched(const drive_t *drive);
 /* For logs: "Switch on disabled", "Operation enabled", ... */
 const char *drive_state_name(const drive_t *drive);
 

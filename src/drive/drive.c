@@ -5,7 +5,7 @@
 
 #include <stddef.h>
 
-/* The EMCY error register of a communication fault: 1001h bit 0 (generic, "error (1)" in the
+/* The EMCY error register of a CAN bus condition: 1001h bit 0 (generic, "error (1)" in the
  * ATV312 table) and bit 4 (communication), CiA 301 table 48. */
 #define COMMUNICATION_ERROR_REGISTER (CO_ERR_REG_GENERIC | CO_ERR_REG_COMMUNICATION)
 
@@ -143,27 +143,11 @@ void drive_settle(drive_t *drive)
     publish(drive);
 }
 
-/* The network fault (the Altivars' CnF / COF): freewheel stop (state Fault drives nothing),
- * latched until a fault reset, reported in 603Fh and by EMCY 0x8130 (which also records it in
- * 1003h). */
+/* The network fault (the Altivars' COF): the model's communication-loss entry of its fault
+ * table, latched until a fault reset. */
 static void communication_fault(drive_t *drive)
 {
-    if (drive->cia402.state == CIA402_FAULT)
-        return;
-    co_node_t *node = &drive->node;
-    drive_motor_advance(&drive->motor, node->now);
-    cia402_fault(&drive->cia402);
-    co_od_set_value(node, CIA402_IDX_ERROR_CODE, 0, CO_EMCY_HEARTBEAT);
-    co_emcy_raise(node, CO_EMCY_HEARTBEAT, COMMUNICATION_ERROR_REGISTER, NULL);
-    drive_settle(drive);
-}
-
-static void acknowledge_fault(drive_t *drive)
-{
-    co_node_t *node = &drive->node;
-    uint16_t code = (uint16_t)co_od_value(node, CIA402_IDX_ERROR_CODE, 0);
-    co_od_set_value(node, CIA402_IDX_ERROR_CODE, 0, 0);
-    co_emcy_clear(node, code);
+    drive_fault_raise(drive, drive->profile->faults->communication_loss);
 }
 
 static bool is_control_word(const drive_t *drive, const co_od_entry_t *entry)
@@ -173,14 +157,20 @@ static bool is_control_word(const drive_t *drive, const co_od_entry_t *entry)
            (entry->index == copy.index && entry->subindex == copy.subindex);
 }
 
-/* 6040h and the model's copy are the same word: both are kept equal. */
+/* 6040h and the model's copy are the same word: both are kept equal. In Fault a fault whose
+ * cause is present (or that only a power cycle resets) keeps the drive there: the word is
+ * recorded, so that the reset edge counts from it, and nothing else happens. */
 static void apply_control_word(drive_t *drive, uint16_t control)
 {
     drive_param_t copy = drive->profile->control_word_copy;
     co_od_set_value(&drive->node, CIA402_IDX_CONTROLWORD, 0, control);
     co_od_set_value(&drive->node, copy.index, copy.subindex, control);
+    if (drive->cia402.state == CIA402_FAULT && !drive_faults_resettable(drive)) {
+        drive->cia402.control = control;
+        return;
+    }
     if (cia402_command(&drive->cia402, control, drive_motor_stands(&drive->motor)))
-        acknowledge_fault(drive);
+        drive_faults_acknowledge(drive);
 }
 
 static void on_written(co_node_t *node, const co_od_entry_t *entry, co_od_origin_t origin)
@@ -213,6 +203,7 @@ static void restart_drive(drive_t *drive, co_time_t now)
     cia402_reset(&drive->cia402);
     drive_motor_reset(&drive->motor, now);
     drive->limited = false;
+    drive_faults_restart(drive);
 }
 
 /* Reset node restarts the drive too (the defaults are restored right after this). */
@@ -222,15 +213,16 @@ static void on_reset(co_node_t *node, co_nmt_reset_t scope)
         restart_drive(drive_of(node), node->now);
 }
 
-/* The bus conditions still present are errors again once a reset node has emptied the EMCY
- * producer's active errors (the boot-up comes first, then their EMCYs). Raising an active error
- * again does nothing, so every entry into Pre-operational may do it. */
+/* The bus conditions and fault causes still present are errors again once a reset node has
+ * emptied the EMCY producer's active errors (the boot-up comes first, then their EMCYs). Raising
+ * an active error again does nothing, so every entry into Pre-operational may do it. */
 static void on_nmt_state(co_node_t *node, co_nmt_state_t state)
 {
     (void)state;
     drive_t *drive = drive_of(node);
     for (uint8_t i = 0; i < drive->bus_event_count; i++)
         co_emcy_raise(node, drive->bus_events[i], COMMUNICATION_ERROR_REGISTER, NULL);
+    drive_faults_raise_present(drive);
 }
 
 static const co_app_hooks_t drive_hooks = {
@@ -252,12 +244,15 @@ int drive_init(drive_t *drive, const drive_config_t *config)
         .hooks = &drive_hooks,
         .storage = config->storage,
     };
+    if (!drive_faults_valid(config->profile))
+        return DRIVE_INIT_BAD_FAULTS;
     drive->profile = config->profile;
     int err = co_node_init(&drive->node, &node_config);
     if (err != 0)
         return err;
     restart_drive(drive, 0);
     drive->bus_event_count = 0;
+    drive->fault_causes = 0;
     return 0;
 }
 

@@ -1,5 +1,23 @@
 #include "minimal_model.h"
 
+#include "co/co_emcy.h"
+
+/* One fault of each reset class, the communication loss not first: the drive must follow the
+ * table, not an Altivar's order. */
+static const drive_fault_def_t faults[] = {
+    [FAULT_HOT] = {"HoT", "overheating", 0x4210, CO_ERR_REG_TEMPERATURE, DRIVE_FAULT_RESET_COMMAND},
+    [FAULT_LOW] = {"LoW", "undervoltage", 0x3120, CO_ERR_REG_VOLTAGE, DRIVE_FAULT_RESET_AUTOMATIC},
+    [FAULT_NET] = {"NeT", "communication loss", 0x8130, CO_ERR_REG_COMMUNICATION,
+                   DRIVE_FAULT_RESET_COMMAND},
+    [FAULT_CPU] = {"CpU", "internal", 0x6100, 0, DRIVE_FAULT_RESET_POWER_CYCLE},
+};
+
+static const drive_fault_table_t fault_table = {
+    .faults = faults,
+    .count = sizeof faults / sizeof faults[0],
+    .communication_loss = FAULT_NET,
+};
+
 const drive_profile_t minimal_profile = {
     .od = &minimal_od,
     .control_reverse = CW_REVERSE,
@@ -16,4 +34,5 @@ const drive_profile_t minimal_profile = {
     .nominal_current = {PARAMS, NCR},
     .motor_current = {OUTPUTS, CURRENT},
     .motor_torque = {OUTPUTS, TORQUE},
+    .faults = &fault_table,
 };

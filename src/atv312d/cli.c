@@ -133,6 +133,7 @@ typedef enum {
     OPT_MODEL,
     OPT_STORE,
     OPT_TRACE,
+    OPT_CONTROL,
     OPT_LOG_LEVEL,
     OPT_HELP,
     OPT_VERSION
@@ -143,15 +144,11 @@ static const struct {
     opt_t opt;
     bool has_value;
 } options[] = {
-    {"--node-id", OPT_NODE_ID, true},
-    {"--model", OPT_MODEL, true},
-    {"--store", OPT_STORE, true},
-    {"--trace", OPT_TRACE, true},
-    {"--log-level", OPT_LOG_LEVEL, true},
-    {"--help", OPT_HELP, false},
-    {"-h", OPT_HELP, false},
-    {"--version", OPT_VERSION, false},
-    {"-V", OPT_VERSION, false},
+    {"--node-id", OPT_NODE_ID, true},  {"--model", OPT_MODEL, true},
+    {"--store", OPT_STORE, true},      {"--trace", OPT_TRACE, true},
+    {"--control", OPT_CONTROL, true},  {"--log-level", OPT_LOG_LEVEL, true},
+    {"--help", OPT_HELP, false},       {"-h", OPT_HELP, false},
+    {"--version", OPT_VERSION, false}, {"-V", OPT_VERSION, false},
 };
 
 /* Finds the option of "--name" or "--name=value"; *inline_value points after '='. */
@@ -186,6 +183,9 @@ static int apply_option(opt_t opt, const char *value, atv312d_options_t *opts,
         return 0;
     case OPT_TRACE:
         opts->trace_path = value;
+        return 0;
+    case OPT_CONTROL:
+        opts->control_path = value;
         return 0;
     case OPT_LOG_LEVEL:
         if (!co_log_level_parse(value, &opts->log_level))
@@ -269,6 +269,7 @@ int atv312d_parse_args(int argc, char *const argv[], atv312d_options_t *opts, ch
 void atv312d_print_usage(FILE *out)
 {
     fputs("usage: atv312d IFACE --node-id N [--model M] [--node-id N [--model M]...] [options]\n"
+          "       atv312d ctl PATH [--json] COMMAND...\n"
           "\n"
           "Puts emulated Schneider Altivar drives (CANopen, CiA 402) on a SocketCAN\n"
           "interface.\n"
@@ -286,11 +287,24 @@ void atv312d_print_usage(FILE *out)
           "                      it, one record per node-id); without it 1010h aborts\n"
           "  --trace FILE        write every frame in and out to FILE in candump -L format\n"
           "                      ('-' = standard output)\n"
+          "  --control PATH      take control commands on a UNIX socket at PATH (see below)\n"
           "  --log-level LEVEL   error, warn, info (default) or debug, on standard error\n"
           "  -h, --help          show this help\n"
           "  -V, --version       show the version\n"
           "\n"
           "Example: atv312d vcan0 --node-id 4-5 --model atv312 --node-id 6\n"
+          "\n"
+          "Control commands, for testing a master: atv312d ctl PATH COMMAND sends one to the\n"
+          "daemon started with --control PATH and prints its one-line reply, 'ok ...' (exit 0)\n"
+          "or 'error: ...' (exit 65); with --json the reply is a JSON object.\n"
+          "  fault NODE CODE     the fault CODE (OHF, OCF, USF, CnF, ...) happens: EMCY, 603Fh,\n"
+          "                      state Fault; its cause stays until cleared\n"
+          "  clear NODE CODE|all the cause of the fault is gone (a fault reset is then\n"
+          "                      accepted; USF, CFF and CFI end by themselves)\n"
+          "  mains NODE undervoltage|normal  mains undervoltage (the fault USF) or back\n"
+          "  state [NODE]        NMT and CiA 402 state, status word, speed, current, torque,\n"
+          "                      front panel display, RUN and ERR LEDs, latched fault\n"
+          "Example: atv312d ctl /tmp/atv312d.sock fault 4 OHF\n"
           "\n"
           "Exit status: 0 after SIGINT/SIGTERM, 64 usage error, 69 interface or CAN support\n"
           "missing, 70 internal error, 71 system error, 73 cannot create the trace or store\n"

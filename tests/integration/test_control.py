@@ -1,0 +1,135 @@
+"""The control surface on real SocketCAN: `atv312d --control PATH` and `atv312d ctl PATH COMMAND`,
+each command with the frames it causes on the bus (fault -> EMCY, 603Fh, status word; the fault
+reset once the cause is gone -> the EMCY error reset), and every refusal with its one-line error
+and no frame."""
+
+import json
+import subprocess
+
+import pytest
+
+from conftest import NMT_START, REPLY_TIMEOUT, daemon_path
+
+NODE = 4
+EX_DATAERR = 65
+EX_UNAVAILABLE = 69
+
+
+def ctl(sock, *words):
+    """Runs `atv312d ctl SOCK WORDS...`; returns (exit status, reply line)."""
+    done = subprocess.run([daemon_path(), "ctl", str(sock), *map(str, words)], capture_output=True, text=True, timeout=10)
+    return done.returncode, (done.stdout + done.stderr).strip()
+
+
+def state(sock, node=NODE):
+    status, reply = ctl(sock, "--json", "state", node)
+    assert status == 0, reply
+    return json.loads(reply)["nodes"][0]
+
+
+@pytest.fixture
+def control(bus, start_daemon, tmp_path):
+    sock = tmp_path / "atv312d.sock"
+    start_daemon(bus, "--node-id", NODE, "--control", sock)
+    return sock
+
+
+def test_fault_then_reset_once_the_cause_is_gone(bus, control):
+    status, reply = ctl(control, "fault", NODE, "OHF")
+    assert status == 0 and reply.startswith("ok node 4: OHF"), reply
+    bus.expect(0x84, "1042090000000000")
+    assert bus.sdo_read(NODE, 0x603F, 0) == 0x4210
+    assert bus.sdo_read(NODE, 0x6041, 0) == 0x0608
+    assert bus.sdo_read(NODE, 0x1001, 0) == 0x09
+    assert bus.sdo_read(NODE, 0x1003, 1) == 0x4210
+    s = state(control)
+    assert (s["cia402"], s["display"], s["fault"], s["statusword"]) == ("Fault", "OHF", "OHF", 0x0608)
+    # The fault reset is refused while the cause is present: no frame, still Fault.
+    bus.sdo_write(NODE, 0x6040, 0, 0x0080, 2)
+    bus.expect_none(0x84, 0.3)
+    assert bus.sdo_read(NODE, 0x6041, 0) == 0x0608
+    status, reply = ctl(control, "clear", NODE, "OHF")
+    assert (status, reply) == (0, "ok node 4: cause of OHF removed")
+    bus.expect_none(0x84, 0.3)
+    bus.sdo_write(NODE, 0x6040, 0, 0x0000, 2)
+    # The error reset goes out before the SDO answer of the write that caused it.
+    mark = bus.mark()
+    bus.sdo_write(NODE, 0x6040, 0, 0x0080, 2)
+    bus.expect(0x84, "0000000000000000", since=mark)
+    assert bus.sdo_read(NODE, 0x6041, 0) == 0x0640
+    assert bus.sdo_read(NODE, 0x603F, 0) == 0
+    s = state(control)
+    assert (s["cia402"], s["display"], s["fault"]) == ("Switch on disabled", "nSt", None)
+
+
+def test_fault_stops_the_running_motor_on_tpdo1(bus, control):
+    bus.sdo_write(NODE, 0x6042, 0, 1500, 2)
+    bus.nmt(NMT_START, NODE)
+    bus.sdo_write(NODE, 0x6040, 0, 0x0006, 2)
+    bus.sdo_write(NODE, 0x6040, 0, 0x000F, 2)
+    bus.expect(0x184, "2702", timeout=REPLY_TIMEOUT)
+    s = state(control)
+    assert (s["nmt"], s["run_led"], s["cia402"]) == ("Operational", "on", "Operation enabled")
+    assert ctl(control, "fault", NODE, "OCF")[0] == 0
+    bus.expect(0x84, "1023030000000000")
+    bus.expect(0x184, "0806")
+    s = state(control)
+    assert (s["speed_rpm"], s["current_a"], s["display"]) == (0, 0, "OCF")
+    # OCF needs a power cycle: the fault reset is refused even with the cause gone.
+    assert ctl(control, "clear", NODE, "all") == (0, "ok node 4: causes removed: OCF")
+    bus.sdo_write(NODE, 0x6040, 0, 0x0080, 2)
+    bus.expect_none(0x84, 0.3)
+    assert state(control)["cia402"] == "Fault"
+
+
+def test_mains_undervoltage_ends_by_itself(bus, control):
+    assert ctl(control, "mains", NODE, "undervoltage")[0] == 0
+    bus.expect(0x84, "2031050000000000")
+    assert state(control)["display"] == "USF"
+    assert ctl(control, "mains", NODE, "normal") == (0, "ok node 4: mains normal")
+    bus.expect(0x84, "0000000000000000")
+    assert bus.sdo_read(NODE, 0x6041, 0) == 0x0640
+    s = state(control)
+    assert (s["display"], s["run_led"], s["err_led"]) == ("nSt", "blinking", "off")
+
+
+def test_state_of_every_node_in_text(bus, control):
+    status, reply = ctl(control, "state")
+    assert status == 0
+    assert reply == (
+        "ok node 4: nmt Pre-operational, cia402 Switch on disabled, statusword 0640, speed 0 rpm, "
+        "current 0.0 A, torque 0 %, display nSt, RUN blinking, ERR off, fault none"
+    )
+
+
+@pytest.mark.parametrize(
+    "words, error",
+    [
+        (["fault", 4, "XYZ"], "error: unknown fault 'XYZ': node 4 knows COF, CnF, SLF, OCF, SCF, OSF, USF, PHF, ObF, OPF, OHF, OtF, OLF, SOF, CrF, EEF, InF, CFF, CFI, LFF, EPF"),
+        (["fault", 9, "OHF"], "error: node 9 is not present: this daemon runs node-id 4"),
+        (["fault", 4], "error: usage: fault NODE CODE (e.g. fault 4 OHF)"),
+        (["clear", 4, "OHF"], "error: node 4: no cause of OHF is present"),
+        (["mains", 4, "low"], "error: usage: mains NODE undervoltage|normal"),
+        (["state", "x"], "error: node x is not present: this daemon runs node-id 4"),
+        (["reboot", 4], "error: unknown command 'reboot': the commands are fault, clear, mains, state"),
+    ],
+)
+def test_refused_commands_say_why_and_send_nothing(bus, control, words, error):
+    assert ctl(control, *words) == (EX_DATAERR, error)
+    status, reply = ctl(control, "--json", *words)
+    assert (status, json.loads(reply)) == (EX_DATAERR, {"ok": False, "error": error[len("error: "):]})
+    bus.expect_none(0x84, 0.2)
+    assert bus.sdo_read(NODE, 0x6041, 0) == 0x0640
+
+
+def test_fault_injected_twice_is_refused(bus, control):
+    assert ctl(control, "fault", NODE, "ohf")[0] == 0
+    bus.expect(0x84, "1042090000000000")
+    assert ctl(control, "fault", NODE, "OHF") == (EX_DATAERR, "error: node 4: the cause of OHF is present already")
+    bus.expect_none(0x84, 0.2)
+
+
+def test_no_daemon_is_a_clear_error(tmp_path):
+    status, reply = ctl(tmp_path / "none.sock", "state")
+    assert status == EX_UNAVAILABLE
+    assert "cannot connect" in reply and "--control" in reply

@@ -17,17 +17,17 @@ extern const drive_fault_table_t atv312_family_faults;
  * assignment of control word bits 11-14 (DeviceNet manual, "CMD control word": "CMD = 16#080F:
  * reverse operation" ...): bit 11 reverses, bit 12 stops on the ramp (Stt), bits 13 (DC injection
  * stop, modelled as the fast stop) and 14 stop on the fast ramp, DEC / 4 (dCF's default); status
- * word bit 15 is the direction of rotation. Its parameters, at 0x2000 + (ADL - 3000) / 100,
- * sub-index ADL mod 100 + 1 (SPEC section 2): ACC 9001, DEC 9002, HSP 3104, LSP 3105, FRS 9602,
- * NCR 9603, NSP 9604, LCR 3203, OTR 3208, CMD 8501, ETA 3201. A macro, not a function, so that
- * each model's profile stays a constant initialiser (in flash on a microcontroller); the ATV31
- * (atv31/atv31.h) is the same drive under another name. */
+ * word bit 15 is the direction of rotation, bit 14 "stop via the STOP key". Its parameters, at
+ * 0x2000 + (ADL - 3000) / 100, sub-index ADL mod 100 + 1 (SPEC section 2): ACC 9001, DEC 9002, HSP
+ * 3104, LSP 3105, FRS 9602, NCR 9603, NSP 9604, LCR 3203, OTR 3208, CMD 8501, ETA 3201. A macro,
+ * not a function, so that each model's profile stays a constant initialiser (in flash on a
+ * microcontroller); the ATV31 (atv31/atv31.h) is the same drive under another name. */
 #define ATV312_FAMILY_PROFILE(dictionary)                                                          \
     {                                                                                              \
         .od = (dictionary), .control_reverse = 0x0800, .control_ramp_stop = 0x1000,                \
-        .control_fast_stop = 0x2000 | 0x4000, .status_reverse = 0x8000, .fast_ramp_divider = 4,    \
-        .acceleration = {0x203C, 2}, .deceleration = {0x203C, 3}, .high_speed = {0x2001, 5},       \
-        .low_speed = {0x2001, 6}, .nominal_frequency = {0x2042, 3},                                \
+        .control_fast_stop = 0x2000 | 0x4000, .status_reverse = 0x8000, .status_stop_key = 0x4000, \
+        .fast_ramp_divider = 4, .acceleration = {0x203C, 2}, .deceleration = {0x203C, 3},          \
+        .high_speed = {0x2001, 5}, .low_speed = {0x2001, 6}, .nominal_frequency = {0x2042, 3},     \
         .nominal_current = {0x2042, 4}, .nominal_speed = {0x2042, 5},                              \
         .motor_current = {0x2002, 4}, .motor_torque = {0x2002, 9},                                 \
         .control_word_copy = {0x2037, 2}, .status_word_copy = {0x2002, 2},                         \

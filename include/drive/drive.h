@@ -47,6 +47,8 @@ typedef struct drive_profile {
     /* Manufacturer copies of the CiA 402 words: one word at two addresses, kept equal. */
     drive_param_t control_word_copy;
     drive_param_t status_word_copy;
+    /* Status word bit set after the keypad's STOP key (the Altivars' ETA bit 14). */
+    uint16_t status_stop_key;
     /* The faults of the model's manuals (faults.h); required. */
     const drive_fault_table_t *faults;
 } drive_profile_t;
@@ -68,6 +70,11 @@ typedef struct drive {
     uint32_t faults_active;
     uint32_t fault_causes;
     uint8_t fault_latched; /* the entry in 603Fh and on the display while faults_active */
+    /* At the drive (local.c): forced local control, the keypad's keys, the load. */
+    bool local;     /* forced local: the network's control word is ignored, bit 9 = 0 */
+    bool local_run; /* the RUN key's run command, under forced local control */
+    bool stop_key;  /* the STOP key was pressed, until the next run command */
+    uint8_t load;   /* extra load torque, % of nominal torque */
 } drive_t;
 
 /* drive_init's error for a profile without a valid fault table. */
@@ -106,6 +113,22 @@ void drive_fault_remove_cause(drive_t *drive, uint8_t index, co_time_t now);
 bool drive_fault_cause_present(const drive_t *drive, uint8_t index);
 /* The fault in 603Fh while the drive is in Fault, else NULL. */
 const drive_fault_def_t *drive_fault_latched(const drive_t *drive);
+/* At the drive, for people testing a master (atv312d's control surface); `now` is the time of
+ * the event. Forced local control on or off (status word bit 9 = 0 while on) changes the command
+ * channel: a freewheel stop to Switch on disabled (a fault stays latched); under it the network's
+ * control word is kept but ignored and the keypad runs the drive. */
+void drive_set_local(drive_t *drive, bool local, co_time_t now);
+/* The keypad's STOP key: the profile's status_stop_key bit is set until the next run command (the
+ * RUN key, or a network command leaving Switch on disabled). Under network control a freewheel
+ * stop to Switch on disabled (the Altivars' "STOP key priority"); under local control a stop on
+ * the deceleration ramp, then Switch on disabled. */
+void drive_stop_key(drive_t *drive, co_time_t now);
+/* The keypad's RUN key: under local control and not in Fault, Operation enabled and the motor
+ * runs to the reference 6042h; false (nothing happens) otherwise. */
+bool drive_run_key(drive_t *drive, co_time_t now);
+/* An extra load on the motor, % of nominal torque (0..150): torque and current follow while
+ * the motor turns. */
+void drive_set_load(drive_t *drive, uint8_t percent, co_time_t now);
 /* For logs: "Switch on disabled", "Operation enabled", ... */
 const char *drive_state_name(const drive_t *drive);
 

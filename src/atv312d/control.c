@@ -237,6 +237,86 @@ static bool command_mains(const atv312d_control_t *control, char **words, size_t
     return succeed(r, "node %u: mains normal", node->drive->node.node_id);
 }
 
+static bool command_stop_key(const atv312d_control_t *control, char **words, size_t n, reply_t *r)
+{
+    if (n != 2)
+        return fail(r, "usage: stop-key NODE");
+    const atv312d_control_node_t *node = find_node(control, words[1], r);
+    if (!node)
+        return false;
+    drive_t *drive = node->drive;
+    drive_stop_key(drive, node->device->loop->now);
+    changed(node);
+    co_log(CO_LOG_INFO, "node %u: control: STOP key", drive->node.node_id);
+    return succeed(r, "node %u: STOP key (%s stop, status word bit 14)", drive->node.node_id,
+                   drive->local ? "ramp" : "freewheel");
+}
+
+static bool command_run_key(const atv312d_control_t *control, char **words, size_t n, reply_t *r)
+{
+    if (n != 2)
+        return fail(r, "usage: run-key NODE");
+    const atv312d_control_node_t *node = find_node(control, words[1], r);
+    if (!node)
+        return false;
+    drive_t *drive = node->drive;
+    unsigned id = drive->node.node_id;
+    if (!drive->local)
+        return fail(r,
+                    "node %u is under network control: the RUN key works under local control "
+                    "(local %u on)",
+                    id, id);
+    const drive_fault_def_t *fault = drive_fault_latched(drive);
+    if (fault)
+        return fail(r, "node %u is in fault %s: the RUN key does not reset a fault", id,
+                    fault->code);
+    drive_run_key(drive, node->device->loop->now);
+    changed(node);
+    co_log(CO_LOG_INFO, "node %u: control: RUN key", id);
+    return succeed(r, "node %u: RUN key", id);
+}
+
+static bool command_local(const atv312d_control_t *control, char **words, size_t n, reply_t *r)
+{
+    if (n != 3 || (strcmp(words[2], "on") != 0 && strcmp(words[2], "off") != 0))
+        return fail(r, "usage: local NODE on|off");
+    const atv312d_control_node_t *node = find_node(control, words[1], r);
+    if (!node)
+        return false;
+    drive_t *drive = node->drive;
+    bool local = strcmp(words[2], "on") == 0;
+    if (drive->local == local)
+        return fail(r, "node %u is under %s control already", drive->node.node_id,
+                    local ? "local" : "network");
+    drive_set_local(drive, local, node->device->loop->now);
+    changed(node);
+    co_log(CO_LOG_INFO, "node %u: control: %s control", drive->node.node_id,
+           local ? "local" : "network");
+    return succeed(r, "node %u: %s control (status word bit 9 = %d)", drive->node.node_id,
+                   local ? "local" : "network", local ? 0 : 1);
+}
+
+/* The torque limit of the motor model. */
+#define LOAD_MAX_PERCENT 150
+
+static bool command_load(const atv312d_control_t *control, char **words, size_t n, reply_t *r)
+{
+    if (n != 3)
+        return fail(r, "usage: load NODE PERCENT (0..%d %% of nominal torque)", LOAD_MAX_PERCENT);
+    const atv312d_control_node_t *node = find_node(control, words[1], r);
+    if (!node)
+        return false;
+    char *end;
+    long percent = strtol(words[2], &end, 10);
+    if (!(words[2][0] >= '0' && words[2][0] <= '9') || *end != '\0' || percent > LOAD_MAX_PERCENT)
+        return fail(r, "load %s: give a percentage of nominal torque, 0..%d", shown(words[2]),
+                    LOAD_MAX_PERCENT);
+    drive_set_load(node->drive, (uint8_t)percent, node->device->loop->now);
+    changed(node);
+    co_log(CO_LOG_INFO, "node %u: control: load %ld %%", node->drive->node.node_id, percent);
+    return succeed(r, "node %u: load %ld %%", node->drive->node.node_id, percent);
+}
+
 static const char *nmt_name(co_nmt_state_t state)
 {
     switch (state) {
@@ -311,11 +391,12 @@ static const struct {
     const char *name;
     bool (*run)(const atv312d_control_t *control, char **words, size_t n, reply_t *r);
 } commands[] = {
-    {"fault", command_fault},
-    {"clear", command_clear},
-    {"mains", command_mains},
-    {"state", command_state},
+    {"fault", command_fault},       {"clear", command_clear},     {"mains", command_mains},
+    {"stop-key", command_stop_key}, {"run-key", command_run_key}, {"local", command_local},
+    {"load", command_load},         {"state", command_state},
 };
+
+#define COMMAND_NAMES "fault, clear, mains, stop-key, run-key, local, load, state"
 
 bool atv312d_control_execute(const atv312d_control_t *control, const char *line, char *reply,
                              size_t reply_len)
@@ -339,13 +420,12 @@ bool atv312d_control_execute(const atv312d_control_t *control, const char *line,
         words[n++] = w;
     }
     if (n == 0)
-        return fail(&r, "empty command: give fault, clear, mains or state");
+        return fail(&r, "empty command: give one of " COMMAND_NAMES);
     for (size_t i = 0; i < sizeof commands / sizeof commands[0]; i++) {
         if (strcmp(words[0], commands[i].name) == 0)
             return commands[i].run(control, words, n, &r);
     }
-    return fail(&r, "unknown command '%s': the commands are fault, clear, mains, state",
-                shown(words[0]));
+    return fail(&r, "unknown command '%s': the commands are " COMMAND_NAMES, shown(words[0]));
 }
 
 /* ---- the socket in the loop ---- */

@@ -1,8 +1,9 @@
 /* atv312d's control surface for people testing masters: a UNIX stream socket (--control PATH)
  * in the daemon's epoll loop that takes one command per line and answers one line, "ok ..." or
  * "error: ..." (or a JSON object when the line starts with "json "): inject a fault and remove
- * its cause, set a mains undervoltage, read the state of a drive (NMT and CiA 402 states, speed,
- * current, the front panel's display and LEDs). `atv312d ctl PATH COMMAND...` is its client.
+ * its cause, set a mains undervoltage, press the keypad's STOP and RUN keys, switch forced local
+ * control, load the motor, read the state of a drive (NMT and CiA 402 states, speed, current, the
+ * front panel's display and LEDs). `atv312d ctl PATH COMMAND...` is its client.
  * Commands: docs/atv312d.md, "Control surface". */
 #ifndef ATV312D_CONTROL_H
 #define ATV312D_CONTROL_H

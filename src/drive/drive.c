@@ -81,7 +81,8 @@ static void steer_motor(drive_t *drive)
     if (!cia402_drives_motor(sm))
         drive_motor_coast(&drive->motor);
     drive->limited = false;
-    int32_t target = cia402_runs(sm) && !fast_stop && !ramp_stop ? run_reference(drive) : 0;
+    bool runs = drive->local ? drive_local_runs(drive) : cia402_runs(sm);
+    int32_t target = runs && !fast_stop && !ramp_stop ? run_reference(drive) : 0;
     drive_ramp_t ramp = ramp_parameters(drive);
     drive_motor_steer(&drive->motor, target, fast, &ramp);
 }
@@ -89,7 +90,7 @@ static void steer_motor(drive_t *drive)
 static uint16_t status_word(const drive_t *drive)
 {
     const drive_motor_t *motor = &drive->motor;
-    uint16_t status = cia402_status(&drive->cia402) | CIA402_SW_REMOTE;
+    uint16_t status = cia402_status(&drive->cia402) | drive_local_status(drive);
     if (drive_motor_at_target(motor))
         status |= CIA402_SW_TARGET_REACHED;
     if (drive->limited)
@@ -137,8 +138,10 @@ static void publish(drive_t *drive)
 
 void drive_settle(drive_t *drive)
 {
-    if (drive_motor_stands(&drive->motor))
+    if (drive_motor_stands(&drive->motor)) {
         cia402_motor_stopped(&drive->cia402);
+        drive_local_motor_stopped(drive);
+    }
     steer_motor(drive);
     publish(drive);
 }
@@ -157,20 +160,24 @@ static bool is_control_word(const drive_t *drive, const co_od_entry_t *entry)
            (entry->index == copy.index && entry->subindex == copy.subindex);
 }
 
-/* 6040h and the model's copy are the same word: both are kept equal. In Fault a fault whose
- * cause is present (or that only a power cycle resets) keeps the drive there: the word is
- * recorded, so that the reset edge counts from it, and nothing else happens. */
+/* 6040h and the model's copy are the same word: both are kept equal. Under forced local control
+ * the network's word is kept and ignored. In Fault a fault whose cause is present (or that only a
+ * power cycle resets) keeps the drive there: the word is recorded, so that the reset edge counts
+ * from it, and nothing else happens. */
 static void apply_control_word(drive_t *drive, uint16_t control)
 {
     drive_param_t copy = drive->profile->control_word_copy;
     co_od_set_value(&drive->node, CIA402_IDX_CONTROLWORD, 0, control);
     co_od_set_value(&drive->node, copy.index, copy.subindex, control);
+    if (drive->local)
+        return;
     if (drive->cia402.state == CIA402_FAULT && !drive_faults_resettable(drive)) {
         drive->cia402.control = control;
         return;
     }
     if (cia402_command(&drive->cia402, control, drive_motor_stands(&drive->motor)))
         drive_faults_acknowledge(drive);
+    drive_local_command_applied(drive);
 }
 
 static void on_written(co_node_t *node, const co_od_entry_t *entry, co_od_origin_t origin)
@@ -197,12 +204,16 @@ static void on_guarding(co_node_t *node, bool lost)
 }
 
 /* Switch on disabled, motor stopped: the state the dictionary's defaults describe. The bus
- * conditions are not the drive's state: they outlive a reset node. */
+ * conditions, forced local control and the load are not the drive's state: they outlive a reset
+ * node. */
 static void restart_drive(drive_t *drive, co_time_t now)
 {
     cia402_reset(&drive->cia402);
     drive_motor_reset(&drive->motor, now);
+    drive_motor_load(&drive->motor, drive->load);
     drive->limited = false;
+    drive->stop_key = false;
+    drive->local_run = false;
     drive_faults_restart(drive);
 }
 
@@ -250,6 +261,8 @@ int drive_init(drive_t *drive, const drive_config_t *config)
     int err = co_node_init(&drive->node, &node_config);
     if (err != 0)
         return err;
+    drive->local = false;
+    drive->load = 0;
     restart_drive(drive, 0);
     drive->bus_event_count = 0;
     drive->fault_causes = 0;

@@ -38,4 +38,13 @@ void drive_faults_restart(drive_t *drive);
 /* Raises again every fault whose cause is present (after a reset node). */
 void drive_faults_raise_present(drive_t *drive);
 
+/* At the drive (local.c). The motor follows the reference under forced local control. */
+bool drive_local_runs(const drive_t *drive);
+/* The motor stands: a local stop ends in Switch on disabled. */
+void drive_local_motor_stopped(drive_t *drive);
+/* Status word bits of the command channel: remote (bit 9) and the STOP key's. */
+uint16_t drive_local_status(const drive_t *drive);
+/* A network command was applied: it may be the run command that clears the STOP key's bit. */
+void drive_local_command_applied(drive_t *drive);
+
 #endif

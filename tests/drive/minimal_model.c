@@ -24,6 +24,7 @@ const drive_profile_t minimal_profile = {
     .control_ramp_stop = CW_RAMP_STOP,
     .control_fast_stop = CW_FAST_STOP,
     .status_reverse = SW_REVERSE,
+    .status_stop_key = SW_STOP_KEY,
     .fast_ramp_divider = 2,
     .acceleration = {PARAMS, ACC},
     .deceleration = {PARAMS, DEC},

@@ -15,6 +15,7 @@ extern const drive_profile_t minimal_profile;
 #define CW_RAMP_STOP 0x0800u
 #define CW_FAST_STOP 0x1000u
 #define SW_REVERSE 0x4000u
+#define SW_STOP_KEY 0x0100u
 
 /* Its parameters (3000h) and outputs (3001h). */
 #define PARAMS 0x3000

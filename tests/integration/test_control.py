@@ -111,7 +111,11 @@ def test_state_of_every_node_in_text(bus, control):
         (["clear", 4, "OHF"], "error: node 4: no cause of OHF is present"),
         (["mains", 4, "low"], "error: usage: mains NODE undervoltage|normal"),
         (["state", "x"], "error: node x is not present: this daemon runs node-id 4"),
-        (["reboot", 4], "error: unknown command 'reboot': the commands are fault, clear, mains, state"),
+        (["reboot", 4], "error: unknown command 'reboot': the commands are fault, clear, mains, stop-key, run-key, local, load, state"),
+        (["run-key", 4], "error: node 4 is under network control: the RUN key works under local control (local 4 on)"),
+        (["local", 4, "off"], "error: node 4 is under network control already"),
+        (["load", 4, "151"], "error: load 151: give a percentage of nominal torque, 0..150"),
+        (["load", 4, "-1"], "error: load -1: give a percentage of nominal torque, 0..150"),
     ],
 )
 def test_refused_commands_say_why_and_send_nothing(bus, control, words, error):
@@ -133,3 +137,51 @@ def test_no_daemon_is_a_clear_error(tmp_path):
     status, reply = ctl(tmp_path / "none.sock", "state")
     assert status == EX_UNAVAILABLE
     assert "cannot connect" in reply and "--control" in reply
+
+
+def run_fast(bus):
+    """Operational, ACC = DEC = 0.1 s, running at 1500 rpm: TPDO1 says 0x0627."""
+    bus.sdo_write(NODE, 0x203C, 2, 1, 2)
+    bus.sdo_write(NODE, 0x203C, 3, 1, 2)
+    bus.sdo_write(NODE, 0x6042, 0, 1500, 2)
+    bus.nmt(NMT_START, NODE)
+    bus.sdo_write(NODE, 0x6040, 0, 0x0006, 2)
+    bus.sdo_write(NODE, 0x6040, 0, 0x000F, 2)
+    bus.expect(0x184, "2706")
+
+
+def test_stop_key_under_network_control(bus, control):
+    run_fast(bus)
+    assert ctl(control, "stop-key", NODE) == (0, "ok node 4: STOP key (freewheel stop, status word bit 14)")
+    # Switch on disabled, remote, at target 0 (freewheel), bit 14.
+    bus.expect(0x184, "4046")
+    s = state(control)
+    assert (s["cia402"], s["speed_rpm"], s["display"]) == ("Switch on disabled", 0, "nSt")
+    # The master's next run sequence clears bit 14.
+    bus.sdo_write(NODE, 0x6040, 0, 0x0006, 2)
+    bus.expect(0x184, "2106")
+
+
+def test_local_control_and_the_keypad(bus, control):
+    run_fast(bus)
+    assert ctl(control, "local", NODE, "on") == (0, "ok node 4: local control (status word bit 9 = 0)")
+    bus.expect(0x184, "4004")
+    # The network's run command is ignored.
+    bus.sdo_write(NODE, 0x6040, 0, 0x0006, 2)
+    bus.sdo_write(NODE, 0x6040, 0, 0x000F, 2)
+    assert bus.sdo_read(NODE, 0x6041, 0) == 0x0440
+    assert ctl(control, "run-key", NODE) == (0, "ok node 4: RUN key")
+    bus.expect(0x184, "2704")
+    assert ctl(control, "stop-key", NODE)[0] == 0
+    bus.expect(0x184, "4044")
+    assert ctl(control, "local", NODE, "off") == (0, "ok node 4: network control (status word bit 9 = 1)")
+    bus.expect(0x184, "4046")
+
+
+def test_load_raises_torque_and_current(bus, control):
+    run_fast(bus)
+    assert (bus.sdo_read(NODE, 0x2002, 9), bus.sdo_read(NODE, 0x2002, 4)) == (20, 17)
+    assert ctl(control, "load", NODE, 50) == (0, "ok node 4: load 50 %")
+    assert (bus.sdo_read(NODE, 0x2002, 9), bus.sdo_read(NODE, 0x2002, 4)) == (70, 31)
+    s = state(control)
+    assert (s["torque_percent"], s["current_a"], s["speed_rpm"]) == (70, 3.1, 1500)

@@ -134,6 +134,7 @@ typedef enum {
     OPT_STORE,
     OPT_TRACE,
     OPT_CONTROL,
+    OPT_STATUS,
     OPT_LOG_LEVEL,
     OPT_HELP,
     OPT_VERSION
@@ -144,11 +145,17 @@ static const struct {
     opt_t opt;
     bool has_value;
 } options[] = {
-    {"--node-id", OPT_NODE_ID, true},  {"--model", OPT_MODEL, true},
-    {"--store", OPT_STORE, true},      {"--trace", OPT_TRACE, true},
-    {"--control", OPT_CONTROL, true},  {"--log-level", OPT_LOG_LEVEL, true},
-    {"--help", OPT_HELP, false},       {"-h", OPT_HELP, false},
-    {"--version", OPT_VERSION, false}, {"-V", OPT_VERSION, false},
+    {"--node-id", OPT_NODE_ID, true},
+    {"--model", OPT_MODEL, true},
+    {"--store", OPT_STORE, true},
+    {"--trace", OPT_TRACE, true},
+    {"--control", OPT_CONTROL, true},
+    {"--status", OPT_STATUS, true},
+    {"--log-level", OPT_LOG_LEVEL, true},
+    {"--help", OPT_HELP, false},
+    {"-h", OPT_HELP, false},
+    {"--version", OPT_VERSION, false},
+    {"-V", OPT_VERSION, false},
 };
 
 /* Finds the option of "--name" or "--name=value"; *inline_value points after '='. */
@@ -186,6 +193,9 @@ static int apply_option(opt_t opt, const char *value, atv312d_options_t *opts,
         return 0;
     case OPT_CONTROL:
         opts->control_path = value;
+        return 0;
+    case OPT_STATUS:
+        opts->status_path = value;
         return 0;
     case OPT_LOG_LEVEL:
         if (!co_log_level_parse(value, &opts->log_level))
@@ -288,6 +298,9 @@ void atv312d_print_usage(FILE *out)
           "  --trace FILE        write every frame in and out to FILE in candump -L format\n"
           "                      ('-' = standard output)\n"
           "  --control PATH      take control commands on a UNIX socket at PATH (see below)\n"
+          "  --status FILE       rewrite FILE once a second with the CAN controller state,\n"
+          "                      the frame counters and the state of every drive; SIGUSR1\n"
+          "                      writes the same to the log (also without --status)\n"
           "  --log-level LEVEL   error, warn, info (default) or debug, on standard error\n"
           "  -h, --help          show this help\n"
           "  -V, --version       show the version\n"

@@ -22,6 +22,7 @@ typedef struct atv312d_options {
     const char *store_path;   /* NULL: no storage, 1010h aborts */
     const char *trace_path;   /* NULL: no trace; "-": stdout */
     const char *control_path; /* NULL: no control socket */
+    const char *status_path;  /* NULL: no status file (SIGUSR1 still logs the status) */
     co_log_level_t log_level;
     bool help;
     bool version;

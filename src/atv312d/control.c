@@ -367,6 +367,13 @@ static void put_state(const atv312d_control_node_t *node, reply_t *r)
             current / 10, current % 10, torque, shows, run, err, fault ? fault->code : "none");
 }
 
+void atv312d_format_state(const atv312d_control_node_t *node, bool json, char *buf, size_t len)
+{
+    reply_t r = {.buf = buf, .len = len, .json = json};
+    buf[0] = '\0';
+    put_state(node, &r);
+}
+
 static bool command_state(const atv312d_control_t *control, char **words, size_t n, reply_t *r)
 {
     if (n > 2)

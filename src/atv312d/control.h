@@ -41,6 +41,9 @@ typedef struct atv312d_control {
     atv312d_control_client_t clients[ATV312D_CONTROL_CLIENTS];
 } atv312d_control_t;
 
+/* One node's state as `state` reports it: "node 4: nmt ..., fault none" or its JSON object. */
+void atv312d_format_state(const atv312d_control_node_t *node, bool json, char *buf, size_t len);
+
 /* Executes one command line (without its newline) on the nodes; writes the reply line without
  * its newline. Returns true for "ok". */
 bool atv312d_control_execute(const atv312d_control_t *control, const char *line, char *reply,

@@ -19,9 +19,10 @@ extern const drive_fault_table_t atv312_family_faults;
  * stop, modelled as the fast stop) and 14 stop on the fast ramp, DEC / 4 (dCF's default); status
  * word bit 15 is the direction of rotation, bit 14 "stop via the STOP key". Its parameters, at
  * 0x2000 + (ADL - 3000) / 100, sub-index ADL mod 100 + 1 (SPEC section 2): ACC 9001, DEC 9002, HSP
- * 3104, LSP 3105, FRS 9602, NCR 9603, NSP 9604, LCR 3203, OTR 3208, CMD 8501, ETA 3201. A macro,
- * not a function, so that each model's profile stays a constant initialiser (in flash on a
- * microcontroller); the ATV31 (atv31/atv31.h) is the same drive under another name. */
+ * 3104, LSP 3105, FRS 9602, NCR 9603, NSP 9604, LCR 3203, OTR 3208, CMD 8501, ETA 3201, COL
+ * 6401, CnF 6402. A macro, not a function, so that each model's profile stays a constant
+ * initialiser (in flash on a microcontroller); the ATV31 (atv31/atv31.h) is the same drive under
+ * another name. */
 #define ATV312_FAMILY_PROFILE(dictionary)                                                          \
     {                                                                                              \
         .od = (dictionary), .control_reverse = 0x0800, .control_ramp_stop = 0x1000,                \
@@ -31,6 +32,7 @@ extern const drive_fault_table_t atv312_family_faults;
         .nominal_current = {0x2042, 4}, .nominal_speed = {0x2042, 5},                              \
         .motor_current = {0x2002, 4}, .motor_torque = {0x2002, 9},                                 \
         .control_word_copy = {0x2037, 2}, .status_word_copy = {0x2002, 2},                         \
+        .communication_loss_mode = {0x2022, 2}, .network_fault_code = {0x2022, 3},                 \
         .faults = &atv312_family_faults,                                                           \
     }
 

@@ -47,11 +47,23 @@ typedef struct drive_profile {
     /* Manufacturer copies of the CiA 402 words: one word at two addresses, kept equal. */
     drive_param_t control_word_copy;
     drive_param_t status_word_copy;
+    /* What the drive does on a communication loss (the Altivars' COL: a DRIVE_COMMUNICATION_LOSS_*
+     * value; {0, 0}: always the fault), and where it latches the network fault code (CnF:
+     * DRIVE_NETWORK_FAULT_TIME_OUT after a loss, until a reset node; {0, 0}: nowhere). */
+    drive_param_t communication_loss_mode;
+    drive_param_t network_fault_code;
     /* Status word bit set after the keypad's STOP key (the Altivars' ETA bit 14). */
     uint16_t status_stop_key;
     /* The faults of the model's manuals (faults.h); required. */
     const drive_fault_table_t *faults;
 } drive_profile_t;
+
+/* Values of the profile's communication_loss_mode. */
+#define DRIVE_COMMUNICATION_LOSS_IGNORE 0 /* the drive goes on; only the fault code is latched */
+#define DRIVE_COMMUNICATION_LOSS_FAULT 1  /* the communication-loss fault: freewheel, Fault */
+/* The network fault code of a communication loss ("time out on the reception of the periodic
+ * variables addressed to the drive", ATV312 DeviceNet manual). */
+#define DRIVE_NETWORK_FAULT_TIME_OUT 1
 
 /* CAN conditions the runtime reports at once (overrun, error passive, bus off). */
 #define DRIVE_BUS_EVENTS_MAX 4

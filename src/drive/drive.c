@@ -146,11 +146,18 @@ void drive_settle(drive_t *drive)
     publish(drive);
 }
 
-/* The network fault (the Altivars' COF): the model's communication-loss entry of its fault
- * table, latched until a fault reset. */
+/* A communication loss latches the network fault code and, unless the model's mode parameter
+ * says to ignore it, raises the model's communication-loss fault (the Altivars' COF), latched
+ * until a fault reset. A model without the mode parameter always faults. */
 static void communication_fault(drive_t *drive)
 {
-    drive_fault_raise(drive, drive->profile->faults->communication_loss);
+    const drive_profile_t *profile = drive->profile;
+    drive_param_t mode = profile->communication_loss_mode;
+    co_od_set_value(&drive->node, profile->network_fault_code.index,
+                    profile->network_fault_code.subindex, DRIVE_NETWORK_FAULT_TIME_OUT);
+    if (mode.index != 0 && drive_param_value(drive, mode) == DRIVE_COMMUNICATION_LOSS_IGNORE)
+        return;
+    drive_fault_raise(drive, profile->faults->communication_loss);
 }
 
 static bool is_control_word(const drive_t *drive, const co_od_entry_t *entry)

@@ -1,7 +1,7 @@
 /* The ATV312's faults: every code of its table faults the drive with the EMCY code of the
  * manuals (the ATV58 table, the seeds' only one), 603Fh, ETA 2002h:02, 1001h and 1003h, and is
  * reset by its class: the mains undervoltage USF by itself, OHF by a fault reset once the cause
- * is gone, OCF only by a reset node. */
+ * is gone, OCF only by a reset node; the communication loss follows COL and latches CnF. */
 #include "atv312_bench.h"
 #include "check_main.h"
 
@@ -137,6 +137,68 @@ START_TEST(overcurrent_needs_power_cycle)
 }
 END_TEST
 
+/* Heartbeat consumer 100 ms on node 1, running at 1500 rpm, then the producer stops: the loss
+ * comes 100 ms after its last heartbeat. */
+static void lose_heartbeat(bench_t *b)
+{
+    ck_assert_uint_eq(bench_sdo_write(b, 0x1016, 1, 0x00010064, 4), 0);
+    ck_assert_uint_eq(bench_sdo_write(b, 0x6042, 0, 1500, 2), 0);
+    bench_command(b, 0x0006);
+    bench_command(b, 0x000F);
+    bench_rx(b, "701#05");
+    bench_advance(b, 3000000);
+}
+
+/* COL = 1 (the default): the communication loss is the COF fault; CnF latches the time out
+ * until a reset node, also across the fault reset. */
+START_TEST(communication_loss_faults_by_default)
+{
+    bench_t b;
+    bench_start(&b);
+    ck_assert_uint_eq(bench_read(&b, 0x2022, 2), 1);
+    ck_assert_uint_eq(bench_read(&b, 0x2022, 3), 0);
+    lose_heartbeat(&b);
+    bench_expect(&b, "084#3081110000000000");
+    ck_assert_uint_eq(bench_read(&b, 0x6041, 0), 0x0608);
+    ck_assert_uint_eq(bench_read(&b, 0x2022, 3), 1);
+    ck_assert_uint_eq(bench_command(&b, 0x0080), 0x0640);
+    bench_expect(&b, "084#0000000000000000");
+    ck_assert_uint_eq(bench_read(&b, 0x2022, 3), 1);
+    bench_rx(&b, "000#8104");
+    bench_expect(&b, "704#00");
+    ck_assert_uint_eq(bench_read(&b, 0x2022, 3), 0);
+}
+END_TEST
+
+/* COL = 0: the drive ignores the loss and keeps running; CnF still says it happened. */
+START_TEST(communication_loss_ignored_with_col_0)
+{
+    bench_t b;
+    bench_start(&b);
+    ck_assert_uint_eq(bench_sdo_write(&b, 0x2022, 2, 0, 2), 0);
+    lose_heartbeat(&b);
+    bench_expect_none(&b);
+    ck_assert_int_eq(bench_speed(&b), 1500);
+    ck_assert_uint_eq(bench_read(&b, 0x6041, 0), 0x0627);
+    ck_assert_uint_eq(bench_read(&b, 0x2022, 3), 1);
+}
+END_TEST
+
+/* COL is a configuration parameter with the values 0 and 1; CnF is read-only. */
+START_TEST(col_is_a_configuration_parameter)
+{
+    bench_t b;
+    bench_start(&b);
+    ck_assert_uint_eq(bench_sdo_write(&b, 0x2022, 2, 2, 2), 0x06090031);
+    ck_assert_uint_eq(bench_sdo_write(&b, 0x2022, 3, 0, 2), 0x06010002);
+    ck_assert_uint_eq(bench_sdo_write(&b, 0x6042, 0, 1500, 2), 0);
+    bench_command(&b, 0x0006);
+    bench_command(&b, 0x000F);
+    ck_assert_uint_eq(bench_sdo_write(&b, 0x2022, 2, 0, 2), 0x08000022);
+    ck_assert_uint_eq(bench_read(&b, 0x2022, 2), 1);
+}
+END_TEST
+
 int main(void)
 {
     Suite *s = suite_create("atv312_faults");
@@ -146,6 +208,9 @@ int main(void)
     tcase_add_test(tc, undervoltage_resets_itself);
     tcase_add_test(tc, overheating_needs_cause_gone_then_reset);
     tcase_add_test(tc, overcurrent_needs_power_cycle);
+    tcase_add_test(tc, communication_loss_faults_by_default);
+    tcase_add_test(tc, communication_loss_ignored_with_col_0);
+    tcase_add_test(tc, col_is_a_configuration_parameter);
     suite_add_tcase(s, tc);
     return check_run_suite(s);
 }

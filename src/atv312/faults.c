@@ -15,11 +15,12 @@
 #define AUTOMATIC DRIVE_FAULT_RESET_AUTOMATIC
 #define POWER_CYCLE DRIVE_FAULT_RESET_POWER_CYCLE
 
-/* The communication-loss fault (life guarding or heartbeat consumer timeout) is entry 0. */
+/* The communication-loss fault (life guarding or heartbeat consumer timeout) is entry 0: CnF,
+ * the network fault as SPEC section 3 names it (the ATV312 CANopen manual calls the life guarding
+ * fault COF), EMCY 0x8130. */
 static const drive_fault_def_t faults[] = {
-    {"COF", "CANopen communication fault (life guarding, heartbeat)", 0x8130, COMMUNICATION,
-     COMMAND},
-    {"CnF", "network fault (communication option card)", 0x7520, COMMUNICATION, COMMAND},
+    {"CnF", "network fault (life guarding, heartbeat)", 0x8130, COMMUNICATION, COMMAND},
+    {"ILF", "internal communication link fault (option card)", 0x7520, COMMUNICATION, POWER_CYCLE},
     {"SLF", "Modbus serial link fault", 0x7510, COMMUNICATION, COMMAND},
     {"OCF", "overcurrent", 0x2310, CURRENT, POWER_CYCLE},
     {"SCF", "motor short circuit (phase, earth)", 0x2320, CURRENT, POWER_CYCLE},

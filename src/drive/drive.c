@@ -147,7 +147,7 @@ void drive_settle(drive_t *drive)
 }
 
 /* A communication loss latches the network fault code and, unless the model's mode parameter
- * says to ignore it, raises the model's communication-loss fault (the Altivars' COF), latched
+ * says to ignore it, raises the model's communication-loss fault (the Altivars' CnF), latched
  * until a fault reset. A model without the mode parameter always faults. */
 static void communication_fault(drive_t *drive)
 {

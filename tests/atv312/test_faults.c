@@ -11,8 +11,8 @@ static const struct {
     const char *emcy;
     drive_fault_reset_t reset;
 } expected[] = {
-    {"COF", "084#3081110000000000", DRIVE_FAULT_RESET_COMMAND},
-    {"CnF", "084#2075110000000000", DRIVE_FAULT_RESET_COMMAND},
+    {"CnF", "084#3081110000000000", DRIVE_FAULT_RESET_COMMAND},
+    {"ILF", "084#2075110000000000", DRIVE_FAULT_RESET_POWER_CYCLE},
     {"SLF", "084#1075110000000000", DRIVE_FAULT_RESET_COMMAND},
     {"OCF", "084#1023030000000000", DRIVE_FAULT_RESET_POWER_CYCLE},
     {"SCF", "084#2023030000000000", DRIVE_FAULT_RESET_POWER_CYCLE},
@@ -59,7 +59,7 @@ START_TEST(table_is_the_manuals)
 {
     ck_assert_uint_eq(atv312_family_faults.count, EXPECTED_COUNT);
     ck_assert_str_eq(atv312_family_faults.faults[atv312_family_faults.communication_loss].code,
-                     "COF");
+                     "CnF");
 }
 END_TEST
 
@@ -149,7 +149,7 @@ static void lose_heartbeat(bench_t *b)
     bench_advance(b, 3000000);
 }
 
-/* COL = 1 (the default): the communication loss is the COF fault; CnF latches the time out
+/* COL = 1 (the default): the communication loss is the CnF fault; 2022:03 latches the time out
  * until a reset node, also across the fault reset. */
 START_TEST(communication_loss_faults_by_default)
 {

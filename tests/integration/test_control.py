@@ -105,7 +105,7 @@ def test_state_of_every_node_in_text(bus, control):
 @pytest.mark.parametrize(
     "words, error",
     [
-        (["fault", 4, "XYZ"], "error: unknown fault 'XYZ': node 4 knows COF, CnF, SLF, OCF, SCF, OSF, USF, PHF, ObF, OPF, OHF, OtF, OLF, SOF, CrF, EEF, InF, CFF, CFI, LFF, EPF"),
+        (["fault", 4, "XYZ"], "error: unknown fault 'XYZ': node 4 knows CnF, ILF, SLF, OCF, SCF, OSF, USF, PHF, ObF, OPF, OHF, OtF, OLF, SOF, CrF, EEF, InF, CFF, CFI, LFF, EPF"),
         (["fault", 9, "OHF"], "error: node 9 is not present: this daemon runs node-id 4"),
         (["fault", 4], "error: usage: fault NODE CODE (e.g. fault 4 OHF)"),
         (["clear", 4, "OHF"], "error: node 4: no cause of OHF is present"),

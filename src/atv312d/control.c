@@ -457,7 +457,7 @@ static atv312d_control_client_t *client_of(atv312d_control_t *control, int fd)
  * the loop never waits for a client). */
 static void answer(atv312d_control_t *control, atv312d_control_client_t *client)
 {
-    char reply[8192];
+    static char reply[ATV312D_CONTROL_REPLY_MAX];
     client->line[client->len] = '\0';
     if (client->overlong)
         snprintf(reply, sizeof reply, "error: command longer than %d characters",
@@ -643,7 +643,7 @@ int atv312d_control_client(int argc, char *const argv[])
     int fd = connect_to(path);
     if (fd < 0)
         return EX_UNAVAILABLE;
-    char reply[8192];
+    static char reply[ATV312D_CONTROL_REPLY_MAX];
     size_t got = 0;
     bool complete = false;
     if (send(fd, line, used, MSG_NOSIGNAL) == (ssize_t)used) {

@@ -17,6 +17,8 @@
 
 /* Longest command line; a longer one is refused. */
 #define ATV312D_CONTROL_LINE_MAX 256
+/* Longest reply line: `state` of 127 drives in JSON, about 330 bytes each, fits. */
+#define ATV312D_CONTROL_REPLY_MAX 65536
 /* Connections served at once; more wait in the listen backlog. */
 #define ATV312D_CONTROL_CLIENTS 8
 

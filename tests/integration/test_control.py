@@ -185,3 +185,16 @@ def test_load_raises_torque_and_current(bus, control):
     assert (bus.sdo_read(NODE, 0x2002, 9), bus.sdo_read(NODE, 0x2002, 4)) == (70, 31)
     s = state(control)
     assert (s["torque_percent"], s["current_a"], s["speed_rpm"]) == (70, 3.1, 1500)
+
+
+def test_state_of_a_full_bench(bus, start_daemon, tmp_path):
+    """127 drives: `state` answers every one on one line, whole (text and JSON)."""
+    sock = tmp_path / "bench.sock"
+    start_daemon(bus, "--node-id", "1-127", "--control", sock)
+    status, reply = ctl(sock, "--json", "state")
+    assert status == 0
+    nodes = json.loads(reply)["nodes"]
+    assert [n["node"] for n in nodes] == list(range(1, 128))
+    assert {n["cia402"] for n in nodes} == {"Switch on disabled"}
+    status, reply = ctl(sock, "state")
+    assert status == 0 and reply.count("; node ") == 126 and reply.endswith("node 127: nmt Pre-operational, cia402 Switch on disabled, statusword 0640, speed 0 rpm, current 0.0 A, torque 0 %, display nSt, RUN blinking, ERR off, fault none")

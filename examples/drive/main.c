@@ -5,6 +5,7 @@
  * take it through the CiA 402 state machine to Operation enabled at 1200 rpm. Every frame is
  * printed in candump -L format (canopen::linux); each answer and state is checked. Exits 0 when
  * all is right, 1 otherwise. */
+#include "co/co_emcy.h"
 #include "co_linux/can_frame.h"
 #include "co_linux/candump.h"
 #include "conveyor_od.h"
@@ -17,9 +18,22 @@
 #define SDO_REQUEST (0x600 + NODE_ID)
 #define SDO_RESPONSE (0x580 + NODE_ID)
 
-/* Where the conveyor's parameters are (conveyor.eds, 3000h and 3001h). */
+/* The conveyor's faults: the communication loss the drive raises itself (heartbeat or life
+ * guarding), and an overheating a test could inject (drive/faults.h). */
+static const drive_fault_def_t conveyor_fault_defs[] = {
+    {"CnF", "communication loss", 0x8130, CO_ERR_REG_COMMUNICATION, DRIVE_FAULT_RESET_COMMAND},
+    {"OHF", "overheating", 0x4210, CO_ERR_REG_TEMPERATURE, DRIVE_FAULT_RESET_COMMAND},
+};
+static const drive_fault_table_t conveyor_faults = {
+    .faults = conveyor_fault_defs,
+    .count = sizeof conveyor_fault_defs / sizeof conveyor_fault_defs[0],
+    .communication_loss = 0,
+};
+
+/* Where the conveyor's parameters are (conveyor.eds, 3000h and 3001h), and its faults. */
 static const drive_profile_t conveyor_profile = {
     .od = &conveyor_od,
+    .faults = &conveyor_faults,
     .acceleration = DRIVE_PARAM(0x3000, 1),
     .deceleration = DRIVE_PARAM(0x3000, 2),
     .high_speed = DRIVE_PARAM(0x3000, 3),

@@ -16,5 +16,7 @@
 #define ATV58_NODE_ID_MAX 63
 
 extern const drive_profile_t atv58_profile;
+/* The faults of its manual's EMCY table (src/atv58/faults.c). */
+extern const drive_fault_table_t atv58_faults;
 
 #endif

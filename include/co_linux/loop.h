@@ -86,6 +86,17 @@ typedef enum co_linux_tx_wait {
     CO_LINUX_TX_RETRY     /* queue waiting for a retry deadline (ENOBUFS without EPOLLOUT) */
 } co_linux_tx_wait_t;
 
+/* A descriptor of the application's that the loop watches besides its own (a control socket,
+ * its connections): fn runs when it is readable, then the loop settles as after any event. */
+typedef void (*co_linux_watch_fn)(void *ctx, int fd);
+#define CO_LINUX_WATCH_MAX 16
+
+typedef struct co_linux_watch {
+    int fd; /* -1: free */
+    co_linux_watch_fn fn;
+    void *ctx;
+} co_linux_watch_t;
+
 typedef struct co_linux_condition {
     uint16_t emcy_code;
     bool wanted;   /* what the bus says */
@@ -123,6 +134,8 @@ struct co_linux_loop {
 
     co_linux_stats_t stats;
 
+    co_linux_watch_t watches[CO_LINUX_WATCH_MAX];
+
     const char *open_call; /* the system call that failed in co_linux_loop_open */
     int open_errno;
 
@@ -147,6 +160,15 @@ void co_linux_loop_add(co_linux_loop_t *loop, co_linux_device_t *device,
 /* Starts every device and runs until SIGINT or SIGTERM (returns 0), co_linux_loop_stop, or a
  * failure of the loop itself (returns EX_OSERR). */
 int co_linux_loop_run(co_linux_loop_t *loop);
+
+/* Watches fd (readable) for the application; 0, or -1 with errno set (ENOSPC when
+ * CO_LINUX_WATCH_MAX descriptors are watched already). */
+int co_linux_loop_watch(co_linux_loop_t *loop, int fd, co_linux_watch_fn fn, void *ctx);
+/* Stops watching fd (before the application closes it); may be called from its fn. */
+void co_linux_loop_unwatch(co_linux_loop_t *loop, int fd);
+/* Runs a device's process function now and takes its new deadline: the application changed the
+ * device outside a frame or a deadline (from a watched descriptor's fn). */
+void co_linux_device_process(co_linux_device_t *device);
 
 /* Makes co_linux_loop_run return `status` after the current wake-up. */
 void co_linux_loop_stop(co_linux_loop_t *loop, int status);

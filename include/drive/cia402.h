@@ -54,6 +54,9 @@ bool cia402_drives_motor(const cia402_state_machine_t *sm);
 bool cia402_runs(const cia402_state_machine_t *sm);
 /* Transitions 13 and 14: the fault reaction (a freewheel stop) is immediate. */
 void cia402_fault(cia402_state_machine_t *sm);
+/* The last fault ended by itself (a fault whose cause went away): Fault -> Switch on disabled,
+ * as a fault reset would. */
+void cia402_fault_cleared(cia402_state_machine_t *sm);
 /* A configuration parameter changed: Ready to switch on, Switched on and Operation enabled
  * return to Switch on disabled. */
 void cia402_configuration_changed(cia402_state_machine_t *sm);

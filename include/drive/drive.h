@@ -12,6 +12,7 @@
 
 #include "co/co_node.h"
 #include "drive/cia402.h"
+#include "drive/faults.h"
 #include "drive/motor.h"
 
 /* Where a parameter lives in a model's dictionary; {0, 0, fixed} where the model has none (it then
@@ -37,9 +38,9 @@ typedef struct drive_param {
 typedef struct drive_profile {
     const co_od_t *od;
     uint32_t node_options; /* the core's CO_NODE_* options of the model's profile (co_node.h) */
-    /* The 1001h bits of the drive's faults and CAN errors (CiA 301 table 48; 1001h bit 0 is
-     * always set with them). */
-    uint8_t fault_error_register;
+    /* The 1001h bits of the EMCYs of CAN bus conditions (drive_bus_event; CiA 301 table 48);
+     * 0: bits 0 and 4, generic and communication. A fault's bits are in its table entry. */
+    uint8_t bus_error_register;
     /* Control word bits 11-15 are manufacturer-specific in CiA 402: the model's meaning of each. */
     uint16_t control_reverse;   /* reverses the reference */
     uint16_t control_ramp_stop; /* stops on the deceleration ramp, run command kept */
@@ -62,7 +63,23 @@ typedef struct drive_profile {
     /* Manufacturer copies of the CiA 402 words: one word at two addresses, kept equal. */
     drive_param_t control_word_copy;
     drive_param_t status_word_copy;
+    /* What the drive does on a communication loss (the Altivars' COL: a DRIVE_COMMUNICATION_LOSS_*
+     * value; {0, 0}: always the fault), and where it latches the network fault code (CnF:
+     * DRIVE_NETWORK_FAULT_TIME_OUT after a loss, until a reset node; {0, 0}: nowhere). */
+    drive_param_t communication_loss_mode;
+    drive_param_t network_fault_code;
+    /* Status word bit set after the keypad's STOP key (the Altivars' ETA bit 14). */
+    uint16_t status_stop_key;
+    /* The faults of the model's manuals (faults.h); required. */
+    const drive_fault_table_t *faults;
 } drive_profile_t;
+
+/* Values of the profile's communication_loss_mode. */
+#define DRIVE_COMMUNICATION_LOSS_IGNORE 0 /* the drive goes on; only the fault code is latched */
+#define DRIVE_COMMUNICATION_LOSS_FAULT 1  /* the communication-loss fault: freewheel, Fault */
+/* The network fault code of a communication loss ("time out on the reception of the periodic
+ * variables addressed to the drive", ATV312 DeviceNet manual). */
+#define DRIVE_NETWORK_FAULT_TIME_OUT 1
 
 /* CAN conditions the runtime reports at once (overrun, error passive, bus off). */
 #define DRIVE_BUS_EVENTS_MAX 4
@@ -73,12 +90,23 @@ typedef struct drive {
     cia402_state_machine_t cia402;
     drive_motor_t motor;
     bool limited; /* the reference is outside the speed limits (status word bit 11) */
-    /* The EMCY code of the latched fault, 0 when none: 603Fh shows it where the model has it. */
-    uint16_t fault;
     /* Bus conditions still present: a reset node forgets their EMCYs, not the conditions. */
     uint16_t bus_events[DRIVE_BUS_EVENTS_MAX];
     uint8_t bus_event_count;
+    /* Faults, one bit per entry of the profile's table: raised and not yet reset, and those
+     * whose cause is present (injected and not removed). */
+    uint32_t faults_active;
+    uint32_t fault_causes;
+    uint8_t fault_latched; /* the entry in 603Fh and on the display while faults_active */
+    /* At the drive (local.c): forced local control, the keypad's keys, the load. */
+    bool local;     /* forced local: the network's control word is ignored, bit 9 = 0 */
+    bool local_run; /* the RUN key's run command, under forced local control */
+    bool stop_key;  /* the STOP key was pressed, until the next run command */
+    uint8_t load;   /* extra load torque, % of nominal torque */
 } drive_t;
+
+/* drive_init's error for a profile without a valid fault table. */
+#define DRIVE_INIT_BAD_FAULTS 0x200
 
 typedef struct drive_config {
     const drive_profile_t *profile;
@@ -89,7 +117,7 @@ typedef struct drive_config {
     const co_storage_t *storage; /* may be NULL: 1010h/1011h then abort */
 } drive_config_t;
 
-/* 0 or the co_node_init error. Sends nothing; call drive_start next. */
+/* 0, the co_node_init error, or DRIVE_INIT_BAD_FAULTS. Sends nothing; call drive_start next. */
 int drive_init(drive_t *drive, const drive_config_t *config);
 /* Boot-up: Pre-operational, the power state machine in Switch on disabled. */
 void drive_start(drive_t *drive, co_time_t now);
@@ -101,6 +129,34 @@ co_time_t drive_process(drive_t *drive, co_time_t now);
  * (active) or clears the EMCY, and raises it again after a reset node while it lasts. They do not
  * fault the drive. */
 void drive_bus_event(drive_t *drive, uint16_t emcy_code, bool active);
+/* Faults (faults.h). The index of the model's fault whose code is `code`, compared without
+ * case ("ohf" finds OHF), or -1. */
+int drive_fault_find(const drive_t *drive, const char *code);
+/* The cause of fault `index` appears at `now`: the drive faults unless that fault is active
+ * already. Other faults may be active too: each sends its EMCY; the first stays in 603Fh. */
+void drive_fault_inject(drive_t *drive, uint8_t index, co_time_t now);
+/* The cause of fault `index` is gone at `now`: a fault of the automatic class resets itself (the
+ * drive leaves Fault when no other fault is active); the others may now be reset. */
+void drive_fault_remove_cause(drive_t *drive, uint8_t index, co_time_t now);
+bool drive_fault_cause_present(const drive_t *drive, uint8_t index);
+/* The fault in 603Fh while the drive is in Fault, else NULL. */
+const drive_fault_def_t *drive_fault_latched(const drive_t *drive);
+/* At the drive, for people testing a master (atv312d's control surface); `now` is the time of
+ * the event. Forced local control on or off (status word bit 9 = 0 while on) changes the command
+ * channel: a freewheel stop to Switch on disabled (a fault stays latched); under it the network's
+ * control word is kept but ignored and the keypad runs the drive. */
+void drive_set_local(drive_t *drive, bool local, co_time_t now);
+/* The keypad's STOP key: the profile's status_stop_key bit is set until the next run command (the
+ * RUN key, or a network command leaving Switch on disabled). Under network control a freewheel
+ * stop to Switch on disabled (the Altivars' "STOP key priority"); under local control a stop on
+ * the deceleration ramp, then Switch on disabled. */
+void drive_stop_key(drive_t *drive, co_time_t now);
+/* The keypad's RUN key: under local control and not in Fault, Operation enabled and the motor
+ * runs to the reference 6042h; false (nothing happens) otherwise. */
+bool drive_run_key(drive_t *drive, co_time_t now);
+/* An extra load on the motor, % of nominal torque (0..150): torque and current follow while
+ * the motor turns. */
+void drive_set_load(drive_t *drive, uint8_t percent, co_time_t now);
 /* For logs: "Switch on disabled", "Operation enabled", ... */
 const char *drive_state_name(const drive_t *drive);
 

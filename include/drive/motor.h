@@ -27,6 +27,7 @@ typedef struct drive_motor {
     uint64_t remainder; /* of the last ramp division, carried to the next interval */
     co_time_t updated;  /* time the speed refers to */
     drive_ramp_t ramp;  /* parameters used since `updated` */
+    uint8_t load;       /* extra load torque while turning, % of nominal torque */
 } drive_motor_t;
 
 void drive_motor_reset(drive_motor_t *motor, co_time_t now);
@@ -47,7 +48,11 @@ bool drive_motor_reverse(const drive_motor_t *motor);
 bool drive_motor_at_target(const drive_motor_t *motor);
 /* Next sample of a running ramp, CO_TIME_NEVER when steady. */
 co_time_t drive_motor_deadline(const drive_motor_t *motor);
-/* Torque in % of nominal while the output is on: load plus the torque the ramp demands. */
+/* An extra load, % of nominal torque, added to the torque while the motor turns (0 after a
+ * reset). */
+void drive_motor_load(drive_motor_t *motor, uint8_t percent);
+/* Torque in % of nominal while the output is on: the fan-like load, the extra load while
+ * turning, and the torque the ramp demands, limited to 150 %. */
 int16_t drive_motor_torque(const drive_motor_t *motor);
 
 #endif

@@ -133,6 +133,8 @@ typedef enum {
     OPT_MODEL,
     OPT_STORE,
     OPT_TRACE,
+    OPT_CONTROL,
+    OPT_STATUS,
     OPT_LOG_LEVEL,
     OPT_HELP,
     OPT_VERSION
@@ -147,6 +149,8 @@ static const struct {
     {"--model", OPT_MODEL, true},
     {"--store", OPT_STORE, true},
     {"--trace", OPT_TRACE, true},
+    {"--control", OPT_CONTROL, true},
+    {"--status", OPT_STATUS, true},
     {"--log-level", OPT_LOG_LEVEL, true},
     {"--help", OPT_HELP, false},
     {"-h", OPT_HELP, false},
@@ -186,6 +190,12 @@ static int apply_option(opt_t opt, const char *value, atv312d_options_t *opts,
         return 0;
     case OPT_TRACE:
         opts->trace_path = value;
+        return 0;
+    case OPT_CONTROL:
+        opts->control_path = value;
+        return 0;
+    case OPT_STATUS:
+        opts->status_path = value;
         return 0;
     case OPT_LOG_LEVEL:
         if (!co_log_level_parse(value, &opts->log_level))
@@ -273,6 +283,7 @@ int atv312d_parse_args(int argc, char *const argv[], atv312d_options_t *opts, ch
 void atv312d_print_usage(FILE *out)
 {
     fputs("usage: atv312d IFACE --node-id N [--model M] [--node-id N [--model M]...] [options]\n"
+          "       atv312d ctl PATH [--json] COMMAND...\n"
           "\n"
           "Puts emulated Schneider Altivar drives (CANopen, CiA 402) on a SocketCAN\n"
           "interface.\n"
@@ -290,11 +301,33 @@ void atv312d_print_usage(FILE *out)
           "                      it, one record per node-id); without it 1010h aborts\n"
           "  --trace FILE        write every frame in and out to FILE in candump -L format\n"
           "                      ('-' = standard output)\n"
+          "  --control PATH      take control commands on a UNIX socket at PATH (see below)\n"
+          "  --status FILE       rewrite FILE once a second with the CAN controller state,\n"
+          "                      the frame counters and the state of every drive; SIGUSR1\n"
+          "                      writes the same to the log (also without --status)\n"
           "  --log-level LEVEL   error, warn, info (default) or debug, on standard error\n"
           "  -h, --help          show this help\n"
           "  -V, --version       show the version\n"
           "\n"
           "Example: atv312d vcan0 --node-id 4-5 --model atv312 --node-id 6\n"
+          "\n"
+          "Control commands, for testing a master: atv312d ctl PATH COMMAND sends one to the\n"
+          "daemon started with --control PATH and prints its one-line reply, 'ok ...' (exit 0)\n"
+          "or 'error: ...' (exit 65); with --json the reply is a JSON object.\n"
+          "  fault NODE CODE     the fault CODE (OHF, OCF, USF, CnF, ...) happens: EMCY, 603Fh,\n"
+          "                      state Fault; its cause stays until cleared\n"
+          "  clear NODE CODE|all the cause of the fault is gone (a fault reset is then\n"
+          "                      accepted; USF, CFF and CFI end by themselves)\n"
+          "  mains NODE undervoltage|normal  mains undervoltage (the fault USF) or back\n"
+          "  stop-key NODE       the keypad's STOP key: status word bit 14; a freewheel stop\n"
+          "                      under network control, a ramp stop under local control\n"
+          "  run-key NODE        the keypad's RUN key, under local control: runs to 6042h\n"
+          "  local NODE on|off   forced local control (status word bit 9 = 0): the network's\n"
+          "                      control word is ignored; either way a freewheel stop\n"
+          "  load NODE PERCENT   extra load torque, 0..150 % of nominal: torque and current\n"
+          "  state [NODE]        NMT and CiA 402 state, status word, speed, current, torque,\n"
+          "                      front panel display, RUN and ERR LEDs, latched fault\n"
+          "Example: atv312d ctl /tmp/atv312d.sock fault 4 OHF\n"
           "\n"
           "Exit status: 0 after SIGINT/SIGTERM, 64 usage error, 69 interface or CAN support\n"
           "missing, 70 internal error, 71 system error, 73 cannot create the trace or store\n"

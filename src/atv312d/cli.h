@@ -19,8 +19,10 @@ typedef struct atv312d_options {
     uint8_t node_ids[ATV312D_NODE_ID_MAX];              /* ascending, each once */
     const atv312d_model_t *models[ATV312D_NODE_ID_MAX]; /* the model of node_ids[i] */
     size_t node_count;
-    const char *store_path; /* NULL: no storage, 1010h aborts */
-    const char *trace_path; /* NULL: no trace; "-": stdout */
+    const char *store_path;   /* NULL: no storage, 1010h aborts */
+    const char *trace_path;   /* NULL: no trace; "-": stdout */
+    const char *control_path; /* NULL: no control socket */
+    const char *status_path;  /* NULL: no status file (SIGUSR1 still logs the status) */
     co_log_level_t log_level;
     bool help;
     bool version;

@@ -5,7 +5,9 @@
 #include "co_linux/file_store.h"
 #include "co_linux/log.h"
 #include "co_linux/loop.h"
+#include "control.h"
 #include "drive/drive.h"
+#include "status.h"
 
 #include <errno.h>
 #include <signal.h>
@@ -326,8 +328,24 @@ static int init_drives(drive_slot_t *slots, const atv312d_options_t *opts, co_fi
     return 0;
 }
 
+/* The control surface (--control) and the status surface (--status, SIGUSR1) on the drives. */
+static int open_surfaces(atv312d_control_t *control, atv312d_status_t *status,
+                         co_linux_loop_t *loop, const atv312d_options_t *opts, drive_slot_t *slots,
+                         atv312d_control_node_t *nodes)
+{
+    for (size_t i = 0; i < opts->node_count; i++)
+        nodes[i] = (atv312d_control_node_t){.drive = &slots[i].drive, .device = &slots[i].device};
+    int rc = atv312d_status_open(status, loop, opts->status_path, nodes, opts->node_count);
+    if (rc == 0 && opts->control_path)
+        rc = atv312d_control_open(control, loop, opts->control_path, nodes, opts->node_count);
+    return rc;
+}
+
 static int run(const atv312d_options_t *opts, FILE *trace, co_file_store_t *store)
 {
+    static atv312d_control_t control = {.listen_fd = -1};
+    static atv312d_status_t status = {.timer_fd = -1, .signal_fd = -1};
+    static atv312d_control_node_t control_nodes[ATV312D_NODE_ID_MAX];
     static co_linux_loop_t loop;
     co_linux_loop_config_t config = {.iface = opts->iface, .trace = trace};
     co_linux_open_result_t opened = co_linux_loop_open(&loop, &config);
@@ -335,6 +353,8 @@ static int run(const atv312d_options_t *opts, FILE *trace, co_file_store_t *stor
         return report_open_error(&loop, opened);
     drive_slot_t *slots = calloc(opts->node_count, sizeof *slots);
     int rc = slots ? init_drives(slots, opts, store, &loop) : EX_OSERR;
+    if (rc == 0)
+        rc = open_surfaces(&control, &status, &loop, opts, slots, control_nodes);
     if (rc == 0) {
         char ids[2048];
         format_node_ids(opts, ids, sizeof ids);
@@ -347,6 +367,8 @@ static int run(const atv312d_options_t *opts, FILE *trace, co_file_store_t *stor
                loop.stats.wakeups, loop.stats.rx, loop.stats.tx, loop.stats.tx_dropped,
                loop.stats.down_dropped, loop.stats.error_frames);
     }
+    atv312d_control_close(&control);
+    atv312d_status_close(&status);
     co_linux_loop_close(&loop);
     if (slots) {
         for (size_t i = 0; i < opts->node_count; i++) {
@@ -363,6 +385,8 @@ int main(int argc, char *argv[])
     atv312d_options_t opts;
     char err[256];
     co_log_setup("atv312d", CO_LOG_INFO);
+    if (argc >= 2 && strcmp(argv[1], "ctl") == 0)
+        return atv312d_control_client(argc - 2, argv + 2);
     int rc = atv312d_parse_args(argc, argv, &opts, err, sizeof err);
     if (rc != 0) {
         co_log(CO_LOG_ERROR, "%s", err);

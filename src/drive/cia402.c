@@ -117,6 +117,12 @@ void cia402_fault(cia402_state_machine_t *sm)
     sm->state = CIA402_FAULT;
 }
 
+void cia402_fault_cleared(cia402_state_machine_t *sm)
+{
+    if (sm->state == CIA402_FAULT)
+        sm->state = CIA402_SWITCH_ON_DISABLED;
+}
+
 void cia402_configuration_changed(cia402_state_machine_t *sm)
 {
     if (sm->state == CIA402_READY_TO_SWITCH_ON || sm->state == CIA402_SWITCHED_ON ||

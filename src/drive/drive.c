@@ -5,6 +5,16 @@
 
 #include <stddef.h>
 
+/* The EMCY error register of a CAN bus condition where the profile gives none: 1001h bit 0
+ * (generic, "error (1)" in the ATV312 table) and bit 4 (communication), CiA 301 table 48. */
+#define COMMUNICATION_ERROR_REGISTER (CO_ERR_REG_GENERIC | CO_ERR_REG_COMMUNICATION)
+
+static uint8_t bus_error_register(const drive_t *drive)
+{
+    uint8_t bits = drive->profile->bus_error_register;
+    return bits ? bits : COMMUNICATION_ERROR_REGISTER;
+}
+
 /* Magnetising current at standstill, in % of nominal current; 100 % torque needs 100 %. */
 #define MAGNETISING_CURRENT_PERCENT 30
 
@@ -79,7 +89,8 @@ static void steer_motor(drive_t *drive)
     if (!cia402_drives_motor(sm))
         drive_motor_coast(&drive->motor);
     drive->limited = false;
-    int32_t target = cia402_runs(sm) && !fast_stop && !ramp_stop ? run_reference(drive) : 0;
+    bool runs = drive->local ? drive_local_runs(drive) : cia402_runs(sm);
+    int32_t target = runs && !fast_stop && !ramp_stop ? run_reference(drive) : 0;
     drive_ramp_t ramp = ramp_parameters(drive);
     drive_motor_steer(&drive->motor, target, fast, &ramp);
 }
@@ -87,7 +98,7 @@ static void steer_motor(drive_t *drive)
 static uint16_t status_word(const drive_t *drive)
 {
     const drive_motor_t *motor = &drive->motor;
-    uint16_t status = cia402_status(&drive->cia402) | CIA402_SW_REMOTE;
+    uint16_t status = cia402_status(&drive->cia402) | drive_local_status(drive);
     if (drive_motor_at_target(motor))
         status |= CIA402_SW_TARGET_REACHED;
     if (drive->limited)
@@ -135,34 +146,26 @@ static void publish(drive_t *drive)
 
 void drive_settle(drive_t *drive)
 {
-    if (drive_motor_stands(&drive->motor))
+    if (drive_motor_stands(&drive->motor)) {
         cia402_motor_stopped(&drive->cia402);
+        drive_local_motor_stopped(drive);
+    }
     steer_motor(drive);
     publish(drive);
 }
 
-/* The network fault (the Altivars' CnF / COF): freewheel stop (state Fault drives nothing),
- * latched until a fault reset, reported in 603Fh and by EMCY 0x8130 (which also records it in
- * 1003h). */
+/* A communication loss latches the network fault code and, unless the model's mode parameter
+ * says to ignore it, raises the model's communication-loss fault (the Altivars' CnF), latched
+ * until a fault reset. A model without the mode parameter always faults. */
 static void communication_fault(drive_t *drive)
 {
-    if (drive->cia402.state == CIA402_FAULT)
+    const drive_profile_t *profile = drive->profile;
+    drive_param_t mode = profile->communication_loss_mode;
+    co_od_set_value(&drive->node, profile->network_fault_code.index,
+                    profile->network_fault_code.subindex, DRIVE_NETWORK_FAULT_TIME_OUT);
+    if (mode.index != 0 && drive_param_value(drive, mode) == DRIVE_COMMUNICATION_LOSS_IGNORE)
         return;
-    co_node_t *node = &drive->node;
-    drive_motor_advance(&drive->motor, node->now);
-    cia402_fault(&drive->cia402);
-    drive->fault = CO_EMCY_HEARTBEAT;
-    co_od_set_value(node, CIA402_IDX_ERROR_CODE, 0, CO_EMCY_HEARTBEAT);
-    co_emcy_raise(node, CO_EMCY_HEARTBEAT, drive->profile->fault_error_register, NULL);
-    drive_settle(drive);
-}
-
-static void acknowledge_fault(drive_t *drive)
-{
-    co_node_t *node = &drive->node;
-    co_od_set_value(node, CIA402_IDX_ERROR_CODE, 0, 0);
-    co_emcy_clear(node, drive->fault);
-    drive->fault = 0;
+    drive_fault_raise(drive, profile->faults->communication_loss);
 }
 
 static bool is_control_word(const drive_t *drive, const co_od_entry_t *entry)
@@ -172,14 +175,24 @@ static bool is_control_word(const drive_t *drive, const co_od_entry_t *entry)
            (entry->index == copy.index && entry->subindex == copy.subindex);
 }
 
-/* 6040h and the model's copy are the same word: both are kept equal. */
+/* 6040h and the model's copy are the same word: both are kept equal. Under forced local control
+ * the network's word is kept and ignored. In Fault a fault whose cause is present (or that only a
+ * power cycle resets) keeps the drive there: the word is recorded, so that the reset edge counts
+ * from it, and nothing else happens. */
 static void apply_control_word(drive_t *drive, uint16_t control)
 {
     drive_param_t copy = drive->profile->control_word_copy;
     co_od_set_value(&drive->node, CIA402_IDX_CONTROLWORD, 0, control);
     co_od_set_value(&drive->node, copy.index, copy.subindex, control);
+    if (drive->local)
+        return;
+    if (drive->cia402.state == CIA402_FAULT && !drive_faults_resettable(drive)) {
+        drive->cia402.control = control;
+        return;
+    }
     if (cia402_command(&drive->cia402, control, drive_motor_stands(&drive->motor)))
-        acknowledge_fault(drive);
+        drive_faults_acknowledge(drive);
+    drive_local_command_applied(drive);
 }
 
 static void on_written(co_node_t *node, const co_od_entry_t *entry, co_od_origin_t origin)
@@ -206,13 +219,17 @@ static void on_guarding(co_node_t *node, bool lost)
 }
 
 /* Switch on disabled, motor stopped: the state the dictionary's defaults describe. The bus
- * conditions are not the drive's state: they outlive a reset node. */
+ * conditions, forced local control and the load are not the drive's state: they outlive a reset
+ * node. */
 static void restart_drive(drive_t *drive, co_time_t now)
 {
     cia402_reset(&drive->cia402);
-    drive->fault = 0;
     drive_motor_reset(&drive->motor, now);
+    drive_motor_load(&drive->motor, drive->load);
     drive->limited = false;
+    drive->stop_key = false;
+    drive->local_run = false;
+    drive_faults_restart(drive);
 }
 
 /* Reset node restarts the drive too (the defaults are restored right after this). */
@@ -222,15 +239,16 @@ static void on_reset(co_node_t *node, co_nmt_reset_t scope)
         restart_drive(drive_of(node), node->now);
 }
 
-/* The bus conditions still present are errors again once a reset node has emptied the EMCY
- * producer's active errors (the boot-up comes first, then their EMCYs). Raising an active error
- * again does nothing, so every entry into Pre-operational may do it. */
+/* The bus conditions and fault causes still present are errors again once a reset node has
+ * emptied the EMCY producer's active errors (the boot-up comes first, then their EMCYs). Raising
+ * an active error again does nothing, so every entry into Pre-operational may do it. */
 static void on_nmt_state(co_node_t *node, co_nmt_state_t state)
 {
     (void)state;
     drive_t *drive = drive_of(node);
     for (uint8_t i = 0; i < drive->bus_event_count; i++)
-        co_emcy_raise(node, drive->bus_events[i], drive->profile->fault_error_register, NULL);
+        co_emcy_raise(node, drive->bus_events[i], bus_error_register(drive), NULL);
+    drive_faults_raise_present(drive);
 }
 
 static const co_app_hooks_t drive_hooks = {
@@ -253,12 +271,17 @@ int drive_init(drive_t *drive, const drive_config_t *config)
         .storage = config->storage,
         .options = config->profile->node_options,
     };
+    if (!drive_faults_valid(config->profile))
+        return DRIVE_INIT_BAD_FAULTS;
     drive->profile = config->profile;
     int err = co_node_init(&drive->node, &node_config);
     if (err != 0)
         return err;
+    drive->local = false;
+    drive->load = 0;
     restart_drive(drive, 0);
     drive->bus_event_count = 0;
+    drive->fault_causes = 0;
     return 0;
 }
 
@@ -298,7 +321,7 @@ void drive_bus_event(drive_t *drive, uint16_t emcy_code, bool active)
 {
     remember_bus_event(drive, emcy_code, active);
     if (active)
-        co_emcy_raise(&drive->node, emcy_code, drive->profile->fault_error_register, NULL);
+        co_emcy_raise(&drive->node, emcy_code, bus_error_register(drive), NULL);
     else
         co_emcy_clear(&drive->node, emcy_code);
 }

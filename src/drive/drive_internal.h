@@ -1,5 +1,5 @@
-/* Internal interface between the drive's glue (drive.c) and its dictionary hooks
- * (parameters.c). */
+/* Internal interface between the drive's glue (drive.c), its dictionary hooks (parameters.c)
+ * and its faults (faults.c). */
 #ifndef DRIVE_INTERNAL_H
 #define DRIVE_INTERNAL_H
 
@@ -23,5 +23,28 @@ uint32_t drive_param_value(const drive_t *drive, drive_param_t param);
 /* Conversions between 0.1 Hz and rpm through the motor's nominal frequency and speed. */
 uint32_t drive_frequency_to_rpm(const drive_t *drive, uint32_t decihertz);
 uint32_t drive_rpm_to_frequency(const drive_t *drive, uint32_t rpm);
+
+/* Faults (faults.c). The profile has a usable fault table. */
+bool drive_faults_valid(const drive_profile_t *profile);
+/* Raises fault `index` (the drive faults, EMCY, 603Fh) unless it is active already. */
+void drive_fault_raise(drive_t *drive, uint8_t index);
+/* Every active fault may be reset by a fault reset command now. */
+bool drive_faults_resettable(const drive_t *drive);
+/* A fault reset was accepted: every active fault ends (its EMCY cleared), 603Fh = 0. */
+void drive_faults_acknowledge(drive_t *drive);
+/* Reset node: the drive forgets its faults (the EMCY producer forgets their errors), not the
+ * causes still present. */
+void drive_faults_restart(drive_t *drive);
+/* Raises again every fault whose cause is present (after a reset node). */
+void drive_faults_raise_present(drive_t *drive);
+
+/* At the drive (local.c). The motor follows the reference under forced local control. */
+bool drive_local_runs(const drive_t *drive);
+/* The motor stands: a local stop ends in Switch on disabled. */
+void drive_local_motor_stopped(drive_t *drive);
+/* Status word bits of the command channel: remote (bit 9) and the STOP key's. */
+uint16_t drive_local_status(const drive_t *drive);
+/* A network command was applied: it may be the run command that clears the STOP key's bit. */
+void drive_local_command_applied(drive_t *drive);
 
 #endif

@@ -138,10 +138,17 @@ co_time_t drive_motor_deadline(const drive_motor_t *motor)
     return motor->updated + (left < DRIVE_MOTOR_TICK_US ? left : DRIVE_MOTOR_TICK_US);
 }
 
+void drive_motor_load(drive_motor_t *motor, uint8_t percent)
+{
+    motor->load = percent;
+}
+
 int16_t drive_motor_torque(const drive_motor_t *motor)
 {
     int64_t nominal = motor->ramp.nominal_rpm ? motor->ramp.nominal_rpm : 1;
     int64_t torque = LOAD_TORQUE_PERCENT * magnitude(motor->speed) / (nominal * MILLI);
+    if (motor->speed != 0)
+        torque += motor->load;
     if (motor->phase != 0) {
         /* 100 % torque accelerates the load from 0 to nominal speed in 1 s. */
         uint64_t period = segment_period(motor, motor->phase > 0);

@@ -17,8 +17,8 @@
 #include <sysexits.h>
 #include <unistd.h>
 
-/* epoll_event.data.u32 tags. */
-enum { TAG_CAN, TAG_TIMER, TAG_SIGNAL, TAG_LINK };
+/* epoll_event.data.u32 tags; the application's watched descriptors are TAG_WATCH + slot. */
+enum { TAG_CAN, TAG_TIMER, TAG_SIGNAL, TAG_LINK, TAG_WATCH };
 
 enum { COND_OVERRUN, COND_PASSIVE, COND_BUS_OFF };
 
@@ -499,6 +499,44 @@ static void update_clocks(co_linux_loop_t *loop)
         clock_gettime(CLOCK_REALTIME, &loop->wall);
 }
 
+static int add_to_epoll(co_linux_loop_t *loop, int fd, uint32_t tag);
+
+static void handle_watch(co_linux_loop_t *loop, uint32_t slot)
+{
+    if (slot < CO_LINUX_WATCH_MAX && loop->watches[slot].fd >= 0)
+        loop->watches[slot].fn(loop->watches[slot].ctx, loop->watches[slot].fd);
+}
+
+int co_linux_loop_watch(co_linux_loop_t *loop, int fd, co_linux_watch_fn fn, void *ctx)
+{
+    for (uint32_t slot = 0; slot < CO_LINUX_WATCH_MAX; slot++) {
+        co_linux_watch_t *watch = &loop->watches[slot];
+        if (watch->fd >= 0)
+            continue;
+        if (add_to_epoll(loop, fd, TAG_WATCH + slot) != 0)
+            return -1;
+        *watch = (co_linux_watch_t){.fd = fd, .fn = fn, .ctx = ctx};
+        return 0;
+    }
+    errno = ENOSPC;
+    return -1;
+}
+
+void co_linux_loop_unwatch(co_linux_loop_t *loop, int fd)
+{
+    for (int slot = 0; slot < CO_LINUX_WATCH_MAX; slot++) {
+        if (loop->watches[slot].fd == fd) {
+            epoll_ctl(loop->epoll_fd, EPOLL_CTL_DEL, fd, NULL);
+            loop->watches[slot].fd = -1;
+        }
+    }
+}
+
+void co_linux_device_process(co_linux_device_t *device)
+{
+    device_process(device, device->loop->now);
+}
+
 int co_linux_loop_run(co_linux_loop_t *loop)
 {
     loop->running = true;
@@ -533,6 +571,9 @@ int co_linux_loop_run(co_linux_loop_t *loop)
                 break;
             case TAG_LINK:
                 handle_link_event(loop);
+                break;
+            default:
+                handle_watch(loop, events[i].data.u32 - TAG_WATCH);
                 break;
             }
         }
@@ -616,6 +657,8 @@ co_linux_open_result_t co_linux_loop_open(co_linux_loop_t *loop,
 {
     memset(loop, 0, sizeof *loop);
     loop->epoll_fd = loop->can_fd = loop->timer_fd = loop->signal_fd = loop->link_fd = -1;
+    for (int slot = 0; slot < CO_LINUX_WATCH_MAX; slot++)
+        loop->watches[slot].fd = -1;
     sigprocmask(SIG_SETMASK, NULL, &loop->old_mask);
     snprintf(loop->iface, sizeof loop->iface, "%s", config->iface);
     loop->trace = config->trace;

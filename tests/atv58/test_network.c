@@ -197,6 +197,50 @@ START_TEST(nmt_disconnect)
 }
 END_TEST
 
+/* Every code of the card's EMCY table can fault the drive: its EMCY frame, 8 bytes with error
+ * register 1 ("=1 fault"), 1001h = 1, the status word in Fault, and the fault reset of a command
+ * class fault once its cause is gone. Codes and frames from the manual's table (B.5.3). */
+static const struct {
+    const char *code;
+    const char *emcy;
+} atv58_table[] = {
+    {"CnF", "084#3081010000000000"}, {"CrF", "084#0010010000000000"},
+    {"OLF", "084#0010010000000000"}, {"SOF", "084#0010010000000000"},
+    {"OCF", "084#1023010000000000"}, {"SCF", "084#2023010000000000"},
+    {"OSF", "084#1031010000000000"}, {"USF", "084#2031010000000000"},
+    {"PHF", "084#3031010000000000"}, {"ObF", "084#1033010000000000"},
+    {"OPF", "084#1033010000000000"}, {"OHF", "084#1042010000000000"},
+    {"OtF", "084#1043010000000000"}, {"EEF", "084#2055010000000000"},
+    {"InF", "084#0061010000000000"}, {"CFF", "084#0063010000000000"},
+    {"CFI", "084#0063010000000000"}, {"AnF", "084#0073010000000000"},
+    {"LFF", "084#0073010000000000"}, {"tSF", "084#0073010000000000"},
+    {"SPF", "084#1073010000000000"}, {"SLF", "084#1075010000000000"},
+    {"ILF", "084#2075010000000000"}, {"EPF", "084#0090010000000000"},
+};
+
+START_TEST(every_fault_of_its_table)
+{
+    ck_assert_uint_eq(atv58_faults.count, sizeof atv58_table / sizeof atv58_table[0]);
+    bench_t b;
+    bench_start_model(&b, &atv58_profile, NULL);
+    int index = drive_fault_find(&b.drive, atv58_table[_i].code);
+    ck_assert_int_eq(index, _i);
+    drive_fault_inject(&b.drive, (uint8_t)index, b.now);
+    b.deadline = drive_process(&b.drive, b.now);
+    bench_expect(&b, atv58_table[_i].emcy);
+    bench_expect_none(&b);
+    ck_assert_uint_eq(bench_read(&b, 0x1001, 0), 1);
+    ck_assert_uint_eq(bench_read(&b, 0x6041, 0), 0x0608);
+    drive_fault_remove_cause(&b.drive, (uint8_t)index, b.now);
+    b.deadline = drive_process(&b.drive, b.now);
+    if (atv58_faults.faults[index].reset == DRIVE_FAULT_RESET_COMMAND) {
+        ck_assert_uint_eq(bench_command(&b, 0x0080), 0x0640);
+        bench_expect(&b, "084#0000000000000000");
+        ck_assert_uint_eq(bench_read(&b, 0x1001, 0), 0);
+    }
+}
+END_TEST
+
 int main(void)
 {
     Suite *s = suite_create("atv58_network");
@@ -206,6 +250,8 @@ int main(void)
     tcase_add_test(tc, sdo_error_layout);
     tcase_add_test(tc, life_guarding_fault_and_emcy);
     tcase_add_test(tc, nmt_disconnect);
+    tcase_add_loop_test(tc, every_fault_of_its_table, 0,
+                        (int)(sizeof atv58_table / sizeof atv58_table[0]));
     suite_add_tcase(s, tc);
     return check_run_suite(s);
 }

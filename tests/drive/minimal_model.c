@@ -1,12 +1,30 @@
 #include "minimal_model.h"
 
+#include "co/co_emcy.h"
+
+/* One fault of each reset class, the communication loss not first: the drive must follow the
+ * table, not an Altivar's order. */
+static const drive_fault_def_t faults[] = {
+    [FAULT_HOT] = {"HoT", "overheating", 0x4210, CO_ERR_REG_TEMPERATURE, DRIVE_FAULT_RESET_COMMAND},
+    [FAULT_LOW] = {"LoW", "undervoltage", 0x3120, CO_ERR_REG_VOLTAGE, DRIVE_FAULT_RESET_AUTOMATIC},
+    [FAULT_NET] = {"NeT", "communication loss", 0x8130, CO_ERR_REG_COMMUNICATION,
+                   DRIVE_FAULT_RESET_COMMAND},
+    [FAULT_CPU] = {"CpU", "internal", 0x6100, 0, DRIVE_FAULT_RESET_POWER_CYCLE},
+};
+
+static const drive_fault_table_t fault_table = {
+    .faults = faults,
+    .count = sizeof faults / sizeof faults[0],
+    .communication_loss = FAULT_NET,
+};
+
 const drive_profile_t minimal_profile = {
     .od = &minimal_od,
-    .fault_error_register = CO_ERR_REG_GENERIC | CO_ERR_REG_COMMUNICATION,
     .control_reverse = CW_REVERSE,
     .control_ramp_stop = CW_RAMP_STOP,
     .control_fast_stop = CW_FAST_STOP,
     .status_reverse = SW_REVERSE,
+    .status_stop_key = SW_STOP_KEY,
     .fast_ramp_divider = 2,
     .acceleration = DRIVE_PARAM(PARAMS, ACC),
     .deceleration = DRIVE_PARAM(PARAMS, DEC),
@@ -17,4 +35,5 @@ const drive_profile_t minimal_profile = {
     .nominal_current = DRIVE_PARAM(PARAMS, NCR),
     .motor_current = DRIVE_PARAM(OUTPUTS, CURRENT),
     .motor_torque = DRIVE_PARAM(OUTPUTS, TORQUE),
+    .faults = &fault_table,
 };

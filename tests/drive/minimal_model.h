@@ -15,6 +15,7 @@ extern const drive_profile_t minimal_profile;
 #define CW_RAMP_STOP 0x0800u
 #define CW_FAST_STOP 0x1000u
 #define SW_REVERSE 0x4000u
+#define SW_STOP_KEY 0x0100u
 
 /* Its parameters (3000h) and outputs (3001h). */
 #define PARAMS 0x3000
@@ -28,6 +29,14 @@ extern const drive_profile_t minimal_profile;
 #define OUTPUTS 0x3001
 #define CURRENT 1 /* 0.1 A */
 #define TORQUE 2  /* % */
+
+/* Its faults: code, EMCY code, 1001h class, reset class. */
+enum minimal_fault {
+    FAULT_HOT, /* "HoT" 0x4210 temperature, reset by command once the cause is gone */
+    FAULT_LOW, /* "LoW" 0x3120 voltage, resets itself when the cause goes */
+    FAULT_NET, /* "NeT" 0x8130 communication: the communication loss */
+    FAULT_CPU  /* "CpU" 0x6100, only a reset node (power cycle) */
+};
 
 /* Boots node 4 of the minimal model at time 0 and consumes its boot-up frame. */
 static inline void bench_start(bench_t *b)

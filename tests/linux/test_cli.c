@@ -42,6 +42,8 @@ START_TEST(single_node_with_defaults)
     assert_ids(1, (const uint8_t[]){4});
     ck_assert_ptr_null(opts.store_path);
     ck_assert_ptr_null(opts.trace_path);
+    ck_assert_ptr_null(opts.control_path);
+    ck_assert_ptr_null(opts.status_path);
     ck_assert_int_eq(opts.log_level, CO_LOG_INFO);
     ck_assert(!opts.help && !opts.version);
     ck_assert_str_eq(opts.models[0]->name, "atv312");
@@ -128,8 +130,10 @@ END_TEST
 START_TEST(every_option_in_both_spellings)
 {
     ck_assert_int_eq(parse("--node-id=0x7F", "--store", "/tmp/s", "--trace=-", "--log-level",
-                           "debug", "can1", NULL),
+                           "debug", "--control=/tmp/c.sock", "--status", "/tmp/st", "can1", NULL),
                      0);
+    ck_assert_str_eq(opts.control_path, "/tmp/c.sock");
+    ck_assert_str_eq(opts.status_path, "/tmp/st");
     ck_assert_str_eq(opts.iface, "can1");
     assert_ids(1, (const uint8_t[]){127});
     ck_assert_str_eq(opts.store_path, "/tmp/s");

@@ -1,0 +1,666 @@
+/* The control surface: command execution on the drives, the socket in the daemon's loop, and the
+ * `atv312d ctl` client (control.h). */
+#include "control.h"
+
+#include "co_linux/log.h"
+#include "drive/panel.h"
+
+#include <errno.h>
+#include <stdarg.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/socket.h>
+#include <sys/stat.h>
+#include <sysexits.h>
+#include <unistd.h>
+
+#define WORDS_MAX 4
+#define JSON_PREFIX "json "
+#define STATUSWORD_INDEX 0x6041
+#define VELOCITY_ACTUAL_INDEX 0x6044
+#define CLIENT_TIMEOUT_S 5
+
+/* A reply being written: "ok ..." / "error: ..." or the JSON object. */
+typedef struct reply {
+    char *buf;
+    size_t len, used;
+    bool json;
+} reply_t;
+
+static void put(reply_t *r, const char *format, ...) __attribute__((format(printf, 2, 3)));
+
+static void put(reply_t *r, const char *format, ...)
+{
+    if (r->used >= r->len)
+        return;
+    va_list args;
+    va_start(args, format);
+    int n = vsnprintf(r->buf + r->used, r->len - r->used, format, args);
+    va_end(args);
+    if (n > 0)
+        r->used += (size_t)n;
+}
+
+static bool fail(reply_t *r, const char *format, ...) __attribute__((format(printf, 2, 3)));
+
+/* Messages never contain quotes or backslashes (codes and node-ids are checked before they
+ * are echoed), so they go into JSON as they are. */
+static bool fail(reply_t *r, const char *format, ...)
+{
+    char message[ATV312D_CONTROL_LINE_MAX * 2];
+    va_list args;
+    va_start(args, format);
+    vsnprintf(message, sizeof message, format, args);
+    va_end(args);
+    r->used = 0;
+    if (r->json)
+        put(r, "{\"ok\":false,\"error\":\"%s\"}", message);
+    else
+        put(r, "error: %s", message);
+    return false;
+}
+
+static bool succeed(reply_t *r, const char *format, ...) __attribute__((format(printf, 2, 3)));
+
+static bool succeed(reply_t *r, const char *format, ...)
+{
+    char message[ATV312D_CONTROL_LINE_MAX * 2];
+    va_list args;
+    va_start(args, format);
+    vsnprintf(message, sizeof message, format, args);
+    va_end(args);
+    if (r->json)
+        put(r, "{\"ok\":true,\"message\":\"%s\"}", message);
+    else
+        put(r, "ok %s", message);
+    return true;
+}
+
+/* A word is echoed in messages only when it is short and plain. */
+static bool printable_word(const char *word)
+{
+    size_t n = 0;
+    for (; word[n]; n++) {
+        char c = word[n];
+        if (!((c >= '0' && c <= '9') || (c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z') ||
+              c == '-' || c == '_' || c == '.'))
+            return false;
+    }
+    return n > 0 && n <= 16;
+}
+
+static const char *shown(const char *word)
+{
+    return printable_word(word) ? word : "(unprintable)";
+}
+
+static void list_nodes(const atv312d_control_t *control, char *buf, size_t len)
+{
+    size_t used = 0;
+    buf[0] = '\0';
+    for (size_t i = 0; i < control->count && used < len; i++)
+        used += (size_t)snprintf(buf + used, len - used, "%s%u", i ? "," : "",
+                                 control->nodes[i].drive->node.node_id);
+}
+
+static const atv312d_control_node_t *find_node(const atv312d_control_t *control, const char *word,
+                                               reply_t *r)
+{
+    char *end;
+    long id = strtol(word, &end, 10);
+    if (*word >= '0' && *word <= '9' && *end == '\0') {
+        for (size_t i = 0; i < control->count; i++) {
+            if (control->nodes[i].drive->node.node_id == id)
+                return &control->nodes[i];
+        }
+    }
+    char ids[512];
+    list_nodes(control, ids, sizeof ids);
+    fail(r, "node %s is not present: this daemon runs node-id %s", shown(word), ids);
+    return NULL;
+}
+
+static void list_faults(const drive_t *drive, char *buf, size_t len)
+{
+    const drive_fault_table_t *table = drive->profile->faults;
+    size_t used = 0;
+    buf[0] = '\0';
+    for (uint8_t i = 0; i < table->count && used < len; i++)
+        used +=
+            (size_t)snprintf(buf + used, len - used, "%s%s", i ? ", " : "", table->faults[i].code);
+}
+
+static int find_fault(const drive_t *drive, const char *code, reply_t *r)
+{
+    int index = drive_fault_find(drive, code);
+    if (index >= 0)
+        return index;
+    char codes[512];
+    list_faults(drive, codes, sizeof codes);
+    fail(r, "unknown fault '%s': node %u knows %s", shown(code), drive->node.node_id, codes);
+    return -1;
+}
+
+/* After a change: the drive runs its process (frames go out, its deadline is taken). */
+static void changed(const atv312d_control_node_t *node)
+{
+    co_linux_device_process(node->device);
+}
+
+static bool inject(const atv312d_control_node_t *node, uint8_t index, reply_t *r)
+{
+    drive_t *drive = node->drive;
+    const drive_fault_def_t *def = &drive->profile->faults->faults[index];
+    if (drive_fault_cause_present(drive, index))
+        return fail(r, "node %u: the cause of %s is present already", drive->node.node_id,
+                    def->code);
+    drive_fault_inject(drive, index, node->device->loop->now);
+    changed(node);
+    co_log(CO_LOG_INFO, "node %u: control: fault %s (%s) injected", drive->node.node_id, def->code,
+           def->meaning);
+    return succeed(r, "node %u: %s (%s), EMCY %04X", drive->node.node_id, def->code, def->meaning,
+                   def->emcy_code);
+}
+
+static void remove_cause(const atv312d_control_node_t *node, uint8_t index)
+{
+    drive_fault_remove_cause(node->drive, index, node->device->loop->now);
+    changed(node);
+    co_log(CO_LOG_INFO, "node %u: control: cause of %s removed", node->drive->node.node_id,
+           node->drive->profile->faults->faults[index].code);
+}
+
+static bool command_fault(const atv312d_control_t *control, char **words, size_t n, reply_t *r)
+{
+    if (n != 3)
+        return fail(r, "usage: fault NODE CODE (e.g. fault 4 OHF)");
+    const atv312d_control_node_t *node = find_node(control, words[1], r);
+    if (!node)
+        return false;
+    int index = find_fault(node->drive, words[2], r);
+    return index >= 0 && inject(node, (uint8_t)index, r);
+}
+
+static bool clear_all(const atv312d_control_node_t *node, reply_t *r)
+{
+    const drive_fault_table_t *table = node->drive->profile->faults;
+    char codes[512] = "";
+    size_t used = 0;
+    for (uint8_t i = 0; i < table->count; i++) {
+        if (!drive_fault_cause_present(node->drive, i))
+            continue;
+        remove_cause(node, i);
+        if (used < sizeof codes)
+            used += (size_t)snprintf(codes + used, sizeof codes - used, "%s%s", used ? ", " : "",
+                                     table->faults[i].code);
+    }
+    if (used == 0)
+        return succeed(r, "node %u: no fault cause was present", node->drive->node.node_id);
+    return succeed(r, "node %u: causes removed: %s", node->drive->node.node_id, codes);
+}
+
+static bool command_clear(const atv312d_control_t *control, char **words, size_t n, reply_t *r)
+{
+    if (n != 3)
+        return fail(r, "usage: clear NODE CODE|all (e.g. clear 4 OHF)");
+    const atv312d_control_node_t *node = find_node(control, words[1], r);
+    if (!node)
+        return false;
+    if (strcmp(words[2], "all") == 0)
+        return clear_all(node, r);
+    int index = find_fault(node->drive, words[2], r);
+    if (index < 0)
+        return false;
+    const char *code = node->drive->profile->faults->faults[index].code;
+    if (!drive_fault_cause_present(node->drive, (uint8_t)index))
+        return fail(r, "node %u: no cause of %s is present", node->drive->node.node_id, code);
+    remove_cause(node, (uint8_t)index);
+    return succeed(r, "node %u: cause of %s removed", node->drive->node.node_id, code);
+}
+
+/* The mains undervoltage is the model's USF fault. */
+static bool command_mains(const atv312d_control_t *control, char **words, size_t n, reply_t *r)
+{
+    if (n != 3 || (strcmp(words[2], "undervoltage") != 0 && strcmp(words[2], "normal") != 0))
+        return fail(r, "usage: mains NODE undervoltage|normal");
+    const atv312d_control_node_t *node = find_node(control, words[1], r);
+    if (!node)
+        return false;
+    int index = find_fault(node->drive, "USF", r);
+    if (index < 0)
+        return false;
+    if (strcmp(words[2], "undervoltage") == 0)
+        return inject(node, (uint8_t)index, r);
+    if (drive_fault_cause_present(node->drive, (uint8_t)index))
+        remove_cause(node, (uint8_t)index);
+    return succeed(r, "node %u: mains normal", node->drive->node.node_id);
+}
+
+static bool command_stop_key(const atv312d_control_t *control, char **words, size_t n, reply_t *r)
+{
+    if (n != 2)
+        return fail(r, "usage: stop-key NODE");
+    const atv312d_control_node_t *node = find_node(control, words[1], r);
+    if (!node)
+        return false;
+    drive_t *drive = node->drive;
+    drive_stop_key(drive, node->device->loop->now);
+    changed(node);
+    co_log(CO_LOG_INFO, "node %u: control: STOP key", drive->node.node_id);
+    return succeed(r, "node %u: STOP key (%s stop, status word bit 14)", drive->node.node_id,
+                   drive->local ? "ramp" : "freewheel");
+}
+
+static bool command_run_key(const atv312d_control_t *control, char **words, size_t n, reply_t *r)
+{
+    if (n != 2)
+        return fail(r, "usage: run-key NODE");
+    const atv312d_control_node_t *node = find_node(control, words[1], r);
+    if (!node)
+        return false;
+    drive_t *drive = node->drive;
+    unsigned id = drive->node.node_id;
+    if (!drive->local)
+        return fail(r,
+                    "node %u is under network control: the RUN key works under local control "
+                    "(local %u on)",
+                    id, id);
+    const drive_fault_def_t *fault = drive_fault_latched(drive);
+    if (fault)
+        return fail(r, "node %u is in fault %s: the RUN key does not reset a fault", id,
+                    fault->code);
+    drive_run_key(drive, node->device->loop->now);
+    changed(node);
+    co_log(CO_LOG_INFO, "node %u: control: RUN key", id);
+    return succeed(r, "node %u: RUN key", id);
+}
+
+static bool command_local(const atv312d_control_t *control, char **words, size_t n, reply_t *r)
+{
+    if (n != 3 || (strcmp(words[2], "on") != 0 && strcmp(words[2], "off") != 0))
+        return fail(r, "usage: local NODE on|off");
+    const atv312d_control_node_t *node = find_node(control, words[1], r);
+    if (!node)
+        return false;
+    drive_t *drive = node->drive;
+    bool local = strcmp(words[2], "on") == 0;
+    if (drive->local == local)
+        return fail(r, "node %u is under %s control already", drive->node.node_id,
+                    local ? "local" : "network");
+    drive_set_local(drive, local, node->device->loop->now);
+    changed(node);
+    co_log(CO_LOG_INFO, "node %u: control: %s control", drive->node.node_id,
+           local ? "local" : "network");
+    return succeed(r, "node %u: %s control (status word bit 9 = %d)", drive->node.node_id,
+                   local ? "local" : "network", local ? 0 : 1);
+}
+
+/* The torque limit of the motor model. */
+#define LOAD_MAX_PERCENT 150
+
+static bool command_load(const atv312d_control_t *control, char **words, size_t n, reply_t *r)
+{
+    if (n != 3)
+        return fail(r, "usage: load NODE PERCENT (0..%d %% of nominal torque)", LOAD_MAX_PERCENT);
+    const atv312d_control_node_t *node = find_node(control, words[1], r);
+    if (!node)
+        return false;
+    char *end;
+    long percent = strtol(words[2], &end, 10);
+    if (!(words[2][0] >= '0' && words[2][0] <= '9') || *end != '\0' || percent > LOAD_MAX_PERCENT)
+        return fail(r, "load %s: give a percentage of nominal torque, 0..%d", shown(words[2]),
+                    LOAD_MAX_PERCENT);
+    drive_set_load(node->drive, (uint8_t)percent, node->device->loop->now);
+    changed(node);
+    co_log(CO_LOG_INFO, "node %u: control: load %ld %%", node->drive->node.node_id, percent);
+    return succeed(r, "node %u: load %ld %%", node->drive->node.node_id, percent);
+}
+
+static const char *nmt_name(co_nmt_state_t state)
+{
+    switch (state) {
+    case CO_NMT_INITIALISING:
+        return "Initialising";
+    case CO_NMT_STOPPED:
+        return "Stopped";
+    case CO_NMT_OPERATIONAL:
+        return "Operational";
+    case CO_NMT_PRE_OPERATIONAL:
+        break;
+    }
+    return "Pre-operational";
+}
+
+static void put_state(const atv312d_control_node_t *node, reply_t *r)
+{
+    const drive_t *drive = node->drive;
+    const co_node_t *co = &drive->node;
+    drive_param_t lcr = drive->profile->motor_current;
+    drive_param_t otr = drive->profile->motor_torque;
+    int16_t speed = (int16_t)co_od_value(co, VELOCITY_ACTUAL_INDEX, 0);
+    unsigned current = (unsigned)co_od_value(co, lcr.index, lcr.subindex);
+    int16_t torque = (int16_t)co_od_value(co, otr.index, otr.subindex);
+    unsigned status = (unsigned)co_od_value(co, STATUSWORD_INDEX, 0);
+    drive_display_t display = drive_panel_display(drive);
+    char shows[16];
+    if (display.code)
+        snprintf(shows, sizeof shows, "%s", display.code);
+    else
+        snprintf(shows, sizeof shows, "%u.%u", display.decihertz / 10, display.decihertz % 10);
+    const drive_fault_def_t *fault = drive_fault_latched(drive);
+    const char *run = drive_led_name(drive_panel_run_led(drive));
+    const char *err = drive_led_name(drive_panel_err_led(drive));
+    if (r->json)
+        put(r,
+            "{\"node\":%u,\"nmt\":\"%s\",\"cia402\":\"%s\",\"statusword\":%u,\"speed_rpm\":%d,"
+            "\"current_a\":%u.%u,\"torque_percent\":%d,\"display\":\"%s\",\"run_led\":\"%s\","
+            "\"err_led\":\"%s\",\"fault\":%s%s%s}",
+            co->node_id, nmt_name(co->nmt_state), drive_state_name(drive), status, speed,
+            current / 10, current % 10, torque, shows, run, err, fault ? "\"" : "",
+            fault ? fault->code : "null", fault ? "\"" : "");
+    else
+        put(r,
+            "node %u: nmt %s, cia402 %s, statusword %04X, speed %d rpm, current %u.%u A, torque "
+            "%d %%, display %s, RUN %s, ERR %s, fault %s",
+            co->node_id, nmt_name(co->nmt_state), drive_state_name(drive), status, speed,
+            current / 10, current % 10, torque, shows, run, err, fault ? fault->code : "none");
+}
+
+void atv312d_format_state(const atv312d_control_node_t *node, bool json, char *buf, size_t len)
+{
+    reply_t r = {.buf = buf, .len = len, .json = json};
+    buf[0] = '\0';
+    put_state(node, &r);
+}
+
+static bool command_state(const atv312d_control_t *control, char **words, size_t n, reply_t *r)
+{
+    if (n > 2)
+        return fail(r, "usage: state [NODE]");
+    const atv312d_control_node_t *only = NULL;
+    if (n == 2 && !(only = find_node(control, words[1], r)))
+        return false;
+    put(r, r->json ? "{\"ok\":true,\"nodes\":[" : "ok ");
+    bool first = true;
+    for (size_t i = 0; i < control->count; i++) {
+        if (only && only != &control->nodes[i])
+            continue;
+        put(r, "%s", first ? "" : r->json ? "," : "; ");
+        put_state(&control->nodes[i], r);
+        first = false;
+    }
+    put(r, "%s", r->json ? "]}" : "");
+    return true;
+}
+
+static const struct {
+    const char *name;
+    bool (*run)(const atv312d_control_t *control, char **words, size_t n, reply_t *r);
+} commands[] = {
+    {"fault", command_fault},       {"clear", command_clear},     {"mains", command_mains},
+    {"stop-key", command_stop_key}, {"run-key", command_run_key}, {"local", command_local},
+    {"load", command_load},         {"state", command_state},
+};
+
+#define COMMAND_NAMES "fault, clear, mains, stop-key, run-key, local, load, state"
+
+bool atv312d_control_execute(const atv312d_control_t *control, const char *line, char *reply,
+                             size_t reply_len)
+{
+    reply_t r = {.buf = reply, .len = reply_len};
+    reply[0] = '\0';
+    if (strncmp(line, JSON_PREFIX, strlen(JSON_PREFIX)) == 0) {
+        r.json = true;
+        line += strlen(JSON_PREFIX);
+    }
+    char copy[ATV312D_CONTROL_LINE_MAX];
+    if (strlen(line) >= sizeof copy)
+        return fail(&r, "command longer than %d characters", ATV312D_CONTROL_LINE_MAX - 1);
+    strcpy(copy, line);
+    char *words[WORDS_MAX + 1];
+    size_t n = 0;
+    char *save;
+    for (char *w = strtok_r(copy, " \t\r", &save); w; w = strtok_r(NULL, " \t\r", &save)) {
+        if (n == WORDS_MAX + 1)
+            return fail(&r, "too many words (see atv312d --help, control commands)");
+        words[n++] = w;
+    }
+    if (n == 0)
+        return fail(&r, "empty command: give one of " COMMAND_NAMES);
+    for (size_t i = 0; i < sizeof commands / sizeof commands[0]; i++) {
+        if (strcmp(words[0], commands[i].name) == 0)
+            return commands[i].run(control, words, n, &r);
+    }
+    return fail(&r, "unknown command '%s': the commands are " COMMAND_NAMES, shown(words[0]));
+}
+
+/* ---- the socket in the loop ---- */
+
+static void drop_client(atv312d_control_t *control, atv312d_control_client_t *client)
+{
+    co_linux_loop_unwatch(control->loop, client->fd);
+    close(client->fd);
+    client->fd = -1;
+}
+
+static atv312d_control_client_t *client_of(atv312d_control_t *control, int fd)
+{
+    for (size_t i = 0; i < ATV312D_CONTROL_CLIENTS; i++) {
+        if (control->clients[i].fd == fd)
+            return &control->clients[i];
+    }
+    return NULL;
+}
+
+/* One reply line; a client that does not read it in time loses it (the socket is non-blocking,
+ * the loop never waits for a client). */
+static void answer(atv312d_control_t *control, atv312d_control_client_t *client)
+{
+    static char reply[ATV312D_CONTROL_REPLY_MAX];
+    client->line[client->len] = '\0';
+    if (client->overlong)
+        snprintf(reply, sizeof reply, "error: command longer than %d characters",
+                 ATV312D_CONTROL_LINE_MAX - 1);
+    else
+        atv312d_control_execute(control, client->line, reply, sizeof reply - 1);
+    size_t len = strlen(reply);
+    reply[len++] = '\n';
+    if (send(client->fd, reply, len, MSG_NOSIGNAL | MSG_DONTWAIT) != (ssize_t)len)
+        co_log(CO_LOG_WARN, "control: a reply could not be sent whole: %s", strerror(errno));
+    client->len = 0;
+    client->overlong = false;
+}
+
+static void on_client(void *ctx, int fd)
+{
+    atv312d_control_t *control = ctx;
+    atv312d_control_client_t *client = client_of(control, fd);
+    char buf[512];
+    ssize_t n = recv(fd, buf, sizeof buf, MSG_DONTWAIT);
+    if (n < 0 && (errno == EAGAIN || errno == EINTR))
+        return;
+    if (n <= 0) {
+        drop_client(control, client);
+        return;
+    }
+    for (ssize_t i = 0; i < n; i++) {
+        if (buf[i] == '\n') {
+            answer(control, client);
+        } else if (client->len + 1 < sizeof client->line) {
+            client->line[client->len++] = buf[i];
+        } else {
+            client->overlong = true;
+        }
+    }
+}
+
+static void on_listen(void *ctx, int fd)
+{
+    atv312d_control_t *control = ctx;
+    int conn = accept4(fd, NULL, NULL, SOCK_NONBLOCK | SOCK_CLOEXEC);
+    if (conn < 0)
+        return;
+    atv312d_control_client_t *client = client_of(control, -1);
+    if (!client || co_linux_loop_watch(control->loop, conn, on_client, control) != 0) {
+        const char *busy = "error: too many control connections\n";
+        send(conn, busy, strlen(busy), MSG_NOSIGNAL | MSG_DONTWAIT);
+        close(conn);
+        return;
+    }
+    *client = (atv312d_control_client_t){.fd = conn};
+}
+
+/* A socket file nobody accepts on is a leftover of a daemon that died: it may be replaced. */
+static bool stale_socket(const char *path)
+{
+    struct stat st;
+    if (lstat(path, &st) != 0 || !S_ISSOCK(st.st_mode))
+        return false;
+    int fd = socket(AF_UNIX, SOCK_STREAM | SOCK_CLOEXEC, 0);
+    struct sockaddr_un addr = {.sun_family = AF_UNIX};
+    snprintf(addr.sun_path, sizeof addr.sun_path, "%s", path);
+    bool stale =
+        fd >= 0 && connect(fd, (struct sockaddr *)&addr, sizeof addr) != 0 && errno == ECONNREFUSED;
+    if (fd >= 0)
+        close(fd);
+    return stale;
+}
+
+static int open_failed(atv312d_control_t *control, const char *what)
+{
+    co_log(CO_LOG_ERROR, "control socket %s: %s: %s", control->path, what, strerror(errno));
+    if (control->listen_fd >= 0)
+        close(control->listen_fd);
+    control->listen_fd = -1;
+    return EX_CANTCREAT;
+}
+
+int atv312d_control_open(atv312d_control_t *control, co_linux_loop_t *loop, const char *path,
+                         const atv312d_control_node_t *nodes, size_t count)
+{
+    memset(control, 0, sizeof *control);
+    control->loop = loop;
+    control->nodes = nodes;
+    control->count = count;
+    control->listen_fd = -1;
+    for (size_t i = 0; i < ATV312D_CONTROL_CLIENTS; i++)
+        control->clients[i].fd = -1;
+    if (strlen(path) >= sizeof control->path) {
+        co_log(CO_LOG_ERROR, "--control %s: the path is longer than %zu characters", path,
+               sizeof control->path - 1);
+        return EX_USAGE;
+    }
+    snprintf(control->path, sizeof control->path, "%s", path);
+    if (stale_socket(path))
+        unlink(path);
+    control->listen_fd = socket(AF_UNIX, SOCK_STREAM | SOCK_NONBLOCK | SOCK_CLOEXEC, 0);
+    if (control->listen_fd < 0)
+        return open_failed(control, "socket");
+    struct sockaddr_un addr = {.sun_family = AF_UNIX};
+    snprintf(addr.sun_path, sizeof addr.sun_path, "%s", path);
+    if (bind(control->listen_fd, (struct sockaddr *)&addr, sizeof addr) != 0)
+        return open_failed(control,
+                           errno == EADDRINUSE
+                               ? "bind (the path exists: another daemon's socket or a file)"
+                               : "bind");
+    if (listen(control->listen_fd, ATV312D_CONTROL_CLIENTS) != 0 ||
+        co_linux_loop_watch(loop, control->listen_fd, on_listen, control) != 0) {
+        unlink(path);
+        return open_failed(control, "listen");
+    }
+    co_log(CO_LOG_INFO, "control socket %s: listening (atv312d ctl %s state)", path, path);
+    return 0;
+}
+
+void atv312d_control_close(atv312d_control_t *control)
+{
+    if (control->listen_fd < 0)
+        return;
+    for (size_t i = 0; i < ATV312D_CONTROL_CLIENTS; i++) {
+        if (control->clients[i].fd >= 0)
+            drop_client(control, &control->clients[i]);
+    }
+    co_linux_loop_unwatch(control->loop, control->listen_fd);
+    close(control->listen_fd);
+    control->listen_fd = -1;
+    unlink(control->path);
+}
+
+/* ---- the client ---- */
+
+static int client_usage(void)
+{
+    fprintf(stderr, "usage: atv312d ctl PATH [--json] COMMAND... (e.g. atv312d ctl "
+                    "/tmp/atv312d.sock fault 4 OHF; see atv312d --help)\n");
+    return EX_USAGE;
+}
+
+static int connect_to(const char *path)
+{
+    struct sockaddr_un addr = {.sun_family = AF_UNIX};
+    if (strlen(path) >= sizeof addr.sun_path) {
+        fprintf(stderr, "atv312d ctl: the path %s is too long\n", path);
+        return -1;
+    }
+    snprintf(addr.sun_path, sizeof addr.sun_path, "%s", path);
+    int fd = socket(AF_UNIX, SOCK_STREAM | SOCK_CLOEXEC, 0);
+    if (fd >= 0 && connect(fd, (struct sockaddr *)&addr, sizeof addr) == 0) {
+        struct timeval timeout = {.tv_sec = CLIENT_TIMEOUT_S};
+        setsockopt(fd, SOL_SOCKET, SO_RCVTIMEO, &timeout, sizeof timeout);
+        return fd;
+    }
+    fprintf(stderr,
+            "atv312d ctl: cannot connect to %s: %s (is atv312d running with --control %s?)\n", path,
+            strerror(errno), path);
+    if (fd >= 0)
+        close(fd);
+    return -1;
+}
+
+int atv312d_control_client(int argc, char *const argv[])
+{
+    if (argc < 2)
+        return client_usage();
+    const char *path = argv[0];
+    char line[ATV312D_CONTROL_LINE_MAX + sizeof JSON_PREFIX];
+    size_t used = 0;
+    int first = 1;
+    if (strcmp(argv[1], "--json") == 0) {
+        used = (size_t)snprintf(line, sizeof line, "%s", JSON_PREFIX);
+        first = 2;
+    }
+    if (first >= argc)
+        return client_usage();
+    for (int i = first; i < argc && used < sizeof line; i++)
+        used += (size_t)snprintf(line + used, sizeof line - used, "%s%s", i > first ? " " : "",
+                                 argv[i]);
+    if (used + 1 >= sizeof line || strchr(line, '\n')) {
+        fprintf(stderr, "atv312d ctl: the command is too long or has a newline\n");
+        return EX_USAGE;
+    }
+    line[used++] = '\n';
+    int fd = connect_to(path);
+    if (fd < 0)
+        return EX_UNAVAILABLE;
+    static char reply[ATV312D_CONTROL_REPLY_MAX];
+    size_t got = 0;
+    bool complete = false;
+    if (send(fd, line, used, MSG_NOSIGNAL) == (ssize_t)used) {
+        ssize_t n;
+        while (!complete && got + 1 < sizeof reply &&
+               (n = recv(fd, reply + got, sizeof reply - 1 - got, 0)) > 0) {
+            got += (size_t)n;
+            complete = memchr(reply, '\n', got) != NULL;
+        }
+    }
+    close(fd);
+    if (!complete) {
+        fprintf(stderr, "atv312d ctl: no reply from %s\n", path);
+        return EX_UNAVAILABLE;
+    }
+    reply[got] = '\0';
+    fputs(reply, stdout);
+    bool ok = strncmp(reply, "ok", 2) == 0 || strncmp(reply, "{\"ok\":true", 10) == 0;
+    return ok ? 0 : EX_DATAERR;
+}

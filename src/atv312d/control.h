@@ -1,0 +1,65 @@
+/* atv312d's control surface for people testing masters: a UNIX stream socket (--control PATH)
+ * in the daemon's epoll loop that takes one command per line and answers one line, "ok ..." or
+ * "error: ..." (or a JSON object when the line starts with "json "): inject a fault and remove
+ * its cause, set a mains undervoltage, press the keypad's STOP and RUN keys, switch forced local
+ * control, load the motor, read the state of a drive (NMT and CiA 402 states, speed, current, the
+ * front panel's display and LEDs). `atv312d ctl PATH COMMAND...` is its client.
+ * Commands: docs/atv312d.md, "Control surface". */
+#ifndef ATV312D_CONTROL_H
+#define ATV312D_CONTROL_H
+
+#include "co_linux/loop.h"
+#include "drive/drive.h"
+
+#include <stdbool.h>
+#include <stddef.h>
+#include <sys/un.h>
+
+/* Longest command line; a longer one is refused. */
+#define ATV312D_CONTROL_LINE_MAX 256
+/* Longest reply line: `state` of 127 drives in JSON, about 330 bytes each, fits. */
+#define ATV312D_CONTROL_REPLY_MAX 65536
+/* Connections served at once; more wait in the listen backlog. */
+#define ATV312D_CONTROL_CLIENTS 8
+
+typedef struct atv312d_control_node {
+    drive_t *drive;
+    co_linux_device_t *device; /* processed after a command changed the drive */
+} atv312d_control_node_t;
+
+typedef struct atv312d_control_client {
+    int fd; /* -1: free */
+    char line[ATV312D_CONTROL_LINE_MAX];
+    size_t len;
+    bool overlong; /* the current line passed ATV312D_CONTROL_LINE_MAX: refused at its end */
+} atv312d_control_client_t;
+
+typedef struct atv312d_control {
+    co_linux_loop_t *loop;
+    const atv312d_control_node_t *nodes; /* ascending node-ids */
+    size_t count;
+    int listen_fd;
+    char path[sizeof(((struct sockaddr_un *)0)->sun_path)];
+    atv312d_control_client_t clients[ATV312D_CONTROL_CLIENTS];
+} atv312d_control_t;
+
+/* One node's state as `state` reports it: "node 4: nmt ..., fault none" or its JSON object. */
+void atv312d_format_state(const atv312d_control_node_t *node, bool json, char *buf, size_t len);
+
+/* Executes one command line (without its newline) on the nodes; writes the reply line without
+ * its newline. Returns true for "ok". */
+bool atv312d_control_execute(const atv312d_control_t *control, const char *line, char *reply,
+                             size_t reply_len);
+
+/* Binds PATH (a stale socket left by a dead daemon is replaced, any other file is not) and
+ * watches it in the loop. 0, or an exit status after logging why. */
+int atv312d_control_open(atv312d_control_t *control, co_linux_loop_t *loop, const char *path,
+                         const atv312d_control_node_t *nodes, size_t count);
+/* Closes the connections and the socket and removes PATH. */
+void atv312d_control_close(atv312d_control_t *control);
+
+/* `atv312d ctl PATH [--json] COMMAND...`: sends the command, prints the reply. Exit status 0
+ * for "ok", EX_DATAERR for "error: ...", EX_USAGE, EX_UNAVAILABLE when no daemon listens. */
+int atv312d_control_client(int argc, char *const argv[]);
+
+#endif

@@ -1,0 +1,153 @@
+/* The drive's faults: injection and removal of a cause, the latch in state Fault, the EMCY,
+ * 603Fh and the reset rules of each fault's class (include/drive/faults.h). The model supplies
+ * the table; nothing here knows a fault by name. */
+#include "drive_internal.h"
+
+static const drive_fault_def_t *fault_def(const drive_t *drive, uint8_t index)
+{
+    return &drive->profile->faults->faults[index];
+}
+
+static uint32_t fault_bit(uint8_t index)
+{
+    return (uint32_t)1u << index;
+}
+
+static char lower(char c)
+{
+    return c >= 'A' && c <= 'Z' ? (char)(c - 'A' + 'a') : c;
+}
+
+static bool same_code(const char *a, const char *b)
+{
+    for (; *a && *b; a++, b++) {
+        if (lower(*a) != lower(*b))
+            return false;
+    }
+    return *a == *b;
+}
+
+bool drive_faults_valid(const drive_profile_t *profile)
+{
+    const drive_fault_table_t *table = profile->faults;
+    return table && table->faults && table->count > 0 && table->count <= DRIVE_FAULTS_MAX &&
+           table->communication_loss < table->count;
+}
+
+int drive_fault_find(const drive_t *drive, const char *code)
+{
+    const drive_fault_table_t *table = drive->profile->faults;
+    for (uint8_t i = 0; i < table->count; i++) {
+        if (same_code(table->faults[i].code, code))
+            return i;
+    }
+    return -1;
+}
+
+bool drive_fault_cause_present(const drive_t *drive, uint8_t index)
+{
+    return (drive->fault_causes & fault_bit(index)) != 0;
+}
+
+const drive_fault_def_t *drive_fault_latched(const drive_t *drive)
+{
+    return drive->faults_active ? fault_def(drive, drive->fault_latched) : NULL;
+}
+
+void drive_fault_raise(drive_t *drive, uint8_t index)
+{
+    if (drive->faults_active & fault_bit(index))
+        return;
+    co_node_t *node = &drive->node;
+    const drive_fault_def_t *def = fault_def(drive, index);
+    drive_motor_advance(&drive->motor, node->now);
+    if (!drive->faults_active) {
+        drive->fault_latched = index;
+        co_od_set_value(node, CIA402_IDX_ERROR_CODE, 0, def->emcy_code);
+    }
+    drive->faults_active |= fault_bit(index);
+    cia402_fault(&drive->cia402);
+    co_emcy_raise(node, def->emcy_code, CO_ERR_REG_GENERIC | def->error_register, NULL);
+    drive_settle(drive);
+}
+
+/* A fault reset is accepted when every active fault is of the command class and its cause is
+ * gone (the manuals: "after the cause of the fault has been removed"). */
+bool drive_faults_resettable(const drive_t *drive)
+{
+    const drive_fault_table_t *table = drive->profile->faults;
+    for (uint8_t i = 0; i < table->count; i++) {
+        if (!(drive->faults_active & fault_bit(i)))
+            continue;
+        if (table->faults[i].reset != DRIVE_FAULT_RESET_COMMAND ||
+            drive_fault_cause_present(drive, i))
+            return false;
+    }
+    return true;
+}
+
+static void forget_fault(drive_t *drive, uint8_t index)
+{
+    drive->faults_active &= ~fault_bit(index);
+    co_emcy_clear(&drive->node, fault_def(drive, index)->emcy_code);
+}
+
+void drive_faults_acknowledge(drive_t *drive)
+{
+    const drive_fault_table_t *table = drive->profile->faults;
+    for (uint8_t i = 0; i < table->count; i++) {
+        if (drive->faults_active & fault_bit(i))
+            forget_fault(drive, i);
+    }
+    co_od_set_value(&drive->node, CIA402_IDX_ERROR_CODE, 0, 0);
+}
+
+void drive_faults_restart(drive_t *drive)
+{
+    drive->faults_active = 0;
+}
+
+void drive_faults_raise_present(drive_t *drive)
+{
+    const drive_fault_table_t *table = drive->profile->faults;
+    for (uint8_t i = 0; i < table->count; i++) {
+        if (drive_fault_cause_present(drive, i))
+            drive_fault_raise(drive, i);
+    }
+}
+
+void drive_fault_inject(drive_t *drive, uint8_t index, co_time_t now)
+{
+    drive->node.now = now;
+    drive->fault_causes |= fault_bit(index);
+    drive_fault_raise(drive, index);
+}
+
+/* An automatic fault that ends leaves the state Fault when it was the last one: the drive is in
+ * Switch on disabled, as after a fault reset; 603Fh shows the next fault still active. */
+static void end_automatic_fault(drive_t *drive, uint8_t index)
+{
+    forget_fault(drive, index);
+    if (drive->faults_active == 0) {
+        co_od_set_value(&drive->node, CIA402_IDX_ERROR_CODE, 0, 0);
+        cia402_fault_cleared(&drive->cia402);
+    } else if (drive->fault_latched == index) {
+        uint8_t next = 0;
+        while (!(drive->faults_active & fault_bit(next)))
+            next++;
+        drive->fault_latched = next;
+        co_od_set_value(&drive->node, CIA402_IDX_ERROR_CODE, 0, fault_def(drive, next)->emcy_code);
+    }
+}
+
+void drive_fault_remove_cause(drive_t *drive, uint8_t index, co_time_t now)
+{
+    drive->node.now = now;
+    drive->fault_causes &= ~fault_bit(index);
+    if ((drive->faults_active & fault_bit(index)) &&
+        fault_def(drive, index)->reset == DRIVE_FAULT_RESET_AUTOMATIC) {
+        drive_motor_advance(&drive->motor, now);
+        end_automatic_fault(drive, index);
+        drive_settle(drive);
+    }
+}

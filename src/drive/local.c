@@ -1,0 +1,78 @@
+/* What happens at the drive rather than on the network (include/drive/drive.h, "At the drive"):
+ * the keypad's STOP and RUN keys, forced local control, the load on the motor. */
+#include "drive_internal.h"
+
+/* A change of command channel (forced local on or off) is a freewheel stop to Switch on
+ * disabled, as the drive's power-up under bus control: the new channel starts from there. A
+ * fault stays latched. */
+static void change_channel(drive_t *drive)
+{
+    if (drive->cia402.state != CIA402_FAULT)
+        cia402_reset(&drive->cia402);
+    drive->local_run = false;
+}
+
+void drive_set_local(drive_t *drive, bool local, co_time_t now)
+{
+    drive_motor_advance(&drive->motor, now);
+    drive->local = local;
+    change_channel(drive);
+    drive_settle(drive);
+}
+
+void drive_stop_key(drive_t *drive, co_time_t now)
+{
+    drive_motor_advance(&drive->motor, now);
+    drive->stop_key = true;
+    if (drive->local)
+        drive->local_run = false;
+    else
+        cia402_configuration_changed(&drive->cia402);
+    drive_settle(drive);
+}
+
+bool drive_run_key(drive_t *drive, co_time_t now)
+{
+    if (!drive->local || drive->cia402.state == CIA402_FAULT)
+        return false;
+    drive_motor_advance(&drive->motor, now);
+    drive->stop_key = false;
+    drive->local_run = true;
+    drive->cia402.state = CIA402_OPERATION_ENABLED;
+    drive_settle(drive);
+    return true;
+}
+
+void drive_set_load(drive_t *drive, uint8_t percent, co_time_t now)
+{
+    drive_motor_advance(&drive->motor, now);
+    drive->load = percent;
+    drive_motor_load(&drive->motor, percent);
+    drive_settle(drive);
+}
+
+bool drive_local_runs(const drive_t *drive)
+{
+    return drive->local_run && drive->cia402.state == CIA402_OPERATION_ENABLED;
+}
+
+/* A local stop ends in Switch on disabled once the motor stands. */
+void drive_local_motor_stopped(drive_t *drive)
+{
+    if (drive->local && !drive->local_run && drive->cia402.state == CIA402_OPERATION_ENABLED)
+        drive->cia402.state = CIA402_SWITCH_ON_DISABLED;
+}
+
+uint16_t drive_local_status(const drive_t *drive)
+{
+    uint16_t bits = drive->local ? 0 : CIA402_SW_REMOTE;
+    return drive->stop_key ? (uint16_t)(bits | drive->profile->status_stop_key) : bits;
+}
+
+/* A network command that takes the drive out of Switch on disabled is the next run command: the
+ * STOP key's bit clears. */
+void drive_local_command_applied(drive_t *drive)
+{
+    if (drive->cia402.state != CIA402_SWITCH_ON_DISABLED && drive->cia402.state != CIA402_FAULT)
+        drive->stop_key = false;
+}

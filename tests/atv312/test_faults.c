@@ -1,0 +1,216 @@
+/* The ATV312's faults: every code of its table faults the drive with the EMCY code of the
+ * manuals (the ATV58 table, the seeds' only one), 603Fh, ETA 2002h:02, 1001h and 1003h, and is
+ * reset by its class: the mains undervoltage USF by itself, OHF by a fault reset once the cause
+ * is gone, OCF only by a reset node; the communication loss follows COL and latches CnF. */
+#include "atv312_bench.h"
+#include "check_main.h"
+
+/* Code, EMCY frame of node 4 (code, 1001h), reset class. */
+static const struct {
+    const char *code;
+    const char *emcy;
+    drive_fault_reset_t reset;
+} expected[] = {
+    {"CnF", "084#3081110000000000", DRIVE_FAULT_RESET_COMMAND},
+    {"ILF", "084#2075110000000000", DRIVE_FAULT_RESET_POWER_CYCLE},
+    {"SLF", "084#1075110000000000", DRIVE_FAULT_RESET_COMMAND},
+    {"OCF", "084#1023030000000000", DRIVE_FAULT_RESET_POWER_CYCLE},
+    {"SCF", "084#2023030000000000", DRIVE_FAULT_RESET_POWER_CYCLE},
+    {"OSF", "084#1031050000000000", DRIVE_FAULT_RESET_COMMAND},
+    {"USF", "084#2031050000000000", DRIVE_FAULT_RESET_AUTOMATIC},
+    {"PHF", "084#3031050000000000", DRIVE_FAULT_RESET_COMMAND},
+    {"ObF", "084#1033050000000000", DRIVE_FAULT_RESET_COMMAND},
+    {"OPF", "084#1033050000000000", DRIVE_FAULT_RESET_COMMAND},
+    {"OHF", "084#1042090000000000", DRIVE_FAULT_RESET_COMMAND},
+    {"OtF", "084#1043090000000000", DRIVE_FAULT_RESET_COMMAND},
+    {"OLF", "084#0010010000000000", DRIVE_FAULT_RESET_COMMAND},
+    {"SOF", "084#0010010000000000", DRIVE_FAULT_RESET_POWER_CYCLE},
+    {"CrF", "084#0010010000000000", DRIVE_FAULT_RESET_POWER_CYCLE},
+    {"EEF", "084#2055010000000000", DRIVE_FAULT_RESET_POWER_CYCLE},
+    {"InF", "084#0061010000000000", DRIVE_FAULT_RESET_POWER_CYCLE},
+    {"CFF", "084#0063010000000000", DRIVE_FAULT_RESET_AUTOMATIC},
+    {"CFI", "084#0063010000000000", DRIVE_FAULT_RESET_AUTOMATIC},
+    {"LFF", "084#0073010000000000", DRIVE_FAULT_RESET_COMMAND},
+    {"EPF", "084#0090010000000000", DRIVE_FAULT_RESET_COMMAND},
+};
+
+#define EXPECTED_COUNT (sizeof expected / sizeof expected[0])
+
+static uint8_t find(bench_t *b, const char *code)
+{
+    int index = drive_fault_find(&b->drive, code);
+    ck_assert_int_ge(index, 0);
+    return (uint8_t)index;
+}
+
+static void inject(bench_t *b, const char *code)
+{
+    drive_fault_inject(&b->drive, find(b, code), b->now);
+    b->deadline = drive_process(&b->drive, b->now);
+}
+
+static void remove_cause(bench_t *b, const char *code)
+{
+    drive_fault_remove_cause(&b->drive, find(b, code), b->now);
+    b->deadline = drive_process(&b->drive, b->now);
+}
+
+START_TEST(table_is_the_manuals)
+{
+    ck_assert_uint_eq(atv312_family_faults.count, EXPECTED_COUNT);
+    ck_assert_str_eq(atv312_family_faults.faults[atv312_family_faults.communication_loss].code,
+                     "CnF");
+}
+END_TEST
+
+/* Each fault on a fresh drive running at 1500 rpm: EMCY, freewheel, 603Fh, 1001h, 1003h, ETA. */
+START_TEST(every_fault_reports)
+{
+    bench_t b;
+    bench_start(&b);
+    ck_assert_uint_eq(bench_sdo_write(&b, 0x6042, 0, 1500, 2), 0);
+    bench_command(&b, 0x0006);
+    bench_command(&b, 0x000F);
+    bench_advance(&b, 3000000);
+    ck_assert_int_eq(bench_speed(&b), 1500);
+    const drive_fault_def_t *def = &atv312_family_faults.faults[_i];
+    ck_assert_str_eq(def->code, expected[_i].code);
+    ck_assert_int_eq(def->reset, expected[_i].reset);
+    inject(&b, expected[_i].code);
+    bench_expect(&b, expected[_i].emcy);
+    bench_expect_none(&b);
+    ck_assert_int_eq(bench_speed(&b), 0);
+    ck_assert_uint_eq(bench_read(&b, 0x2002, 4), 0);
+    ck_assert_uint_eq(bench_read(&b, 0x6041, 0), 0x0608);
+    ck_assert_uint_eq(bench_read(&b, 0x2002, 2), 0x0608);
+    ck_assert_uint_eq(bench_read(&b, 0x603F, 0), def->emcy_code);
+    ck_assert_uint_eq(bench_read(&b, 0x1001, 0), 0x01u | def->error_register);
+    ck_assert_uint_eq(bench_read(&b, 0x1003, 0), 1);
+    ck_assert_uint_eq(bench_read(&b, 0x1003, 1), def->emcy_code);
+}
+END_TEST
+
+/* Mains undervoltage: USF while the mains is low, gone by itself when it returns. */
+START_TEST(undervoltage_resets_itself)
+{
+    bench_t b;
+    bench_start(&b);
+    inject(&b, "usf");
+    bench_expect(&b, "084#2031050000000000");
+    ck_assert_uint_eq(bench_command(&b, 0x0080), 0x0608);
+    remove_cause(&b, "USF");
+    bench_expect(&b, "084#0000000000000000");
+    ck_assert_uint_eq(bench_read(&b, 0x6041, 0), 0x0640);
+}
+END_TEST
+
+START_TEST(overheating_needs_cause_gone_then_reset)
+{
+    bench_t b;
+    bench_start(&b);
+    inject(&b, "OHF");
+    bench_expect(&b, "084#1042090000000000");
+    ck_assert_uint_eq(bench_command(&b, 0x0080), 0x0608);
+    ck_assert_uint_eq(bench_command(&b, 0x0000), 0x0608);
+    bench_expect_none(&b);
+    remove_cause(&b, "OHF");
+    bench_expect_none(&b);
+    ck_assert_uint_eq(bench_command(&b, 0x0080), 0x0640);
+    bench_expect(&b, "084#0000000000000000");
+    ck_assert_uint_eq(bench_read(&b, 0x603F, 0), 0);
+}
+END_TEST
+
+START_TEST(overcurrent_needs_power_cycle)
+{
+    bench_t b;
+    bench_start(&b);
+    inject(&b, "OCF");
+    bench_expect(&b, "084#1023030000000000");
+    remove_cause(&b, "OCF");
+    ck_assert_uint_eq(bench_command(&b, 0x0080), 0x0608);
+    bench_expect_none(&b);
+    bench_rx(&b, "000#8104");
+    bench_expect(&b, "704#00");
+    bench_expect_none(&b);
+    ck_assert_uint_eq(bench_read(&b, 0x6041, 0), 0x0640);
+}
+END_TEST
+
+/* Heartbeat consumer 100 ms on node 1, running at 1500 rpm, then the producer stops: the loss
+ * comes 100 ms after its last heartbeat. */
+static void lose_heartbeat(bench_t *b)
+{
+    ck_assert_uint_eq(bench_sdo_write(b, 0x1016, 1, 0x00010064, 4), 0);
+    ck_assert_uint_eq(bench_sdo_write(b, 0x6042, 0, 1500, 2), 0);
+    bench_command(b, 0x0006);
+    bench_command(b, 0x000F);
+    bench_rx(b, "701#05");
+    bench_advance(b, 3000000);
+}
+
+/* COL = 1 (the default): the communication loss is the CnF fault; 2022:03 latches the time out
+ * until a reset node, also across the fault reset. */
+START_TEST(communication_loss_faults_by_default)
+{
+    bench_t b;
+    bench_start(&b);
+    ck_assert_uint_eq(bench_read(&b, 0x2022, 2), 1);
+    ck_assert_uint_eq(bench_read(&b, 0x2022, 3), 0);
+    lose_heartbeat(&b);
+    bench_expect(&b, "084#3081110000000000");
+    ck_assert_uint_eq(bench_read(&b, 0x6041, 0), 0x0608);
+    ck_assert_uint_eq(bench_read(&b, 0x2022, 3), 1);
+    ck_assert_uint_eq(bench_command(&b, 0x0080), 0x0640);
+    bench_expect(&b, "084#0000000000000000");
+    ck_assert_uint_eq(bench_read(&b, 0x2022, 3), 1);
+    bench_rx(&b, "000#8104");
+    bench_expect(&b, "704#00");
+    ck_assert_uint_eq(bench_read(&b, 0x2022, 3), 0);
+}
+END_TEST
+
+/* COL = 0: the drive ignores the loss and keeps running; CnF still says it happened. */
+START_TEST(communication_loss_ignored_with_col_0)
+{
+    bench_t b;
+    bench_start(&b);
+    ck_assert_uint_eq(bench_sdo_write(&b, 0x2022, 2, 0, 2), 0);
+    lose_heartbeat(&b);
+    bench_expect_none(&b);
+    ck_assert_int_eq(bench_speed(&b), 1500);
+    ck_assert_uint_eq(bench_read(&b, 0x6041, 0), 0x0627);
+    ck_assert_uint_eq(bench_read(&b, 0x2022, 3), 1);
+}
+END_TEST
+
+/* COL is a configuration parameter with the values 0 and 1; CnF is read-only. */
+START_TEST(col_is_a_configuration_parameter)
+{
+    bench_t b;
+    bench_start(&b);
+    ck_assert_uint_eq(bench_sdo_write(&b, 0x2022, 2, 2, 2), 0x06090031);
+    ck_assert_uint_eq(bench_sdo_write(&b, 0x2022, 3, 0, 2), 0x06010002);
+    ck_assert_uint_eq(bench_sdo_write(&b, 0x6042, 0, 1500, 2), 0);
+    bench_command(&b, 0x0006);
+    bench_command(&b, 0x000F);
+    ck_assert_uint_eq(bench_sdo_write(&b, 0x2022, 2, 0, 2), 0x08000022);
+    ck_assert_uint_eq(bench_read(&b, 0x2022, 2), 1);
+}
+END_TEST
+
+int main(void)
+{
+    Suite *s = suite_create("atv312_faults");
+    TCase *tc = tcase_create("faults");
+    tcase_add_test(tc, table_is_the_manuals);
+    tcase_add_loop_test(tc, every_fault_reports, 0, EXPECTED_COUNT);
+    tcase_add_test(tc, undervoltage_resets_itself);
+    tcase_add_test(tc, overheating_needs_cause_gone_then_reset);
+    tcase_add_test(tc, overcurrent_needs_power_cycle);
+    tcase_add_test(tc, communication_loss_faults_by_default);
+    tcase_add_test(tc, communication_loss_ignored_with_col_0);
+    tcase_add_test(tc, col_is_a_configuration_parameter);
+    suite_add_tcase(s, tc);
+    return check_run_suite(s);
+}

@@ -1,0 +1,200 @@
+"""The control surface on real SocketCAN: `atv312d --control PATH` and `atv312d ctl PATH COMMAND`,
+each command with the frames it causes on the bus (fault -> EMCY, 603Fh, status word; the fault
+reset once the cause is gone -> the EMCY error reset), and every refusal with its one-line error
+and no frame."""
+
+import json
+import subprocess
+
+import pytest
+
+from conftest import NMT_START, REPLY_TIMEOUT, daemon_path
+
+NODE = 4
+EX_DATAERR = 65
+EX_UNAVAILABLE = 69
+
+
+def ctl(sock, *words):
+    """Runs `atv312d ctl SOCK WORDS...`; returns (exit status, reply line)."""
+    done = subprocess.run([daemon_path(), "ctl", str(sock), *map(str, words)], capture_output=True, text=True, timeout=10)
+    return done.returncode, (done.stdout + done.stderr).strip()
+
+
+def state(sock, node=NODE):
+    status, reply = ctl(sock, "--json", "state", node)
+    assert status == 0, reply
+    return json.loads(reply)["nodes"][0]
+
+
+@pytest.fixture
+def control(bus, start_daemon, tmp_path):
+    sock = tmp_path / "atv312d.sock"
+    start_daemon(bus, "--node-id", NODE, "--control", sock)
+    return sock
+
+
+def test_fault_then_reset_once_the_cause_is_gone(bus, control):
+    status, reply = ctl(control, "fault", NODE, "OHF")
+    assert status == 0 and reply.startswith("ok node 4: OHF"), reply
+    bus.expect(0x84, "1042090000000000")
+    assert bus.sdo_read(NODE, 0x603F, 0) == 0x4210
+    assert bus.sdo_read(NODE, 0x6041, 0) == 0x0608
+    assert bus.sdo_read(NODE, 0x1001, 0) == 0x09
+    assert bus.sdo_read(NODE, 0x1003, 1) == 0x4210
+    s = state(control)
+    assert (s["cia402"], s["display"], s["fault"], s["statusword"]) == ("Fault", "OHF", "OHF", 0x0608)
+    # The fault reset is refused while the cause is present: no frame, still Fault.
+    bus.sdo_write(NODE, 0x6040, 0, 0x0080, 2)
+    bus.expect_none(0x84, 0.3)
+    assert bus.sdo_read(NODE, 0x6041, 0) == 0x0608
+    status, reply = ctl(control, "clear", NODE, "OHF")
+    assert (status, reply) == (0, "ok node 4: cause of OHF removed")
+    bus.expect_none(0x84, 0.3)
+    bus.sdo_write(NODE, 0x6040, 0, 0x0000, 2)
+    # The error reset goes out before the SDO answer of the write that caused it.
+    mark = bus.mark()
+    bus.sdo_write(NODE, 0x6040, 0, 0x0080, 2)
+    bus.expect(0x84, "0000000000000000", since=mark)
+    assert bus.sdo_read(NODE, 0x6041, 0) == 0x0640
+    assert bus.sdo_read(NODE, 0x603F, 0) == 0
+    s = state(control)
+    assert (s["cia402"], s["display"], s["fault"]) == ("Switch on disabled", "nSt", None)
+
+
+def test_fault_stops_the_running_motor_on_tpdo1(bus, control):
+    bus.sdo_write(NODE, 0x6042, 0, 1500, 2)
+    bus.nmt(NMT_START, NODE)
+    bus.sdo_write(NODE, 0x6040, 0, 0x0006, 2)
+    bus.sdo_write(NODE, 0x6040, 0, 0x000F, 2)
+    bus.expect(0x184, "2702", timeout=REPLY_TIMEOUT)
+    s = state(control)
+    assert (s["nmt"], s["run_led"], s["cia402"]) == ("Operational", "on", "Operation enabled")
+    assert ctl(control, "fault", NODE, "OCF")[0] == 0
+    bus.expect(0x84, "1023030000000000")
+    bus.expect(0x184, "0806")
+    s = state(control)
+    assert (s["speed_rpm"], s["current_a"], s["display"]) == (0, 0, "OCF")
+    # OCF needs a power cycle: the fault reset is refused even with the cause gone.
+    assert ctl(control, "clear", NODE, "all") == (0, "ok node 4: causes removed: OCF")
+    bus.sdo_write(NODE, 0x6040, 0, 0x0080, 2)
+    bus.expect_none(0x84, 0.3)
+    assert state(control)["cia402"] == "Fault"
+
+
+def test_mains_undervoltage_ends_by_itself(bus, control):
+    assert ctl(control, "mains", NODE, "undervoltage")[0] == 0
+    bus.expect(0x84, "2031050000000000")
+    assert state(control)["display"] == "USF"
+    assert ctl(control, "mains", NODE, "normal") == (0, "ok node 4: mains normal")
+    bus.expect(0x84, "0000000000000000")
+    assert bus.sdo_read(NODE, 0x6041, 0) == 0x0640
+    s = state(control)
+    assert (s["display"], s["run_led"], s["err_led"]) == ("nSt", "blinking", "off")
+
+
+def test_state_of_every_node_in_text(bus, control):
+    status, reply = ctl(control, "state")
+    assert status == 0
+    assert reply == (
+        "ok node 4: nmt Pre-operational, cia402 Switch on disabled, statusword 0640, speed 0 rpm, "
+        "current 0.0 A, torque 0 %, display nSt, RUN blinking, ERR off, fault none"
+    )
+
+
+@pytest.mark.parametrize(
+    "words, error",
+    [
+        (["fault", 4, "XYZ"], "error: unknown fault 'XYZ': node 4 knows CnF, ILF, SLF, OCF, SCF, OSF, USF, PHF, ObF, OPF, OHF, OtF, OLF, SOF, CrF, EEF, InF, CFF, CFI, LFF, EPF"),
+        (["fault", 9, "OHF"], "error: node 9 is not present: this daemon runs node-id 4"),
+        (["fault", 4], "error: usage: fault NODE CODE (e.g. fault 4 OHF)"),
+        (["clear", 4, "OHF"], "error: node 4: no cause of OHF is present"),
+        (["mains", 4, "low"], "error: usage: mains NODE undervoltage|normal"),
+        (["state", "x"], "error: node x is not present: this daemon runs node-id 4"),
+        (["reboot", 4], "error: unknown command 'reboot': the commands are fault, clear, mains, stop-key, run-key, local, load, state"),
+        (["run-key", 4], "error: node 4 is under network control: the RUN key works under local control (local 4 on)"),
+        (["local", 4, "off"], "error: node 4 is under network control already"),
+        (["load", 4, "151"], "error: load 151: give a percentage of nominal torque, 0..150"),
+        (["load", 4, "-1"], "error: load -1: give a percentage of nominal torque, 0..150"),
+    ],
+)
+def test_refused_commands_say_why_and_send_nothing(bus, control, words, error):
+    assert ctl(control, *words) == (EX_DATAERR, error)
+    status, reply = ctl(control, "--json", *words)
+    assert (status, json.loads(reply)) == (EX_DATAERR, {"ok": False, "error": error[len("error: "):]})
+    bus.expect_none(0x84, 0.2)
+    assert bus.sdo_read(NODE, 0x6041, 0) == 0x0640
+
+
+def test_fault_injected_twice_is_refused(bus, control):
+    assert ctl(control, "fault", NODE, "ohf")[0] == 0
+    bus.expect(0x84, "1042090000000000")
+    assert ctl(control, "fault", NODE, "OHF") == (EX_DATAERR, "error: node 4: the cause of OHF is present already")
+    bus.expect_none(0x84, 0.2)
+
+
+def test_no_daemon_is_a_clear_error(tmp_path):
+    status, reply = ctl(tmp_path / "none.sock", "state")
+    assert status == EX_UNAVAILABLE
+    assert "cannot connect" in reply and "--control" in reply
+
+
+def run_fast(bus):
+    """Operational, ACC = DEC = 0.1 s, running at 1500 rpm: TPDO1 says 0x0627."""
+    bus.sdo_write(NODE, 0x203C, 2, 1, 2)
+    bus.sdo_write(NODE, 0x203C, 3, 1, 2)
+    bus.sdo_write(NODE, 0x6042, 0, 1500, 2)
+    bus.nmt(NMT_START, NODE)
+    bus.sdo_write(NODE, 0x6040, 0, 0x0006, 2)
+    bus.sdo_write(NODE, 0x6040, 0, 0x000F, 2)
+    bus.expect(0x184, "2706")
+
+
+def test_stop_key_under_network_control(bus, control):
+    run_fast(bus)
+    assert ctl(control, "stop-key", NODE) == (0, "ok node 4: STOP key (freewheel stop, status word bit 14)")
+    # Switch on disabled, remote, at target 0 (freewheel), bit 14.
+    bus.expect(0x184, "4046")
+    s = state(control)
+    assert (s["cia402"], s["speed_rpm"], s["display"]) == ("Switch on disabled", 0, "nSt")
+    # The master's next run sequence clears bit 14.
+    bus.sdo_write(NODE, 0x6040, 0, 0x0006, 2)
+    bus.expect(0x184, "2106")
+
+
+def test_local_control_and_the_keypad(bus, control):
+    run_fast(bus)
+    assert ctl(control, "local", NODE, "on") == (0, "ok node 4: local control (status word bit 9 = 0)")
+    bus.expect(0x184, "4004")
+    # The network's run command is ignored.
+    bus.sdo_write(NODE, 0x6040, 0, 0x0006, 2)
+    bus.sdo_write(NODE, 0x6040, 0, 0x000F, 2)
+    assert bus.sdo_read(NODE, 0x6041, 0) == 0x0440
+    assert ctl(control, "run-key", NODE) == (0, "ok node 4: RUN key")
+    bus.expect(0x184, "2704")
+    assert ctl(control, "stop-key", NODE)[0] == 0
+    bus.expect(0x184, "4044")
+    assert ctl(control, "local", NODE, "off") == (0, "ok node 4: network control (status word bit 9 = 1)")
+    bus.expect(0x184, "4046")
+
+
+def test_load_raises_torque_and_current(bus, control):
+    run_fast(bus)
+    assert (bus.sdo_read(NODE, 0x2002, 9), bus.sdo_read(NODE, 0x2002, 4)) == (20, 17)
+    assert ctl(control, "load", NODE, 50) == (0, "ok node 4: load 50 %")
+    assert (bus.sdo_read(NODE, 0x2002, 9), bus.sdo_read(NODE, 0x2002, 4)) == (70, 31)
+    s = state(control)
+    assert (s["torque_percent"], s["current_a"], s["speed_rpm"]) == (70, 3.1, 1500)
+
+
+def test_state_of_a_full_bench(bus, start_daemon, tmp_path):
+    """127 drives: `state` answers every one on one line, whole (text and JSON)."""
+    sock = tmp_path / "bench.sock"
+    start_daemon(bus, "--node-id", "1-127", "--control", sock)
+    status, reply = ctl(sock, "--json", "state")
+    assert status == 0
+    nodes = json.loads(reply)["nodes"]
+    assert [n["node"] for n in nodes] == list(range(1, 128))
+    assert {n["cia402"] for n in nodes} == {"Switch on disabled"}
+    status, reply = ctl(sock, "state")
+    assert status == 0 and reply.count("; node ") == 126 and reply.endswith("node 127: nmt Pre-operational, cia402 Switch on disabled, statusword 0640, speed 0 rpm, current 0.0 A, torque 0 %, display nSt, RUN blinking, ERR off, fault none")

@@ -269,7 +269,7 @@ static bool reserve_routes(co_linux_loop_t *loop, size_t count)
  * a consumed set changed, never per frame. */
 static void build_routes(co_linux_loop_t *loop)
 {
-    static uint32_t cursor[CO_LINUX_ROUTE_KEYS];
+    uint32_t cursor[CO_LINUX_ROUTE_KEYS];
     co_cob_t cobs[CO_CONSUMERS_MAX];
     loop->routes_stale = false;
     loop->filter_stale = true;
@@ -302,38 +302,56 @@ static void build_routes(co_linux_loop_t *loop)
 /* The socket's receive filter: one exact entry (CAN-ID, data or remote, 11-bit) per routed key.
  * The whole bus when a trace is written (it shows every frame, as candump would) or a device
  * takes every frame; every 11-bit frame when the keys are more than the kernel accepts
- * (CAN_RAW_FILTER_MAX): the routes still sort them. Computed when the routes or the socket
- * changed, set only when it differs from what this socket has. */
-static void apply_filter(co_linux_loop_t *loop)
+ * (CAN_RAW_FILTER_MAX): the routes still sort them. Returns the number of entries. */
+static size_t wanted_filter(const co_linux_loop_t *loop, struct can_filter *wanted)
 {
-    struct can_filter wanted[CAN_RAW_FILTER_MAX];
+    if (loop->route_all || loop->trace != NULL) {
+        wanted[0] = (struct can_filter){.can_id = 0, .can_mask = 0};
+        return 1;
+    }
     size_t count = 0;
-    bool whole_bus = loop->route_all || loop->trace != NULL;
-    for (size_t k = 0; !whole_bus && k < CO_LINUX_ROUTE_KEYS; k++) {
+    for (size_t k = 0; k < CO_LINUX_ROUTE_KEYS; k++) {
         if (loop->route_first[k] == loop->route_first[k + 1])
             continue;
         if (count == CAN_RAW_FILTER_MAX) {
             wanted[0] = (struct can_filter){.can_id = 0, .can_mask = CAN_EFF_FLAG};
-            count = 1;
-            break;
+            return 1;
         }
         wanted[count++] = (struct can_filter){
             .can_id = (canid_t)(k & CAN_SFF_MASK) | (k & ROUTE_KEY_RTR ? CAN_RTR_FLAG : 0u),
             .can_mask = CAN_SFF_MASK | CAN_EFF_FLAG | CAN_RTR_FLAG};
     }
-    if (whole_bus) {
-        wanted[0] = (struct can_filter){.can_id = 0, .can_mask = 0};
-        count = 1;
-    }
+    return count;
+}
+
+static bool set_filter(co_linux_loop_t *loop, const struct can_filter *filter, size_t count)
+{
+    return setsockopt(loop->can_fd, SOL_CAN_RAW, CAN_RAW_FILTER, filter,
+                      (socklen_t)(count * sizeof filter[0])) == 0;
+}
+
+/* Computed when the routes, the socket or the trace changed; set only when it differs from what
+ * this socket has. */
+static void apply_filter(co_linux_loop_t *loop)
+{
+    struct can_filter wanted[CAN_RAW_FILTER_MAX];
+    size_t count = wanted_filter(loop, wanted);
     loop->filter_stale = false;
     if (loop->filter_applied && count == loop->filter_count &&
         memcmp(wanted, loop->filters, count * sizeof wanted[0]) == 0)
         return;
-    if (setsockopt(loop->can_fd, SOL_CAN_RAW, CAN_RAW_FILTER, wanted,
-                   (socklen_t)(count * sizeof wanted[0])) != 0) {
-        co_log(CO_LOG_ERROR, "%s: setsockopt(CAN_RAW_FILTER, %zu entries): %s", loop->iface, count,
-               strerror(errno));
-        return;
+    if (!set_filter(loop, wanted, count)) {
+        /* A filter that may hide frames a node now consumes is worse than none. */
+        co_log(CO_LOG_ERROR,
+               "%s: setsockopt(CAN_RAW_FILTER, %zu entries): %s: receiving the "
+               "whole bus",
+               loop->iface, count, strerror(errno));
+        wanted[0] = (struct can_filter){.can_id = 0, .can_mask = 0};
+        count = 1;
+        if (!set_filter(loop, wanted, count)) {
+            loop->filter_applied = false;
+            return;
+        }
     }
     memcpy(loop->filters, wanted, count * sizeof wanted[0]);
     loop->filter_count = count;

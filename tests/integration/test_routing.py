@@ -96,3 +96,23 @@ def test_the_frames_of_one_wake_up_leave_in_one_sendmmsg(bus, start_daemon):
     counters = stopped_counters(d)
     assert counters["sent"] == 6 * 8, counters
     assert counters["sendmmsg calls"] == 6, counters
+
+
+def test_above_the_kernel_filter_limit_every_11_bit_frame_is_read_and_still_routed(bus, start_daemon):
+    # 127 ATV312s consume 4 COB-IDs each (SDO, guarding RTR, RPDO1, TPDO1 RTR), plus NMT and
+    # SYNC: 510 filters, CAN_RAW_FILTER_MAX is 512. Three heartbeat consumers make it 513.
+    d = start_daemon(bus, "--node-id", "1-127")
+    bus.send("123#11")  # still filtered out
+    for node, producer in ((1, 127), (2, 126), (3, 125)):
+        bus.sdo_write(node, 0x1016, 1, (producer << 16) | 300, 4)
+    bus.send("123#11")  # read now, and routed to nobody
+    bus.sdo_write(127, 0x1017, 0, 100, 2)  # node 1 monitors it: local routing
+    bus.expect(0x77F, "7F")
+    bus.expect_none(0x81, 0.5)
+    bus.sdo_write(127, 0x1017, 0, 0, 2)
+    bus.expect(0x81, EMCY_COMMUNICATION, timeout=1.0)
+    assert bus.sdo_read(127, 0x1000, 0) == 0x00010192
+    assert d.stop() == EX_OK
+    counters = stopped_counters(d)
+    assert counters["received for no drive"] == 1, counters
+    assert counters["receive filters set"] == 4, counters  # 510, 511, 512, then every 11-bit frame

@@ -253,10 +253,7 @@ static bool reserve_routes(co_linux_loop_t *loop, size_t count)
         return true;
     co_linux_device_t **routes = realloc(loop->route_devices, count * sizeof *routes);
     if (routes == NULL) {
-        co_log(CO_LOG_ERROR,
-               "routing table of %zu entries: out of memory: every device gets "
-               "every frame",
-               count);
+        co_log(CO_LOG_ERROR, "routing table of %zu entries: out of memory: no routing", count);
         return false;
     }
     loop->route_devices = routes;
@@ -342,9 +339,7 @@ static void apply_filter(co_linux_loop_t *loop)
         return;
     if (!set_filter(loop, wanted, count)) {
         /* A filter that may hide frames a node now consumes is worse than none. */
-        co_log(CO_LOG_ERROR,
-               "%s: setsockopt(CAN_RAW_FILTER, %zu entries): %s: receiving the "
-               "whole bus",
+        co_log(CO_LOG_ERROR, "%s: CAN_RAW_FILTER of %zu entries: %s: receiving the whole bus",
                loop->iface, count, strerror(errno));
         wanted[0] = (struct can_filter){.can_id = 0, .can_mask = 0};
         count = 1;
@@ -359,6 +354,17 @@ static void apply_filter(co_linux_loop_t *loop)
     loop->stats.filters++;
 }
 
+/* One frame to one device, and its process right after, as co_node_process requires; false
+ * for the device that sent the frame. */
+static bool deliver(co_linux_device_t *dev, const co_frame_t *frame, const void *origin)
+{
+    if (dev == origin)
+        return false;
+    dev->ops->receive(dev->ctx, frame, dev->loop->now);
+    device_process(dev, dev->loop->now);
+    return true;
+}
+
 /* Hands a frame to the devices that consume it, except the one that sent it; returns how many
  * got it. */
 static size_t route_frame(co_linux_loop_t *loop, const co_frame_t *frame, const void *origin)
@@ -367,27 +373,16 @@ static size_t route_frame(co_linux_loop_t *loop, const co_frame_t *frame, const 
         build_routes(loop);
     size_t delivered = 0;
     if (loop->route_all) {
-        for (co_linux_device_t *dev = loop->devices; dev; dev = dev->next) {
-            if (dev == origin)
-                continue;
-            dev->ops->receive(dev->ctx, frame, loop->now);
-            device_process(dev, loop->now);
-            delivered++;
-        }
+        for (co_linux_device_t *dev = loop->devices; dev; dev = dev->next)
+            delivered += deliver(dev, frame, origin);
         return delivered;
     }
     /* The core ignores 29-bit frames: no node consumes them. */
     if (frame->flags & CO_FRAME_EFF)
         return 0;
     size_t key = route_key((uint16_t)frame->id, (frame->flags & CO_FRAME_RTR) != 0);
-    for (uint32_t i = loop->route_first[key]; i < loop->route_first[key + 1]; i++) {
-        co_linux_device_t *dev = loop->route_devices[i];
-        if (dev == origin)
-            continue;
-        dev->ops->receive(dev->ctx, frame, loop->now);
-        device_process(dev, loop->now);
-        delivered++;
-    }
+    for (uint32_t i = loop->route_first[key]; i < loop->route_first[key + 1]; i++)
+        delivered += deliver(loop->route_devices[i], frame, origin);
     return delivered;
 }
 

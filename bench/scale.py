@@ -9,7 +9,8 @@ times, "spread") and saves it (1010h:02), and measures from /proc/PID the CPU ti
 stime) and the wake-ups (voluntary context switches) over SECONDS. It restarts the daemon on the
 store, so that every heartbeat starts at the boot-up ("aligned"), measures again, reads the
 resident memory and times SDO round trips (expedited upload of 1000h) to drive 1 and drive N,
-alternated, over the same bus load. Prints one JSON object for bench/scale."""
+alternated, over the same bus load, and counts its system calls over 5 s (strace -c). Prints one
+JSON object for bench/scale."""
 
 import argparse
 import json
@@ -110,6 +111,18 @@ def frames_for_nobody(bus, pid):
     return proc_status(pid, "voluntary_ctxt_switches") - wake0, round((proc_stat_cpu(pid) - cpu0) * 1000)
 
 
+def syscalls(pid, seconds):
+    """{syscall: calls} of the daemon over `seconds`, by strace -c."""
+    run = subprocess.run(["timeout", "-s", "INT", str(seconds), "strace", "-c", "-p", str(pid)],
+                         capture_output=True, text=True)
+    calls = {}
+    for line in run.stderr.splitlines():
+        fields = line.split()
+        if len(fields) >= 5 and fields[0][0].isdigit() and fields[-1] != "total":
+            calls[fields[-1]] = int(fields[3])
+    return calls
+
+
 def main():
     parser = argparse.ArgumentParser()
     parser.add_argument("daemon")
@@ -147,6 +160,7 @@ def main():
         time.sleep(1.0)
         result["aligned_cpu_percent"], result["aligned_wakeups_per_s"] = measure(daemon.pid, args.seconds)
         result["rss_kib"] = proc_status(daemon.pid, "VmRSS")
+        result["syscalls_5s"] = syscalls(daemon.pid, 5)
         first, far = [], []
         for _ in range(args.round_trips):
             first.append(round_trip(bus, 1))

@@ -9,8 +9,8 @@ times, "spread") and saves it (1010h:02), and measures from /proc/PID the CPU ti
 stime) and the wake-ups (voluntary context switches) over SECONDS. It restarts the daemon on the
 store, so that every heartbeat starts at the boot-up ("aligned"), measures again, reads the
 resident memory and times SDO round trips (expedited upload of 1000h) to drive 1 and drive N,
-alternated, over the same bus load, and counts its system calls over 5 s (strace -c). Prints one
-JSON object for bench/scale."""
+alternated, over the same bus load. In both runs it counts the daemon's system calls over 5 s
+(strace -c), which the machine's load does not change. Prints one JSON object for bench/scale."""
 
 import argparse
 import json
@@ -149,6 +149,7 @@ def main():
         bus.set_filters([{"can_id": 0x580, "can_mask": 0x780, "extended": False}])
         time.sleep(1.0)
         result["spread_cpu_percent"], result["spread_wakeups_per_s"] = measure(daemon.pid, args.seconds)
+        result["spread_syscalls_5s"] = syscalls(daemon.pid, 5)
         result["spread_stopped"] = stop_daemon(daemon, log_path)
 
         # 2. The same drives restarted with their stored 1017h: every heartbeat on one period.
@@ -160,7 +161,7 @@ def main():
         time.sleep(1.0)
         result["aligned_cpu_percent"], result["aligned_wakeups_per_s"] = measure(daemon.pid, args.seconds)
         result["rss_kib"] = proc_status(daemon.pid, "VmRSS")
-        result["syscalls_5s"] = syscalls(daemon.pid, 5)
+        result["aligned_syscalls_5s"] = syscalls(daemon.pid, 5)
         first, far = [], []
         for _ in range(args.round_trips):
             first.append(round_trip(bus, 1))

@@ -54,7 +54,7 @@ def wait_for(bus, predicate, timeout):
 
 def sdo_request(bus, node, data):
     bus.send(can.Message(arbitration_id=0x600 + node, is_extended_id=False, data=data))
-    reply = wait_for(bus, lambda m: m.arbitration_id == 0x580 + node, 2.0)
+    reply = wait_for(bus, lambda m: m.arbitration_id == 0x580 + node, 5.0)
     if reply is None:
         sys.exit(f"scale.py: no SDO reply from node {node}")
     if reply.data[0] == 0x80:

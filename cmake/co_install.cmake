@@ -1,14 +1,18 @@
 # What `cmake --install` puts where (GNUInstallDirs; relative to the prefix, /usr/local by default,
 # /usr in the Debian package), and the Debian package itself (`cpack -G DEB`). README.md, Install.
 #
-#   include/<every folder of include/>     the public headers (co/, co_linux/, ...)
+#   include/co/, co_linux/, drive/        the public headers of the three libraries
 #   lib/libcanopen.a                       canopen::core, the portable core
 #   lib/libco_linux.a                      canopen::linux, the Linux runtime (links canopen::core)
+#   lib/libco_drive.a                      canopen::drive, the generic CiA 402 velocity drive
+#                                          (portable; links canopen::core)
 #   lib/cmake/canopen/                     find_package(canopen): those targets and co_generate_od()
 #   lib/pkgconfig/canopen.pc               pkg-config: the core (variables edstool and edsdir)
 #   lib/pkgconfig/canopen-linux.pc         pkg-config: the Linux runtime (requires canopen)
-#   bin/atv312d, bin/co-edstool, bin/vcan-run
-#                                          the daemon, tools/edstool.py, tools/vcan-run
+#   lib/pkgconfig/canopen-drive.pc         pkg-config: the drive (requires canopen)
+#   bin/atv312d, bin/cotrace, bin/co-edstool, bin/vcan-run
+#                                          the daemon, the trace decoder, tools/edstool.py,
+#                                          tools/vcan-run
 #   share/man/man1/<program>.1             their man pages, written from their --help text
 #   share/canopen-atv312/eds/*.eds         the EDS files of eds/
 #   share/doc/canopen-atv312/              README.md, docs/*.md, examples/atv312d.service
@@ -25,14 +29,19 @@ endif()
 set(CO_INSTALL_CMAKEDIR ${CMAKE_INSTALL_LIBDIR}/cmake/canopen)
 set(CO_INSTALL_EDSDIR ${CMAKE_INSTALL_DATADIR}/${PROJECT_NAME}/eds)
 
-# Libraries and headers. Every folder of include/ is public, so a new one is installed too.
+# Libraries and their headers. The models' folders of include/ (atv312/, ...) are the daemon's:
+# their libraries are not installed, so neither are their headers.
+set(CO_INSTALL_HEADER_DIRS co co_linux drive)
 set_target_properties(canopen PROPERTIES EXPORT_NAME core)
 set_target_properties(co_linux PROPERTIES EXPORT_NAME linux)
-install(TARGETS canopen co_linux EXPORT canopenTargets
+set_target_properties(co_drive PROPERTIES EXPORT_NAME drive)
+install(TARGETS canopen co_linux co_drive EXPORT canopenTargets
         ARCHIVE DESTINATION ${CMAKE_INSTALL_LIBDIR}
         INCLUDES DESTINATION ${CMAKE_INSTALL_INCLUDEDIR})
-install(DIRECTORY ${PROJECT_SOURCE_DIR}/include/ DESTINATION ${CMAKE_INSTALL_INCLUDEDIR}
-        FILES_MATCHING PATTERN "*.h")
+foreach(dir ${CO_INSTALL_HEADER_DIRS})
+  install(DIRECTORY ${PROJECT_SOURCE_DIR}/include/${dir} DESTINATION ${CMAKE_INSTALL_INCLUDEDIR}
+          FILES_MATCHING PATTERN "*.h")
+endforeach()
 
 # The CMake package: the exported targets, co_generate_od() running the installed co-edstool.
 install(EXPORT canopenTargets NAMESPACE canopen:: DESTINATION ${CO_INSTALL_CMAKEDIR})
@@ -50,7 +59,7 @@ install(FILES ${PROJECT_BINARY_DIR}/canopenConfig.cmake
         DESTINATION ${CO_INSTALL_CMAKEDIR})
 
 # The daemon and the tools.
-install(TARGETS atv312d RUNTIME DESTINATION ${CMAKE_INSTALL_BINDIR})
+install(TARGETS atv312d cotrace RUNTIME DESTINATION ${CMAKE_INSTALL_BINDIR})
 install(PROGRAMS ${CO_EDSTOOL} DESTINATION ${CMAKE_INSTALL_BINDIR} RENAME co-edstool)
 install(PROGRAMS ${PROJECT_SOURCE_DIR}/tools/vcan-run DESTINATION ${CMAKE_INSTALL_BINDIR})
 
@@ -92,6 +101,8 @@ co_install_configured(${PROJECT_SOURCE_DIR}/cmake/canopen.pc.in
                       ${CMAKE_INSTALL_LIBDIR}/pkgconfig)
 co_install_configured(${PROJECT_SOURCE_DIR}/cmake/canopen-linux.pc.in
                       ${CMAKE_INSTALL_LIBDIR}/pkgconfig)
+co_install_configured(${PROJECT_SOURCE_DIR}/cmake/canopen-drive.pc.in
+                      ${CMAKE_INSTALL_LIBDIR}/pkgconfig)
 co_install_configured(${PROJECT_SOURCE_DIR}/tools/atv312d.service.in
                       ${CMAKE_INSTALL_DOCDIR}/examples)
 
@@ -124,12 +135,19 @@ endfunction()
 
 set(CO_DOCS_INSTALLED "${CMAKE_INSTALL_DOCDIR} under the installation prefix (docs/ in the source)")
 co_man_page(atv312d
-  SUMMARY "emulated Schneider Altivar drives (ATV312 and ATV31, CANopen, CiA 402) on SocketCAN"
+  SUMMARY "emulated Schneider Altivar drives (ATV312, ATV31 and ATV58, CANopen, CiA 402) on SocketCAN"
   SEE_ALSO "co-edstool(1), vcan-run(1), candump(1), cansend(1). The full documentation (every \
 log message, the storage file, the systemd unit) is atv312d.md in ${CO_DOCS_INSTALLED}, the \
 example unit examples/atv312d.service there."
   COMMAND $<TARGET_FILE:atv312d>
   DEPENDS atv312d)
+co_man_page(cotrace
+  SUMMARY "say what every CANopen frame of a candump -L log or a SocketCAN interface means"
+  SEE_ALSO "atv312d(1), candump(1). The output format and examples are cotrace.md in \
+${CO_DOCS_INSTALLED}. The EDS files of the package, for --eds, are in ${CO_INSTALL_EDSDIR} under \
+the installation prefix."
+  COMMAND $<TARGET_FILE:cotrace>
+  DEPENDS cotrace)
 co_man_page(co-edstool
   SUMMARY "generate the CANopen core's object dictionary from an EDS, check EDS files"
   SEE_ALSO "atv312d(1). eds-generator.md in ${CO_DOCS_INSTALLED}. The CMake package canopen runs \
@@ -159,8 +177,9 @@ set(CPACK_PACKAGE_DESCRIPTION_SUMMARY
 set(CPACK_PACKAGE_DESCRIPTION "The portable CANopen core (libcanopen.a) and its Linux runtime
 (libco_linux.a) with their headers, CMake package (find_package(canopen)) and pkg-config files;
 co-edstool, which generates a dictionary from an EDS; atv312d, a daemon putting emulated
-Schneider Altivar drives (ATV312 and ATV31, CiA 402) on a SocketCAN interface; vcan-run, which runs it where
-the kernel has no vcan.")
+Schneider Altivar drives (ATV312, ATV31 and ATV58, CiA 402) on a SocketCAN interface; cotrace,
+which says what every frame of a candump -L log or a live interface means; vcan-run, which runs it
+where the kernel has no vcan.")
 set(CPACK_GENERATOR DEB)
 set(CPACK_DEBIAN_FILE_NAME DEB-DEFAULT)
 set(CPACK_DEBIAN_PACKAGE_SECTION devel)

@@ -15,18 +15,22 @@
  * stop, modelled as the fast stop) and 14 stop on the fast ramp, DEC / 4 (dCF's default); status
  * word bit 15 is the direction of rotation. Its parameters, at 0x2000 + (ADL - 3000) / 100,
  * sub-index ADL mod 100 + 1 (SPEC section 2): ACC 9001, DEC 9002, HSP 3104, LSP 3105, FRS 9602,
- * NCR 9603, NSP 9604, LCR 3203, OTR 3208, CMD 8501, ETA 3201. A macro, not a function, so that
+ * NCR 9603, NSP 9604, LCR 3203, OTR 3208, CMD 8501, ETA 3201. Its faults (communication loss,
+ * CAN errors) set 1001h bits 0 and 4 (generic, "error (1)" in the ATV312 table, and
+ * communication). A macro, not a function, so that
  * each model's profile stays a constant initialiser (in flash on a microcontroller); the ATV31
  * (atv31/atv31.h) is the same drive under another name. */
 #define ATV312_FAMILY_PROFILE(dictionary)                                                          \
     {                                                                                              \
-        .od = (dictionary), .control_reverse = 0x0800, .control_ramp_stop = 0x1000,                \
+        .od = (dictionary), .fault_error_register = CO_ERR_REG_GENERIC | CO_ERR_REG_COMMUNICATION, \
+        .control_reverse = 0x0800, .control_ramp_stop = 0x1000,                                    \
         .control_fast_stop = 0x2000 | 0x4000, .status_reverse = 0x8000, .fast_ramp_divider = 4,    \
-        .acceleration = {0x203C, 2}, .deceleration = {0x203C, 3}, .high_speed = {0x2001, 5},       \
-        .low_speed = {0x2001, 6}, .nominal_frequency = {0x2042, 3},                                \
-        .nominal_current = {0x2042, 4}, .nominal_speed = {0x2042, 5},                              \
-        .motor_current = {0x2002, 4}, .motor_torque = {0x2002, 9},                                 \
-        .control_word_copy = {0x2037, 2}, .status_word_copy = {0x2002, 2},                         \
+        .acceleration = DRIVE_PARAM(0x203C, 2), .deceleration = DRIVE_PARAM(0x203C, 3),            \
+        .high_speed = DRIVE_PARAM(0x2001, 5), .low_speed = DRIVE_PARAM(0x2001, 6),                 \
+        .nominal_frequency = DRIVE_PARAM(0x2042, 3), .nominal_current = DRIVE_PARAM(0x2042, 4),    \
+        .nominal_speed = DRIVE_PARAM(0x2042, 5), .motor_current = DRIVE_PARAM(0x2002, 4),          \
+        .motor_torque = DRIVE_PARAM(0x2002, 9), .control_word_copy = DRIVE_PARAM(0x2037, 2),       \
+        .status_word_copy = DRIVE_PARAM(0x2002, 2),                                                \
     }
 
 extern const drive_profile_t atv312_profile;

@@ -14,13 +14,28 @@
 #include "co_config.h"
 #include "co_od.h"
 
+/* The timer of one heartbeat consumer, shared by a node's consumers (1016h) and the NMT
+ * master's (co_nmt_master.h): monitoring starts with the first frame from the producer, the loss
+ * is due once when the consumer time passes without a frame, the next frame ends it. */
+typedef struct co_hb_monitor {
+    uint32_t time_us;   /* consumer time; 0 = not monitored */
+    bool monitoring;    /* a frame was received since the consumer was configured */
+    bool lost;          /* the loss was reported and no frame came since */
+    co_time_t deadline; /* CO_TIME_NEVER before the first frame and while lost */
+} co_hb_monitor_t;
+
+/* Sets the consumer time (0 = off); monitoring waits for the next frame. */
+void co_hb_monitor_configure(co_hb_monitor_t *monitor, uint32_t time_us);
+/* A heartbeat or boot-up frame from the producer at `now`: restarts the timer of a configured
+ * consumer. True when it ends a loss (to report the producer resumed). */
+bool co_hb_monitor_alive(co_hb_monitor_t *monitor, co_time_t now);
+/* True once, when the consumer time has passed at `now` (the loss to report). */
+bool co_hb_monitor_expired(co_hb_monitor_t *monitor, co_time_t now);
+
 typedef struct co_hb_consumer {
     uint8_t node_id; /* 0: entry unused */
     uint8_t state;   /* last state byte received from the producer */
-    bool monitoring; /* a frame was received since the entry was configured */
-    bool lost;       /* the loss was reported and no frame came since */
-    uint32_t time_us;
-    co_time_t deadline;
+    co_hb_monitor_t monitor;
 } co_hb_consumer_t;
 
 typedef struct co_heartbeat {

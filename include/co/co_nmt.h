@@ -15,10 +15,12 @@ typedef enum co_nmt_state {
     CO_NMT_PRE_OPERATIONAL = 0x7F
 } co_nmt_state_t;
 
-/* NMT command specifiers (CiA 301 table 58). */
+/* NMT command specifiers (CiA 301 table 58; Disconnect from DS301 before V4, which a node obeys
+ * only with CO_NODE_NMT_DISCONNECT). */
 enum co_nmt_command {
     CO_NMT_CS_START = 0x01,
     CO_NMT_CS_STOP = 0x02,
+    CO_NMT_CS_DISCONNECT = 0x03,
     CO_NMT_CS_ENTER_PRE_OPERATIONAL = 0x80,
     CO_NMT_CS_RESET_NODE = 0x81,
     CO_NMT_CS_RESET_COMMUNICATION = 0x82

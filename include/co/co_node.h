@@ -40,6 +40,25 @@ typedef struct co_app_hooks {
     void (*od_written)(co_node_t *node, const co_od_entry_t *entry, co_od_origin_t origin);
 } co_app_hooks_t;
 
+/* Behaviour options of one node (co_node_config_t.options), for a device of an older profile than
+ * CiA 301 v4.2 (the Altivar 58's CANopen card, DS301 V4.0 with pre-V4 habits); 0 is plain CiA 301.
+ * A model chooses them; each service consults its own (docs/architecture.md, "Node options"). */
+/* Every frame the node sends has DLC 8, its unused bytes 0; NMT commands of DLC 2..8, guarding
+ * RTRs of any DLC and RPDOs of DLC 8 (longer than their mapping) are accepted. */
+#define CO_NODE_PAD_DLC8 0x01u
+/* The SDO server does expedited transfers only: segmented and block initiates abort with
+ * 0x05040001, an upload of a value that is not 1..4 bytes with 0x06010000. */
+#define CO_NODE_SDO_EXPEDITED_ONLY 0x02u
+/* An expedited write longer than its fixed-size object is taken when the extra bytes are 0 (a
+ * 4-byte write, 0x23, of a 16-bit object). */
+#define CO_NODE_SDO_LONG_EXPEDITED 0x04u
+/* Abort frames in the DS301 V3 layout: bytes 4-5 (the additional code) 0, byte 6 the error code,
+ * byte 7 the error class, one of four: 2/6 no object, 9/6 no sub-index, 3/5 request not
+ * supported (command specifiers), 1/6 access not supported (every other refusal). */
+#define CO_NODE_SDO_ERROR_CLASS 0x08u
+/* NMT command 3, Disconnect remote node (DS301 before V4): the node enters Stopped. */
+#define CO_NODE_NMT_DISCONNECT 0x10u
+
 typedef struct co_node_config {
     uint8_t node_id; /* 1..127 */
     const co_od_t *od;
@@ -51,6 +70,7 @@ typedef struct co_node_config {
     /* SDO transfer buffer, which several nodes may share (co_sdo_buffer_t). NULL: the node's own
      * CO_CONFIG_SDO_BUFFER bytes; required when CO_CONFIG_SDO_BUFFER is 0. */
     co_sdo_buffer_t *sdo_buffer;
+    uint32_t options; /* CO_NODE_* behaviour options, 0 for plain CiA 301 */
 } co_node_config_t;
 
 struct co_node {
@@ -62,6 +82,7 @@ struct co_node {
     void *user;
     const co_app_hooks_t *hooks;
     const co_storage_t *storage;
+    uint32_t options;             /* CO_NODE_* */
     co_time_t now;                /* time of the frame or process call being handled */
     uint32_t consumer_generation; /* co_consumers.h */
 

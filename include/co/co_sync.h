@@ -14,10 +14,34 @@
 #define CO_SYNC_OVERFLOW_MIN 2u
 #define CO_SYNC_OVERFLOW_MAX 240u
 
+/* A SYNC producer: its frame, counter and schedule. A node's producer (1005h bit 30) keeps one in
+ * its co_sync_t and fills it from the dictionary; a master program that has no node runs one on
+ * its own (docs/nmt-master.md). The schedule stays on the grid start + k x period (next += period
+ * at each SYNC); a caller later than a whole period gets one SYNC, not a burst, and the grid
+ * restarts from that call. */
+typedef struct co_sync_producer {
+    uint32_t can_id;    /* 11-bit CAN-ID (080h by default) */
+    uint32_t period_us; /* 1006h: communication cycle period */
+    uint8_t overflow;   /* 1019h: 0 = no counter byte, else 2..240 */
+    uint8_t counter;    /* of the last SYNC produced; 0 before the first one */
+    co_time_t next;     /* next SYNC to produce, CO_TIME_NEVER when not producing */
+} co_sync_producer_t;
+
+/* Configures a stopped producer. False (and nothing changed) for a CAN-ID above 7FFh or a
+ * CiA 301 7.3.5 restricted one, a period of 0 or an overflow of 1 or above 240. */
+bool co_sync_producer_init(co_sync_producer_t *producer, uint32_t can_id, uint32_t period_us,
+                           uint8_t overflow);
+/* Starts (or restarts) production: the counter restarts at 1, the first SYNC is due one period
+ * after `start`. */
+void co_sync_producer_start(co_sync_producer_t *producer, co_time_t start);
+void co_sync_producer_stop(co_sync_producer_t *producer);
+/* When a SYNC is due at `now`: fills `frame` with it, advances the counter and the schedule and
+ * returns true. The next one is due at producer->next. */
+bool co_sync_producer_take(co_sync_producer_t *producer, co_time_t now, co_frame_t *frame);
+
 typedef struct co_sync {
-    uint8_t counter;   /* of the last SYNC produced; 0 before the first one */
-    co_time_t next;    /* next SYNC to produce, CO_TIME_NEVER when not producing */
-    bool length_error; /* EMCY 0x8240 raised */
+    co_sync_producer_t producer; /* fed from 1005h, 1006h, 1019h */
+    bool length_error;           /* EMCY 0x8240 raised */
 } co_sync_t;
 
 /* Reset node and reset communication: the producer restarts, and the consumer's length error

@@ -17,9 +17,11 @@ typedef uint64_t co_time_t;
 #define CO_FRAME_RTR 0x01u /* remote transmission request */
 #define CO_FRAME_EFF 0x02u /* 29-bit (extended) identifier */
 
+#define CO_FRAME_DLC_MAX 8u
+
 typedef struct co_frame {
     uint32_t id;
-    uint8_t len; /* data length code, 0..8 */
+    uint8_t len; /* data length code, 0..CO_FRAME_DLC_MAX */
     uint8_t flags;
     uint8_t data[8];
 } co_frame_t;

@@ -14,16 +14,32 @@
 #include "drive/cia402.h"
 #include "drive/motor.h"
 
-/* Where a parameter lives in a model's dictionary; {0, 0} where the model has none (it then reads
- * as 0 and writes to it are ignored). */
+/* Where a parameter lives in a model's dictionary; {0, 0, fixed} where the model has none (it then
+ * reads as `fixed`, a setting the network cannot change, and writes to it are ignored). */
 typedef struct drive_param {
     uint16_t index;
     uint8_t subindex;
+    uint32_t fixed;
 } drive_param_t;
+
+/* The parameter at index:subindex of the model's dictionary. */
+#define DRIVE_PARAM(index, subindex)                                                               \
+    {                                                                                              \
+        (index), (subindex), 0                                                                     \
+    }
+/* A setting the model's dictionary lacks: it reads as `value`. */
+#define DRIVE_FIXED(value)                                                                         \
+    {                                                                                              \
+        0, 0, (value)                                                                              \
+    }
 
 /* What a model adds to the generic drive: its dictionary and its differences, as data. */
 typedef struct drive_profile {
     const co_od_t *od;
+    uint32_t node_options; /* the core's CO_NODE_* options of the model's profile (co_node.h) */
+    /* The 1001h bits of the drive's faults and CAN errors (CiA 301 table 48; 1001h bit 0 is
+     * always set with them). */
+    uint8_t fault_error_register;
     /* Control word bits 11-15 are manufacturer-specific in CiA 402: the model's meaning of each. */
     uint16_t control_reverse;   /* reverses the reference */
     uint16_t control_ramp_stop; /* stops on the deceleration ramp, run command kept */
@@ -72,6 +88,8 @@ typedef struct drive {
     cia402_state_machine_t cia402;
     drive_motor_t motor;
     bool limited; /* the reference is outside the speed limits (status word bit 11) */
+    /* The EMCY code of the latched fault, 0 when none: 603Fh shows it where the model has it. */
+    uint16_t fault;
     /* Bus conditions still present: a reset node forgets their EMCYs, not the conditions. */
     uint16_t bus_events[DRIVE_BUS_EVENTS_MAX];
     uint8_t bus_event_count;

@@ -219,6 +219,10 @@ static int check_complete(atv312d_options_t *opts, const node_groups_t *groups, 
         if (!group)
             continue;
         const atv312d_model_t *model = groups->model_of[group];
+        if (model && id > model->node_id_max)
+            return usage_error(err, err_len,
+                               "--node-id %d: the %s takes node-ids %d..%d, give it one of those",
+                               id, model->name, ATV312D_NODE_ID_MIN, model->node_id_max);
         opts->models[opts->node_count] = model ? model : &atv312d_models[0];
         opts->node_ids[opts->node_count++] = (uint8_t)id;
     }

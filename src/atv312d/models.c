@@ -1,15 +1,21 @@
 #include "models.h"
 
+#include "cli.h"
+
 #include "atv31/atv31.h"
 #include "atv312/atv312.h"
+#include "atv58/atv58.h"
 
 #include <string.h>
 
 const atv312d_model_t atv312d_models[] = {
-    {"atv312", "Schneider Altivar 312 (eds/ATV312.eds)", &atv312_profile},
-    {"atv31", "Schneider Altivar 31, firmware V1.2 and later (eds/ATV31.eds)", &atv31_profile},
+    {"atv312", "Schneider Altivar 312 (eds/ATV312.eds)", &atv312_profile, ATV312D_NODE_ID_MAX},
+    {"atv31", "Schneider Altivar 31, firmware V1.2 and later (eds/ATV31.eds)", &atv31_profile,
+     ATV312D_NODE_ID_MAX},
     {"atv31-v1.1", "Schneider Altivar 31 before V1.2: no heartbeat, 1016h/1017h absent",
-     &atv31_v11_profile},
+     &atv31_v11_profile, ATV312D_NODE_ID_MAX},
+    {"atv58", "Schneider Altivar 58 + VW3-A58308 card, node-ids 1..63 (eds/ATV58.eds)",
+     &atv58_profile, ATV58_NODE_ID_MAX},
 };
 
 const size_t atv312d_model_count = sizeof atv312d_models / sizeof atv312d_models[0];

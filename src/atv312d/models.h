@@ -11,6 +11,7 @@ typedef struct atv312d_model {
     const char *name;        /* as --model takes it */
     const char *description; /* for --help */
     const drive_profile_t *profile;
+    uint8_t node_id_max; /* highest node-id the model takes (the ATV58's card: 63) */
 } atv312d_model_t;
 
 /* The models; the first is the default of a --node-id without --model. */

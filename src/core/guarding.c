@@ -53,9 +53,11 @@ bool co_guarding_receive(co_node_t *node, const co_frame_t *frame)
     /* The RTR flag first: the COB-ID lookup is a dictionary search, and data frames are most. */
     if (!(frame->flags & CO_FRAME_RTR) || frame->id != guarding_cob_id(node))
         return false;
-    /* A guarding request is a remote frame of DLC 0 or 1 (masters differ); the ATV312 runs only
-     * one error control protocol, so heartbeat production silences guarding. */
-    if (frame->len > 1 || co_heartbeat_producing(node))
+    /* A guarding request is a remote frame of DLC 0 or 1 (masters differ), of any DLC on a node of
+     * 8-byte frames; the ATV312 runs only one error control protocol, so heartbeat production
+     * silences guarding. */
+    bool any_dlc = (node->options & CO_NODE_PAD_DLC8) != 0;
+    if ((frame->len > 1 && !any_dlc) || co_heartbeat_producing(node))
         return true;
     co_guarding_t *g = &node->guarding;
     co_frame_t reply = {.id = frame->id, .len = 1};

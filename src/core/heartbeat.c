@@ -28,15 +28,40 @@ static void producer_restart(co_node_t *node, uint16_t ms)
     node->heartbeat.next_beat = ms != 0 ? node->now + producer_period_us(ms) : CO_TIME_NEVER;
 }
 
+void co_hb_monitor_configure(co_hb_monitor_t *monitor, uint32_t time_us)
+{
+    monitor->time_us = time_us;
+    monitor->monitoring = false;
+    monitor->lost = false;
+    monitor->deadline = CO_TIME_NEVER;
+}
+
+bool co_hb_monitor_alive(co_hb_monitor_t *monitor, co_time_t now)
+{
+    if (monitor->time_us == 0)
+        return false;
+    monitor->monitoring = true;
+    monitor->deadline = now + monitor->time_us;
+    bool resumed = monitor->lost;
+    monitor->lost = false;
+    return resumed;
+}
+
+bool co_hb_monitor_expired(co_hb_monitor_t *monitor, co_time_t now)
+{
+    if (now < monitor->deadline)
+        return false;
+    monitor->lost = true;
+    monitor->deadline = CO_TIME_NEVER;
+    return true;
+}
+
 static void consumer_configure(co_hb_consumer_t *c, uint32_t value)
 {
     bool used = consumer_in_use(value);
     c->node_id = used ? (uint8_t)consumer_node(value) : 0;
-    c->time_us = (uint32_t)(value & HB_TIME_MASK) * 1000u;
     c->state = 0;
-    c->monitoring = false;
-    c->lost = false;
-    c->deadline = CO_TIME_NEVER;
+    co_hb_monitor_configure(&c->monitor, (uint32_t)(value & HB_TIME_MASK) * 1000u);
 }
 
 bool co_heartbeat_producing(const co_node_t *node)
@@ -74,12 +99,8 @@ bool co_heartbeat_receive(co_node_t *node, const co_frame_t *frame)
             continue;
         consumed = true;
         c->state = frame->data[0];
-        c->monitoring = true;
-        c->deadline = node->now + c->time_us;
-        if (c->lost) {
-            c->lost = false;
+        if (co_hb_monitor_alive(&c->monitor, node->now))
             report(node, producer, false);
-        }
     }
     return consumed;
 }
@@ -89,15 +110,10 @@ static co_time_t consumers_process(co_node_t *node, co_time_t now)
     co_time_t next = CO_TIME_NEVER;
     for (uint8_t i = 0; i < CO_CONFIG_HB_CONSUMERS; i++) {
         co_hb_consumer_t *c = &node->heartbeat.consumer[i];
-        if (!c->monitoring || c->lost)
-            continue;
-        if (now >= c->deadline) {
-            c->lost = true;
-            c->deadline = CO_TIME_NEVER;
+        if (co_hb_monitor_expired(&c->monitor, now))
             report(node, c->node_id, true);
-        } else {
-            next = co_time_min(next, c->deadline);
-        }
+        else
+            next = co_time_min(next, c->monitor.deadline);
     }
     return next;
 }

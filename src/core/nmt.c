@@ -49,12 +49,22 @@ void co_nmt_reset(co_node_t *node, co_nmt_reset_t scope)
     co_nmt_enter(node, CO_NMT_PRE_OPERATIONAL);
 }
 
+/* CiA 301 7.2.8.3.1: an NMT command is exactly two bytes; anything else is not one. A node of
+ * 8-byte frames (CO_NODE_PAD_DLC8) takes the command from the first two bytes of DLC 2..8. */
+static bool nmt_command_shaped(const co_node_t *node, const co_frame_t *frame)
+{
+    if (frame->flags & CO_FRAME_RTR)
+        return false;
+    if (node->options & CO_NODE_PAD_DLC8)
+        return frame->len >= NMT_COMMAND_LEN;
+    return frame->len == NMT_COMMAND_LEN;
+}
+
 bool co_nmt_receive(co_node_t *node, const co_frame_t *frame)
 {
     if (frame->id != NMT_COB_ID)
         return false;
-    /* CiA 301 7.2.8.3.1: an NMT command is exactly two bytes; anything else is not one. */
-    if (frame->len != NMT_COMMAND_LEN || (frame->flags & CO_FRAME_RTR))
+    if (!nmt_command_shaped(node, frame))
         return true;
     uint8_t target = frame->data[1];
     if (target != NMT_BROADCAST && target != node->node_id)
@@ -65,6 +75,12 @@ bool co_nmt_receive(co_node_t *node, const co_frame_t *frame)
         break;
     case CO_NMT_CS_STOP:
         co_nmt_enter(node, CO_NMT_STOPPED);
+        break;
+    case CO_NMT_CS_DISCONNECT:
+        /* DS301 before V4 had a Disconnected state; V4 has none, and the nearest is Stopped: no
+         * SDO, PDO or EMCY, still answering NMT and node guarding (docs/error-control.md). */
+        if (node->options & CO_NODE_NMT_DISCONNECT)
+            co_nmt_enter(node, CO_NMT_STOPPED);
         break;
     case CO_NMT_CS_ENTER_PRE_OPERATIONAL:
         co_nmt_enter(node, CO_NMT_PRE_OPERATIONAL);

@@ -369,14 +369,16 @@ static void rpdo_emcy(co_node_t *node, uint16_t n, uint16_t code, uint8_t receiv
     co_emcy_raise(node, code, PDO_EMCY_REGISTER, msef);
 }
 
-/* CiA 301 table 21: 0x8210 for a frame shorter than the mapping, 0x8220 for a longer one. */
+/* CiA 301 table 21: 0x8210 for a frame shorter than the mapping, 0x8220 for a longer one; on a
+ * node of 8-byte frames (CO_NODE_PAD_DLC8) DLC 8 is the padded length of every mapping. */
 static void rpdo_check_length(co_node_t *node, uint16_t n, uint8_t len)
 {
     co_rpdo_t *r = &node->pdo.rpdo[n];
+    bool padded = (node->options & CO_NODE_PAD_DLC8) && len == CO_FRAME_DLC_MAX;
     uint16_t code = 0;
     if (len < r->map.length)
         code = CO_EMCY_PDO_LENGTH;
-    else if (len > r->map.length)
+    else if (len > r->map.length && !padded)
         code = CO_EMCY_PDO_LENGTH_EXCEEDED;
     if (code == r->length_error)
         return;

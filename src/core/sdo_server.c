@@ -4,54 +4,16 @@
  * of the value into the buffer at initiate, so the client reads one consistent value. The buffer
  * may be shared by several nodes (co_sdo_buffer_t): a transfer holds it until it goes idle. */
 #include "co/co_node.h"
+#include "sdo_protocol.h"
 
 #include <string.h>
 
-/* Command specifiers, bits 7..5 of byte 0 (CiA 301 7.2.4.3). */
-#define CCS_DOWNLOAD_SEGMENT 0u
-#define CCS_DOWNLOAD_INITIATE 1u
-#define CCS_UPLOAD_INITIATE 2u
-#define CCS_UPLOAD_SEGMENT 3u
-#define CCS_BLOCK_UPLOAD 5u
-#define CCS_BLOCK_DOWNLOAD 6u
-
-#define SCS_UPLOAD_SEGMENT 0x00u
-#define SCS_DOWNLOAD_SEGMENT 0x20u
-#define SCS_UPLOAD_INITIATE 0x40u
-#define SCS_DOWNLOAD_INITIATE 0x60u
-#define CS_ABORT 0x80u
-#define SCS_BLOCK_DOWNLOAD 0xA0u
-#define SCS_BLOCK_UPLOAD 0xC0u
-
-/* Bits of the initiate command bytes. */
-#define SDO_EXPEDITED 0x02u      /* e */
-#define SDO_SIZE_INDICATED 0x01u /* s */
-#define SDO_TOGGLE 0x10u         /* t */
-#define SDO_LAST 0x01u           /* c, segmented transfers */
-#define BLOCK_CRC 0x04u          /* cc / sc */
-#define BLOCK_SIZE_INDICATED 0x02u
-#define BLOCK_LAST 0x80u /* c, block segments */
-#define BLOCK_SEQNO 0x7Fu
-
-/* Sub-commands of block transfers, bits 1..0 (upload) or bit 0 (download) of byte 0. */
-#define BLOCK_UPLOAD_INITIATE 0u
-#define BLOCK_UPLOAD_END 1u
-#define BLOCK_UPLOAD_ACK 2u
-#define BLOCK_UPLOAD_START 3u
-#define BLOCK_DOWNLOAD_INITIATE 0u
-#define BLOCK_DOWNLOAD_END 1u
-#define BLOCK_DOWNLOAD_ACK 2u /* server's sub-block acknowledge */
-
-#define SEGMENT_BYTES 7u
-#define EXPEDITED_BYTES 4u
-#define BLKSIZE_MAX 127u
-
-/* Smallest frames carrying what each request needs: command + index + sub-index, + 4-byte size. */
-#define INITIATE_LEN 4u
-#define INITIATE_SIZE_LEN 8u
-#define BLOCK_UPLOAD_INITIATE_LEN 5u /* + blksize; pst is 0 when absent */
-#define BLOCK_ACK_LEN 3u             /* cs, ackseq, blksize */
-#define BLOCK_END_CRC_LEN 3u         /* cs, CRC */
+/* The DS301 V3 abort layout (CO_NODE_SDO_ERROR_CLASS): error class in the top byte, error code
+ * below it, no additional code. Its codes for a missing sub-index and an unsupported request
+ * (ATV58 CANopen card manual, "Invalid SDO transactions"); the other two are CiA 301's
+ * SDO_ABORT_NO_OBJECT and SDO_ABORT_UNSUPPORTED_ACCESS. */
+#define SDO_ERROR_CLASS_NO_SUBINDEX 0x06090000u
+#define SDO_ERROR_CLASS_NOT_SUPPORTED 0x05030000u
 
 uint16_t co_sdo_crc16(const uint8_t *data, size_t len)
 {
@@ -134,8 +96,24 @@ static void send_with_mux(co_node_t *node, uint8_t command, uint32_t value)
     send_response(node, p);
 }
 
+/* A CiA 301 abort code in the DS301 V3 layout: the error class and code its cause has there,
+ * the nearest of the four for the others (command specifiers: not supported; every refusal of
+ * an existing object's access, value or state: access not supported). */
+static uint32_t error_class_code(uint32_t code)
+{
+    if (code == SDO_ABORT_NO_OBJECT)
+        return SDO_ABORT_NO_OBJECT;
+    if (code == SDO_ABORT_NO_SUBINDEX)
+        return SDO_ERROR_CLASS_NO_SUBINDEX;
+    if ((code >> 16) == (SDO_ABORT_COMMAND >> 16) || (code >> 16) == (SDO_ABORT_TOGGLE >> 16))
+        return SDO_ERROR_CLASS_NOT_SUPPORTED;
+    return SDO_ABORT_UNSUPPORTED_ACCESS;
+}
+
 static void transfer_abort(co_node_t *node, uint32_t code)
 {
+    if (node->options & CO_NODE_SDO_ERROR_CLASS)
+        code = error_class_code(code);
     send_with_mux(node, CS_ABORT, code);
     transfer_idle(node);
 }
@@ -187,6 +165,20 @@ static uint32_t unindicated_length(co_node_t *node, size_t *len)
     return abort;
 }
 
+/* CO_NODE_SDO_LONG_EXPEDITED: the length of the object itself when the write is longer and
+ * every extra byte is 0 (the ATV58 manual writes its 16-bit guard time with 0x23, 4 bytes). */
+static size_t without_zero_extension(co_node_t *node, const uint8_t *value, size_t len)
+{
+    const co_od_entry_t *e = co_od_find(node->od, node->sdo.index, node->sdo.subindex);
+    size_t fixed = e != NULL ? co_od_type_size(e->type) : 0;
+    if (!(node->options & CO_NODE_SDO_LONG_EXPEDITED) || fixed == 0 || fixed >= len)
+        return len;
+    for (size_t i = fixed; i < len; i++)
+        if (value[i] != 0)
+            return len;
+    return fixed;
+}
+
 static void download_initiate(co_node_t *node, const co_frame_t *frame)
 {
     co_sdo_server_t *sdo = &node->sdo;
@@ -198,6 +190,8 @@ static void download_initiate(co_node_t *node, const co_frame_t *frame)
             abort = unindicated_length(node, &len);
         if (abort == CO_SDO_OK && frame->len < INITIATE_LEN + len)
             abort = SDO_ABORT_COMMAND;
+        if (abort == CO_SDO_OK)
+            len = without_zero_extension(node, &frame->data[4], len);
         if (abort == CO_SDO_OK)
             abort = co_od_write(node, sdo->index, sdo->subindex, &frame->data[4], len,
                                 CO_OD_ORIGIN_SDO);
@@ -306,6 +300,8 @@ static void upload_initiate(co_node_t *node)
         upload_expedited(node, co_od_bytes(node, e), len);
         return;
     }
+    if (abort == CO_SDO_OK && (node->options & CO_NODE_SDO_EXPEDITED_ONLY))
+        abort = SDO_ABORT_UNSUPPORTED_ACCESS;
     if (abort == CO_SDO_OK)
         abort = upload_snapshot(node, e);
     if (abort != CO_SDO_OK) {
@@ -565,6 +561,15 @@ static bool is_initiate(uint8_t command)
 
 /* A new request replaces whatever transfer was under way: the client has given up on it, and an
  * abort for the old multiplexer would be taken by the client as the answer to its new request. */
+/* CO_NODE_SDO_EXPEDITED_ONLY: the initiates of segmented and block transfers. */
+static bool refused_initiate(const co_node_t *node, uint8_t command)
+{
+    uint8_t ccs = command >> 5;
+    if (!(node->options & CO_NODE_SDO_EXPEDITED_ONLY) || ccs == CCS_UPLOAD_INITIATE)
+        return false;
+    return ccs != CCS_DOWNLOAD_INITIATE || !(command & SDO_EXPEDITED);
+}
+
 static void initiate(co_node_t *node, const co_frame_t *frame)
 {
     co_sdo_server_t *sdo = &node->sdo;
@@ -572,7 +577,9 @@ static void initiate(co_node_t *node, const co_frame_t *frame)
     transfer_idle(node);
     sdo->index = co_get_u16(&frame->data[1]);
     sdo->subindex = frame->data[3];
-    if (ccs == CCS_DOWNLOAD_INITIATE)
+    if (refused_initiate(node, frame->data[0]))
+        transfer_abort(node, SDO_ABORT_COMMAND);
+    else if (ccs == CCS_DOWNLOAD_INITIATE)
         download_initiate(node, frame);
     else if (ccs == CCS_UPLOAD_INITIATE)
         upload_initiate(node);

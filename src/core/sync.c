@@ -49,9 +49,32 @@ static void sync_length_error_end(co_node_t *node)
  * is in Initialising: clearing the EMCY sends no error reset, the boot-up says it. */
 void co_sync_reset(co_node_t *node)
 {
-    node->sync.counter = 0;
-    node->sync.next = CO_TIME_NEVER;
+    co_sync_producer_stop(&node->sync.producer);
+    node->sync.producer.counter = 0;
     sync_length_error_end(node);
+}
+
+bool co_sync_producer_init(co_sync_producer_t *producer, uint32_t can_id, uint32_t period_us,
+                           uint8_t overflow)
+{
+    if (can_id > CO_SYNC_COBID_CAN_ID || co_can_id_restricted(can_id) || period_us == 0)
+        return false;
+    if (overflow != 0 && (overflow < CO_SYNC_OVERFLOW_MIN || overflow > CO_SYNC_OVERFLOW_MAX))
+        return false;
+    *producer = (co_sync_producer_t){
+        .can_id = can_id, .period_us = period_us, .overflow = overflow, .next = CO_TIME_NEVER};
+    return true;
+}
+
+void co_sync_producer_start(co_sync_producer_t *producer, co_time_t start)
+{
+    producer->counter = 0;
+    producer->next = start + producer->period_us;
+}
+
+void co_sync_producer_stop(co_sync_producer_t *producer)
+{
+    producer->next = CO_TIME_NEVER;
 }
 
 /* The counter starts at 1 and wraps from the overflow value back to 1 (CiA 301 7.2.5.2). */
@@ -60,42 +83,48 @@ static uint8_t sync_next_counter(uint8_t counter, uint8_t overflow)
     return counter < overflow ? (uint8_t)(counter + 1) : 1;
 }
 
-static void sync_produce(co_node_t *node)
+bool co_sync_producer_take(co_sync_producer_t *producer, co_time_t now, co_frame_t *frame)
 {
-    uint8_t overflow = sync_overflow(node);
-    co_frame_t frame = {.id = sync_cob_id(node) & CO_SYNC_COBID_CAN_ID};
-    if (overflow != 0) {
-        node->sync.counter = sync_next_counter(node->sync.counter, overflow);
-        frame.len = 1;
-        frame.data[0] = node->sync.counter;
+    if (now < producer->next)
+        return false;
+    *frame = (co_frame_t){.id = producer->can_id};
+    if (producer->overflow != 0) {
+        producer->counter = sync_next_counter(producer->counter, producer->overflow);
+        frame->len = 1;
+        frame->data[0] = producer->counter;
     }
-    co_node_send(node, &frame);
-    sync_event(node, frame.data[0]);
+    producer->next += producer->period_us;
+    if (producer->next <= now)
+        producer->next = now + producer->period_us;
+    return true;
 }
 
 co_time_t co_sync_process(co_node_t *node, co_time_t now)
 {
-    co_sync_t *sync = &node->sync;
+    co_sync_producer_t *producer = &node->sync.producer;
     if (!sync_production_allowed(node)) {
         /* Leaving Pre-operational/Operational restarts the counter at 1. */
-        sync->counter = 0;
-        sync->next = CO_TIME_NEVER;
+        producer->counter = 0;
+        co_sync_producer_stop(producer);
         return CO_TIME_NEVER;
     }
     if (!sync_producer_configured(node)) {
-        sync->next = CO_TIME_NEVER;
+        co_sync_producer_stop(producer);
         return CO_TIME_NEVER;
     }
-    uint32_t period = sync_period_us(node);
-    if (sync->next == CO_TIME_NEVER) {
-        sync->next = now + period;
-    } else if (now >= sync->next) {
-        sync_produce(node);
-        sync->next += period;
-        if (sync->next <= now)
-            sync->next = now + period;
+    /* 1005h, 1006h and 1019h may have changed since the last call; their writes stop the
+     * producer, so that a new configuration starts a fresh period here, counter kept. */
+    producer->can_id = sync_cob_id(node) & CO_SYNC_COBID_CAN_ID;
+    producer->period_us = sync_period_us(node);
+    producer->overflow = sync_overflow(node);
+    if (producer->next == CO_TIME_NEVER)
+        producer->next = now + producer->period_us;
+    co_frame_t frame;
+    if (co_sync_producer_take(producer, now, &frame)) {
+        co_node_send(node, &frame);
+        sync_event(node, frame.data[0]);
     }
-    return sync->next;
+    return producer->next;
 }
 
 bool co_sync_receive(co_node_t *node, const co_frame_t *frame)
@@ -159,6 +188,6 @@ uint32_t co_sync_od_write(co_node_t *node, const co_od_entry_t *entry, const uin
         abort = sync_write_overflow(node, data[0]);
     /* A new producer configuration starts a fresh period at the next co_sync_process(). */
     if (abort == CO_SDO_OK && (entry->index == 0x1005 || entry->index == 0x1006))
-        node->sync.next = CO_TIME_NEVER;
+        co_sync_producer_stop(&node->sync.producer);
     return abort;
 }

@@ -5,10 +5,6 @@
 
 #include <stddef.h>
 
-/* The EMCY error register of a communication fault: 1001h bit 0 (generic, "error (1)" in the
- * ATV312 table) and bit 4 (communication), CiA 301 table 48. */
-#define COMMUNICATION_ERROR_REGISTER (CO_ERR_REG_GENERIC | CO_ERR_REG_COMMUNICATION)
-
 /* Magnetising current at standstill, in % of nominal current; 100 % torque needs 100 %. */
 #define MAGNETISING_CURRENT_PERCENT 30
 
@@ -19,6 +15,8 @@ drive_t *drive_of(co_node_t *node)
 
 uint32_t drive_param_value(const drive_t *drive, drive_param_t param)
 {
+    if (param.index == 0)
+        return param.fixed;
     return (uint32_t)co_od_value(&drive->node, param.index, param.subindex);
 }
 
@@ -63,22 +61,29 @@ static void find_entries(drive_t *drive)
     };
 }
 
-static uint32_t entry_unsigned(const drive_t *drive, const co_od_entry_t *entry)
+/* A parameter of the profile through its entry; a setting the model's dictionary lacks reads as
+ * its fixed value (DRIVE_FIXED), as drive_param_value does. */
+static uint32_t param_unsigned(const drive_t *drive, const co_od_entry_t *entry,
+                               drive_param_t param)
 {
-    return (uint32_t)entry_value(drive, entry);
+    return entry != NULL ? (uint32_t)co_od_get(&drive->node, entry) : param.fixed;
 }
 
 uint32_t drive_frequency_to_rpm(const drive_t *drive, uint32_t decihertz)
 {
-    uint32_t frs = entry_unsigned(drive, drive->entries.nominal_frequency);
-    uint32_t nsp = entry_unsigned(drive, drive->entries.nominal_speed);
+    uint32_t frs =
+        param_unsigned(drive, drive->entries.nominal_frequency, drive->profile->nominal_frequency);
+    uint32_t nsp =
+        param_unsigned(drive, drive->entries.nominal_speed, drive->profile->nominal_speed);
     return frs ? (decihertz * nsp + frs / 2) / frs : 0;
 }
 
 uint32_t drive_rpm_to_frequency(const drive_t *drive, uint32_t rpm)
 {
-    uint64_t frs = entry_unsigned(drive, drive->entries.nominal_frequency);
-    uint64_t nsp = entry_unsigned(drive, drive->entries.nominal_speed);
+    uint64_t frs =
+        param_unsigned(drive, drive->entries.nominal_frequency, drive->profile->nominal_frequency);
+    uint64_t nsp =
+        param_unsigned(drive, drive->entries.nominal_speed, drive->profile->nominal_speed);
     uint64_t decihertz = nsp ? ((uint64_t)rpm * frs + nsp / 2) / nsp : 0;
     return decihertz > UINT32_MAX ? UINT32_MAX : (uint32_t)decihertz;
 }
@@ -87,13 +92,14 @@ static drive_ramp_t ramp_parameters(const drive_t *drive)
 {
     const drive_entries_t *e = &drive->entries;
     uint8_t divider = drive->profile->fast_ramp_divider;
-    uint32_t dec = entry_unsigned(drive, e->deceleration);
+    uint32_t dec = param_unsigned(drive, e->deceleration, drive->profile->deceleration);
     uint32_t fast_dec = divider ? dec / divider : dec;
     return (drive_ramp_t){
-        .acc = (uint16_t)entry_unsigned(drive, e->acceleration),
+        .acc = (uint16_t)param_unsigned(drive, e->acceleration, drive->profile->acceleration),
         .dec = (uint16_t)dec,
         .fast_dec = (uint16_t)(fast_dec ? fast_dec : 1),
-        .nominal_rpm = (uint16_t)entry_unsigned(drive, e->nominal_speed),
+        .nominal_rpm =
+            (uint16_t)param_unsigned(drive, e->nominal_speed, drive->profile->nominal_speed),
     };
 }
 
@@ -101,13 +107,15 @@ static drive_ramp_t ramp_parameters(const drive_t *drive)
  * held between the low and high speed (the drive runs at low speed with a zero reference). */
 static int32_t run_reference(drive_t *drive)
 {
+    const drive_profile_t *profile = drive->profile;
     const drive_entries_t *e = &drive->entries;
     int32_t reference = (int16_t)entry_value(drive, e->target_velocity);
-    bool reverse =
-        (reference < 0) != ((drive->cia402.control & drive->profile->control_reverse) != 0);
+    bool reverse = (reference < 0) != ((drive->cia402.control & profile->control_reverse) != 0);
     uint32_t wanted = (uint32_t)(reference < 0 ? -reference : reference);
-    uint32_t high = drive_frequency_to_rpm(drive, entry_unsigned(drive, e->high_speed));
-    uint32_t low = drive_frequency_to_rpm(drive, entry_unsigned(drive, e->low_speed));
+    uint32_t high =
+        drive_frequency_to_rpm(drive, param_unsigned(drive, e->high_speed, profile->high_speed));
+    uint32_t low =
+        drive_frequency_to_rpm(drive, param_unsigned(drive, e->low_speed, profile->low_speed));
     uint32_t speed = wanted > high ? high : (wanted < low ? low : wanted);
     drive->limited = speed != wanted;
     return reverse ? -(int32_t)speed : (int32_t)speed;
@@ -160,7 +168,8 @@ static bool output_on(const drive_t *drive)
 static int32_t motor_current(const drive_t *drive, int16_t torque)
 {
     int32_t load = torque < 0 ? -torque : torque;
-    int32_t nominal = (int32_t)entry_unsigned(drive, drive->entries.nominal_current);
+    int32_t nominal = (int32_t)param_unsigned(drive, drive->entries.nominal_current,
+                                              drive->profile->nominal_current);
     return nominal *
            (MAGNETISING_CURRENT_PERCENT + (100 - MAGNETISING_CURRENT_PERCENT) * load / 100) / 100;
 }
@@ -199,16 +208,17 @@ static void communication_fault(drive_t *drive)
     co_node_t *node = &drive->node;
     drive_motor_advance(&drive->motor, node->now);
     cia402_fault(&drive->cia402);
+    drive->fault = CO_EMCY_HEARTBEAT;
     entry_set(drive, drive->entries.error_code, CO_EMCY_HEARTBEAT);
-    co_emcy_raise(node, CO_EMCY_HEARTBEAT, COMMUNICATION_ERROR_REGISTER, NULL);
+    co_emcy_raise(node, CO_EMCY_HEARTBEAT, drive->profile->fault_error_register, NULL);
     drive_settle(drive);
 }
 
 static void acknowledge_fault(drive_t *drive)
 {
-    uint16_t code = (uint16_t)entry_value(drive, drive->entries.error_code);
     entry_set(drive, drive->entries.error_code, 0);
-    co_emcy_clear(&drive->node, code);
+    co_emcy_clear(&drive->node, drive->fault);
+    drive->fault = 0;
 }
 
 static bool is_control_word(const drive_t *drive, const co_od_entry_t *entry)
@@ -253,6 +263,7 @@ static void on_guarding(co_node_t *node, bool lost)
 static void restart_drive(drive_t *drive, co_time_t now)
 {
     cia402_reset(&drive->cia402);
+    drive->fault = 0;
     drive_motor_reset(&drive->motor, now);
     drive->limited = false;
     drive->dirty = true;
@@ -276,7 +287,7 @@ static void on_nmt_state(co_node_t *node, co_nmt_state_t state)
     (void)state;
     drive_t *drive = drive_of(node);
     for (uint8_t i = 0; i < drive->bus_event_count; i++)
-        co_emcy_raise(node, drive->bus_events[i], COMMUNICATION_ERROR_REGISTER, NULL);
+        co_emcy_raise(node, drive->bus_events[i], drive->profile->fault_error_register, NULL);
 }
 
 static const co_app_hooks_t drive_hooks = {
@@ -297,6 +308,7 @@ int drive_init(drive_t *drive, const drive_config_t *config)
         .user = config->send_user,
         .hooks = &drive_hooks,
         .storage = config->storage,
+        .options = config->profile->node_options,
     };
     drive->profile = config->profile;
     int err = co_node_init(&drive->node, &node_config);
@@ -350,7 +362,7 @@ void drive_bus_event(drive_t *drive, uint16_t emcy_code, bool active)
 {
     remember_bus_event(drive, emcy_code, active);
     if (active)
-        co_emcy_raise(&drive->node, emcy_code, COMMUNICATION_ERROR_REGISTER, NULL);
+        co_emcy_raise(&drive->node, emcy_code, drive->profile->fault_error_register, NULL);
     else
         co_emcy_clear(&drive->node, emcy_code);
 }

@@ -126,7 +126,7 @@ START_TEST(frames_outside_the_set_are_ignored)
     }
     test_expect_none(&t);
     ck_assert_int_eq(t.node.nmt_state, CO_NMT_OPERATIONAL);
-    ck_assert(!t.node.heartbeat.consumer[0].monitoring);
+    ck_assert(!t.node.heartbeat.consumer[0].monitor.monitoring);
 }
 END_TEST
 

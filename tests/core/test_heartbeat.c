@@ -140,7 +140,7 @@ START_TEST(malformed_and_foreign_heartbeats_ignored)
     test_rx(&t, "706#05");
     test_advance(&t, 1000000);
     ck_assert_uint_eq(event_count, 0);
-    ck_assert(!t.node.heartbeat.consumer[0].monitoring);
+    ck_assert(!t.node.heartbeat.consumer[0].monitor.monitoring);
 }
 END_TEST
 

@@ -351,11 +351,12 @@ def dump():
 @pytest.fixture
 def start_daemon(tmp_path, request):
     """Factory: start_daemon(watcher, '--node-id', '4', ..., boot_ids=[4]) starts atv312d on vcan0 and
-    waits (deadline) for the boot-up frame of each node in boot_ids. Each daemon is stopped with
+    waits (deadline) for the boot-up frame of each node in boot_ids: 00, or 00 and seven zero bytes
+    for the nodes in padded_ids (a model of 8-byte frames, the ATV58). Each daemon is stopped with
     SIGTERM at the end of the test, which must make it exit 0; its log is printed on failure."""
     daemons = []
 
-    def start(watcher, *args, boot_ids=None, iface=IFACE):
+    def start(watcher, *args, boot_ids=None, padded_ids=(), iface=IFACE):
         args = [str(a) for a in args]
         if boot_ids is None:
             boot_ids = node_ids_from_args(args)
@@ -363,7 +364,8 @@ def start_daemon(tmp_path, request):
         daemons.append(d)
         for node in boot_ids:
             try:
-                watcher.expect(0x700 + node, b"\x00", timeout=BOOT_TIMEOUT)
+                boot = bytes(8) if node in padded_ids else b"\x00"
+                watcher.expect(0x700 + node, boot, timeout=BOOT_TIMEOUT)
             except AssertionError as e:
                 raise AssertionError(f"node {node} did not boot: {e}\n--- atv312d log ---\n{d.log()}") from None
         return d

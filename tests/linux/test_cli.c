@@ -2,6 +2,7 @@
  * every usage error with its exit code and a message naming what would be right. */
 #include "atv31/atv31.h"
 #include "atv312/atv312.h"
+#include "atv58/atv58.h"
 #include "check_main.h"
 #include "cli.h"
 
@@ -77,8 +78,8 @@ END_TEST
 START_TEST(model_errors)
 {
     ck_assert_int_eq(parse("vcan0", "--node-id", "4", "--model", "atv99", NULL), EX_USAGE);
-    ck_assert_str_eq(err,
-                     "--model: unknown model 'atv99': the models are atv312, atv31, atv31-v1.1");
+    ck_assert_str_eq(
+        err, "--model: unknown model 'atv99': the models are atv312, atv31, atv31-v1.1, atv58");
     ck_assert_int_eq(parse("vcan0", "--model", "atv312", "--node-id", "4", NULL), EX_USAGE);
     ck_assert_str_eq(err, "--model atv312: no --node-id before it: a model follows the node-ids "
                           "of its drives, e.g. --node-id 4 --model atv312");
@@ -88,6 +89,23 @@ START_TEST(model_errors)
                           "atv312: give one --model after each --node-id");
     ck_assert_int_eq(parse("vcan0", "--node-id", "4", "--model", NULL), EX_USAGE);
     ck_assert_str_eq(err, "option --model needs a value (see atv312d --help)");
+}
+END_TEST
+
+/* The ATV58's card takes node-ids 1..63 (its address switches): one above is refused, naming the
+ * range, and the same id is fine for the other models. */
+START_TEST(atv58_node_ids_up_to_63)
+{
+    ck_assert_int_eq(
+        parse("vcan0", "--node-id", "4", "--node-id", "60-64", "--model", "atv58", NULL), EX_USAGE);
+    ck_assert_str_eq(err, "--node-id 64: the atv58 takes node-ids 1..63, give it one of those");
+    ck_assert_int_eq(parse("vcan0", "--node-id", "64", "--model", "atv31", "--node-id", "1,63",
+                           "--model", "atv58", NULL),
+                     0);
+    assert_ids(3, (const uint8_t[]){1, 63, 64});
+    ck_assert_ptr_eq(opts.models[0]->profile, &atv58_profile);
+    ck_assert_ptr_eq(opts.models[1]->profile, &atv58_profile);
+    ck_assert_ptr_eq(opts.models[2]->profile, &atv31_profile);
 }
 END_TEST
 
@@ -212,6 +230,7 @@ int main(void)
     tcase_add_test(tc, single_node_with_defaults);
     tcase_add_test(tc, model_of_each_node_id_group);
     tcase_add_test(tc, model_errors);
+    tcase_add_test(tc, atv58_node_ids_up_to_63);
     tcase_add_test(tc, help_lists_the_models);
     tcase_add_test(tc, every_option_in_both_spellings);
     tcase_add_test(tc, ranges_lists_and_repeats_are_sorted);

@@ -29,7 +29,8 @@ void bench_start_model(bench_t *b, const drive_profile_t *profile, const co_stor
     ck_assert_int_eq(drive_init(&b->drive, &config), 0);
     drive_start(&b->drive, 0);
     b->deadline = drive_process(&b->drive, 0);
-    bench_expect(b, "704#00");
+    bool padded = (profile->node_options & CO_NODE_PAD_DLC8) != 0;
+    bench_expect(b, padded ? "704#0000000000000000" : "704#00");
 }
 
 void bench_rx(bench_t *b, const char *text)

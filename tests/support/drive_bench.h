@@ -25,7 +25,7 @@ typedef struct bench {
 } bench_t;
 
 /* Boots node 4 of the model at time 0, with a storage backend (1010h / 1011h) or NULL, and
- * consumes its boot-up frame. */
+ * consumes its boot-up frame (8 bytes for a model of CO_NODE_PAD_DLC8). */
 void bench_start_model(bench_t *b, const drive_profile_t *profile, const co_storage_t *storage);
 /* Delivers a frame now, then runs drive_process. */
 void bench_rx(bench_t *b, const char *text);

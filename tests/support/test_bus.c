@@ -30,22 +30,30 @@ void test_node_start(test_node_t *t, uint8_t node_id, const co_app_hooks_t *hook
 void test_node_start_od(test_node_t *t, const co_od_t *od, uint8_t node_id,
                         const co_app_hooks_t *hooks, const co_storage_t *storage)
 {
-    memset(t, 0, sizeof(*t));
-    ck_assert_uint_le(od->data_size, sizeof(t->data));
     co_node_config_t config = {
         .node_id = node_id,
         .od = od,
-        .od_data = t->data,
-        .send = bus_send,
-        .user = &t->bus,
         .hooks = hooks,
         .storage = storage,
     };
-    ck_assert_int_eq(co_node_init(&t->node, &config), 0);
+    test_node_start_config(t, &config);
+}
+
+void test_node_start_config(test_node_t *t, const co_node_config_t *config)
+{
+    memset(t, 0, sizeof(*t));
+    ck_assert_uint_le(config->od->data_size, sizeof(t->data));
+    co_node_config_t bus_config = *config;
+    bus_config.od_data = t->data;
+    bus_config.send = bus_send;
+    bus_config.user = &t->bus;
+    ck_assert_int_eq(co_node_init(&t->node, &bus_config), 0);
     co_node_start(&t->node, 0);
     t->bus.deadline = co_node_process(&t->node, 0);
-    char boot[16];
-    snprintf(boot, sizeof(boot), "%03X#00", 0x700 + node_id);
+    bool padded = (config->options & CO_NODE_PAD_DLC8) != 0;
+    char boot[32];
+    snprintf(boot, sizeof(boot), "%03X#00%s", 0x700 + config->node_id,
+             padded ? "00000000000000" : "");
     test_expect(t, boot);
 }
 

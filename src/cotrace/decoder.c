@@ -1,0 +1,894 @@
+#include "decoder.h"
+
+#include "co/co_emcy.h"
+
+#include <linux/can/error.h>
+#include <stdarg.h>
+#include <stdio.h>
+#include <string.h>
+
+/* CiA 301 predefined connection set: function codes (COB-ID bits 10..7) and fixed COB-IDs. */
+#define COB_NMT 0x000u
+#define COB_SYNC 0x080u
+#define COB_TIME 0x100u
+#define COB_SDO_TX 0x580u /* server -> client */
+#define COB_SDO_RX 0x600u /* client -> server */
+#define COB_NMT_ERROR_CONTROL 0x700u
+#define COB_LSS_SLAVE 0x7E4u
+#define COB_LSS_MASTER 0x7E5u
+#define NODE_MASK 0x7Fu
+
+/* SDO command byte (CiA 301 7.2.4.3): the command specifier in bits 7..5. */
+#define SDO_CS(cmd) ((cmd) >> 5)
+#define SDO_CCS_DOWNLOAD_SEGMENT 0
+#define SDO_CCS_DOWNLOAD_INITIATE 1
+#define SDO_CCS_UPLOAD_INITIATE 2
+#define SDO_CCS_UPLOAD_SEGMENT 3
+#define SDO_CS_ABORT 4
+#define SDO_CCS_BLOCK_UPLOAD 5
+#define SDO_CCS_BLOCK_DOWNLOAD 6
+#define SDO_SCS_UPLOAD_SEGMENT 0
+#define SDO_SCS_DOWNLOAD_SEGMENT 1
+#define SDO_SCS_UPLOAD_INITIATE 2
+#define SDO_SCS_DOWNLOAD_INITIATE 3
+#define SDO_SCS_BLOCK_DOWNLOAD 5
+#define SDO_SCS_BLOCK_UPLOAD 6
+#define SDO_EXPEDITED 0x02u
+#define SDO_SIZE_INDICATED 0x01u
+#define SDO_TOGGLE 0x10u
+#define SDO_LAST_SEGMENT 0x01u
+#define SDO_BLOCK_CRC 0x04u
+#define SDO_BLOCK_SIZE_INDICATED 0x02u
+#define SDO_BLOCK_SUBCOMMAND 0x03u /* 0 initiate, 1 end, 2 ack, 3 start upload */
+#define SDO_BLOCK_LAST 0x80u       /* a block segment's sequence byte: no more segments */
+#define SDO_SEGMENT_DATA 7u
+
+/* Heartbeat and guarding (CiA 301 7.2.8.3): bit 7 of a guarding reply is the toggle bit. */
+#define GUARD_TOGGLE 0x80u
+#define NMT_STATE_MASK 0x7Fu
+
+/* CiA 301 7.2.6: the TIME object counts days from 1984-01-01. */
+#define TIME_EPOCH_DAYS_FROM_1970 5113u
+#define TIME_MS_MASK 0x0FFFFFFFu
+
+typedef struct text {
+    char *buf;
+    size_t cap, len;
+} text_t;
+
+static void say(text_t *t, const char *format, ...) __attribute__((format(printf, 2, 3)));
+
+static void say(text_t *t, const char *format, ...)
+{
+    if (t->len + 1 >= t->cap)
+        return;
+    va_list args;
+    va_start(args, format);
+    int n = vsnprintf(t->buf + t->len, t->cap - t->len, format, args);
+    va_end(args);
+    if (n > 0)
+        t->len = t->len + (size_t)n < t->cap ? t->len + (size_t)n : t->cap - 1;
+}
+
+static void say_bytes(text_t *t, const uint8_t *data, size_t len)
+{
+    for (size_t i = 0; i < len; i++)
+        say(t, i ? " %02X" : "%02X", data[i]);
+}
+
+static bool printable(const uint8_t *data, size_t len)
+{
+    if (len == 0)
+        return false;
+    for (size_t i = 0; i < len; i++) {
+        if (data[i] < 0x20 || data[i] > 0x7E)
+            return false;
+    }
+    return true;
+}
+
+/* A value as bytes, and as the string or little-endian number they are most likely to be. */
+static void say_value(text_t *t, const uint8_t *data, size_t len, size_t total)
+{
+    if (printable(data, len)) {
+        say(t, "\"%.*s\"", (int)len, (const char *)data);
+    } else {
+        say_bytes(t, data, len);
+        if (len >= 1 && len <= 4 && len == total) {
+            uint32_t v = 0;
+            for (size_t i = len; i-- > 0;)
+                v = v << 8 | data[i];
+            say(t, " (%lu)", (unsigned long)v);
+        }
+    }
+    if (total > len)
+        say(t, " ...");
+}
+
+static const cotrace_eds_t *eds_of(const cotrace_decoder_t *dec, uint8_t node)
+{
+    return dec->eds && node == dec->eds_node ? dec->eds : NULL;
+}
+
+static void say_object(text_t *t, const cotrace_decoder_t *dec, uint8_t node, uint16_t index,
+                       uint8_t sub)
+{
+    say(t, "%04X:%02X", index, sub);
+    const cotrace_eds_t *eds = eds_of(dec, node);
+    const char *name = eds ? cotrace_eds_name(eds, index, sub) : NULL;
+    if (name)
+        say(t, " %s", name);
+}
+
+/* ---- NMT, SYNC, TIME, EMCY, error control ------------------------------------------------- */
+
+static const char *nmt_command_name(uint8_t cs)
+{
+    switch (cs) {
+    case 0x01:
+        return "Start remote node";
+    case 0x02:
+        return "Stop remote node";
+    case 0x80:
+        return "Enter pre-operational";
+    case 0x81:
+        return "Reset node";
+    case 0x82:
+        return "Reset communication";
+    default:
+        return NULL;
+    }
+}
+
+static void decode_nmt(const struct can_frame *f, text_t *t)
+{
+    if (f->can_id & CAN_RTR_FLAG || f->len != 2) {
+        say(t, "NMT malformed: %u bytes, a command has 2 (command, node-id)", f->len);
+        return;
+    }
+    const char *name = nmt_command_name(f->data[0]);
+    if (name)
+        say(t, "NMT %s", name);
+    else
+        say(t, "NMT unknown command 0x%02X", f->data[0]);
+    if (f->data[1] == 0)
+        say(t, ", all nodes");
+    else
+        say(t, ", node %u%s", f->data[1], f->data[1] > COTRACE_NODE_MAX ? " (not a node-id)" : "");
+}
+
+static void decode_sync(const struct can_frame *f, text_t *t)
+{
+    if (f->len == 0)
+        say(t, "SYNC");
+    else if (f->len == 1)
+        say(t, "SYNC counter %u", f->data[0]);
+    else
+        say(t, "SYNC malformed: %u bytes, a SYNC has none or 1 (counter)", f->len);
+}
+
+/* Days since 1970-01-01 to a civil date (proleptic Gregorian), without libc's time zone. */
+static void civil_from_days(long z, int *y, unsigned *m, unsigned *d)
+{
+    z += 719468;
+    long era = (z >= 0 ? z : z - 146096) / 146097;
+    unsigned long doe = (unsigned long)(z - era * 146097);
+    unsigned long yoe = (doe - doe / 1460 + doe / 36524 - doe / 146096) / 365;
+    unsigned long doy = doe - (365 * yoe + yoe / 4 - yoe / 100);
+    unsigned long mp = (5 * doy + 2) / 153;
+    *d = (unsigned)(doy - (153 * mp + 2) / 5 + 1);
+    *m = (unsigned)(mp < 10 ? mp + 3 : mp - 9);
+    *y = (int)((long)yoe + era * 400 + (*m <= 2));
+}
+
+static void decode_time(const struct can_frame *f, text_t *t)
+{
+    if (f->len != 6) {
+        say(t, "TIME malformed: %u bytes, a TIME_OF_DAY has 6", f->len);
+        return;
+    }
+    uint32_t ms = co_get_u32(f->data) & TIME_MS_MASK;
+    uint16_t days = co_get_u16(&f->data[4]);
+    int y;
+    unsigned m, d;
+    civil_from_days((long)days + TIME_EPOCH_DAYS_FROM_1970, &y, &m, &d);
+    say(t, "TIME %04d-%02u-%02u %02lu:%02lu:%02lu.%03lu", y, m, d, (unsigned long)ms / 3600000,
+        (unsigned long)ms / 60000 % 60, (unsigned long)ms / 1000 % 60, (unsigned long)ms % 1000);
+}
+
+static void say_error_register(text_t *t, uint8_t reg)
+{
+    static const struct {
+        uint8_t bit;
+        const char *name;
+    } bits[] = {{CO_ERR_REG_GENERIC, "generic"},
+                {CO_ERR_REG_CURRENT, "current"},
+                {CO_ERR_REG_VOLTAGE, "voltage"},
+                {CO_ERR_REG_TEMPERATURE, "temperature"},
+                {CO_ERR_REG_COMMUNICATION, "communication"},
+                {CO_ERR_REG_PROFILE, "device profile"},
+                {0x40, "reserved"},
+                {CO_ERR_REG_MANUFACTURER, "manufacturer"}};
+    say(t, "error register 0x%02X", reg);
+    const char *sep = " (";
+    for (size_t i = 0; i < sizeof bits / sizeof bits[0]; i++) {
+        if (reg & bits[i].bit) {
+            say(t, "%s%s", sep, bits[i].name);
+            sep = ", ";
+        }
+    }
+    if (reg)
+        say(t, ")");
+}
+
+static void decode_emcy(const cotrace_decoder_t *dec, const struct can_frame *f, text_t *t)
+{
+    co_frame_t frame;
+    co_emcy_message_t msg;
+    frame.id = f->can_id & CAN_SFF_MASK;
+    frame.len = f->len;
+    frame.flags = f->can_id & CAN_RTR_FLAG ? CO_FRAME_RTR : 0;
+    memcpy(frame.data, f->data, sizeof frame.data);
+    co_emcy_decode_t result = co_emcy_decode(&frame, &msg);
+    if (result != CO_EMCY_DECODE_OK) {
+        say(t, "EMCY node %u malformed: %s (%u bytes)", frame.id - COB_SYNC,
+            co_emcy_decode_text(result), f->len);
+        return;
+    }
+    say(t, "EMCY node %u: 0x%04X %s, ", msg.node_id, msg.code,
+        co_emcy_code_text_in(dec->vendor, msg.code));
+    say_error_register(t, msg.reg);
+    say(t, ", manufacturer bytes ");
+    say_bytes(t, msg.msef, CO_EMCY_MSEF_LEN);
+}
+
+static const char *nmt_state_name(uint8_t state)
+{
+    switch (state) {
+    case 0x00:
+        return "Boot-up";
+    case 0x04:
+        return "Stopped";
+    case 0x05:
+        return "Operational";
+    case 0x7F:
+        return "Pre-operational";
+    default:
+        return NULL;
+    }
+}
+
+static void say_state(text_t *t, uint8_t state)
+{
+    const char *name = nmt_state_name(state);
+    if (name)
+        say(t, "%s", name);
+    else
+        say(t, "unknown state 0x%02X", state);
+}
+
+static void decode_error_control(cotrace_decoder_t *dec, uint8_t node, const struct can_frame *f,
+                                 text_t *t)
+{
+    if (f->can_id & CAN_RTR_FLAG) {
+        dec->guard_pending[node] = true;
+        say(t, "guarding request, node %u", node);
+        return;
+    }
+    if (f->len != 1) {
+        say(t, "heartbeat malformed: node %u, %u bytes, a heartbeat or guarding reply has 1", node,
+            f->len);
+        return;
+    }
+    uint8_t byte = f->data[0];
+    if (dec->guard_pending[node]) {
+        dec->guard_pending[node] = false;
+        say(t, "guarding reply, node %u: ", node);
+        say_state(t, byte & NMT_STATE_MASK);
+        say(t, ", toggle %u", byte & GUARD_TOGGLE ? 1 : 0);
+    } else if (byte == 0) {
+        say(t, "boot-up, node %u", node);
+    } else {
+        say(t, "heartbeat, node %u: ", node);
+        say_state(t, byte);
+    }
+}
+
+/* ---- SDO ---------------------------------------------------------------------------------- */
+
+static void sdo_reset(cotrace_sdo_t *s)
+{
+    memset(s, 0, sizeof *s);
+}
+
+static void sdo_start(cotrace_sdo_t *s, cotrace_sdo_kind_t kind, const uint8_t *data)
+{
+    sdo_reset(s);
+    s->kind = kind;
+    s->index = co_get_u16(&data[1]);
+    s->sub = data[3];
+}
+
+static void sdo_keep(cotrace_sdo_t *s, const uint8_t *data, size_t len)
+{
+    for (size_t i = 0; i < len; i++, s->count++) {
+        if (s->count < COTRACE_SDO_KEEP)
+            s->data[s->count] = data[i];
+    }
+}
+
+/* "1008:00 Name = value (n bytes)" for a completed transfer. */
+static void say_result(text_t *t, const cotrace_decoder_t *dec, uint8_t node,
+                       const cotrace_sdo_t *s)
+{
+    say_object(t, dec, node, s->index, s->sub);
+    size_t kept = s->count < COTRACE_SDO_KEEP ? s->count : COTRACE_SDO_KEEP;
+    say(t, " = ");
+    say_value(t, s->data, kept, s->count);
+    say(t, " (%lu bytes)", (unsigned long)s->count);
+}
+
+static void say_abort(text_t *t, const cotrace_decoder_t *dec, uint8_t node,
+                      const struct can_frame *f)
+{
+    if (f->len < 8) {
+        say(t, "abort, malformed: %u bytes, an abort has 8", f->len);
+        return;
+    }
+    uint32_t code = co_get_u32(&f->data[4]);
+    say(t, "abort ");
+    say_object(t, dec, node, co_get_u16(&f->data[1]), f->data[3]);
+    say(t, ": 0x%08X %s", code, co_sdo_abort_text(code));
+}
+
+/* A segment of a segmented transfer (either direction): toggle, data, last. */
+static void sdo_segment(text_t *t, cotrace_sdo_t *s, const uint8_t *data, const char *what)
+{
+    uint8_t cmd = data[0];
+    size_t n = SDO_SEGMENT_DATA - (cmd >> 1 & 7u);
+    sdo_keep(s, &data[1], n);
+    say(t, "%s segment, toggle %u, %zu bytes: ", what, cmd & SDO_TOGGLE ? 1 : 0, n);
+    say_value(t, &data[1], n, n);
+    if (cmd & SDO_LAST_SEGMENT)
+        say(t, ", last");
+}
+
+/* A segment of a block (either direction): sequence number, data, last. */
+static void sdo_block_segment(text_t *t, cotrace_sdo_t *s, const uint8_t *data, const char *what)
+{
+    uint8_t seq = data[0] & 0x7Fu;
+    if (seq == 1)
+        s->block_start = s->count;
+    s->count = s->block_start + (uint32_t)(seq - 1) * SDO_SEGMENT_DATA;
+    sdo_keep(s, &data[1], SDO_SEGMENT_DATA);
+    say(t, "%s segment %u: ", what, seq);
+    say_bytes(t, &data[1], SDO_SEGMENT_DATA);
+    if (data[0] & SDO_BLOCK_LAST) {
+        s->last_sent = true;
+        say(t, ", last");
+    }
+    if (data[0] & SDO_BLOCK_LAST || seq >= s->block_size)
+        s->in_subblock = false;
+}
+
+/* In a sub-block the data direction sends segments, sequence numbers 1..127; 0x80 there is an
+ * abort (sequence number 0 does not exist), and a segment is always 8 bytes. */
+static bool is_block_segment(const cotrace_sdo_t *s, const struct can_frame *f)
+{
+    return s->in_subblock && f->len == 8 && (f->data[0] & 0x7Fu) != 0;
+}
+
+/* A block acknowledgement: the segments up to ackseq arrived; what follows them is resent. */
+static void sdo_block_ack(text_t *t, cotrace_sdo_t *s, const uint8_t *data, const char *what)
+{
+    s->count = s->block_start + (uint32_t)data[1] * SDO_SEGMENT_DATA;
+    s->block_start = s->count;
+    s->block_size = data[2];
+    s->in_subblock = !s->last_sent || data[1] == 0;
+    say(t, "%s ack: received up to segment %u, next block size %u", what, data[1], data[2]);
+}
+
+/* The end of a block transfer: unused bytes of the last segment, CRC. */
+static void sdo_block_end(text_t *t, cotrace_sdo_t *s, const uint8_t *data, const char *what)
+{
+    unsigned unused = data[0] >> 2 & 7u;
+    s->count = s->count > unused ? s->count - unused : 0;
+    say(t, "%s end: %u bytes unused in the last segment, CRC 0x%04X", what, unused,
+        co_get_u16(&data[1]));
+}
+
+/* The size of an initiate: its flag is bit 0 in segmented transfers, bit 1 in block ones. */
+static void sdo_initiate_size(text_t *t, cotrace_sdo_t *s, const uint8_t *data, uint8_t flag)
+{
+    if (data[0] & flag) {
+        s->size = co_get_u32(&data[4]);
+        say(t, ", %lu bytes", (unsigned long)s->size);
+    } else {
+        say(t, ", size not indicated");
+    }
+}
+
+static void sdo_request(cotrace_decoder_t *dec, uint8_t node, const struct can_frame *f, text_t *t)
+{
+    cotrace_sdo_t *s = &dec->sdo[node];
+    const uint8_t *d = f->data;
+    say(t, "SDO %u request: ", node);
+    if (s->kind == COTRACE_SDO_BLOCK_DOWNLOAD && is_block_segment(s, f)) {
+        sdo_block_segment(t, s, d, "block download");
+        return;
+    }
+    uint8_t cs = SDO_CS(d[0]);
+    if (cs == SDO_CS_ABORT) {
+        say_abort(t, dec, node, f);
+        sdo_reset(s);
+        return;
+    }
+    if (f->len < 8) {
+        say(t, "malformed: %u bytes, an SDO request has 8", f->len);
+        return;
+    }
+    switch (cs) {
+    case SDO_CCS_DOWNLOAD_INITIATE:
+        sdo_start(s, COTRACE_SDO_DOWNLOAD, d);
+        say(t, "download ");
+        say_object(t, dec, node, s->index, s->sub);
+        if (d[0] & SDO_EXPEDITED) {
+            size_t n = d[0] & SDO_SIZE_INDICATED ? 4u - (d[0] >> 2 & 3u) : 4u;
+            s->expedited = true;
+            sdo_keep(s, &d[4], n);
+            say(t, " = ");
+            say_value(t, &d[4], n, n);
+        } else {
+            sdo_initiate_size(t, s, d, SDO_SIZE_INDICATED);
+            say(t, ", segmented");
+        }
+        return;
+    case SDO_CCS_DOWNLOAD_SEGMENT:
+        sdo_segment(t, s, d, "download");
+        s->last_sent = d[0] & SDO_LAST_SEGMENT;
+        return;
+    case SDO_CCS_UPLOAD_INITIATE:
+        sdo_start(s, COTRACE_SDO_UPLOAD, d);
+        say(t, "upload ");
+        say_object(t, dec, node, s->index, s->sub);
+        return;
+    case SDO_CCS_UPLOAD_SEGMENT:
+        say(t, "upload segment, toggle %u", d[0] & SDO_TOGGLE ? 1 : 0);
+        return;
+    case SDO_CCS_BLOCK_DOWNLOAD:
+        if ((d[0] & 1u) == 0) {
+            sdo_start(s, COTRACE_SDO_BLOCK_DOWNLOAD, d);
+            say(t, "block download ");
+            say_object(t, dec, node, s->index, s->sub);
+            sdo_initiate_size(t, s, d, SDO_BLOCK_SIZE_INDICATED);
+            say(t, "%s", d[0] & SDO_BLOCK_CRC ? ", CRC" : ", no CRC");
+        } else {
+            sdo_block_end(t, s, d, "block download");
+        }
+        return;
+    case SDO_CCS_BLOCK_UPLOAD:
+        switch (d[0] & SDO_BLOCK_SUBCOMMAND) {
+        case 0:
+            sdo_start(s, COTRACE_SDO_BLOCK_UPLOAD, d);
+            s->block_size = d[4];
+            say(t, "block upload ");
+            say_object(t, dec, node, s->index, s->sub);
+            say(t, ", blocks of %u segments%s", d[4], d[0] & SDO_BLOCK_CRC ? ", CRC" : ", no CRC");
+            return;
+        case 1:
+            say(t, "block upload end confirmed: ");
+            say_result(t, dec, node, s);
+            sdo_reset(s);
+            return;
+        case 2:
+            sdo_block_ack(t, s, d, "block upload");
+            return;
+        default:
+            s->in_subblock = true;
+            say(t, "block upload start");
+            return;
+        }
+    default:
+        say(t, "unknown command 0x%02X", d[0]);
+        return;
+    }
+}
+
+static void sdo_reply(cotrace_decoder_t *dec, uint8_t node, const struct can_frame *f, text_t *t)
+{
+    cotrace_sdo_t *s = &dec->sdo[node];
+    const uint8_t *d = f->data;
+    say(t, "SDO %u reply: ", node);
+    if (s->kind == COTRACE_SDO_BLOCK_UPLOAD && is_block_segment(s, f)) {
+        sdo_block_segment(t, s, d, "block upload");
+        return;
+    }
+    uint8_t cs = SDO_CS(d[0]);
+    if (cs == SDO_CS_ABORT) {
+        say_abort(t, dec, node, f);
+        sdo_reset(s);
+        return;
+    }
+    if (f->len < 8) {
+        say(t, "malformed: %u bytes, an SDO reply has 8", f->len);
+        return;
+    }
+    switch (cs) {
+    case SDO_SCS_UPLOAD_INITIATE:
+        s->index = co_get_u16(&d[1]);
+        s->sub = d[3];
+        say(t, "upload ");
+        say_object(t, dec, node, s->index, s->sub);
+        if (d[0] & SDO_EXPEDITED) {
+            size_t n = d[0] & SDO_SIZE_INDICATED ? 4u - (d[0] >> 2 & 3u) : 4u;
+            say(t, " = ");
+            say_value(t, &d[4], n, n);
+            sdo_reset(s);
+        } else {
+            sdo_initiate_size(t, s, d, SDO_SIZE_INDICATED);
+            say(t, ", segmented");
+        }
+        return;
+    case SDO_SCS_UPLOAD_SEGMENT:
+        sdo_segment(t, s, d, "upload");
+        if (d[0] & SDO_LAST_SEGMENT) {
+            say(t, ": ");
+            say_result(t, dec, node, s);
+            sdo_reset(s);
+        }
+        return;
+    case SDO_SCS_DOWNLOAD_INITIATE:
+        say(t, "download ");
+        say_object(t, dec, node, co_get_u16(&d[1]), d[3]);
+        if (s->expedited) {
+            say(t, " done");
+            sdo_reset(s);
+        } else {
+            say(t, " accepted, send the segments");
+        }
+        return;
+    case SDO_SCS_DOWNLOAD_SEGMENT:
+        say(t, "download segment, toggle %u, received", d[0] & SDO_TOGGLE ? 1 : 0);
+        if (s->kind == COTRACE_SDO_DOWNLOAD && s->last_sent) {
+            say(t, ": done, ");
+            say_result(t, dec, node, s);
+            sdo_reset(s);
+        }
+        return;
+    case SDO_SCS_BLOCK_DOWNLOAD:
+        switch (d[0] & SDO_BLOCK_SUBCOMMAND) {
+        case 0:
+            s->block_size = d[4];
+            s->in_subblock = true;
+            say(t, "block download ");
+            say_object(t, dec, node, co_get_u16(&d[1]), d[3]);
+            say(t, " accepted, blocks of %u segments", d[4]);
+            return;
+        case 1:
+            say(t, "block download done: ");
+            say_result(t, dec, node, s);
+            sdo_reset(s);
+            return;
+        case 2:
+            sdo_block_ack(t, s, d, "block download");
+            return;
+        default:
+            break;
+        }
+        break;
+    case SDO_SCS_BLOCK_UPLOAD:
+        if ((d[0] & 1u) == 0) {
+            say(t, "block upload ");
+            say_object(t, dec, node, co_get_u16(&d[1]), d[3]);
+            sdo_initiate_size(t, s, d, SDO_BLOCK_SIZE_INDICATED);
+            say(t, "%s", d[0] & SDO_BLOCK_CRC ? ", CRC" : ", no CRC");
+        } else {
+            sdo_block_end(t, s, d, "block upload");
+        }
+        return;
+    default:
+        break;
+    }
+    say(t, "unknown command 0x%02X", d[0]);
+}
+
+/* ---- PDO ---------------------------------------------------------------------------------- */
+
+/* CiA 301: PDO communication parameters 1400h (RPDO) / 1800h (TPDO), their mappings 200h above,
+ * 512 of each. */
+#define PDO_RPDO_COMM 0x1400u
+#define PDO_TPDO_COMM 0x1800u
+#define PDO_MAPPING_OFFSET 0x0200u
+#define PDO_COUNT 512u
+#define PDO_COB_ID_SUB 1u
+#define PDO_COB_ID_EXTENDED 0x20000000u
+/* Mapping entries below 0x0020 are data type indices: "dummy" entries that fill a gap. */
+#define PDO_DUMMY_LIMIT 0x0020u
+#define CIA402_CONTROL_WORD 0x6040u
+#define CIA402_STATUS_WORD 0x6041u
+
+/* The PDO of the EDS whose COB-ID is `cob_id`. */
+static bool pdo_from_eds(const cotrace_decoder_t *dec, uint16_t cob_id, cotrace_pdo_t *ref)
+{
+    for (size_t i = 0; i < dec->pdo_count; i++) {
+        if (dec->pdos[i].cob_id == cob_id) {
+            *ref = dec->pdos[i];
+            return true;
+        }
+    }
+    return false;
+}
+
+/* The PDOs of the EDS by the value of their COB-ID (1400h+n:01 / 1800h+n:01). The valid bit is
+ * ignored: a PDO the EDS leaves invalid (ATV312 PDO6) is enabled by a master at run time. */
+static void pdos_of_eds(cotrace_decoder_t *dec)
+{
+    for (unsigned i = 0; i < PDO_COUNT && dec->pdo_count < COTRACE_PDO_MAX; i++) {
+        for (int transmit = 0; transmit <= 1; transmit++) {
+            uint16_t comm = (uint16_t)((transmit ? PDO_TPDO_COMM : PDO_RPDO_COMM) + i);
+            const cotrace_eds_entry_t *e = cotrace_eds_find(dec->eds, comm, PDO_COB_ID_SUB);
+            if (e && e->has_value && !(e->value & PDO_COB_ID_EXTENDED) &&
+                dec->pdo_count < COTRACE_PDO_MAX) {
+                cotrace_pdo_t *pdo = &dec->pdos[dec->pdo_count++];
+                pdo->cob_id = (uint16_t)(e->value & CAN_SFF_MASK);
+                pdo->transmit = transmit;
+                pdo->number = (uint16_t)(i + 1);
+                pdo->mapping = (uint16_t)(comm + PDO_MAPPING_OFFSET);
+            }
+        }
+    }
+}
+
+/* The predefined connection set: TPDO1 180h+id, RPDO1 200h+id, ... RPDO4 500h+id. */
+static bool pdo_predefined(uint16_t cob_id, cotrace_pdo_t *ref)
+{
+    unsigned function = cob_id >> 7;
+    if ((cob_id & NODE_MASK) == 0 || function < 3 || function > 10)
+        return false;
+    ref->cob_id = cob_id;
+    ref->transmit = function % 2 == 1;
+    ref->number = (uint16_t)((function - 1) / 2);
+    ref->mapping = 0;
+    return true;
+}
+
+static uint64_t extract_bits(const uint8_t *data, unsigned offset, unsigned bits)
+{
+    uint64_t v = 0;
+    for (unsigned i = 0; i < bits; i++) {
+        unsigned bit = offset + i;
+        if (data[bit / 8] >> (bit % 8) & 1u)
+            v |= (uint64_t)1 << i;
+    }
+    return v;
+}
+
+static const char *control_word_text(uint64_t word)
+{
+    static const struct {
+        uint16_t mask, value;
+        const char *name;
+    } commands[] = {{0x0080, 0x0080, "Fault reset"}, {0x0082, 0x0000, "Disable voltage"},
+                    {0x0086, 0x0002, "Quick stop"},  {0x0087, 0x0006, "Shutdown"},
+                    {0x008F, 0x0007, "Switch on"},   {0x008F, 0x000F, "Enable operation"}};
+    for (size_t i = 0; i < sizeof commands / sizeof commands[0]; i++) {
+        if ((word & commands[i].mask) == commands[i].value)
+            return commands[i].name;
+    }
+    return NULL;
+}
+
+static const char *status_word_text(uint64_t word)
+{
+    static const struct {
+        uint16_t mask, value;
+        const char *name;
+    } states[] = {
+        {0x004F, 0x0000, "Not ready to switch on"}, {0x004F, 0x0040, "Switch on disabled"},
+        {0x006F, 0x0021, "Ready to switch on"},     {0x006F, 0x0023, "Switched on"},
+        {0x006F, 0x0027, "Operation enabled"},      {0x006F, 0x0007, "Quick stop active"},
+        {0x004F, 0x000F, "Fault reaction active"},  {0x004F, 0x0008, "Fault"}};
+    for (size_t i = 0; i < sizeof states / sizeof states[0]; i++) {
+        if ((word & states[i].mask) == states[i].value)
+            return states[i].name;
+    }
+    return NULL;
+}
+
+static void say_mapped_value(text_t *t, uint16_t index, uint16_t type, uint64_t v, unsigned bits)
+{
+    if (index == CIA402_CONTROL_WORD || index == CIA402_STATUS_WORD) {
+        const char *meaning =
+            index == CIA402_CONTROL_WORD ? control_word_text(v) : status_word_text(v);
+        say(t, "0x%04llX%s%s", (unsigned long long)v, meaning ? " " : "", meaning ? meaning : "");
+        return;
+    }
+    switch (type) {
+    case CO_DT_INTEGER8:
+    case CO_DT_INTEGER16:
+    case CO_DT_INTEGER32:
+    case CO_DT_INTEGER64:
+        if (bits < 64 && v >> (bits - 1) & 1u)
+            v |= ~(uint64_t)0 << bits;
+        say(t, "%lld", (long long)v);
+        return;
+    case CO_DT_REAL32:
+        if (bits == 32) {
+            uint32_t raw = (uint32_t)v;
+            float f;
+            memcpy(&f, &raw, sizeof f);
+            say(t, "%g", (double)f);
+            return;
+        }
+        break;
+    default:
+        break;
+    }
+    say(t, "%llu", (unsigned long long)v);
+}
+
+/* Each mapped object with its value; false when the mapping does not fit the frame. */
+static bool say_mapping(text_t *t, const cotrace_eds_t *eds, uint16_t mapping,
+                        const struct can_frame *f)
+{
+    const cotrace_eds_entry_t *count = cotrace_eds_find(eds, mapping, 0);
+    if (!count || !count->has_value)
+        return false;
+    unsigned offset = 0;
+    for (unsigned k = 1; k <= count->value && k <= 64; k++) {
+        const cotrace_eds_entry_t *m = cotrace_eds_find(eds, mapping, (uint8_t)k);
+        if (!m || !m->has_value)
+            return false;
+        uint16_t index = (uint16_t)(m->value >> 16);
+        uint8_t sub = (uint8_t)(m->value >> 8);
+        unsigned bits = (unsigned)(m->value & 0xFFu);
+        if (bits == 0 || offset + bits > 8u * f->len)
+            return false;
+        if (index >= PDO_DUMMY_LIMIT) {
+            const cotrace_eds_entry_t *obj = cotrace_eds_find(eds, index, sub);
+            const char *name = cotrace_eds_name(eds, index, sub);
+            say(t, "%s%04X:%02X%s%s = ", offset ? ", " : "", index, sub, name ? " " : "",
+                name ? name : "");
+            say_mapped_value(t, index, obj ? obj->data_type : 0,
+                             extract_bits(f->data, offset, bits), bits);
+        }
+        offset += bits;
+    }
+    if (offset != 8u * f->len)
+        return false;
+    return true;
+}
+
+static void decode_pdo(const cotrace_decoder_t *dec, const struct can_frame *f,
+                       const cotrace_pdo_t *ref, uint8_t node, text_t *t)
+{
+    say(t, "%s%u", ref->transmit ? "TPDO" : "RPDO", ref->number);
+    if (node)
+        say(t, " node %u", node);
+    if (f->can_id & CAN_RTR_FLAG) {
+        say(t, ": remote request");
+        return;
+    }
+    say(t, ": ");
+    if (ref->mapping && dec->eds) {
+        size_t mark = t->len;
+        if (say_mapping(t, dec->eds, ref->mapping, f))
+            return;
+        t->len = mark;
+        t->buf[mark] = '\0';
+        say(t, "%u bytes do not fit the mapping %04X of the EDS: ", f->len, ref->mapping);
+    }
+    if (f->len == 0)
+        say(t, "no data");
+    else
+        say_bytes(t, f->data, f->len);
+}
+
+/* ---- everything else ---------------------------------------------------------------------- */
+
+static void decode_error_frame(const struct can_frame *f, text_t *t)
+{
+    static const struct {
+        canid_t flag;
+        const char *name;
+    } classes[] = {{CAN_ERR_TX_TIMEOUT, "TX timeout"},
+                   {CAN_ERR_LOSTARB, "arbitration lost"},
+                   {CAN_ERR_CRTL, "controller problem"},
+                   {CAN_ERR_PROT, "protocol violation"},
+                   {CAN_ERR_TRX, "transceiver status"},
+                   {CAN_ERR_ACK, "no ACK on transmission"},
+                   {CAN_ERR_BUSOFF, "bus off"},
+                   {CAN_ERR_BUSERROR, "bus error"},
+                   {CAN_ERR_RESTARTED, "controller restarted"}};
+    static const struct {
+        uint8_t flag;
+        const char *name;
+    } controller[] = {{CAN_ERR_CRTL_RX_OVERFLOW, "RX overflow"},
+                      {CAN_ERR_CRTL_TX_OVERFLOW, "TX overflow"},
+                      {CAN_ERR_CRTL_RX_WARNING, "RX warning"},
+                      {CAN_ERR_CRTL_TX_WARNING, "TX warning"},
+                      {CAN_ERR_CRTL_RX_PASSIVE, "RX error passive"},
+                      {CAN_ERR_CRTL_TX_PASSIVE, "TX error passive"},
+                      {CAN_ERR_CRTL_ACTIVE, "back to error active"}};
+    say(t, "CAN error frame");
+    const char *sep = ": ";
+    for (size_t i = 0; i < sizeof classes / sizeof classes[0]; i++) {
+        if (!(f->can_id & classes[i].flag))
+            continue;
+        say(t, "%s%s", sep, classes[i].name);
+        sep = ", ";
+        if (classes[i].flag == CAN_ERR_CRTL && f->len > 1) {
+            const char *inner = " (";
+            for (size_t j = 0; j < sizeof controller / sizeof controller[0]; j++) {
+                if (f->data[1] & controller[j].flag) {
+                    say(t, "%s%s", inner, controller[j].name);
+                    inner = ", ";
+                }
+            }
+            if (inner[0] == ',')
+                say(t, ")");
+        }
+    }
+}
+
+static void decode_lss(const struct can_frame *f, text_t *t)
+{
+    say(t, "LSS %s",
+        (f->can_id & CAN_SFF_MASK) == COB_LSS_MASTER ? "master request" : "slave response");
+    if (f->len > 0)
+        say(t, ", command 0x%02X", f->data[0]);
+}
+
+void cotrace_decode(cotrace_decoder_t *dec, const struct can_frame *f, char *out, size_t cap)
+{
+    text_t t = {out, cap, 0};
+    if (cap == 0)
+        return;
+    out[0] = '\0';
+    if (f->can_id & CAN_ERR_FLAG) {
+        decode_error_frame(f, &t);
+        return;
+    }
+    if (f->can_id & CAN_EFF_FLAG) {
+        say(&t, "29-bit identifier: not CANopen");
+        return;
+    }
+    uint16_t id = f->can_id & CAN_SFF_MASK;
+    uint8_t node = id & NODE_MASK;
+    bool rtr = f->can_id & CAN_RTR_FLAG;
+    cotrace_pdo_t pdo;
+    if (pdo_from_eds(dec, id, &pdo)) {
+        decode_pdo(dec, f, &pdo, dec->eds_node, &t);
+    } else if (id == COB_NMT) {
+        decode_nmt(f, &t);
+    } else if (id == COB_SYNC) {
+        decode_sync(f, &t);
+    } else if (id > COB_SYNC && id < COB_TIME) {
+        decode_emcy(dec, f, &t);
+    } else if (id == COB_TIME) {
+        decode_time(f, &t);
+    } else if (id > COB_SDO_TX && id < COB_SDO_TX + 0x80u && !rtr) {
+        sdo_reply(dec, node, f, &t);
+    } else if (id > COB_SDO_RX && id < COB_SDO_RX + 0x80u && !rtr) {
+        sdo_request(dec, node, f, &t);
+    } else if (id > COB_NMT_ERROR_CONTROL && id < COB_NMT_ERROR_CONTROL + 0x80u) {
+        decode_error_control(dec, node, f, &t);
+    } else if (id == COB_LSS_MASTER || id == COB_LSS_SLAVE) {
+        decode_lss(f, &t);
+    } else if (pdo_predefined(id, &pdo)) {
+        decode_pdo(dec, f, &pdo, node, &t);
+    } else {
+        say(&t, "COB-ID 0x%03X: no predefined meaning", id);
+    }
+}
+
+void cotrace_decoder_init(cotrace_decoder_t *dec, const cotrace_eds_t *eds, uint8_t eds_node,
+                          const co_emcy_code_table_t *vendor)
+{
+    memset(dec, 0, sizeof *dec);
+    dec->eds = eds;
+    dec->eds_node = eds_node;
+    dec->vendor = vendor;
+    if (eds)
+        pdos_of_eds(dec);
+}

@@ -1,0 +1,352 @@
+/* cotrace: says what every frame of a candump -L log or a live SocketCAN interface means in
+ * CANopen terms, one line per frame (docs/cotrace.md). */
+#include "co_linux/can_frame.h"
+#include "co_linux/candump.h"
+#include "co_linux/log.h"
+#include "co_linux/loop.h"
+#include "decoder.h"
+
+#include <errno.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/stat.h>
+#include <sysexits.h>
+#include <time.h>
+
+/* The ID#DATA field is padded to this width so that the meanings line up (11-bit frames). */
+#define FRAME_FIELD_WIDTH 20
+#define MEANING_MAX 1024
+
+static const char usage_text[] =
+    "usage: cotrace [FILE... | -i IFACE] [--eds FILE --node N] [options]\n"
+    "\n"
+    "Says what every CANopen frame means, one line per frame: NMT, SYNC, TIME, EMCY,\n"
+    "SDO (segmented and block transfers followed across frames), PDO, heartbeat,\n"
+    "node guarding. Reads candump -L logs (atv312d --trace, candump -L) or a live\n"
+    "SocketCAN interface.\n"
+    "\n"
+    "  FILE                candump -L log to decode; none or '-' reads standard input\n"
+    "  -i, --interface IFACE\n"
+    "                      decode the frames of a live SocketCAN interface (e.g.\n"
+    "                      vcan0) until SIGINT or SIGTERM\n"
+    "  --eds FILE          EDS or DCF of the node given with --node: object names on\n"
+    "                      its SDO lines, its PDOs decoded into objects and values by\n"
+    "                      their mapping\n"
+    "  --node N            node-id 1..127 of the --eds file (resolves $NODEID)\n"
+    "  --emcy-table T      consult a vendor's EMCY code table before CiA 301/402:\n"
+    "                      atv58 (Altivar 58 CANopen card manual)\n"
+    "  --strict            stop at the first line that is not a candump -L line\n"
+    "  -h, --help          show this help\n"
+    "  -V, --version       show the version\n"
+    "\n"
+    "Each output line is the frame as candump -L prints it (its ID#DATA padded to 20\n"
+    "characters), two spaces and the meaning; docs/cotrace.md lists them all.\n"
+    "\n"
+    "Example: atv312d vcan0 --node-id 4 --trace - | cotrace --eds eds/ATV312.eds --node 4\n"
+    "\n"
+    "Exit status: 0 every line decoded (or SIGINT/SIGTERM with -i), 64 usage error, 65\n"
+    "a line was not a candump -L line (skipped, or --strict stopped there) or the EDS\n"
+    "is malformed, 66 a FILE or the EDS cannot be read, 69 interface or CAN support\n"
+    "missing, 71 system error. See docs/cotrace.md.\n";
+
+typedef struct options {
+    const char *iface;
+    const char *eds_path;
+    unsigned long node;
+    const char *emcy_table;
+    bool strict;
+    char **files;
+    int file_count;
+} options_t;
+
+static int usage_error(const char *format, const char *arg)
+{
+    fprintf(stderr, "cotrace: ");
+    fprintf(stderr, format, arg);
+    fprintf(stderr, " (see cotrace --help)\n");
+    return EX_USAGE;
+}
+
+/* Returns -1 to go on, else the exit status (help, version, usage error). */
+static int parse_args(int argc, char **argv, options_t *opts)
+{
+    memset(opts, 0, sizeof *opts);
+    opts->files = calloc((size_t)argc, sizeof *opts->files);
+    if (!opts->files)
+        return EX_OSERR;
+    for (int i = 1; i < argc; i++) {
+        const char *arg = argv[i];
+        bool has_value = i + 1 < argc;
+        if (strcmp(arg, "-h") == 0 || strcmp(arg, "--help") == 0) {
+            fputs(usage_text, stdout);
+            return 0;
+        } else if (strcmp(arg, "-V") == 0 || strcmp(arg, "--version") == 0) {
+            printf("cotrace %s\n", COTRACE_VERSION);
+            return 0;
+        } else if (strcmp(arg, "--strict") == 0) {
+            opts->strict = true;
+        } else if (strcmp(arg, "-i") == 0 || strcmp(arg, "--interface") == 0 ||
+                   strcmp(arg, "--eds") == 0 || strcmp(arg, "--node") == 0 ||
+                   strcmp(arg, "--emcy-table") == 0) {
+            if (!has_value || argv[i + 1][0] == '\0')
+                return usage_error("option %s needs a value", arg);
+            const char *value = argv[++i];
+            if (arg[1] == 'i' || strcmp(arg, "--interface") == 0)
+                opts->iface = value;
+            else if (strcmp(arg, "--eds") == 0)
+                opts->eds_path = value;
+            else if (strcmp(arg, "--emcy-table") == 0)
+                opts->emcy_table = value;
+            else {
+                char *end;
+                errno = 0;
+                opts->node = strtoul(value, &end, 0);
+                if (errno || *end || end == value || opts->node < 1 || opts->node > 127)
+                    return usage_error("--node: '%s' is not a node-id: use a number 1..127", value);
+            }
+        } else if (arg[0] == '-' && arg[1] != '\0') {
+            return usage_error("unknown option '%s'", arg);
+        } else {
+            opts->files[opts->file_count++] = argv[i];
+        }
+    }
+    if (opts->iface && opts->file_count)
+        return usage_error("give either files or -i %s, not both", opts->iface);
+    if (opts->eds_path && !opts->node)
+        return usage_error("--eds %s needs --node N: the node-id the EDS describes",
+                           opts->eds_path);
+    if (opts->node && !opts->eds_path)
+        return usage_error("--node %s needs --eds FILE: without an EDS there is nothing to "
+                           "apply it to",
+                           argv[argc - 1]);
+    if (opts->emcy_table && strcmp(opts->emcy_table, "atv58") != 0)
+        return usage_error("--emcy-table: unknown table '%s': the tables are atv58",
+                           opts->emcy_table);
+    return -1;
+}
+
+/* One output line: the frame as candump -L prints it, its field padded, then the meaning. */
+static void print_frame(cotrace_decoder_t *dec, const struct timespec *wall, const char *iface,
+                        const struct can_frame *frame)
+{
+    char line[CO_CANDUMP_LINE_MAX];
+    char meaning[MEANING_MAX];
+    size_t len = co_candump_format(line, sizeof line, wall, iface, frame);
+    if (len == 0)
+        return;
+    line[len - 1] = '\0';
+    const char *field = strrchr(line, ' ') + 1;
+    cotrace_decode(dec, frame, meaning, sizeof meaning);
+    printf("%s%*s  %s\n", line, FRAME_FIELD_WIDTH - (int)strlen(field), "", meaning);
+}
+
+/* Returns 0, or EX_DATAERR when a line was malformed (after the first with --strict). */
+static int decode_stream(cotrace_decoder_t *dec, FILE *in, const char *name, bool strict)
+{
+    char *line = NULL;
+    size_t cap = 0;
+    ssize_t n;
+    unsigned long number = 0;
+    int rc = 0;
+    while ((n = getline(&line, &cap, in)) >= 0) {
+        number++;
+        if (n == 0 || line[0] == '\n')
+            continue;
+        struct timespec wall;
+        char iface[IFNAMSIZ];
+        struct can_frame frame;
+        if (co_candump_parse(line, &wall, iface, &frame)) {
+            print_frame(dec, &wall, iface, &frame);
+            continue;
+        }
+        if (line[n - 1] == '\n')
+            line[n - 1] = '\0';
+        fprintf(stderr,
+                "cotrace: %s:%lu: not a candump -L line: '%.80s': expected '(SECONDS.MICROS) "
+                "IFACE ID#DATA', e.g. (1700000000.000100) vcan0 604#4008100000000000\n",
+                name, number, line);
+        rc = EX_DATAERR;
+        if (strict)
+            break;
+    }
+    free(line);
+    return rc;
+}
+
+/* A pipe or a terminal is read as it comes (`atv312d --trace - | cotrace`): each line is written
+ * at once. Files are decoded with full buffering. */
+static void buffer_output_for(FILE *in)
+{
+    struct stat st;
+    if (fstat(fileno(in), &st) == 0 && !S_ISREG(st.st_mode))
+        setvbuf(stdout, NULL, _IOLBF, 0);
+}
+
+static int decode_files(cotrace_decoder_t *dec, const options_t *opts)
+{
+    if (opts->file_count == 0) {
+        buffer_output_for(stdin);
+        return decode_stream(dec, stdin, "<stdin>", opts->strict);
+    }
+    for (int i = 0; i < opts->file_count; i++) {
+        if (strcmp(opts->files[i], "-") == 0)
+            buffer_output_for(stdin);
+    }
+    int rc = 0;
+    for (int i = 0; i < opts->file_count; i++) {
+        const char *path = opts->files[i];
+        bool is_stdin = strcmp(path, "-") == 0;
+        FILE *in = is_stdin ? stdin : fopen(path, "re");
+        if (!in) {
+            fprintf(stderr, "cotrace: cannot read '%s': %s\n", path, strerror(errno));
+            return EX_NOINPUT;
+        }
+        int file_rc = decode_stream(dec, in, is_stdin ? "<stdin>" : path, opts->strict);
+        if (!is_stdin)
+            fclose(in);
+        if (file_rc) {
+            rc = file_rc;
+            if (opts->strict)
+                break;
+        }
+    }
+    return rc;
+}
+
+/* ---- live: a device of the runtime's loop that only listens ------------------------------- */
+
+typedef struct monitor {
+    co_linux_device_t device;
+    co_linux_loop_t *loop;
+    cotrace_decoder_t *dec;
+} monitor_t;
+
+static void monitor_start(void *ctx, co_time_t now)
+{
+    (void)ctx;
+    (void)now;
+}
+
+/* The loop keeps the wall clock only for its own trace (off here): the time is read per frame. */
+static struct timespec wall_now(void)
+{
+    struct timespec wall;
+    clock_gettime(CLOCK_REALTIME, &wall);
+    return wall;
+}
+
+static void monitor_receive(void *ctx, const co_frame_t *frame, co_time_t now)
+{
+    monitor_t *m = ctx;
+    struct can_frame cf;
+    struct timespec wall = wall_now();
+    (void)now;
+    co_linux_frame_to_can(frame, &cf);
+    print_frame(m->dec, &wall, m->loop->iface, &cf);
+}
+
+static co_time_t monitor_process(void *ctx, co_time_t now)
+{
+    (void)ctx;
+    (void)now;
+    return CO_TIME_NEVER;
+}
+
+/* The loop turns CAN error frames into conditions; they are shown as such. */
+static void monitor_bus_event(void *ctx, uint16_t emcy_code, bool active)
+{
+    monitor_t *m = ctx;
+    char line[CO_CANDUMP_LINE_MAX];
+    struct timespec wall = wall_now();
+    int n = snprintf(line, sizeof line, "(%010lld.%06ld) %s", (long long)wall.tv_sec,
+                     wall.tv_nsec / 1000, m->loop->iface);
+    if (n > 0)
+        printf("%s %-*s  CAN bus: %s %s\n", line, FRAME_FIELD_WIDTH, "error",
+               co_emcy_code_text(emcy_code), active ? "began" : "ended");
+}
+
+static const co_linux_device_ops_t monitor_ops = {
+    .start = monitor_start,
+    .restart = monitor_start,
+    .receive = monitor_receive,
+    .process = monitor_process,
+    .bus_event = monitor_bus_event,
+};
+
+static int report_open_error(const co_linux_loop_t *loop, co_linux_open_result_t result)
+{
+    const char *why = strerror(loop->open_errno);
+    switch (result) {
+    case CO_LINUX_OPEN_NO_CAN:
+        fprintf(stderr,
+                "cotrace: this kernel has no SocketCAN support (%s: %s): load it with modprobe "
+                "can-raw vcan, or run inside the sandbox: tools/vcan-run cotrace -i vcan0\n",
+                loop->open_call, why);
+        return EX_UNAVAILABLE;
+    case CO_LINUX_OPEN_NO_IFACE:
+        fprintf(stderr,
+                "cotrace: no network interface '%s': list the CAN interfaces with: ip link show "
+                "type can (or type vcan)\n",
+                loop->iface);
+        return EX_UNAVAILABLE;
+    case CO_LINUX_OPEN_NOT_CAN:
+        fprintf(stderr,
+                "cotrace: '%s' is not a CAN interface (%s: %s): give a SocketCAN interface such "
+                "as can0 or vcan0\n",
+                loop->iface, loop->open_call, why);
+        return EX_UNAVAILABLE;
+    case CO_LINUX_OPEN_OS_ERROR:
+    case CO_LINUX_OPEN_OK:
+        break;
+    }
+    fprintf(stderr, "cotrace: %s on %s failed: %s\n", loop->open_call, loop->iface, why);
+    return EX_OSERR;
+}
+
+static int decode_live(cotrace_decoder_t *dec, const char *iface)
+{
+    static co_linux_loop_t loop;
+    static monitor_t monitor;
+    co_log_setup("cotrace", CO_LOG_WARN);
+    co_linux_loop_config_t config = {.iface = iface};
+    co_linux_open_result_t opened = co_linux_loop_open(&loop, &config);
+    if (opened != CO_LINUX_OPEN_OK)
+        return report_open_error(&loop, opened);
+    setvbuf(stdout, NULL, _IOLBF, 0);
+    monitor.loop = &loop;
+    monitor.dec = dec;
+    co_linux_loop_add(&loop, &monitor.device, &monitor_ops, &monitor);
+    int rc = co_linux_loop_run(&loop);
+    co_linux_loop_close(&loop);
+    return rc;
+}
+
+int main(int argc, char **argv)
+{
+    options_t opts;
+    int rc = parse_args(argc, argv, &opts);
+    if (rc >= 0) {
+        free(opts.files);
+        return rc;
+    }
+    static cotrace_eds_t eds;
+    static cotrace_decoder_t dec;
+    char err[512];
+    cotrace_eds_result_t loaded = COTRACE_EDS_OK;
+    if (opts.eds_path)
+        loaded = cotrace_eds_load(&eds, opts.eds_path, (uint8_t)opts.node, err, sizeof err);
+    if (loaded != COTRACE_EDS_OK) {
+        fprintf(stderr, "cotrace: %s\n", err);
+        free(opts.files);
+        return loaded == COTRACE_EDS_CANNOT_READ ? EX_NOINPUT : EX_DATAERR;
+    }
+    cotrace_decoder_init(&dec, opts.eds_path ? &eds : NULL, (uint8_t)opts.node,
+                         opts.emcy_table ? co_emcy_table_atv58() : NULL);
+    rc = opts.iface ? decode_live(&dec, opts.iface) : decode_files(&dec, &opts);
+    if (fflush(stdout) != 0 && rc == 0)
+        rc = EX_IOERR;
+    cotrace_eds_free(&eds);
+    free(opts.files);
+    return rc;
+}

@@ -82,8 +82,9 @@ struct co_node {
     void *user;
     const co_app_hooks_t *hooks;
     const co_storage_t *storage;
-    uint32_t options; /* CO_NODE_* */
-    co_time_t now;    /* time of the frame or process call being handled */
+    uint32_t options;             /* CO_NODE_* */
+    co_time_t now;                /* time of the frame or process call being handled */
+    uint32_t consumer_generation; /* co_consumers.h */
 
     co_sdo_server_t sdo;
     co_pdo_t pdo;

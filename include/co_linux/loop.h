@@ -3,9 +3,12 @@
  * netlink socket watching the interface go down and come back.
  *
  * A device is anything built on the portable core (a co_node_t, a drive wrapping one): the loop
- * gives it every received frame and every frame another local device sent, calls its process
- * function after each frame and when its deadline is due, and transmits what it sends. When no
- * device has a deadline the timer is disarmed: an idle loop does not wake up. See docs/runtime.md.
+ * gives it the received frames and the frames other local devices sent that its node consumes
+ * (every frame for a device that does not name its node), calls its process function after each
+ * frame and when its deadline is due, and transmits what it sends, the frames of one wake-up in
+ * one sendmmsg. The socket's receive filter (CAN_RAW_FILTER) holds the consumed COB-IDs, so a
+ * frame for nobody does not wake the loop. When no device has a deadline the timer is disarmed:
+ * an idle loop does not wake up. See docs/runtime.md.
  */
 #ifndef CO_LINUX_LOOP_H
 #define CO_LINUX_LOOP_H
@@ -14,6 +17,7 @@
 #include "co_linux/txq.h"
 
 #include <linux/can.h>
+#include <linux/can/raw.h>
 #include <net/if.h>
 #include <signal.h>
 #include <stdio.h>
@@ -26,7 +30,12 @@
 
 /* Received frames read per recvmmsg call. */
 #define CO_LINUX_RX_BATCH 32
+/* Queued frames written per sendmmsg call. */
+#define CO_LINUX_TX_BATCH 64
+/* Routing keys: an 11-bit CAN-ID, plus 2048 for a remote request. */
+#define CO_LINUX_ROUTE_KEYS 4096u
 
+struct co_node;
 typedef struct co_linux_loop co_linux_loop_t;
 
 /* What the loop calls on a device; ctx is the device's own object. Only bus_event may be NULL. */
@@ -42,6 +51,10 @@ typedef struct co_linux_device_ops {
     /* A CAN communication condition began (active) or ended; emcy_code is one of
      * CO_LINUX_EMCY_*. */
     void (*bus_event)(void *ctx, uint16_t emcy_code, bool active);
+    /* The device's core node, which must stay the same: frames reach the device only when the
+     * node consumes their COB-ID (co_consumers.h). NULL: the device gets every frame, and the
+     * socket then receives the whole bus. */
+    const struct co_node *(*node)(void *ctx);
 } co_linux_device_ops_t;
 
 typedef struct co_linux_device {
@@ -49,6 +62,7 @@ typedef struct co_linux_device {
     void *ctx;
     co_linux_loop_t *loop;
     co_time_t deadline;
+    uint32_t generation; /* the node's consumer generation the routes were built from */
     struct co_linux_device *next;
 } co_linux_device_t;
 
@@ -78,6 +92,9 @@ typedef struct co_linux_stats {
     unsigned long long tx_dropped;   /* frames dropped: TX queue full or write error */
     unsigned long long down_dropped; /* frames sent while the interface was down */
     unsigned long long error_frames; /* error frames received */
+    unsigned long long tx_calls;     /* sendmmsg calls that wrote frames */
+    unsigned long long unrouted;     /* frames received that no device consumes */
+    unsigned long long filters;      /* receive filters set on the socket */
 } co_linux_stats_t;
 
 typedef enum co_linux_tx_wait {
@@ -116,6 +133,17 @@ struct co_linux_loop {
     co_linux_device_t *devices;
     size_t device_count;
 
+    /* Routes (docs/runtime.md): the devices consuming key k are route_devices[route_first[k]]
+     * up to route_devices[route_first[k + 1]], in the order they were added. */
+    uint32_t route_first[CO_LINUX_ROUTE_KEYS + 1];
+    co_linux_device_t **route_devices;
+    size_t route_capacity;
+    bool routes_stale;   /* a node's consumed set changed: rebuild before the next frame */
+    bool route_all;      /* every device gets every frame (a device without node, no memory) */
+    bool filter_applied; /* `filters` is what the current socket has */
+    bool filter_stale;   /* the routes, the socket or the trace changed since it was computed */
+    size_t filter_count;
+
     co_time_t now;
     struct timespec wall; /* CLOCK_REALTIME of this wake-up, for the trace */
     co_time_t timer_armed;
@@ -142,6 +170,10 @@ struct co_linux_loop {
     struct can_frame rx_frames[CO_LINUX_RX_BATCH];
     struct iovec rx_iov[CO_LINUX_RX_BATCH];
     struct mmsghdr rx_msgs[CO_LINUX_RX_BATCH];
+    struct can_frame tx_frames[CO_LINUX_TX_BATCH];
+    struct iovec tx_iov[CO_LINUX_TX_BATCH];
+    struct mmsghdr tx_msgs[CO_LINUX_TX_BATCH];
+    struct can_filter filters[CAN_RAW_FILTER_MAX];
 };
 
 /* Monotonic time in microseconds (CLOCK_MONOTONIC), the clock of every deadline. */

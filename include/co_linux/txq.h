@@ -36,6 +36,9 @@ bool co_txq_push(co_txq_t *q, const co_frame_t *frame, const void *origin);
 /* The oldest entry, or NULL when the queue is empty. */
 const co_txq_entry_t *co_txq_peek(const co_txq_t *q);
 
+/* The entry `position` places after the oldest (0: the oldest); NULL beyond the last. */
+const co_txq_entry_t *co_txq_at(const co_txq_t *q, size_t position);
+
 /* Removes the oldest entry (no effect when empty). */
 void co_txq_pop(co_txq_t *q);
 

@@ -84,9 +84,24 @@ typedef struct drive_profile {
 /* CAN conditions the runtime reports at once (overrun, error passive, bus off). */
 #define DRIVE_BUS_EVENTS_MAX 4
 
+/* The dictionary entries the drive reads and writes whenever it settles, found once by
+ * drive_init (NULL where the model has none: it reads as 0 and writes to it do nothing), so that
+ * its work never searches the dictionary. */
+typedef struct drive_entries {
+    const co_od_entry_t *error_code, *control_word, *status_word, *target_velocity;
+    const co_od_entry_t *velocity_demand, *velocity_actual;
+    const co_od_entry_t *acceleration, *deceleration, *low_speed, *high_speed;
+    const co_od_entry_t *nominal_frequency, *nominal_speed, *nominal_current;
+    const co_od_entry_t *motor_current, *motor_torque, *control_word_copy, *status_word_copy;
+} drive_entries_t;
+
 typedef struct drive {
     co_node_t node;
     const drive_profile_t *profile;
+    drive_entries_t entries;
+    /* Something the published values depend on may have changed without a written entry (a
+     * reset restored the defaults): the next drive_process settles the drive. */
+    bool dirty;
     cia402_state_machine_t cia402;
     drive_motor_t motor;
     bool limited; /* the reference is outside the speed limits (status word bit 11) */

@@ -142,12 +142,19 @@ static void slot_bus_event(void *ctx, uint16_t emcy_code, bool active)
     drive_bus_event(&slot->drive, emcy_code, active);
 }
 
+static const co_node_t *slot_node(void *ctx)
+{
+    drive_slot_t *slot = ctx;
+    return &slot->drive.node;
+}
+
 static const co_linux_device_ops_t slot_ops = {
     .start = slot_start,
     .restart = slot_restart,
     .receive = slot_receive,
     .process = slot_process,
     .bus_event = slot_bus_event,
+    .node = slot_node,
 };
 
 static int report_open_error(const co_linux_loop_t *loop, co_linux_open_result_t result)
@@ -363,9 +370,11 @@ static int run(const atv312d_options_t *opts, FILE *trace, co_file_store_t *stor
         rc = co_linux_loop_run(&loop);
         co_log(CO_LOG_INFO,
                "stopped: %llu wake-ups, %llu frames received, %llu sent, %llu dropped, %llu lost "
-               "while the interface was down, %llu error frames",
+               "while the interface was down, %llu error frames, %llu received for no drive, "
+               "%llu sendmmsg calls, %llu receive filters set",
                loop.stats.wakeups, loop.stats.rx, loop.stats.tx, loop.stats.tx_dropped,
-               loop.stats.down_dropped, loop.stats.error_frames);
+               loop.stats.down_dropped, loop.stats.error_frames, loop.stats.unrouted,
+               loop.stats.tx_calls, loop.stats.filters);
     }
     atv312d_control_close(&control);
     atv312d_status_close(&status);

@@ -1,5 +1,6 @@
 /* NMT slave state machine (CiA 301 section 7.3.2.2, figure 48; ATV312 manual, "Network
  * management state chart"). */
+#include "co/co_consumers.h"
 #include "co/co_node.h"
 
 #define NMT_COB_ID 0x000u
@@ -42,6 +43,7 @@ void co_nmt_reset(co_node_t *node, co_nmt_reset_t scope)
     co_od_restore_defaults(node, 0x1000, 0x1FFF);
     co_store_apply(node, 0x1000, 0x1FFF);
     reset_services(node, scope);
+    co_consumers_changed(node);
     co_frame_t boot = {.id = BOOT_UP_COB_BASE + node->node_id, .len = 1, .data = {0}};
     co_node_send(node, &boot);
     co_nmt_enter(node, CO_NMT_PRE_OPERATIONAL);

@@ -1,6 +1,7 @@
 /* Object dictionary access: binary search over the const table, the generic SDO read and write
  * checks of CiA 301, and the dispatch of communication-area writes to the service that owns the
  * parameter. */
+#include "co/co_consumers.h"
 #include "co/co_node.h"
 
 #include <string.h>
@@ -277,6 +278,7 @@ uint32_t co_od_write(co_node_t *node, uint16_t index, uint8_t subindex, const ui
         co_od_store(node, e, data, len);
     else if (abort != CO_OD_HANDLED)
         return abort;
+    co_consumers_written(node, index);
     if (node->hooks != NULL && node->hooks->od_written != NULL)
         node->hooks->od_written(node, e, origin);
     return CO_SDO_OK;

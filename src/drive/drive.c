@@ -30,31 +30,86 @@ uint32_t drive_param_value(const drive_t *drive, drive_param_t param)
     return (uint32_t)co_od_value(&drive->node, param.index, param.subindex);
 }
 
+static int64_t entry_value(const drive_t *drive, const co_od_entry_t *entry)
+{
+    return entry != NULL ? co_od_get(&drive->node, entry) : 0;
+}
+
+static void entry_set(drive_t *drive, const co_od_entry_t *entry, int64_t value)
+{
+    if (entry != NULL)
+        co_od_set(&drive->node, entry, value);
+}
+
+static const co_od_entry_t *param_entry(const drive_t *drive, drive_param_t param)
+{
+    return co_od_find(drive->profile->od, param.index, param.subindex);
+}
+
+static void find_entries(drive_t *drive)
+{
+    const drive_profile_t *profile = drive->profile;
+    const co_od_t *od = profile->od;
+    drive->entries = (drive_entries_t){
+        .error_code = co_od_find(od, CIA402_IDX_ERROR_CODE, 0),
+        .control_word = co_od_find(od, CIA402_IDX_CONTROLWORD, 0),
+        .status_word = co_od_find(od, CIA402_IDX_STATUSWORD, 0),
+        .target_velocity = co_od_find(od, CIA402_IDX_TARGET_VELOCITY, 0),
+        .velocity_demand = co_od_find(od, CIA402_IDX_VELOCITY_DEMAND, 0),
+        .velocity_actual = co_od_find(od, CIA402_IDX_VELOCITY_ACTUAL, 0),
+        .acceleration = param_entry(drive, profile->acceleration),
+        .deceleration = param_entry(drive, profile->deceleration),
+        .low_speed = param_entry(drive, profile->low_speed),
+        .high_speed = param_entry(drive, profile->high_speed),
+        .nominal_frequency = param_entry(drive, profile->nominal_frequency),
+        .nominal_speed = param_entry(drive, profile->nominal_speed),
+        .nominal_current = param_entry(drive, profile->nominal_current),
+        .motor_current = param_entry(drive, profile->motor_current),
+        .motor_torque = param_entry(drive, profile->motor_torque),
+        .control_word_copy = param_entry(drive, profile->control_word_copy),
+        .status_word_copy = param_entry(drive, profile->status_word_copy),
+    };
+}
+
+/* A parameter of the profile through its entry; a setting the model's dictionary lacks reads as
+ * its fixed value (DRIVE_FIXED), as drive_param_value does. */
+static uint32_t param_unsigned(const drive_t *drive, const co_od_entry_t *entry,
+                               drive_param_t param)
+{
+    return entry != NULL ? (uint32_t)co_od_get(&drive->node, entry) : param.fixed;
+}
+
 uint32_t drive_frequency_to_rpm(const drive_t *drive, uint32_t decihertz)
 {
-    uint32_t frs = drive_param_value(drive, drive->profile->nominal_frequency);
-    uint32_t nsp = drive_param_value(drive, drive->profile->nominal_speed);
+    uint32_t frs =
+        param_unsigned(drive, drive->entries.nominal_frequency, drive->profile->nominal_frequency);
+    uint32_t nsp =
+        param_unsigned(drive, drive->entries.nominal_speed, drive->profile->nominal_speed);
     return frs ? (decihertz * nsp + frs / 2) / frs : 0;
 }
 
 uint32_t drive_rpm_to_frequency(const drive_t *drive, uint32_t rpm)
 {
-    uint64_t frs = drive_param_value(drive, drive->profile->nominal_frequency);
-    uint64_t nsp = drive_param_value(drive, drive->profile->nominal_speed);
+    uint64_t frs =
+        param_unsigned(drive, drive->entries.nominal_frequency, drive->profile->nominal_frequency);
+    uint64_t nsp =
+        param_unsigned(drive, drive->entries.nominal_speed, drive->profile->nominal_speed);
     uint64_t decihertz = nsp ? ((uint64_t)rpm * frs + nsp / 2) / nsp : 0;
     return decihertz > UINT32_MAX ? UINT32_MAX : (uint32_t)decihertz;
 }
 
 static drive_ramp_t ramp_parameters(const drive_t *drive)
 {
-    const drive_profile_t *profile = drive->profile;
-    uint32_t dec = drive_param_value(drive, profile->deceleration);
-    uint32_t fast_dec = profile->fast_ramp_divider ? dec / profile->fast_ramp_divider : dec;
+    const drive_entries_t *e = &drive->entries;
+    uint8_t divider = drive->profile->fast_ramp_divider;
+    uint32_t dec = param_unsigned(drive, e->deceleration, drive->profile->deceleration);
+    uint32_t fast_dec = divider ? dec / divider : dec;
     return (drive_ramp_t){
-        .acc = (uint16_t)drive_param_value(drive, profile->acceleration),
+        .acc = (uint16_t)param_unsigned(drive, e->acceleration, drive->profile->acceleration),
         .dec = (uint16_t)dec,
         .fast_dec = (uint16_t)(fast_dec ? fast_dec : 1),
-        .nominal_rpm = (uint16_t)drive_param_value(drive, profile->nominal_speed),
+        .nominal_rpm =
+            (uint16_t)param_unsigned(drive, e->nominal_speed, drive->profile->nominal_speed),
     };
 }
 
@@ -63,11 +118,14 @@ static drive_ramp_t ramp_parameters(const drive_t *drive)
 static int32_t run_reference(drive_t *drive)
 {
     const drive_profile_t *profile = drive->profile;
-    int32_t reference = (int16_t)co_od_value(&drive->node, CIA402_IDX_TARGET_VELOCITY, 0);
+    const drive_entries_t *e = &drive->entries;
+    int32_t reference = (int16_t)entry_value(drive, e->target_velocity);
     bool reverse = (reference < 0) != ((drive->cia402.control & profile->control_reverse) != 0);
     uint32_t wanted = (uint32_t)(reference < 0 ? -reference : reference);
-    uint32_t high = drive_frequency_to_rpm(drive, drive_param_value(drive, profile->high_speed));
-    uint32_t low = drive_frequency_to_rpm(drive, drive_param_value(drive, profile->low_speed));
+    uint32_t high =
+        drive_frequency_to_rpm(drive, param_unsigned(drive, e->high_speed, profile->high_speed));
+    uint32_t low =
+        drive_frequency_to_rpm(drive, param_unsigned(drive, e->low_speed, profile->low_speed));
     uint32_t speed = wanted > high ? high : (wanted < low ? low : wanted);
     drive->limited = speed != wanted;
     return reverse ? -(int32_t)speed : (int32_t)speed;
@@ -121,27 +179,26 @@ static bool output_on(const drive_t *drive)
 static int32_t motor_current(const drive_t *drive, int16_t torque)
 {
     int32_t load = torque < 0 ? -torque : torque;
-    int32_t nominal = (int32_t)drive_param_value(drive, drive->profile->nominal_current);
+    int32_t nominal = (int32_t)param_unsigned(drive, drive->entries.nominal_current,
+                                              drive->profile->nominal_current);
     return nominal *
            (MAGNETISING_CURRENT_PERCENT + (100 - MAGNETISING_CURRENT_PERCENT) * load / 100) / 100;
 }
 
 static void publish(drive_t *drive)
 {
-    co_node_t *node = &drive->node;
-    const drive_profile_t *profile = drive->profile;
+    const drive_entries_t *e = &drive->entries;
     uint16_t status = status_word(drive);
-    co_od_set_value(node, CIA402_IDX_STATUSWORD, 0, status);
-    co_od_set_value(node, profile->status_word_copy.index, profile->status_word_copy.subindex,
-                    status);
+    entry_set(drive, e->status_word, status);
+    entry_set(drive, e->status_word_copy, status);
     int32_t rpm = drive_motor_rpm(&drive->motor);
-    co_od_set_value(node, CIA402_IDX_VELOCITY_DEMAND, 0, rpm);
-    co_od_set_value(node, CIA402_IDX_VELOCITY_ACTUAL, 0, rpm);
+    entry_set(drive, e->velocity_demand, rpm);
+    entry_set(drive, e->velocity_actual, rpm);
     bool on = output_on(drive);
     int16_t torque = on ? drive_motor_torque(&drive->motor) : 0;
     int32_t current = on ? motor_current(drive, torque) : 0;
-    co_od_set_value(node, profile->motor_torque.index, profile->motor_torque.subindex, torque);
-    co_od_set_value(node, profile->motor_current.index, profile->motor_current.subindex, current);
+    entry_set(drive, e->motor_torque, torque);
+    entry_set(drive, e->motor_current, current);
 }
 
 void drive_settle(drive_t *drive)
@@ -170,9 +227,7 @@ static void communication_fault(drive_t *drive)
 
 static bool is_control_word(const drive_t *drive, const co_od_entry_t *entry)
 {
-    drive_param_t copy = drive->profile->control_word_copy;
-    return (entry->index == CIA402_IDX_CONTROLWORD && entry->subindex == 0) ||
-           (entry->index == copy.index && entry->subindex == copy.subindex);
+    return entry == drive->entries.control_word || entry == drive->entries.control_word_copy;
 }
 
 /* 6040h and the model's copy are the same word: both are kept equal. Under forced local control
@@ -181,9 +236,8 @@ static bool is_control_word(const drive_t *drive, const co_od_entry_t *entry)
  * from it, and nothing else happens. */
 static void apply_control_word(drive_t *drive, uint16_t control)
 {
-    drive_param_t copy = drive->profile->control_word_copy;
-    co_od_set_value(&drive->node, CIA402_IDX_CONTROLWORD, 0, control);
-    co_od_set_value(&drive->node, copy.index, copy.subindex, control);
+    entry_set(drive, drive->entries.control_word, control);
+    entry_set(drive, drive->entries.control_word_copy, control);
     if (drive->local)
         return;
     if (drive->cia402.state == CIA402_FAULT && !drive_faults_resettable(drive)) {
@@ -230,13 +284,17 @@ static void restart_drive(drive_t *drive, co_time_t now)
     drive->stop_key = false;
     drive->local_run = false;
     drive_faults_restart(drive);
+    drive->dirty = true;
 }
 
-/* Reset node restarts the drive too (the defaults are restored right after this). */
+/* Reset node restarts the drive too. Either reset restores defaults right after this without
+ * writing them entry by entry: the next process settles the drive on them. */
 static void on_reset(co_node_t *node, co_nmt_reset_t scope)
 {
+    drive_t *drive = drive_of(node);
     if (scope == CO_NMT_RESET_NODE)
-        restart_drive(drive_of(node), node->now);
+        restart_drive(drive, node->now);
+    drive->dirty = true;
 }
 
 /* The bus conditions and fault causes still present are errors again once a reset node has
@@ -279,6 +337,7 @@ int drive_init(drive_t *drive, const drive_config_t *config)
         return err;
     drive->local = false;
     drive->load = 0;
+    find_entries(drive);
     restart_drive(drive, 0);
     drive->bus_event_count = 0;
     drive->fault_causes = 0;
@@ -296,10 +355,16 @@ void drive_receive(drive_t *drive, const co_frame_t *frame, co_time_t now)
     co_node_receive(&drive->node, frame, now);
 }
 
+/* A written entry settles the drive at once (on_written); a steady motor changes nothing over
+ * time. So only a moving motor or a reset makes work here: most calls (a frame for the core
+ * alone, a heartbeat due) touch neither the motor nor the dictionary. */
 co_time_t drive_process(drive_t *drive, co_time_t now)
 {
-    drive_motor_advance(&drive->motor, now);
-    drive_settle(drive);
+    if (drive->dirty || !drive_motor_at_target(&drive->motor)) {
+        drive->dirty = false;
+        drive_motor_advance(&drive->motor, now);
+        drive_settle(drive);
+    }
     co_time_t next = co_node_process(&drive->node, now);
     return co_time_min(next, drive_motor_deadline(&drive->motor));
 }

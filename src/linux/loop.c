@@ -1,4 +1,5 @@
 #include "co_linux/loop.h"
+#include "co/co_consumers.h"
 #include "co/co_node.h"
 #include "co_linux/can_frame.h"
 #include "co_linux/candump.h"
@@ -9,6 +10,7 @@
 #include <linux/can/raw.h>
 #include <linux/netlink.h>
 #include <linux/rtnetlink.h>
+#include <stdlib.h>
 #include <string.h>
 #include <sys/epoll.h>
 #include <sys/ioctl.h>
@@ -29,7 +31,8 @@ enum { COND_OVERRUN, COND_PASSIVE, COND_BUS_OFF };
 /* Received batches handled per wake-up before other descriptors get their turn. */
 #define RX_ROUNDS 4
 
-typedef enum { WRITE_OK, WRITE_BLOCKED, WRITE_DOWN, WRITE_FAILED } write_result_t;
+/* Routing key of a remote request: the CAN-ID plus this. */
+#define ROUTE_KEY_RTR 0x800u
 
 static const char *const condition_names[] = {"CAN overrun (frames lost)", "CAN error passive",
                                               "CAN bus off"};
@@ -65,6 +68,7 @@ static void flush_trace(co_linux_loop_t *loop)
     if (fflush(loop->trace) != 0 || ferror(loop->trace)) {
         co_log(CO_LOG_ERROR, "trace: write failed (%s): tracing stopped", strerror(errno));
         loop->trace = NULL;
+        loop->filter_stale = true; /* the socket no longer needs the whole bus */
     }
 }
 
@@ -80,9 +84,14 @@ static void set_condition(co_linux_loop_t *loop, int which, bool active)
            condition_names[which], c->emcy_code, active ? "active" : "cleared");
 }
 
+/* Every call into a device ends here, so this is where a changed consumer set is noticed: the
+ * routes are rebuilt before the next frame is routed. */
 static void device_process(co_linux_device_t *dev, co_time_t now)
 {
     dev->deadline = dev->ops->process(dev->ctx, now);
+    if (dev->ops->node != NULL &&
+        co_node_consumer_generation(dev->ops->node(dev->ctx)) != dev->generation)
+        dev->loop->routes_stale = true;
 }
 
 static int update_epoll(co_linux_loop_t *loop, bool want_out)
@@ -127,28 +136,6 @@ static void link_went_down(co_linux_loop_t *loop, const char *why)
            loop->iface, why, lost);
 }
 
-static write_result_t write_frame(co_linux_loop_t *loop, const co_frame_t *frame)
-{
-    struct can_frame cf;
-    co_linux_frame_to_can(frame, &cf);
-    ssize_t n = write(loop->can_fd, &cf, sizeof cf);
-    if (n == (ssize_t)sizeof cf) {
-        loop->stats.tx++;
-        loop->traffic_since_overrun = true;
-        trace_frame(loop, &cf);
-        return WRITE_OK;
-    }
-    if (n < 0 && (errno == EAGAIN || errno == ENOBUFS))
-        return WRITE_BLOCKED;
-    if (n < 0 && errno_means_down(errno)) {
-        link_went_down(loop, strerror(errno));
-        return WRITE_DOWN;
-    }
-    co_log(CO_LOG_ERROR, "%s: write of frame %03X failed: %s", loop->iface, (unsigned)frame->id,
-           n < 0 ? strerror(errno) : "short write");
-    return WRITE_FAILED;
-}
-
 static void frame_dropped(co_linux_loop_t *loop, const co_frame_t *frame, const char *why)
 {
     loop->stats.tx_dropped++;
@@ -160,28 +147,53 @@ static void frame_dropped(co_linux_loop_t *loop, const co_frame_t *frame, const 
     set_condition(loop, COND_OVERRUN, true);
 }
 
-/* Writes queued frames in order until the socket refuses one. */
+/* Writes up to CO_LINUX_TX_BATCH queued frames in one sendmmsg; returns how many the socket took
+ * (errno says why when 0). */
+static int write_batch(co_linux_loop_t *loop)
+{
+    size_t count = co_txq_count(&loop->txq);
+    if (count > CO_LINUX_TX_BATCH)
+        count = CO_LINUX_TX_BATCH;
+    for (size_t i = 0; i < count; i++)
+        co_linux_frame_to_can(&co_txq_at(&loop->txq, i)->frame, &loop->tx_frames[i]);
+    int sent = sendmmsg(loop->can_fd, loop->tx_msgs, (unsigned)count, MSG_DONTWAIT);
+    if (sent <= 0)
+        return 0;
+    loop->stats.tx_calls++;
+    loop->stats.tx += (unsigned)sent;
+    loop->traffic_since_overrun = true;
+    for (int i = 0; i < sent; i++) {
+        trace_frame(loop, &loop->tx_frames[i]);
+        co_txq_pop(&loop->txq);
+    }
+    return sent;
+}
+
+/* Writes queued frames in order, a batch per system call, until the queue is empty or the socket
+ * refuses. */
 static void flush_txq(co_linux_loop_t *loop)
 {
     bool progress = false;
-    const co_txq_entry_t *e;
-    while (loop->link_up && (e = co_txq_peek(&loop->txq)) != NULL) {
-        switch (write_frame(loop, &e->frame)) {
-        case WRITE_OK:
-            co_txq_pop(&loop->txq);
+    while (loop->link_up && co_txq_count(&loop->txq) > 0) {
+        if (write_batch(loop) > 0) {
             progress = true;
-            break;
-        case WRITE_BLOCKED:
-            set_tx_wait(loop,
-                        errno == ENOBUFS && !progress ? CO_LINUX_TX_RETRY : CO_LINUX_TX_EPOLLOUT);
-            return;
-        case WRITE_DOWN:
-            return;
-        case WRITE_FAILED:
-            frame_dropped(loop, &e->frame, "write error");
-            co_txq_pop(&loop->txq);
-            break;
+            continue;
         }
+        int err = errno;
+        if (err == EAGAIN || err == ENOBUFS) {
+            set_tx_wait(loop,
+                        err == ENOBUFS && !progress ? CO_LINUX_TX_RETRY : CO_LINUX_TX_EPOLLOUT);
+            return;
+        }
+        if (errno_means_down(err)) {
+            link_went_down(loop, strerror(err));
+            return;
+        }
+        const co_frame_t *frame = &co_txq_peek(&loop->txq)->frame;
+        co_log(CO_LOG_ERROR, "%s: write of frame %03X failed: %s", loop->iface, (unsigned)frame->id,
+               strerror(err));
+        frame_dropped(loop, frame, "write error");
+        co_txq_pop(&loop->txq);
     }
     set_tx_wait(loop, CO_LINUX_TX_READY);
     if (loop->dropped_in_burst) {
@@ -191,40 +203,187 @@ static void flush_txq(co_linux_loop_t *loop)
     }
 }
 
+/* Sends what the queue holds unless the socket already refused (then EPOLLOUT or the retry
+ * timer sends it). */
+static void transmit(co_linux_loop_t *loop)
+{
+    if (loop->tx_wait == CO_LINUX_TX_READY)
+        flush_txq(loop);
+}
+
 void co_linux_device_send(void *device, const co_frame_t *frame)
 {
     co_linux_device_t *dev = device;
     co_linux_loop_t *loop = dev->loop;
+    /* Frames wait in the queue until the wake-up settles, so that the frames of one wake-up
+     * leave in one sendmmsg; a full queue is written out first, so a frame is dropped only when
+     * the socket cannot take any more. */
+    if (co_txq_full(&loop->txq))
+        transmit(loop);
     if (!loop->link_up) {
         loop->stats.down_dropped++;
         return;
     }
-    bool accepted = true;
-    if (co_txq_count(&loop->txq) == 0) {
-        switch (write_frame(loop, frame)) {
-        case WRITE_OK:
-            break;
-        case WRITE_BLOCKED:
-            co_txq_push(&loop->txq, frame, dev);
-            set_tx_wait(loop, CO_LINUX_TX_EPOLLOUT);
-            break;
-        case WRITE_DOWN:
-            loop->stats.down_dropped++;
-            return;
-        case WRITE_FAILED:
-            frame_dropped(loop, frame, "write error");
-            accepted = false;
-            break;
-        }
-    } else if (!co_txq_push(&loop->txq, frame, dev)) {
+    if (!co_txq_push(&loop->txq, frame, dev)) {
         frame_dropped(loop, frame, "transmit queue full");
-        accepted = false;
+        return;
     }
     /* The socket does not receive its own frames (CAN_RAW_RECV_OWN_MSGS is off), so the other
      * devices of this loop get them from here, after the current call returns. */
-    if (accepted && loop->device_count > 1 && !co_txq_push(&loop->local, frame, dev))
+    if (loop->device_count > 1 && !co_txq_push(&loop->local, frame, dev))
         co_log(CO_LOG_WARN, "%s: local delivery queue full: frame %03X not seen by local devices",
                loop->iface, (unsigned)frame->id);
+}
+
+static size_t route_key(uint16_t can_id, bool rtr)
+{
+    return can_id | (rtr ? ROUTE_KEY_RTR : 0u);
+}
+
+static const co_node_t *device_node(const co_linux_device_t *dev)
+{
+    return dev->ops->node(dev->ctx);
+}
+
+/* Room for `count` routes; false (logged) when memory is short, and every device then gets
+ * every frame as before routing. */
+static bool reserve_routes(co_linux_loop_t *loop, size_t count)
+{
+    if (count <= loop->route_capacity)
+        return true;
+    co_linux_device_t **routes = realloc(loop->route_devices, count * sizeof *routes);
+    if (routes == NULL) {
+        co_log(CO_LOG_ERROR, "routing table of %zu entries: out of memory: no routing", count);
+        return false;
+    }
+    loop->route_devices = routes;
+    loop->route_capacity = count;
+    return true;
+}
+
+/* A counting sort of the (COB-ID, device) pairs by key: one pass counts each key's consumers, a
+ * prefix sum gives each key its range, a second pass fills the ranges in device order. Runs when
+ * a consumed set changed, never per frame. */
+static void build_routes(co_linux_loop_t *loop)
+{
+    uint32_t cursor[CO_LINUX_ROUTE_KEYS];
+    co_cob_t cobs[CO_CONSUMERS_MAX];
+    loop->routes_stale = false;
+    loop->filter_stale = true;
+    loop->route_all = false;
+    memset(loop->route_first, 0, sizeof loop->route_first);
+    for (co_linux_device_t *dev = loop->devices; dev; dev = dev->next) {
+        if (dev->ops->node == NULL) {
+            loop->route_all = true;
+            continue;
+        }
+        dev->generation = co_node_consumer_generation(device_node(dev));
+        size_t count = co_node_consumers(device_node(dev), cobs);
+        for (size_t i = 0; i < count; i++)
+            loop->route_first[route_key(cobs[i].can_id, cobs[i].rtr) + 1]++;
+    }
+    for (size_t k = 0; k < CO_LINUX_ROUTE_KEYS; k++)
+        loop->route_first[k + 1] += loop->route_first[k];
+    if (loop->route_all || !reserve_routes(loop, loop->route_first[CO_LINUX_ROUTE_KEYS])) {
+        loop->route_all = true;
+        return;
+    }
+    memcpy(cursor, loop->route_first, sizeof cursor);
+    for (co_linux_device_t *dev = loop->devices; dev; dev = dev->next) {
+        size_t count = co_node_consumers(device_node(dev), cobs);
+        for (size_t i = 0; i < count; i++)
+            loop->route_devices[cursor[route_key(cobs[i].can_id, cobs[i].rtr)]++] = dev;
+    }
+}
+
+/* The socket's receive filter: one exact entry (CAN-ID, data or remote, 11-bit) per routed key.
+ * The whole bus when a trace is written (it shows every frame, as candump would) or a device
+ * takes every frame; every 11-bit frame when the keys are more than the kernel accepts
+ * (CAN_RAW_FILTER_MAX): the routes still sort them. Returns the number of entries. */
+static size_t wanted_filter(const co_linux_loop_t *loop, struct can_filter *wanted)
+{
+    if (loop->route_all || loop->trace != NULL) {
+        wanted[0] = (struct can_filter){.can_id = 0, .can_mask = 0};
+        return 1;
+    }
+    size_t count = 0;
+    for (size_t k = 0; k < CO_LINUX_ROUTE_KEYS; k++) {
+        if (loop->route_first[k] == loop->route_first[k + 1])
+            continue;
+        if (count == CAN_RAW_FILTER_MAX) {
+            wanted[0] = (struct can_filter){.can_id = 0, .can_mask = CAN_EFF_FLAG};
+            return 1;
+        }
+        wanted[count++] = (struct can_filter){
+            .can_id = (canid_t)(k & CAN_SFF_MASK) | (k & ROUTE_KEY_RTR ? CAN_RTR_FLAG : 0u),
+            .can_mask = CAN_SFF_MASK | CAN_EFF_FLAG | CAN_RTR_FLAG};
+    }
+    return count;
+}
+
+static bool set_filter(co_linux_loop_t *loop, const struct can_filter *filter, size_t count)
+{
+    return setsockopt(loop->can_fd, SOL_CAN_RAW, CAN_RAW_FILTER, filter,
+                      (socklen_t)(count * sizeof filter[0])) == 0;
+}
+
+/* Computed when the routes, the socket or the trace changed; set only when it differs from what
+ * this socket has. */
+static void apply_filter(co_linux_loop_t *loop)
+{
+    struct can_filter wanted[CAN_RAW_FILTER_MAX];
+    size_t count = wanted_filter(loop, wanted);
+    loop->filter_stale = false;
+    if (loop->filter_applied && count == loop->filter_count &&
+        memcmp(wanted, loop->filters, count * sizeof wanted[0]) == 0)
+        return;
+    if (!set_filter(loop, wanted, count)) {
+        /* A filter that may hide frames a node now consumes is worse than none. */
+        co_log(CO_LOG_ERROR, "%s: CAN_RAW_FILTER of %zu entries: %s: receiving the whole bus",
+               loop->iface, count, strerror(errno));
+        wanted[0] = (struct can_filter){.can_id = 0, .can_mask = 0};
+        count = 1;
+        if (!set_filter(loop, wanted, count)) {
+            loop->filter_applied = false;
+            return;
+        }
+    }
+    memcpy(loop->filters, wanted, count * sizeof wanted[0]);
+    loop->filter_count = count;
+    loop->filter_applied = true;
+    loop->stats.filters++;
+}
+
+/* One frame to one device, and its process right after, as co_node_process requires; false
+ * for the device that sent the frame. */
+static bool deliver(co_linux_device_t *dev, const co_frame_t *frame, const void *origin)
+{
+    if (dev == origin)
+        return false;
+    dev->ops->receive(dev->ctx, frame, dev->loop->now);
+    device_process(dev, dev->loop->now);
+    return true;
+}
+
+/* Hands a frame to the devices that consume it, except the one that sent it; returns how many
+ * got it. */
+static size_t route_frame(co_linux_loop_t *loop, const co_frame_t *frame, const void *origin)
+{
+    if (loop->routes_stale)
+        build_routes(loop);
+    size_t delivered = 0;
+    if (loop->route_all) {
+        for (co_linux_device_t *dev = loop->devices; dev; dev = dev->next)
+            delivered += deliver(dev, frame, origin);
+        return delivered;
+    }
+    /* The core ignores 29-bit frames: no node consumes them. */
+    if (frame->flags & CO_FRAME_EFF)
+        return 0;
+    size_t key = route_key((uint16_t)frame->id, (frame->flags & CO_FRAME_RTR) != 0);
+    for (uint32_t i = loop->route_first[key]; i < loop->route_first[key + 1]; i++)
+        delivered += deliver(loop->route_devices[i], frame, origin);
+    return delivered;
 }
 
 static void deliver_local(co_linux_loop_t *loop)
@@ -233,12 +392,7 @@ static void deliver_local(co_linux_loop_t *loop)
     while ((e = co_txq_peek(&loop->local)) != NULL) {
         co_txq_entry_t entry = *e;
         co_txq_pop(&loop->local);
-        for (co_linux_device_t *dev = loop->devices; dev; dev = dev->next) {
-            if (dev == entry.origin)
-                continue;
-            dev->ops->receive(dev->ctx, &entry.frame, loop->now);
-            device_process(dev, loop->now);
-        }
+        route_frame(loop, &entry.frame, entry.origin);
     }
 }
 
@@ -275,10 +429,8 @@ static void handle_rx_frame(co_linux_loop_t *loop, const struct can_frame *cf)
     loop->traffic_since_overrun = true;
     co_frame_t frame;
     co_linux_frame_from_can(cf, &frame);
-    for (co_linux_device_t *dev = loop->devices; dev; dev = dev->next) {
-        dev->ops->receive(dev->ctx, &frame, loop->now);
-        device_process(dev, loop->now);
-    }
+    if (route_frame(loop, &frame, NULL) == 0)
+        loop->stats.unrouted++;
     deliver_local(loop);
 }
 
@@ -347,6 +499,8 @@ static int can_socket_open(co_linux_loop_t *loop, co_linux_open_result_t *result
         struct epoll_event ev = {.events = EPOLLIN, .data.u32 = TAG_CAN};
         if (epoll_ctl(loop->epoll_fd, EPOLL_CTL_ADD, fd, &ev) == 0) {
             loop->can_fd = fd;
+            loop->filter_applied = false;
+            loop->filter_stale = true;
             *result = CO_LINUX_OPEN_OK;
             return 0;
         }
@@ -482,12 +636,27 @@ static void arm_timer(co_linux_loop_t *loop)
 }
 
 /* After every wake-up: everything the handlers caused is delivered, reported and timed. */
+/* The routes and the filter follow a changed consumer set before the frames of the wake-up
+ * leave: a master that reacts to the SDO reply of a COB-ID write finds the filter updated. */
+static void update_routes(co_linux_loop_t *loop)
+{
+    if (loop->routes_stale)
+        build_routes(loop);
+    if (loop->filter_stale && loop->can_fd >= 0)
+        apply_filter(loop);
+}
+
 static void settle(co_linux_loop_t *loop)
 {
     deliver_local(loop);
+    update_routes(loop);
+    transmit(loop);
     /* Bounded: each condition can change at most once per round. */
-    for (int round = 0; round < 3 && report_conditions(loop); round++)
+    for (int round = 0; round < 3 && report_conditions(loop); round++) {
         deliver_local(loop);
+        update_routes(loop);
+        transmit(loop);
+    }
     arm_timer(loop);
     flush_trace(loop);
 }
@@ -595,7 +764,9 @@ void co_linux_loop_add(co_linux_loop_t *loop, co_linux_device_t *device,
     device->ctx = ctx;
     device->loop = loop;
     device->deadline = CO_TIME_NEVER;
+    device->generation = 0;
     device->next = NULL;
+    loop->routes_stale = true;
     co_linux_device_t **tail = &loop->devices;
     while (*tail)
         tail = &(*tail)->next;
@@ -675,6 +846,12 @@ co_linux_open_result_t co_linux_loop_open(co_linux_loop_t *loop,
         loop->rx_msgs[i].msg_hdr.msg_iov = &loop->rx_iov[i];
         loop->rx_msgs[i].msg_hdr.msg_iovlen = 1;
     }
+    for (int i = 0; i < CO_LINUX_TX_BATCH; i++) {
+        loop->tx_iov[i].iov_base = &loop->tx_frames[i];
+        loop->tx_iov[i].iov_len = sizeof loop->tx_frames[i];
+        loop->tx_msgs[i].msg_hdr.msg_iov = &loop->tx_iov[i];
+        loop->tx_msgs[i].msg_hdr.msg_iovlen = 1;
+    }
 
     co_linux_open_result_t result = CO_LINUX_OPEN_OS_ERROR;
     if (open_loop_descriptors(loop) != 0) {
@@ -704,4 +881,7 @@ void co_linux_loop_close(co_linux_loop_t *loop)
     sigprocmask(SIG_SETMASK, &loop->old_mask, NULL);
     if (loop->trace)
         fflush(loop->trace);
+    free(loop->route_devices);
+    loop->route_devices = NULL;
+    loop->route_capacity = 0;
 }

@@ -26,7 +26,12 @@ bool co_txq_push(co_txq_t *q, const co_frame_t *frame, const void *origin)
 
 const co_txq_entry_t *co_txq_peek(const co_txq_t *q)
 {
-    return q->count ? &q->slots[q->head] : NULL;
+    return co_txq_at(q, 0);
+}
+
+const co_txq_entry_t *co_txq_at(const co_txq_t *q, size_t position)
+{
+    return position < q->count ? &q->slots[(q->head + position) % q->capacity] : NULL;
 }
 
 void co_txq_pop(co_txq_t *q)

@@ -1,4 +1,4 @@
-/* The bounded transmit queue: order, capacity, drops counted, wrap-around. */
+/* The bounded transmit queue: order, capacity, drops counted, wrap-around, reading by position. */
 #include "check_main.h"
 #include "co_linux/txq.h"
 
@@ -74,6 +74,28 @@ START_TEST(wraps_around_without_losing_order)
 }
 END_TEST
 
+/* The batch a sendmmsg takes is read by position, the oldest first, across the wrap. */
+START_TEST(at_reads_by_position_across_the_wrap)
+{
+    co_txq_init(&q, 3);
+    for (uint32_t id = 0x181; id <= 0x182; id++) {
+        co_frame_t f = frame_with_id(id);
+        ck_assert(co_txq_push(&q, &f, NULL));
+    }
+    co_txq_pop(&q);
+    for (uint32_t id = 0x183; id <= 0x184; id++) {
+        co_frame_t f = frame_with_id(id);
+        ck_assert(co_txq_push(&q, &f, NULL));
+    }
+    for (size_t i = 0; i < 3; i++)
+        ck_assert_uint_eq(co_txq_at(&q, i)->frame.id, 0x182 + i);
+    ck_assert_ptr_null(co_txq_at(&q, 3));
+    ck_assert_ptr_eq(co_txq_at(&q, 0), co_txq_peek(&q));
+    co_txq_clear(&q);
+    ck_assert_ptr_null(co_txq_at(&q, 0));
+}
+END_TEST
+
 START_TEST(clear_reports_count_and_empties)
 {
     co_txq_init(&q, 8);
@@ -104,6 +126,7 @@ int main(void)
     tcase_add_test(tc, keeps_fifo_order);
     tcase_add_test(tc, full_queue_drops_newest_and_counts);
     tcase_add_test(tc, wraps_around_without_losing_order);
+    tcase_add_test(tc, at_reads_by_position_across_the_wrap);
     tcase_add_test(tc, clear_reports_count_and_empties);
     tcase_add_test(tc, capacity_is_clamped);
     suite_add_tcase(s, tc);

@@ -1,0 +1,109 @@
+/* The COB-IDs a node consumes, read from the services' decoded state (the same fields their
+ * receive functions compare a frame with), and the generation number that tells a runtime when
+ * to read them again. */
+#include "co/co_consumers.h"
+
+#define NMT_COB_ID 0x000u
+#define GUARD_COB_BASE 0x700u
+#define HB_COB_BASE 0x700u
+#define CAN_ID_11BIT 0x7FFu
+
+/* Object indexes whose values decide the consumed set (CiA 301 7.5.2). */
+#define IDX_SYNC_COB_ID 0x1005u
+#define IDX_GUARD_COB_ID 0x100Eu
+#define IDX_HB_CONSUMER 0x1016u
+#define IDX_SDO_SERVER_FIRST 0x1200u
+#define IDX_SDO_SERVER_LAST 0x12FFu
+#define IDX_PDO_FIRST 0x1400u
+#define IDX_PDO_LAST 0x1BFFu
+
+typedef struct cob_set {
+    co_cob_t *cobs;
+    size_t count;
+} cob_set_t;
+
+/* Each COB-ID once: two heartbeat consumers of one producer, or an RPDO on the SYNC COB-ID, are
+ * still one route. */
+static void add(cob_set_t *set, uint32_t can_id, bool rtr)
+{
+    can_id &= CAN_ID_11BIT;
+    for (size_t i = 0; i < set->count; i++) {
+        if (set->cobs[i].can_id == can_id && set->cobs[i].rtr == rtr)
+            return;
+    }
+    set->cobs[set->count++] = (co_cob_t){.can_id = (uint16_t)can_id, .rtr = rtr};
+}
+
+static void add_sync(const co_node_t *node, cob_set_t *set)
+{
+    const co_od_entry_t *e = co_od_find(node->od, IDX_SYNC_COB_ID, 0);
+    if (e != NULL)
+        add(set, (uint32_t)co_od_get(node, e) & CO_SYNC_COBID_CAN_ID, false);
+}
+
+static void add_guarding(const co_node_t *node, cob_set_t *set)
+{
+    const co_od_entry_t *e = co_od_find(node->od, IDX_GUARD_COB_ID, 0);
+    add(set, e != NULL ? (uint32_t)co_od_get(node, e) : GUARD_COB_BASE + node->node_id, true);
+}
+
+static void add_pdos(const co_node_t *node, cob_set_t *set)
+{
+    for (size_t n = 0; n < CO_CONFIG_RPDO_MAX; n++) {
+        const co_rpdo_t *r = &node->pdo.rpdo[n];
+        if (r->valid)
+            add(set, r->can_id, false);
+    }
+    for (size_t n = 0; n < CO_CONFIG_TPDO_MAX; n++) {
+        const co_tpdo_t *t = &node->pdo.tpdo[n];
+        if (t->valid && t->rtr_allowed)
+            add(set, t->can_id, true);
+    }
+}
+
+static void add_heartbeats(const co_node_t *node, cob_set_t *set)
+{
+    for (size_t i = 0; i < CO_CONFIG_HB_CONSUMERS; i++) {
+        uint8_t producer = node->heartbeat.consumer[i].node_id;
+        if (producer != 0)
+            add(set, HB_COB_BASE + producer, false);
+    }
+}
+
+size_t co_node_consumers(const co_node_t *node, co_cob_t *cobs)
+{
+    cob_set_t set = {.cobs = cobs, .count = 0};
+    if (node->nmt_state == CO_NMT_INITIALISING)
+        return 0;
+    add(&set, NMT_COB_ID, false);
+    add_sync(node, &set);
+    add(&set, node->sdo.rx_id, false);
+    add_guarding(node, &set);
+    add_pdos(node, &set);
+    add_heartbeats(node, &set);
+    return set.count;
+}
+
+bool co_node_consumes(const co_node_t *node, uint32_t can_id, bool rtr)
+{
+    co_cob_t cobs[CO_CONSUMERS_MAX];
+    size_t count = co_node_consumers(node, cobs);
+    for (size_t i = 0; i < count; i++) {
+        if (cobs[i].can_id == can_id && cobs[i].rtr == rtr)
+            return true;
+    }
+    return false;
+}
+
+void co_consumers_changed(co_node_t *node)
+{
+    node->consumer_generation++;
+}
+
+void co_consumers_written(co_node_t *node, uint16_t index)
+{
+    if (index == IDX_SYNC_COB_ID || index == IDX_GUARD_COB_ID || index == IDX_HB_CONSUMER ||
+        (index >= IDX_SDO_SERVER_FIRST && index <= IDX_SDO_SERVER_LAST) ||
+        (index >= IDX_PDO_FIRST && index <= IDX_PDO_LAST))
+        co_consumers_changed(node);
+}

@@ -50,6 +50,7 @@ typedef struct comaster_command {
 
 int comaster_read_main(comaster_options_t *opts, int argc, char **argv);
 int comaster_write_main(comaster_options_t *opts, int argc, char **argv);
+int comaster_nmt_main(comaster_options_t *opts, int argc, char **argv);
 
 /* Parses a command's arguments (argv[0] is the command): the common options, --help (prints
  * `help` and returns 0), the command's flags named in `flags` (" --block --output "), and at

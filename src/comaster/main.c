@@ -10,6 +10,7 @@
 static const comaster_command_t commands[] = {
     {"read", "read NODE OBJECT [TYPE]: an object's value (SDO upload)", comaster_read_main},
     {"write", "write NODE OBJECT TYPE VALUE: set an object (SDO download)", comaster_write_main},
+    {"nmt", "nmt start|stop|preop|reset-node|reset-comm NODE|all: NMT command", comaster_nmt_main},
 };
 
 #define COMMAND_COUNT (sizeof commands / sizeof commands[0])

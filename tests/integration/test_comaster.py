@@ -94,7 +94,7 @@ def test_usage_errors():
     assert comaster("read", 128, "0x1000")[0::2] == (
         EX_USAGE, "comaster: '128' is not a node-id: give a number 1..127\n")
     assert comaster("frobnicate")[0::2] == (
-        EX_USAGE, "comaster: unknown command 'frobnicate': give one of read, write, nmt (see "
+        EX_USAGE, "comaster: unknown command 'frobnicate': give one of read, write, nmt, drive (see "
         "comaster --help)\n")
     assert comaster("read", 4, "0x1000", "u7")[0] == EX_USAGE
     p = subprocess.run([COMASTER, "-i", "nosuchcan0", "read", "4", "0x1000"], capture_output=True,
@@ -165,3 +165,52 @@ def test_block_transfers_against_local_node(local_node):
                    "specifier not valid or unknown\n")
     assert comaster("read", LOCAL_NODE, "0x2001", "string", "--block") == (
         0, "LocalNode label\n", "")
+
+
+def test_drive_speed_runs_the_state_machine_by_sdo(drives, dump):
+    mark = dump.mark()
+    rc, out, err = comaster("drive", 4, "speed", "1200")
+    assert (rc, err) == (0, "")
+    assert out == ("node 4: Switch on disabled (6041h = 0x0640)\n"
+                   "node 4: Ready to switch on (6041h = 0x0621)\n"
+                   "node 4: Switched on (6041h = 0x0623)\n"
+                   "node 4: Operation enabled (6041h = 0x0227)\n")
+    dump.expect(0x604, "2B4060000F000000", since=mark)  # the last write: every frame before is seen
+    requests = [str(f) for f in dump.seen[mark:] if f.can_id == 0x604 and f.data[0] == 0x2B]
+    assert requests == ["604#2B426000B0040000", "604#2B40600006000000",
+                        "604#2B40600007000000", "604#2B4060000F000000"]
+    assert comaster("read", 4, "0x6042", "i16") == (0, "1200\n", "")
+    assert comaster("read", 5, "0x6042", "i16") == (0, "0\n", "")  # the other drive untouched
+
+
+def test_drive_quick_stop_disable_and_json(drives):
+    assert comaster("drive", 4, "enable")[0] == 0
+    assert comaster("drive", 4, "quick-stop") == (
+        0, "node 4: Operation enabled (6041h = 0x0627)\n"
+        "node 4: Quick stop active (6041h = 0x0607)\n", "")
+    rc, out, _ = comaster("--json", "drive", 4, "disable")
+    assert rc == 0
+    assert [json.loads(line) for line in out.splitlines()] == [
+        {"node": 4, "state": "Quick stop active", "statusword": "0x0607"},
+        {"node": 4, "state": "Switch on disabled", "statusword": "0x0640"}]
+
+
+def test_drive_in_fault_needs_fault_reset(drives, bus):
+    # A heartbeat consumer of node 0x7E, 50 ms, fed once: its loss is the network fault.
+    assert comaster("write", 4, "0x1016:1", "u32", "0x007E0032") == (0, "", "")
+    bus.send(Frame(0x77E, b"\x05"))
+    bus.expect(0x84, timeout=2.0)  # the drive's EMCY (8130h)
+    rc, out, err = comaster("drive", 4, "enable")
+    assert rc == 4
+    assert out == "node 4: Fault (6041h = 0x0608)\n"
+    assert err == ("comaster: node 4 is in Fault (6041h = 0x0608): reset it first: comaster drive "
+                   "4 fault-reset\n")
+    assert comaster("drive", 4, "fault-reset") == (
+        0, "node 4: Fault (6041h = 0x0608)\nnode 4: Switch on disabled (6041h = 0x0640)\n", "")
+
+
+def test_drive_usage_errors():
+    assert comaster("drive", 4, "speed", "99999")[0::2] == (
+        EX_USAGE, "comaster: drive: speed '99999' is not a velocity: give rpm -32768..32767\n")
+    assert comaster("drive", 4, "fly")[0] == EX_USAGE
+    assert comaster("drive", 4, "speed")[0] == EX_USAGE

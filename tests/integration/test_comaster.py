@@ -94,7 +94,7 @@ def test_usage_errors():
     assert comaster("read", 128, "0x1000")[0::2] == (
         EX_USAGE, "comaster: '128' is not a node-id: give a number 1..127\n")
     assert comaster("frobnicate")[0::2] == (
-        EX_USAGE, "comaster: unknown command 'frobnicate': give one of read, write, nmt, drive (see "
+        EX_USAGE, "comaster: unknown command 'frobnicate': give one of read, write, nmt, scan, drive (see "
         "comaster --help)\n")
     assert comaster("read", 4, "0x1000", "u7")[0] == EX_USAGE
     p = subprocess.run([COMASTER, "-i", "nosuchcan0", "read", "4", "0x1000"], capture_output=True,
@@ -214,3 +214,34 @@ def test_drive_usage_errors():
         EX_USAGE, "comaster: drive: speed '99999' is not a velocity: give rpm -32768..32767\n")
     assert comaster("drive", 4, "fly")[0] == EX_USAGE
     assert comaster("drive", 4, "speed")[0] == EX_USAGE
+
+
+def test_scan_lists_every_model_with_its_state(bus, start_daemon, dump):
+    start_daemon(bus, "--node-id", "4-5", "--model", "atv312", "--node-id", "6", "--model",
+                 "atv31", "--node-id", "7", "--model", "atv58", boot_ids=[4, 5, 6, 7],
+                 padded_ids=[7])
+    assert comaster("nmt", "start", 5)[0] == 0
+    mark = dump.mark()
+    rc, out, err = comaster("scan")
+    assert (rc, err) == (0, "")
+    assert out.splitlines() == [
+        "node  device type vendor      product     revision    name              state",
+        "   4  0x00010192  0x0000005F  -           -           ATV312            Pre-operational",
+        "   5  0x00010192  0x0000005F  -           -           ATV312            Operational",
+        "   6  0x00010192  0x0000005F  -           -           ATV31             Pre-operational",
+        "   7  0x00010192  -           -           -           AT58              Pre-operational"]
+    # Every node-id was asked for 1000h once; the states were asked by node guarding.
+    dump.expect(0x707, "7F00000000000000", since=mark)  # the ATV58's reply, padded: the last
+    requests = [f.can_id for f in dump.seen[mark:] if f.data[:4] == bytes.fromhex("40001000")]
+    assert requests == list(range(0x601, 0x680))
+    rc, out, _ = comaster("--json", "--timeout", "300", "scan")
+    assert rc == 0
+    assert json.loads(out.splitlines()[3]) == {
+        "node": 7, "device_type": "0x00010192", "vendor": None, "product": None,
+        "revision": None, "name": "AT58", "state": "Pre-operational"}
+
+
+def test_scan_of_an_empty_bus():
+    assert comaster("--timeout", "100", "scan")[0::2] == (
+        EXIT_TIMEOUT, "comaster: no node answered on vcan0 within 100 ms (--timeout MS waits "
+        "longer)\n")

@@ -53,6 +53,7 @@ int comaster_read_main(comaster_options_t *opts, int argc, char **argv);
 int comaster_write_main(comaster_options_t *opts, int argc, char **argv);
 int comaster_nmt_main(comaster_options_t *opts, int argc, char **argv);
 int comaster_scan_main(comaster_options_t *opts, int argc, char **argv);
+int comaster_monitor_main(comaster_options_t *opts, int argc, char **argv);
 int comaster_drive_main(comaster_options_t *opts, int argc, char **argv);
 
 /* Parses a command's arguments (argv[0] is the command): the common options, --help (prints

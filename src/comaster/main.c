@@ -12,6 +12,8 @@ static const comaster_command_t commands[] = {
     {"write", "write NODE OBJECT TYPE VALUE: set an object (SDO download)", comaster_write_main},
     {"nmt", "nmt start|stop|preop|reset-node|reset-comm NODE|all: NMT command", comaster_nmt_main},
     {"scan", "scan: the nodes present, their identity and NMT state", comaster_scan_main},
+    {"monitor", "monitor [NODE...]: heartbeats, EMCYs, SYNC and PDOs as they arrive",
+     comaster_monitor_main},
     {"drive", "drive NODE enable|disable|quick-stop|fault-reset|speed RPM: CiA 402",
      comaster_drive_main},
 };

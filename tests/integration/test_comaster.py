@@ -4,8 +4,13 @@ frames on the bus."""
 
 import json
 import os
+import queue
+import re
+import signal
 import subprocess
 import sys
+import threading
+import time
 from pathlib import Path
 
 import pytest
@@ -94,7 +99,7 @@ def test_usage_errors():
     assert comaster("read", 128, "0x1000")[0::2] == (
         EX_USAGE, "comaster: '128' is not a node-id: give a number 1..127\n")
     assert comaster("frobnicate")[0::2] == (
-        EX_USAGE, "comaster: unknown command 'frobnicate': give one of read, write, nmt, scan, drive (see "
+        EX_USAGE, "comaster: unknown command 'frobnicate': give one of read, write, nmt, scan, monitor, drive (see "
         "comaster --help)\n")
     assert comaster("read", 4, "0x1000", "u7")[0] == EX_USAGE
     p = subprocess.run([COMASTER, "-i", "nosuchcan0", "read", "4", "0x1000"], capture_output=True,
@@ -245,3 +250,75 @@ def test_scan_of_an_empty_bus():
     assert comaster("--timeout", "100", "scan")[0::2] == (
         EXIT_TIMEOUT, "comaster: no node answered on vcan0 within 100 ms (--timeout MS waits "
         "longer)\n")
+
+
+class Monitor:
+    """comaster monitor in the background; its lines without the time, read with deadlines."""
+
+    def __init__(self, *args):
+        self.proc = subprocess.Popen([COMASTER, "-i", IFACE, "monitor", *[str(a) for a in args]],
+                                     stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
+        self.lines = queue.Queue()
+        threading.Thread(target=self._read, daemon=True).start()
+        ready = self.proc.stderr.readline()
+        assert ready == "comaster: monitoring vcan0 (Ctrl-C ends)\n", ready + self.proc.stderr.read()
+
+    def _read(self):
+        for line in self.proc.stdout:
+            self.lines.put(line)
+
+    def expect(self, text, timeout=2.0):
+        """Waits for the line `text` (after its time); returns the lines skipped on the way."""
+        deadline = time.monotonic() + timeout
+        skipped = []
+        while True:
+            try:
+                line = self.lines.get(timeout=max(0.0, deadline - time.monotonic()))
+            except queue.Empty:
+                pytest.fail(f"monitor printed no {text!r} within {timeout} s; it printed {skipped}")
+            match = re.match(r"^ *\d+\.\d{3}  (.*)\n$", line)
+            assert match, f"not a monitor line: {line!r}"
+            if match.group(1) == text:
+                return skipped
+            skipped.append(match.group(1))
+
+    def stop(self):
+        self.proc.send_signal(signal.SIGTERM)
+        return self.proc.wait(timeout=5)
+
+
+def test_monitor_states_pdos_by_name_sync_and_emcy(drives, bus):
+    assert comaster("write", 4, "0x1805:1", "u32", "0x284") == (0, "", "")  # PDO6 valid
+    monitor = Monitor(4)
+    try:
+        assert comaster("write", 4, "0x1017", "u16", "100") == (0, "", "")
+        monitor.expect("node 4: Pre-operational")  # its first heartbeat
+        assert comaster("nmt", "start", 4) == (0, "", "")
+        monitor.expect("node 4: Pre-operational -> Operational")
+        assert comaster("drive", 4, "enable")[0] == 0
+        # PDO6 (1805h, 1A05h), its mapping read over SDO, named by the ATV312's EDS.
+        monitor.expect("TPDO6 node 4: 6041:00 Statusword (ETAD) = 0x0627 Operation enabled, "
+                       "6044:00 vl velocity actual value (RFRD) = 0")
+        monitor.expect("TPDO1 node 4: 6041:00 Statusword (ETAD) = 0x0627 Operation enabled")
+        bus.send(Frame(0x080))
+        monitor.expect("SYNC")
+        # Node 5 loses the heartbeat of node 0x7E: its network fault, decoded.
+        assert comaster("write", 5, "0x1016:1", "u32", "0x007E0032") == (0, "", "")
+        bus.send(Frame(0x77E, b"\x05"))
+        monitor.expect("node 5: EMCY 0x8130 life guard error or heartbeat error, error register "
+                       "0x11")
+        assert comaster("nmt", "stop", 4) == (0, "", "")
+        monitor.expect("node 4: Operational -> Stopped")
+    finally:
+        assert monitor.stop() == 0
+
+
+def test_monitor_json_lines(drives, bus):
+    monitor = Monitor("--json")
+    try:
+        bus.send(Frame(0x080, b"\x07"))
+        line = json.loads(monitor.lines.get(timeout=2.0))
+        assert line.pop("time") >= 0
+        assert line == {"event": "sync", "counter": 7}
+    finally:
+        assert monitor.stop() == 0

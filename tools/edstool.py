@@ -59,11 +59,11 @@ OBJECT_TYPES = {OBJ_NULL: "NULL", OBJ_DOMAIN: "DOMAIN", OBJ_DEFTYPE: "DEFTYPE",
 ACCESS_TYPES = ("ro", "wo", "rw", "rwr", "rww", "const")
 
 # Flags of include/co/co_od.h.
-READ, WRITE, CONST, TPDO, RPDO, NODEID, ZERO_OK, PROCESS = (0x01, 0x02, 0x04, 0x08, 0x10, 0x20,
-                                                            0x40, 0x80)
+READ, WRITE, CONST, TPDO, RPDO, NODEID, ZERO_OK, PROCESS, STREAM = (0x01, 0x02, 0x04, 0x08, 0x10,
+                                                                    0x20, 0x40, 0x80, 0x100)
 FLAG_NAMES = ((READ, "CO_OD_READ"), (WRITE, "CO_OD_WRITE"), (CONST, "CO_OD_CONST"),
               (TPDO, "CO_OD_TPDO"), (RPDO, "CO_OD_RPDO"), (NODEID, "CO_OD_NODEID"),
-              (ZERO_OK, "CO_OD_ZERO_OK"), (PROCESS, "CO_OD_PROCESS"))
+              (ZERO_OK, "CO_OD_ZERO_OK"), (PROCESS, "CO_OD_PROCESS"), (STREAM, "CO_OD_STREAM"))
 # Words of a hooks file that set a flag rather than name a hook.
 HOOK_FLAG_WORDS = {"zero-ok": ZERO_OK, "process-data": PROCESS}
 
@@ -345,6 +345,7 @@ class Entry:
         self.default = b""
         self.limits = None
         self.hook = None
+        self.stream = None  # the co_od_stream_t of a streamed DOMAIN (then hook is None)
 
 
 def listed_objects(eds):
@@ -599,11 +600,27 @@ def build_entries(eds):
 
 
 HOOK_WORD = re.compile(r"^[A-Za-z_][A-Za-z0-9_]*$")
+STREAM_WORD = re.compile(r"^stream=([A-Za-z_][A-Za-z0-9_]*)$")
+
+
+def make_stream(e, name):
+    """A streamed DOMAIN: its value lives in the application (the co_od_stream_t `name`), so the
+    entry has no bytes in the data block. Returns an error message, or None."""
+    where = "0x%04X:0x%02X" % (e.index, e.sub)
+    if DATA_TYPES[e.dtype][2] != "d":
+        return "%s is not a DOMAIN: only a DOMAIN can be streamed" % where
+    if e.hook is not None or (e.stream is not None and e.stream != name):
+        return "%s already has hook %s" % (where, e.hook or e.stream)
+    e.stream = name
+    e.flags |= STREAM
+    e.size = 0
+    e.default = b""
+    return None
 
 
 def apply_hooks(entries, path):
-    """Reads a hooks file: 'INDEX[:SUB] WORD...' where WORD is zero-ok, process-data or the name
-    of an extern const co_od_hook_t."""
+    """Reads a hooks file: 'INDEX[:SUB] WORD...' where WORD is zero-ok, process-data, the name
+    of an extern const co_od_hook_t, or stream=NAME, NAME an extern const co_od_stream_t."""
     try:
         with open(path, encoding="utf-8") as f:
             lines = f.read().splitlines()
@@ -638,14 +655,20 @@ def apply_hooks(entries, path):
             what = "0x%04X" % index if sub is None else "0x%04X:0x%02X" % (index, sub)
             raise fail(number, "%s is not in the EDS" % what)
         for word in actions:
-            if word in HOOK_FLAG_WORDS:
+            stream = STREAM_WORD.match(word)
+            if stream:
+                for e in targets:
+                    message = make_stream(e, stream.group(1))
+                    if message:
+                        raise fail(number, message)
+            elif word in HOOK_FLAG_WORDS:
                 for e in targets:
                     e.flags |= HOOK_FLAG_WORDS[word]
             elif HOOK_WORD.match(word):
                 for e in targets:
-                    if e.hook is not None and e.hook != word:
+                    if (e.hook is not None and e.hook != word) or e.stream is not None:
                         raise fail(number, "0x%04X:0x%02X already has hook %s"
-                                   % (e.index, e.sub, e.hook))
+                                   % (e.index, e.sub, e.hook or e.stream))
                     e.hook = word
             else:
                 raise fail(number, "'%s' is neither zero-ok, process-data nor a C identifier"
@@ -741,6 +764,12 @@ def render(entries, eds_name, prefix, data_size, hooks_name, dummies):
         for hook in hooks:
             c.append("extern const co_od_hook_t %s;\n" % hook)
         c.append("\n")
+    streams = sorted({e.stream for e in entries if e.stream})
+    if streams:
+        c.append("/* Streamed DOMAINs named in %s, defined by the application. */\n" % hooks_name)
+        for stream in streams:
+            c.append("extern const co_od_stream_t %s;\n" % stream)
+        c.append("\n")
 
     limits = {}  # (limits, signed) -> position in the array, in order of first use
     for e in entries:
@@ -769,7 +798,7 @@ def render(entries, eds_name, prefix, data_size, hooks_name, dummies):
         if e.limits is not None:
             limit = "&%s_od_limits[%d]" % (prefix, limits[(e.limits,
                                                             DATA_TYPES[e.dtype][2] == "i")])
-        hook = "&" + e.hook if e.hook else "NULL"
+        hook = "&" + e.hook if e.hook else "&%s.hook" % e.stream if e.stream else "NULL"
         c.append("    /* %04X:%02X %s */\n" % (e.index, e.sub, c_comment(e.name)))
         c.append("    {0x%04X, 0x%02X, CO_DT_%s, %s, %d, %d, %s, %s},\n"
                  % (e.index, e.sub, DATA_TYPES[e.dtype][0], c_flags(e.flags), e.size, e.offset,
@@ -1301,6 +1330,8 @@ def dump(args):
             limits += " (process data)"
         if e.hook:
             limits += " (hook %s)" % e.hook
+        if e.stream:
+            limits += " (stream %s)" % e.stream
         out.write("| %04Xh | %d | %s | %s | %s | %s | %s | %s | %d |\n"
                   % (e.index, e.sub, e.name.replace("|", "/"), DATA_TYPES[e.dtype][0], e.access,
                      pdo, shown_default(e).replace("|", "/"), limits.strip(), e.size))
@@ -1340,8 +1371,9 @@ def make_parser():
                      help="C identifier prefixing every generated name (NAME_od, NAME_OD_...)")
     gen.add_argument("--out-dir", required=True, metavar="DIR", help="output directory")
     gen.add_argument("--hooks", metavar="FILE",
-                     help="hooks file: lines 'INDEX[:SUB] WORD...', WORD is zero-ok, process-data "
-                          "or the name of an extern const co_od_hook_t")
+                     help="hooks file: lines 'INDEX[:SUB] WORD...', WORD is zero-ok, process-data, "
+                          "the name of an extern const co_od_hook_t, or stream=NAME, NAME an "
+                          "extern const co_od_stream_t (a streamed DOMAIN)")
     gen.add_argument("--omit", nargs="+", default=[], type=omit_index, metavar="INDEX",
                      help="leave these objects (hex indexes, e.g. 0x1016) out of the dictionary: "
                           "a variant of the device that lacks them")

@@ -22,6 +22,7 @@ typedef struct co_od_entry co_od_entry_t;
 #define CO_OD_NODEID 0x0020u  /* default value is relative to the node-id ($NODEID+...) */
 #define CO_OD_ZERO_OK 0x0040u /* 0 is accepted even below the low limit ("0 = disabled") */
 #define CO_OD_PROCESS 0x0080u /* process data (a command, a reference): never stored (1010h) */
+#define CO_OD_STREAM 0x0100u  /* a streamed DOMAIN: `hook` is the hook of a co_od_stream_t */
 
 #define CO_OD_ACCESS_RO CO_OD_READ
 #define CO_OD_ACCESS_WO CO_OD_WRITE
@@ -56,6 +57,42 @@ typedef struct co_od_hook {
     /* Before a read: may refresh the stored value. Return 0 or an SDO abort code. */
     uint32_t (*read)(co_node_t *node, const co_od_entry_t *entry);
 } co_od_hook_t;
+
+/* A DOMAIN entry whose value lives in the application and is streamed by the SDO server segment
+ * by segment (CiA 301 7.4.7.1, "large amount of data"): segmented and block transfers of any size
+ * up to 2^32-1 bytes pass through these functions and never through the SDO transfer buffer, so
+ * the entry has no bytes in the data block (its size is 0). A value of 1..4 bytes still goes
+ * expedited. Functions return 0 or an SDO abort code, which the server sends to the client. An
+ * entry readable by SDO needs `size` and `read`, a writable one `begin`, `write` and `end`.
+ * The entry has the flag CO_OD_STREAM and its `hook` points at the stream's `hook`, so that the
+ * table keeps one hook pointer per entry (the EDS generator's hooks-file word `stream=NAME`). */
+typedef struct co_od_stream {
+    /* First member, so that the entry's hook pointer leads to the stream. hook.read, when set,
+     * runs before every upload as for any entry; hook.write is never called: the stream takes
+     * the value. */
+    co_od_hook_t hook;
+    /* An upload starts: the bytes of the value to upload into *size. */
+    uint32_t (*size)(co_node_t *node, const co_od_entry_t *entry, uint32_t *size);
+    /* Fills buf with the `len` bytes (1..7) of the value at `offset`. The offsets of one upload
+     * grow, but after a lost block segment the server reads again from the last acknowledged
+     * point (no further back than the start of the current sub-block). */
+    uint32_t (*read)(co_node_t *node, const co_od_entry_t *entry, uint32_t offset, uint8_t *buf,
+                     size_t len);
+    /* A download starts, announcing `size` bytes when size_indicated. Refuse a size the
+     * application cannot take: SDO_ABORT_LENGTH_HIGH (0x06070012) when the object can never hold
+     * it, SDO_ABORT_NO_MEMORY (0x05040005) when there is no room for it now. */
+    uint32_t (*begin)(co_node_t *node, const co_od_entry_t *entry, bool size_indicated,
+                      uint32_t size);
+    /* The next `len` bytes (1..7) of the download at `offset`: only data received in sequence,
+     * each byte once, offsets contiguous from 0. An abort code ends the transfer (then `end`). */
+    uint32_t (*write)(co_node_t *node, const co_od_entry_t *entry, uint32_t offset,
+                      const uint8_t *data, size_t len);
+    /* The download ended, called once per `begin`: ok = true when all `total` bytes arrived (in
+     * the announced amount, and the CRC of a block transfer matched): return 0 to commit the value
+     * or an abort code to refuse it. ok = false when it was aborted by either side, timed out or
+     * replaced by a reset or a new request: discard what was written (the result is ignored). */
+    uint32_t (*end)(co_node_t *node, const co_od_entry_t *entry, uint32_t total, bool ok);
+} co_od_stream_t;
 
 struct co_od_entry {
     uint16_t index;
@@ -94,7 +131,9 @@ typedef enum co_od_error {
     CO_OD_ERR_UNSORTED,  /* entry at position is not after its predecessor */
     CO_OD_ERR_DUPLICATE, /* entry at position repeats its predecessor's key */
     CO_OD_ERR_BOUNDS,    /* entry at position lies outside the data block */
-    CO_OD_ERR_SIZE       /* entry at position has a size that does not fit its type */
+    CO_OD_ERR_SIZE,      /* entry at position has a size that does not fit its type */
+    CO_OD_ERR_STREAM     /* entry at position is CO_OD_STREAM but not a DOMAIN of size 0 with
+                            a hook, or lacks the stream functions its access needs */
 } co_od_error_t;
 
 /* Checks the table once at start-up. On error *position is the offending entry. */
@@ -111,6 +150,9 @@ const co_od_entry_t *co_od_find(const co_od_t *od, uint16_t index, uint8_t subin
 uint32_t co_od_lookup(const co_od_t *od, uint16_t index, uint8_t subindex,
                       const co_od_entry_t **entry);
 
+/* The stream of a streamed DOMAIN (CO_OD_STREAM), NULL for any other entry. */
+const co_od_stream_t *co_od_stream(const co_od_entry_t *entry);
+
 /* Byte size of a fixed-size type, 0 for strings and domains. */
 size_t co_od_type_size(uint8_t type);
 
@@ -124,7 +166,9 @@ uint32_t co_od_read_check(co_node_t *node, uint16_t index, uint8_t subindex,
 
 /* Full write path with every CiA 301 check: existence, write access, length against the type
  * (0x06070010/12/13), limits (0x06090031/32), the entry's hook, the owning service's parameter
- * rules, then storage and the application's write notification. Returns 0 or an abort code. */
+ * rules, then storage and the application's write notification. Returns 0 or an abort code.
+ * A streamed DOMAIN (co_od_stream_t) takes the value through its begin, write and end instead;
+ * its end is the application's notification. */
 uint32_t co_od_write(co_node_t *node, uint16_t index, uint8_t subindex, const uint8_t *data,
                      size_t len, co_od_origin_t origin);
 

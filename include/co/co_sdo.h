@@ -1,5 +1,8 @@
 /* SDO server: expedited, segmented and block transfers (CiA 301 section 7.2.4) on the default SDO
- * channel 0x600+id / 0x580+id, with the protocol timeout and the complete set of abort codes. */
+ * channel 0x600+id / 0x580+id, with the protocol timeout and the complete set of abort codes.
+ * Segmented and block transfers go through the transfer buffer, except those of a streamed DOMAIN
+ * (co_od_stream_t, co_od.h), which pass segment by segment between the client and the
+ * application: any size up to 2^32-1 bytes (a block download: 2^32-8). */
 #ifndef CO_SDO_H
 #define CO_SDO_H
 
@@ -50,6 +53,11 @@ typedef struct co_sdo_server {
     uint8_t last_len;        /* block download: data bytes carried by the final segment's frame */
     uint32_t size;           /* announced download size, or the upload's total size */
     uint32_t offset;         /* bytes transferred and acknowledged so far */
+    uint16_t crc_sum;        /* block transfers: CRC of the bytes before `offset` */
+    uint16_t crc_sent;       /* block upload: CRC of the bytes sent so far */
+    uint8_t last_segment[7]; /* block download: the final segment, until the end request */
+    /* The streamed DOMAIN (co_od_stream_t) of the transfer, which then needs no buffer. */
+    const co_od_entry_t *stream;
     co_sdo_buffer_t *buffer; /* the application's (co_node_config_t.sdo_buffer) or `own` */
 #if CO_CONFIG_SDO_BUFFER > 0
     /* The node's own buffer, for an application that gives none. */

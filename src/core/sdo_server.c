@@ -2,7 +2,10 @@
  * transfers. Downloads other than expedited are collected in the transfer buffer and written to
  * the dictionary in one co_od_write() when complete; uploads other than expedited take a snapshot
  * of the value into the buffer at initiate, so the client reads one consistent value. The buffer
- * may be shared by several nodes (co_sdo_buffer_t): a transfer holds it until it goes idle. */
+ * may be shared by several nodes (co_sdo_buffer_t): a transfer holds it until it goes idle. A
+ * streamed DOMAIN (co_od_stream_t) needs no buffer: its segments are read from and written to the
+ * application as they go, and its download's end is reported to the application however the
+ * transfer ends. */
 #include "co/co_node.h"
 #include "sdo_protocol.h"
 
@@ -15,9 +18,9 @@
 #define SDO_ERROR_CLASS_NO_SUBINDEX 0x06090000u
 #define SDO_ERROR_CLASS_NOT_SUPPORTED 0x05030000u
 
-uint16_t co_sdo_crc16(const uint8_t *data, size_t len)
+/* Continues a CRC over more bytes, so that a streamed value's CRC is built segment by segment. */
+static uint16_t crc16_update(uint16_t crc, const uint8_t *data, size_t len)
 {
-    uint16_t crc = 0;
     for (size_t i = 0; i < len; i++) {
         crc ^= (uint16_t)(data[i] << 8);
         for (int bit = 0; bit < 8; bit++)
@@ -26,13 +29,65 @@ uint16_t co_sdo_crc16(const uint8_t *data, size_t len)
     return crc;
 }
 
-/* Every end of a transfer comes here, so that a shared buffer is never left held. */
+uint16_t co_sdo_crc16(const uint8_t *data, size_t len)
+{
+    return crc16_update(0, data, len);
+}
+
+static bool in_download(const co_sdo_server_t *sdo)
+{
+    return sdo->state == CO_SDO_DOWNLOAD_SEGMENT || sdo->state == CO_SDO_BLOCK_DOWNLOAD_SUB ||
+           sdo->state == CO_SDO_BLOCK_DOWNLOAD_END;
+}
+
+/* Every end of a transfer comes here, so that a shared buffer is never left held and the
+ * application hears of every streamed download that did not complete. */
 static void transfer_idle(co_node_t *node)
 {
     co_sdo_server_t *sdo = &node->sdo;
+    const co_od_entry_t *stream = sdo->stream;
+    bool stream_download = stream != NULL && in_download(sdo);
+    sdo->stream = NULL;
     sdo->state = CO_SDO_IDLE;
     if (sdo->buffer->owner == node)
         sdo->buffer->owner = NULL;
+    if (stream_download)
+        co_od_stream(stream)->end(node, stream, sdo->offset, false);
+}
+
+/* Reads `len` bytes of the value being uploaded, at `offset`: from the application's stream, or
+ * from the snapshot in the buffer. */
+static uint32_t value_read(co_node_t *node, uint32_t offset, uint8_t *buf, uint32_t len)
+{
+    co_sdo_server_t *sdo = &node->sdo;
+    if (len == 0)
+        return CO_SDO_OK;
+    if (sdo->stream != NULL)
+        return co_od_stream(sdo->stream)->read(node, sdo->stream, offset, buf, len);
+    memcpy(buf, &sdo->buffer->data[offset], len);
+    return CO_SDO_OK;
+}
+
+/* Takes `len` bytes of a download at `offset`: into the application's stream, which gets no byte
+ * past the announced size (0x06070010, as when the amount differs at the end) nor past 4 GiB, or
+ * into the buffer while it has room. */
+static uint32_t value_write(co_node_t *node, uint32_t offset, const uint8_t *data, uint32_t len)
+{
+    co_sdo_server_t *sdo = &node->sdo;
+    uint64_t end = (uint64_t)offset + len;
+    if (len == 0)
+        return CO_SDO_OK;
+    if (sdo->stream != NULL) {
+        if (sdo->size_indicated && end > sdo->size)
+            return SDO_ABORT_TYPE_LENGTH;
+        if (end > UINT32_MAX)
+            return SDO_ABORT_NO_MEMORY;
+        return co_od_stream(sdo->stream)->write(node, sdo->stream, offset, data, len);
+    }
+    if (end > sdo->buffer->size)
+        return SDO_ABORT_NO_MEMORY;
+    memcpy(&sdo->buffer->data[offset], data, len);
+    return CO_SDO_OK;
 }
 
 /* Takes the transfer buffer for the transfer being initiated, and checks that `size` bytes fit. */
@@ -136,7 +191,8 @@ static void finish(co_node_t *node, uint32_t abort, uint8_t command, bool with_m
 
 /* Initiate of a segmented or block download: an announced size must be in the frame and fit the
  * buffer, the target must exist and be writable and the buffer must be free before any data is
- * accepted; the remaining checks run in co_od_write once the value is complete. */
+ * accepted; the remaining checks run in co_od_write once the value is complete. A streamed DOMAIN
+ * asks the application instead, which may refuse the announced size. */
 static uint32_t download_prepare(co_node_t *node, const co_frame_t *frame, bool size_indicated)
 {
     co_sdo_server_t *sdo = &node->sdo;
@@ -149,8 +205,13 @@ static uint32_t download_prepare(co_node_t *node, const co_frame_t *frame, bool 
     uint32_t abort = co_od_lookup(node->od, sdo->index, sdo->subindex, &e);
     if (abort == CO_SDO_OK && !(e->flags & CO_OD_WRITE))
         abort = SDO_ABORT_READ_ONLY;
+    if (abort != CO_SDO_OK)
+        return abort;
+    if (!(e->flags & CO_OD_STREAM))
+        return buffer_take(node, sdo->size);
+    abort = co_od_stream(e)->begin(node, e, size_indicated, sdo->size);
     if (abort == CO_SDO_OK)
-        abort = buffer_take(node, sdo->size);
+        sdo->stream = e;
     return abort;
 }
 
@@ -209,14 +270,19 @@ static void download_initiate(co_node_t *node, const co_frame_t *frame)
 }
 
 /* A completed segmented or block download: its length against the announced size, then the write
- * (0x06070010 when the client sent another amount than it announced). */
+ * (0x06070010 when the client sent another amount than it announced), or the commit of a streamed
+ * value (the application's end, once: the transfer no longer counts as a stream to abort). */
 static uint32_t download_complete(co_node_t *node)
 {
     co_sdo_server_t *sdo = &node->sdo;
     if (sdo->size_indicated && sdo->offset != sdo->size)
         return SDO_ABORT_TYPE_LENGTH;
-    return co_od_write(node, sdo->index, sdo->subindex, sdo->buffer->data, sdo->offset,
-                       CO_OD_ORIGIN_SDO);
+    const co_od_entry_t *stream = sdo->stream;
+    if (stream == NULL)
+        return co_od_write(node, sdo->index, sdo->subindex, sdo->buffer->data, sdo->offset,
+                           CO_OD_ORIGIN_SDO);
+    sdo->stream = NULL;
+    return co_od_stream(stream)->end(node, stream, sdo->offset, true);
 }
 
 static void download_segment(co_node_t *node, const co_frame_t *frame)
@@ -233,11 +299,11 @@ static void download_segment(co_node_t *node, const co_frame_t *frame)
         transfer_abort(node, SDO_ABORT_COMMAND);
         return;
     }
-    if (sdo->offset + count > sdo->buffer->size) {
-        transfer_abort(node, SDO_ABORT_NO_MEMORY);
+    uint32_t abort = value_write(node, sdo->offset, &frame->data[1], (uint32_t)count);
+    if (abort != CO_SDO_OK) {
+        transfer_abort(node, abort);
         return;
     }
-    memcpy(&sdo->buffer->data[sdo->offset], &frame->data[1], count);
     sdo->offset += (uint32_t)count;
     uint8_t response = (uint8_t)(SCS_DOWNLOAD_SEGMENT | toggle);
     if (command & SDO_LAST) {
@@ -274,13 +340,34 @@ static void upload_expedited(co_node_t *node, const uint8_t *value, size_t len)
     transfer_idle(node);
 }
 
+/* The value to upload when it is not sent expedited straight from the dictionary: a streamed
+ * DOMAIN's size from the application, or a snapshot in the buffer. */
+static uint32_t upload_open(co_node_t *node, const co_od_entry_t *entry)
+{
+    co_sdo_server_t *sdo = &node->sdo;
+    if (!(entry->flags & CO_OD_STREAM))
+        return upload_snapshot(node, entry);
+    sdo->stream = entry;
+    return co_od_stream(entry)->size(node, entry, &sdo->size);
+}
+
+static bool fits_expedited(uint32_t size)
+{
+    return size >= 1 && size <= EXPEDITED_BYTES;
+}
+
 /* Expedited when 1..4 bytes, else segmented with the size indicated (an empty string too): a
- * value of the snapshot in the buffer. */
+ * value opened by upload_open. */
 static void upload_response(co_node_t *node)
 {
     co_sdo_server_t *sdo = &node->sdo;
-    if (sdo->size >= 1 && sdo->size <= EXPEDITED_BYTES) {
-        upload_expedited(node, sdo->buffer->data, sdo->size);
+    if (fits_expedited(sdo->size)) {
+        uint8_t value[EXPEDITED_BYTES];
+        uint32_t abort = value_read(node, 0, value, sdo->size);
+        if (abort != CO_SDO_OK)
+            transfer_abort(node, abort);
+        else
+            upload_expedited(node, value, sdo->size);
         return;
     }
     sdo->offset = 0;
@@ -290,20 +377,26 @@ static void upload_response(co_node_t *node)
 }
 
 /* A value of 1..4 bytes goes out expedited straight from the dictionary: the buffer, which
- * another node may hold, is needed only for a segmented upload. */
+ * another node may hold, is needed only for a segmented upload. A streamed DOMAIN's size is known
+ * only once it is opened. */
 static void upload_initiate(co_node_t *node)
 {
+    co_sdo_server_t *sdo = &node->sdo;
     const co_od_entry_t *e;
-    uint32_t abort = co_od_read_check(node, node->sdo.index, node->sdo.subindex, &e);
-    size_t len = abort == CO_SDO_OK ? co_od_length(node, e) : 0;
-    if (abort == CO_SDO_OK && len >= 1 && len <= EXPEDITED_BYTES) {
+    uint32_t abort = co_od_read_check(node, sdo->index, sdo->subindex, &e);
+    bool stream = abort == CO_SDO_OK && (e->flags & CO_OD_STREAM);
+    size_t len = abort == CO_SDO_OK && !stream ? co_od_length(node, e) : 0;
+    if (abort == CO_SDO_OK && !stream && len >= 1 && len <= EXPEDITED_BYTES) {
         upload_expedited(node, co_od_bytes(node, e), len);
         return;
     }
-    if (abort == CO_SDO_OK && (node->options & CO_NODE_SDO_EXPEDITED_ONLY))
+    if (stream)
+        abort = upload_open(node, e);
+    if (abort == CO_SDO_OK && (node->options & CO_NODE_SDO_EXPEDITED_ONLY) &&
+        !(stream && fits_expedited(sdo->size)))
         abort = SDO_ABORT_UNSUPPORTED_ACCESS;
-    if (abort == CO_SDO_OK)
-        abort = upload_snapshot(node, e);
+    if (abort == CO_SDO_OK && !stream)
+        abort = upload_open(node, e);
     if (abort != CO_SDO_OK) {
         transfer_abort(node, abort);
         return;
@@ -325,7 +418,11 @@ static void upload_segment(co_node_t *node, const co_frame_t *frame)
     bool last = sdo->offset + count == sdo->size;
     uint8_t p[8] = {
         (uint8_t)(SCS_UPLOAD_SEGMENT | toggle | ((SEGMENT_BYTES - count) << 1) | (last ? 1 : 0))};
-    memcpy(&p[1], &sdo->buffer->data[sdo->offset], count);
+    uint32_t abort = value_read(node, sdo->offset, &p[1], count);
+    if (abort != CO_SDO_OK) {
+        transfer_abort(node, abort);
+        return;
+    }
     send_response(node, p);
     sdo->offset += count;
     sdo->toggle ^= SDO_TOGGLE;
@@ -341,9 +438,12 @@ static uint8_t crc_bit(const co_sdo_server_t *sdo)
     return sdo->crc ? BLOCK_CRC : 0;
 }
 
-/* The server's block size: up to 127 segments, no more than the buffer can still take. */
+/* The server's block size: up to 127 segments, no more than the buffer can still take (a stream
+ * takes whatever comes: the application refuses in its write). */
 static uint8_t download_blksize(const co_sdo_server_t *sdo)
 {
+    if (sdo->stream != NULL)
+        return BLKSIZE_MAX;
     uint32_t capacity = sdo->buffer->size;
     uint32_t room = sdo->offset < capacity ? capacity - sdo->offset : 0;
     uint32_t segments = (room + SEGMENT_BYTES - 1) / SEGMENT_BYTES;
@@ -362,6 +462,7 @@ static void block_download_initiate(co_node_t *node, const co_frame_t *frame)
         return;
     }
     sdo->crc = (command & BLOCK_CRC) != 0;
+    sdo->crc_sum = 0;
     sdo->seqno = 0;
     sdo->block_broken = false;
     sdo->last_in_block = false;
@@ -370,22 +471,27 @@ static void block_download_initiate(co_node_t *node, const co_frame_t *frame)
     send_with_mux(node, (uint8_t)(SCS_BLOCK_DOWNLOAD | crc_bit(sdo)), sdo->blksize);
 }
 
-/* Stores an in-sequence segment. Returns an abort code, 0 when stored. Only the final segment may
- * be short or run past the buffer: its unused bytes are known only from the end request. */
-static uint32_t block_download_store(co_sdo_server_t *sdo, const co_frame_t *frame, bool last)
+/* Stores an in-sequence segment, so that the value is written in order, each byte once, and its
+ * CRC follows. Returns an abort code, 0 when stored. The final segment is held until the end
+ * request tells its unused bytes; only it may be short. */
+static uint32_t block_download_store(co_node_t *node, const co_frame_t *frame, bool last)
 {
-    uint32_t pos = sdo->offset + (uint32_t)(sdo->seqno) * SEGMENT_BYTES;
+    co_sdo_server_t *sdo = &node->sdo;
+    uint64_t pos = sdo->offset + (uint64_t)sdo->seqno * SEGMENT_BYTES;
     uint32_t count = (uint32_t)frame->len - 1;
-    if (!last && count < SEGMENT_BYTES)
-        return SDO_ABORT_COMMAND;
-    uint32_t capacity = sdo->buffer->size;
-    if (!last && pos + SEGMENT_BYTES > capacity)
+    if (pos + SEGMENT_BYTES > UINT32_MAX)
         return SDO_ABORT_NO_MEMORY;
-    if (pos + count > capacity)
-        count = pos < capacity ? capacity - pos : 0;
-    memcpy(&sdo->buffer->data[pos], &frame->data[1], count);
-    sdo->last_len = (uint8_t)(frame->len - 1);
-    return CO_SDO_OK;
+    if (last) {
+        memcpy(sdo->last_segment, &frame->data[1], count);
+        sdo->last_len = (uint8_t)count;
+        return CO_SDO_OK;
+    }
+    if (count < SEGMENT_BYTES)
+        return SDO_ABORT_COMMAND;
+    uint32_t abort = value_write(node, (uint32_t)pos, &frame->data[1], SEGMENT_BYTES);
+    if (abort == CO_SDO_OK && sdo->crc)
+        sdo->crc_sum = crc16_update(sdo->crc_sum, &frame->data[1], SEGMENT_BYTES);
+    return abort;
 }
 
 /* CiA 301, download SDO block segment protocol: after the last segment of a sub-block the server
@@ -416,7 +522,7 @@ static void block_download_segment(co_node_t *node, const co_frame_t *frame)
     if (sdo->block_broken || seqno != sdo->seqno + 1) {
         sdo->block_broken = true;
     } else {
-        uint32_t abort = block_download_store(sdo, frame, last);
+        uint32_t abort = block_download_store(node, frame, last);
         if (abort != CO_SDO_OK) {
             transfer_abort(node, abort);
             return;
@@ -436,12 +542,16 @@ static void block_download_end(co_node_t *node, const co_frame_t *frame)
         transfer_abort(node, SDO_ABORT_COMMAND);
         return;
     }
-    sdo->offset -= unused;
-    if (sdo->offset > sdo->buffer->size) {
-        transfer_abort(node, SDO_ABORT_NO_MEMORY);
+    uint32_t final_len = SEGMENT_BYTES - unused;
+    uint32_t final_pos = sdo->offset - SEGMENT_BYTES;
+    uint32_t abort = value_write(node, final_pos, sdo->last_segment, final_len);
+    if (abort != CO_SDO_OK) {
+        transfer_abort(node, abort);
         return;
     }
-    if (sdo->crc && co_sdo_crc16(sdo->buffer->data, sdo->offset) != co_get_u16(&frame->data[1])) {
+    sdo->offset = final_pos + final_len;
+    uint16_t crc = crc16_update(sdo->crc_sum, sdo->last_segment, final_len);
+    if (sdo->crc && crc != co_get_u16(&frame->data[1])) {
         transfer_abort(node, SDO_ABORT_CRC);
         return;
     }
@@ -460,7 +570,7 @@ static void block_upload_initiate(co_node_t *node, const co_frame_t *frame)
     const co_od_entry_t *e;
     uint32_t abort = co_od_read_check(node, sdo->index, sdo->subindex, &e);
     if (abort == CO_SDO_OK)
-        abort = upload_snapshot(node, e);
+        abort = upload_open(node, e);
     if (abort == CO_SDO_OK && (blksize == 0 || blksize > BLKSIZE_MAX))
         abort = SDO_ABORT_BLOCK_SIZE;
     if (abort != CO_SDO_OK) {
@@ -474,6 +584,7 @@ static void block_upload_initiate(co_node_t *node, const co_frame_t *frame)
         return;
     }
     sdo->crc = (frame->data[0] & BLOCK_CRC) != 0;
+    sdo->crc_sum = 0;
     sdo->blksize = blksize;
     sdo->offset = 0;
     sdo->state = CO_SDO_BLOCK_UPLOAD_START;
@@ -482,21 +593,50 @@ static void block_upload_initiate(co_node_t *node, const co_frame_t *frame)
 }
 
 /* Sends up to blksize segments from sdo->offset; the final segment of the value carries c = 1
- * (an empty value is one segment with no data). */
+ * (an empty value is one segment with no data). crc_sent follows what was sent. */
 static void block_upload_send_subblock(co_node_t *node)
 {
     co_sdo_server_t *sdo = &node->sdo;
     sdo->last_in_block = false;
+    sdo->crc_sent = sdo->crc_sum;
     for (uint8_t seqno = 1; seqno <= sdo->blksize && !sdo->last_in_block; seqno++) {
         uint32_t pos = sdo->offset + (uint32_t)(seqno - 1) * SEGMENT_BYTES;
         uint32_t count = sdo->size - pos < SEGMENT_BYTES ? sdo->size - pos : SEGMENT_BYTES;
         sdo->last_in_block = pos + count == sdo->size;
         uint8_t p[8] = {(uint8_t)(seqno | (sdo->last_in_block ? BLOCK_LAST : 0))};
-        memcpy(&p[1], &sdo->buffer->data[pos], count);
+        uint32_t abort = value_read(node, pos, &p[1], count);
+        if (abort != CO_SDO_OK) {
+            transfer_abort(node, abort);
+            return;
+        }
+        if (sdo->crc)
+            sdo->crc_sent = crc16_update(sdo->crc_sent, &p[1], count);
         send_response(node, p);
         sdo->seqno = seqno;
     }
     sdo->state = CO_SDO_BLOCK_UPLOAD_ACK;
+}
+
+/* The CRC up to the client's acknowledge: of everything sent when it got the whole sub-block,
+ * else read again over the segments it got (a rare retransmission). */
+static uint32_t block_upload_crc_acknowledged(co_node_t *node, uint8_t ackseq)
+{
+    co_sdo_server_t *sdo = &node->sdo;
+    if (!sdo->crc)
+        return CO_SDO_OK;
+    if (ackseq == sdo->seqno) {
+        sdo->crc_sum = sdo->crc_sent;
+        return CO_SDO_OK;
+    }
+    for (uint8_t seqno = 1; seqno <= ackseq; seqno++) {
+        uint8_t segment[SEGMENT_BYTES];
+        uint32_t pos = sdo->offset + (uint32_t)(seqno - 1) * SEGMENT_BYTES;
+        uint32_t abort = value_read(node, pos, segment, SEGMENT_BYTES);
+        if (abort != CO_SDO_OK)
+            return abort;
+        sdo->crc_sum = crc16_update(sdo->crc_sum, segment, SEGMENT_BYTES);
+    }
+    return CO_SDO_OK;
 }
 
 static void block_upload_end(co_node_t *node)
@@ -506,7 +646,7 @@ static void block_upload_end(co_node_t *node)
     uint32_t unused = SEGMENT_BYTES - (sdo->size - last_pos);
     uint8_t p[8] = {(uint8_t)(SCS_BLOCK_UPLOAD | (unused << 2) | BLOCK_UPLOAD_END)};
     if (sdo->crc)
-        co_put_u16(&p[1], co_sdo_crc16(sdo->buffer->data, sdo->size));
+        co_put_u16(&p[1], sdo->crc_sum);
     send_response(node, p);
     sdo->state = CO_SDO_BLOCK_UPLOAD_END;
 }
@@ -526,6 +666,11 @@ static void block_upload_acknowledged(co_node_t *node, const co_frame_t *frame)
     }
     if (blksize == 0 || blksize > BLKSIZE_MAX) {
         transfer_abort(node, SDO_ABORT_BLOCK_SIZE);
+        return;
+    }
+    uint32_t abort = block_upload_crc_acknowledged(node, ackseq);
+    if (abort != CO_SDO_OK) {
+        transfer_abort(node, abort);
         return;
     }
     if (ackseq == sdo->seqno && sdo->last_in_block) {

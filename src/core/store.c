@@ -38,10 +38,11 @@ static bool group_has_area(uint8_t group, const store_area_t *a)
 
 /* Parameters only: not the process data the application marks (commands, references), not the
  * error history and the store/restore commands (1003h, 1010h, 1011h). */
+/* A streamed DOMAIN's value lives in the application, which keeps it itself. */
 static bool entry_is_stored(const co_od_entry_t *e)
 {
-    return (e->flags & CO_OD_WRITE) && !(e->flags & CO_OD_PROCESS) && e->index != 0x1003 &&
-           e->index != 0x1010 && e->index != 0x1011;
+    return (e->flags & CO_OD_WRITE) && !(e->flags & CO_OD_PROCESS) && !(e->flags & CO_OD_STREAM) &&
+           e->index != 0x1003 && e->index != 0x1010 && e->index != 0x1011;
 }
 
 /* An entry whose read hook computes its value from other entries (6046h of LSP/HSP): its stored

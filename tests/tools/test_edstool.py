@@ -381,6 +381,49 @@ class Hooks(ToolCase):
         hooks = self.write("t.hooks", "0x2000:2 text_hook\n")
         self.assertEqual(self.entries(self.eds(), hooks)[(0x2000, 2)].hook, "text_hook")
 
+    def domain_eds(self):
+        def edit(sections):
+            sections["2000"] = record("Record", 4)
+            sections["2000sub0"]["DefaultValue"] = "3"
+            sections["2000sub3"] = var("Image", "0x000F", "rw", **{";size": "16"})
+        return self.eds(edit)
+
+    def test_stream(self):
+        plain = self.entries(self.domain_eds())
+        self.assertEqual(plain[(0x2000, 3)].size, 16)
+        hooks = self.write("t.hooks", "0x2000:3 stream=image_stream\n")
+        entries = self.entries(self.domain_eds(), hooks)
+        e = entries[(0x2000, 3)]
+        self.assertEqual((e.stream, e.hook, e.size), ("image_stream", None, 0))
+        self.assertTrue(e.flags & edstool.STREAM)
+        self.assertEqual(self.generate(self.domain_eds(), hooks)[0], 0)
+        source = self.read("t_od.c")
+        self.assertIn("extern const co_od_stream_t image_stream;\n", source)
+        self.assertRegex(source, r"\{0x2000, 0x03, CO_DT_DOMAIN, CO_OD_READ \| CO_OD_WRITE \| "
+                                 r"CO_OD_STREAM, 0, \d+, NULL, &image_stream\.hook\},")
+        self.assertNotIn("co_od_hook_t", source)
+        code, out, err = self.run_tool("dump", self.domain_eds(), "--hooks", hooks)
+        self.assertEqual(code, 0, err)
+        self.assertIn("(stream image_stream)", out)
+
+    def check_stream_refused(self, text, message):
+        hooks = self.write("t.hooks", text)
+        code, out, err = self.generate(self.domain_eds(), hooks)
+        self.assertEqual(code, 1)
+        self.assertIn(hooks + ": " + message, err)
+
+    def test_stream_of_another_type_refused(self):
+        self.check_stream_refused("0x2000:1 stream=s\n",
+                                  "line 1: 0x2000:0x01 is not a DOMAIN: only a DOMAIN can be "
+                                  "streamed")
+
+    def test_stream_and_hook_refused(self):
+        self.check_stream_refused("0x2000:3 h\n0x2000:3 stream=s\n",
+                                  "line 2: 0x2000:0x03 already has hook h")
+        self.check_stream_refused("0x2000:3 stream=s h\n", "line 1: 0x2000:0x03 already has hook s")
+        self.check_stream_refused("0x2000:3 stream=s stream=t\n",
+                                  "line 1: 0x2000:0x03 already has hook s")
+
     def check_refused(self, text, message):
         hooks = self.write("t.hooks", text)
         code, out, err = self.generate(self.eds(), hooks)

@@ -248,6 +248,7 @@ static int run_monitor(monitor_t *m)
     fprintf(stderr, "comaster: monitoring %s (Ctrl-C ends)\n", m->opts->iface);
     setvbuf(stdout, NULL, _IOLBF, 0);
     m->start = m->now = co_linux_now();
+    m->bus->signal_is_the_end = true;
     comaster_job_t job = {.receive = monitor_receive, .process = monitor_process, .ctx = m};
     int rc = comaster_bus_run(m->bus, &job);
     return rc == COMASTER_EXIT_INTERRUPTED ? 0 : rc;

@@ -95,6 +95,15 @@ def test_abort_timeout_and_data_errors(drives):
     assert err == "comaster: node 4, 203C:02: 70000 is out of range for UNSIGNED16 (0..65535)\n"
 
 
+def test_signal_ends_a_command_with_exit_3(dump):
+    p = subprocess.Popen([COMASTER, "-i", IFACE, "--timeout", "10000", "read", "9", "0x1000",
+                          "u32"], stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
+    dump.expect(0x609, "4000100000000000")  # its request is out: it waits for the answer
+    p.send_signal(signal.SIGTERM)
+    assert p.wait(timeout=5) == 3
+    assert p.stderr.read() == "comaster: interrupted by a signal before the command finished\n"
+
+
 def test_usage_errors():
     assert comaster("read", 128, "0x1000")[0::2] == (
         EX_USAGE, "comaster: '128' is not a node-id: give a number 1..127\n")

@@ -39,6 +39,7 @@ typedef struct comaster_args {
     const char *positional[COMASTER_MAX_ARGS];
     int count;
     bool block;         /* read / write: --block */
+    bool rpdo;          /* drive: --rpdo */
     const char *output; /* read: --output FILE for a DOMAIN */
 } comaster_args_t;
 

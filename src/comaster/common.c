@@ -116,6 +116,8 @@ int comaster_parse_args(comaster_options_t *opts, comaster_args_t *args, int arg
             opts->json = true;
         } else if (strcmp(arg, "--block") == 0 && is_flag(flags, arg)) {
             args->block = true;
+        } else if (strcmp(arg, "--rpdo") == 0 && is_flag(flags, arg)) {
+            args->rpdo = true;
         } else if (strcmp(arg, "-i") == 0 || strcmp(arg, "--interface") == 0 ||
                    strcmp(arg, "--timeout") == 0 || strcmp(arg, "--eds") == 0 ||
                    strcmp(arg, "--eds-dir") == 0 ||

@@ -331,3 +331,39 @@ def test_monitor_json_lines(drives, bus):
         assert line == {"event": "sync", "counter": 7}
     finally:
         assert monitor.stop() == 0
+
+
+def test_drive_by_the_mapped_rpdo(drives, dump):
+    rc, out, err = comaster("--timeout", "300", "drive", 4, "enable", "--rpdo")
+    assert (rc, out) == (EXIT_TIMEOUT, "node 4: Switch on disabled (6041h = 0x0640)\n")
+    assert err == ("comaster: node 4: control word 0x0006: no Ready to switch on within 300 ms "
+                   "(6041h = 0x0640): RPDOs count only in Operational: comaster nmt start NODE "
+                   "(--timeout MS waits longer)\n")
+    dump.expect(0x204, "0600")  # sent, and ignored in Pre-operational
+    assert comaster("nmt", "start", 4)[0] == 0
+    # RPDO1 (204h) maps 6040h alone: the velocity goes by SDO, the control words in RPDO1.
+    mark = dump.mark()
+    rc, out, _ = comaster("drive", 4, "speed", 600, "--rpdo")
+    assert (rc, out.splitlines()[-1]) == (0, "node 4: Operation enabled (6041h = 0x0227)")
+    dump.expect(0x204, "0F00", since=mark)
+    assert [str(f) for f in dump.seen[mark:] if f.can_id == 0x204] == ["204#0600", "204#0700",
+                                                                       "204#0F00"]
+    assert any(str(f) == "604#2B42600058020000" for f in dump.seen[mark:])
+    # RPDO6 (305h) maps 6040h and 6042h once RPDO1 is invalid: both go in it.
+    assert comaster("write", 5, "0x1400:1", "u32", "0x80000205")[0] == 0
+    assert comaster("write", 5, "0x1405:1", "u32", "0x305")[0] == 0
+    assert comaster("nmt", "start", 5)[0] == 0
+    mark = dump.mark()
+    assert comaster("drive", 5, "speed", 700, "--rpdo")[0] == 0
+    dump.expect(0x305, "0F00BC02", since=mark)
+    assert [str(f) for f in dump.seen[mark:] if f.can_id == 0x305] == [
+        "305#0000BC02", "305#0600BC02", "305#0700BC02", "305#0F00BC02"]
+    assert comaster("read", 5, "0x6042", "i16") == (0, "700\n", "")
+
+
+def test_drive_rpdo_without_a_mapped_control_word(drives):
+    assert comaster("write", 4, "0x1400:1", "u32", "0x80000204")[0] == 0
+    assert comaster("drive", 4, "enable", "--rpdo")[0::2] == (
+        EX_DATAERR, "comaster: node 4: --rpdo: no valid RPDO (1400h-1407h) maps the control word "
+        "6040h: make one valid (e.g. comaster write 4 0x1405:1 u32 0x304), or drive by SDO "
+        "without --rpdo\n")

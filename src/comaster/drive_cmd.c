@@ -367,7 +367,7 @@ int comaster_drive_main(comaster_options_t *opts, int argc, char **argv)
     rc = comaster_bus_open(&bus, opts);
     if (rc == 0 && args.rpdo)
         rc = find_rpdo(&d);
-    if (rc == 0 && speed && d.rpdo.speed_at >= 0) {
+    if (rc == 0 && speed && d.rpdo.used && d.rpdo.speed_at >= 0) {
         /* With the control word as it is (read with the mapping): only the velocity changes. */
         co_put_u16(&d.rpdo.data[d.rpdo.speed_at], (uint16_t)rpm);
         rc = send_rpdo(&d);

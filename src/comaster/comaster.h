@@ -38,9 +38,10 @@ typedef struct comaster_options {
 typedef struct comaster_args {
     const char *positional[COMASTER_MAX_ARGS];
     int count;
-    bool block;         /* read / write: --block */
-    bool rpdo;          /* drive: --rpdo */
-    const char *output; /* read: --output FILE for a DOMAIN */
+    bool block;            /* read / write: --block */
+    bool rpdo;             /* drive: --rpdo */
+    uint16_t heartbeat_ms; /* monitor: --heartbeat MS, 0 when not given */
+    const char *output;    /* read: --output FILE for a DOMAIN */
 } comaster_args_t;
 
 /* One command: its name, the line of the usage listing and its handler. */

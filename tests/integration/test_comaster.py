@@ -377,3 +377,24 @@ def test_drive_rpdo_without_a_mapped_control_word(drives):
         EX_DATAERR, "comaster: node 4: --rpdo: no valid RPDO (1400h-1407h) maps the control word "
         "6040h: make one valid (e.g. comaster write 4 0x1405:1 u32 0x304), or drive by SDO "
         "without --rpdo\n")
+
+
+def test_monitor_heartbeat_lost_and_heard_again(drives):
+    assert comaster("write", 4, "0x1017", "u16", "50") == (0, "", "")
+    monitor = Monitor(4, "--heartbeat", 200)
+    try:
+        monitor.expect("node 4: Pre-operational")
+        assert comaster("write", 4, "0x1017", "u16", "0") == (0, "", "")  # heartbeats stop
+        monitor.expect("node 4: heartbeat lost")
+        assert comaster("write", 4, "0x1017", "u16", "50") == (0, "", "")
+        monitor.expect("node 4: heard again")
+    finally:
+        assert monitor.stop() == 0
+
+
+def test_eds_dir_is_the_only_place_looked_in(drives, tmp_path):
+    assert comaster("--eds-dir", tmp_path, "read", 4, "ACC")[0::2] == (
+        EX_USAGE, "comaster: 'ACC' is not an object: give INDEX:SUB such as 0x203C:2, or a name "
+        "with --eds FILE (or an EDS for the node's identity in the EDS directory)\n")
+    (tmp_path / "ATV312.eds").write_text(EDS.read_text())
+    assert comaster("--eds-dir", tmp_path, "read", 4, "ACC") == (0, "30\n", "")

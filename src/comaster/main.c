@@ -7,6 +7,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+/* One line per command; the summary is "USAGE: WHAT" (--help lists WHAT after the name). */
 static const comaster_command_t commands[] = {
     {"read", "read NODE OBJECT [TYPE]: an object's value (SDO upload)", comaster_read_main},
     {"write", "write NODE OBJECT TYPE VALUE: set an object (SDO download)", comaster_write_main},

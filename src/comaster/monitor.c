@@ -12,7 +12,7 @@
 #include <string.h>
 
 static const char monitor_help[] =
-    "usage: comaster monitor [NODE...]\n"
+    "usage: comaster monitor [NODE...] [--heartbeat MS]\n"
     "\n"
     "Prints, as they arrive, one line each: NMT states told by boot-ups and\n"
     "heartbeats (only their changes), emergencies with the meaning of their code,\n"
@@ -22,7 +22,11 @@ static const char monitor_help[] =
     "its identity); other PDOs show their bytes. Each line starts with the seconds\n"
     "since the start. SIGINT (Ctrl-C) or SIGTERM ends it, exit status 0.\n"
     "\n"
-    "Example: comaster -i vcan0 monitor 4 5\n";
+    "  --heartbeat MS  consume the heartbeats of the NODEs given: 'heartbeat lost'\n"
+    "                  when none came for MS ms (1..65535), 'heard again' when\n"
+    "                  one comes back\n"
+    "\n"
+    "Example: comaster -i vcan0 monitor 4 5 --heartbeat 300\n";
 
 /* The PDOs of a node read over SDO: the first eight of each direction (the predefined set has
  * four; the ATV312 uses PDO1 and PDO6). */
@@ -82,6 +86,13 @@ static void nmt_event(void *user, const co_nmt_master_event_t *event)
     if (event->kind == CO_NMT_MASTER_BOOT_UP) {
         line_start(m, "boot-up");
         printf(m->opts->json ? "\"node\": %u}\n" : "node %u: boot-up\n", event->node_id);
+    } else if (event->kind == CO_NMT_MASTER_HEARTBEAT_LOST ||
+               event->kind == CO_NMT_MASTER_RESUMED) {
+        bool lost = event->kind == CO_NMT_MASTER_HEARTBEAT_LOST;
+        line_start(m, lost ? "heartbeat-lost" : "heard-again");
+        printf(m->opts->json ? "\"node\": %u}\n"
+                             : (lost ? "node %u: heartbeat lost\n" : "node %u: heard again\n"),
+               event->node_id);
     } else if (event->kind == CO_NMT_MASTER_STATE_CHANGED) {
         line_start(m, "state");
         bool first = event->old_state == CO_NMT_MASTER_STATE_UNKNOWN;
@@ -248,6 +259,7 @@ static int run_monitor(monitor_t *m)
     fprintf(stderr, "comaster: monitoring %s (Ctrl-C ends)\n", m->opts->iface);
     setvbuf(stdout, NULL, _IOLBF, 0);
     m->start = m->now = co_linux_now();
+    m->bus->signal_is_the_end = true;
     comaster_job_t job = {.receive = monitor_receive, .process = monitor_process, .ctx = m};
     int rc = comaster_bus_run(m->bus, &job);
     return rc == COMASTER_EXIT_INTERRUPTED ? 0 : rc;
@@ -256,7 +268,8 @@ static int run_monitor(monitor_t *m)
 int comaster_monitor_main(comaster_options_t *opts, int argc, char **argv)
 {
     comaster_args_t args;
-    int rc = comaster_parse_args(opts, &args, argc, argv, monitor_help, "", 0, COMASTER_MAX_ARGS);
+    int rc = comaster_parse_args(opts, &args, argc, argv, monitor_help, "--heartbeat", 0,
+                                 COMASTER_MAX_ARGS);
     if (rc >= 0)
         return rc;
     static monitor_t m;
@@ -271,6 +284,8 @@ int comaster_monitor_main(comaster_options_t *opts, int argc, char **argv)
     }
     co_nmt_master_config_t config = {.send = nmt_send, .user = &m, .event = nmt_event};
     co_nmt_master_init(&m.master, &config);
+    for (size_t i = 0; i < m.watched_count && args.heartbeat_ms; i++)
+        co_nmt_master_heartbeat(&m.master, m.watched[i].node, args.heartbeat_ms);
     cotrace_decoder_init(&m.plain, NULL, 0, NULL);
     rc = comaster_bus_open(&bus, opts);
     if (rc == 0)

@@ -10,9 +10,9 @@
 #   lib/pkgconfig/canopen.pc               pkg-config: the core (variables edstool and edsdir)
 #   lib/pkgconfig/canopen-linux.pc         pkg-config: the Linux runtime (requires canopen)
 #   lib/pkgconfig/canopen-drive.pc         pkg-config: the drive (requires canopen)
-#   bin/atv312d, bin/cotrace, bin/co-edstool, bin/vcan-run
-#                                          the daemon, the trace decoder, tools/edstool.py,
-#                                          tools/vcan-run
+#   bin/atv312d, bin/cotrace, bin/comaster, bin/co-edstool, bin/vcan-run
+#                                          the daemon, the trace decoder, the master tool,
+#                                          tools/edstool.py, tools/vcan-run
 #   share/man/man1/<program>.1             their man pages, written from their --help text
 #   share/canopen-atv312/eds/*.eds         the EDS files of eds/
 #   share/doc/canopen-atv312/              README.md, docs/*.md, examples/atv312d.service
@@ -59,7 +59,7 @@ install(FILES ${PROJECT_BINARY_DIR}/canopenConfig.cmake
         DESTINATION ${CO_INSTALL_CMAKEDIR})
 
 # The daemon and the tools.
-install(TARGETS atv312d cotrace RUNTIME DESTINATION ${CMAKE_INSTALL_BINDIR})
+install(TARGETS atv312d cotrace comaster RUNTIME DESTINATION ${CMAKE_INSTALL_BINDIR})
 install(PROGRAMS ${CO_EDSTOOL} DESTINATION ${CMAKE_INSTALL_BINDIR} RENAME co-edstool)
 install(PROGRAMS ${PROJECT_SOURCE_DIR}/tools/vcan-run DESTINATION ${CMAKE_INSTALL_BINDIR})
 
@@ -148,6 +148,14 @@ ${CO_DOCS_INSTALLED}. The EDS files of the package, for --eds, are in ${CO_INSTA
 the installation prefix."
   COMMAND $<TARGET_FILE:cotrace>
   DEPENDS cotrace)
+co_man_page(comaster
+  SUMMARY "a CANopen master on SocketCAN: SDO read and write, NMT, scan, monitor, CiA 402 drives"
+  SEE_ALSO "atv312d(1), cotrace(1), candump(1). Every command with examples, the JSON fields and \
+the exit codes: comaster.md in ${CO_DOCS_INSTALLED}. The EDS files of the package, found by the \
+node's identity or given with --eds, are in ${CO_INSTALL_EDSDIR} under the installation prefix."
+  SUBCOMMANDS ${COMASTER_COMMANDS}
+  COMMAND $<TARGET_FILE:comaster>
+  DEPENDS comaster)
 co_man_page(co-edstool
   SUMMARY "generate the CANopen core's object dictionary from an EDS, check EDS files"
   SEE_ALSO "atv312d(1). eds-generator.md in ${CO_DOCS_INSTALLED}. The CMake package canopen runs \
@@ -178,7 +186,8 @@ set(CPACK_PACKAGE_DESCRIPTION "The portable CANopen core (libcanopen.a) and its 
 (libco_linux.a) with their headers, CMake package (find_package(canopen)) and pkg-config files;
 co-edstool, which generates a dictionary from an EDS; atv312d, a daemon putting emulated
 Schneider Altivar drives (ATV312, ATV31 and ATV58, CiA 402) on a SocketCAN interface; cotrace,
-which says what every frame of a candump -L log or a live interface means; vcan-run, which runs it
+which says what every frame of a candump -L log or a live interface means; comaster, a master
+command-line tool (SDO, NMT, scan, monitor, CiA 402 drives); vcan-run, which runs it
 where the kernel has no vcan.")
 set(CPACK_GENERATOR DEB)
 set(CPACK_DEBIAN_FILE_NAME DEB-DEFAULT)

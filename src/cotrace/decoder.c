@@ -105,7 +105,7 @@ static void say_value(text_t *t, const uint8_t *data, size_t len, size_t total)
         say(t, " ...");
 }
 
-static const cotrace_eds_t *eds_of(const cotrace_decoder_t *dec, uint8_t node)
+static const eds_t *eds_of(const cotrace_decoder_t *dec, uint8_t node)
 {
     return dec->eds && node == dec->eds_node ? dec->eds : NULL;
 }
@@ -114,8 +114,8 @@ static void say_object(text_t *t, const cotrace_decoder_t *dec, uint8_t node, ui
                        uint8_t sub)
 {
     say(t, "%04X:%02X", index, sub);
-    const cotrace_eds_t *eds = eds_of(dec, node);
-    const char *name = eds ? cotrace_eds_name(eds, index, sub) : NULL;
+    const eds_t *eds = eds_of(dec, node);
+    const char *name = eds ? eds_name(eds, index, sub) : NULL;
     if (name)
         say(t, " %s", name);
 }
@@ -626,7 +626,7 @@ static void pdos_of_eds(cotrace_decoder_t *dec)
     for (unsigned i = 0; i < PDO_COUNT && dec->pdo_count < COTRACE_PDO_MAX; i++) {
         for (int transmit = 0; transmit <= 1; transmit++) {
             uint16_t comm = (uint16_t)((transmit ? PDO_TPDO_COMM : PDO_RPDO_COMM) + i);
-            const cotrace_eds_entry_t *e = cotrace_eds_find(dec->eds, comm, PDO_COB_ID_SUB);
+            const eds_entry_t *e = eds_find(dec->eds, comm, PDO_COB_ID_SUB);
             if (e && e->has_value && !(e->value & PDO_COB_ID_EXTENDED) &&
                 dec->pdo_count < COTRACE_PDO_MAX) {
                 cotrace_pdo_t *pdo = &dec->pdos[dec->pdo_count++];
@@ -728,15 +728,14 @@ static void say_mapped_value(text_t *t, uint16_t index, uint16_t type, uint64_t 
 }
 
 /* Each mapped object with its value; false when the mapping does not fit the frame. */
-static bool say_mapping(text_t *t, const cotrace_eds_t *eds, uint16_t mapping,
-                        const struct can_frame *f)
+static bool say_mapping(text_t *t, const eds_t *eds, uint16_t mapping, const struct can_frame *f)
 {
-    const cotrace_eds_entry_t *count = cotrace_eds_find(eds, mapping, 0);
+    const eds_entry_t *count = eds_find(eds, mapping, 0);
     if (!count || !count->has_value)
         return false;
     unsigned offset = 0;
     for (unsigned k = 1; k <= count->value && k <= 64; k++) {
-        const cotrace_eds_entry_t *m = cotrace_eds_find(eds, mapping, (uint8_t)k);
+        const eds_entry_t *m = eds_find(eds, mapping, (uint8_t)k);
         if (!m || !m->has_value)
             return false;
         uint16_t index = (uint16_t)(m->value >> 16);
@@ -745,8 +744,8 @@ static bool say_mapping(text_t *t, const cotrace_eds_t *eds, uint16_t mapping,
         if (bits == 0 || offset + bits > 8u * f->len)
             return false;
         if (index >= PDO_DUMMY_LIMIT) {
-            const cotrace_eds_entry_t *obj = cotrace_eds_find(eds, index, sub);
-            const char *name = cotrace_eds_name(eds, index, sub);
+            const eds_entry_t *obj = eds_find(eds, index, sub);
+            const char *name = eds_name(eds, index, sub);
             say(t, "%s%04X:%02X%s%s = ", offset ? ", " : "", index, sub, name ? " " : "",
                 name ? name : "");
             say_mapped_value(t, index, obj ? obj->data_type : 0,
@@ -882,7 +881,7 @@ void cotrace_decode(cotrace_decoder_t *dec, const struct can_frame *f, char *out
     }
 }
 
-void cotrace_decoder_init(cotrace_decoder_t *dec, const cotrace_eds_t *eds, uint8_t eds_node,
+void cotrace_decoder_init(cotrace_decoder_t *dec, const eds_t *eds, uint8_t eds_node,
                           const co_emcy_code_table_t *vendor)
 {
     memset(dec, 0, sizeof *dec);

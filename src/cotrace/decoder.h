@@ -9,7 +9,7 @@
 #define COTRACE_DECODER_H
 
 #include "co/co_emcy_consumer.h"
-#include "eds.h"
+#include "eds_reader.h"
 
 #include <linux/can.h>
 
@@ -53,7 +53,7 @@ typedef struct cotrace_pdo {
 typedef struct cotrace_decoder {
     cotrace_sdo_t sdo[COTRACE_NODE_MAX + 1];
     bool guard_pending[COTRACE_NODE_MAX + 1];
-    const cotrace_eds_t *eds; /* dictionary of eds_node, or NULL */
+    const eds_t *eds; /* dictionary of eds_node, or NULL */
     uint8_t eds_node;
     const co_emcy_code_table_t *vendor;  /* EMCY codes consulted first, or NULL */
     cotrace_pdo_t pdos[COTRACE_PDO_MAX]; /* the PDOs of the EDS */
@@ -61,7 +61,7 @@ typedef struct cotrace_decoder {
 } cotrace_decoder_t;
 
 /* A decoder with no transfer under way; eds (with its node-id) and vendor may be NULL / 0. */
-void cotrace_decoder_init(cotrace_decoder_t *dec, const cotrace_eds_t *eds, uint8_t eds_node,
+void cotrace_decoder_init(cotrace_decoder_t *dec, const eds_t *eds, uint8_t eds_node,
                           const co_emcy_code_table_t *vendor);
 
 /* Writes the meaning of `frame` into out (always NUL-terminated, truncated to cap). */

@@ -330,23 +330,23 @@ int main(int argc, char **argv)
         free(opts.files);
         return rc;
     }
-    static cotrace_eds_t eds;
+    static eds_t eds;
     static cotrace_decoder_t dec;
     char err[512];
-    cotrace_eds_result_t loaded = COTRACE_EDS_OK;
+    eds_result_t loaded = EDS_OK;
     if (opts.eds_path)
-        loaded = cotrace_eds_load(&eds, opts.eds_path, (uint8_t)opts.node, err, sizeof err);
-    if (loaded != COTRACE_EDS_OK) {
+        loaded = eds_load(&eds, opts.eds_path, (uint8_t)opts.node, err, sizeof err);
+    if (loaded != EDS_OK) {
         fprintf(stderr, "cotrace: %s\n", err);
         free(opts.files);
-        return loaded == COTRACE_EDS_CANNOT_READ ? EX_NOINPUT : EX_DATAERR;
+        return loaded == EDS_CANNOT_READ ? EX_NOINPUT : EX_DATAERR;
     }
     cotrace_decoder_init(&dec, opts.eds_path ? &eds : NULL, (uint8_t)opts.node,
                          opts.emcy_table ? co_emcy_table_atv58() : NULL);
     rc = opts.iface ? decode_live(&dec, opts.iface) : decode_files(&dec, &opts);
     if (fflush(stdout) != 0 && rc == 0)
         rc = EX_IOERR;
-    cotrace_eds_free(&eds);
+    eds_free(&eds);
     free(opts.files);
     return rc;
 }

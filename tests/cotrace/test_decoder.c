@@ -265,9 +265,9 @@ END_TEST
 
 START_TEST(pdos_with_eds)
 {
-    cotrace_eds_t eds;
+    eds_t eds;
     char err[256];
-    ck_assert_int_eq(cotrace_eds_load(&eds, COTRACE_TEST_EDS, 4, err, sizeof err), COTRACE_EDS_OK);
+    ck_assert_int_eq(eds_load(&eds, COTRACE_TEST_EDS, 4, err, sizeof err), EDS_OK);
     cotrace_decoder_init(&dec, &eds, 4, NULL);
     static const step_t steps[] = {
         {"284#27062C01", "TPDO6 node 4: 6041:00 Statusword (ETAD) = 0x0627 Operation enabled, "
@@ -281,7 +281,7 @@ START_TEST(pdos_with_eds)
         {"605#4008100000000000", "SDO 5 request: upload 1008:00"},
     };
     PLAY(&dec, steps);
-    cotrace_eds_free(&eds);
+    eds_free(&eds);
 }
 END_TEST
 
@@ -313,10 +313,9 @@ END_TEST
 
 START_TEST(eds_errors)
 {
-    cotrace_eds_t eds;
+    eds_t eds;
     char err[256];
-    ck_assert_int_eq(cotrace_eds_load(&eds, "/nonexistent.eds", 4, err, sizeof err),
-                     COTRACE_EDS_CANNOT_READ);
+    ck_assert_int_eq(eds_load(&eds, "/nonexistent.eds", 4, err, sizeof err), EDS_CANNOT_READ);
     ck_assert_str_eq(err, "cannot read the EDS '/nonexistent.eds': No such file or directory");
     char path[] = "/tmp/cotrace-test-XXXXXX";
     int fd = mkstemp(path);
@@ -324,7 +323,7 @@ START_TEST(eds_errors)
     FILE *f = fdopen(fd, "w");
     fputs("[1000]\nParameterName=Device type\nDataType=seven\n", f);
     fclose(f);
-    ck_assert_int_eq(cotrace_eds_load(&eds, path, 4, err, sizeof err), COTRACE_EDS_MALFORMED);
+    ck_assert_int_eq(eds_load(&eds, path, 4, err, sizeof err), EDS_MALFORMED);
     char expected[256];
     snprintf(expected, sizeof expected, "%s:3: DataType 'seven' is not a number such as 0x0006",
              path);
@@ -332,7 +331,7 @@ START_TEST(eds_errors)
     f = fopen(path, "w");
     fputs("[FileInfo]\nFileName=x.eds\n", f);
     fclose(f);
-    ck_assert_int_eq(cotrace_eds_load(&eds, path, 4, err, sizeof err), COTRACE_EDS_MALFORMED);
+    ck_assert_int_eq(eds_load(&eds, path, 4, err, sizeof err), EDS_MALFORMED);
     snprintf(expected, sizeof expected, "%s: no object sections such as [1000]: not an EDS or DCF",
              path);
     ck_assert_str_eq(err, expected);
@@ -353,22 +352,22 @@ START_TEST(dcf_values)
           "[2000]\nParameterName=Mode\nDataType=0x0002\n",
           f);
     fclose(f);
-    cotrace_eds_t eds;
+    eds_t eds;
     char err[256];
-    ck_assert_int_eq(cotrace_eds_load(&eds, path, 6, err, sizeof err), COTRACE_EDS_OK);
+    ck_assert_int_eq(eds_load(&eds, path, 6, err, sizeof err), EDS_OK);
     unlink(path);
-    const cotrace_eds_entry_t *cob = cotrace_eds_find(&eds, 0x1800, 1);
+    const eds_entry_t *cob = eds_find(&eds, 0x1800, 1);
     ck_assert_ptr_nonnull(cob);
     ck_assert_uint_eq(cob->value, 0x196);
-    ck_assert_str_eq(cotrace_eds_name(&eds, 0x1800, 2), "TPDO1");
-    ck_assert_ptr_null(cotrace_eds_name(&eds, 0x1801, 0));
+    ck_assert_str_eq(eds_name(&eds, 0x1800, 2), "TPDO1");
+    ck_assert_ptr_null(eds_name(&eds, 0x1801, 0));
     cotrace_decoder_init(&dec, &eds, 6, NULL);
     static const step_t steps[] = {
         {"196#FE", "TPDO1 node 6: 2000:00 Mode = -2"},
         {"186#FE", "TPDO1 node 6: FE"},
     };
     PLAY(&dec, steps);
-    cotrace_eds_free(&eds);
+    eds_free(&eds);
 }
 END_TEST
 

@@ -1,0 +1,126 @@
+/* comaster: what its commands share. The table of commands (main.c), the common options, the exit
+ * codes scripts rely on, the one-line errors and --json output, and the bus: one epoll loop of the
+ * Linux runtime on which each command runs its jobs (SDO transfers, waits for frames) one after
+ * the other, each until it finishes or its deadline passes (docs/comaster.md). */
+#ifndef COMASTER_H
+#define COMASTER_H
+
+#include "co/co_sdo_client.h"
+#include "co_linux/loop.h"
+#include "eds_reader.h"
+
+#include <stdbool.h>
+#include <stdint.h>
+#include <sysexits.h>
+
+/* Exit codes (docs/comaster.md): the sysexits.h ones for usage, data, files and the interface. */
+#define COMASTER_EXIT_OK 0
+#define COMASTER_EXIT_ABORT 1       /* the server aborted an SDO transfer */
+#define COMASTER_EXIT_TIMEOUT 2     /* no answer, or the state awaited not reached, in time */
+#define COMASTER_EXIT_INTERRUPTED 3 /* SIGINT or SIGTERM before the command finished */
+
+#define COMASTER_DEFAULT_IFACE "can0"
+#define COMASTER_DEFAULT_TIMEOUT_MS 1000u
+#define COMASTER_DEFAULT_EDS_DIR "share/canopen-atv312/eds"
+
+/* The options every command takes, before the command or among its arguments. */
+typedef struct comaster_options {
+    const char *iface;
+    uint32_t timeout_ms;
+    bool json;
+    const char *eds_path; /* --eds FILE */
+    const char *eds_dir;  /* --eds-dir DIR, or NULL: the installed directory, then eds/ */
+} comaster_options_t;
+
+/* What a command's parser found: its own options and its positional arguments. */
+#define COMASTER_MAX_ARGS 8
+typedef struct comaster_args {
+    const char *positional[COMASTER_MAX_ARGS];
+    int count;
+    bool block;         /* read / write: --block */
+    const char *output; /* read: --output FILE for a DOMAIN */
+} comaster_args_t;
+
+/* One command: its name, the line of the usage listing and its handler. */
+typedef struct comaster_command {
+    const char *name;
+    const char *summary;
+    int (*run)(comaster_options_t *opts, int argc, char **argv);
+} comaster_command_t;
+
+int comaster_read_main(comaster_options_t *opts, int argc, char **argv);
+int comaster_write_main(comaster_options_t *opts, int argc, char **argv);
+
+/* Parses a command's arguments (argv[0] is the command): the common options, --help (prints
+ * `help` and returns 0), the command's flags named in `flags` (" --block --output "), and at
+ * least min_args, at most max_args positional arguments. Returns -1 to go on, else the exit
+ * status. */
+int comaster_parse_args(comaster_options_t *opts, comaster_args_t *args, int argc, char **argv,
+                        const char *help, const char *flags, int min_args, int max_args);
+
+/* A one-line error on stderr ("comaster: ...") and, with --json, {"error": ...} on stdout;
+ * returns `status`. */
+int comaster_fail(const comaster_options_t *opts, int status, const char *format, ...)
+    __attribute__((format(printf, 3, 4)));
+
+/* A node-id 1..127 (or "all" when allow_all: *node = 0). False after a usage error message. */
+bool comaster_parse_node(const comaster_options_t *opts, const char *text, bool allow_all,
+                         uint8_t *node);
+
+/* Writes `text` as a JSON string (quoted, escaped) to stdout. */
+void comaster_json_string(const char *text);
+
+/* ---- the bus --------------------------------------------------------------------------------- */
+
+/* A job runs on the bus until it calls comaster_bus_finish: it gets every received frame and is
+ * asked for its next deadline. */
+typedef struct comaster_job {
+    void (*receive)(void *ctx, const co_frame_t *frame, co_time_t now);
+    co_time_t (*process)(void *ctx, co_time_t now);
+    void *ctx;
+} comaster_job_t;
+
+typedef struct comaster_bus {
+    co_linux_loop_t loop;
+    co_linux_device_t device;
+    const comaster_job_t *job;
+    bool opened;
+} comaster_bus_t;
+
+/* Opens the interface; returns 0 or the exit status after a one-line error. */
+int comaster_bus_open(comaster_bus_t *bus, const comaster_options_t *opts);
+/* Closes an opened bus; nothing for one that was not. */
+void comaster_bus_close(comaster_bus_t *bus);
+
+/* Runs `job` until it calls comaster_bus_finish (returns its status), a signal
+ * (COMASTER_EXIT_INTERRUPTED) or a failure of the loop (EX_OSERR). */
+int comaster_bus_run(comaster_bus_t *bus, const comaster_job_t *job);
+void comaster_bus_finish(comaster_bus_t *bus, int status);
+
+/* co_send_fn of the bus: pass the comaster_bus_t as user. */
+void comaster_bus_send(void *bus, const co_frame_t *frame);
+
+/* Runs the loop until `ms` milliseconds have passed (frames sent before are flushed). */
+int comaster_bus_pause(comaster_bus_t *bus, uint32_t ms);
+
+/* One SDO transfer to `node` on the default channel (600h/580h + node), run to its end. Returns
+ * 0 with *result filled (which may be an abort), or COMASTER_EXIT_INTERRUPTED / EX_OSERR. */
+int comaster_sdo_upload(comaster_bus_t *bus, uint8_t node, uint16_t index, uint8_t sub,
+                        uint8_t *buf, uint32_t cap, co_sdo_client_mode_t mode, uint32_t timeout_ms,
+                        co_sdo_client_result_t *result);
+int comaster_sdo_download(comaster_bus_t *bus, uint8_t node, uint16_t index, uint8_t sub,
+                          const uint8_t *data, uint32_t len, co_sdo_client_mode_t mode,
+                          uint32_t timeout_ms, co_sdo_client_result_t *result);
+
+/* The exit status of a transfer's result, after a one-line error naming node and object when it
+ * failed: 0, COMASTER_EXIT_ABORT (the server's abort) or COMASTER_EXIT_TIMEOUT (no answer). */
+int comaster_sdo_status(const comaster_options_t *opts, uint8_t node,
+                        const co_sdo_client_result_t *result);
+
+/* Loads the EDS of --eds, or the one in the EDS directory matching the node's identity (read over
+ * SDO: 1018h:01/02, 1008h). Returns 0 (eds loaded), -1 when there is none (eds empty, no error),
+ * or an exit status after a one-line error. */
+int comaster_load_eds(comaster_bus_t *bus, const comaster_options_t *opts, uint8_t node,
+                      eds_t *eds);
+
+#endif

@@ -1,0 +1,231 @@
+/* What the commands share: the common options, node-ids, one-line errors, JSON strings, and the
+ * EDS of a node. */
+#include "comaster.h"
+
+#include <errno.h>
+#include <stdarg.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <unistd.h>
+
+/* The EDS directory of the source tree, for a comaster run from the build tree. */
+#ifndef COMASTER_SOURCE_EDS_DIR
+#define COMASTER_SOURCE_EDS_DIR "eds"
+#endif
+
+void comaster_json_string(const char *text)
+{
+    putchar('"');
+    for (const unsigned char *p = (const unsigned char *)text; *p; p++) {
+        if (*p == '"' || *p == '\\')
+            printf("\\%c", *p);
+        else if (*p < 0x20)
+            printf("\\u%04x", *p);
+        else
+            putchar(*p);
+    }
+    putchar('"');
+}
+
+int comaster_fail(const comaster_options_t *opts, int status, const char *format, ...)
+{
+    char message[1024];
+    va_list ap;
+    va_start(ap, format);
+    vsnprintf(message, sizeof message, format, ap);
+    va_end(ap);
+    fprintf(stderr, "comaster: %s\n", message);
+    if (opts && opts->json) {
+        printf("{\"error\": ");
+        comaster_json_string(message);
+        printf(", \"exit\": %d}\n", status);
+    }
+    return status;
+}
+
+bool comaster_parse_node(const comaster_options_t *opts, const char *text, bool allow_all,
+                         uint8_t *node)
+{
+    if (allow_all && strcmp(text, "all") == 0) {
+        *node = 0;
+        return true;
+    }
+    char *end;
+    errno = 0;
+    unsigned long n = strtoul(text, &end, 0);
+    if (errno || end == text || *end || n < 1 || n > 127 || text[0] == '-') {
+        comaster_fail(opts, EX_USAGE, "'%s' is not a node-id: give a number 1..127%s", text,
+                      allow_all ? " or all" : "");
+        return false;
+    }
+    *node = (uint8_t)n;
+    return true;
+}
+
+static bool parse_timeout(const comaster_options_t *opts, const char *text, uint32_t *ms)
+{
+    char *end;
+    errno = 0;
+    unsigned long v = strtoul(text, &end, 10);
+    if (errno || end == text || *end || v < 1 || v > 600000 || text[0] == '-') {
+        comaster_fail(opts, EX_USAGE, "--timeout: '%s' is not a time: give milliseconds 1..600000",
+                      text);
+        return false;
+    }
+    *ms = (uint32_t)v;
+    return true;
+}
+
+/* Whether `arg` is one of the space-separated words of `flags`. */
+static bool is_flag(const char *flags, const char *arg)
+{
+    size_t len = strlen(arg);
+    for (const char *p = strstr(flags, arg); p; p = strstr(p + 1, arg)) {
+        if ((p == flags || p[-1] == ' ') && (p[len] == ' ' || p[len] == '\0'))
+            return true;
+    }
+    return false;
+}
+
+int comaster_parse_args(comaster_options_t *opts, comaster_args_t *args, int argc, char **argv,
+                        const char *help, const char *flags, int min_args, int max_args)
+{
+    memset(args, 0, sizeof *args);
+    const char *command = argv[0];
+    bool options_done = false;
+    for (int i = 1; i < argc; i++) {
+        const char *arg = argv[i];
+        const char *value = i + 1 < argc ? argv[i + 1] : NULL;
+        bool is_option =
+            !options_done && arg[0] == '-' && arg[1] != '\0' && !(arg[1] >= '0' && arg[1] <= '9');
+        if (!is_option) {
+            if (args->count == max_args || args->count == COMASTER_MAX_ARGS)
+                return comaster_fail(opts, EX_USAGE,
+                                     "%s: too many arguments from '%s' (see comaster %s --help)",
+                                     command, arg, command);
+            args->positional[args->count++] = arg;
+            continue;
+        }
+        if (strcmp(arg, "--") == 0) {
+            options_done = true;
+        } else if (strcmp(arg, "-h") == 0 || strcmp(arg, "--help") == 0) {
+            fputs(help, stdout);
+            return 0;
+        } else if (strcmp(arg, "--json") == 0) {
+            opts->json = true;
+        } else if (strcmp(arg, "--block") == 0 && is_flag(flags, arg)) {
+            args->block = true;
+        } else if (strcmp(arg, "-i") == 0 || strcmp(arg, "--interface") == 0 ||
+                   strcmp(arg, "--timeout") == 0 || strcmp(arg, "--eds") == 0 ||
+                   strcmp(arg, "--eds-dir") == 0 ||
+                   (strcmp(arg, "--output") == 0 && is_flag(flags, arg))) {
+            if (!value || value[0] == '\0')
+                return comaster_fail(opts, EX_USAGE, "%s: option %s needs a value", command, arg);
+            i++;
+            if (strcmp(arg, "--timeout") == 0) {
+                if (!parse_timeout(opts, value, &opts->timeout_ms))
+                    return EX_USAGE;
+            } else if (strcmp(arg, "--eds") == 0) {
+                opts->eds_path = value;
+            } else if (strcmp(arg, "--eds-dir") == 0) {
+                opts->eds_dir = value;
+            } else if (strcmp(arg, "--output") == 0) {
+                args->output = value;
+            } else {
+                opts->iface = value;
+            }
+        } else {
+            return comaster_fail(opts, EX_USAGE, "%s: unknown option '%s' (see comaster %s --help)",
+                                 command, arg, command);
+        }
+    }
+    if (args->count < min_args) {
+        const char *usage = strstr(help, "comaster");
+        int len = usage ? (int)strcspn(usage, "\n") : 0;
+        return comaster_fail(opts, EX_USAGE, "%s: missing arguments: usage: %.*s", command, len,
+                             usage ? usage : "");
+    }
+    return -1;
+}
+
+/* ---- the EDS of a node
+ * --------------------------------------------------------------------------- */
+
+static int load_eds_file(const comaster_options_t *opts, const char *path, uint8_t node, eds_t *eds)
+{
+    char err[512];
+    eds_result_t loaded = eds_load(eds, path, node, err, sizeof err);
+    if (loaded == EDS_CANNOT_READ)
+        return comaster_fail(opts, EX_NOINPUT, "%s", err);
+    if (loaded != EDS_OK)
+        return comaster_fail(opts, EX_DATAERR, "%s", err);
+    return 0;
+}
+
+/* Reads an identity object; a node without it (an abort) leaves *value as it is. Returns 0 or
+ * the status of a transfer that could not run (timeout, signal). */
+static int read_identity(comaster_bus_t *bus, const comaster_options_t *opts, uint8_t node,
+                         uint16_t index, uint8_t sub, uint8_t *buf, uint32_t cap, uint32_t *size)
+{
+    co_sdo_client_result_t result;
+    int rc = comaster_sdo_upload(bus, node, index, sub, buf, cap, CO_SDO_CLIENT_AUTO,
+                                 opts->timeout_ms, &result);
+    if (rc != 0)
+        return rc;
+    if (result.status == CO_SDO_CLIENT_CLIENT_ABORT && result.abort_code == SDO_ABORT_TIMEOUT)
+        return comaster_sdo_status(opts, node, &result);
+    *size = result.status == CO_SDO_CLIENT_OK ? result.size : 0;
+    return 0;
+}
+
+/* The installed EDS directory: share/canopen-atv312/eds beside the bin/ of this program, so
+ * that it is found under any installation prefix. False when /proc/self/exe cannot be read. */
+static bool installed_eds_dir(char *dir, size_t len)
+{
+    char exe[4096];
+    ssize_t n = readlink("/proc/self/exe", exe, sizeof exe - 1);
+    if (n <= 0)
+        return false;
+    exe[n] = '\0';
+    char *slash = strrchr(exe, '/');
+    if (!slash)
+        return false;
+    *slash = '\0';
+    int written = snprintf(dir, len, "%s/../%s", exe, COMASTER_DEFAULT_EDS_DIR);
+    return written > 0 && (size_t)written < len;
+}
+
+int comaster_load_eds(comaster_bus_t *bus, const comaster_options_t *opts, uint8_t node, eds_t *eds)
+{
+    memset(eds, 0, sizeof *eds);
+    if (opts->eds_path)
+        return load_eds_file(opts, opts->eds_path, node, eds);
+    uint8_t vendor[4] = {0}, product[4] = {0};
+    char name[64] = {0};
+    uint32_t size = 0;
+    int rc = read_identity(bus, opts, node, 0x1018, 1, vendor, sizeof vendor, &size);
+    if (rc != 0)
+        return rc;
+    if (size != 4)
+        return -1;
+    rc = read_identity(bus, opts, node, 0x1018, 2, product, sizeof product, &size);
+    if (rc == 0)
+        rc = read_identity(bus, opts, node, 0x1008, 0, (uint8_t *)name, sizeof name - 1, &size);
+    if (rc != 0)
+        return rc;
+    name[size < sizeof name ? size : sizeof name - 1] = '\0';
+    eds_identity_t identity = {co_get_u32(vendor), co_get_u32(product), name[0] ? name : NULL};
+    char installed[4200];
+    const char *dirs[] = {opts->eds_dir,
+                          installed_eds_dir(installed, sizeof installed) ? installed : NULL,
+                          COMASTER_SOURCE_EDS_DIR};
+    char path[4096];
+    for (size_t i = 0; i < sizeof dirs / sizeof dirs[0]; i++) {
+        if (dirs[i] && eds_find_for_identity(dirs[i], &identity, path, sizeof path))
+            return load_eds_file(opts, path, node, eds);
+        if (opts->eds_dir)
+            break; /* an --eds-dir given is the only place to look in */
+    }
+    return -1;
+}

@@ -1,0 +1,134 @@
+/* comaster: a CANopen master on a SocketCAN interface, for people and scripts: SDO read and
+ * write, NMT, scan, monitor, a CiA 402 drive helper (docs/comaster.md). This file holds the
+ * global options and the table of commands; each command lives in its own file. */
+#include "comaster.h"
+
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+static const comaster_command_t commands[] = {
+    {"read", "read NODE OBJECT [TYPE]: an object's value (SDO upload)", comaster_read_main},
+    {"write", "write NODE OBJECT TYPE VALUE: set an object (SDO download)", comaster_write_main},
+};
+
+#define COMMAND_COUNT (sizeof commands / sizeof commands[0])
+
+static void print_usage(void)
+{
+    printf("usage: comaster [-i IFACE] [--timeout MS] [--json] [--eds FILE] [--eds-dir DIR]\n"
+           "                COMMAND [ARGS...]\n"
+           "\n"
+           "A CANopen master on a SocketCAN interface: SDO read and write by index or by\n"
+           "name, NMT commands, a scan of the nodes present, a monitor of heartbeats,\n"
+           "emergencies, SYNC and PDOs, and a CiA 402 drive helper.\n"
+           "\n"
+           "Commands (comaster COMMAND --help tells more):\n");
+    for (size_t i = 0; i < COMMAND_COUNT; i++)
+        printf("  %-9s %s\n", commands[i].name, strchr(commands[i].summary, ':') + 2);
+    printf("\n"
+           "Options (before the command or among its arguments):\n"
+           "  -i, --interface IFACE\n"
+           "                 the SocketCAN interface; default $COMASTER_IFACE, else can0\n"
+           "  --timeout MS   how long to wait for each answer (default 1000)\n"
+           "  --json         one JSON object per result line, for scripts\n"
+           "  --eds FILE     the EDS or DCF of the node: objects by name, their types\n"
+           "  --eds-dir DIR  where to look for the EDS matching the node's identity\n"
+           "                 (1018h:01/02, 1008h); default the installed EDS directory,\n"
+           "                 then eds/\n"
+           "  -h, --help     show this help\n"
+           "  -V, --version  show the version\n"
+           "\n"
+           "Example: comaster -i vcan0 read 4 ACC\n"
+           "\n"
+           "Exit status: 0 done, 1 the node aborted the SDO transfer, 2 no answer in time (or\n"
+           "the drive did not reach the state), 3 interrupted by SIGINT or SIGTERM, 64 usage\n"
+           "error, 65 bad data (a value that does not fit its type, a malformed EDS), 66 a\n"
+           "file cannot be read, 69 interface or CAN support missing, 71 system error.\n");
+}
+
+/* "read, write, ...": the commands of the table, for error messages. */
+static const char *command_names(void)
+{
+    static char names[256];
+    size_t used = 0;
+    for (size_t i = 0; i < COMMAND_COUNT && used < sizeof names; i++)
+        used += (size_t)snprintf(names + used, sizeof names - used, "%s%s", i ? ", " : "",
+                                 commands[i].name);
+    return names;
+}
+
+static const comaster_command_t *find_command(const char *name)
+{
+    for (size_t i = 0; i < COMMAND_COUNT; i++) {
+        if (strcmp(commands[i].name, name) == 0)
+            return &commands[i];
+    }
+    return NULL;
+}
+
+/* The global options before the command; returns the index of the command, or -(exit status)-1
+ * when the program is done (help, version, usage error). */
+static int parse_global(comaster_options_t *opts, int argc, char **argv)
+{
+    int i = 1;
+    for (; i < argc && argv[i][0] == '-'; i++) {
+        const char *arg = argv[i];
+        const char *value = i + 1 < argc ? argv[i + 1] : NULL;
+        if (strcmp(arg, "-h") == 0 || strcmp(arg, "--help") == 0) {
+            print_usage();
+            return -1;
+        } else if (strcmp(arg, "-V") == 0 || strcmp(arg, "--version") == 0) {
+            printf("comaster %s\n", COMASTER_VERSION);
+            return -1;
+        } else if (strcmp(arg, "--json") == 0) {
+            opts->json = true;
+        } else if (strcmp(arg, "-i") == 0 || strcmp(arg, "--interface") == 0 ||
+                   strcmp(arg, "--timeout") == 0 || strcmp(arg, "--eds") == 0 ||
+                   strcmp(arg, "--eds-dir") == 0) {
+            if (!value)
+                return -comaster_fail(opts, EX_USAGE, "option %s needs a value", arg) - 1;
+            i++; /* the command's parser reads them (main hands them over) */
+        } else {
+            return -comaster_fail(opts, EX_USAGE, "unknown option '%s' (see comaster --help)",
+                                  arg) -
+                   1;
+        }
+    }
+    if (i == argc)
+        return -comaster_fail(opts, EX_USAGE, "no command: give one of %s (see comaster --help)",
+                              command_names()) -
+               1;
+    return i;
+}
+
+int main(int argc, char **argv)
+{
+    comaster_options_t opts = {
+        .iface = getenv("COMASTER_IFACE") && getenv("COMASTER_IFACE")[0] ? getenv("COMASTER_IFACE")
+                                                                         : COMASTER_DEFAULT_IFACE,
+        .timeout_ms = COMASTER_DEFAULT_TIMEOUT_MS,
+    };
+    int at = parse_global(&opts, argc, argv);
+    if (at < 0)
+        return -at - 1;
+    const comaster_command_t *command = find_command(argv[at]);
+    if (!command)
+        return comaster_fail(&opts, EX_USAGE,
+                             "unknown command '%s': give one of %s (see comaster --help)", argv[at],
+                             command_names());
+    /* The command's argv: its name, the global options (its parser reads them like its own),
+     * then its arguments. */
+    char **args = calloc((size_t)argc + 1, sizeof *args);
+    if (!args)
+        return EX_OSERR;
+    int n = 0;
+    args[n++] = argv[at];
+    for (int i = 1; i < argc; i++) {
+        if (i != at)
+            args[n++] = argv[i];
+    }
+    int rc = command->run(&opts, n, args);
+    free(args);
+    return rc;
+}

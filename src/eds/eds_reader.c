@@ -1,0 +1,358 @@
+#include "eds_reader.h"
+
+#include <ctype.h>
+#include <dirent.h>
+#include <errno.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <strings.h>
+
+#define EDS_LINE_MAX 1024
+
+static char *trim(char *s)
+{
+    while (isspace((unsigned char)*s))
+        s++;
+    char *end = s + strlen(s);
+    while (end > s && isspace((unsigned char)end[-1]))
+        *--end = '\0';
+    return s;
+}
+
+/* "1A05" -> index, "1A05sub1" -> index and sub-index; false for other sections ([FileInfo]). */
+static bool parse_section(const char *name, uint16_t *index, uint16_t *sub)
+{
+    char *end;
+    if (strlen(name) < 4 || !isxdigit((unsigned char)name[0]))
+        return false;
+    unsigned long idx = strtoul(name, &end, 16);
+    if (end != name + 4 || idx > 0xFFFF)
+        return false;
+    *index = (uint16_t)idx;
+    if (*end == '\0') {
+        *sub = EDS_OBJECT;
+        return true;
+    }
+    if (strncasecmp(end, "sub", 3) != 0 || !isxdigit((unsigned char)end[3]))
+        return false;
+    unsigned long s = strtoul(end + 3, &end, 16);
+    if (*end != '\0' || s > 0xFF)
+        return false;
+    *sub = (uint16_t)s;
+    return true;
+}
+
+/* CiA 306 values: decimal, 0x hexadecimal, octal with a leading 0, and "$NODEID+x" / "x+$NODEID".
+ */
+static bool parse_value(const char *text, uint8_t node_id, uint64_t *value)
+{
+    *value = 0;
+    const char *p = text;
+    if (*p == '\0')
+        return false;
+    for (;;) {
+        while (isspace((unsigned char)*p))
+            p++;
+        if (strncasecmp(p, "$NODEID", 7) == 0) {
+            *value += node_id;
+            p += 7;
+        } else {
+            char *end;
+            errno = 0;
+            unsigned long long term = strtoull(p, &end, 0);
+            if (end == p || errno != 0 || *p == '-')
+                return false;
+            *value += term;
+            p = end;
+        }
+        while (isspace((unsigned char)*p))
+            p++;
+        if (*p == '\0')
+            return true;
+        if (*p++ != '+')
+            return false;
+    }
+}
+
+static eds_entry_t *add_entry(eds_t *eds, uint16_t index, uint16_t sub)
+{
+    if (eds->count == eds->capacity) {
+        size_t capacity = eds->capacity ? 2 * eds->capacity : 256;
+        eds_entry_t *grown = realloc(eds->entries, capacity * sizeof *grown);
+        if (!grown)
+            return NULL;
+        eds->entries = grown;
+        eds->capacity = capacity;
+    }
+    eds_entry_t *e = &eds->entries[eds->count++];
+    memset(e, 0, sizeof *e);
+    e->index = index;
+    e->sub = sub;
+    return e;
+}
+
+typedef struct parse_state {
+    eds_entry_t *entry;      /* the section being read, NULL outside object sections */
+    bool in_device_info;     /* [DeviceInfo] is being read */
+    bool value_is_parameter; /* a DCF ParameterValue was read: it wins over DefaultValue */
+    const char *path;
+    unsigned line;
+    uint8_t node_id;
+} parse_state_t;
+
+static bool set_key(parse_state_t *st, const char *key, const char *value, char *err,
+                    size_t err_len)
+{
+    eds_entry_t *e = st->entry;
+    if (strcasecmp(key, "ParameterName") == 0) {
+        free(e->name);
+        e->name = strdup(value);
+        if (!e->name) {
+            snprintf(err, err_len, "%s: out of memory", st->path);
+            return false;
+        }
+    } else if (strcasecmp(key, "DataType") == 0) {
+        uint64_t type;
+        if (!parse_value(value, st->node_id, &type) || type > 0xFFFF) {
+            snprintf(err, err_len, "%s:%u: DataType '%s' is not a number such as 0x0006", st->path,
+                     st->line, value);
+            return false;
+        }
+        e->data_type = (uint16_t)type;
+    } else if (strcasecmp(key, "ParameterValue") == 0 ||
+               (strcasecmp(key, "DefaultValue") == 0 && !st->value_is_parameter)) {
+        /* Strings and domains have values that are not numbers: they are only not decoded. */
+        e->has_value = parse_value(value, st->node_id, &e->value);
+        free(e->text);
+        e->text = strdup(value);
+        if (!e->text) {
+            snprintf(err, err_len, "%s: out of memory", st->path);
+            return false;
+        }
+        st->value_is_parameter = st->value_is_parameter || strcasecmp(key, "ParameterValue") == 0;
+    }
+    return true;
+}
+
+/* The identity keys of [DeviceInfo]; a value that is not a number leaves 0 (unknown). */
+static void set_device_info(eds_t *eds, const char *key, const char *value)
+{
+    uint64_t number;
+    if (!parse_value(value, 0, &number) || number > UINT32_MAX)
+        return;
+    if (strcasecmp(key, "VendorNumber") == 0)
+        eds->vendor_number = (uint32_t)number;
+    else if (strcasecmp(key, "ProductNumber") == 0)
+        eds->product_number = (uint32_t)number;
+}
+
+static bool read_line(parse_state_t *st, eds_t *eds, char *line, char *err, size_t err_len)
+{
+    char *s = trim(line);
+    if (*s == '\0' || *s == ';' || *s == '#')
+        return true;
+    if (*s == '[') {
+        char *close = strchr(s, ']');
+        if (!close) {
+            snprintf(err, err_len, "%s:%u: section header '%s' has no ']'", st->path, st->line, s);
+            return false;
+        }
+        *close = '\0';
+        uint16_t index, sub;
+        st->entry = NULL;
+        st->value_is_parameter = false;
+        st->in_device_info = strcasecmp(trim(s + 1), "DeviceInfo") == 0;
+        if (parse_section(trim(s + 1), &index, &sub)) {
+            st->entry = add_entry(eds, index, sub);
+            if (!st->entry) {
+                snprintf(err, err_len, "%s: out of memory", st->path);
+                return false;
+            }
+        }
+        return true;
+    }
+    char *eq = strchr(s, '=');
+    if (!eq) {
+        snprintf(err, err_len, "%s:%u: '%s' is neither a [section] nor a key=value line", st->path,
+                 st->line, s);
+        return false;
+    }
+    *eq = '\0';
+    if (st->in_device_info)
+        set_device_info(eds, trim(s), trim(eq + 1));
+    if (!st->entry)
+        return true;
+    return set_key(st, trim(s), trim(eq + 1), err, err_len);
+}
+
+eds_result_t eds_load(eds_t *eds, const char *path, uint8_t node_id, char *err, size_t err_len)
+{
+    memset(eds, 0, sizeof *eds);
+    FILE *f = fopen(path, "re");
+    if (!f) {
+        snprintf(err, err_len, "cannot read the EDS '%s': %s", path, strerror(errno));
+        return EDS_CANNOT_READ;
+    }
+    parse_state_t st = {.path = path, .node_id = node_id};
+    char line[EDS_LINE_MAX];
+    bool ok = true;
+    while (ok && fgets(line, sizeof line, f)) {
+        st.line++;
+        ok = read_line(&st, eds, line, err, err_len);
+    }
+    fclose(f);
+    if (ok && eds->count == 0) {
+        snprintf(err, err_len, "%s: no object sections such as [1000]: not an EDS or DCF", path);
+        ok = false;
+    }
+    if (ok)
+        return EDS_OK;
+    eds_free(eds);
+    return EDS_MALFORMED;
+}
+
+void eds_free(eds_t *eds)
+{
+    for (size_t i = 0; i < eds->count; i++) {
+        free(eds->entries[i].name);
+        free(eds->entries[i].text);
+    }
+    free(eds->entries);
+    memset(eds, 0, sizeof *eds);
+}
+
+static const eds_entry_t *find_exact(const eds_t *eds, uint16_t index, uint16_t sub)
+{
+    for (size_t i = 0; i < eds->count; i++) {
+        if (eds->entries[i].index == index && eds->entries[i].sub == sub)
+            return &eds->entries[i];
+    }
+    return NULL;
+}
+
+const eds_entry_t *eds_find(const eds_t *eds, uint16_t index, uint8_t sub)
+{
+    const eds_entry_t *e = find_exact(eds, index, sub);
+    if (!e && sub == 0)
+        e = find_exact(eds, index, EDS_OBJECT);
+    return e;
+}
+
+const char *eds_name(const eds_t *eds, uint16_t index, uint8_t sub)
+{
+    const eds_entry_t *e = eds_find(eds, index, sub);
+    if (!e || !e->name)
+        e = find_exact(eds, index, EDS_OBJECT);
+    return e ? e->name : NULL;
+}
+
+/* The first word of a name: the mnemonic of a manufacturer parameter ("ACC acceleration ..."). */
+static bool first_word_is(const char *name, const char *word)
+{
+    size_t len = strcspn(name, " ");
+    return len == strlen(word) && strncasecmp(name, word, len) == 0;
+}
+
+static bool contains_nocase(const char *haystack, const char *needle)
+{
+    size_t len = strlen(needle);
+    for (; *haystack; haystack++) {
+        if (strncasecmp(haystack, needle, len) == 0)
+            return true;
+    }
+    return false;
+}
+
+typedef enum name_match { MATCH_WHOLE, MATCH_FIRST_WORD, MATCH_PART, MATCH_KINDS } name_match_t;
+
+static bool name_matches(const char *entry_name, const char *name, name_match_t kind)
+{
+    switch (kind) {
+    case MATCH_WHOLE:
+        return strcasecmp(entry_name, name) == 0;
+    case MATCH_FIRST_WORD:
+        return first_word_is(entry_name, name);
+    case MATCH_PART:
+    case MATCH_KINDS:
+        break;
+    }
+    return contains_nocase(entry_name, name);
+}
+
+/* A variable: a sub-index section, or the section of an object that has no sub-index sections. */
+static bool is_variable(const eds_t *eds, const eds_entry_t *e)
+{
+    return e->sub != EDS_OBJECT || !find_exact(eds, e->index, 0);
+}
+
+eds_lookup_t eds_find_by_name(const eds_t *eds, const char *name, const eds_entry_t **found)
+{
+    *found = NULL;
+    if (*name == '\0')
+        return EDS_LOOKUP_NONE;
+    for (name_match_t kind = MATCH_WHOLE; kind < MATCH_KINDS; kind++) {
+        size_t matches = 0;
+        for (size_t i = 0; i < eds->count; i++) {
+            const eds_entry_t *e = &eds->entries[i];
+            if (e->name && is_variable(eds, e) && name_matches(e->name, name, kind)) {
+                if (!*found)
+                    *found = e;
+                matches++;
+            }
+        }
+        if (matches)
+            return matches == 1 ? EDS_LOOKUP_FOUND : EDS_LOOKUP_AMBIGUOUS;
+    }
+    return EDS_LOOKUP_NONE;
+}
+
+static bool has_eds_suffix(const char *file)
+{
+    size_t len = strlen(file);
+    return len > 4 && strcasecmp(file + len - 4, ".eds") == 0;
+}
+
+/* 2: vendor, product and name match; 1: vendor and product; 0: not this device. */
+static int identity_score(const char *path, const eds_identity_t *identity)
+{
+    eds_t eds;
+    char err[256];
+    if (eds_load(&eds, path, 0, err, sizeof err) != EDS_OK)
+        return 0;
+    int score = 0;
+    if (eds.vendor_number == identity->vendor && eds.product_number == identity->product) {
+        const eds_entry_t *name = eds_find(&eds, 0x1008, 0);
+        score = identity->device_name && name && name->text &&
+                        strcmp(name->text, identity->device_name) == 0
+                    ? 2
+                    : 1;
+    }
+    eds_free(&eds);
+    return score;
+}
+
+bool eds_find_for_identity(const char *dir, const eds_identity_t *identity, char *path,
+                           size_t path_len)
+{
+    DIR *d = opendir(dir);
+    if (!d)
+        return false;
+    int best = 0;
+    char candidate[4096];
+    struct dirent *de;
+    while (best < 2 && (de = readdir(d)) != NULL) {
+        if (!has_eds_suffix(de->d_name))
+            continue;
+        int n = snprintf(candidate, sizeof candidate, "%s/%s", dir, de->d_name);
+        if (n < 0 || (size_t)n >= sizeof candidate || (size_t)n >= path_len)
+            continue;
+        int score = identity_score(candidate, identity);
+        if (score > best) {
+            best = score;
+            memcpy(path, candidate, (size_t)n + 1);
+        }
+    }
+    closedir(d);
+    return best > 0;
+}

@@ -18,6 +18,7 @@
 #define COMASTER_EXIT_ABORT 1       /* the server aborted an SDO transfer */
 #define COMASTER_EXIT_TIMEOUT 2     /* no answer, or the state awaited not reached, in time */
 #define COMASTER_EXIT_INTERRUPTED 3 /* SIGINT or SIGTERM before the command finished */
+#define COMASTER_EXIT_FAULT 4       /* the drive is in Fault: only fault-reset leaves it */
 
 #define COMASTER_DEFAULT_IFACE "can0"
 #define COMASTER_DEFAULT_TIMEOUT_MS 1000u
@@ -50,6 +51,8 @@ typedef struct comaster_command {
 
 int comaster_read_main(comaster_options_t *opts, int argc, char **argv);
 int comaster_write_main(comaster_options_t *opts, int argc, char **argv);
+int comaster_nmt_main(comaster_options_t *opts, int argc, char **argv);
+int comaster_drive_main(comaster_options_t *opts, int argc, char **argv);
 
 /* Parses a command's arguments (argv[0] is the command): the common options, --help (prints
  * `help` and returns 0), the command's flags named in `flags` (" --block --output "), and at

@@ -10,6 +10,9 @@
 static const comaster_command_t commands[] = {
     {"read", "read NODE OBJECT [TYPE]: an object's value (SDO upload)", comaster_read_main},
     {"write", "write NODE OBJECT TYPE VALUE: set an object (SDO download)", comaster_write_main},
+    {"nmt", "nmt start|stop|preop|reset-node|reset-comm NODE|all: NMT command", comaster_nmt_main},
+    {"drive", "drive NODE enable|disable|quick-stop|fault-reset|speed RPM: CiA 402",
+     comaster_drive_main},
 };
 
 #define COMMAND_COUNT (sizeof commands / sizeof commands[0])
@@ -42,7 +45,8 @@ static void print_usage(void)
            "Example: comaster -i vcan0 read 4 ACC\n"
            "\n"
            "Exit status: 0 done, 1 the node aborted the SDO transfer, 2 no answer in time (or\n"
-           "the drive did not reach the state), 3 interrupted by SIGINT or SIGTERM, 64 usage\n"
+           "the drive did not reach the state), 3 interrupted by SIGINT or SIGTERM, 4 the\n"
+           "drive is in Fault (drive NODE fault-reset clears it), 64 usage\n"
            "error, 65 bad data (a value that does not fit its type, a malformed EDS), 66 a\n"
            "file cannot be read, 69 interface or CAN support missing, 71 system error.\n");
 }

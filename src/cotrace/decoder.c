@@ -678,7 +678,7 @@ static const char *control_word_text(uint64_t word)
     return NULL;
 }
 
-static const char *status_word_text(uint64_t word)
+const char *cotrace_status_word_state(uint16_t word)
 {
     static const struct {
         uint16_t mask, value;
@@ -698,8 +698,8 @@ static const char *status_word_text(uint64_t word)
 static void say_mapped_value(text_t *t, uint16_t index, uint16_t type, uint64_t v, unsigned bits)
 {
     if (index == CIA402_CONTROL_WORD || index == CIA402_STATUS_WORD) {
-        const char *meaning =
-            index == CIA402_CONTROL_WORD ? control_word_text(v) : status_word_text(v);
+        const char *meaning = index == CIA402_CONTROL_WORD ? control_word_text(v)
+                                                           : cotrace_status_word_state((uint16_t)v);
         say(t, "0x%04llX%s%s", (unsigned long long)v, meaning ? " " : "", meaning ? meaning : "");
         return;
     }

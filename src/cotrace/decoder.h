@@ -64,6 +64,10 @@ typedef struct cotrace_decoder {
 void cotrace_decoder_init(cotrace_decoder_t *dec, const eds_t *eds, uint8_t eds_node,
                           const co_emcy_code_table_t *vendor);
 
+/* The CiA 402 state a status word 6041h shows (mask 006Fh): "Switch on disabled", "Operation
+ * enabled", ...; NULL for a combination CiA 402 does not define. Also comaster's. */
+const char *cotrace_status_word_state(uint16_t word);
+
 /* Writes the meaning of `frame` into out (always NUL-terminated, truncated to cap). */
 void cotrace_decode(cotrace_decoder_t *dec, const struct can_frame *frame, char *out, size_t cap);
 

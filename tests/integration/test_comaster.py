@@ -1,0 +1,216 @@
+"""comaster against atv312d (two drives) and against python canopen's LocalNode, a server the
+project did not write: the exact output lines, JSON fields, exit codes and, where it matters, the
+frames on the bus."""
+
+import json
+import os
+import subprocess
+import sys
+from pathlib import Path
+
+import pytest
+
+from conftest import BOOT_TIMEOUT, EDS, IFACE, ROOT, Frame
+
+COMASTER = os.environ.get("COMASTER") or str(ROOT / "build" / "src" / "comaster" / "comaster")
+HELPER = Path(__file__).with_name("sdo_server_helper.py")
+LOCAL_NODE = 10
+
+EXIT_ABORT, EXIT_TIMEOUT = 1, 2
+EX_USAGE, EX_DATAERR, EX_UNAVAILABLE = 64, 65, 69
+
+
+def comaster(*args, stdin=None):
+    """Runs comaster on vcan0; returns (exit status, stdout, stderr)."""
+    p = subprocess.run([COMASTER, "-i", IFACE, *[str(a) for a in args]], capture_output=True,
+                       text=True, timeout=30, input=stdin)
+    return p.returncode, p.stdout, p.stderr
+
+
+@pytest.fixture
+def drives(bus, start_daemon):
+    """Two ATV312 at node-ids 4 and 5, booted."""
+    return start_daemon(bus, "--node-id", "4-5")
+
+
+def test_read_by_index_and_by_name(drives):
+    assert comaster("read", 4, "0x1008", "string") == (0, "ATV312\n", "")
+    assert comaster("read", 5, "0x1000") == (0, "65938\n", "")  # 0x00010192, 4 bytes: UNSIGNED32
+    # The EDS of the node's identity (1018h:01 = 0x5F, 1008h = ATV312) names ACC and its type.
+    assert comaster("read", 4, "ACC") == (0, "30\n", "")
+    rc, out, _ = comaster("--json", "read", 4, "acceleration time")
+    assert rc == 0
+    assert json.loads(out) == {"node": 4, "index": "0x203C", "subindex": 2,
+                               "name": "ACC acceleration time (0.1 s)", "type": "UNSIGNED16",
+                               "value": 30}
+
+
+def test_write_changes_only_its_node(drives):
+    assert comaster("write", 5, "ACC", "50") == (0, "", "")
+    assert comaster("read", 5, "ACC") == (0, "50\n", "")
+    assert comaster("read", 4, "ACC") == (0, "30\n", "")
+    rc, out, _ = comaster("--json", "write", 4, "0x203C:3", "u16", "45")
+    assert rc == 0 and json.loads(out) == {"node": 4, "index": "0x203C", "subindex": 3,
+                                           "type": "UNSIGNED16", "written": 2}
+    assert comaster("read", 4, "0x203C:3", "u16") == (0, "45\n", "")
+
+
+def test_expedited_write_frames(drives, dump):
+    """With --eds no identity is read: the transfer is the two frames of an expedited download."""
+    mark = dump.mark()
+    assert comaster("--eds", EDS, "write", 4, "ACC", "60") == (0, "", "")
+    dump.expect(0x604, "2B3C20023C000000", since=mark)
+    dump.expect(0x584, "603C200200000000", since=mark)
+    sdo = [str(f) for f in dump.seen[mark:] if f.can_id in (0x604, 0x584)]
+    assert sdo == ["604#2B3C20023C000000", "584#603C200200000000"]
+
+
+def test_segmented_and_block_transfers_against_atv312d(drives):
+    assert comaster("read", 4, "0x1008", "--block") == (0, "ATV312\n", "")
+    assert comaster("write", 4, "0x203C:2", "u16", "55", "--block") == (0, "", "")
+    assert comaster("read", 4, "0x203C:2", "u16", "--block") == (0, "55\n", "")
+
+
+def test_abort_timeout_and_data_errors(drives):
+    rc, out, err = comaster("read", 4, "0x1234:1")
+    assert (rc, out) == (EXIT_ABORT, "")
+    assert err == ("comaster: node 4, 1234:01: SDO abort 0x06020000: object does not exist in the "
+                   "object dictionary\n")
+    rc, out, err = comaster("--timeout", "100", "read", 9, "0x1000", "u32")
+    assert rc == EXIT_TIMEOUT
+    assert err == ("comaster: node 9, 1000:00: no answer within 100 ms: is the node on vcan0 and "
+                   "its node-id 9? (--timeout MS waits longer)\n")
+    rc, out, err = comaster("--json", "write", 4, "0x1008", "string", "X")
+    assert rc == EXIT_ABORT
+    assert json.loads(out) == {
+        "error": "node 4, 1008:00: SDO abort 0x06010002: attempt to write a read only object",
+        "exit": 1}
+    rc, _, err = comaster("write", 4, "ACC", "u16", "70000")
+    assert rc == EX_DATAERR
+    assert err == "comaster: node 4, 203C:02: 70000 is out of range for UNSIGNED16 (0..65535)\n"
+
+
+def test_usage_errors():
+    assert comaster("read", 128, "0x1000")[0::2] == (
+        EX_USAGE, "comaster: '128' is not a node-id: give a number 1..127\n")
+    assert comaster("frobnicate")[0::2] == (
+        EX_USAGE, "comaster: unknown command 'frobnicate': give one of read, write, nmt, drive (see "
+        "comaster --help)\n")
+    assert comaster("read", 4, "0x1000", "u7")[0] == EX_USAGE
+    p = subprocess.run([COMASTER, "-i", "nosuchcan0", "read", "4", "0x1000"], capture_output=True,
+                       text=True, timeout=30)
+    assert p.returncode == EX_UNAVAILABLE
+    assert p.stderr.startswith("comaster: no network interface 'nosuchcan0'")
+
+
+def test_nmt_commands_frames_and_boot_up(drives, dump):
+    mark = dump.mark()
+    assert comaster("nmt", "start", 4) == (0, "", "")
+    dump.expect(0x000, "0104", since=mark)
+    assert comaster("--json", "nmt", "stop", "all") == (0, '{"node": "all", "command": "stop"}\n', "")
+    dump.expect(0x000, "0200", since=mark)
+    assert comaster("nmt", "reset-node", 5) == (0, "node 5: boot-up\n", "")
+    dump.expect(0x000, "8105", since=mark)
+    dump.expect(0x705, "00", since=mark)
+    rc, out, err = comaster("--timeout", "200", "nmt", "reset-comm", 9)
+    assert rc == EXIT_TIMEOUT
+    assert err == ("comaster: node 9: no boot-up within 200 ms after reset-comm: is the node on "
+                   "vcan0? (--timeout MS waits longer)\n")
+    assert comaster("nmt", "go", 4)[0] == EX_USAGE
+
+
+@pytest.fixture
+def local_node():
+    """python canopen's LocalNode as node 10 in a helper process."""
+    p = subprocess.Popen([sys.executable, str(HELPER), IFACE, str(LOCAL_NODE)],
+                         stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
+    try:
+        assert p.stdout.readline() == "ready\n", p.stderr.read()
+        yield p
+    finally:
+        p.terminate()
+        p.wait(timeout=BOOT_TIMEOUT)
+
+
+def test_expedited_and_segmented_against_local_node(local_node):
+    assert comaster("read", LOCAL_NODE, "0x2000", "u32") == (0, "305419896\n", "")
+    assert comaster("write", LOCAL_NODE, "0x2000", "u32", "0xCAFE") == (0, "", "")
+    assert comaster("read", LOCAL_NODE, "0x2000", "u32") == (0, "51966\n", "")
+    # 15 bytes: a segmented upload (the server's choice) and a segmented download.
+    assert comaster("read", LOCAL_NODE, "0x2001", "string") == (0, "LocalNode label\n", "")
+    text = "written by comaster, segmented"
+    assert comaster("write", LOCAL_NODE, "0x2001", "string", text) == (0, "", "")
+    assert comaster("read", LOCAL_NODE, "0x2001", "string") == (0, text + "\n", "")
+
+
+def test_domain_to_and_from_files(local_node, tmp_path):
+    blob = bytes(range(256)) * 4
+    source, target = tmp_path / "in.bin", tmp_path / "out.bin"
+    source.write_bytes(blob)
+    assert comaster("write", LOCAL_NODE, "0x2002", "domain", source) == (0, "", "")
+    rc, out, _ = comaster("--json", "read", LOCAL_NODE, "0x2002", "domain", "--output", target)
+    assert rc == 0
+    assert json.loads(out) == {"node": LOCAL_NODE, "index": "0x2002", "subindex": 0,
+                               "type": "DOMAIN", "size": 1024, "file": str(target)}
+    assert target.read_bytes() == blob
+
+
+def test_block_transfers_against_local_node(local_node):
+    """LocalNode has no block transfer: it aborts a block download with 0x05040001, and answers a
+    block upload initiate with a plain upload (CiA 301 lets the server fall back), which the
+    client follows: the value arrives segmented."""
+    rc, _, err = comaster("write", LOCAL_NODE, "0x2001", "string", "block", "--block")
+    assert rc == EXIT_ABORT
+    assert err == ("comaster: node 10, 2001:00: SDO abort 0x05040001: client/server command "
+                   "specifier not valid or unknown\n")
+    assert comaster("read", LOCAL_NODE, "0x2001", "string", "--block") == (
+        0, "LocalNode label\n", "")
+
+
+def test_drive_speed_runs_the_state_machine_by_sdo(drives, dump):
+    mark = dump.mark()
+    rc, out, err = comaster("drive", 4, "speed", "1200")
+    assert (rc, err) == (0, "")
+    assert out == ("node 4: Switch on disabled (6041h = 0x0640)\n"
+                   "node 4: Ready to switch on (6041h = 0x0621)\n"
+                   "node 4: Switched on (6041h = 0x0623)\n"
+                   "node 4: Operation enabled (6041h = 0x0227)\n")
+    dump.expect(0x604, "2B4060000F000000", since=mark)  # the last write: every frame before is seen
+    requests = [str(f) for f in dump.seen[mark:] if f.can_id == 0x604 and f.data[0] == 0x2B]
+    assert requests == ["604#2B426000B0040000", "604#2B40600006000000",
+                        "604#2B40600007000000", "604#2B4060000F000000"]
+    assert comaster("read", 4, "0x6042", "i16") == (0, "1200\n", "")
+    assert comaster("read", 5, "0x6042", "i16") == (0, "0\n", "")  # the other drive untouched
+
+
+def test_drive_quick_stop_disable_and_json(drives):
+    assert comaster("drive", 4, "enable")[0] == 0
+    assert comaster("drive", 4, "quick-stop") == (
+        0, "node 4: Operation enabled (6041h = 0x0627)\n"
+        "node 4: Quick stop active (6041h = 0x0607)\n", "")
+    rc, out, _ = comaster("--json", "drive", 4, "disable")
+    assert rc == 0
+    assert [json.loads(line) for line in out.splitlines()] == [
+        {"node": 4, "state": "Quick stop active", "statusword": "0x0607"},
+        {"node": 4, "state": "Switch on disabled", "statusword": "0x0640"}]
+
+
+def test_drive_in_fault_needs_fault_reset(drives, bus):
+    # A heartbeat consumer of node 0x7E, 50 ms, fed once: its loss is the network fault.
+    assert comaster("write", 4, "0x1016:1", "u32", "0x007E0032") == (0, "", "")
+    bus.send(Frame(0x77E, b"\x05"))
+    bus.expect(0x84, timeout=2.0)  # the drive's EMCY (8130h)
+    rc, out, err = comaster("drive", 4, "enable")
+    assert rc == 4
+    assert out == "node 4: Fault (6041h = 0x0608)\n"
+    assert err == ("comaster: node 4 is in Fault (6041h = 0x0608): reset it first: comaster drive "
+                   "4 fault-reset\n")
+    assert comaster("drive", 4, "fault-reset") == (
+        0, "node 4: Fault (6041h = 0x0608)\nnode 4: Switch on disabled (6041h = 0x0640)\n", "")
+
+
+def test_drive_usage_errors():
+    assert comaster("drive", 4, "speed", "99999")[0::2] == (
+        EX_USAGE, "comaster: drive: speed '99999' is not a velocity: give rpm -32768..32767\n")
+    assert comaster("drive", 4, "fly")[0] == EX_USAGE
+    assert comaster("drive", 4, "speed")[0] == EX_USAGE

@@ -26,7 +26,7 @@
 #define CO_NET_MASTER_ALL_CONTACTED 0x0001u   /* bit 0: every slave has bit 0 */
 #define CO_NET_MASTER_ALL_CONFIGURED 0x0002u  /* bit 1: every slave has bit 1 */
 #define CO_NET_MASTER_ALL_EC_STARTED 0x0004u  /* bit 2: every slave has bit 2 */
-#define CO_NET_MASTER_INIT_FINISHED 0x0008u   /* bit 3: every slave was tried at least once */
+#define CO_NET_MASTER_INIT_FINISHED 0x0008u   /* bit 3: every slave's first attempt ended */
 #define CO_NET_MASTER_INIT_ERROR 0x0010u      /* bit 4: some slave has bit 4 */
 #define CO_NET_MASTER_EC_ERROR 0x0020u        /* bit 5: some slave has bit 5 */
 #define CO_NET_MASTER_MANDATORY_ERROR 0x0040u /* bit 6: some mandatory slave has bit 4 */
@@ -75,7 +75,7 @@ typedef struct co_net_slave_config {
 typedef enum co_net_start {
     CO_NET_START_EACH = 0, /* each slave as soon as it is configured */
     CO_NET_START_ALL,      /* all at once (node 0) when every mandatory slave is configured and
-                            * every slave was tried; a slave booted after that is started alone */
+                            * every first attempt ended; a slave booted after that starts alone */
     CO_NET_START_NONE      /* never: the application starts them */
 } co_net_start_t;
 
@@ -145,10 +145,11 @@ typedef struct co_net_slave {
     uint8_t failure;     /* co_net_failure_t of the last failed attempt */
     uint32_t read_value; /* the value of the failed identity check (or the last one read) */
     bool booted;         /* its boot-up came in the current WAIT_BOOT */
-    bool tried;          /* an initialisation was attempted at least once */
+    bool tried;          /* an attempt at its initialisation ended (successfully or not) */
     size_t write_pos;
     uint8_t identity_sub;
-    co_time_t deadline; /* WAIT_BOOT: the end of the boot time; FAILED: the retry */
+    co_time_t deadline;        /* WAIT_BOOT: the end of the boot time; FAILED: the retry */
+    co_time_t first_heartbeat; /* when the first heartbeat is due, CO_TIME_NEVER when not waited */
 } co_net_slave_t;
 
 typedef struct co_net_master_config {

@@ -56,6 +56,17 @@ typedef struct co_linux_device {
  * Never blocks: the frame is written, queued, or dropped and counted when the queue is full. */
 void co_linux_device_send(void *device, const co_frame_t *frame);
 
+/* Another descriptor the loop watches for reading, such as a program's control socket: when it
+ * is readable, `readable` runs with the time of the wake-up, then every device is processed (what
+ * the callback changed may have moved their deadlines). */
+typedef struct co_linux_watch {
+    int fd;
+    void (*readable)(void *ctx, co_time_t now);
+    void *ctx;
+    uint32_t tag; /* its epoll tag */
+    struct co_linux_watch *next;
+} co_linux_watch_t;
+
 typedef enum co_linux_open_result {
     CO_LINUX_OPEN_OK = 0,
     CO_LINUX_OPEN_NO_CAN,   /* the kernel has no PF_CAN / CAN_RAW (EAFNOSUPPORT, EPROTONOSUPPORT) */
@@ -104,6 +115,8 @@ struct co_linux_loop {
 
     co_linux_device_t *devices;
     size_t device_count;
+    co_linux_watch_t *watches;
+    uint32_t next_watch_tag;
 
     co_time_t now;
     struct timespec wall; /* CLOCK_REALTIME of this wake-up, for the trace */
@@ -143,6 +156,13 @@ co_linux_open_result_t co_linux_loop_open(co_linux_loop_t *loop,
 /* Attaches a device (before co_linux_loop_run). */
 void co_linux_loop_add(co_linux_loop_t *loop, co_linux_device_t *device,
                        const co_linux_device_ops_t *ops, void *ctx);
+
+/* Watches `fd` for reading (level-triggered) until co_linux_loop_unwatch; `watch` must stay where
+ * it is meanwhile. Returns 0, or -1 with errno when epoll refuses the descriptor. */
+int co_linux_loop_watch(co_linux_loop_t *loop, co_linux_watch_t *watch, int fd,
+                        void (*readable)(void *ctx, co_time_t now), void *ctx);
+/* Stops watching; the descriptor stays open (the caller closes it). */
+void co_linux_loop_unwatch(co_linux_loop_t *loop, co_linux_watch_t *watch);
 
 /* Starts every device and runs until SIGINT or SIGTERM (returns 0), co_linux_loop_stop, or a
  * failure of the loop itself (returns EX_OSERR). */

@@ -191,8 +191,9 @@ static void fail(co_net_master_t *m, size_t i, co_net_failure_t failure)
     co_net_slave_t *s = slave_at(m, i);
     s->failure = (uint8_t)failure;
     s->deadline = after_ms(m->now, m->config.retry_delay_ms);
-    set_status(m, i, (uint16_t)((s->status & ~SLAVE_PROGRESS) | CO_NET_SLAVE_INIT_ERROR));
+    s->tried = true;
     set_step(m, i, CO_NET_STEP_FAILED);
+    set_status(m, i, (uint16_t)((s->status & ~SLAVE_PROGRESS) | CO_NET_SLAVE_INIT_ERROR));
     if (m->current == i)
         release(m);
 }
@@ -205,7 +206,6 @@ static void begin_attempt(co_net_master_t *m, size_t i)
                                   .user = m,
                                   .done = sdo_done};
     m->current = i;
-    s->tried = true;
     if (co_sdo_client_init(&m->sdo, &sdo) != 0) {
         fail(m, i, CO_NET_FAIL_SDO);
         return;
@@ -235,9 +235,10 @@ static void begin_identity(co_net_master_t *m, size_t i)
 static void start_error_control(co_net_master_t *m, size_t i)
 {
     const co_net_slave_config_t *c = slave_config(m, i);
-    if (c->heartbeat_ms != 0)
+    if (c->heartbeat_ms != 0) {
         co_nmt_master_heartbeat(&m->nmt, c->node_id, c->heartbeat_ms);
-    else if (c->guard_ms != 0 && c->life_time_factor != 0)
+        slave_at(m, i)->first_heartbeat = after_ms(m->now, c->heartbeat_ms);
+    } else if (c->guard_ms != 0 && c->life_time_factor != 0)
         co_nmt_master_guard(&m->nmt, c->node_id, c->guard_ms, c->life_time_factor, m->now);
     add_status(m, i, CO_NET_SLAVE_EC_STARTED);
 }
@@ -245,12 +246,14 @@ static void start_error_control(co_net_master_t *m, size_t i)
 static void stop_error_control(co_net_master_t *m, size_t i)
 {
     uint8_t node_id = slave_config(m, i)->node_id;
+    slave_at(m, i)->first_heartbeat = CO_TIME_NEVER;
     co_nmt_master_heartbeat(&m->nmt, node_id, 0);
     co_nmt_master_guard(&m->nmt, node_id, 0, 0, m->now);
 }
 
 static void become_operational(co_net_master_t *m, size_t i)
 {
+    slave_at(m, i)->tried = true;
     set_status(m, i,
                (uint16_t)((slave_at(m, i)->status | CO_NET_SLAVE_INIT_DONE) &
                           ~(CO_NET_SLAVE_INIT_ERROR | CO_NET_SLAVE_EC_ERROR)));
@@ -263,6 +266,7 @@ static void finish_boot(co_net_master_t *m, size_t i)
     start_error_control(m, i);
     release(m);
     if (m->config.start == CO_NET_START_ALL && !m->started_all) {
+        slave_at(m, i)->tried = true;
         set_step(m, i, CO_NET_STEP_WAIT_START);
         return;
     }
@@ -367,12 +371,12 @@ static void error_control_lost(co_net_master_t *m, size_t i)
     co_net_slave_t *s = slave_at(m, i);
     if (s->step != CO_NET_STEP_OPERATIONAL && s->step != CO_NET_STEP_WAIT_START)
         return;
-    add_status(m, i, CO_NET_SLAVE_EC_ERROR);
     if (slave_config(m, i)->on_error == CO_NET_ON_ERROR_REPORT) {
+        add_status(m, i, CO_NET_SLAVE_EC_ERROR);
         set_step(m, i, CO_NET_STEP_LOST);
         return;
     }
-    clear_status(m, i, SLAVE_PROGRESS);
+    set_status(m, i, (uint16_t)((s->status & ~SLAVE_PROGRESS) | CO_NET_SLAVE_EC_ERROR));
     reset_slave(m, i, CO_NMT_CS_RESET_NODE);
 }
 
@@ -416,6 +420,7 @@ static void nmt_event(void *user, const co_nmt_master_event_t *event)
         error_control_lost(m, i);
         break;
     case CO_NMT_MASTER_RESUMED:
+    case CO_NMT_MASTER_STATE_CHANGED: /* also the first heartbeat of one lost for lack of it */
         if (slave_at(m, i)->step == CO_NET_STEP_LOST) {
             clear_status(m, i, CO_NET_SLAVE_EC_ERROR);
             set_step(m, i, CO_NET_STEP_OPERATIONAL);
@@ -472,7 +477,8 @@ bool co_net_master_init(co_net_master_t *master, const co_net_master_config_t *c
                                          .send = forward_send, .user = master, .event = nmt_event});
     co_emcy_consumer_init(&master->emcy, emcy_received, master);
     for (size_t i = 0; i < config->slave_count; i++) {
-        config->slave_state[i] = (co_net_slave_t){.step = CO_NET_STEP_IDLE};
+        config->slave_state[i] =
+            (co_net_slave_t){.step = CO_NET_STEP_IDLE, .first_heartbeat = CO_TIME_NEVER};
         co_emcy_consumer_watch(&master->emcy, config->slaves[i].node_id, true);
     }
     master->sync.next = CO_TIME_NEVER;
@@ -561,7 +567,7 @@ static bool network_ready(const co_net_master_t *m)
 {
     for (size_t i = 0; i < m->config.slave_count; i++) {
         const co_net_slave_t *s = &m->config.slave_state[i];
-        if (!s->tried || m->current == i)
+        if (!s->tried)
             return false;
         if (m->config.slaves[i].mandatory && s->step != CO_NET_STEP_WAIT_START)
             return false;
@@ -594,6 +600,21 @@ static void produce_sync(co_net_master_t *m)
     }
 }
 
+/* CiA 301's heartbeat consumer waits for the first heartbeat forever, so a slave that dies right
+ * after its configuration would never be seen lost: the master expects that first heartbeat within
+ * one consumer time of starting error control (the download has just set the slave's 1017h). */
+static void check_first_heartbeats(co_net_master_t *m)
+{
+    for (size_t i = 0; i < m->config.slave_count; i++) {
+        co_net_slave_t *s = slave_at(m, i);
+        if (s->first_heartbeat > m->now)
+            continue;
+        s->first_heartbeat = CO_TIME_NEVER;
+        if (!m->nmt.slave[slave_config(m, i)->node_id - 1].heartbeat.monitoring)
+            error_control_lost(m, i);
+    }
+}
+
 static co_time_t slave_deadline(const co_net_master_t *m)
 {
     co_time_t next = CO_TIME_NEVER;
@@ -601,6 +622,7 @@ static co_time_t slave_deadline(const co_net_master_t *m)
         const co_net_slave_t *s = &m->config.slave_state[i];
         if ((s->step == CO_NET_STEP_WAIT_BOOT && !s->booted) || s->step == CO_NET_STEP_FAILED)
             next = co_time_min(next, s->deadline);
+        next = co_time_min(next, s->first_heartbeat);
     }
     return next;
 }
@@ -612,6 +634,7 @@ co_time_t co_net_master_process(co_net_master_t *master, co_time_t now)
     next = co_time_min(next, co_sdo_client_process(&master->sdo, now));
     if (!master->started)
         return next;
+    check_first_heartbeats(master);
     retry_failed(master);
     while (master->current == master->config.slave_count) {
         size_t i = next_ready(master);

@@ -17,8 +17,8 @@
 #include <sysexits.h>
 #include <unistd.h>
 
-/* epoll_event.data.u32 tags. */
-enum { TAG_CAN, TAG_TIMER, TAG_SIGNAL, TAG_LINK };
+/* epoll_event.data.u32 tags; the watched descriptors take TAG_WATCH and above. */
+enum { TAG_CAN, TAG_TIMER, TAG_SIGNAL, TAG_LINK, TAG_WATCH };
 
 enum { COND_OVERRUN, COND_PASSIVE, COND_BUS_OFF };
 
@@ -499,6 +499,18 @@ static void update_clocks(co_linux_loop_t *loop)
         clock_gettime(CLOCK_REALTIME, &loop->wall);
 }
 
+static void handle_watch(co_linux_loop_t *loop, uint32_t tag)
+{
+    for (co_linux_watch_t *w = loop->watches; w; w = w->next) {
+        if (w->tag != tag)
+            continue;
+        w->readable(w->ctx, loop->now);
+        for (co_linux_device_t *dev = loop->devices; dev; dev = dev->next)
+            device_process(dev, loop->now);
+        return;
+    }
+}
+
 int co_linux_loop_run(co_linux_loop_t *loop)
 {
     loop->running = true;
@@ -534,6 +546,9 @@ int co_linux_loop_run(co_linux_loop_t *loop)
             case TAG_LINK:
                 handle_link_event(loop);
                 break;
+            default:
+                handle_watch(loop, events[i].data.u32);
+                break;
             }
         }
         settle(loop);
@@ -566,6 +581,32 @@ static int add_to_epoll(co_linux_loop_t *loop, int fd, uint32_t tag)
 {
     struct epoll_event ev = {.events = EPOLLIN, .data.u32 = tag};
     return epoll_ctl(loop->epoll_fd, EPOLL_CTL_ADD, fd, &ev);
+}
+
+int co_linux_loop_watch(co_linux_loop_t *loop, co_linux_watch_t *watch, int fd,
+                        void (*readable)(void *ctx, co_time_t now), void *ctx)
+{
+    /* Tags are never reused, so an event still pending for a watch just removed finds none. */
+    *watch = (co_linux_watch_t){.fd = fd,
+                                .readable = readable,
+                                .ctx = ctx,
+                                .tag = TAG_WATCH + loop->next_watch_tag++,
+                                .next = loop->watches};
+    if (add_to_epoll(loop, fd, watch->tag) != 0)
+        return -1;
+    loop->watches = watch;
+    return 0;
+}
+
+void co_linux_loop_unwatch(co_linux_loop_t *loop, co_linux_watch_t *watch)
+{
+    for (co_linux_watch_t **w = &loop->watches; *w; w = &(*w)->next) {
+        if (*w == watch) {
+            *w = watch->next;
+            epoll_ctl(loop->epoll_fd, EPOLL_CTL_DEL, watch->fd, NULL);
+            return;
+        }
+    }
 }
 
 static int open_link_monitor(co_linux_loop_t *loop)

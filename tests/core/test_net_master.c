@@ -538,6 +538,25 @@ START_TEST(heartbeat_loss_reboots_and_reconfigures)
 }
 END_TEST
 
+/* CiA 301's consumer waits for the first heartbeat forever; a slave that dies right after its
+ * configuration must still be seen lost, one consumer time after error control started. */
+START_TEST(no_first_heartbeat_is_a_loss)
+{
+    table[0].heartbeat_ms = 150;
+    start_master();
+    ck_assert_uint_eq(co_net_master_slave_status(&master, 4), 0x0F);
+    co_time_t started = bus.now;
+    slaves[0].present = false; /* before its first heartbeat */
+    bus.next = bus.count;
+    advance(149 * MS);
+    ck_assert_uint_eq(co_net_master_slave_status(&master, 4), 0x0F);
+    advance(1 * MS);
+    expect("000#8104");
+    ck_assert_uint_eq(bus.at[bus.next - 1], started + 150 * MS);
+    ck_assert_uint_eq(co_net_master_slave_status(&master, 4), CO_NET_SLAVE_EC_ERROR);
+}
+END_TEST
+
 START_TEST(unexpected_boot_up_reboots)
 {
     start_master();
@@ -744,6 +763,7 @@ static Suite *net_master_suite(void)
     tcase_add_test(tc, slave_appearing_late_is_retried_after_the_others);
     tcase_add_test(tc, sdo_abort_of_a_write_is_recorded);
     tcase_add_test(tc, heartbeat_loss_reboots_and_reconfigures);
+    tcase_add_test(tc, no_first_heartbeat_is_a_loss);
     tcase_add_test(tc, unexpected_boot_up_reboots);
     tcase_add_test(tc, heartbeat_loss_only_reported);
     tcase_add_test(tc, guarding_loss_reboots);

@@ -244,7 +244,7 @@ static bool is_configuration(const eds_entry_t *e)
 
 static int load_writes(comaster_slave_t *s, co_net_slave_config_t *c, char *err, size_t err_len)
 {
-    size_t count = 0, bytes = 0, len;
+    size_t count = 0, bytes = 0, len = 0;
     for (size_t i = 0; i < s->dcf.count; i++) {
         const eds_entry_t *e = &s->dcf.entries[i];
         if (!is_configuration(e))

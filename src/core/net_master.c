@@ -7,6 +7,7 @@
 #define DEVICE_TYPE_INDEX 0x1000u
 #define IDENTITY_INDEX 0x1018u
 #define SYNC_CAN_ID 0x080u
+#define CAN_ID_MAX 0x7FFu
 #define US_PER_MS 1000u
 /* The bits of a slave's status word that one attempt at its initialisation builds up. */
 #define SLAVE_PROGRESS                                                                             \
@@ -88,7 +89,7 @@ static bool pdo_valid(const co_net_master_config_t *config, const co_net_pdo_t *
                       size_t image_size)
 {
     return pdo->len >= 1 && pdo->len <= CO_FRAME_DLC_MAX &&
-           (size_t)pdo->offset + pdo->len <= image_size && pdo->can_id <= 0x7FFu &&
+           (size_t)pdo->offset + pdo->len <= image_size && pdo->can_id <= CAN_ID_MAX &&
            !co_can_id_restricted(pdo->can_id) &&
            config_index(config, pdo->node_id) < config->slave_count;
 }
@@ -493,6 +494,9 @@ void co_net_master_start(co_net_master_t *master, co_time_t now)
     master->now = now;
     master->started = true;
     master->started_all = false;
+    /* A transfer under way belongs to the boot that ends here: its answer is ignored, and the
+     * next attempt prepares the client afresh. */
+    release(master);
     if (master->config.reset_all)
         co_nmt_master_command(&master->nmt, CO_NMT_CS_RESET_COMMUNICATION, CO_NMT_MASTER_ALL_NODES);
     for (size_t i = 0; i < master->config.slave_count; i++) {

@@ -557,6 +557,26 @@ START_TEST(no_first_heartbeat_is_a_loss)
 }
 END_TEST
 
+/* A new start while a slave's SDO transfer is under way: its answer is ignored and the network
+ * boots again from the start. */
+START_TEST(restart_during_a_transfer)
+{
+    slaves[0].present = false;
+    config.boot_time_ms = 0;
+    ck_assert(co_net_master_init(&master, &config));
+    co_net_master_start(&master, bus.now);
+    advance(0);
+    ck_assert_uint_eq(co_net_master_slave(&master, 4)->step, CO_NET_STEP_DEVICE_TYPE);
+    slaves[0].present = true;
+    co_net_master_start(&master, bus.now);
+    bus.next = bus.count;
+    advance(SDO_TIMEOUT_MS * MS);
+    for (uint8_t id = 4; id <= 6; id++)
+        ck_assert_uint_eq(co_net_master_slave_status(&master, id), 0x0F);
+    ck_assert_uint_eq(co_net_master_status(&master), 0x0F);
+}
+END_TEST
+
 START_TEST(unexpected_boot_up_reboots)
 {
     start_master();
@@ -764,6 +784,7 @@ static Suite *net_master_suite(void)
     tcase_add_test(tc, sdo_abort_of_a_write_is_recorded);
     tcase_add_test(tc, heartbeat_loss_reboots_and_reconfigures);
     tcase_add_test(tc, no_first_heartbeat_is_a_loss);
+    tcase_add_test(tc, restart_during_a_transfer);
     tcase_add_test(tc, unexpected_boot_up_reboots);
     tcase_add_test(tc, heartbeat_loss_only_reported);
     tcase_add_test(tc, guarding_loss_reboots);

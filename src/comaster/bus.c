@@ -79,6 +79,7 @@ int comaster_bus_open(comaster_bus_t *bus, const comaster_options_t *opts)
         return report_open_error(bus, opts, opened);
     co_linux_loop_add(&bus->loop, &bus->device, &device_ops, bus);
     bus->opened = true;
+    bus->opts = opts;
     return 0;
 }
 
@@ -96,7 +97,12 @@ int comaster_bus_run(comaster_bus_t *bus, const comaster_job_t *job)
     bus->job = NULL;
     if (rc >= FINISHED_OFFSET)
         return rc - FINISHED_OFFSET;
-    return rc == 0 ? COMASTER_EXIT_INTERRUPTED : rc;
+    if (rc != 0)
+        return rc;
+    if (!bus->signal_is_the_end)
+        comaster_fail(bus->opts, COMASTER_EXIT_INTERRUPTED,
+                      "interrupted by a signal before the command finished");
+    return COMASTER_EXIT_INTERRUPTED;
 }
 
 void comaster_bus_finish(comaster_bus_t *bus, int status)

@@ -38,8 +38,10 @@ typedef struct comaster_options {
 typedef struct comaster_args {
     const char *positional[COMASTER_MAX_ARGS];
     int count;
-    bool block;         /* read / write: --block */
-    const char *output; /* read: --output FILE for a DOMAIN */
+    bool block;            /* read / write: --block */
+    bool rpdo;             /* drive: --rpdo */
+    uint16_t heartbeat_ms; /* monitor: --heartbeat MS, 0 when not given */
+    const char *output;    /* read: --output FILE for a DOMAIN */
 } comaster_args_t;
 
 /* One command: its name, the line of the usage listing and its handler. */
@@ -52,6 +54,8 @@ typedef struct comaster_command {
 int comaster_read_main(comaster_options_t *opts, int argc, char **argv);
 int comaster_write_main(comaster_options_t *opts, int argc, char **argv);
 int comaster_nmt_main(comaster_options_t *opts, int argc, char **argv);
+int comaster_scan_main(comaster_options_t *opts, int argc, char **argv);
+int comaster_monitor_main(comaster_options_t *opts, int argc, char **argv);
 int comaster_drive_main(comaster_options_t *opts, int argc, char **argv);
 int comaster_boot_main(comaster_options_t *opts, int argc, char **argv);
 int comaster_run_main(comaster_options_t *opts, int argc, char **argv);
@@ -93,6 +97,8 @@ typedef struct comaster_bus {
     co_linux_device_t device;
     const comaster_job_t *job;
     bool opened;
+    const comaster_options_t *opts;
+    bool signal_is_the_end; /* SIGINT/SIGTERM is how the command ends (monitor): no error */
 } comaster_bus_t;
 
 /* Opens the interface; returns 0 or the exit status after a one-line error. */
@@ -101,7 +107,8 @@ int comaster_bus_open(comaster_bus_t *bus, const comaster_options_t *opts);
 void comaster_bus_close(comaster_bus_t *bus);
 
 /* Runs `job` until it calls comaster_bus_finish (returns its status), a signal
- * (COMASTER_EXIT_INTERRUPTED) or a failure of the loop (EX_OSERR). */
+ * (COMASTER_EXIT_INTERRUPTED, after a one-line error unless signal_is_the_end) or a failure of
+ * the loop (EX_OSERR). */
 int comaster_bus_run(comaster_bus_t *bus, const comaster_job_t *job);
 void comaster_bus_finish(comaster_bus_t *bus, int status);
 

@@ -63,16 +63,16 @@ bool comaster_parse_node(const comaster_options_t *opts, const char *text, bool 
     return true;
 }
 
-static bool parse_timeout(const comaster_options_t *opts, const char *text, uint32_t *ms)
+#define TIMEOUT_MAX_MS 600000u /* ten minutes */
+
+/* Milliseconds 1..max in decimal. */
+static bool parse_ms(const char *text, uint32_t max, uint32_t *ms)
 {
     char *end;
     errno = 0;
     unsigned long v = strtoul(text, &end, 10);
-    if (errno || end == text || *end || v < 1 || v > 600000 || text[0] == '-') {
-        comaster_fail(opts, EX_USAGE, "--timeout: '%s' is not a time: give milliseconds 1..600000",
-                      text);
+    if (errno || end == text || *end || v < 1 || v > max || text[0] == '-')
         return false;
-    }
     *ms = (uint32_t)v;
     return true;
 }
@@ -116,22 +116,36 @@ int comaster_parse_args(comaster_options_t *opts, comaster_args_t *args, int arg
             opts->json = true;
         } else if (strcmp(arg, "--block") == 0 && is_flag(flags, arg)) {
             args->block = true;
+        } else if (strcmp(arg, "--rpdo") == 0 && is_flag(flags, arg)) {
+            args->rpdo = true;
         } else if (strcmp(arg, "-i") == 0 || strcmp(arg, "--interface") == 0 ||
                    strcmp(arg, "--timeout") == 0 || strcmp(arg, "--eds") == 0 ||
                    strcmp(arg, "--eds-dir") == 0 ||
-                   (strcmp(arg, "--output") == 0 && is_flag(flags, arg))) {
+                   (strcmp(arg, "--output") == 0 && is_flag(flags, arg)) ||
+                   (strcmp(arg, "--heartbeat") == 0 && is_flag(flags, arg))) {
             if (!value || value[0] == '\0')
                 return comaster_fail(opts, EX_USAGE, "%s: option %s needs a value", command, arg);
             i++;
             if (strcmp(arg, "--timeout") == 0) {
-                if (!parse_timeout(opts, value, &opts->timeout_ms))
-                    return EX_USAGE;
+                if (!parse_ms(value, TIMEOUT_MAX_MS, &opts->timeout_ms))
+                    return comaster_fail(opts, EX_USAGE,
+                                         "--timeout: '%s' is not a time: give milliseconds "
+                                         "1..600000",
+                                         value);
             } else if (strcmp(arg, "--eds") == 0) {
                 opts->eds_path = value;
             } else if (strcmp(arg, "--eds-dir") == 0) {
                 opts->eds_dir = value;
             } else if (strcmp(arg, "--output") == 0) {
                 args->output = value;
+            } else if (strcmp(arg, "--heartbeat") == 0) {
+                uint32_t ms;
+                if (!parse_ms(value, UINT16_MAX, &ms))
+                    return comaster_fail(opts, EX_USAGE,
+                                         "--heartbeat: '%s' is not a consumer time: give "
+                                         "milliseconds 1..65535",
+                                         value);
+                args->heartbeat_ms = (uint16_t)ms;
             } else {
                 opts->iface = value;
             }

@@ -1,6 +1,6 @@
 /* comaster drive: runs the CiA 402 power state machine of a drive by SDO writes of the control
- * word 6040h and waits (deadline) for the status word 6041h to show each state on the way,
- * printing every state it sees. */
+ * word 6040h, or with --rpdo through the drive's RPDO that maps it, and waits (deadline) for the
+ * status word 6041h to show each state on the way, printing every state it sees. */
 #include "comaster.h"
 #include "decoder.h"
 
@@ -24,8 +24,19 @@
 /* How often the status word is read while a transition is awaited. */
 #define POLL_MS 10u
 
+/* The RPDOs looked at for --rpdo: the first eight (the ATV312 has RPDO1 and RPDO6). */
+#define RPDO_COUNT 8u
+#define RPDO_COMM 0x1400u
+#define RPDO_MAPPING 0x1600u
+#define PDO_COB_ID_INVALID 0x80000000u
+#define PDO_COB_ID_MASK 0x7FFu
+#define PDO_MAPPED_MAX 8u
+/* A mapping entry: index << 16 | sub-index << 8 | length in bits. */
+#define MAP_CONTROL_WORD 0x60400010u
+#define MAP_TARGET_VELOCITY 0x60420010u
+
 static const char drive_help[] =
-    "usage: comaster drive NODE enable|disable|quick-stop|fault-reset|speed RPM\n"
+    "usage: comaster drive NODE enable|disable|quick-stop|fault-reset|speed RPM [--rpdo]\n"
     "\n"
     "Runs the CiA 402 state machine of the drive at node NODE (1..127): writes the\n"
     "control word 6040h over SDO and reads the status word 6041h until it shows\n"
@@ -39,6 +50,9 @@ static const char drive_help[] =
     "  fault-reset  bit 7 from 0 to 1: Fault to Switch on disabled\n"
     "  speed RPM    writes the target velocity 6042h (-32768..32767 rpm), then\n"
     "               enables the drive\n"
+    "  --rpdo       send the control words (and the velocity, when mapped) in the\n"
+    "               valid RPDO whose mapping holds 6040h, read over SDO, its other\n"
+    "               objects at their current values: the node must be Operational\n"
     "\n"
     "A drive in Fault is left alone by every command but fault-reset (exit 4).\n"
     "\n"
@@ -51,9 +65,20 @@ typedef enum target {
     TARGET_NO_FAULT
 } target_t;
 
+/* The RPDO that carries the control word (--rpdo). */
+typedef struct rpdo {
+    bool used;
+    uint16_t cob_id;
+    uint8_t len;
+    uint8_t control_at; /* byte offset of 6040h */
+    int speed_at;       /* byte offset of 6042h, -1 when not mapped */
+    uint8_t data[8];    /* the frame: the other objects at their current values */
+} rpdo_t;
+
 typedef struct drive_session {
     comaster_bus_t *bus;
     const comaster_options_t *opts;
+    rpdo_t rpdo;
     uint8_t node;
     uint16_t status;        /* the last status word read */
     const char *last_shown; /* the state last printed */
@@ -110,10 +135,28 @@ static int write_u16(drive_session_t *d, uint16_t index, uint16_t value)
     return rc ? rc : comaster_sdo_status(d->opts, d->node, &result);
 }
 
+/* The RPDO with its current data, sent at once, as a PLC's cyclic frame would be. */
+static int send_rpdo(drive_session_t *d)
+{
+    co_frame_t frame = {.id = d->rpdo.cob_id, .len = d->rpdo.len};
+    memcpy(frame.data, d->rpdo.data, d->rpdo.len);
+    comaster_bus_send(d->bus, &frame);
+    return comaster_bus_pause(d->bus, 0);
+}
+
+/* The control word by SDO, or in the RPDO. */
+static int write_control(drive_session_t *d, uint16_t control)
+{
+    if (!d->rpdo.used)
+        return write_u16(d, CIA402_CONTROL_WORD, control);
+    co_put_u16(&d->rpdo.data[d->rpdo.control_at], control);
+    return send_rpdo(d);
+}
+
 /* Writes a control word and reads the status word until it shows `state` (deadline). */
 static int command(drive_session_t *d, uint16_t control, const char *state)
 {
-    int rc = write_u16(d, CIA402_CONTROL_WORD, control);
+    int rc = write_control(d, control);
     co_time_t deadline = co_linux_now() + (co_time_t)d->opts->timeout_ms * 1000u;
     while (rc == 0) {
         rc = read_status(d);
@@ -122,8 +165,11 @@ static int command(drive_session_t *d, uint16_t control, const char *state)
         if (co_linux_now() >= deadline)
             return comaster_fail(d->opts, COMASTER_EXIT_TIMEOUT,
                                  "node %u: control word 0x%04X: no %s within %u ms (6041h = "
-                                 "0x%04X) (--timeout MS waits longer)",
-                                 d->node, control, state, d->opts->timeout_ms, d->status);
+                                 "0x%04X)%s (--timeout MS waits longer)",
+                                 d->node, control, state, d->opts->timeout_ms, d->status,
+                                 d->rpdo.used ? ": RPDOs count only in Operational: comaster "
+                                                "nmt start NODE"
+                                              : "");
         rc = comaster_bus_pause(d->bus, POLL_MS);
     }
     return rc;
@@ -176,10 +222,97 @@ static int run_target(drive_session_t *d, target_t target)
         if (!in_fault)
             return 0;
         /* The reset acts on the rising edge of bit 7: the bit is cleared first. */
-        int rc = write_u16(d, CIA402_CONTROL_WORD, CW_DISABLE_VOLTAGE);
+        int rc = write_control(d, CW_DISABLE_VOLTAGE);
         return rc ? rc : command(d, CW_FAULT_RESET, "Switch on disabled");
     }
     return 0;
+}
+
+/* ---- --rpdo: the RPDO mapping 6040h, read over SDO ------------------------------------------ */
+
+/* Reads up to 4 bytes; *size 0 when the node aborted (it has no such object). */
+static int read_value(drive_session_t *d, uint16_t index, uint8_t sub, uint8_t *buf, uint32_t cap,
+                      uint32_t *size)
+{
+    co_sdo_client_result_t result;
+    *size = 0;
+    int rc = comaster_sdo_upload(d->bus, d->node, index, sub, buf, cap, CO_SDO_CLIENT_AUTO,
+                                 d->opts->timeout_ms, &result);
+    if (rc == 0 && result.status == CO_SDO_CLIENT_CLIENT_ABORT &&
+        result.abort_code == SDO_ABORT_TIMEOUT)
+        return comaster_sdo_status(d->opts, d->node, &result);
+    if (rc == 0 && result.status == CO_SDO_CLIENT_OK)
+        *size = result.size;
+    return rc;
+}
+
+static int read_u32(drive_session_t *d, uint16_t index, uint8_t sub, uint32_t *value, bool *has)
+{
+    uint8_t buf[4] = {0};
+    uint32_t size;
+    int rc = read_value(d, index, sub, buf, sizeof buf, &size);
+    *has = rc == 0 && size > 0;
+    *value = co_get_u32(buf);
+    return rc;
+}
+
+/* Reads the mapping of RPDO n; `candidate` is filled when it maps 6040h in at most 8 bytes of
+ * whole-byte objects. Returns 0 or the status of a transfer that could not run. */
+static int read_rpdo_mapping(drive_session_t *d, unsigned n, rpdo_t *candidate)
+{
+    uint32_t count, entry;
+    bool has;
+    int rc = read_u32(d, (uint16_t)(RPDO_MAPPING + n), 0, &count, &has);
+    if (rc != 0 || !has || count > PDO_MAPPED_MAX)
+        return rc;
+    candidate->control_at = 0xFF;
+    candidate->speed_at = -1;
+    unsigned offset = 0;
+    for (uint8_t sub = 1; sub <= count; sub++) {
+        rc = read_u32(d, (uint16_t)(RPDO_MAPPING + n), sub, &entry, &has);
+        unsigned bytes = (entry & 0xFFu) / 8u;
+        if (rc != 0 || !has || (entry & 7u) || bytes == 0 || offset + bytes > 8)
+            return rc;
+        if (entry == MAP_CONTROL_WORD)
+            candidate->control_at = (uint8_t)offset;
+        else if (entry == MAP_TARGET_VELOCITY)
+            candidate->speed_at = (int)offset;
+        uint32_t size;
+        rc = read_value(d, (uint16_t)(entry >> 16), (uint8_t)(entry >> 8), &candidate->data[offset],
+                        bytes, &size);
+        if (rc != 0)
+            return rc;
+        offset += bytes;
+    }
+    candidate->len = (uint8_t)offset;
+    candidate->used = candidate->control_at != 0xFF;
+    return 0;
+}
+
+static int find_rpdo(drive_session_t *d)
+{
+    for (unsigned n = 0; n < RPDO_COUNT; n++) {
+        uint32_t cob_id;
+        bool has;
+        int rc = read_u32(d, (uint16_t)(RPDO_COMM + n), 1, &cob_id, &has);
+        if (rc != 0)
+            return rc;
+        if (!has || (cob_id & PDO_COB_ID_INVALID))
+            continue;
+        rpdo_t candidate = {.cob_id = (uint16_t)(cob_id & PDO_COB_ID_MASK)};
+        rc = read_rpdo_mapping(d, n, &candidate);
+        if (rc != 0)
+            return rc;
+        if (candidate.used) {
+            d->rpdo = candidate;
+            return 0;
+        }
+    }
+    return comaster_fail(d->opts, EX_DATAERR,
+                         "node %u: --rpdo: no valid RPDO (1400h-1407h) maps the control word "
+                         "6040h: make one valid (e.g. comaster write %u 0x1405:1 u32 0x%03X), or "
+                         "drive by SDO without --rpdo",
+                         d->node, d->node, 0x300u + d->node);
 }
 
 static bool parse_rpm(const comaster_options_t *opts, const char *text, int16_t *rpm)
@@ -199,7 +332,7 @@ static bool parse_rpm(const comaster_options_t *opts, const char *text, int16_t 
 int comaster_drive_main(comaster_options_t *opts, int argc, char **argv)
 {
     comaster_args_t args;
-    int rc = comaster_parse_args(opts, &args, argc, argv, drive_help, "", 2, 3);
+    int rc = comaster_parse_args(opts, &args, argc, argv, drive_help, "--rpdo", 2, 3);
     if (rc >= 0)
         return rc;
     static const struct {
@@ -232,8 +365,15 @@ int comaster_drive_main(comaster_options_t *opts, int argc, char **argv)
     static comaster_bus_t bus;
     d.bus = &bus;
     rc = comaster_bus_open(&bus, opts);
-    if (rc == 0 && speed)
+    if (rc == 0 && args.rpdo)
+        rc = find_rpdo(&d);
+    if (rc == 0 && speed && d.rpdo.used && d.rpdo.speed_at >= 0) {
+        /* With the control word as it is (read with the mapping): only the velocity changes. */
+        co_put_u16(&d.rpdo.data[d.rpdo.speed_at], (uint16_t)rpm);
+        rc = send_rpdo(&d);
+    } else if (rc == 0 && speed) {
         rc = write_u16(&d, CIA402_TARGET_VELOCITY, (uint16_t)rpm);
+    }
     if (rc == 0)
         rc = read_status(&d);
     if (rc == 0)

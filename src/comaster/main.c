@@ -7,10 +7,14 @@
 #include <stdlib.h>
 #include <string.h>
 
+/* One line per command; the summary is "USAGE: WHAT" (--help lists WHAT after the name). */
 static const comaster_command_t commands[] = {
     {"read", "read NODE OBJECT [TYPE]: an object's value (SDO upload)", comaster_read_main},
     {"write", "write NODE OBJECT TYPE VALUE: set an object (SDO download)", comaster_write_main},
     {"nmt", "nmt start|stop|preop|reset-node|reset-comm NODE|all: NMT command", comaster_nmt_main},
+    {"scan", "scan: the nodes present, their identity and NMT state", comaster_scan_main},
+    {"monitor", "monitor [NODE...]: heartbeats, EMCYs, SYNC and PDOs as they arrive",
+     comaster_monitor_main},
     {"drive", "drive NODE enable|disable|quick-stop|fault-reset|speed RPM: CiA 402",
      comaster_drive_main},
     {"boot", "boot NODE DCF: boot one slave from its DCF (network master)", comaster_boot_main},

@@ -260,6 +260,8 @@ bool comaster_value_format(const comaster_type_t *type, const uint8_t *data, siz
         return false;
     }
     format_number(type, get_le(data, len), out, cap);
+    /* A NaN or an infinity is no JSON number: it goes as the string printf wrote ("nan"). */
+    *is_text = is_real(type) && !isdigit((unsigned char)out[out[0] == '-']);
     return true;
 }
 

@@ -259,6 +259,20 @@ const char *eds_name(const eds_t *eds, uint16_t index, uint8_t sub)
     return e ? e->name : NULL;
 }
 
+bool eds_set_value(eds_t *eds, uint16_t index, uint8_t sub, uint64_t value)
+{
+    eds_entry_t *e = (eds_entry_t *)find_exact(eds, index, sub);
+    if (!e && sub == 0)
+        e = (eds_entry_t *)find_exact(eds, index, EDS_OBJECT);
+    if (!e)
+        e = add_entry(eds, index, sub);
+    if (!e)
+        return false;
+    e->has_value = true;
+    e->value = value;
+    return true;
+}
+
 /* The first word of a name: the mnemonic of a manufacturer parameter ("ACC acceleration ..."). */
 static bool first_word_is(const char *name, const char *word)
 {

@@ -54,6 +54,10 @@ const eds_entry_t *eds_find(const eds_t *eds, uint16_t index, uint8_t sub);
 /* The name of index:sub, or of its object when the sub-index has none; NULL when unknown. */
 const char *eds_name(const eds_t *eds, uint16_t index, uint8_t sub);
 
+/* Sets the value of index:sub as a DCF's ParameterValue would (a device's actual PDO mapping read
+ * over SDO), adding the entry when the file has none. False when out of memory. */
+bool eds_set_value(eds_t *eds, uint16_t index, uint8_t sub, uint64_t value);
+
 /* The outcome of eds_find_by_name. */
 typedef enum eds_lookup {
     EDS_LOOKUP_FOUND = 0,

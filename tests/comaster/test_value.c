@@ -96,6 +96,17 @@ START_TEST(format_errors_and_strings)
     ck_assert(is_text);
     ck_assert(comaster_value_format(type("u8"), three, 1, out, sizeof out, &is_text));
     ck_assert(!is_text);
+    const uint8_t nan32[] = {0x00, 0x00, 0xC0, 0x7F}, minus_inf[] = {0x00, 0x00, 0x80, 0xFF};
+    ck_assert(comaster_value_format(type("f32"), nan32, 4, out, sizeof out, &is_text));
+    ck_assert_str_eq(out, "nan");
+    ck_assert(is_text); /* not a JSON number */
+    ck_assert(comaster_value_format(type("f32"), minus_inf, 4, out, sizeof out, &is_text));
+    ck_assert_str_eq(out, "-inf");
+    ck_assert(is_text);
+    const uint8_t minus_half[] = {0x00, 0x00, 0x00, 0xBF};
+    ck_assert(comaster_value_format(type("f32"), minus_half, 4, out, sizeof out, &is_text));
+    ck_assert_str_eq(out, "-0.5");
+    ck_assert(!is_text);
     ck_assert_ptr_null(comaster_type_by_name("u7"));
     ck_assert_ptr_eq(comaster_type_by_code(CO_DT_INTEGER16), type("i16"));
 }
@@ -175,6 +186,21 @@ START_TEST(eds_for_identity)
 }
 END_TEST
 
+START_TEST(values_set_as_read_over_sdo)
+{
+    /* 1A05h:01 has a default; 1A05h:09 is not in the file: it is added. */
+    ck_assert(eds_set_value(&eds, 0x1A05, 1, 0x60410010));
+    ck_assert(eds_set_value(&eds, 0x1A05, 9, 0x12345678));
+    const eds_entry_t *e = eds_find(&eds, 0x1A05, 1);
+    ck_assert(e->has_value);
+    ck_assert_uint_eq(e->value, 0x60410010);
+    ck_assert_str_eq(e->name, eds_name(&eds, 0x1A05, 1));
+    e = eds_find(&eds, 0x1A05, 9);
+    ck_assert(e && e->has_value && e->value == 0x12345678);
+    ck_assert_ptr_null(e->name);
+}
+END_TEST
+
 int main(void)
 {
     Suite *s = suite_create("comaster_value");
@@ -189,6 +215,7 @@ int main(void)
     tcase_add_checked_fixture(named, load_eds, free_eds);
     tcase_add_test(named, objects_by_name);
     tcase_add_test(named, eds_for_identity);
+    tcase_add_test(named, values_set_as_read_over_sdo);
     suite_add_tcase(s, named);
     return check_run_suite(s);
 }

@@ -4,8 +4,13 @@ frames on the bus."""
 
 import json
 import os
+import queue
+import re
+import signal
 import subprocess
 import sys
+import threading
+import time
 from pathlib import Path
 
 import pytest
@@ -90,12 +95,21 @@ def test_abort_timeout_and_data_errors(drives):
     assert err == "comaster: node 4, 203C:02: 70000 is out of range for UNSIGNED16 (0..65535)\n"
 
 
+def test_signal_ends_a_command_with_exit_3(dump):
+    p = subprocess.Popen([COMASTER, "-i", IFACE, "--timeout", "10000", "read", "9", "0x1000",
+                          "u32"], stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
+    dump.expect(0x609, "4000100000000000")  # its request is out: it waits for the answer
+    p.send_signal(signal.SIGTERM)
+    assert p.wait(timeout=5) == 3
+    assert p.stderr.read() == "comaster: interrupted by a signal before the command finished\n"
+
+
 def test_usage_errors():
     assert comaster("read", 128, "0x1000")[0::2] == (
         EX_USAGE, "comaster: '128' is not a node-id: give a number 1..127\n")
     assert comaster("frobnicate")[0::2] == (
-        EX_USAGE, "comaster: unknown command 'frobnicate': give one of read, write, nmt, drive (see "
-        "comaster --help)\n")
+        EX_USAGE, "comaster: unknown command 'frobnicate': give one of read, write, nmt, scan, monitor, drive, "
+        "boot, run, set, get, status (see comaster --help)\n")
     assert comaster("read", 4, "0x1000", "u7")[0] == EX_USAGE
     p = subprocess.run([COMASTER, "-i", "nosuchcan0", "read", "4", "0x1000"], capture_output=True,
                        text=True, timeout=30)
@@ -167,14 +181,23 @@ def test_block_transfers_against_local_node(local_node):
         0, "LocalNode label\n", "")
 
 
+def assert_enabled(lines, node):
+    """The last line of an enable: Operation enabled with remote (bit 9) set; bit 10 (target
+    reached) depends on how far the ramp is when the status word is read."""
+    assert len(lines) == 1
+    match = re.fullmatch(rf"node {node}: Operation enabled \(6041h = 0x([0-9A-F]{{4}})\)", lines[0])
+    assert match and int(match.group(1), 16) & ~0x0400 == 0x0227, lines[0]
+
+
 def test_drive_speed_runs_the_state_machine_by_sdo(drives, dump):
     mark = dump.mark()
     rc, out, err = comaster("drive", 4, "speed", "1200")
     assert (rc, err) == (0, "")
-    assert out == ("node 4: Switch on disabled (6041h = 0x0640)\n"
-                   "node 4: Ready to switch on (6041h = 0x0621)\n"
-                   "node 4: Switched on (6041h = 0x0623)\n"
-                   "node 4: Operation enabled (6041h = 0x0227)\n")
+    lines = out.splitlines()
+    assert lines[:3] == ["node 4: Switch on disabled (6041h = 0x0640)",
+                         "node 4: Ready to switch on (6041h = 0x0621)",
+                         "node 4: Switched on (6041h = 0x0623)"]
+    assert_enabled(lines[3:], 4)
     dump.expect(0x604, "2B4060000F000000", since=mark)  # the last write: every frame before is seen
     requests = [str(f) for f in dump.seen[mark:] if f.can_id == 0x604 and f.data[0] == 0x2B]
     assert requests == ["604#2B426000B0040000", "604#2B40600006000000",
@@ -214,3 +237,164 @@ def test_drive_usage_errors():
         EX_USAGE, "comaster: drive: speed '99999' is not a velocity: give rpm -32768..32767\n")
     assert comaster("drive", 4, "fly")[0] == EX_USAGE
     assert comaster("drive", 4, "speed")[0] == EX_USAGE
+
+
+def test_scan_lists_every_model_with_its_state(bus, start_daemon, dump):
+    start_daemon(bus, "--node-id", "4-5", "--model", "atv312", "--node-id", "6", "--model",
+                 "atv31", "--node-id", "7", "--model", "atv58", boot_ids=[4, 5, 6, 7],
+                 padded_ids=[7])
+    assert comaster("nmt", "start", 5)[0] == 0
+    mark = dump.mark()
+    rc, out, err = comaster("scan")
+    assert (rc, err) == (0, "")
+    assert out.splitlines() == [
+        "node  device type vendor      product     revision    name              state",
+        "   4  0x00010192  0x0000005F  -           -           ATV312            Pre-operational",
+        "   5  0x00010192  0x0000005F  -           -           ATV312            Operational",
+        "   6  0x00010192  0x0000005F  -           -           ATV31             Pre-operational",
+        "   7  0x00010192  -           -           -           AT58              Pre-operational"]
+    # Every node-id was asked for 1000h once; the states were asked by node guarding.
+    dump.expect(0x707, "7F00000000000000", since=mark)  # the ATV58's reply, padded: the last
+    requests = [f.can_id for f in dump.seen[mark:] if f.data[:4] == bytes.fromhex("40001000")]
+    assert requests == list(range(0x601, 0x680))
+    rc, out, _ = comaster("--json", "--timeout", "300", "scan")
+    assert rc == 0
+    assert json.loads(out.splitlines()[3]) == {
+        "node": 7, "device_type": "0x00010192", "vendor": None, "product": None,
+        "revision": None, "name": "AT58", "state": "Pre-operational"}
+
+
+def test_scan_of_an_empty_bus():
+    assert comaster("--timeout", "100", "scan")[0::2] == (
+        EXIT_TIMEOUT, "comaster: no node answered on vcan0 within 100 ms (--timeout MS waits "
+        "longer)\n")
+
+
+class Monitor:
+    """comaster monitor in the background; its lines without the time, read with deadlines."""
+
+    def __init__(self, *args):
+        self.proc = subprocess.Popen([COMASTER, "-i", IFACE, "monitor", *[str(a) for a in args]],
+                                     stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
+        self.lines = queue.Queue()
+        threading.Thread(target=self._read, daemon=True).start()
+        ready = self.proc.stderr.readline()
+        assert ready == "comaster: monitoring vcan0 (Ctrl-C ends)\n", ready + self.proc.stderr.read()
+
+    def _read(self):
+        for line in self.proc.stdout:
+            self.lines.put(line)
+
+    def expect(self, text, timeout=2.0):
+        """Waits for the line `text` (after its time); returns the lines skipped on the way."""
+        deadline = time.monotonic() + timeout
+        skipped = []
+        while True:
+            try:
+                line = self.lines.get(timeout=max(0.0, deadline - time.monotonic()))
+            except queue.Empty:
+                pytest.fail(f"monitor printed no {text!r} within {timeout} s; it printed {skipped}")
+            match = re.match(r"^ *\d+\.\d{3}  (.*)\n$", line)
+            assert match, f"not a monitor line: {line!r}"
+            if match.group(1) == text:
+                return skipped
+            skipped.append(match.group(1))
+
+    def stop(self):
+        self.proc.send_signal(signal.SIGTERM)
+        return self.proc.wait(timeout=5)
+
+
+def test_monitor_states_pdos_by_name_sync_and_emcy(drives, bus):
+    assert comaster("write", 4, "0x1805:1", "u32", "0x284") == (0, "", "")  # PDO6 valid
+    monitor = Monitor(4)
+    try:
+        assert comaster("write", 4, "0x1017", "u16", "100") == (0, "", "")
+        monitor.expect("node 4: Pre-operational")  # its first heartbeat
+        assert comaster("nmt", "start", 4) == (0, "", "")
+        monitor.expect("node 4: Pre-operational -> Operational")
+        assert comaster("drive", 4, "enable")[0] == 0
+        # PDO6 (1805h, 1A05h), its mapping read over SDO, named by the ATV312's EDS.
+        monitor.expect("TPDO6 node 4: 6041:00 Statusword (ETAD) = 0x0627 Operation enabled, "
+                       "6044:00 vl velocity actual value (RFRD) = 0")
+        monitor.expect("TPDO1 node 4: 6041:00 Statusword (ETAD) = 0x0627 Operation enabled")
+        bus.send(Frame(0x080))
+        monitor.expect("SYNC")
+        # Node 5 loses the heartbeat of node 0x7E: its network fault, decoded.
+        assert comaster("write", 5, "0x1016:1", "u32", "0x007E0032") == (0, "", "")
+        bus.send(Frame(0x77E, b"\x05"))
+        monitor.expect("node 5: EMCY 0x8130 life guard error or heartbeat error, error register "
+                       "0x11")
+        assert comaster("nmt", "stop", 4) == (0, "", "")
+        monitor.expect("node 4: Operational -> Stopped")
+    finally:
+        assert monitor.stop() == 0
+
+
+def test_monitor_json_lines(drives, bus):
+    monitor = Monitor("--json")
+    try:
+        bus.send(Frame(0x080, b"\x07"))
+        line = json.loads(monitor.lines.get(timeout=2.0))
+        assert line.pop("time") >= 0
+        assert line == {"event": "sync", "counter": 7}
+    finally:
+        assert monitor.stop() == 0
+
+
+def test_drive_by_the_mapped_rpdo(drives, dump):
+    rc, out, err = comaster("--timeout", "300", "drive", 4, "enable", "--rpdo")
+    assert (rc, out) == (EXIT_TIMEOUT, "node 4: Switch on disabled (6041h = 0x0640)\n")
+    assert err == ("comaster: node 4: control word 0x0006: no Ready to switch on within 300 ms "
+                   "(6041h = 0x0640): RPDOs count only in Operational: comaster nmt start NODE "
+                   "(--timeout MS waits longer)\n")
+    dump.expect(0x204, "0600")  # sent, and ignored in Pre-operational
+    assert comaster("nmt", "start", 4)[0] == 0
+    # RPDO1 (204h) maps 6040h alone: the velocity goes by SDO, the control words in RPDO1.
+    mark = dump.mark()
+    rc, out, _ = comaster("drive", 4, "speed", 600, "--rpdo")
+    assert rc == 0
+    assert_enabled(out.splitlines()[-1:], 4)
+    dump.expect(0x204, "0F00", since=mark)
+    assert [str(f) for f in dump.seen[mark:] if f.can_id == 0x204] == ["204#0600", "204#0700",
+                                                                       "204#0F00"]
+    assert any(str(f) == "604#2B42600058020000" for f in dump.seen[mark:])
+    # RPDO6 (305h) maps 6040h and 6042h once RPDO1 is invalid: both go in it.
+    assert comaster("write", 5, "0x1400:1", "u32", "0x80000205")[0] == 0
+    assert comaster("write", 5, "0x1405:1", "u32", "0x305")[0] == 0
+    assert comaster("nmt", "start", 5)[0] == 0
+    mark = dump.mark()
+    assert comaster("drive", 5, "speed", 700, "--rpdo")[0] == 0
+    dump.expect(0x305, "0F00BC02", since=mark)
+    assert [str(f) for f in dump.seen[mark:] if f.can_id == 0x305] == [
+        "305#0000BC02", "305#0600BC02", "305#0700BC02", "305#0F00BC02"]
+    assert comaster("read", 5, "0x6042", "i16") == (0, "700\n", "")
+
+
+def test_drive_rpdo_without_a_mapped_control_word(drives):
+    assert comaster("write", 4, "0x1400:1", "u32", "0x80000204")[0] == 0
+    assert comaster("drive", 4, "enable", "--rpdo")[0::2] == (
+        EX_DATAERR, "comaster: node 4: --rpdo: no valid RPDO (1400h-1407h) maps the control word "
+        "6040h: make one valid (e.g. comaster write 4 0x1405:1 u32 0x304), or drive by SDO "
+        "without --rpdo\n")
+
+
+def test_monitor_heartbeat_lost_and_heard_again(drives):
+    assert comaster("write", 4, "0x1017", "u16", "50") == (0, "", "")
+    monitor = Monitor(4, "--heartbeat", 200)
+    try:
+        monitor.expect("node 4: Pre-operational")
+        assert comaster("write", 4, "0x1017", "u16", "0") == (0, "", "")  # heartbeats stop
+        monitor.expect("node 4: heartbeat lost")
+        assert comaster("write", 4, "0x1017", "u16", "50") == (0, "", "")
+        monitor.expect("node 4: heard again")
+    finally:
+        assert monitor.stop() == 0
+
+
+def test_eds_dir_is_the_only_place_looked_in(drives, tmp_path):
+    assert comaster("--eds-dir", tmp_path, "read", 4, "ACC")[0::2] == (
+        EX_USAGE, "comaster: 'ACC' is not an object: give INDEX:SUB such as 0x203C:2, or a name "
+        "with --eds FILE (or an EDS for the node's identity in the EDS directory)\n")
+    (tmp_path / "ATV312.eds").write_text(EDS.read_text())
+    assert comaster("--eds-dir", tmp_path, "read", 4, "ACC") == (0, "30\n", "")

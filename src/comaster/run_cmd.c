@@ -333,6 +333,7 @@ static int run_master(runner_t *r, comaster_options_t *opts, const char *control
     int rc = comaster_bus_open(&r->bus, opts);
     if (rc != 0)
         return rc;
+    r->bus.signal_is_the_end = !r->boot_only; /* a run ends with SIGINT or SIGTERM */
     char err[512];
     if (control_path) {
         rc = comaster_control_open(&r->control, &r->bus.loop, control_path, handle_request, r, err,

@@ -84,9 +84,12 @@ class Run:
         return comaster(*args, "--control", self.control)
 
     def stop(self):
+        """SIGTERM, the normal end of a run; returns its exit status once all its output is read."""
         if self.proc.poll() is None:
             self.proc.send_signal(signal.SIGTERM)
             self.proc.wait(timeout=5)
+        while (line := self.lines.get(timeout=5)) is not None:
+            self.seen.append(line)
         return self.proc.returncode
 
 
@@ -102,6 +105,8 @@ def run(tmp_path):
     yield start
     for r in runs:
         assert r.stop() == 0, "comaster run did not exit 0 on SIGTERM"
+        assert not [line for line in r.seen if line.startswith("comaster: ") and "control socket" not in line], \
+            "SIGTERM, the normal end of a run, was reported as an error"
         assert not os.path.exists(r.control), "the control socket was left behind"
         print("--- comaster run ---\n" + "\n".join(r.seen))
 

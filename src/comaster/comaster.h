@@ -57,6 +57,11 @@ int comaster_nmt_main(comaster_options_t *opts, int argc, char **argv);
 int comaster_scan_main(comaster_options_t *opts, int argc, char **argv);
 int comaster_monitor_main(comaster_options_t *opts, int argc, char **argv);
 int comaster_drive_main(comaster_options_t *opts, int argc, char **argv);
+int comaster_boot_main(comaster_options_t *opts, int argc, char **argv);
+int comaster_run_main(comaster_options_t *opts, int argc, char **argv);
+int comaster_set_main(comaster_options_t *opts, int argc, char **argv);
+int comaster_get_main(comaster_options_t *opts, int argc, char **argv);
+int comaster_status_main(comaster_options_t *opts, int argc, char **argv);
 
 /* Parses a command's arguments (argv[0] is the command): the common options, --help (prints
  * `help` and returns 0), the command's flags named in `flags` (" --block --output "), and at

@@ -17,6 +17,11 @@ static const comaster_command_t commands[] = {
      comaster_monitor_main},
     {"drive", "drive NODE enable|disable|quick-stop|fault-reset|speed RPM: CiA 402",
      comaster_drive_main},
+    {"boot", "boot NODE DCF: boot one slave from its DCF (network master)", comaster_boot_main},
+    {"run", "run NETWORK: run the network master in the foreground", comaster_run_main},
+    {"set", "set NODE NAME VALUE: set an output of a run's process image", comaster_set_main},
+    {"get", "get NODE NAME: a variable of a run's process image", comaster_get_main},
+    {"status", "status: the status bits of a run's master and slaves", comaster_status_main},
 };
 
 #define COMMAND_COUNT (sizeof commands / sizeof commands[0])

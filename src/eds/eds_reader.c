@@ -120,6 +120,16 @@ static bool set_key(parse_state_t *st, const char *key, const char *value, char 
             return false;
         }
         e->data_type = (uint16_t)type;
+    } else if (strcasecmp(key, "Denotation") == 0) {
+        free(e->denotation);
+        e->denotation = strdup(value);
+        if (!e->denotation) {
+            snprintf(err, err_len, "%s: out of memory", st->path);
+            return false;
+        }
+    } else if (strcasecmp(key, "AccessType") == 0) {
+        e->writable = strcasecmp(value, "rw") == 0 || strcasecmp(value, "wo") == 0 ||
+                      strcasecmp(value, "rww") == 0 || strcasecmp(value, "rwr") == 0;
     } else if (strcasecmp(key, "ParameterValue") == 0 ||
                (strcasecmp(key, "DefaultValue") == 0 && !st->value_is_parameter)) {
         /* Strings and domains have values that are not numbers: they are only not decoded. */
@@ -131,6 +141,7 @@ static bool set_key(parse_state_t *st, const char *key, const char *value, char 
             return false;
         }
         st->value_is_parameter = st->value_is_parameter || strcasecmp(key, "ParameterValue") == 0;
+        e->configured = st->value_is_parameter;
     }
     return true;
 }
@@ -217,6 +228,7 @@ void eds_free(eds_t *eds)
     for (size_t i = 0; i < eds->count; i++) {
         free(eds->entries[i].name);
         free(eds->entries[i].text);
+        free(eds->entries[i].denotation);
     }
     free(eds->entries);
     memset(eds, 0, sizeof *eds);
@@ -309,7 +321,9 @@ eds_lookup_t eds_find_by_name(const eds_t *eds, const char *name, const eds_entr
         size_t matches = 0;
         for (size_t i = 0; i < eds->count; i++) {
             const eds_entry_t *e = &eds->entries[i];
-            if (e->name && is_variable(eds, e) && name_matches(e->name, name, kind)) {
+            bool denoted =
+                kind == MATCH_WHOLE && e->denotation && strcasecmp(e->denotation, name) == 0;
+            if (e->name && is_variable(eds, e) && (denoted || name_matches(e->name, name, kind))) {
                 if (!*found)
                     *found = e;
                 matches++;

@@ -23,6 +23,11 @@ typedef struct eds_entry {
     uint64_t value; /* numeric value, $NODEID resolved */
     char *name;
     char *text; /* the value as written (a VISIBLE_STRING's default), or NULL */
+    /* A DCF's own keys: the value is a ParameterValue (the configuration of the device, which a
+     * network master downloads), and the Denotation (the application's name of the object). */
+    bool configured;
+    char *denotation;
+    bool writable; /* AccessType rw, wo, rww or rwr */
 } eds_entry_t;
 
 typedef struct eds {
@@ -61,8 +66,8 @@ typedef enum eds_lookup {
 } eds_lookup_t;
 
 /* Finds a variable (not a record's own section) by its ParameterName, case-insensitive: the whole
- * name ("ACC acceleration time (0.1 s)"), else its first word, the mnemonic of a manufacturer
- * parameter ("ACC"), else a part of one name ("acceleration time"). */
+ * name ("ACC acceleration time (0.1 s)") or a DCF's Denotation ("speed"), else its first word, the
+ * mnemonic of a manufacturer parameter ("ACC"), else a part of one name ("acceleration time"). */
 eds_lookup_t eds_find_by_name(const eds_t *eds, const char *name, const eds_entry_t **found);
 
 /* A device as it tells who it is: 1018h:01, 1018h:02 and 1008h. */

@@ -108,8 +108,8 @@ def test_usage_errors():
     assert comaster("read", 128, "0x1000")[0::2] == (
         EX_USAGE, "comaster: '128' is not a node-id: give a number 1..127\n")
     assert comaster("frobnicate")[0::2] == (
-        EX_USAGE, "comaster: unknown command 'frobnicate': give one of read, write, nmt, scan, monitor, drive (see "
-        "comaster --help)\n")
+        EX_USAGE, "comaster: unknown command 'frobnicate': give one of read, write, nmt, scan, monitor, drive, "
+        "boot, run, set, get, status (see comaster --help)\n")
     assert comaster("read", 4, "0x1000", "u7")[0] == EX_USAGE
     p = subprocess.run([COMASTER, "-i", "nosuchcan0", "read", "4", "0x1000"], capture_output=True,
                        text=True, timeout=30)

@@ -1,0 +1,231 @@
+/* Network master (the PLC300's master mode, its manual section 7.3; the "boot slave" process of
+ * CiA 302-2): boots a table of slaves (reset communication, identify by 1000h and 1018h, download
+ * the configuration, start error control, NMT start), retries a failed slave after the others,
+ * re-boots a slave whose error control fails, keeps the PLC300's status words (its section 5.6.3),
+ * the last SDO error and the last EMCY (5.6.4, 5.6.5), and exchanges a process image with the
+ * slaves by PDO. Built on co_sdo_client_t (one, reused slave after slave as the PLC300's single
+ * client), co_nmt_master_t, co_emcy_consumer_t and co_sync_producer_t; owns none of their
+ * protocols. Passive like the rest of the core: frames and time are passed in, frames go out
+ * through the send callback, no malloc, no globals. Behaviour and decisions: docs/net-master.md. */
+#ifndef CO_NET_MASTER_H
+#define CO_NET_MASTER_H
+
+#include "co_emcy_consumer.h"
+#include "co_nmt_master.h"
+#include "co_sdo_client.h"
+#include "co_sync.h"
+
+/* Status word of one slave, bits of the PLC300's %SW3202..%SW3454 (5.6.3). */
+#define CO_NET_SLAVE_CONTACTED 0x0001u  /* bit 0: 1000h read (and identity matched) */
+#define CO_NET_SLAVE_CONFIGURED 0x0002u /* bit 1: every configuration write done */
+#define CO_NET_SLAVE_EC_STARTED 0x0004u /* bit 2: error control started (or none) */
+#define CO_NET_SLAVE_INIT_DONE 0x0008u  /* bit 3: initialisation finished successfully */
+#define CO_NET_SLAVE_INIT_ERROR 0x0010u /* bit 4: the last initialisation failed */
+#define CO_NET_SLAVE_EC_ERROR 0x0020u   /* bit 5: error control detected a failure */
+/* Status word of the master, bits of the PLC300's %SW3200 (5.6.3); bit 6 is the project's own. */
+#define CO_NET_MASTER_ALL_CONTACTED 0x0001u   /* bit 0: every slave has bit 0 */
+#define CO_NET_MASTER_ALL_CONFIGURED 0x0002u  /* bit 1: every slave has bit 1 */
+#define CO_NET_MASTER_ALL_EC_STARTED 0x0004u  /* bit 2: every slave has bit 2 */
+#define CO_NET_MASTER_INIT_FINISHED 0x0008u   /* bit 3: every slave's first attempt ended */
+#define CO_NET_MASTER_INIT_ERROR 0x0010u      /* bit 4: some slave has bit 4 */
+#define CO_NET_MASTER_EC_ERROR 0x0020u        /* bit 5: some slave has bit 5 */
+#define CO_NET_MASTER_MANDATORY_ERROR 0x0040u /* bit 6: some mandatory slave has bit 4 */
+
+/* Which identity values are compared with the expected ones (co_net_slave_config_t.check). */
+#define CO_NET_CHECK_DEVICE_TYPE 0x01u /* 1000h */
+#define CO_NET_CHECK_VENDOR 0x02u      /* 1018h:01 */
+#define CO_NET_CHECK_PRODUCT 0x04u     /* 1018h:02 */
+#define CO_NET_CHECK_REVISION 0x08u    /* 1018h:03 */
+#define CO_NET_CHECK_SERIAL 0x10u      /* 1018h:04 */
+#define CO_NET_IDENTITY_SUBS 4u
+
+/* The PLC300's SDO timeout range (its CO_SDORead block, 5-5000 ms). */
+#define CO_NET_SDO_TIMEOUT_MIN_MS 5u
+#define CO_NET_SDO_TIMEOUT_MAX_MS 5000u
+
+/* One configuration write: `len` bytes at `data` (application memory that outlives the master). */
+typedef struct co_net_write {
+    uint16_t index;
+    uint8_t subindex;
+    const uint8_t *data;
+    uint32_t len;
+} co_net_write_t;
+
+/* What to do when error control of a running slave fails. */
+typedef enum co_net_on_error {
+    CO_NET_ON_ERROR_REBOOT = 0, /* reset node, then boot it again from the start */
+    CO_NET_ON_ERROR_REPORT      /* only set bit 5 (cleared when the slave is heard again) */
+} co_net_on_error_t;
+
+typedef struct co_net_slave_config {
+    uint8_t node_id; /* 1..127, each at most once */
+    bool mandatory;  /* NMT start all waits for it; its init error sets master bit 6 */
+    uint8_t check;   /* CO_NET_CHECK_* */
+    uint32_t device_type;
+    uint32_t identity[CO_NET_IDENTITY_SUBS]; /* expected 1018h:01..04 */
+    const co_net_write_t *writes;
+    size_t write_count;
+    uint16_t heartbeat_ms; /* consumer time, 0: no heartbeat monitoring */
+    uint16_t guard_ms;     /* node guarding when heartbeat_ms is 0 and this is not */
+    uint8_t life_time_factor;
+    co_net_on_error_t on_error;
+} co_net_slave_config_t;
+
+/* When the master sends NMT start. */
+typedef enum co_net_start {
+    CO_NET_START_EACH = 0, /* each slave as soon as it is configured */
+    CO_NET_START_ALL,      /* all at once (node 0) when every mandatory slave is configured and
+                            * every first attempt ended; a slave booted after that starts alone */
+    CO_NET_START_NONE      /* never: the application starts them */
+} co_net_start_t;
+
+/* One PDO of the process image: the frame's bytes are image[offset .. offset + len). Inputs are
+ * the slaves' TPDOs, outputs the RPDOs the master sends them. */
+typedef struct co_net_pdo {
+    uint8_t node_id; /* the slave it comes from or goes to */
+    uint16_t can_id; /* 11-bit */
+    uint8_t len;     /* 1..8 */
+    uint16_t offset;
+} co_net_pdo_t;
+
+typedef enum co_net_event_kind {
+    CO_NET_EVENT_STEP,      /* the slave entered another step */
+    CO_NET_EVENT_STATUS,    /* the slave's status word changed */
+    CO_NET_EVENT_SDO_ERROR, /* last_sdo_error was updated */
+    CO_NET_EVENT_EMCY,      /* last_emcy was updated */
+    CO_NET_EVENT_INPUT,     /* a TPDO updated the input image (`pdo` is its index) */
+    CO_NET_EVENT_STARTED    /* NMT start all was sent */
+} co_net_event_kind_t;
+
+/* Where a slave is in its boot. */
+typedef enum co_net_step {
+    CO_NET_STEP_IDLE = 0,    /* before co_net_master_start */
+    CO_NET_STEP_WAIT_BOOT,   /* reset sent: waiting for its boot-up (or the boot time) */
+    CO_NET_STEP_DEVICE_TYPE, /* reading 1000h */
+    CO_NET_STEP_IDENTITY,    /* reading the checked 1018h subs */
+    CO_NET_STEP_DOWNLOAD,    /* writing the configuration */
+    CO_NET_STEP_WAIT_START,  /* configured, waiting for NMT start all */
+    CO_NET_STEP_OPERATIONAL, /* initialised (and started, unless CO_NET_START_NONE) */
+    CO_NET_STEP_FAILED,      /* init error: retried after the retry delay, after the others */
+    CO_NET_STEP_LOST         /* error control failed, CO_NET_ON_ERROR_REPORT */
+} co_net_step_t;
+
+/* Why the last initialisation of a slave failed. */
+typedef enum co_net_failure {
+    CO_NET_FAIL_NONE = 0,
+    CO_NET_FAIL_SDO,         /* an SDO transfer failed: see last_sdo_error */
+    CO_NET_FAIL_DEVICE_TYPE, /* 1000h differs from the expected value */
+    CO_NET_FAIL_IDENTITY     /* a checked 1018h sub differs */
+} co_net_failure_t;
+
+typedef struct co_net_event {
+    co_net_event_kind_t kind;
+    uint8_t node_id; /* 0 for CO_NET_EVENT_STARTED */
+    size_t pdo;      /* CO_NET_EVENT_INPUT */
+} co_net_event_t;
+
+typedef void (*co_net_event_fn)(void *user, const co_net_event_t *event);
+
+/* The PLC300's last SDO error record (5.6.4). */
+#define CO_NET_ACCESS_READ 1u
+#define CO_NET_ACCESS_WRITE 2u
+typedef struct co_net_sdo_error {
+    uint8_t node_id; /* 0: none yet */
+    uint16_t index;
+    uint8_t subindex;
+    uint8_t access; /* CO_NET_ACCESS_* */
+    uint32_t value; /* a write's value (its first 4 bytes, little-endian) */
+    uint32_t abort_code;
+} co_net_sdo_error_t;
+
+/* What the master knows of one slave. */
+typedef struct co_net_slave {
+    uint8_t step;        /* co_net_step_t */
+    uint16_t status;     /* CO_NET_SLAVE_* */
+    uint8_t failure;     /* co_net_failure_t of the last failed attempt */
+    uint32_t read_value; /* the value of the failed identity check (or the last one read) */
+    bool booted;         /* its boot-up came in the current WAIT_BOOT */
+    bool tried;          /* an attempt at its initialisation ended (successfully or not) */
+    size_t write_pos;
+    uint8_t identity_sub;
+    co_time_t deadline;        /* WAIT_BOOT: the end of the boot time; FAILED: the retry */
+    co_time_t first_heartbeat; /* when the first heartbeat is due, CO_TIME_NEVER when not waited */
+} co_net_slave_t;
+
+typedef struct co_net_master_config {
+    co_send_fn send;                     /* required */
+    void *user;                          /* passed to send and event */
+    co_net_event_fn event;               /* may be NULL */
+    const co_net_slave_config_t *slaves; /* booted in this order */
+    co_net_slave_t *slave_state;         /* as many as slaves, the application's memory */
+    size_t slave_count;                  /* 1..127 */
+    uint16_t sdo_timeout_ms;             /* 5..5000 */
+    uint32_t boot_time_ms;   /* the wait for a boot-up after a reset; identification starts
+                              * anyway when it ends */
+    uint32_t retry_delay_ms; /* before a failed slave is tried again */
+    co_net_start_t start;
+    bool reset_all;          /* begin with NMT reset communication to all nodes (PLC300 step 1);
+                              * otherwise each slave is reset alone */
+    uint32_t sync_period_us; /* 0: no SYNC; otherwise SYNC on 080h, no counter */
+    const co_net_pdo_t *inputs;
+    size_t input_count;
+    uint8_t *input_image;
+    size_t input_size;
+    const co_net_pdo_t *outputs;
+    size_t output_count;
+    uint8_t *output_image;
+    size_t output_size;
+} co_net_master_config_t;
+
+typedef struct co_net_master {
+    co_net_master_config_t config;
+    co_nmt_master_t nmt;
+    co_sdo_client_t sdo;
+    co_emcy_consumer_t emcy;
+    co_sync_producer_t sync;
+    size_t current;   /* the slave using the SDO client, config.slave_count when none */
+    size_t next_pick; /* where the search for the next slave to boot starts */
+    bool started;     /* co_net_master_start was called */
+    bool started_all; /* CO_NET_START_ALL: the start all was sent */
+    co_time_t now;    /* of the call under way, for requests started from callbacks */
+    uint8_t value[4]; /* an identity value being read */
+    co_net_sdo_error_t last_sdo_error;
+    co_emcy_message_t last_emcy; /* node_id 0: none yet */
+} co_net_master_t;
+
+/* Checks and copies the configuration (the tables it points at are the application's and must
+ * outlive the master); every slave idle. False, and nothing sent, for: no send callback, no slave
+ * or more than 127, a node-id outside 1..127 or twice, a write without data, an SDO timeout
+ * outside 5..5000 ms, a PDO of length 0 or above 8, outside its image or for a node not in the
+ * table, a restricted CAN-ID. Sends nothing. */
+bool co_net_master_init(co_net_master_t *master, const co_net_master_config_t *config);
+
+/* Starts the boot of the whole network at `now`: NMT reset communication to all (or to each
+ * slave), every slave waits for its boot-up. */
+void co_net_master_start(co_net_master_t *master, co_time_t now);
+
+/* Handles a received frame; true when the master used it (boot-up, heartbeat, guarding reply,
+ * SDO response of the client, EMCY of a slave, input PDO). */
+bool co_net_master_receive(co_net_master_t *master, const co_frame_t *frame, co_time_t now);
+
+/* Runs what is due (timeouts, boot steps, retries, guarding, SYNC and the output PDOs it
+ * triggers) and returns the next deadline. */
+co_time_t co_net_master_process(co_net_master_t *master, co_time_t now);
+
+/* Writes `len` bytes of the output image at `offset` and sends at once every output PDO whose
+ * bytes changed and whose slave is operational. False (nothing changed) outside the image. */
+bool co_net_master_write_output(co_net_master_t *master, size_t offset, const uint8_t *data,
+                                size_t len);
+
+/* The status word of the master (CO_NET_MASTER_*), and of the slave with node-id `node_id`
+ * (CO_NET_SLAVE_*; 0 for a node not in the table). */
+uint16_t co_net_master_status(const co_net_master_t *master);
+uint16_t co_net_master_slave_status(const co_net_master_t *master, uint8_t node_id);
+/* The slave's record, NULL for a node not in the table. */
+const co_net_slave_t *co_net_master_slave(const co_net_master_t *master, uint8_t node_id);
+
+/* "idle", "wait boot-up", ... and "SDO error", "device type mismatch", ... for printing. */
+const char *co_net_step_text(co_net_step_t step);
+const char *co_net_failure_text(co_net_failure_t failure);
+
+#endif

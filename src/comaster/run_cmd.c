@@ -1,0 +1,410 @@
+/* comaster boot and run: the network master of the core (co_net_master_t, docs/net-master.md) on
+ * the bus, printing each step and status change; run also serves its process image and status on
+ * the control socket (control.c) to comaster set, get and status. */
+#include "comaster.h"
+#include "control.h"
+#include "network.h"
+#include "value.h"
+
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+static const char run_help[] =
+    "usage: comaster run NETWORK [--control PATH]\n"
+    "\n"
+    "Runs the network master in the foreground: reset communication to all, then per\n"
+    "slave identify (1000h, 1018h), download the DCF's configuration, start error\n"
+    "control, NMT start; a failed slave is retried after the others, a slave whose\n"
+    "error control fails is reset and booted again. Prints each step and status change\n"
+    "until SIGINT or SIGTERM.\n"
+    "\n"
+    "  NETWORK         the option file ([Master] cpj = the CiA 306-3 nodelist, whose\n"
+    "                  DCFs configure the slaves; docs/comaster.md \"Network description\")\n"
+    "  --control PATH  the control socket for comaster set, get and status; default\n"
+    "                  [Master] control, else $XDG_RUNTIME_DIR/comaster-IFACE.sock\n"
+    "\n"
+    "Example: comaster -i vcan0 run examples/netmaster/bench.ini\n";
+
+static const char boot_help[] =
+    "usage: comaster boot NODE DCF\n"
+    "\n"
+    "Boots one slave as comaster run would: reset communication, identify (1000h and\n"
+    "1018h against the DCF), download the DCF's ParameterValue entries, NMT start.\n"
+    "\n"
+    "Exit status: 0 the slave is operational, 1 it aborted an SDO transfer, 2 it did\n"
+    "not answer in time, 65 it is not the device the DCF describes.\n"
+    "\n"
+    "Example: comaster -i vcan0 boot 4 examples/netmaster/drive4.dcf\n";
+
+typedef struct runner {
+    comaster_bus_t bus;
+    comaster_network_t *net;
+    co_net_master_t master;
+    bool started;
+    uint16_t master_status; /* as last printed */
+    bool boot_only;         /* comaster boot: finish when the slave is operational or failed */
+    comaster_control_t control;
+} runner_t;
+
+static const char *const slave_bits[] = {"contacted",   "configured", "error-control-started",
+                                         "initialised", "init-error", "error-control-error"};
+static const char *const master_bits[] = {
+    "all-contacted",  "all-configured", "all-error-control-started",
+    "init-finished",  "init-error",     "error-control-error",
+    "mandatory-error"};
+
+/* " contacted configured": the names of the bits set. */
+static void bit_names(uint16_t status, const char *const *names, size_t count, char *out,
+                      size_t cap)
+{
+    size_t used = 0;
+    out[0] = '\0';
+    for (size_t bit = 0; bit < count && used < cap; bit++) {
+        if (status & (1u << bit))
+            used += (size_t)snprintf(out + used, cap - used, " %s", names[bit]);
+    }
+}
+
+static const char *slave_name(const runner_t *r, uint8_t node_id)
+{
+    for (size_t i = 0; i < r->net->slave_count; i++) {
+        if (r->net->slave_config[i].node_id == node_id)
+            return r->net->slave[i].name;
+    }
+    return "";
+}
+
+static void format_failure(const co_net_slave_t *s, char *out, size_t cap)
+{
+    if (s->failure == CO_NET_FAIL_DEVICE_TYPE || s->failure == CO_NET_FAIL_IDENTITY)
+        snprintf(out, cap, "%s (read 0x%08X)", co_net_failure_text(s->failure), s->read_value);
+    else
+        snprintf(out, cap, "%s", co_net_failure_text(s->failure));
+}
+
+static void format_sdo_error(const co_net_sdo_error_t *e, char *out, size_t cap)
+{
+    if (e->node_id == 0) {
+        snprintf(out, cap, "none");
+        return;
+    }
+    snprintf(out, cap, "node %u %s %04Xh:%02X abort 0x%08X (%s)", e->node_id,
+             e->access == CO_NET_ACCESS_WRITE ? "write" : "read", e->index, e->subindex,
+             e->abort_code, co_sdo_abort_text(e->abort_code));
+}
+
+static void format_emcy(const co_emcy_message_t *m, char *out, size_t cap)
+{
+    if (m->node_id == 0) {
+        snprintf(out, cap, "none");
+        return;
+    }
+    snprintf(out, cap, "node %u 0x%04X register 0x%02X data %02X %02X %02X %02X %02X (%s)",
+             m->node_id, m->code, m->reg, m->msef[0], m->msef[1], m->msef[2], m->msef[3],
+             m->msef[4], co_emcy_code_text(m->code));
+}
+
+/* The boot of `comaster boot` ends with its slave operational or failed. */
+static void finish_boot(runner_t *r, const co_net_slave_t *s)
+{
+    if (s->step == CO_NET_STEP_OPERATIONAL) {
+        comaster_bus_finish(&r->bus, COMASTER_EXIT_OK);
+    } else if (s->step == CO_NET_STEP_FAILED) {
+        int status = EX_DATAERR;
+        if (s->failure == CO_NET_FAIL_SDO)
+            status = r->master.last_sdo_error.abort_code == SDO_ABORT_TIMEOUT
+                         ? COMASTER_EXIT_TIMEOUT
+                         : COMASTER_EXIT_ABORT;
+        comaster_bus_finish(&r->bus, status);
+    }
+}
+
+static void print_slave_event(runner_t *r, const co_net_event_t *event)
+{
+    const co_net_slave_t *s = co_net_master_slave(&r->master, event->node_id);
+    const char *name = slave_name(r, event->node_id);
+    char text[256];
+    if (event->kind == CO_NET_EVENT_STEP) {
+        if (s->step == CO_NET_STEP_FAILED) {
+            format_failure(s, text, sizeof text);
+            printf("node %u %s: init error: %s\n", event->node_id, name, text);
+        } else {
+            printf("node %u %s: %s\n", event->node_id, name, co_net_step_text(s->step));
+        }
+        if (r->boot_only)
+            finish_boot(r, s);
+    } else {
+        bit_names(s->status, slave_bits, sizeof slave_bits / sizeof slave_bits[0], text,
+                  sizeof text);
+        printf("node %u %s: status 0x%04X%s\n", event->node_id, name, s->status, text);
+    }
+}
+
+static void on_event(void *user, const co_net_event_t *event)
+{
+    runner_t *r = user;
+    char text[256];
+    switch (event->kind) {
+    case CO_NET_EVENT_STEP:
+    case CO_NET_EVENT_STATUS:
+        print_slave_event(r, event);
+        break;
+    case CO_NET_EVENT_SDO_ERROR:
+        format_sdo_error(&r->master.last_sdo_error, text, sizeof text);
+        printf("SDO error: %s\n", text);
+        break;
+    case CO_NET_EVENT_EMCY:
+        format_emcy(&r->master.last_emcy, text, sizeof text);
+        printf("EMCY: %s\n", text);
+        break;
+    case CO_NET_EVENT_STARTED:
+        printf("network: NMT start all\n");
+        break;
+    case CO_NET_EVENT_INPUT:
+        break;
+    }
+    uint16_t status = co_net_master_status(&r->master);
+    if (status != r->master_status) {
+        r->master_status = status;
+        bit_names(status, master_bits, sizeof master_bits / sizeof master_bits[0], text,
+                  sizeof text);
+        printf("master: status 0x%04X%s\n", status, text);
+    }
+}
+
+static void run_send(void *user, const co_frame_t *frame)
+{
+    runner_t *r = user;
+    comaster_bus_send(&r->bus, frame);
+}
+
+static void job_receive(void *ctx, const co_frame_t *frame, co_time_t now)
+{
+    runner_t *r = ctx;
+    co_net_master_receive(&r->master, frame, now);
+}
+
+static co_time_t job_process(void *ctx, co_time_t now)
+{
+    runner_t *r = ctx;
+    if (!r->started) {
+        r->started = true;
+        co_net_master_start(&r->master, now);
+    }
+    return co_net_master_process(&r->master, now);
+}
+
+/* ---- the control requests: status, get, set (tab-separated fields) --------------------------- */
+
+static void reply_status(runner_t *r, char *reply, size_t cap)
+{
+    char text[256];
+    uint16_t status = co_net_master_status(&r->master);
+    bit_names(status, master_bits, sizeof master_bits / sizeof master_bits[0], text, sizeof text);
+    size_t used = (size_t)snprintf(reply, cap, "master 0x%04X%s\n", status, text);
+    for (size_t i = 0; i < r->net->slave_count && used < cap; i++) {
+        const co_net_slave_t *s = &r->net->slave_state[i];
+        if (s->step == CO_NET_STEP_FAILED)
+            format_failure(s, text, sizeof text);
+        used += (size_t)snprintf(
+            reply + used, cap - used, "node %u %s 0x%04X %s%s%s\n", r->net->slave_config[i].node_id,
+            r->net->slave[i].name, s->status, co_net_step_text(s->step),
+            s->step == CO_NET_STEP_FAILED ? ": " : "", s->step == CO_NET_STEP_FAILED ? text : "");
+    }
+    format_sdo_error(&r->master.last_sdo_error, text, sizeof text);
+    if (used < cap)
+        used += (size_t)snprintf(reply + used, cap - used, "last SDO error: %s\n", text);
+    format_emcy(&r->master.last_emcy, text, sizeof text);
+    if (used < cap)
+        snprintf(reply + used, cap - used, "last EMCY: %s\n", text);
+}
+
+static const comaster_type_t *variable_type(const comaster_variable_t *v, char *reply, size_t cap)
+{
+    const comaster_type_t *type = comaster_type_by_code(v->data_type);
+    if (!type || type->size != v->size) {
+        snprintf(reply, cap, "error: %s has DataType 0x%04X, which is not a number of %u bytes\n",
+                 v->name, v->data_type, v->size);
+        return NULL;
+    }
+    return type;
+}
+
+static void reply_get(runner_t *r, uint8_t node, const char *name, char *reply, size_t cap)
+{
+    const comaster_variable_t *v;
+    char err[256];
+    if (comaster_network_find(r->net, node, name, &v, err, sizeof err) == 0) {
+        snprintf(reply, cap, "error: %s\n", err);
+        return;
+    }
+    const comaster_type_t *type = variable_type(v, reply, cap);
+    if (!type)
+        return;
+    const uint8_t *image = v->output ? r->net->output_image : r->net->input_image;
+    char text[128];
+    bool is_text;
+    comaster_value_format(type, image + v->offset, v->size, text, sizeof text, &is_text);
+    snprintf(reply, cap, "%s\n", text);
+}
+
+static void reply_set(runner_t *r, uint8_t node, const char *name, const char *value, char *reply,
+                      size_t cap)
+{
+    const comaster_variable_t *first;
+    char err[256];
+    if (comaster_network_find(r->net, node, name, &first, err, sizeof err) == 0) {
+        snprintf(reply, cap, "error: %s\n", err);
+        return;
+    }
+    const comaster_type_t *type = variable_type(first, reply, cap);
+    if (!type)
+        return;
+    uint8_t bytes[8];
+    size_t len;
+    if (!comaster_value_parse(type, value, bytes, sizeof bytes, &len, err, sizeof err)) {
+        snprintf(reply, cap, "error: %s: %s\n", first->name, err);
+        return;
+    }
+    /* Every output of the object: one mapped by two RPDOs gets the value in both. */
+    size_t written = 0;
+    for (size_t i = 0; i < r->net->variable_count; i++) {
+        const comaster_variable_t *v = &r->net->variable[i];
+        if (v->node_id == node && v->index == first->index && v->sub == first->sub && v->output) {
+            co_net_master_write_output(&r->master, v->offset, bytes, len);
+            written++;
+        }
+    }
+    if (written == 0)
+        snprintf(reply, cap, "error: %s of node %u is an input (a TPDO of the slave): get it\n",
+                 first->name, node);
+    else
+        snprintf(reply, cap, "ok\n");
+}
+
+static bool parse_node_field(const char *text, uint8_t *node)
+{
+    char *end;
+    unsigned long n = strtoul(text, &end, 10);
+    if (end == text || *end != '\0' || n < 1 || n > CO_NMT_MASTER_NODE_ID_MAX)
+        return false;
+    *node = (uint8_t)n;
+    return true;
+}
+
+static void handle_request(void *ctx, const char *request, char *reply, size_t cap)
+{
+    runner_t *r = ctx;
+    char copy[COMASTER_CONTROL_LINE_MAX];
+    snprintf(copy, sizeof copy, "%s", request);
+    char *field[4] = {0};
+    size_t count = 0;
+    for (char *save, *f = strtok_r(copy, "\t", &save); f && count < 4;
+         f = strtok_r(NULL, "\t", &save))
+        field[count++] = f;
+    uint8_t node = 0;
+    if (count == 1 && strcmp(field[0], "status") == 0)
+        reply_status(r, reply, cap);
+    else if (count >= 3 && !parse_node_field(field[1], &node))
+        snprintf(reply, cap, "error: '%s' is not a node-id 1..127\n", field[1]);
+    else if (count == 3 && strcmp(field[0], "get") == 0)
+        reply_get(r, node, field[2], reply, cap);
+    else if (count == 4 && strcmp(field[0], "set") == 0)
+        reply_set(r, node, field[2], field[3], reply, cap);
+    else
+        snprintf(reply, cap,
+                 "error: unknown request (status, get NODE NAME, set NODE NAME "
+                 "VALUE)\n");
+    /* A set changes the output image outside a frame or a deadline: the master sends it now. */
+    co_linux_device_process(&r->bus.device);
+}
+
+/* ---- the commands ---------------------------------------------------------------------------- */
+
+static int run_master(runner_t *r, comaster_options_t *opts, const char *control_path)
+{
+    co_net_master_config_t config = r->net->config;
+    config.send = run_send;
+    config.user = r;
+    config.event = on_event;
+    if (!co_net_master_init(&r->master, &config))
+        return comaster_fail(opts, EX_DATAERR,
+                             "the network master refuses this network (a PDO outside its image "
+                             "or twice the same node-id)");
+    int rc = comaster_bus_open(&r->bus, opts);
+    if (rc != 0)
+        return rc;
+    r->bus.signal_is_the_end = !r->boot_only; /* a run ends with SIGINT or SIGTERM */
+    char err[512];
+    if (control_path) {
+        rc = comaster_control_open(&r->control, &r->bus.loop, control_path, handle_request, r, err,
+                                   sizeof err);
+        if (rc != 0) {
+            comaster_bus_close(&r->bus);
+            return comaster_fail(opts, rc, "%s", err);
+        }
+        printf("comaster: network %s: %zu slaves on %s, control socket %s\n", r->net->net_name,
+               r->net->slave_count, opts->iface, control_path);
+    }
+    comaster_job_t job = {.receive = job_receive, .process = job_process, .ctx = r};
+    rc = comaster_bus_run(&r->bus, &job);
+    if (control_path)
+        comaster_control_close(&r->control);
+    comaster_bus_close(&r->bus);
+    return rc;
+}
+
+int comaster_run_main(comaster_options_t *opts, int argc, char **argv)
+{
+    const char *control = NULL;
+    if (!comaster_control_take_option(&argc, argv, &control))
+        return comaster_fail(opts, EX_USAGE, "run: option --control needs a value");
+    comaster_args_t args;
+    const char *iface = opts->iface;
+    int rc = comaster_parse_args(opts, &args, argc, argv, run_help, "", 1, 1);
+    if (rc >= 0)
+        return rc;
+    static comaster_network_t net;
+    static runner_t runner;
+    char err[512];
+    rc = comaster_network_load(&net, args.positional[0], err, sizeof err);
+    if (rc != 0)
+        return comaster_fail(opts, rc, "%s", err);
+    if (opts->iface == iface && net.iface[0] != '\0')
+        opts->iface = net.iface; /* -i on the command line wins over [Master] interface */
+    char path[COMASTER_CONTROL_PATH_MAX];
+    if (!control && net.control[0] != '\0')
+        control = net.control;
+    if (!control) {
+        comaster_control_default_path(opts->iface, path, sizeof path);
+        control = path;
+    }
+    setvbuf(stdout, NULL, _IOLBF, 0); /* each step as it happens, also through a pipe */
+    runner = (runner_t){.net = &net};
+    rc = run_master(&runner, opts, control);
+    comaster_network_free(&net);
+    return rc == COMASTER_EXIT_INTERRUPTED ? COMASTER_EXIT_OK : rc;
+}
+
+int comaster_boot_main(comaster_options_t *opts, int argc, char **argv)
+{
+    comaster_args_t args;
+    int rc = comaster_parse_args(opts, &args, argc, argv, boot_help, "", 2, 2);
+    if (rc >= 0)
+        return rc;
+    uint8_t node;
+    if (!comaster_parse_node(opts, args.positional[0], false, &node))
+        return EX_USAGE;
+    static comaster_network_t net;
+    static runner_t runner;
+    char err[512];
+    rc = comaster_network_single(&net, node, args.positional[1], err, sizeof err);
+    if (rc != 0)
+        return comaster_fail(opts, rc, "%s", err);
+    setvbuf(stdout, NULL, _IOLBF, 0);
+    runner = (runner_t){.net = &net, .boot_only = true};
+    rc = run_master(&runner, opts, NULL);
+    comaster_network_free(&net);
+    return rc;
+}

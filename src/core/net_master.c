@@ -1,0 +1,765 @@
+/* Network master: the boot of slaves after the PLC300's section 7.3, their status words, the last
+ * SDO error and EMCY, and the process image (docs/net-master.md). */
+#include "co/co_net_master.h"
+
+#include <string.h>
+
+#define DEVICE_TYPE_INDEX 0x1000u
+#define IDENTITY_INDEX 0x1018u
+#define SYNC_CAN_ID 0x080u
+#define CAN_ID_MAX 0x7FFu
+#define US_PER_MS 1000u
+/* The bits of a slave's status word that one attempt at its initialisation builds up. */
+#define SLAVE_PROGRESS                                                                             \
+    (CO_NET_SLAVE_CONTACTED | CO_NET_SLAVE_CONFIGURED | CO_NET_SLAVE_EC_STARTED |                  \
+     CO_NET_SLAVE_INIT_DONE)
+
+static const co_net_slave_config_t *slave_config(const co_net_master_t *m, size_t i)
+{
+    return &m->config.slaves[i];
+}
+
+static co_net_slave_t *slave_at(co_net_master_t *m, size_t i)
+{
+    return &m->config.slave_state[i];
+}
+
+/* The position of node `node_id` in the table, slave_count when it is not there. */
+static size_t config_index(const co_net_master_config_t *config, uint8_t node_id)
+{
+    for (size_t i = 0; i < config->slave_count; i++) {
+        if (config->slaves[i].node_id == node_id)
+            return i;
+    }
+    return config->slave_count;
+}
+
+static size_t slave_index(const co_net_master_t *m, uint8_t node_id)
+{
+    return config_index(&m->config, node_id);
+}
+
+static void report(co_net_master_t *m, co_net_event_kind_t kind, uint8_t node_id, size_t pdo)
+{
+    if (m->config.event == NULL)
+        return;
+    co_net_event_t event = {.kind = kind, .node_id = node_id, .pdo = pdo};
+    m->config.event(m->config.user, &event);
+}
+
+static void set_step(co_net_master_t *m, size_t i, co_net_step_t step)
+{
+    co_net_slave_t *s = slave_at(m, i);
+    if (s->step == step)
+        return;
+    s->step = (uint8_t)step;
+    report(m, CO_NET_EVENT_STEP, slave_config(m, i)->node_id, 0);
+}
+
+static void set_status(co_net_master_t *m, size_t i, uint16_t status)
+{
+    co_net_slave_t *s = slave_at(m, i);
+    if (s->status == status)
+        return;
+    s->status = status;
+    report(m, CO_NET_EVENT_STATUS, slave_config(m, i)->node_id, 0);
+}
+
+static void add_status(co_net_master_t *m, size_t i, uint16_t bits)
+{
+    set_status(m, i, slave_at(m, i)->status | bits);
+}
+
+static void clear_status(co_net_master_t *m, size_t i, uint16_t bits)
+{
+    set_status(m, i, (uint16_t)(slave_at(m, i)->status & ~bits));
+}
+
+static uint32_t le32(const uint8_t *b)
+{
+    return (uint32_t)b[0] | (uint32_t)b[1] << 8 | (uint32_t)b[2] << 16 | (uint32_t)b[3] << 24;
+}
+
+static co_time_t after_ms(co_time_t now, uint32_t ms)
+{
+    return now + (co_time_t)ms * US_PER_MS;
+}
+
+static bool pdo_valid(const co_net_master_config_t *config, const co_net_pdo_t *pdo,
+                      size_t image_size)
+{
+    return pdo->len >= 1 && pdo->len <= CO_FRAME_DLC_MAX &&
+           (size_t)pdo->offset + pdo->len <= image_size && pdo->can_id <= CAN_ID_MAX &&
+           !co_can_id_restricted(pdo->can_id) &&
+           config_index(config, pdo->node_id) < config->slave_count;
+}
+
+static bool pdos_valid(const co_net_master_config_t *config, const co_net_pdo_t *pdos, size_t count,
+                       const uint8_t *image, size_t image_size)
+{
+    if (count > 0 && (pdos == NULL || image == NULL))
+        return false;
+    for (size_t i = 0; i < count; i++) {
+        if (!pdo_valid(config, &pdos[i], image_size))
+            return false;
+    }
+    return true;
+}
+
+static bool slave_valid(const co_net_master_config_t *config, size_t i)
+{
+    const co_net_slave_config_t *s = &config->slaves[i];
+    if (s->node_id < 1 || s->node_id > CO_NMT_MASTER_NODE_ID_MAX)
+        return false;
+    for (size_t j = 0; j < i; j++) {
+        if (config->slaves[j].node_id == s->node_id)
+            return false;
+    }
+    if (s->write_count > 0 && s->writes == NULL)
+        return false;
+    for (size_t w = 0; w < s->write_count; w++) {
+        if (s->writes[w].data == NULL || s->writes[w].len == 0)
+            return false;
+    }
+    return true;
+}
+
+static bool config_valid(const co_net_master_config_t *config)
+{
+    if (config == NULL || config->send == NULL || config->slaves == NULL ||
+        config->slave_state == NULL || config->slave_count == 0 ||
+        config->slave_count > CO_NMT_MASTER_NODE_ID_MAX ||
+        config->sdo_timeout_ms < CO_NET_SDO_TIMEOUT_MIN_MS ||
+        config->sdo_timeout_ms > CO_NET_SDO_TIMEOUT_MAX_MS || config->start > CO_NET_START_NONE)
+        return false;
+    for (size_t i = 0; i < config->slave_count; i++) {
+        if (!slave_valid(config, i))
+            return false;
+    }
+    return pdos_valid(config, config->inputs, config->input_count, config->input_image,
+                      config->input_size) &&
+           pdos_valid(config, config->outputs, config->output_count, config->output_image,
+                      config->output_size);
+}
+
+static void fail(co_net_master_t *m, size_t i, co_net_failure_t failure);
+static void forward_send(void *user, const co_frame_t *frame);
+static void sdo_done(void *user, const co_sdo_client_result_t *result);
+static void begin_identity(co_net_master_t *m, size_t i);
+static void begin_download(co_net_master_t *m, size_t i);
+
+static void record_sdo_error(co_net_master_t *m, size_t i, const co_sdo_client_result_t *r,
+                             uint8_t access, uint32_t value)
+{
+    m->last_sdo_error = (co_net_sdo_error_t){.node_id = slave_config(m, i)->node_id,
+                                             .index = r->index,
+                                             .subindex = r->subindex,
+                                             .access = access,
+                                             .value = value,
+                                             .abort_code = r->abort_code};
+    report(m, CO_NET_EVENT_SDO_ERROR, m->last_sdo_error.node_id, 0);
+}
+
+static uint32_t write_value(const co_net_write_t *w)
+{
+    uint8_t b[4] = {0};
+    memcpy(b, w->data, w->len < 4 ? w->len : 4);
+    return le32(b);
+}
+
+static bool read(co_net_master_t *m, uint16_t index, uint8_t subindex)
+{
+    memset(m->value, 0, sizeof(m->value));
+    return co_sdo_client_upload(&m->sdo, index, subindex, m->value, sizeof(m->value),
+                                CO_SDO_CLIENT_AUTO, m->config.sdo_timeout_ms, m->now) == 0;
+}
+
+/* The SDO client is idle whenever a slave's step starts a request, so a request can only fail
+ * for a bad argument, which co_net_master_init rules out; the failure is still not ignored. */
+static void begin_read(co_net_master_t *m, size_t i, uint16_t index, uint8_t subindex)
+{
+    if (!read(m, index, subindex))
+        fail(m, i, CO_NET_FAIL_SDO);
+}
+
+static void release(co_net_master_t *m)
+{
+    m->current = m->config.slave_count;
+}
+
+static void fail(co_net_master_t *m, size_t i, co_net_failure_t failure)
+{
+    co_net_slave_t *s = slave_at(m, i);
+    s->failure = (uint8_t)failure;
+    s->deadline = after_ms(m->now, m->config.retry_delay_ms);
+    s->tried = true;
+    set_step(m, i, CO_NET_STEP_FAILED);
+    set_status(m, i, (uint16_t)((s->status & ~SLAVE_PROGRESS) | CO_NET_SLAVE_INIT_ERROR));
+    if (m->current == i)
+        release(m);
+}
+
+static void begin_attempt(co_net_master_t *m, size_t i)
+{
+    co_net_slave_t *s = slave_at(m, i);
+    co_sdo_client_config_t sdo = {.server_node_id = slave_config(m, i)->node_id,
+                                  .send = forward_send,
+                                  .user = m,
+                                  .done = sdo_done};
+    m->current = i;
+    if (co_sdo_client_init(&m->sdo, &sdo) != 0) {
+        fail(m, i, CO_NET_FAIL_SDO);
+        return;
+    }
+    s->failure = CO_NET_FAIL_NONE;
+    clear_status(m, i, SLAVE_PROGRESS);
+    set_step(m, i, CO_NET_STEP_DEVICE_TYPE);
+    begin_read(m, i, DEVICE_TYPE_INDEX, 0);
+}
+
+static void begin_identity(co_net_master_t *m, size_t i)
+{
+    co_net_slave_t *s = slave_at(m, i);
+    const co_net_slave_config_t *c = slave_config(m, i);
+    while (s->identity_sub < CO_NET_IDENTITY_SUBS &&
+           (c->check & (CO_NET_CHECK_VENDOR << s->identity_sub)) == 0)
+        s->identity_sub++;
+    if (s->identity_sub == CO_NET_IDENTITY_SUBS) {
+        add_status(m, i, CO_NET_SLAVE_CONTACTED);
+        begin_download(m, i);
+        return;
+    }
+    set_step(m, i, CO_NET_STEP_IDENTITY);
+    begin_read(m, i, IDENTITY_INDEX, (uint8_t)(s->identity_sub + 1));
+}
+
+static void start_error_control(co_net_master_t *m, size_t i)
+{
+    const co_net_slave_config_t *c = slave_config(m, i);
+    if (c->heartbeat_ms != 0) {
+        co_nmt_master_heartbeat(&m->nmt, c->node_id, c->heartbeat_ms);
+        slave_at(m, i)->first_heartbeat = after_ms(m->now, c->heartbeat_ms);
+    } else if (c->guard_ms != 0 && c->life_time_factor != 0)
+        co_nmt_master_guard(&m->nmt, c->node_id, c->guard_ms, c->life_time_factor, m->now);
+    add_status(m, i, CO_NET_SLAVE_EC_STARTED);
+}
+
+static void stop_error_control(co_net_master_t *m, size_t i)
+{
+    uint8_t node_id = slave_config(m, i)->node_id;
+    slave_at(m, i)->first_heartbeat = CO_TIME_NEVER;
+    co_nmt_master_heartbeat(&m->nmt, node_id, 0);
+    co_nmt_master_guard(&m->nmt, node_id, 0, 0, m->now);
+}
+
+static void become_operational(co_net_master_t *m, size_t i)
+{
+    slave_at(m, i)->tried = true;
+    set_status(m, i,
+               (uint16_t)((slave_at(m, i)->status | CO_NET_SLAVE_INIT_DONE) &
+                          ~(CO_NET_SLAVE_INIT_ERROR | CO_NET_SLAVE_EC_ERROR)));
+    set_step(m, i, CO_NET_STEP_OPERATIONAL);
+}
+
+static void finish_boot(co_net_master_t *m, size_t i)
+{
+    add_status(m, i, CO_NET_SLAVE_CONFIGURED);
+    start_error_control(m, i);
+    release(m);
+    if (m->config.start == CO_NET_START_ALL && !m->started_all) {
+        slave_at(m, i)->tried = true;
+        set_step(m, i, CO_NET_STEP_WAIT_START);
+        return;
+    }
+    if (m->config.start != CO_NET_START_NONE)
+        co_nmt_master_command(&m->nmt, CO_NMT_CS_START, slave_config(m, i)->node_id);
+    become_operational(m, i);
+}
+
+static void download_next(co_net_master_t *m, size_t i)
+{
+    co_net_slave_t *s = slave_at(m, i);
+    const co_net_slave_config_t *c = slave_config(m, i);
+    if (s->write_pos == c->write_count) {
+        finish_boot(m, i);
+        return;
+    }
+    const co_net_write_t *w = &c->writes[s->write_pos];
+    if (co_sdo_client_download(&m->sdo, w->index, w->subindex, w->data, w->len, CO_SDO_CLIENT_AUTO,
+                               m->config.sdo_timeout_ms, m->now) != 0)
+        fail(m, i, CO_NET_FAIL_SDO);
+}
+
+static void begin_download(co_net_master_t *m, size_t i)
+{
+    slave_at(m, i)->write_pos = 0;
+    set_step(m, i, CO_NET_STEP_DOWNLOAD);
+    download_next(m, i);
+}
+
+static void identity_read(co_net_master_t *m, size_t i, uint32_t value)
+{
+    co_net_slave_t *s = slave_at(m, i);
+    s->read_value = value;
+    if (value != slave_config(m, i)->identity[s->identity_sub]) {
+        fail(m, i, CO_NET_FAIL_IDENTITY);
+        return;
+    }
+    s->identity_sub++;
+    begin_identity(m, i);
+}
+
+static void device_type_read(co_net_master_t *m, size_t i, uint32_t value)
+{
+    const co_net_slave_config_t *c = slave_config(m, i);
+    co_net_slave_t *s = slave_at(m, i);
+    s->read_value = value;
+    if ((c->check & CO_NET_CHECK_DEVICE_TYPE) != 0 && value != c->device_type) {
+        fail(m, i, CO_NET_FAIL_DEVICE_TYPE);
+        return;
+    }
+    s->identity_sub = 0;
+    begin_identity(m, i);
+}
+
+static void sdo_done(void *user, const co_sdo_client_result_t *result)
+{
+    co_net_master_t *m = user;
+    size_t i = m->current;
+    if (i == m->config.slave_count)
+        return;
+    co_net_slave_t *s = slave_at(m, i);
+    if (result->status != CO_SDO_CLIENT_OK) {
+        if (s->step == CO_NET_STEP_DOWNLOAD) {
+            const co_net_write_t *w = &slave_config(m, i)->writes[s->write_pos];
+            record_sdo_error(m, i, result, CO_NET_ACCESS_WRITE, write_value(w));
+        } else {
+            record_sdo_error(m, i, result, CO_NET_ACCESS_READ, 0);
+        }
+        fail(m, i, CO_NET_FAIL_SDO);
+        return;
+    }
+    switch (s->step) {
+    case CO_NET_STEP_DEVICE_TYPE:
+        device_type_read(m, i, le32(m->value));
+        break;
+    case CO_NET_STEP_IDENTITY:
+        identity_read(m, i, le32(m->value));
+        break;
+    case CO_NET_STEP_DOWNLOAD:
+        s->write_pos++;
+        download_next(m, i);
+        break;
+    default:
+        break;
+    }
+}
+
+/* Resets one slave (its communication for a boot, the whole node after an error-control loss,
+ * so that it also forgets a half-applied configuration) and waits for its boot-up. */
+static void reset_slave(co_net_master_t *m, size_t i, uint8_t command)
+{
+    co_net_slave_t *s = slave_at(m, i);
+    stop_error_control(m, i);
+    co_nmt_master_command(&m->nmt, command, slave_config(m, i)->node_id);
+    s->booted = false;
+    s->deadline = after_ms(m->now, m->config.boot_time_ms);
+    set_step(m, i, CO_NET_STEP_WAIT_BOOT);
+}
+
+static void error_control_lost(co_net_master_t *m, size_t i)
+{
+    co_net_slave_t *s = slave_at(m, i);
+    if (s->step != CO_NET_STEP_OPERATIONAL && s->step != CO_NET_STEP_WAIT_START)
+        return;
+    if (slave_config(m, i)->on_error == CO_NET_ON_ERROR_REPORT) {
+        add_status(m, i, CO_NET_SLAVE_EC_ERROR);
+        set_step(m, i, CO_NET_STEP_LOST);
+        return;
+    }
+    set_status(m, i, (uint16_t)((s->status & ~SLAVE_PROGRESS) | CO_NET_SLAVE_EC_ERROR));
+    reset_slave(m, i, CO_NMT_CS_RESET_NODE);
+}
+
+/* A boot-up from a slave that was configured means it lost its configuration (a reset or a power
+ * cycle faster than error control could tell): it is booted again, as after a loss. */
+static void booted_up(co_net_master_t *m, size_t i)
+{
+    co_net_slave_t *s = slave_at(m, i);
+    switch (s->step) {
+    case CO_NET_STEP_WAIT_BOOT:
+        s->booted = true;
+        break;
+    case CO_NET_STEP_OPERATIONAL:
+    case CO_NET_STEP_WAIT_START:
+    case CO_NET_STEP_LOST:
+        if (slave_config(m, i)->on_error == CO_NET_ON_ERROR_REBOOT) {
+            stop_error_control(m, i);
+            clear_status(m, i, SLAVE_PROGRESS);
+            s->booted = true;
+            s->deadline = m->now;
+            set_step(m, i, CO_NET_STEP_WAIT_BOOT);
+        }
+        break;
+    default:
+        break;
+    }
+}
+
+static void nmt_event(void *user, const co_nmt_master_event_t *event)
+{
+    co_net_master_t *m = user;
+    size_t i = slave_index(m, event->node_id);
+    if (i == m->config.slave_count)
+        return;
+    switch (event->kind) {
+    case CO_NMT_MASTER_BOOT_UP:
+        booted_up(m, i);
+        break;
+    case CO_NMT_MASTER_HEARTBEAT_LOST:
+    case CO_NMT_MASTER_GUARDING_LOST:
+        error_control_lost(m, i);
+        break;
+    case CO_NMT_MASTER_RESUMED:
+    case CO_NMT_MASTER_STATE_CHANGED: /* also the first heartbeat of one lost for lack of it */
+        if (slave_at(m, i)->step == CO_NET_STEP_LOST) {
+            clear_status(m, i, CO_NET_SLAVE_EC_ERROR);
+            set_step(m, i, CO_NET_STEP_OPERATIONAL);
+        }
+        break;
+    default:
+        break;
+    }
+}
+
+static void emcy_received(void *user, co_emcy_decode_t result, const co_emcy_message_t *msg,
+                          co_time_t now)
+{
+    (void)now;
+    co_net_master_t *m = user;
+    if (result != CO_EMCY_DECODE_OK)
+        return;
+    m->last_emcy = *msg;
+    report(m, CO_NET_EVENT_EMCY, msg->node_id, 0);
+}
+
+static void send(co_net_master_t *m, const co_frame_t *frame)
+{
+    m->config.send(m->config.user, frame);
+}
+
+/* The send callback of the NMT master and the SDO client, whose `user` is the master itself (it
+ * also receives their events). */
+static void forward_send(void *user, const co_frame_t *frame)
+{
+    send(user, frame);
+}
+
+static void send_output(co_net_master_t *m, size_t p)
+{
+    const co_net_pdo_t *pdo = &m->config.outputs[p];
+    co_frame_t frame = {.id = pdo->can_id, .len = pdo->len};
+    memcpy(frame.data, m->config.output_image + pdo->offset, pdo->len);
+    send(m, &frame);
+}
+
+static bool output_live(const co_net_master_t *m, size_t p)
+{
+    size_t i = slave_index(m, m->config.outputs[p].node_id);
+    return m->config.slave_state[i].step == CO_NET_STEP_OPERATIONAL;
+}
+
+bool co_net_master_init(co_net_master_t *master, const co_net_master_config_t *config)
+{
+    if (!config_valid(config))
+        return false;
+    *master = (co_net_master_t){.config = *config};
+    co_nmt_master_init(&master->nmt, &(co_nmt_master_config_t){
+                                         .send = forward_send, .user = master, .event = nmt_event});
+    co_emcy_consumer_init(&master->emcy, emcy_received, master);
+    for (size_t i = 0; i < config->slave_count; i++) {
+        config->slave_state[i] =
+            (co_net_slave_t){.step = CO_NET_STEP_IDLE, .first_heartbeat = CO_TIME_NEVER};
+        co_emcy_consumer_watch(&master->emcy, config->slaves[i].node_id, true);
+    }
+    master->sync.next = CO_TIME_NEVER;
+    if (config->sync_period_us != 0)
+        co_sync_producer_init(&master->sync, SYNC_CAN_ID, config->sync_period_us, 0);
+    release(master);
+    return true;
+}
+
+void co_net_master_start(co_net_master_t *master, co_time_t now)
+{
+    master->now = now;
+    master->started = true;
+    master->started_all = false;
+    /* A transfer under way belongs to the boot that ends here: its answer is ignored, and the
+     * next attempt prepares the client afresh. */
+    release(master);
+    if (master->config.reset_all)
+        co_nmt_master_command(&master->nmt, CO_NMT_CS_RESET_COMMUNICATION, CO_NMT_MASTER_ALL_NODES);
+    for (size_t i = 0; i < master->config.slave_count; i++) {
+        co_net_slave_t *s = slave_at(master, i);
+        s->tried = false;
+        set_status(master, i, 0);
+        if (master->config.reset_all) {
+            s->booted = false;
+            s->deadline = after_ms(now, master->config.boot_time_ms);
+            set_step(master, i, CO_NET_STEP_WAIT_BOOT);
+        } else {
+            reset_slave(master, i, CO_NMT_CS_RESET_COMMUNICATION);
+        }
+    }
+}
+
+static bool receive_input(co_net_master_t *m, const co_frame_t *frame)
+{
+    bool used = false;
+    for (size_t p = 0; p < m->config.input_count; p++) {
+        const co_net_pdo_t *pdo = &m->config.inputs[p];
+        /* CiA 301: a PDO shorter than its mapping is not used; a longer one is (its first bytes
+         * are the mapped ones). */
+        if (pdo->can_id != frame->id || frame->len < pdo->len)
+            continue;
+        memcpy(m->config.input_image + pdo->offset, frame->data, pdo->len);
+        report(m, CO_NET_EVENT_INPUT, pdo->node_id, p);
+        used = true;
+    }
+    return used;
+}
+
+bool co_net_master_receive(co_net_master_t *master, const co_frame_t *frame, co_time_t now)
+{
+    master->now = now;
+    /* A master consumes no remote or 29-bit frame (CiA 301 uses neither for what it receives). */
+    if ((frame->flags & (CO_FRAME_EFF | CO_FRAME_RTR)) != 0)
+        return false;
+    if (co_nmt_master_receive(&master->nmt, frame, now))
+        return true;
+    if (co_sdo_client_busy(&master->sdo) && co_sdo_client_receive(&master->sdo, frame, now))
+        return true;
+    if (co_emcy_consumer_receive(&master->emcy, frame, now))
+        return true;
+    return receive_input(master, frame);
+}
+
+/* The next slave whose turn has come, searched from next_pick so that a slave that just failed is
+ * tried again only after the others. */
+static size_t next_ready(co_net_master_t *m)
+{
+    size_t n = m->config.slave_count;
+    for (size_t k = 0; k < n; k++) {
+        size_t i = (m->next_pick + k) % n;
+        const co_net_slave_t *s = slave_at(m, i);
+        if (s->step == CO_NET_STEP_WAIT_BOOT && (s->booted || m->now >= s->deadline))
+            return i;
+    }
+    return n;
+}
+
+static void retry_failed(co_net_master_t *m)
+{
+    for (size_t i = 0; i < m->config.slave_count; i++) {
+        const co_net_slave_t *s = slave_at(m, i);
+        if (s->step == CO_NET_STEP_FAILED && m->now >= s->deadline)
+            reset_slave(m, i, CO_NMT_CS_RESET_COMMUNICATION);
+    }
+}
+
+static bool network_ready(const co_net_master_t *m)
+{
+    for (size_t i = 0; i < m->config.slave_count; i++) {
+        const co_net_slave_t *s = &m->config.slave_state[i];
+        if (!s->tried)
+            return false;
+        if (m->config.slaves[i].mandatory && s->step != CO_NET_STEP_WAIT_START)
+            return false;
+    }
+    return true;
+}
+
+static void start_all(co_net_master_t *m)
+{
+    if (m->config.start != CO_NET_START_ALL || m->started_all || !network_ready(m))
+        return;
+    m->started_all = true;
+    co_nmt_master_command(&m->nmt, CO_NMT_CS_START, CO_NMT_MASTER_ALL_NODES);
+    report(m, CO_NET_EVENT_STARTED, 0, 0);
+    for (size_t i = 0; i < m->config.slave_count; i++) {
+        if (slave_at(m, i)->step == CO_NET_STEP_WAIT_START)
+            become_operational(m, i);
+    }
+}
+
+static void produce_sync(co_net_master_t *m)
+{
+    co_frame_t frame;
+    if (!co_sync_producer_take(&m->sync, m->now, &frame))
+        return;
+    send(m, &frame);
+    for (size_t p = 0; p < m->config.output_count; p++) {
+        if (output_live(m, p))
+            send_output(m, p);
+    }
+}
+
+/* CiA 301's heartbeat consumer waits for the first heartbeat forever, so a slave that dies right
+ * after its configuration would never be seen lost: the master expects that first heartbeat within
+ * one consumer time of starting error control (the download has just set the slave's 1017h). */
+static void check_first_heartbeats(co_net_master_t *m)
+{
+    for (size_t i = 0; i < m->config.slave_count; i++) {
+        co_net_slave_t *s = slave_at(m, i);
+        if (s->first_heartbeat > m->now)
+            continue;
+        s->first_heartbeat = CO_TIME_NEVER;
+        if (!m->nmt.slave[slave_config(m, i)->node_id - 1].heartbeat.monitoring)
+            error_control_lost(m, i);
+    }
+}
+
+static co_time_t slave_deadline(const co_net_master_t *m)
+{
+    co_time_t next = CO_TIME_NEVER;
+    for (size_t i = 0; i < m->config.slave_count; i++) {
+        const co_net_slave_t *s = &m->config.slave_state[i];
+        if ((s->step == CO_NET_STEP_WAIT_BOOT && !s->booted) || s->step == CO_NET_STEP_FAILED)
+            next = co_time_min(next, s->deadline);
+        next = co_time_min(next, s->first_heartbeat);
+    }
+    return next;
+}
+
+co_time_t co_net_master_process(co_net_master_t *master, co_time_t now)
+{
+    master->now = now;
+    co_time_t next = co_nmt_master_process(&master->nmt, now);
+    next = co_time_min(next, co_sdo_client_process(&master->sdo, now));
+    if (!master->started)
+        return next;
+    check_first_heartbeats(master);
+    retry_failed(master);
+    while (master->current == master->config.slave_count) {
+        size_t i = next_ready(master);
+        if (i == master->config.slave_count)
+            break;
+        master->next_pick = (i + 1) % master->config.slave_count;
+        begin_attempt(master, i);
+    }
+    start_all(master);
+    if (master->config.sync_period_us != 0) {
+        if (master->sync.next == CO_TIME_NEVER)
+            co_sync_producer_start(&master->sync, now);
+        produce_sync(master);
+        next = co_time_min(next, master->sync.next);
+    }
+    if (master->current != master->config.slave_count)
+        next = co_time_min(next, co_sdo_client_process(&master->sdo, now));
+    return co_time_min(next, slave_deadline(master));
+}
+
+/* Sends output PDO `p` with the bytes offset..offset+len replaced by `data`, when they change
+ * its content (the image itself is updated after every PDO was looked at). */
+static void send_changed_output(co_net_master_t *m, size_t p, size_t offset, const uint8_t *data,
+                                size_t len)
+{
+    const co_net_pdo_t *pdo = &m->config.outputs[p];
+    co_frame_t frame = {.id = pdo->can_id, .len = pdo->len};
+    memcpy(frame.data, m->config.output_image + pdo->offset, pdo->len);
+    bool changed = false;
+    for (size_t k = 0; k < pdo->len; k++) {
+        size_t at = (size_t)pdo->offset + k;
+        if (at >= offset && at < offset + len && frame.data[k] != data[at - offset]) {
+            frame.data[k] = data[at - offset];
+            changed = true;
+        }
+    }
+    if (changed)
+        send(m, &frame);
+}
+
+bool co_net_master_write_output(co_net_master_t *master, size_t offset, const uint8_t *data,
+                                size_t len)
+{
+    if (data == NULL || offset > master->config.output_size ||
+        len > master->config.output_size - offset)
+        return false;
+    for (size_t p = 0; p < master->config.output_count; p++) {
+        if (output_live(master, p))
+            send_changed_output(master, p, offset, data, len);
+    }
+    memcpy(master->config.output_image + offset, data, len);
+    return true;
+}
+
+uint16_t co_net_master_status(const co_net_master_t *master)
+{
+    uint16_t all = CO_NET_MASTER_ALL_CONTACTED | CO_NET_MASTER_ALL_CONFIGURED |
+                   CO_NET_MASTER_ALL_EC_STARTED | CO_NET_MASTER_INIT_FINISHED;
+    uint16_t some = 0;
+    for (size_t i = 0; i < master->config.slave_count; i++) {
+        const co_net_slave_t *s = &master->config.slave_state[i];
+        uint16_t progress = s->status & (CO_NET_SLAVE_CONTACTED | CO_NET_SLAVE_CONFIGURED |
+                                         CO_NET_SLAVE_EC_STARTED);
+        if (s->tried)
+            progress |= CO_NET_MASTER_INIT_FINISHED;
+        all &= progress;
+        some |= s->status & (CO_NET_SLAVE_INIT_ERROR | CO_NET_SLAVE_EC_ERROR);
+        if (master->config.slaves[i].mandatory && (s->status & CO_NET_SLAVE_INIT_ERROR) != 0)
+            some |= CO_NET_MASTER_MANDATORY_ERROR;
+    }
+    return all | some;
+}
+
+const co_net_slave_t *co_net_master_slave(const co_net_master_t *master, uint8_t node_id)
+{
+    size_t i = slave_index(master, node_id);
+    return i == master->config.slave_count ? NULL : &master->config.slave_state[i];
+}
+
+uint16_t co_net_master_slave_status(const co_net_master_t *master, uint8_t node_id)
+{
+    const co_net_slave_t *s = co_net_master_slave(master, node_id);
+    return s == NULL ? 0 : s->status;
+}
+
+const char *co_net_step_text(co_net_step_t step)
+{
+    switch (step) {
+    case CO_NET_STEP_IDLE:
+        return "idle";
+    case CO_NET_STEP_WAIT_BOOT:
+        return "wait boot-up";
+    case CO_NET_STEP_DEVICE_TYPE:
+        return "read device type";
+    case CO_NET_STEP_IDENTITY:
+        return "read identity";
+    case CO_NET_STEP_DOWNLOAD:
+        return "download configuration";
+    case CO_NET_STEP_WAIT_START:
+        return "wait start all";
+    case CO_NET_STEP_OPERATIONAL:
+        return "operational";
+    case CO_NET_STEP_FAILED:
+        return "init error";
+    case CO_NET_STEP_LOST:
+        return "error control lost";
+    }
+    return "unknown step";
+}
+
+const char *co_net_failure_text(co_net_failure_t failure)
+{
+    switch (failure) {
+    case CO_NET_FAIL_NONE:
+        return "none";
+    case CO_NET_FAIL_SDO:
+        return "SDO error";
+    case CO_NET_FAIL_DEVICE_TYPE:
+        return "device type mismatch";
+    case CO_NET_FAIL_IDENTITY:
+        return "identity mismatch";
+    }
+    return "unknown failure";
+}

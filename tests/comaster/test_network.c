@@ -1,0 +1,264 @@
+/* The network description of comaster run: the example bench (examples/netmaster: bench.ini, its
+ * CiA 306-3 nodelist and three ATV312 DCFs) read into the master's configuration (slaves, options,
+ * identity checks, the configuration writes byte by byte, the PDOs and the named variables of the
+ * process image), and every kind of bad file refused with a message naming file, line and key. */
+#include "check_main.h"
+#include "network.h"
+
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sysexits.h>
+#include <unistd.h>
+
+#define DIR COMASTER_TEST_NETWORK_DIR
+
+static comaster_network_t net;
+static char err[512];
+static char tmpdir[] = "/tmp/comaster-network-XXXXXX";
+static char ini[PATH_MAX];
+static char cpj[PATH_MAX];
+
+static void setup(void)
+{
+    ck_assert_ptr_nonnull(mkdtemp(tmpdir));
+    snprintf(ini, sizeof ini, "%s/net.ini", tmpdir);
+    snprintf(cpj, sizeof cpj, "%s/net.cpj", tmpdir);
+    err[0] = '\0';
+}
+
+static void teardown(void)
+{
+    comaster_network_free(&net);
+    unlink(ini);
+    unlink(cpj);
+    rmdir(tmpdir);
+    memcpy(tmpdir + strlen(tmpdir) - 6, "XXXXXX", 6);
+}
+
+static void write_file(const char *path, const char *text)
+{
+    FILE *f = fopen(path, "w");
+    ck_assert_ptr_nonnull(f);
+    fputs(text, f);
+    fclose(f);
+}
+
+/* A nodelist of node 4 (drive4.dcf of the examples) and an option file with `options`. */
+static int load_with(const char *options)
+{
+    comaster_network_free(&net);
+    char text[1024];
+    snprintf(text, sizeof text,
+             "[Topology]\nNetName=t\nNodes=1\nNode4Present=1\nNode4DCFName=%s/drive4.dcf\n", DIR);
+    write_file(cpj, text);
+    snprintf(text, sizeof text, "[Master]\ncpj = net.cpj\n%s", options);
+    write_file(ini, text);
+    return comaster_network_load(&net, ini, err, sizeof err);
+}
+
+static const co_net_slave_config_t *slave(size_t i)
+{
+    return &net.config.slaves[i];
+}
+
+START_TEST(bench_slaves_and_options)
+{
+    ck_assert_int_eq(comaster_network_load(&net, DIR "/bench.ini", err, sizeof err), 0);
+    ck_assert_str_eq(net.net_name, "bench");
+    ck_assert_str_eq(net.iface, "vcan0");
+    ck_assert_uint_eq(net.config.slave_count, 3);
+    ck_assert_uint_eq(net.config.sdo_timeout_ms, 500);
+    ck_assert_uint_eq(net.config.boot_time_ms, 1000);
+    ck_assert_uint_eq(net.config.retry_delay_ms, 1000);
+    ck_assert_uint_eq(net.config.start, CO_NET_START_EACH);
+    ck_assert(net.config.reset_all);
+    ck_assert_uint_eq(net.config.sync_period_us, 0);
+    for (size_t i = 0; i < 3; i++) {
+        ck_assert_uint_eq(slave(i)->node_id, 4 + i);
+        ck_assert_uint_eq(slave(i)->heartbeat_ms, 300);
+        ck_assert_uint_eq(slave(i)->check, CO_NET_CHECK_DEVICE_TYPE | CO_NET_CHECK_VENDOR);
+        ck_assert_uint_eq(slave(i)->device_type, 0x00010192);
+        ck_assert_uint_eq(slave(i)->identity[0], 0x5F);
+        ck_assert_uint_eq(slave(i)->on_error, CO_NET_ON_ERROR_REBOOT);
+    }
+    ck_assert(slave(0)->mandatory);
+    ck_assert(!slave(1)->mandatory);
+    ck_assert_str_eq(net.slave[1].name, "drive5");
+}
+END_TEST
+
+/* The ParameterValue entries of rw objects, in file order, with their type's size. */
+START_TEST(configuration_writes_from_the_dcf)
+{
+    ck_assert_int_eq(comaster_network_load(&net, DIR "/bench.ini", err, sizeof err), 0);
+    const co_net_slave_config_t *s = slave(1); /* node 5 */
+    ck_assert_uint_eq(s->write_count, 5);
+    static const struct {
+        uint16_t index;
+        uint8_t sub;
+        uint32_t len;
+        const char *bytes;
+    } want[] = {{0x1017, 0, 2, "\x64\x00"},
+                {0x1405, 1, 4, "\x05\x03\x00\x00"},
+                {0x1805, 1, 4, "\x85\x02\x00\x00"},
+                {0x203C, 2, 2, "\x14\x00"},
+                {0x203C, 3, 2, "\x14\x00"}};
+    for (size_t i = 0; i < 5; i++) {
+        ck_assert_uint_eq(s->writes[i].index, want[i].index);
+        ck_assert_uint_eq(s->writes[i].subindex, want[i].sub);
+        ck_assert_uint_eq(s->writes[i].len, want[i].len);
+        ck_assert_mem_eq(s->writes[i].data, want[i].bytes, want[i].len);
+    }
+}
+END_TEST
+
+START_TEST(process_image_from_the_mappings)
+{
+    ck_assert_int_eq(comaster_network_load(&net, DIR "/bench.ini", err, sizeof err), 0);
+    /* Per node: TPDO1 (status) then TPDO6 (status, actual speed); RPDO1 then RPDO6. */
+    ck_assert_uint_eq(net.config.input_count, 6);
+    ck_assert_uint_eq(net.config.output_count, 6);
+    ck_assert_uint_eq(net.config.input_size, 18);
+    ck_assert_uint_eq(net.config.output_size, 18);
+    const co_net_pdo_t *in = net.config.inputs, *out = net.config.outputs;
+    ck_assert_uint_eq(in[0].can_id, 0x184);
+    ck_assert_uint_eq(in[0].len, 2);
+    ck_assert_uint_eq(in[0].offset, 0);
+    ck_assert_uint_eq(in[1].can_id, 0x284);
+    ck_assert_uint_eq(in[1].len, 4);
+    ck_assert_uint_eq(in[1].offset, 2);
+    ck_assert_uint_eq(in[2].can_id, 0x185);
+    ck_assert_uint_eq(in[2].offset, 6);
+    ck_assert_uint_eq(out[1].can_id, 0x304);
+    ck_assert_uint_eq(out[1].node_id, 4);
+    ck_assert_uint_eq(out[5].can_id, 0x306);
+    ck_assert_uint_eq(out[5].offset, 14);
+
+    const comaster_variable_t *v;
+    ck_assert_uint_eq(comaster_network_find(&net, 5, "speed", &v, err, sizeof err), 1);
+    ck_assert_str_eq(v->name, "speed");
+    ck_assert(v->output);
+    ck_assert_uint_eq(v->index, 0x6042);
+    ck_assert_uint_eq(v->offset, 10);
+    ck_assert_uint_eq(v->size, 2);
+    ck_assert_uint_eq(v->data_type, CO_DT_INTEGER16);
+    /* Mapped by PDO1 and PDO6: two variables. */
+    ck_assert_uint_eq(comaster_network_find(&net, 4, "control", &v, err, sizeof err), 2);
+    ck_assert_uint_eq(v->offset, 0);
+    ck_assert_uint_eq(comaster_network_find(&net, 6, "status", &v, err, sizeof err), 2);
+    ck_assert(!v->output);
+    ck_assert_uint_eq(v->offset, 12);
+    /* By its ParameterName, or index and sub-index, too. */
+    ck_assert_uint_eq(
+        comaster_network_find(&net, 4, "vl velocity actual value", &v, err, sizeof err), 1);
+    ck_assert_str_eq(v->name, "actual_speed");
+    ck_assert_uint_eq(comaster_network_find(&net, 4, "0x6044", &v, err, sizeof err), 1);
+    ck_assert_uint_eq(v->offset, 4);
+}
+END_TEST
+
+START_TEST(unknown_variables_are_told)
+{
+    ck_assert_int_eq(comaster_network_load(&net, DIR "/bench.ini", err, sizeof err), 0);
+    const comaster_variable_t *v;
+    ck_assert_uint_eq(comaster_network_find(&net, 4, "ACC", &v, err, sizeof err), 0);
+    ck_assert_ptr_null(v);
+    ck_assert_str_eq(err, "node 4: 203Ch:02 (ACC) is in none of its PDOs");
+    ck_assert_uint_eq(comaster_network_find(&net, 9, "speed", &v, err, sizeof err), 0);
+    ck_assert_str_eq(err, "node 9 is not a slave of the network");
+    ck_assert_uint_eq(comaster_network_find(&net, 4, "no such thing", &v, err, sizeof err), 0);
+}
+END_TEST
+
+START_TEST(one_slave_for_boot)
+{
+    ck_assert_int_eq(comaster_network_single(&net, 4, DIR "/drive4.dcf", err, sizeof err), 0);
+    ck_assert_uint_eq(net.config.slave_count, 1);
+    ck_assert(!net.config.reset_all);
+    ck_assert_uint_eq(slave(0)->node_id, 4);
+    ck_assert_uint_eq(slave(0)->write_count, 5);
+    /* 1017h = 100 ms in the DCF: consumed with 150 ms. */
+    ck_assert_uint_eq(slave(0)->heartbeat_ms, 150);
+    comaster_network_free(&net);
+    ck_assert_int_eq(comaster_network_single(&net, 4, DIR "/none.dcf", err, sizeof err),
+                     EX_NOINPUT);
+}
+END_TEST
+
+START_TEST(node_options)
+{
+    ck_assert_int_eq(load_with("start = all\nsync_period = 10\nreset_all = no\n"
+                               "[Node4]\nvendor = 0x99\ncheck = vendor serial\nguard_time = 100\n"
+                               "life_time_factor = 3\nheartbeat = 0\non_error = report\n"),
+                     0);
+    ck_assert_uint_eq(net.config.start, CO_NET_START_ALL);
+    ck_assert_uint_eq(net.config.sync_period_us, 10000);
+    ck_assert(!net.config.reset_all);
+    ck_assert_uint_eq(slave(0)->check, CO_NET_CHECK_VENDOR | CO_NET_CHECK_SERIAL);
+    ck_assert_uint_eq(slave(0)->identity[0], 0x99);
+    ck_assert_uint_eq(slave(0)->guard_ms, 100);
+    ck_assert_uint_eq(slave(0)->life_time_factor, 3);
+    ck_assert_uint_eq(slave(0)->heartbeat_ms, 0);
+    ck_assert_uint_eq(slave(0)->on_error, CO_NET_ON_ERROR_REPORT);
+}
+END_TEST
+
+START_TEST(bad_files_are_refused)
+{
+    ck_assert_int_eq(comaster_network_load(&net, "/nonexistent/net.ini", err, sizeof err),
+                     EX_NOINPUT);
+    ck_assert_ptr_nonnull(strstr(err, "cannot read '/nonexistent/net.ini'"));
+
+    ck_assert_int_eq(load_with("sdo_timeout = 4\n"), EX_DATAERR);
+    ck_assert_ptr_nonnull(strstr(err, "net.ini:3: sdo_timeout = '4': give 5..5000 ms"));
+    ck_assert_int_eq(load_with("colour = blue\n"), EX_DATAERR);
+    ck_assert_ptr_nonnull(strstr(err, "net.ini:3: unknown key 'colour' in [Master]"));
+    ck_assert_int_eq(load_with("start = later\n"), EX_DATAERR);
+    ck_assert_int_eq(load_with("[Node9]\nmandatory = yes\n"), EX_DATAERR);
+    ck_assert_ptr_nonnull(strstr(err, "[Node9]: node 9 is not present in the nodelist"));
+    ck_assert_int_eq(load_with("[Node4]\nheartbeat = 70000\n"), EX_DATAERR);
+    ck_assert_int_eq(load_with("[Node4]\ncheck = colour\n"), EX_DATAERR);
+    ck_assert_int_eq(load_with("[Slaves]\nx = 1\n"), EX_DATAERR);
+    ck_assert_ptr_nonnull(strstr(err, "unknown section [Slaves]"));
+    ck_assert_int_eq(load_with("no equals sign\n"), EX_DATAERR);
+
+    write_file(ini, "[Master]\ninterface = vcan0\n");
+    ck_assert_int_eq(comaster_network_load(&net, ini, err, sizeof err), EX_DATAERR);
+    ck_assert_ptr_nonnull(strstr(err, "[Master] has no cpj"));
+
+    write_file(ini, "[Master]\ncpj = net.cpj\n");
+    write_file(cpj, "[Topology]\nNodes=1\nNode4Present=1\n");
+    ck_assert_int_eq(comaster_network_load(&net, ini, err, sizeof err), EX_DATAERR);
+    ck_assert_ptr_nonnull(strstr(err, "node 4 is present but has no Node4DCFName"));
+    write_file(cpj, "[Topology]\nNodes=2\nNode4Present=1\nNode4DCFName=" DIR "/drive4.dcf\n");
+    ck_assert_int_eq(comaster_network_load(&net, ini, err, sizeof err), EX_DATAERR);
+    ck_assert_ptr_nonnull(strstr(err, "Nodes = 2 but 1 nodes are present"));
+    write_file(cpj, "[Topology]\nNodes=0\n");
+    ck_assert_int_eq(comaster_network_load(&net, ini, err, sizeof err), EX_DATAERR);
+    write_file(cpj, "[Topology]\nNodes=1\nNode4Present=1\nNode4DCFName=missing.dcf\n");
+    ck_assert_int_eq(comaster_network_load(&net, ini, err, sizeof err), EX_NOINPUT);
+    ck_assert_uint_eq(net.slave_count, 0);
+}
+END_TEST
+
+static Suite *network_suite(void)
+{
+    Suite *s = suite_create("network");
+    TCase *tc = tcase_create("network");
+    tcase_add_checked_fixture(tc, setup, teardown);
+    tcase_add_test(tc, bench_slaves_and_options);
+    tcase_add_test(tc, configuration_writes_from_the_dcf);
+    tcase_add_test(tc, process_image_from_the_mappings);
+    tcase_add_test(tc, unknown_variables_are_told);
+    tcase_add_test(tc, one_slave_for_boot);
+    tcase_add_test(tc, node_options);
+    tcase_add_test(tc, bad_files_are_refused);
+    suite_add_tcase(s, tc);
+    return s;
+}
+
+int main(void)
+{
+    return check_run_suite(network_suite());
+}

@@ -1,0 +1,244 @@
+"""comaster run and boot, the network master, against atv312d drives 4-6 configured by the DCFs of
+examples/netmaster: the exact step and status lines (the PLC300's status bits), the configuration
+read back with python canopen, an output set from another comaster reaching the drive by RPDO, a
+drive killed (SIGKILL) and started again that the master boots and reconfigures, an identity
+mismatch. Every wait is deadline based."""
+
+import os
+import queue
+import signal
+import subprocess
+import threading
+import time
+
+import canopen
+import pytest
+
+from conftest import BOOT_TIMEOUT, EDS, IFACE, ROOT
+
+COMASTER = os.environ.get("COMASTER") or str(ROOT / "build" / "src" / "comaster" / "comaster")
+NET = ROOT / "examples" / "netmaster"
+EX_DATAERR, EX_UNAVAILABLE = 65, 69
+EXIT_TIMEOUT = 2
+
+BOOTED = "status 0x000F contacted configured error-control-started initialised"
+MASTER_BOOTED = "master: status 0x000F all-contacted all-configured all-error-control-started init-finished"
+
+
+def comaster(*args):
+    p = subprocess.run([COMASTER, "-i", IFACE, *[str(a) for a in args]], capture_output=True, text=True,
+                       timeout=30)
+    return p.returncode, p.stdout, p.stderr
+
+
+class Run:
+    """`comaster run NETWORK` in the background, its output lines read as they come."""
+
+    def __init__(self, network, control):
+        self.control = str(control)
+        self.proc = subprocess.Popen([COMASTER, "-i", IFACE, "run", str(network), "--control", self.control],
+                                     stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True, bufsize=1)
+        self.lines = queue.Queue()
+        self.seen = []
+        threading.Thread(target=self._read, daemon=True).start()
+
+    def _read(self):
+        for line in self.proc.stdout:
+            self.lines.put(line.rstrip("\n"))
+        self.lines.put(None)
+
+    def expect(self, text, timeout=BOOT_TIMEOUT):
+        """Waits for the next line that is exactly text; returns the lines passed on the way."""
+        deadline = time.monotonic() + timeout
+        passed = []
+        while True:
+            try:
+                line = self.lines.get(timeout=max(0.0, deadline - time.monotonic()))
+            except queue.Empty:
+                raise AssertionError(f"no line {text!r} within {timeout} s; saw:\n" + "\n".join(self.seen[-40:]))
+            if line is None:
+                raise AssertionError(f"comaster run exited {self.proc.wait()} before {text!r}; saw:\n"
+                                     + "\n".join(self.seen[-40:]))
+            self.seen.append(line)
+            if line == text:
+                return passed
+            passed.append(line)
+
+    def expect_all(self, texts, timeout=BOOT_TIMEOUT):
+        """Waits until every line of texts came, in any order (slaves of two daemons boot in the
+        order their boot-ups reach the master)."""
+        deadline = time.monotonic() + timeout
+        missing = list(texts)
+        while missing:
+            try:
+                line = self.lines.get(timeout=max(0.0, deadline - time.monotonic()))
+            except queue.Empty:
+                raise AssertionError(f"no lines {missing} within {timeout} s; saw:\n" + "\n".join(self.seen[-40:]))
+            if line is None:
+                raise AssertionError(f"comaster run exited {self.proc.wait()}; saw:\n" + "\n".join(self.seen[-40:]))
+            self.seen.append(line)
+            if line in missing:
+                missing.remove(line)
+
+    def request(self, *args):
+        return comaster(*args, "--control", self.control)
+
+    def stop(self):
+        """SIGTERM, the normal end of a run; returns its exit status once all its output is read."""
+        if self.proc.poll() is None:
+            self.proc.send_signal(signal.SIGTERM)
+            self.proc.wait(timeout=5)
+        while (line := self.lines.get(timeout=5)) is not None:
+            self.seen.append(line)
+        return self.proc.returncode
+
+
+@pytest.fixture
+def run(tmp_path):
+    runs = []
+
+    def start(network=NET / "bench.ini"):
+        r = Run(network, tmp_path / "control.sock")
+        runs.append(r)
+        return r
+
+    yield start
+    for r in runs:
+        assert r.stop() == 0, "comaster run did not exit 0 on SIGTERM"
+        assert not [line for line in r.seen if line.startswith("comaster: ") and "control socket" not in line], \
+            "SIGTERM, the normal end of a run, was reported as an error"
+        assert not os.path.exists(r.control), "the control socket was left behind"
+        print("--- comaster run ---\n" + "\n".join(r.seen))
+
+
+@pytest.fixture
+def remote():
+    """Factory: remote(node_id), a python canopen node on a network connected now, so that its SDO
+    client sees no reply of the master's own transfers from before."""
+    networks = []
+
+    def connect(node_id):
+        net = canopen.Network()
+        net.connect(interface="socketcan", channel=IFACE)
+        networks.append(net)
+        node = canopen.RemoteNode(node_id, str(EDS))
+        net.add_node(node)
+        return node
+
+    yield connect
+    for net in networks:
+        net.disconnect()
+
+
+def expect_booted(r, nodes=(4, 5, 6)):
+    r.expect_all([f"node {node} drive{node}: {BOOTED}" for node in nodes] + [MASTER_BOOTED])
+
+
+def test_run_boots_drives_4_to_6_from_their_dcfs(bus, start_daemon, run, remote):
+    start_daemon(bus, "--node-id", "4-6")
+    r = run()
+    passed = r.expect(f"node 4 drive4: {BOOTED}")
+    assert passed[1:] == [
+        "node 4 drive4: wait boot-up", "node 5 drive5: wait boot-up", "node 6 drive6: wait boot-up",
+        "node 4 drive4: read device type", "node 4 drive4: read identity",
+        "node 4 drive4: status 0x0001 contacted",
+        "node 4 drive4: download configuration", "node 4 drive4: status 0x0003 contacted configured",
+        "node 4 drive4: status 0x0007 contacted configured error-control-started",
+    ], passed
+    expect_booted(r, (5, 6))
+    for node_id in (4, 5, 6):
+        bus.expect(0x700 + node_id, "05", timeout=1.0)  # heartbeat 100 ms, operational
+        node = remote(node_id)
+        assert node.sdo[0x1017].raw == 100
+        assert node.sdo[0x1405][1].raw == 0x300 + node_id
+        assert node.sdo[0x1805][1].raw == 0x280 + node_id
+        assert node.sdo[0x203C][2].raw == 20
+        assert node.sdo[0x203C][3].raw == 20
+    rc, out, _ = r.request("status")
+    assert rc == 0
+    assert out.splitlines() == [
+        "master 0x000F all-contacted all-configured all-error-control-started init-finished",
+        "node 4 drive4 0x000F operational", "node 5 drive5 0x000F operational",
+        "node 6 drive6 0x000F operational", "last SDO error: none", "last EMCY: none"]
+
+
+def test_set_speed_reaches_the_drive_by_rpdo(bus, start_daemon, run, remote):
+    start_daemon(bus, "--node-id", "4-6")
+    r = run()
+    expect_booted(r)
+    for control in (6, 7, 15):  # shutdown, switch on, enable operation
+        assert r.request("set", 4, "control", control) == (0, "ok\n", "")
+        bus.expect(0x304, bytes([control, 0, 0, 0]))
+    assert r.request("set", 4, "speed", 1200) == (0, "ok\n", "")
+    bus.expect(0x304, "0F00B004")  # control 0x000F, speed 1200 = 0x04B0
+    assert remote(4).sdo[0x6042].raw == 1200
+    # The drive's TPDO6 (status word, actual speed) feeds the inputs: it runs up to 1200 rpm.
+    deadline = time.monotonic() + 10
+    while True:
+        frame = bus.expect(0x284, timeout=1.0)
+        if int.from_bytes(frame.data[2:4], "little", signed=True) == 1200:
+            break
+        assert time.monotonic() < deadline, f"the drive did not reach 1200 rpm: {frame}"
+    bus.expect(0x284, timeout=1.0)  # one more TPDO6 after the master had the last one
+    assert r.request("get", 4, "actual_speed") == (0, "1200\n", "")
+    assert r.request("get", 4, "status")[1] == "1575\n"  # 0x0627: operation enabled, at speed
+    assert r.request("get", 4, "speed") == (0, "1200\n", "")
+    assert r.request("get", 5, "actual_speed") == (0, "0\n", "")
+
+
+def test_bad_requests_are_refused(bus, start_daemon, run):
+    start_daemon(bus, "--node-id", "4-6")
+    r = run()
+    expect_booted(r)
+    rc, _, err = r.request("set", 4, "status", 5)
+    assert rc == EX_DATAERR and "is an input" in err, err
+    rc, _, err = r.request("set", 4, "ACC", 5)
+    assert (rc, err) == (EX_DATAERR, "comaster: node 4: 203Ch:02 (ACC) is in none of its PDOs\n")
+    rc, _, err = r.request("set", 4, "speed", 40000)
+    assert rc == EX_DATAERR and "speed" in err, err
+    rc, _, err = r.request("get", 9, "speed")
+    assert (rc, err) == (EX_DATAERR, "comaster: node 9 is not a slave of the network\n")
+    rc, _, err = comaster("status", "--control", "/nonexistent/control.sock")
+    assert rc == EX_UNAVAILABLE and "no comaster run answers" in err, err
+
+
+def test_drive_killed_and_restarted_is_rebooted_and_reconfigured(bus, start_daemon, run, remote):
+    drive4 = start_daemon(bus, "--node-id", "4")
+    start_daemon(bus, "--node-id", "5-6")
+    r = run()
+    expect_booted(r)
+    drive4.proc.kill()
+    drive4.proc.wait()
+    r.expect("node 4 drive4: status 0x0020 error-control-error", timeout=2.0)
+    r.expect("master: status 0x0028 init-finished error-control-error", timeout=1.0)
+    start_daemon(bus, "--node-id", "4")
+    r.expect(f"node 4 drive4: {BOOTED}", timeout=10.0)
+    r.expect(MASTER_BOOTED, timeout=1.0)
+    node = remote(4)
+    assert node.sdo[0x203C][2].raw == 20  # the new process started from ACC 30
+    assert node.sdo[0x1017].raw == 100
+    bus.expect(0x704, "05", timeout=1.0)
+
+
+def test_identity_mismatch_is_an_init_error(bus, start_daemon, run, tmp_path):
+    start_daemon(bus, "--node-id", "4-6")
+    ini = tmp_path / "bench.ini"
+    ini.write_text(f"[Master]\ncpj = {NET / 'bench.cpj'}\nretry_delay = 60000\n[Node6]\nvendor = 0x99\n")
+    r = run(ini)
+    r.expect("node 6 drive6: init error: identity mismatch (read 0x0000005F)")
+    r.expect("master: status 0x0018 init-finished init-error")
+    rc, out, _ = r.request("status")
+    assert rc == 0
+    assert "node 6 drive6 0x0010 init error: identity mismatch (read 0x0000005F)" in out.splitlines(), out
+
+
+def test_boot_one_slave(bus, start_daemon, remote):
+    start_daemon(bus, "--node-id", "4")
+    rc, out, err = comaster("boot", 4, NET / "drive4.dcf")
+    assert rc == 0, out + err
+    assert out.splitlines()[-3:] == [f"node 4 node4: {BOOTED}", MASTER_BOOTED, "node 4 node4: operational"]
+    assert remote(4).sdo[0x203C][2].raw == 20
+    bus.expect(0x704, "05", timeout=1.0)
+    rc, out, err = comaster("boot", 7, NET / "drive4.dcf")
+    assert rc == EXIT_TIMEOUT, out + err
+    assert "SDO error: node 7 read 1000h:00 abort 0x05040000 (SDO protocol timed out)" in out.splitlines(), out

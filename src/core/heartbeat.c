@@ -122,16 +122,14 @@ static co_time_t consumers_process(co_node_t *node, co_time_t now)
 {
     if (now < node->heartbeat.consumers_next)
         return node->heartbeat.consumers_next;
-    co_time_t next = CO_TIME_NEVER;
     for (uint8_t i = 0; i < CO_CONFIG_HB_CONSUMERS; i++) {
         co_hb_consumer_t *c = &node->heartbeat.consumer[i];
         if (co_hb_monitor_expired(&c->monitor, now))
             report(node, c->node_id, true);
-        else
-            next = co_time_min(next, c->monitor.deadline);
     }
-    node->heartbeat.consumers_next = next;
-    return next;
+    /* After the reports: their hooks may have reconfigured a consumer. */
+    consumers_schedule(&node->heartbeat);
+    return node->heartbeat.consumers_next;
 }
 
 static co_time_t producer_process(co_node_t *node, co_time_t now)

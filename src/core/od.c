@@ -165,25 +165,10 @@ static int64_t sign_extend(uint64_t v, size_t size)
     return (int64_t)v;
 }
 
-/* The communication parameters, read on every frame, are 1, 2 or 4 bytes: read them whole. */
-static uint64_t stored_value(const uint8_t *p, size_t size)
-{
-    switch (size) {
-    case 1:
-        return p[0];
-    case 2:
-        return co_get_u16(p);
-    case 4:
-        return co_get_u32(p);
-    default:
-        return raw_value(p, size);
-    }
-}
-
 int64_t co_od_get(const co_node_t *node, const co_od_entry_t *entry)
 {
     size_t size = entry->size < 8 ? entry->size : 8;
-    uint64_t v = stored_value(co_od_bytes(node, entry), size);
+    uint64_t v = raw_value(co_od_bytes(node, entry), size);
     return type_is_signed(entry->type) ? sign_extend(v, size) : (int64_t)v;
 }
 

@@ -41,6 +41,7 @@ typedef struct co_hb_consumer {
 typedef struct co_heartbeat {
     co_time_t next_beat; /* CO_TIME_NEVER while 1017h = 0 */
     co_hb_consumer_t consumer[CO_CONFIG_HB_CONSUMERS];
+    co_time_t consumers_next; /* earliest consumer deadline */
 } co_heartbeat_t;
 
 /* Reset communication: restarts the producer period and reloads the consumers from 1016h. */

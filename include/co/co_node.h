@@ -85,6 +85,10 @@ struct co_node {
     uint32_t options;             /* CO_NODE_* */
     co_time_t now;                /* time of the frame or process call being handled */
     uint32_t consumer_generation; /* co_consumers.h */
+    /* co_node_process: the earliest deadline of the services other than the PDOs, valid while
+     * schedule_changed is false (co_node_changed). */
+    co_time_t services_due;
+    bool schedule_changed;
 
     co_sdo_server_t sdo;
     co_pdo_t pdo;
@@ -115,6 +119,11 @@ void co_node_receive(co_node_t *node, const co_frame_t *frame, co_time_t now);
 /* Runs every timer that is due at `now` and returns the next deadline (CO_TIME_NEVER when none).
  * Call it after every received frame and every change the application makes to mapped data. */
 co_time_t co_node_process(co_node_t *node, co_time_t now);
+
+/* A service's schedule may have changed outside co_node_process() (a frame it consumed, a
+ * parameter written, an NMT state change, an EMCY queued): the next process call runs every
+ * service instead of returning the kept deadline (used by the services). */
+void co_node_changed(co_node_t *node);
 
 /* Sends a frame through the node's callback (used by the services). */
 void co_node_send(co_node_t *node, const co_frame_t *frame);

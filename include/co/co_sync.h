@@ -42,10 +42,24 @@ bool co_sync_producer_take(co_sync_producer_t *producer, co_time_t now, co_frame
 typedef struct co_sync {
     co_sync_producer_t producer; /* fed from 1005h, 1006h, 1019h */
     bool length_error;           /* EMCY 0x8240 raised */
+    /* 1005h, 1006h, 1007h and 1019h as the dictionary holds them (0 when absent), reloaded by
+     * co_sync_init, co_sync_reset and every write of one of them through co_od_write. */
+    uint32_t cob_id;
+    uint32_t period_us;
+    uint32_t window_us;
+    uint8_t overflow;
 } co_sync_t;
 
-/* Reset node and reset communication: the producer restarts, and the consumer's length error
- * ends with its EMCY 0x8240, so that the next wrong SYNC raises it again. */
+/* Loads the node's SYNC parameters from its dictionary (co_node_init). */
+void co_sync_init(co_node_t *node);
+/* 1019h (synchronous counter overflow value) and 1007h (synchronous window length, us), for the
+ * PDO engine. */
+uint8_t co_sync_overflow(const co_node_t *node);
+uint32_t co_sync_window_us(const co_node_t *node);
+
+/* Reset node and reset communication: the parameters are reloaded, the producer restarts, and the
+ * consumer's length error ends with its EMCY 0x8240, so that the next wrong SYNC raises it again.
+ */
 void co_sync_reset(co_node_t *node);
 bool co_sync_receive(co_node_t *node, const co_frame_t *frame);
 /* Produces the SYNC when due; returns the next one (CO_TIME_NEVER when not producing). */

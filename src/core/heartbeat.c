@@ -56,6 +56,16 @@ bool co_hb_monitor_expired(co_hb_monitor_t *monitor, co_time_t now)
     return true;
 }
 
+/* The earliest deadline of the consumers, kept exact after every change of one of them, so that a
+ * process call with no consumer due looks at none of them. */
+static void consumers_schedule(co_heartbeat_t *hb)
+{
+    co_time_t next = CO_TIME_NEVER;
+    for (uint8_t i = 0; i < CO_CONFIG_HB_CONSUMERS; i++)
+        next = co_time_min(next, hb->consumer[i].monitor.deadline);
+    hb->consumers_next = next;
+}
+
 static void consumer_configure(co_hb_consumer_t *c, uint32_t value)
 {
     bool used = consumer_in_use(value);
@@ -77,6 +87,7 @@ void co_heartbeat_reset(co_node_t *node)
         const co_od_entry_t *e = co_od_find(node->od, 0x1016, (uint8_t)(i + 1));
         consumer_configure(&hb->consumer[i], e != NULL ? (uint32_t)co_od_get(node, e) : 0);
     }
+    consumers_schedule(hb);
 }
 
 static void report(co_node_t *node, uint8_t producer, bool lost)
@@ -102,20 +113,23 @@ bool co_heartbeat_receive(co_node_t *node, const co_frame_t *frame)
         if (co_hb_monitor_alive(&c->monitor, node->now))
             report(node, producer, false);
     }
+    if (consumed)
+        consumers_schedule(&node->heartbeat);
     return consumed;
 }
 
 static co_time_t consumers_process(co_node_t *node, co_time_t now)
 {
-    co_time_t next = CO_TIME_NEVER;
+    if (now < node->heartbeat.consumers_next)
+        return node->heartbeat.consumers_next;
     for (uint8_t i = 0; i < CO_CONFIG_HB_CONSUMERS; i++) {
         co_hb_consumer_t *c = &node->heartbeat.consumer[i];
         if (co_hb_monitor_expired(&c->monitor, now))
             report(node, c->node_id, true);
-        else
-            next = co_time_min(next, c->monitor.deadline);
     }
-    return next;
+    /* After the reports: their hooks may have reconfigured a consumer. */
+    consumers_schedule(&node->heartbeat);
+    return node->heartbeat.consumers_next;
 }
 
 static co_time_t producer_process(co_node_t *node, co_time_t now)
@@ -168,6 +182,7 @@ static uint32_t write_consumer(co_node_t *node, uint8_t subindex, uint32_t value
         return consumer_in_use(value) ? SDO_ABORT_INTERNAL_INCOMPATIBLE : CO_SDO_OK;
     }
     consumer_configure(&node->heartbeat.consumer[subindex - 1], value);
+    consumers_schedule(&node->heartbeat);
     return CO_SDO_OK;
 }
 

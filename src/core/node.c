@@ -63,6 +63,7 @@ int co_node_init(co_node_t *node, const co_node_config_t *config)
     }
 #endif
     co_od_restore_defaults(node, 0x0000, 0xFFFF);
+    co_sync_init(node);
     return 0;
 }
 
@@ -100,14 +101,46 @@ void co_node_receive(co_node_t *node, const co_frame_t *frame, co_time_t now)
     if (co_nmt_receive(node, frame))
         return;
     /* Node guarding and heartbeat consumption work in every state. */
-    if (co_guarding_receive(node, frame) || co_heartbeat_receive(node, frame))
+    if (co_guarding_receive(node, frame) || co_heartbeat_receive(node, frame)) {
+        co_node_changed(node);
         return;
+    }
     if (node->nmt_state == CO_NMT_STOPPED)
         return;
-    if (co_sync_receive(node, frame) || co_sdo_receive(node, frame))
+    if (co_sync_receive(node, frame))
         return;
+    bool sdo_was_busy = node->sdo.state != CO_SDO_IDLE;
+    if (co_sdo_receive(node, frame)) {
+        /* A transfer under way has a timeout, which each of its frames moves; an expedited
+         * transfer leaves the server idle, with none. */
+        if (sdo_was_busy || node->sdo.state != CO_SDO_IDLE)
+            co_node_changed(node);
+        return;
+    }
     if (node->nmt_state == CO_NMT_OPERATIONAL)
         co_pdo_receive(node, frame);
+}
+
+void co_node_changed(co_node_t *node)
+{
+    node->schedule_changed = true;
+}
+
+/* Heartbeat, guarding, SDO, SYNC and EMCY: what they do and their next deadline change only with
+ * time, frames and the calls that mark the node changed (co_node_changed), so while neither
+ * happened a process call looks at none of them. */
+static co_time_t services_process(co_node_t *node, co_time_t now)
+{
+    if (!node->schedule_changed && now < node->services_due)
+        return node->services_due;
+    node->schedule_changed = false;
+    co_time_t next = co_heartbeat_process(node, now);
+    next = co_time_min(next, co_guarding_process(node, now));
+    next = co_time_min(next, co_sdo_process(node, now));
+    next = co_time_min(next, co_sync_process(node, now));
+    next = co_time_min(next, co_emcy_process(node, now));
+    node->services_due = next;
+    return next;
 }
 
 co_time_t co_node_process(co_node_t *node, co_time_t now)
@@ -115,11 +148,8 @@ co_time_t co_node_process(co_node_t *node, co_time_t now)
     node->now = now;
     if (node->nmt_state == CO_NMT_INITIALISING)
         return CO_TIME_NEVER;
-    co_time_t next = co_heartbeat_process(node, now);
-    next = co_time_min(next, co_guarding_process(node, now));
-    next = co_time_min(next, co_sdo_process(node, now));
-    next = co_time_min(next, co_sync_process(node, now));
-    next = co_time_min(next, co_emcy_process(node, now));
-    next = co_time_min(next, co_pdo_process(node, now));
-    return next;
+    co_time_t next = services_process(node, now);
+    /* The PDOs run on every call: the application changes mapped data without telling the core,
+     * and an event-driven TPDO compares it here. */
+    return co_time_min(next, co_pdo_process(node, now));
 }

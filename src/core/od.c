@@ -98,17 +98,19 @@ co_od_error_t co_od_validate(const co_od_t *od, uint16_t *position)
 /* First entry whose key is >= the wanted key, or od->count. */
 static uint16_t lower_bound(const co_od_t *od, uint32_t key)
 {
-    uint16_t lo = 0;
-    uint16_t hi = od->count;
-    while (lo < hi) {
-        uint16_t mid = (uint16_t)(lo + (hi - lo) / 2);
-        const co_od_entry_t *e = &od->entries[mid];
-        if (entry_key(e->index, e->subindex) < key)
-            lo = (uint16_t)(mid + 1);
-        else
-            hi = mid;
+    const co_od_entry_t *first = od->entries;
+    size_t len = od->count;
+    while (len > 0) {
+        size_t half = len / 2;
+        const co_od_entry_t *mid = first + half;
+        if (entry_key(mid->index, mid->subindex) < key) {
+            first = mid + 1;
+            len -= half + 1;
+        } else {
+            len = half;
+        }
     }
-    return lo;
+    return (uint16_t)(first - od->entries);
 }
 
 const co_od_entry_t *co_od_find(const co_od_t *od, uint16_t index, uint8_t subindex)
@@ -126,14 +128,20 @@ const char *co_od_name(const co_od_t *od, uint16_t index, uint8_t subindex)
     return e != NULL && od->names != NULL ? od->names[e - od->entries] : NULL;
 }
 
+/* One search: when the entry is absent, its neighbours in the sorted table tell whether the
+ * object has other sub-indexes. */
 uint32_t co_od_lookup(const co_od_t *od, uint16_t index, uint8_t subindex,
                       const co_od_entry_t **entry)
 {
-    uint16_t pos = lower_bound(od, entry_key(index, 0));
-    *entry = co_od_find(od, index, subindex);
-    if (*entry != NULL)
+    uint16_t pos = lower_bound(od, entry_key(index, subindex));
+    *entry = NULL;
+    if (pos < od->count && od->entries[pos].index == index) {
+        if (od->entries[pos].subindex != subindex)
+            return SDO_ABORT_NO_SUBINDEX;
+        *entry = &od->entries[pos];
         return CO_SDO_OK;
-    if (pos < od->count && od->entries[pos].index == index)
+    }
+    if (pos > 0 && od->entries[pos - 1].index == index)
         return SDO_ABORT_NO_SUBINDEX;
     return SDO_ABORT_NO_OBJECT;
 }
@@ -266,6 +274,9 @@ static uint32_t service_write(co_node_t *node, const co_od_entry_t *e, const uin
                               size_t len)
 {
     uint16_t i = e->index;
+    /* A communication parameter may move a service's deadline. */
+    if (i >= 0x1000 && i <= 0x1FFF)
+        co_node_changed(node);
     if (i == 0x1003 || i == 0x1014 || i == 0x1015)
         return co_emcy_od_write(node, e, data, len);
     if (i == 0x1005 || i == 0x1006 || i == 0x1007 || i == 0x1019)

@@ -283,7 +283,7 @@ static co_time_t tpdo_process_event(co_node_t *node, co_tpdo_t *t, co_time_t now
  * has already elapsed since that SYNC (CiA 301 7.5.2.7). */
 static void tpdo_process_sync(co_node_t *node, co_tpdo_t *t, co_time_t now)
 {
-    uint32_t window = (uint32_t)co_od_value(node, 0x1007, 0);
+    uint32_t window = co_sync_window_us(node);
     t->sync_due = false;
     if (window == 0 || now - node->pdo.sync_at <= window)
         tpdo_send(node, t, t->sample);
@@ -293,7 +293,7 @@ static void tpdo_process_sync(co_node_t *node, co_tpdo_t *t, co_time_t now)
  * (1019h > 0) the first transmission is at the SYNC whose counter equals the start value. */
 static bool tpdo_cyclic_due(const co_node_t *node, co_tpdo_t *t, uint8_t counter)
 {
-    bool use_start = t->sync_start != 0 && co_od_value(node, 0x1019, 0) != 0;
+    bool use_start = t->sync_start != 0 && co_sync_overflow(node) != 0;
     if (!t->started) {
         if (use_start && counter != t->sync_start)
             return false;

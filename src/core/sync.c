@@ -2,19 +2,41 @@
  * Every SYNC, received or produced, is handed to the PDO engine and to the application. */
 #include "co/co_node.h"
 
+/* The SYNC parameters are read from the dictionary at init, at each reset (after the defaults and
+ * the stored values are in place) and after each write of one of them, so that a frame reads
+ * them from the service's state; an absent one reads as 0, as co_od_value() reads it. */
+static void sync_load(co_node_t *node)
+{
+    co_sync_t *sync = &node->sync;
+    sync->cob_id = (uint32_t)co_od_value(node, 0x1005, 0);
+    sync->period_us = (uint32_t)co_od_value(node, 0x1006, 0);
+    sync->window_us = (uint32_t)co_od_value(node, 0x1007, 0);
+    sync->overflow = (uint8_t)co_od_value(node, 0x1019, 0);
+}
+
+void co_sync_init(co_node_t *node)
+{
+    sync_load(node);
+}
+
 static uint32_t sync_cob_id(const co_node_t *node)
 {
-    return (uint32_t)co_od_value(node, 0x1005, 0);
+    return node->sync.cob_id;
 }
 
 static uint32_t sync_period_us(const co_node_t *node)
 {
-    return (uint32_t)co_od_value(node, 0x1006, 0);
+    return node->sync.period_us;
 }
 
-static uint8_t sync_overflow(const co_node_t *node)
+uint8_t co_sync_overflow(const co_node_t *node)
 {
-    return (uint8_t)co_od_value(node, 0x1019, 0);
+    return node->sync.overflow;
+}
+
+uint32_t co_sync_window_us(const co_node_t *node)
+{
+    return node->sync.window_us;
 }
 
 static bool sync_production_allowed(const co_node_t *node)
@@ -49,6 +71,7 @@ static void sync_length_error_end(co_node_t *node)
  * is in Initialising: clearing the EMCY sends no error reset, the boot-up says it. */
 void co_sync_reset(co_node_t *node)
 {
+    sync_load(node);
     co_sync_producer_stop(&node->sync.producer);
     node->sync.producer.counter = 0;
     sync_length_error_end(node);
@@ -116,7 +139,7 @@ co_time_t co_sync_process(co_node_t *node, co_time_t now)
      * producer, so that a new configuration starts a fresh period here, counter kept. */
     producer->can_id = sync_cob_id(node) & CO_SYNC_COBID_CAN_ID;
     producer->period_us = sync_period_us(node);
-    producer->overflow = sync_overflow(node);
+    producer->overflow = co_sync_overflow(node);
     if (producer->next == CO_TIME_NEVER)
         producer->next = now + producer->period_us;
     co_frame_t frame;
@@ -133,7 +156,7 @@ bool co_sync_receive(co_node_t *node, const co_frame_t *frame)
         return false;
     if (frame->flags & CO_FRAME_RTR)
         return true;
-    uint8_t overflow = sync_overflow(node);
+    uint8_t overflow = co_sync_overflow(node);
     uint8_t expected = overflow != 0 ? 1 : 0;
     if (frame->len != expected) {
         /* CiA 301 table 21: unexpected SYNC data length; the SYNC is ignored. */
@@ -180,14 +203,17 @@ static uint32_t sync_write_overflow(co_node_t *node, uint8_t value)
 uint32_t co_sync_od_write(co_node_t *node, const co_od_entry_t *entry, const uint8_t *data,
                           size_t len)
 {
-    (void)len;
     uint32_t abort = CO_SDO_OK;
     if (entry->index == 0x1005)
         abort = sync_write_cob_id(node, co_get_u32(data));
     else if (entry->index == 0x1019)
         abort = sync_write_overflow(node, data[0]);
+    if (abort != CO_SDO_OK)
+        return abort;
     /* A new producer configuration starts a fresh period at the next co_sync_process(). */
-    if (abort == CO_SDO_OK && (entry->index == 0x1005 || entry->index == 0x1006))
+    if (entry->index == 0x1005 || entry->index == 0x1006)
         co_sync_producer_stop(&node->sync.producer);
-    return abort;
+    co_od_store(node, entry, data, len);
+    sync_load(node);
+    return CO_OD_HANDLED;
 }

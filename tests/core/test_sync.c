@@ -258,6 +258,32 @@ START_TEST(sync_length_error_ends_with_reset_communication)
 }
 END_TEST
 
+/* The service keeps 1005h and 1019h in its own state: a write of either and a reset, which
+ * restores their defaults, take effect on the next SYNC. */
+START_TEST(parameters_follow_writes_and_resets)
+{
+    start();
+    test_rx(&t, "604#2305100081000000"); /* 1005h = 081h */
+    test_expect(&t, "584#6005100000000000");
+    test_rx(&t, "604#2F19100003000000"); /* 1019h = 3 */
+    test_expect(&t, "584#6019100000000000");
+    test_rx(&t, "080#02");
+    ck_assert_uint_eq(sync_calls, 0);
+    test_rx(&t, "081#02");
+    ck_assert_uint_eq(sync_calls, 1);
+    ck_assert_uint_eq(sync_counter, 2);
+    test_expect_none(&t);
+    test_rx(&t, "000#8204");
+    test_expect(&t, "704#00");
+    test_rx(&t, "081#");
+    ck_assert_uint_eq(sync_calls, 1);
+    test_rx(&t, "080#");
+    ck_assert_uint_eq(sync_calls, 2);
+    ck_assert_uint_eq(sync_counter, 0);
+    test_expect_none(&t);
+}
+END_TEST
+
 START_TEST(consumer_ignored_when_stopped)
 {
     start();
@@ -300,6 +326,7 @@ int main(void)
     tcase_add_test(tc, consumer_counter_and_hook);
     tcase_add_test(tc, consumer_wrong_length_emcy_8240);
     tcase_add_test(tc, sync_length_error_ends_with_reset_communication);
+    tcase_add_test(tc, parameters_follow_writes_and_resets);
     tcase_add_test(tc, consumer_ignored_when_stopped);
     tcase_add_test(tc, produced_sync_drives_synchronous_tpdo);
     suite_add_tcase(s, tc);

@@ -23,43 +23,17 @@ import time
 
 import can
 
+import benchproc
+from benchproc import CLOCK_TICKS, proc_stat_cpu, proc_status, syscalls, wait_for
+
 IFACE = "vcan0"
-CLOCK_TICKS = os.sysconf("SC_CLK_TCK")
 # A free CAN-ID, the last drive's TPDO1 as data (only its RTR is consumed), its SDO reply, its
 # heartbeat (nobody monitors it), LSS.
 FOR_NOBODY = [0x123, 0x1FF, 0x5FF, 0x77F, 0x7E5]
 
 
-def proc_stat_cpu(pid):
-    fields = open(f"/proc/{pid}/stat").read().rsplit(")", 1)[1].split()
-    return (int(fields[11]) + int(fields[12])) / CLOCK_TICKS  # utime + stime
-
-
-def proc_status(pid, key):
-    for line in open(f"/proc/{pid}/status"):
-        name, _, value = line.partition(":")
-        if name == key:
-            return int(value.split()[0])
-    raise KeyError(key)
-
-
-def wait_for(bus, predicate, timeout):
-    deadline = time.monotonic() + timeout
-    while time.monotonic() < deadline:
-        msg = bus.recv(timeout=max(0.0, deadline - time.monotonic()))
-        if msg is not None and not msg.is_error_frame and predicate(msg):
-            return msg
-    return None
-
-
 def sdo_request(bus, node, data):
-    bus.send(can.Message(arbitration_id=0x600 + node, is_extended_id=False, data=data))
-    reply = wait_for(bus, lambda m: m.arbitration_id == 0x580 + node, 5.0)
-    if reply is None:
-        sys.exit(f"scale.py: no SDO reply from node {node}")
-    if reply.data[0] == 0x80:
-        sys.exit(f"scale.py: node {node} aborted {data.hex()}: {bytes(reply.data).hex()}")
-    return reply
+    return benchproc.sdo_request(bus, node, data, "scale.py")
 
 
 def round_trip(bus, node):

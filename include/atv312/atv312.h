@@ -30,9 +30,9 @@ extern const drive_fault_table_t atv312_family_faults;
  * 0x2000 + (ADL - 3000) / 100, sub-index ADL mod 100 + 1 (SPEC section 2): ACC 9001, DEC 9002, HSP
  * 3104, LSP 3105, FRS 9602, NCR 9603, NSP 9604, LCR 3203, OTR 3208, CMD 8501, ETA 3201, COL
  * 6401, CnF 6402, RFR 3202, LFR 8502, CHCF 8401, rFC 8411, Fr1 8413, Fr2 8414, CCS 8421, Cd1
- * 8423, Cd2 8424, Stt 11203. A macro, not a function, so that each model's profile stays a constant
- * initialiser (in flash on a microcontroller); the ATV31 (atv31/atv31.h) is the same drive under
- * another name. */
+ * 8423, Cd2 8424, Stt 11203, tUn 9608. A macro, not a function, so that each model's profile stays
+ * a constant initialiser (in flash on a microcontroller); the ATV31 (atv31/atv31.h) is the same
+ * drive under another name. */
 #define ATV312_FAMILY_PROFILE(dictionary)                                                          \
     {                                                                                              \
         .od = (dictionary), .control_reverse = 0x0800, .control_ramp_stop = 0x1000,                \
@@ -52,6 +52,7 @@ extern const drive_fault_table_t atv312_family_faults;
         .reference_channels = {DRIVE_PARAM(0x2036, 14), DRIVE_PARAM(0x2036, 15),                   \
                                DRIVE_PARAM(0x2036, 12), ATV312_RFC_FR2, ATV312_FR_CANOPEN},        \
         .output_frequency = DRIVE_PARAM(0x2002, 3), .frequency_reference = DRIVE_PARAM(0x2037, 3), \
+        .auto_tune = DRIVE_PARAM(0x2042, 9),                                                       \
     }
 
 extern const drive_profile_t atv312_profile;

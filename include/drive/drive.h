@@ -98,6 +98,8 @@ typedef struct drive_profile {
      * 6042h (a write to either sets both). */
     drive_param_t output_frequency;
     drive_param_t frequency_reference;
+    /* Auto-tuning (the Altivars' tUn): a DRIVE_AUTO_TUNE_* value, with the drive_auto_tune hook. */
+    drive_param_t auto_tune;
     /* Status word bit set after the keypad's STOP key (the Altivars' ETA bit 14). */
     uint16_t status_stop_key;
     /* The faults of the model's manuals (faults.h); required. */
@@ -112,6 +114,12 @@ typedef struct drive_profile {
 #define DRIVE_STOP_FAST 1         /* the fast ramp */
 #define DRIVE_STOP_FREEWHEEL 2    /* the output is cut, the motor coasts */
 #define DRIVE_STOP_DC_INJECTION 3 /* modelled as the fast ramp */
+/* Values of the profile's auto_tune: writing YES in Operation enabled with the motor standing
+ * runs a simulated tune of DRIVE_AUTO_TUNE_TIME_US, after which it reads DONE; NO cancels. */
+#define DRIVE_AUTO_TUNE_NO 0
+#define DRIVE_AUTO_TUNE_YES 1
+#define DRIVE_AUTO_TUNE_DONE 2
+#define DRIVE_AUTO_TUNE_TIME_US 500000u
 /* The network fault code of a communication loss ("time out on the reception of the periodic
  * variables addressed to the drive", ATV312 DeviceNet manual). */
 #define DRIVE_NETWORK_FAULT_TIME_OUT 1
@@ -134,10 +142,11 @@ typedef struct drive {
     uint32_t fault_causes;
     uint8_t fault_latched; /* the entry in 603Fh and on the display while faults_active */
     /* At the drive (local.c): forced local control, the keypad's keys, the load. */
-    bool local;     /* forced local: the network's control word is ignored, bit 9 = 0 */
-    bool local_run; /* the RUN key's run command, under forced local control */
-    bool stop_key;  /* the STOP key was pressed, until the next run command */
-    uint8_t load;   /* extra load torque, % of nominal torque */
+    bool local;              /* forced local: the network's control word is ignored, bit 9 = 0 */
+    bool local_run;          /* the RUN key's run command, under forced local control */
+    bool stop_key;           /* the STOP key was pressed, until the next run command */
+    uint8_t load;            /* extra load torque, % of nominal torque */
+    co_time_t auto_tune_end; /* when the running auto-tune completes; CO_TIME_NEVER: none runs */
 } drive_t;
 
 /* drive_init's error for a profile without a valid fault table. */
@@ -204,11 +213,14 @@ const char *drive_state_name(const drive_t *drive);
  *   a non-zero target; a change returns the drive to Switch on disabled;
  * drive_speed_limit: low_speed and high_speed, low <= high (else 0x06090036);
  * drive_velocity_limits: 6046h:01/02 (rpm), views of low_speed/high_speed (0.1 Hz);
- * drive_ramp_rate: 6048h/6049h (delta speed / delta time), views of acceleration/deceleration.
+ * drive_ramp_rate: 6048h/6049h (delta speed / delta time), views of acceleration/deceleration;
+ * drive_auto_tune: auto_tune; YES only in Operation enabled with the motor standing (else
+ *   0x08000022), DONE only from the drive (else 0x06090030).
  * A view is written through its parameter's own checks and read from it. */
 extern const co_od_hook_t drive_configuration_parameter;
 extern const co_od_hook_t drive_speed_limit;
 extern const co_od_hook_t drive_velocity_limits;
 extern const co_od_hook_t drive_ramp_rate;
+extern const co_od_hook_t drive_auto_tune;
 
 #endif

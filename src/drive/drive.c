@@ -239,6 +239,22 @@ static void apply_control_word(drive_t *drive, uint16_t control)
     drive_local_command_applied(drive);
 }
 
+/* A running auto-tune completes at its time, or ends unfinished (NO) when the drive leaves
+ * Operation enabled. */
+static void advance_auto_tune(drive_t *drive, co_time_t now)
+{
+    drive_param_t tune = drive->profile->auto_tune;
+    if (drive->auto_tune_end == CO_TIME_NEVER)
+        return;
+    if (drive->cia402.state != CIA402_OPERATION_ENABLED)
+        co_od_set_value(&drive->node, tune.index, tune.subindex, DRIVE_AUTO_TUNE_NO);
+    else if (now >= drive->auto_tune_end)
+        co_od_set_value(&drive->node, tune.index, tune.subindex, DRIVE_AUTO_TUNE_DONE);
+    else
+        return;
+    drive->auto_tune_end = CO_TIME_NEVER;
+}
+
 static bool is_param(const co_od_entry_t *entry, drive_param_t param)
 {
     return param.index != 0 && entry->index == param.index && entry->subindex == param.subindex;
@@ -270,6 +286,7 @@ static void on_written(co_node_t *node, const co_od_entry_t *entry, co_od_origin
         apply_control_word(drive, (uint16_t)co_od_get(node, entry));
     mirror_reference(drive, entry);
     drive_settle(drive);
+    advance_auto_tune(drive, node->now);
 }
 
 static void on_heartbeat(co_node_t *node, uint8_t producer, bool lost)
@@ -296,6 +313,7 @@ static void restart_drive(drive_t *drive, co_time_t now)
     drive->limited = false;
     drive->stop_key = false;
     drive->local_run = false;
+    drive->auto_tune_end = CO_TIME_NEVER;
     drive_faults_restart(drive);
 }
 
@@ -367,7 +385,9 @@ co_time_t drive_process(drive_t *drive, co_time_t now)
 {
     drive_motor_advance(&drive->motor, now);
     drive_settle(drive);
+    advance_auto_tune(drive, now);
     co_time_t next = co_node_process(&drive->node, now);
+    next = co_time_min(next, drive->auto_tune_end);
     return co_time_min(next, drive_motor_deadline(&drive->motor));
 }
 

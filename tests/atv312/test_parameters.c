@@ -2,7 +2,7 @@
  * frequencies"): each at its Schneider address with its range and default, and what the drive
  * layer does with it through atv312_profile: CHCF, rFC, Fr1, Fr2, CCS, Cd1, Cd2 choose where the
  * commands and the reference come from, Stt what CMD bit 12 does, RFR is the output frequency and
- * LFR the reference in 0.1 Hz. */
+ * LFR the reference in 0.1 Hz, tUn runs a simulated auto-tune. */
 #include "atv312_bench.h"
 #include "check_main.h"
 
@@ -41,6 +41,7 @@ static uint32_t write_adl(bench_t *b, unsigned adl, uint16_t value)
 #define LFR 8502
 #define RFR 3202
 #define STT 11203
+#define TUN 9608
 
 static const struct {
     unsigned adl;
@@ -186,6 +187,25 @@ START_TEST(rfr_and_lfr_in_decihertz)
 }
 END_TEST
 
+/* tUn (2042:09): "requires an injection of current. The drive must therefore be in this state"
+ * (Operation enabled); YES (1) reads DONE (2) after the simulated tune. */
+START_TEST(tun_in_operation_enabled)
+{
+    bench_t b;
+    bench_start(&b);
+    ck_assert_uint_eq(adl_index(TUN), 0x2042);
+    ck_assert_uint_eq(adl_sub(TUN), 9);
+    ck_assert_uint_eq(read_adl(&b, TUN), 0);
+    ck_assert_uint_eq(write_adl(&b, TUN, 1), ABORT_STATE);
+    ck_assert_uint_eq(bench_command(&b, 0x0006), 0x0621);
+    ck_assert_uint_eq(bench_command(&b, 0x000F), 0x0627);
+    ck_assert_uint_eq(write_adl(&b, TUN, 1), 0);
+    bench_advance(&b, DRIVE_AUTO_TUNE_TIME_US);
+    ck_assert_uint_eq(read_adl(&b, TUN), 2);
+    ck_assert_uint_eq(write_adl(&b, TUN, 3), ABORT_VALUE_HIGH);
+}
+END_TEST
+
 int main(void)
 {
     Suite *s = suite_create("atv312_parameters");
@@ -196,6 +216,7 @@ int main(void)
     tcase_add_test(tc, reference_channel_ai1_runs_at_low_speed);
     tcase_add_test(tc, stop_type_of_cmd_bit_12);
     tcase_add_test(tc, rfr_and_lfr_in_decihertz);
+    tcase_add_test(tc, tun_in_operation_enabled);
     suite_add_tcase(s, tc);
     return check_run_suite(s);
 }

@@ -44,4 +44,5 @@ const drive_profile_t minimal_profile = {
     .reference_channels = {DRIVE_PARAM(PARAMS, REFERENCE), DRIVE_FIXED(0), DRIVE_FIXED(0), 1, 0},
     .output_frequency = DRIVE_PARAM(OUTPUTS, FREQUENCY),
     .frequency_reference = DRIVE_PARAM(PARAMS, FREQUENCY_REF),
+    .auto_tune = DRIVE_PARAM(PARAMS, AUTO_TUNE),
 };

@@ -33,6 +33,7 @@ extern const drive_profile_t minimal_profile;
 #define COMMAND_SELECT 12 /* 0 channel 1 (default), 1 channel 2 */
 #define REFERENCE 13      /* reference channel: 0 network (default), 1 local */
 #define FREQUENCY_REF 14  /* 0.1 Hz, a view of 6042h */
+#define AUTO_TUNE 15      /* DRIVE_AUTO_TUNE_* */
 #define OUTPUTS 0x3001
 #define CURRENT 1   /* 0.1 A */
 #define TORQUE 2    /* % */

@@ -2,7 +2,7 @@
  * network is local control (bit 9 clear, the network's control word recorded and not obeyed), a
  * reference channel other than the network gives a zero reference, "not separate" makes the
  * command follow the reference's channel; the ramp stop bit stops as the stop type says; the
- * output frequency follows the motor; the frequency reference is 6042h in 0.1 Hz. */
+ * output frequency follows the motor; the frequency reference is 6042h in 0.1 Hz; auto-tuning. */
 #include "check_main.h"
 #include "minimal_model.h"
 
@@ -189,6 +189,42 @@ START_TEST(frequency_reference_is_6042_in_decihertz)
 }
 END_TEST
 
+/* Auto-tuning: YES in Operation enabled with the motor standing runs the simulated tune, DONE
+ * after DRIVE_AUTO_TUNE_TIME_US; refused elsewhere; DONE is not a command; leaving Operation
+ * enabled ends it unfinished. */
+START_TEST(auto_tune_runs_in_operation_enabled_and_reads_done)
+{
+    bench_t b;
+    bench_start(&b);
+    ck_assert_uint_eq(write_param(&b, AUTO_TUNE, DRIVE_AUTO_TUNE_YES), ABORT_STATE);
+    bench_command(&b, 0x0006);
+    bench_command(&b, 0x000F);
+    ck_assert_uint_eq(write_param(&b, AUTO_TUNE, DRIVE_AUTO_TUNE_DONE), 0x06090030);
+    ck_assert_uint_eq(write_param(&b, AUTO_TUNE, DRIVE_AUTO_TUNE_YES), 0);
+    ck_assert_uint_eq(b.deadline, b.now + DRIVE_AUTO_TUNE_TIME_US);
+    bench_advance(&b, DRIVE_AUTO_TUNE_TIME_US - 1);
+    ck_assert_uint_eq(bench_read(&b, PARAMS, AUTO_TUNE), DRIVE_AUTO_TUNE_YES);
+    bench_advance(&b, 1);
+    ck_assert_uint_eq(bench_read(&b, PARAMS, AUTO_TUNE), DRIVE_AUTO_TUNE_DONE);
+    /* Again, interrupted by a shutdown. */
+    ck_assert_uint_eq(write_param(&b, AUTO_TUNE, DRIVE_AUTO_TUNE_YES), 0);
+    bench_command(&b, 0x0006);
+    ck_assert_uint_eq(bench_read(&b, PARAMS, AUTO_TUNE), DRIVE_AUTO_TUNE_NO);
+    bench_advance(&b, DRIVE_AUTO_TUNE_TIME_US);
+    ck_assert_uint_eq(bench_read(&b, PARAMS, AUTO_TUNE), DRIVE_AUTO_TUNE_NO);
+}
+END_TEST
+
+START_TEST(auto_tune_refused_while_the_motor_turns)
+{
+    bench_t b;
+    bench_start(&b);
+    run_at_speed(&b);
+    ck_assert_uint_eq(write_param(&b, AUTO_TUNE, DRIVE_AUTO_TUNE_YES), ABORT_STATE);
+    ck_assert_uint_eq(bench_read(&b, PARAMS, AUTO_TUNE), DRIVE_AUTO_TUNE_NO);
+}
+END_TEST
+
 int main(void)
 {
     Suite *s = suite_create("drive_channels");
@@ -203,6 +239,8 @@ int main(void)
     tcase_add_test(tc, stop_type_is_a_configuration_parameter);
     tcase_add_test(tc, output_frequency_follows_the_motor);
     tcase_add_test(tc, frequency_reference_is_6042_in_decihertz);
+    tcase_add_test(tc, auto_tune_runs_in_operation_enabled_and_reads_done);
+    tcase_add_test(tc, auto_tune_refused_while_the_motor_turns);
     suite_add_tcase(s, tc);
     return check_run_suite(s);
 }

@@ -1,7 +1,7 @@
 """The ATV312's configuration parameters a PLC writes, seen on the bus (docs/atv312.md, "Channels,
 stop type, frequencies" and "Communication fault management"): the command channel and status
 word bit 9 with the network's commands ignored, what Stt makes CMD bit 12 do, COL's two modes,
-RFR and LFR. Every object against the EDS is test_canopen_master.py's scan."""
+RFR and LFR, tUn. Every object against the EDS is test_canopen_master.py's scan."""
 
 import time
 
@@ -12,6 +12,7 @@ CHCF, CD1 = (0x2036, 2), (0x2036, 0x18)
 STT = (0x2052, 4)
 COL, CNF = (0x2022, 2), (0x2022, 3)
 RFR, LFR = (0x2002, 3), (0x2037, 3)
+TUN = (0x2042, 9)
 SEPARATE, TERMINALS, CANOPEN = 2, 1, 4
 ABORT_STATE = 0x08000022
 
@@ -140,3 +141,17 @@ def test_lfr_is_the_reference_in_hz_and_rfr_the_output_frequency(bus, drive):
     assert read(bus, RFR) == 400
     bus.sdo_write(NODE, 0x6042, 0, 1500, 2)
     assert read(bus, LFR) == 500
+
+
+def test_tun_needs_operation_enabled_then_reads_done(bus, drive):
+    assert write_abort(bus, TUN, 1) == ABORT_STATE
+    bus.sdo_write(NODE, 0x6040, 0, 0x0006, 2)
+    bus.sdo_write(NODE, 0x6040, 0, 0x000F, 2)
+    write(bus, TUN, 1)
+    start = time.monotonic()
+    while read(bus, TUN) == 1:
+        assert time.monotonic() - start < 1.5, "tUn still 1 (yes) after 1.5 s"
+        time.sleep(0.02)
+    took = time.monotonic() - start
+    assert read(bus, TUN) == 2
+    assert 0.4 <= took <= 1.0, f"the auto-tune took {took:.2f} s, want 0.5 s"

@@ -13,6 +13,15 @@
  * docs/atv312.md). */
 extern const drive_fault_table_t atv312_family_faults;
 
+/* Codes of the channel parameters (the project's, docs/atv312.md): CHCF 1 not separate, 2
+ * separate; rFC 1 Fr1, 2 Fr2; CCS 1 Cd1, 2 Cd2; Fr1/Fr2 1 AI1, 2 AI2, 3 AI3, 4 keypad, 5 Modbus,
+ * 6 CANopen; Cd1/Cd2 1 terminals, 2 keypad, 3 Modbus, 4 CANopen. */
+#define ATV312_CHCF_SEPARATE 2
+#define ATV312_RFC_FR2 2
+#define ATV312_CCS_CD2 2
+#define ATV312_FR_CANOPEN 6
+#define ATV312_CD_CANOPEN 4
+
 /* The profile of an Altivar 31/312 on the dictionary `dictionary`. The family's default
  * assignment of control word bits 11-14 (DeviceNet manual, "CMD control word": "CMD = 16#080F:
  * reverse operation" ...): bit 11 reverses, bit 12 stops on the ramp (Stt), bits 13 (DC injection
@@ -20,9 +29,10 @@ extern const drive_fault_table_t atv312_family_faults;
  * word bit 15 is the direction of rotation, bit 14 "stop via the STOP key". Its parameters, at
  * 0x2000 + (ADL - 3000) / 100, sub-index ADL mod 100 + 1 (SPEC section 2): ACC 9001, DEC 9002, HSP
  * 3104, LSP 3105, FRS 9602, NCR 9603, NSP 9604, LCR 3203, OTR 3208, CMD 8501, ETA 3201, COL
- * 6401, CnF 6402. A macro, not a function, so that each model's profile stays a constant
- * initialiser (in flash on a microcontroller); the ATV31 (atv31/atv31.h) is the same drive under
- * another name. */
+ * 6401, CnF 6402, RFR 3202, LFR 8502, CHCF 8401, rFC 8411, Fr1 8413, Fr2 8414, CCS 8421, Cd1
+ * 8423, Cd2 8424, Stt 11203, tUn 9608. A macro, not a function, so that each model's profile stays
+ * a constant initialiser (in flash on a microcontroller); the ATV31 (atv31/atv31.h) is the same
+ * drive under another name. */
 #define ATV312_FAMILY_PROFILE(dictionary)                                                          \
     {                                                                                              \
         .od = (dictionary), .control_reverse = 0x0800, .control_ramp_stop = 0x1000,                \
@@ -35,6 +45,14 @@ extern const drive_fault_table_t atv312_family_faults;
         .control_word_copy = DRIVE_PARAM(0x2037, 2), .status_word_copy = DRIVE_PARAM(0x2002, 2),   \
         .communication_loss_mode = DRIVE_PARAM(0x2022, 2),                                         \
         .network_fault_code = DRIVE_PARAM(0x2022, 3), .faults = &atv312_family_faults,             \
+        .stop_type = DRIVE_PARAM(0x2052, 4), .channel_mode = DRIVE_PARAM(0x2036, 2),               \
+        .channel_mode_separate = ATV312_CHCF_SEPARATE,                                             \
+        .command_channels = {DRIVE_PARAM(0x2036, 24), DRIVE_PARAM(0x2036, 25),                     \
+                             DRIVE_PARAM(0x2036, 22), ATV312_CCS_CD2, ATV312_CD_CANOPEN},          \
+        .reference_channels = {DRIVE_PARAM(0x2036, 14), DRIVE_PARAM(0x2036, 15),                   \
+                               DRIVE_PARAM(0x2036, 12), ATV312_RFC_FR2, ATV312_FR_CANOPEN},        \
+        .output_frequency = DRIVE_PARAM(0x2002, 3), .frequency_reference = DRIVE_PARAM(0x2037, 3), \
+        .auto_tune = DRIVE_PARAM(0x2042, 9),                                                       \
     }
 
 extern const drive_profile_t atv312_profile;

@@ -34,6 +34,18 @@ typedef struct drive_param {
         0, 0, (value)                                                                              \
     }
 
+/* A pair of channels (command or reference) and the switch between them: each channel parameter
+ * holds a channel code of the model; `network` is the code of the network this node is on.
+ * Channel 2 is active while `select` equals `select_second`, channel 1 otherwise (a switch on a
+ * logic input reads as channel 1: the emulation has no terminals). */
+typedef struct drive_channels {
+    drive_param_t first;
+    drive_param_t second;
+    drive_param_t select;
+    uint16_t select_second;
+    uint16_t network;
+} drive_channels_t;
+
 /* What a model adds to the generic drive: its dictionary and its differences, as data. */
 typedef struct drive_profile {
     const co_od_t *od;
@@ -43,7 +55,7 @@ typedef struct drive_profile {
     uint8_t bus_error_register;
     /* Control word bits 11-15 are manufacturer-specific in CiA 402: the model's meaning of each. */
     uint16_t control_reverse;   /* reverses the reference */
-    uint16_t control_ramp_stop; /* stops on the deceleration ramp, run command kept */
+    uint16_t control_ramp_stop; /* stops as stop_type says, run command kept */
     uint16_t control_fast_stop; /* any of these bits stops on the fast ramp, still enabled */
     uint16_t status_reverse;    /* status word bit set while the motor turns in reverse */
     /* The fast ramp (fast stop, quick stop) is the deceleration time divided by this (0 or 1:
@@ -68,6 +80,26 @@ typedef struct drive_profile {
      * DRIVE_NETWORK_FAULT_TIME_OUT after a loss, until a reset node; {0, 0}: nowhere). */
     drive_param_t communication_loss_mode;
     drive_param_t network_fault_code;
+    /* What the ramp stop bit does: a DRIVE_STOP_* value ({0, 0}: the deceleration ramp). */
+    drive_param_t stop_type;
+    /* Where the commands and the reference come from (the Altivars' CHCF, Cd1/Cd2/CCS and
+     * Fr1/Fr2/rFC). While channel_mode equals channel_mode_separate the command has its own
+     * channels, otherwise it follows the reference's. A command channel other than the network
+     * is local control (the network's control word is recorded, not obeyed; status word bit 9
+     * clear); a reference channel other than the network gives a zero reference (the low speed:
+     * the emulation has no analogue inputs). All zero: the network commands and gives the
+     * reference. */
+    drive_param_t channel_mode;
+    uint16_t channel_mode_separate;
+    drive_channels_t command_channels;
+    drive_channels_t reference_channels;
+    /* Frequencies (0.1 Hz, signed): the output frequency the drive publishes (the motor's speed
+     * through nominal_frequency / nominal_speed), and a frequency reference that is a view of
+     * 6042h (a write to either sets both). */
+    drive_param_t output_frequency;
+    drive_param_t frequency_reference;
+    /* Auto-tuning (the Altivars' tUn): a DRIVE_AUTO_TUNE_* value, with the drive_auto_tune hook. */
+    drive_param_t auto_tune;
     /* Status word bit set after the keypad's STOP key (the Altivars' ETA bit 14). */
     uint16_t status_stop_key;
     /* The faults of the model's manuals (faults.h); required. */
@@ -77,6 +109,17 @@ typedef struct drive_profile {
 /* Values of the profile's communication_loss_mode. */
 #define DRIVE_COMMUNICATION_LOSS_IGNORE 0 /* the drive goes on; only the fault code is latched */
 #define DRIVE_COMMUNICATION_LOSS_FAULT 1  /* the communication-loss fault: freewheel, Fault */
+/* Values of the profile's stop_type. */
+#define DRIVE_STOP_RAMP 0         /* the deceleration ramp */
+#define DRIVE_STOP_FAST 1         /* the fast ramp */
+#define DRIVE_STOP_FREEWHEEL 2    /* the output is cut, the motor coasts */
+#define DRIVE_STOP_DC_INJECTION 3 /* modelled as the fast ramp */
+/* Values of the profile's auto_tune: writing YES in Operation enabled with the motor standing
+ * runs a simulated tune of DRIVE_AUTO_TUNE_TIME_US, after which it reads DONE; NO cancels. */
+#define DRIVE_AUTO_TUNE_NO 0
+#define DRIVE_AUTO_TUNE_YES 1
+#define DRIVE_AUTO_TUNE_DONE 2
+#define DRIVE_AUTO_TUNE_TIME_US 500000u
 /* The network fault code of a communication loss ("time out on the reception of the periodic
  * variables addressed to the drive", ATV312 DeviceNet manual). */
 #define DRIVE_NETWORK_FAULT_TIME_OUT 1
@@ -93,6 +136,7 @@ typedef struct drive_entries {
     const co_od_entry_t *acceleration, *deceleration, *low_speed, *high_speed;
     const co_od_entry_t *nominal_frequency, *nominal_speed, *nominal_current;
     const co_od_entry_t *motor_current, *motor_torque, *control_word_copy, *status_word_copy;
+    const co_od_entry_t *output_frequency;
 } drive_entries_t;
 
 typedef struct drive {
@@ -114,10 +158,11 @@ typedef struct drive {
     uint32_t fault_causes;
     uint8_t fault_latched; /* the entry in 603Fh and on the display while faults_active */
     /* At the drive (local.c): forced local control, the keypad's keys, the load. */
-    bool local;     /* forced local: the network's control word is ignored, bit 9 = 0 */
-    bool local_run; /* the RUN key's run command, under forced local control */
-    bool stop_key;  /* the STOP key was pressed, until the next run command */
-    uint8_t load;   /* extra load torque, % of nominal torque */
+    bool local;              /* forced local: the network's control word is ignored, bit 9 = 0 */
+    bool local_run;          /* the RUN key's run command, under forced local control */
+    bool stop_key;           /* the STOP key was pressed, until the next run command */
+    uint8_t load;            /* extra load torque, % of nominal torque */
+    co_time_t auto_tune_end; /* when the running auto-tune completes; CO_TIME_NEVER: none runs */
 } drive_t;
 
 /* drive_init's error for a profile without a valid fault table. */
@@ -161,12 +206,16 @@ const drive_fault_def_t *drive_fault_latched(const drive_t *drive);
  * channel: a freewheel stop to Switch on disabled (a fault stays latched); under it the network's
  * control word is kept but ignored and the keypad runs the drive. */
 void drive_set_local(drive_t *drive, bool local, co_time_t now);
+/* Local control: forced local control, or a command channel other than the network (the
+ * profile's channels): status word bit 9 clear, the network's control word not obeyed. */
+bool drive_local_control(const drive_t *drive);
 /* The keypad's STOP key: the profile's status_stop_key bit is set until the next run command (the
  * RUN key, or a network command leaving Switch on disabled). Under network control a freewheel
  * stop to Switch on disabled (the Altivars' "STOP key priority"); under local control a stop on
  * the deceleration ramp, then Switch on disabled. */
 void drive_stop_key(drive_t *drive, co_time_t now);
-/* The keypad's RUN key: under local control and not in Fault, Operation enabled and the motor
+/* The keypad's RUN key: under local control (forced, or a command channel other than the network)
+ * and not in Fault, Operation enabled and the motor
  * runs to the reference 6042h; false (nothing happens) otherwise. */
 bool drive_run_key(drive_t *drive, co_time_t now);
 /* An extra load on the motor, % of nominal torque (0..150): torque and current follow while
@@ -180,11 +229,14 @@ const char *drive_state_name(const drive_t *drive);
  *   a non-zero target; a change returns the drive to Switch on disabled;
  * drive_speed_limit: low_speed and high_speed, low <= high (else 0x06090036);
  * drive_velocity_limits: 6046h:01/02 (rpm), views of low_speed/high_speed (0.1 Hz);
- * drive_ramp_rate: 6048h/6049h (delta speed / delta time), views of acceleration/deceleration.
+ * drive_ramp_rate: 6048h/6049h (delta speed / delta time), views of acceleration/deceleration;
+ * drive_auto_tune: auto_tune; YES only in Operation enabled with the motor standing (else
+ *   0x08000022), DONE only from the drive (else 0x06090030).
  * A view is written through its parameter's own checks and read from it. */
 extern const co_od_hook_t drive_configuration_parameter;
 extern const co_od_hook_t drive_speed_limit;
 extern const co_od_hook_t drive_velocity_limits;
 extern const co_od_hook_t drive_ramp_rate;
+extern const co_od_hook_t drive_auto_tune;
 
 #endif

@@ -249,7 +249,7 @@ static bool command_stop_key(const atv312d_control_t *control, char **words, siz
     changed(node);
     co_log(CO_LOG_INFO, "node %u: control: STOP key", drive->node.node_id);
     return succeed(r, "node %u: STOP key (%s stop, status word bit 14)", drive->node.node_id,
-                   drive->local ? "ramp" : "freewheel");
+                   drive_local_control(drive) ? "ramp" : "freewheel");
 }
 
 static bool command_run_key(const atv312d_control_t *control, char **words, size_t n, reply_t *r)
@@ -261,10 +261,10 @@ static bool command_run_key(const atv312d_control_t *control, char **words, size
         return false;
     drive_t *drive = node->drive;
     unsigned id = drive->node.node_id;
-    if (!drive->local)
+    if (!drive_local_control(drive))
         return fail(r,
                     "node %u is under network control: the RUN key works under local control "
-                    "(local %u on)",
+                    "(local %u on, or a command channel other than CANopen)",
                     id, id);
     const drive_fault_def_t *fault = drive_fault_latched(drive);
     if (fault)

@@ -68,6 +68,7 @@ static void find_entries(drive_t *drive)
         .motor_torque = param_entry(drive, profile->motor_torque),
         .control_word_copy = param_entry(drive, profile->control_word_copy),
         .status_word_copy = param_entry(drive, profile->status_word_copy),
+        .output_frequency = param_entry(drive, profile->output_frequency),
     };
 }
 
@@ -98,6 +99,25 @@ uint32_t drive_rpm_to_frequency(const drive_t *drive, uint32_t rpm)
     return decihertz > UINT32_MAX ? UINT32_MAX : (uint32_t)decihertz;
 }
 
+int32_t drive_signed_rpm_to_frequency(const drive_t *drive, int32_t rpm)
+{
+    uint32_t decihertz = drive_rpm_to_frequency(drive, (uint32_t)(rpm < 0 ? -rpm : rpm));
+    int32_t magnitude = decihertz > INT32_MAX ? INT32_MAX : (int32_t)decihertz;
+    return rpm < 0 ? -magnitude : magnitude;
+}
+
+int32_t drive_signed_frequency_to_rpm(const drive_t *drive, int32_t decihertz)
+{
+    uint32_t magnitude = (uint32_t)(decihertz < 0 ? -decihertz : decihertz);
+    int32_t rpm = (int32_t)drive_frequency_to_rpm(drive, magnitude);
+    return decihertz < 0 ? -rpm : rpm;
+}
+
+int16_t drive_clamp_int16(int32_t value)
+{
+    return (int16_t)(value > INT16_MAX ? INT16_MAX : (value < INT16_MIN ? INT16_MIN : value));
+}
+
 static drive_ramp_t ramp_parameters(const drive_t *drive)
 {
     const drive_entries_t *e = &drive->entries;
@@ -113,13 +133,15 @@ static drive_ramp_t ramp_parameters(const drive_t *drive)
     };
 }
 
-/* The reference of a running drive: 6042h, reversed by the model's reverse bit, its magnitude
- * held between the low and high speed (the drive runs at low speed with a zero reference). */
+/* The reference of a running drive: 6042h (0 from a channel other than the network), reversed by
+ * the model's reverse bit, its magnitude held between the low and high speed (the drive runs at low
+ * speed with a zero reference). */
 static int32_t run_reference(drive_t *drive)
 {
     const drive_profile_t *profile = drive->profile;
     const drive_entries_t *e = &drive->entries;
-    int32_t reference = (int16_t)entry_value(drive, e->target_velocity);
+    int32_t reference =
+        drive_reference_from_network(drive) ? (int16_t)entry_value(drive, e->target_velocity) : 0;
     bool reverse = (reference < 0) != ((drive->cia402.control & profile->control_reverse) != 0);
     uint32_t wanted = (uint32_t)(reference < 0 ? -reference : reference);
     uint32_t high =
@@ -131,24 +153,44 @@ static int32_t run_reference(drive_t *drive)
     return reverse ? -(int32_t)speed : (int32_t)speed;
 }
 
+/* The stop the ramp stop bit asks for: a DRIVE_STOP_* value, or -1 when the bit is clear or the
+ * network does not command. */
+static int32_t requested_ramp_stop(const drive_t *drive)
+{
+    const drive_profile_t *profile = drive->profile;
+    if (drive_local_control(drive) || (drive->cia402.control & profile->control_ramp_stop) == 0)
+        return -1;
+    return (int32_t)drive_param_value(drive, profile->stop_type);
+}
+
+/* A freewheel stop type cuts the output in Operation enabled while its bit is set. */
+static bool freewheeling(const drive_t *drive)
+{
+    return drive->cia402.state == CIA402_OPERATION_ENABLED &&
+           requested_ramp_stop(drive) == DRIVE_STOP_FREEWHEEL;
+}
+
 /* Only Operation enabled and Quick stop active drive the motor: in any other state the output is
  * off and the motor coasts, whatever the transition that led there (freewheel on 8, 9, 12 and
  * faults). In Operation enabled the motor follows the reference unless a stop is asked: the ramp
- * stop bit on the deceleration ramp, the fast stop bits on the fast ramp, a pending disable
- * operation (5) on the deceleration ramp; Quick stop active always stops on the fast ramp. */
+ * stop bit as the stop type says, the fast stop bits on the fast ramp, a pending disable
+ * operation (5) on the deceleration ramp; Quick stop active always stops on the fast ramp. The
+ * control word only counts under network control. */
 static void steer_motor(drive_t *drive)
 {
     const drive_profile_t *profile = drive->profile;
     const cia402_state_machine_t *sm = &drive->cia402;
+    bool local = drive_local_control(drive);
     bool enabled = sm->state == CIA402_OPERATION_ENABLED;
-    bool fast_stop = (sm->control & profile->control_fast_stop) != 0;
-    bool ramp_stop = (sm->control & profile->control_ramp_stop) != 0;
-    bool fast = sm->state == CIA402_QUICK_STOP_ACTIVE || (enabled && fast_stop);
-    if (!cia402_drives_motor(sm))
+    bool fast_stop = !local && (sm->control & profile->control_fast_stop) != 0;
+    int32_t ramp_stop = requested_ramp_stop(drive);
+    bool fast_ramp_stop = ramp_stop == DRIVE_STOP_FAST || ramp_stop == DRIVE_STOP_DC_INJECTION;
+    bool fast = sm->state == CIA402_QUICK_STOP_ACTIVE || (enabled && (fast_stop || fast_ramp_stop));
+    if (!cia402_drives_motor(sm) || freewheeling(drive))
         drive_motor_coast(&drive->motor);
     drive->limited = false;
-    bool runs = drive->local ? drive_local_runs(drive) : cia402_runs(sm);
-    int32_t target = runs && !fast_stop && !ramp_stop ? run_reference(drive) : 0;
+    bool runs = local ? drive_local_runs(drive) : cia402_runs(sm);
+    int32_t target = runs && !fast_stop && ramp_stop < 0 ? run_reference(drive) : 0;
     drive_ramp_t ramp = ramp_parameters(drive);
     drive_motor_steer(&drive->motor, target, fast, &ramp);
 }
@@ -166,12 +208,12 @@ static uint16_t status_word(const drive_t *drive)
     return status;
 }
 
-/* The output is on in Operation enabled, and in Quick stop active until the motor stopped (then
- * the drive locks). */
+/* The output is on in Operation enabled but for a freewheel stop, and in Quick stop active until
+ * the motor stopped (then the drive locks). */
 static bool output_on(const drive_t *drive)
 {
     cia402_state_t state = drive->cia402.state;
-    return state == CIA402_OPERATION_ENABLED ||
+    return (state == CIA402_OPERATION_ENABLED && !freewheeling(drive)) ||
            (state == CIA402_QUICK_STOP_ACTIVE && !drive_motor_stands(&drive->motor));
 }
 
@@ -194,6 +236,7 @@ static void publish(drive_t *drive)
     int32_t rpm = drive_motor_rpm(&drive->motor);
     entry_set(drive, e->velocity_demand, rpm);
     entry_set(drive, e->velocity_actual, rpm);
+    entry_set(drive, e->output_frequency, drive_signed_rpm_to_frequency(drive, rpm));
     bool on = output_on(drive);
     int16_t torque = on ? drive_motor_torque(&drive->motor) : 0;
     int32_t current = on ? motor_current(drive, torque) : 0;
@@ -230,15 +273,15 @@ static bool is_control_word(const drive_t *drive, const co_od_entry_t *entry)
     return entry == drive->entries.control_word || entry == drive->entries.control_word_copy;
 }
 
-/* 6040h and the model's copy are the same word: both are kept equal. Under forced local control
- * the network's word is kept and ignored. In Fault a fault whose cause is present (or that only a
+/* 6040h and the model's copy are the same word: both are kept equal. Under local control the
+ * network's word is kept and ignored. In Fault a fault whose cause is present (or that only a
  * power cycle resets) keeps the drive there: the word is recorded, so that the reset edge counts
  * from it, and nothing else happens. */
 static void apply_control_word(drive_t *drive, uint16_t control)
 {
     entry_set(drive, drive->entries.control_word, control);
     entry_set(drive, drive->entries.control_word_copy, control);
-    if (drive->local)
+    if (drive_local_control(drive))
         return;
     if (drive->cia402.state == CIA402_FAULT && !drive_faults_resettable(drive)) {
         drive->cia402.control = control;
@@ -249,6 +292,44 @@ static void apply_control_word(drive_t *drive, uint16_t control)
     drive_local_command_applied(drive);
 }
 
+/* A running auto-tune completes at its time, or ends unfinished (NO) when the drive leaves
+ * Operation enabled. */
+static void advance_auto_tune(drive_t *drive, co_time_t now)
+{
+    drive_param_t tune = drive->profile->auto_tune;
+    if (drive->auto_tune_end == CO_TIME_NEVER)
+        return;
+    if (drive->cia402.state != CIA402_OPERATION_ENABLED)
+        co_od_set_value(&drive->node, tune.index, tune.subindex, DRIVE_AUTO_TUNE_NO);
+    else if (now >= drive->auto_tune_end)
+        co_od_set_value(&drive->node, tune.index, tune.subindex, DRIVE_AUTO_TUNE_DONE);
+    else
+        return;
+    drive->auto_tune_end = CO_TIME_NEVER;
+}
+
+static bool is_param(const co_od_entry_t *entry, drive_param_t param)
+{
+    return param.index != 0 && entry->index == param.index && entry->subindex == param.subindex;
+}
+
+/* 6042h (rpm) and the model's frequency reference (0.1 Hz) are one reference: a write to either
+ * sets the other, converted through the nominal frequency and speed (clamped to 16 bits). */
+static void mirror_reference(drive_t *drive, const co_od_entry_t *entry)
+{
+    drive_param_t frequency = drive->profile->frequency_reference;
+    co_node_t *node = &drive->node;
+    if (is_param(entry, frequency)) {
+        int32_t decihertz = (int16_t)co_od_get(node, entry);
+        int32_t rpm = drive_signed_frequency_to_rpm(drive, decihertz);
+        co_od_set_value(node, CIA402_IDX_TARGET_VELOCITY, 0, drive_clamp_int16(rpm));
+    } else if (entry->index == CIA402_IDX_TARGET_VELOCITY && frequency.index != 0) {
+        int32_t rpm = (int16_t)co_od_get(node, entry);
+        co_od_set_value(node, frequency.index, frequency.subindex,
+                        drive_clamp_int16(drive_signed_rpm_to_frequency(drive, rpm)));
+    }
+}
+
 static void on_written(co_node_t *node, const co_od_entry_t *entry, co_od_origin_t origin)
 {
     (void)origin;
@@ -256,7 +337,9 @@ static void on_written(co_node_t *node, const co_od_entry_t *entry, co_od_origin
     drive_motor_advance(&drive->motor, node->now);
     if (is_control_word(drive, entry))
         apply_control_word(drive, (uint16_t)co_od_get(node, entry));
+    mirror_reference(drive, entry);
     drive_settle(drive);
+    advance_auto_tune(drive, node->now);
 }
 
 static void on_heartbeat(co_node_t *node, uint8_t producer, bool lost)
@@ -283,6 +366,7 @@ static void restart_drive(drive_t *drive, co_time_t now)
     drive->limited = false;
     drive->stop_key = false;
     drive->local_run = false;
+    drive->auto_tune_end = CO_TIME_NEVER;
     drive_faults_restart(drive);
     drive->dirty = true;
 }
@@ -365,7 +449,9 @@ co_time_t drive_process(drive_t *drive, co_time_t now)
         drive_motor_advance(&drive->motor, now);
         drive_settle(drive);
     }
+    advance_auto_tune(drive, now);
     co_time_t next = co_node_process(&drive->node, now);
+    next = co_time_min(next, drive->auto_tune_end);
     return co_time_min(next, drive_motor_deadline(&drive->motor));
 }
 

@@ -23,6 +23,10 @@ uint32_t drive_param_value(const drive_t *drive, drive_param_t param);
 /* Conversions between 0.1 Hz and rpm through the motor's nominal frequency and speed. */
 uint32_t drive_frequency_to_rpm(const drive_t *drive, uint32_t decihertz);
 uint32_t drive_rpm_to_frequency(const drive_t *drive, uint32_t rpm);
+/* The same with a sign (the direction of rotation). */
+int32_t drive_signed_rpm_to_frequency(const drive_t *drive, int32_t rpm);
+int32_t drive_signed_frequency_to_rpm(const drive_t *drive, int32_t decihertz);
+int16_t drive_clamp_int16(int32_t value);
 
 /* Faults (faults.c). The profile has a usable fault table. */
 bool drive_faults_valid(const drive_profile_t *profile);
@@ -37,6 +41,10 @@ void drive_faults_acknowledge(drive_t *drive);
 void drive_faults_restart(drive_t *drive);
 /* Raises again every fault whose cause is present (after a reset node). */
 void drive_faults_raise_present(drive_t *drive);
+
+/* Channels (channels.c): the network gives the reference, the network commands. */
+bool drive_reference_from_network(const drive_t *drive);
+bool drive_command_from_network(const drive_t *drive);
 
 /* At the drive (local.c). The motor follows the reference under forced local control. */
 bool drive_local_runs(const drive_t *drive);

@@ -24,7 +24,7 @@ void drive_stop_key(drive_t *drive, co_time_t now)
 {
     drive_motor_advance(&drive->motor, now);
     drive->stop_key = true;
-    if (drive->local)
+    if (drive_local_control(drive))
         drive->local_run = false;
     else
         cia402_configuration_changed(&drive->cia402);
@@ -33,7 +33,7 @@ void drive_stop_key(drive_t *drive, co_time_t now)
 
 bool drive_run_key(drive_t *drive, co_time_t now)
 {
-    if (!drive->local || drive->cia402.state == CIA402_FAULT)
+    if (!drive_local_control(drive) || drive->cia402.state == CIA402_FAULT)
         return false;
     drive_motor_advance(&drive->motor, now);
     drive->stop_key = false;
@@ -59,13 +59,14 @@ bool drive_local_runs(const drive_t *drive)
 /* A local stop ends in Switch on disabled once the motor stands. */
 void drive_local_motor_stopped(drive_t *drive)
 {
-    if (drive->local && !drive->local_run && drive->cia402.state == CIA402_OPERATION_ENABLED)
+    if (drive_local_control(drive) && !drive->local_run &&
+        drive->cia402.state == CIA402_OPERATION_ENABLED)
         drive->cia402.state = CIA402_SWITCH_ON_DISABLED;
 }
 
 uint16_t drive_local_status(const drive_t *drive)
 {
-    uint16_t bits = drive->local ? 0 : CIA402_SW_REMOTE;
+    uint16_t bits = drive_local_control(drive) ? 0 : CIA402_SW_REMOTE;
     return drive->stop_key ? (uint16_t)(bits | drive->profile->status_stop_key) : bits;
 }
 

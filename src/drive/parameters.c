@@ -157,3 +157,27 @@ static uint32_t ramp_rate_write(co_node_t *node, const co_od_entry_t *entry, con
 }
 
 const co_od_hook_t drive_ramp_rate = {.write = ramp_rate_write, .read = ramp_rate_read};
+
+/* Auto-tuning injects current into the standing motor, so it needs Operation enabled (DeviceNet
+ * manual, "Operation enabled": "[Auto tuning] (tUn) requires an injection of current"); DONE is
+ * the drive's answer, not a command. */
+static uint32_t auto_tune_write(co_node_t *node, const co_od_entry_t *entry, const uint8_t *data,
+                                size_t len, co_od_origin_t origin)
+{
+    (void)entry, (void)origin;
+    drive_t *drive = drive_of(node);
+    uint32_t value = written_value(data, len);
+    if (value == DRIVE_AUTO_TUNE_DONE)
+        return SDO_ABORT_VALUE_RANGE;
+    if (value == DRIVE_AUTO_TUNE_NO) {
+        drive->auto_tune_end = CO_TIME_NEVER;
+        return CO_SDO_OK;
+    }
+    drive_motor_advance(&drive->motor, node->now);
+    if (drive->cia402.state != CIA402_OPERATION_ENABLED || drive_motor_running(&drive->motor))
+        return SDO_ABORT_DATA_STATE;
+    drive->auto_tune_end = node->now + DRIVE_AUTO_TUNE_TIME_US;
+    return CO_SDO_OK;
+}
+
+const co_od_hook_t drive_auto_tune = {auto_tune_write, NULL};

@@ -36,4 +36,13 @@ const drive_profile_t minimal_profile = {
     .motor_current = DRIVE_PARAM(OUTPUTS, CURRENT),
     .motor_torque = DRIVE_PARAM(OUTPUTS, TORQUE),
     .faults = &fault_table,
+    .stop_type = DRIVE_PARAM(PARAMS, STOP_TYPE),
+    .channel_mode = DRIVE_PARAM(PARAMS, CHANNEL_MODE),
+    .channel_mode_separate = 0,
+    .command_channels = {DRIVE_PARAM(PARAMS, COMMAND_1), DRIVE_PARAM(PARAMS, COMMAND_2),
+                         DRIVE_PARAM(PARAMS, COMMAND_SELECT), 1, 0},
+    .reference_channels = {DRIVE_PARAM(PARAMS, REFERENCE), DRIVE_FIXED(0), DRIVE_FIXED(0), 1, 0},
+    .output_frequency = DRIVE_PARAM(OUTPUTS, FREQUENCY),
+    .frequency_reference = DRIVE_PARAM(PARAMS, FREQUENCY_REF),
+    .auto_tune = DRIVE_PARAM(PARAMS, AUTO_TUNE),
 };

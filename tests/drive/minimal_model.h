@@ -19,16 +19,25 @@ extern const drive_profile_t minimal_profile;
 
 /* Its parameters (3000h) and outputs (3001h). */
 #define PARAMS 0x3000
-#define ACC 1 /* 0.1 s, default 30 */
-#define DEC 2 /* 0.1 s, default 30: the fast ramp is DEC / 2 */
-#define LSP 3 /* 0.1 Hz, default 0 */
-#define HSP 4 /* 0.1 Hz, default 500 */
-#define FRS 5 /* 0.1 Hz, default 500 */
-#define NSP 6 /* rpm, default 1500 */
-#define NCR 7 /* 0.1 A, default 40 */
+#define ACC 1             /* 0.1 s, default 30 */
+#define DEC 2             /* 0.1 s, default 30: the fast ramp is DEC / 2 */
+#define LSP 3             /* 0.1 Hz, default 0 */
+#define HSP 4             /* 0.1 Hz, default 500 */
+#define FRS 5             /* 0.1 Hz, default 500 */
+#define NSP 6             /* rpm, default 1500 */
+#define NCR 7             /* 0.1 A, default 40 */
+#define STOP_TYPE 8       /* DRIVE_STOP_*, default ramp */
+#define CHANNEL_MODE 9    /* 0 separate (default), 1 the command follows the reference */
+#define COMMAND_1 10      /* command channel 1: 0 network (default), 1 local */
+#define COMMAND_2 11      /* command channel 2: default 1, local */
+#define COMMAND_SELECT 12 /* 0 channel 1 (default), 1 channel 2 */
+#define REFERENCE 13      /* reference channel: 0 network (default), 1 local */
+#define FREQUENCY_REF 14  /* 0.1 Hz, a view of 6042h */
+#define AUTO_TUNE 15      /* DRIVE_AUTO_TUNE_* */
 #define OUTPUTS 0x3001
-#define CURRENT 1 /* 0.1 A */
-#define TORQUE 2  /* % */
+#define CURRENT 1   /* 0.1 A */
+#define TORQUE 2    /* % */
+#define FREQUENCY 3 /* 0.1 Hz, the output frequency */
 
 /* Its faults: code, EMCY code, 1001h class, reset class. */
 enum minimal_fault {

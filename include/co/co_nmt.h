@@ -42,4 +42,9 @@ void co_nmt_reset(co_node_t *node, co_nmt_reset_t scope);
  */
 void co_nmt_enter(co_node_t *node, co_nmt_state_t state);
 
+/* The name of an NMT state as a heartbeat or guarding reply gives it (co_nmt_state_t values:
+ * "Initialising", "Stopped", "Operational", "Pre-operational"), NULL for any other byte. For logs
+ * and tools; a firmware that never calls it links none of it. */
+const char *co_nmt_state_name(uint8_t state);
+
 #endif

@@ -317,21 +317,6 @@ static bool command_load(const atv312d_control_t *control, char **words, size_t 
     return succeed(r, "node %u: load %ld %%", node->drive->node.node_id, percent);
 }
 
-static const char *nmt_name(co_nmt_state_t state)
-{
-    switch (state) {
-    case CO_NMT_INITIALISING:
-        return "Initialising";
-    case CO_NMT_STOPPED:
-        return "Stopped";
-    case CO_NMT_OPERATIONAL:
-        return "Operational";
-    case CO_NMT_PRE_OPERATIONAL:
-        break;
-    }
-    return "Pre-operational";
-}
-
 static void put_state(const atv312d_control_node_t *node, reply_t *r)
 {
     const drive_t *drive = node->drive;
@@ -356,14 +341,14 @@ static void put_state(const atv312d_control_node_t *node, reply_t *r)
             "{\"node\":%u,\"nmt\":\"%s\",\"cia402\":\"%s\",\"statusword\":%u,\"speed_rpm\":%d,"
             "\"current_a\":%u.%u,\"torque_percent\":%d,\"display\":\"%s\",\"run_led\":\"%s\","
             "\"err_led\":\"%s\",\"fault\":%s%s%s}",
-            co->node_id, nmt_name(co->nmt_state), drive_state_name(drive), status, speed,
+            co->node_id, co_nmt_state_name(co->nmt_state), drive_state_name(drive), status, speed,
             current / 10, current % 10, torque, shows, run, err, fault ? "\"" : "",
             fault ? fault->code : "null", fault ? "\"" : "");
     else
         put(r,
             "node %u: nmt %s, cia402 %s, statusword %04X, speed %d rpm, current %u.%u A, torque "
             "%d %%, display %s, RUN %s, ERR %s, fault %s",
-            co->node_id, nmt_name(co->nmt_state), drive_state_name(drive), status, speed,
+            co->node_id, co_nmt_state_name(co->nmt_state), drive_state_name(drive), status, speed,
             current / 10, current % 10, torque, shows, run, err, fault ? fault->code : "none");
 }
 

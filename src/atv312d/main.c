@@ -31,21 +31,6 @@ typedef struct drive_slot {
     const char *cia402_state; /* last logged */
 } drive_slot_t;
 
-static const char *nmt_state_name(co_nmt_state_t state)
-{
-    switch (state) {
-    case CO_NMT_INITIALISING:
-        return "Initialising";
-    case CO_NMT_STOPPED:
-        return "Stopped";
-    case CO_NMT_OPERATIONAL:
-        return "Operational";
-    case CO_NMT_PRE_OPERATIONAL:
-        return "Pre-operational";
-    }
-    return "unknown";
-}
-
 static uint8_t slot_node_id(const drive_slot_t *slot)
 {
     return slot->drive.node.node_id;
@@ -58,7 +43,7 @@ static void log_state_changes(drive_slot_t *slot)
     co_nmt_state_t nmt = slot->drive.node.nmt_state;
     if (nmt != slot->nmt_state) {
         co_log(CO_LOG_INFO, "node %u: NMT %s -> %s", slot_node_id(slot),
-               nmt_state_name(slot->nmt_state), nmt_state_name(nmt));
+               co_nmt_state_name(slot->nmt_state), co_nmt_state_name(nmt));
         slot->nmt_state = nmt;
     }
     const char *state = drive_state_name(&slot->drive);

@@ -2,6 +2,7 @@
  * and heartbeats, emergencies decoded, SYNC, and PDOs decoded by name through each watched node's
  * mapping, read over SDO (with the names of its EDS). Runs until SIGINT or SIGTERM. */
 #include "co/co_emcy_consumer.h"
+#include "co/co_nmt.h"
 #include "co/co_nmt_master.h"
 #include "comaster.h"
 #include "decoder.h"
@@ -66,18 +67,11 @@ static void line_start(const monitor_t *m, const char *event)
         printf("%9.3f  ", t);
 }
 
+/* A state's name, "unknown" before the node was heard. */
 static const char *state_name(uint8_t state)
 {
-    switch (state) {
-    case CO_NMT_STOPPED:
-        return "Stopped";
-    case CO_NMT_OPERATIONAL:
-        return "Operational";
-    case CO_NMT_PRE_OPERATIONAL:
-        return "Pre-operational";
-    default:
-        return "unknown";
-    }
+    const char *name = state == CO_NMT_INITIALISING ? NULL : co_nmt_state_name(state);
+    return name ? name : "unknown";
 }
 
 static void nmt_event(void *user, const co_nmt_master_event_t *event)

@@ -3,6 +3,7 @@
  * their identity (1018h:01..03) and name (1008h), and their NMT state is taken from their
  * heartbeat (the NMT master follows them while the scan runs) or asked by a node guarding
  * request. */
+#include "co/co_nmt.h"
 #include "co/co_nmt_master.h"
 #include "comaster.h"
 
@@ -197,18 +198,11 @@ static int read_identity(comaster_bus_t *bus, const comaster_options_t *opts, ui
     return rc;
 }
 
+/* A state's name, "-" when the node's state was not heard. */
 static const char *nmt_state_name(uint8_t state)
 {
-    switch (state) {
-    case CO_NMT_STOPPED:
-        return "Stopped";
-    case CO_NMT_OPERATIONAL:
-        return "Operational";
-    case CO_NMT_PRE_OPERATIONAL:
-        return "Pre-operational";
-    default:
-        return "-";
-    }
+    const char *name = state == CO_NMT_INITIALISING ? NULL : co_nmt_state_name(state);
+    return name ? name : "-";
 }
 
 static void print_hex_or_dash(bool has, uint32_t value, bool json)

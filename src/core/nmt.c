@@ -97,3 +97,19 @@ bool co_nmt_receive(co_node_t *node, const co_frame_t *frame)
     }
     return true;
 }
+
+const char *co_nmt_state_name(uint8_t state)
+{
+    switch (state) {
+    case CO_NMT_INITIALISING:
+        return "Initialising";
+    case CO_NMT_STOPPED:
+        return "Stopped";
+    case CO_NMT_OPERATIONAL:
+        return "Operational";
+    case CO_NMT_PRE_OPERATIONAL:
+        return "Pre-operational";
+    default:
+        return NULL;
+    }
+}

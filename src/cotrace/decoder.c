@@ -1,6 +1,7 @@
 #include "decoder.h"
 
 #include "co/co_emcy.h"
+#include "co/co_nmt.h"
 
 #include <linux/can/error.h>
 #include <stdarg.h>
@@ -242,20 +243,10 @@ static void decode_emcy(const cotrace_decoder_t *dec, const struct can_frame *f,
     say_bytes(t, msg.msef, CO_EMCY_MSEF_LEN);
 }
 
+/* A heartbeat or guarding state byte: 00h is the boot-up there, not a state. */
 static const char *nmt_state_name(uint8_t state)
 {
-    switch (state) {
-    case 0x00:
-        return "Boot-up";
-    case 0x04:
-        return "Stopped";
-    case 0x05:
-        return "Operational";
-    case 0x7F:
-        return "Pre-operational";
-    default:
-        return NULL;
-    }
+    return state == CO_NMT_INITIALISING ? "Boot-up" : co_nmt_state_name(state);
 }
 
 static void say_state(text_t *t, uint8_t state)

@@ -5,28 +5,6 @@
 #include "check_main.h"
 #include "drive_bench.h"
 
-/* One exchange of a manual session: a frame the master sends (or NULL), time advanced by
- * `advance_us`, then the frames the drive must send, in order (NULL-terminated). */
-typedef struct exchange {
-    const char *vector; /* the manual's vector, named in a failure */
-    const char *rx;
-    co_time_t advance_us;
-    const char *expect[3];
-} exchange_t;
-
-static void play(bench_t *b, const exchange_t *session, size_t count)
-{
-    for (size_t i = 0; i < count; i++) {
-        const exchange_t *x = &session[i];
-        if (x->rx)
-            bench_rx(b, x->rx);
-        bench_advance(b, x->advance_us);
-        for (size_t k = 0; k < 3 && x->expect[k]; k++)
-            bench_expect_at(b, x->expect[k], x->vector, (int)i);
-        bench_expect_none_at(b, x->vector, (int)i);
-    }
-}
-
 /* The last frame the drive sent with this COB-ID, all frames consumed. */
 static const co_frame_t *last_frame(bench_t *b, uint32_t id)
 {
@@ -48,12 +26,12 @@ START_TEST(identity_is_the_atv31s)
     ck_assert_uint_eq(bench_read(&b, 0x1018, 1), 0x5F);
     uint32_t value;
     ck_assert_uint_eq(bench_sdo_read(&b, 0x1018, 2, &value), SDO_ABORT_NO_SUBINDEX);
-    static const exchange_t name[] = {
+    static const bench_exchange_t name[] = {
         {"1008h", "604#4008100000000000", 0, {"584#4108100005000000"}},
         {"1008h", "604#6000000000000000", 0, {"584#0541545633310000"}}, /* "ATV31" */
         {"100Ah", "604#400A100000000000", 0, {"584#430A100030333031"}}, /* "0301" */
     };
-    play(&b, name, sizeof name / sizeof name[0]);
+    bench_play(&b, name, sizeof name / sizeof name[0]);
 }
 END_TEST
 
@@ -64,7 +42,7 @@ START_TEST(manual_vectors_frame_for_frame)
 {
     bench_t b;
     bench_start_model(&b, &atv31_profile, NULL);
-    static const exchange_t setup[] = {
+    static const bench_exchange_t setup[] = {
         {"1405h:01", "604#2305140104030000", 0, {"584#6005140100000000"}},
         {"1805h:01", "604#2305180184020000", 0, {"584#6005180100000000"}},
         {"1800h:05", "604#2B00180500000000", 0, {"584#6000180500000000"}},
@@ -72,7 +50,7 @@ START_TEST(manual_vectors_frame_for_frame)
         {"start", "000#0104", 0, {"184#4006", "284#40060000"}},
         {"shutdown", "304#0600DC05", 30000, {"184#2106", "284#21060000"}},
     };
-    play(&b, setup, sizeof setup / sizeof setup[0]);
+    bench_play(&b, setup, sizeof setup / sizeof setup[0]);
     bench_rx(&b, "304#0F00B004"); /* T31-05: enable operation at 1200 rpm */
     bench_advance(&b, 3000000);
     ck_assert_mem_eq(last_frame(&b, 0x284)->data, "\x27\x06\xB0\x04", 4);
@@ -84,7 +62,7 @@ START_TEST(manual_vectors_frame_for_frame)
 
     /* T31-06: TPDO6 remapped (invalid while mapping) to ETAD, RFRD, LCR, OTR: the model's motor
      * at 1500 rpm steady draws 1.7 A at 20 % (the manual's 4.0 A and 83 % are another load). */
-    static const exchange_t tpdo6_mapping[] = {
+    static const bench_exchange_t tpdo6_mapping[] = {
         {"T31-01", "000#8004", 0, {NULL}}, /* pre-operational: mapped, then started */
         {"T31-06", "604#2305180184020080", 0, {"584#6005180100000000"}},
         {"T31-06", "604#2F051A0000000000", 0, {"584#60051A0000000000"}},
@@ -94,11 +72,11 @@ START_TEST(manual_vectors_frame_for_frame)
         {"T31-06", "604#2305180184020000", 0, {"584#6005180100000000"}},
         {"T31-06", "000#0104", 0, {"184#2706", "284#2706DC0511001400"}},
     };
-    play(&b, tpdo6_mapping, sizeof tpdo6_mapping / sizeof tpdo6_mapping[0]);
+    bench_play(&b, tpdo6_mapping, sizeof tpdo6_mapping / sizeof tpdo6_mapping[0]);
 
     /* T31-07: RPDO6 remapped to CMDD, ACC, DEC (6 bytes); T31-03/02 on PDO1; T31-08..15 SDO;
      * T31-17 an abort's code in bytes 4-7, LSB first. */
-    static const exchange_t rest[] = {
+    static const bench_exchange_t rest[] = {
         {"T31-07", "604#2305140104030080", 0, {"584#6005140100000000"}},
         {"T31-07", "604#2F05160000000000", 0, {"584#6005160000000000"}},
         {"T31-07", "604#2305160210023C20", 0, {"584#6005160200000000"}},
@@ -117,7 +95,7 @@ START_TEST(manual_vectors_frame_for_frame)
         {"T31-14/15", "604#2F0D100004000000", 0, {"584#600D100000000000"}},
         {"T31-17", "604#2F05140200000000", 0, {"584#8005140230000906"}},
     };
-    play(&b, rest, sizeof rest / sizeof rest[0]);
+    bench_play(&b, rest, sizeof rest / sizeof rest[0]);
     ck_assert_uint_eq(bench_read(&b, 0x100C, 0), 500);
     ck_assert_uint_eq(bench_read(&b, 0x100D, 0), 4);
 }
@@ -129,13 +107,13 @@ START_TEST(manual_boot_up)
 {
     bench_t b;
     bench_start_model(&b, &atv31_profile, NULL);
-    static const exchange_t reset[] = {
+    static const bench_exchange_t reset[] = {
         {"T31-16", "000#8204", 0, {"704#00"}},
         {"T31-01", "000#0104", 0, {"184#4006"}},
         {"T31-01", "000#8004", 0, {NULL}},
         {"guarding", "704#R", 0, {"704#7F"}},
     };
-    play(&b, reset, sizeof reset / sizeof reset[0]);
+    bench_play(&b, reset, sizeof reset / sizeof reset[0]);
 }
 END_TEST
 

@@ -6,30 +6,6 @@
 #include "check_main.h"
 #include "drive_bench.h"
 
-/* One exchange of a manual session: a frame the master sends (or NULL), time advanced by
- * `advance_us`, then the frames the drive must send, in order (NULL-terminated). */
-typedef struct exchange {
-    const char *vector; /* the manual's vector, named in a failure */
-    const char *rx;
-    co_time_t advance_us;
-    const char *expect[3];
-} exchange_t;
-
-static void play(bench_t *b, const exchange_t *session, size_t count)
-{
-    for (size_t i = 0; i < count; i++) {
-        const exchange_t *x = &session[i];
-        if (x->rx)
-            bench_rx(b, x->rx);
-        bench_advance(b, x->advance_us);
-        for (size_t k = 0; k < 3 && x->expect[k]; k++)
-            bench_expect_at(b, x->expect[k], x->vector, (int)i);
-        bench_expect_none_at(b, x->vector, (int)i);
-    }
-}
-
-#define PLAY(b, session) play(b, session, sizeof session / sizeof session[0])
-
 /* The last frame the drive sent with this COB-ID, all frames consumed. */
 static const co_frame_t *last_frame(bench_t *b, uint32_t id)
 {
@@ -55,7 +31,7 @@ START_TEST(dictionary_as_built)
 {
     bench_t b;
     bench_start_model(&b, &atv58_profile, NULL);
-    static const exchange_t reads[] = {
+    static const bench_exchange_t reads[] = {
         {"1000h", "604#4000100000000000", 0, {"584#4300100092010100"}},
         {"1001h U32", "604#4001100000000000", 0, {"584#4301100000000000"}},
         {"1008h", "604#4008100000000000", 0, {"584#4308100041543538"}}, /* "AT58" */
@@ -78,7 +54,7 @@ START_TEST(dictionary_as_built)
         {"6041h", "604#4041600000000000", 0, {"584#4B41600040060000"}},
         {"ACC", "604#40E55F0300000000", 0, {"584#4BE55F031E000000"}},
     };
-    PLAY(&b, reads);
+    BENCH_PLAY(&b, reads);
     /* What the card lacks does not exist: identity, SYNC, heartbeat, error history, store and
      * restore, PDO timers, the other CiA 402 objects, the ATV312's manufacturer parameters. */
     static const uint16_t absent[] = {0x1002, 0x1003, 0x1005, 0x100B, 0x100E, 0x1010, 0x1011,
@@ -103,19 +79,19 @@ START_TEST(manual_vectors_frame_for_frame)
     bench_t b;
     bench_start_model(&b, &atv58_profile, NULL);
     size_t first = b.count;
-    static const exchange_t power_up[] = {
+    static const bench_exchange_t power_up[] = {
         {"start", "000#0104000000000000", 0, {"184#4006000000000000"}},
         {"shutdown", "204#0600DC0500000000", 0, {"184#2106000000000000"}},
         {"switch on", "204#0700DC0500000000", 0, {"184#2306000000000000"}},
     };
-    PLAY(&b, power_up);
+    BENCH_PLAY(&b, power_up);
     bench_rx(&b, "204#0F00DC0500000000"); /* T58-02 */
     bench_advance(&b, 4000000);
     assert_all_dlc8(&b, first);
     const co_frame_t *at_speed = last_frame(&b, 0x184); /* T58-03 */
     ck_assert_uint_eq(at_speed->len, 8);
     ck_assert_mem_eq(at_speed->data, "\x27\x06\xDC\x05\x00\x00\x00\x00", 8);
-    static const exchange_t sdo[] = {
+    static const bench_exchange_t sdo[] = {
         {"T58-06/07", "604#2BE55F03E8030000", 0, {"584#60E55F0300000000"}},
         {"T58-04/05", "604#40E55F0300000000", 0, {"584#4BE55F03E8030000"}},
         {"T58-08/09", "604#230C1000F4010000", 0, {"584#600C100000000000"}},
@@ -124,7 +100,7 @@ START_TEST(manual_vectors_frame_for_frame)
         {"T58-12/13", "704#R8", 0, {"704#7F00000000000000"}},
         {"T58-12/13", "704#R8", 0, {"704#FF00000000000000"}},
     };
-    PLAY(&b, sdo);
+    BENCH_PLAY(&b, sdo);
     ck_assert_uint_eq(bench_read(&b, 0x100C, 0), 500);
     ck_assert_uint_eq(bench_read(&b, 0x100D, 0), 4);
     ck_assert_uint_eq(bench_read(&b, 0x5FE5, 3), 1000);
@@ -137,7 +113,7 @@ START_TEST(sdo_error_layout)
 {
     bench_t b;
     bench_start_model(&b, &atv58_profile, NULL);
-    static const exchange_t errors[] = {
+    static const bench_exchange_t errors[] = {
         {"2/6 index", "604#4000300000000000", 0, {"584#8000300000000206"}},
         {"2/6 1018h", "604#4018100100000000", 0, {"584#8018100100000206"}},
         {"9/6 sub-index", "604#40E55F0100000000", 0, {"584#80E55F0100000906"}},
@@ -150,7 +126,7 @@ START_TEST(sdo_error_layout)
         {"3/5 unknown", "604#E0E55F0300000000", 0, {"584#80E55F0300000305"}},
         {"client abort", "604#80E55F0300000000", 0, {NULL}},
     };
-    PLAY(&b, errors);
+    BENCH_PLAY(&b, errors);
 }
 END_TEST
 
@@ -161,7 +137,7 @@ START_TEST(life_guarding_fault_and_emcy)
 {
     bench_t b;
     bench_start_model(&b, &atv58_profile, NULL);
-    static const exchange_t session[] = {
+    static const bench_exchange_t session[] = {
         {"T58-08", "604#230C1000F4010000", 0, {"584#600C100000000000"}},
         {"T58-10", "604#2F0D100004000000", 0, {"584#600D100000000000"}},
         {"T58-12", "704#R", 1999000, {"704#7F00000000000000"}},
@@ -172,7 +148,7 @@ START_TEST(life_guarding_fault_and_emcy)
         {"reset", "604#2B40600080000000", 0, {"084#0000000000000000", "584#6040600000000000"}},
         {"1001h", "604#4001100000000000", 0, {"584#4301100000000000"}},
     };
-    PLAY(&b, session);
+    BENCH_PLAY(&b, session);
 }
 END_TEST
 
@@ -182,7 +158,7 @@ START_TEST(nmt_disconnect)
 {
     bench_t b;
     bench_start_model(&b, &atv58_profile, NULL);
-    static const exchange_t session[] = {
+    static const bench_exchange_t session[] = {
         {"start", "000#0104000000000000", 0, {"184#4006000000000000"}},
         {"disconnect", "000#0304000000000000", 0, {NULL}},
         {"no SDO", "604#4000100000000000", 0, {NULL}},
@@ -193,7 +169,7 @@ START_TEST(nmt_disconnect)
         {"broadcast", "000#0300", 0, {NULL}},
         {"guarding", "704#R8", 0, {"704#0400000000000000"}},
     };
-    PLAY(&b, session);
+    BENCH_PLAY(&b, session);
 }
 END_TEST
 

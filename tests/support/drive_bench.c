@@ -140,3 +140,16 @@ int16_t bench_speed(bench_t *b)
 {
     return (int16_t)bench_read(b, 0x6044, 0);
 }
+
+void bench_play(bench_t *b, const bench_exchange_t *session, size_t count)
+{
+    for (size_t i = 0; i < count; i++) {
+        const bench_exchange_t *x = &session[i];
+        if (x->rx)
+            bench_rx(b, x->rx);
+        bench_advance(b, x->advance_us);
+        for (size_t k = 0; k < 3 && x->expect[k]; k++)
+            bench_expect_at(b, x->expect[k], x->vector, (int)i);
+        bench_expect_none_at(b, x->vector, (int)i);
+    }
+}

@@ -37,6 +37,19 @@ co_time_t bench_expect_at(bench_t *b, const char *text, const char *file, int li
 #define bench_expect_none(b) bench_expect_none_at(b, __FILE__, __LINE__)
 void bench_expect_none_at(bench_t *b, const char *file, int line);
 
+/* One exchange of a manual's session: a frame the master sends (or NULL), time advanced by
+ * `advance_us`, then the frames the drive must send, in order (NULL-terminated). */
+typedef struct bench_exchange {
+    const char *vector; /* the manual's vector, named in a failure */
+    const char *rx;
+    co_time_t advance_us;
+    const char *expect[3];
+} bench_exchange_t;
+
+/* Plays a session: each exchange's frame, time, and exactly its expected frames. */
+void bench_play(bench_t *b, const bench_exchange_t *session, size_t count);
+#define BENCH_PLAY(b, session) bench_play(b, session, sizeof session / sizeof session[0])
+
 /* Expedited SDO write / read; return the abort code (0 on success), consuming the answer. */
 uint32_t bench_sdo_write(bench_t *b, uint16_t index, uint8_t sub, uint32_t value, uint8_t len);
 uint32_t bench_sdo_read(bench_t *b, uint16_t index, uint8_t sub, uint32_t *value);

@@ -136,7 +136,7 @@ typedef struct drive_entries {
     const co_od_entry_t *acceleration, *deceleration, *low_speed, *high_speed;
     const co_od_entry_t *nominal_frequency, *nominal_speed, *nominal_current;
     const co_od_entry_t *motor_current, *motor_torque, *control_word_copy, *status_word_copy;
-    const co_od_entry_t *output_frequency;
+    const co_od_entry_t *output_frequency, *frequency_reference;
 } drive_entries_t;
 
 typedef struct drive {
@@ -158,6 +158,10 @@ typedef struct drive {
     uint32_t fault_causes;
     uint8_t fault_latched; /* the entry in 603Fh and on the display while faults_active */
     /* At the drive (local.c): forced local control, the keypad's keys, the load. */
+    /* The profile's channels as last computed (channels.c): the network commands, and gives the
+     * reference. */
+    bool command_from_network;
+    bool reference_from_network;
     bool local;              /* forced local: the network's control word is ignored, bit 9 = 0 */
     bool local_run;          /* the RUN key's run command, under forced local control */
     bool stop_key;           /* the STOP key was pressed, until the next run command */

@@ -45,16 +45,6 @@ typedef struct ini_line {
 /* Called for each key=value line; returns 0 or the exit status after writing err. */
 typedef int (*ini_key_fn)(void *ctx, const ini_line_t *line, char *err, size_t err_len);
 
-static char *trim(char *s)
-{
-    while (isspace((unsigned char)*s))
-        s++;
-    char *end = s + strlen(s);
-    while (end > s && isspace((unsigned char)end[-1]))
-        *--end = '\0';
-    return s;
-}
-
 /* A comment starts with ';' or '#' at the beginning of a line or after a blank. */
 static void strip_comment(char *s)
 {
@@ -80,7 +70,7 @@ static int ini_read(const char *path, ini_key_fn on_key, void *ctx, char *err, s
     while (rc == 0 && fgets(buf, sizeof buf, f)) {
         line.number++;
         strip_comment(buf);
-        char *s = trim(buf);
+        char *s = eds_trim(buf);
         if (*s == '\0')
             continue;
         if (*s == '[') {
@@ -92,7 +82,7 @@ static int ini_read(const char *path, ini_key_fn on_key, void *ctx, char *err, s
                 break;
             }
             *close = '\0';
-            snprintf(section, sizeof section, "%s", trim(s + 1));
+            snprintf(section, sizeof section, "%s", eds_trim(s + 1));
             continue;
         }
         char *eq = strchr(s, '=');
@@ -103,8 +93,8 @@ static int ini_read(const char *path, ini_key_fn on_key, void *ctx, char *err, s
             break;
         }
         *eq = '\0';
-        line.key = trim(s);
-        line.value = trim(eq + 1);
+        line.key = eds_trim(s);
+        line.value = eds_trim(eq + 1);
         rc = on_key(ctx, &line, err, err_len);
     }
     fclose(f);

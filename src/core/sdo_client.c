@@ -228,17 +228,26 @@ static void download_initiated(co_sdo_client_t *client, const co_frame_t *frame)
     download_send_segment(client);
 }
 
-static void download_segment_confirmed(co_sdo_client_t *client, const co_frame_t *frame)
+/* A server's segment answer must carry the expected command and the toggle of the request it
+ * answers; otherwise the client aborts with the code CiA 301 gives (false). */
+static bool segment_answer_valid(co_sdo_client_t *client, uint8_t command, uint8_t scs)
 {
-    uint8_t command = frame->data[0];
-    if ((command & SCS_MASK) != SCS_DOWNLOAD_SEGMENT) {
+    if ((command & SCS_MASK) != scs) {
         client_abort(client, SDO_ABORT_COMMAND);
-        return;
+        return false;
     }
     if ((command & SDO_TOGGLE) != client->toggle) {
         client_abort(client, SDO_ABORT_TOGGLE);
-        return;
+        return false;
     }
+    return true;
+}
+
+static void download_segment_confirmed(co_sdo_client_t *client, const co_frame_t *frame)
+{
+    uint8_t command = frame->data[0];
+    if (!segment_answer_valid(client, command, SCS_DOWNLOAD_SEGMENT))
+        return;
     uint32_t count = client->size - client->offset;
     client->offset += count > SEGMENT_BYTES ? SEGMENT_BYTES : count;
     if (client->offset == client->size) {
@@ -300,14 +309,8 @@ static void upload_initiated(co_sdo_client_t *client, const co_frame_t *frame)
 static void upload_segment(co_sdo_client_t *client, const co_frame_t *frame)
 {
     uint8_t command = frame->data[0];
-    if ((command & SCS_MASK) != SCS_UPLOAD_SEGMENT) {
-        client_abort(client, SDO_ABORT_COMMAND);
+    if (!segment_answer_valid(client, command, SCS_UPLOAD_SEGMENT))
         return;
-    }
-    if ((command & SDO_TOGGLE) != client->toggle) {
-        client_abort(client, SDO_ABORT_TOGGLE);
-        return;
-    }
     uint32_t count = SEGMENT_BYTES - ((command >> 1) & 7u);
     uint32_t abort = frame->len < 1 + count
                          ? SDO_ABORT_COMMAND

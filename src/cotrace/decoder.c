@@ -399,25 +399,37 @@ static void sdo_initiate_size(text_t *t, cotrace_sdo_t *s, const uint8_t *data, 
     }
 }
 
-static void sdo_request(cotrace_decoder_t *dec, uint8_t node, const struct can_frame *f, text_t *t)
+/* What requests and replies share: the line's start, the segments of a block transfer in the
+ * frame's direction (`block`, named `block_name`), an abort, a frame too short. Returns true when
+ * that said all there is to say of the frame. */
+static bool sdo_common(cotrace_decoder_t *dec, uint8_t node, const struct can_frame *f, text_t *t,
+                       const char *what, cotrace_sdo_kind_t block, const char *block_name)
 {
     cotrace_sdo_t *s = &dec->sdo[node];
-    const uint8_t *d = f->data;
-    say(t, "SDO %u request: ", node);
-    if (s->kind == COTRACE_SDO_BLOCK_DOWNLOAD && is_block_segment(s, f)) {
-        sdo_block_segment(t, s, d, "block download");
-        return;
+    say(t, "SDO %u %s: ", node, what);
+    if (s->kind == block && is_block_segment(s, f)) {
+        sdo_block_segment(t, s, f->data, block_name);
+        return true;
     }
-    uint8_t cs = SDO_CS(d[0]);
-    if (cs == SDO_CS_ABORT) {
+    if (SDO_CS(f->data[0]) == SDO_CS_ABORT) {
         say_abort(t, dec, node, f);
         sdo_reset(s);
-        return;
+        return true;
     }
     if (f->len < 8) {
-        say(t, "malformed: %u bytes, an SDO request has 8", f->len);
-        return;
+        say(t, "malformed: %u bytes, an SDO %s has 8", f->len, what);
+        return true;
     }
+    return false;
+}
+
+static void sdo_request(cotrace_decoder_t *dec, uint8_t node, const struct can_frame *f, text_t *t)
+{
+    if (sdo_common(dec, node, f, t, "request", COTRACE_SDO_BLOCK_DOWNLOAD, "block download"))
+        return;
+    cotrace_sdo_t *s = &dec->sdo[node];
+    const uint8_t *d = f->data;
+    uint8_t cs = SDO_CS(d[0]);
     switch (cs) {
     case SDO_CCS_DOWNLOAD_INITIATE:
         sdo_start(s, COTRACE_SDO_DOWNLOAD, d);
@@ -487,23 +499,11 @@ static void sdo_request(cotrace_decoder_t *dec, uint8_t node, const struct can_f
 
 static void sdo_reply(cotrace_decoder_t *dec, uint8_t node, const struct can_frame *f, text_t *t)
 {
+    if (sdo_common(dec, node, f, t, "reply", COTRACE_SDO_BLOCK_UPLOAD, "block upload"))
+        return;
     cotrace_sdo_t *s = &dec->sdo[node];
     const uint8_t *d = f->data;
-    say(t, "SDO %u reply: ", node);
-    if (s->kind == COTRACE_SDO_BLOCK_UPLOAD && is_block_segment(s, f)) {
-        sdo_block_segment(t, s, d, "block upload");
-        return;
-    }
     uint8_t cs = SDO_CS(d[0]);
-    if (cs == SDO_CS_ABORT) {
-        say_abort(t, dec, node, f);
-        sdo_reset(s);
-        return;
-    }
-    if (f->len < 8) {
-        say(t, "malformed: %u bytes, an SDO reply has 8", f->len);
-        return;
-    }
     switch (cs) {
     case SDO_SCS_UPLOAD_INITIATE:
         s->index = co_get_u16(&d[1]);

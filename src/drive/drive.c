@@ -69,6 +69,7 @@ static void find_entries(drive_t *drive)
         .control_word_copy = param_entry(drive, profile->control_word_copy),
         .status_word_copy = param_entry(drive, profile->status_word_copy),
         .output_frequency = param_entry(drive, profile->output_frequency),
+        .frequency_reference = param_entry(drive, profile->frequency_reference),
     };
 }
 
@@ -308,7 +309,7 @@ static void advance_auto_tune(drive_t *drive, co_time_t now)
     drive->auto_tune_end = CO_TIME_NEVER;
 }
 
-static bool is_param(const co_od_entry_t *entry, drive_param_t param)
+bool drive_is_param(const co_od_entry_t *entry, drive_param_t param)
 {
     return param.index != 0 && entry->index == param.index && entry->subindex == param.subindex;
 }
@@ -317,16 +318,17 @@ static bool is_param(const co_od_entry_t *entry, drive_param_t param)
  * sets the other, converted through the nominal frequency and speed (clamped to 16 bits). */
 static void mirror_reference(drive_t *drive, const co_od_entry_t *entry)
 {
-    drive_param_t frequency = drive->profile->frequency_reference;
-    co_node_t *node = &drive->node;
-    if (is_param(entry, frequency)) {
-        int32_t decihertz = (int16_t)co_od_get(node, entry);
+    const drive_entries_t *e = &drive->entries;
+    if (e->frequency_reference == NULL)
+        return;
+    if (entry == e->frequency_reference) {
+        int32_t decihertz = (int16_t)entry_value(drive, entry);
         int32_t rpm = drive_signed_frequency_to_rpm(drive, decihertz);
-        co_od_set_value(node, CIA402_IDX_TARGET_VELOCITY, 0, drive_clamp_int16(rpm));
-    } else if (entry->index == CIA402_IDX_TARGET_VELOCITY && frequency.index != 0) {
-        int32_t rpm = (int16_t)co_od_get(node, entry);
-        co_od_set_value(node, frequency.index, frequency.subindex,
-                        drive_clamp_int16(drive_signed_rpm_to_frequency(drive, rpm)));
+        entry_set(drive, e->target_velocity, drive_clamp_int16(rpm));
+    } else if (entry == e->target_velocity) {
+        int32_t rpm = (int16_t)entry_value(drive, entry);
+        entry_set(drive, e->frequency_reference,
+                  drive_clamp_int16(drive_signed_rpm_to_frequency(drive, rpm)));
     }
 }
 
@@ -338,6 +340,8 @@ static void on_written(co_node_t *node, const co_od_entry_t *entry, co_od_origin
     if (is_control_word(drive, entry))
         apply_control_word(drive, (uint16_t)co_od_get(node, entry));
     mirror_reference(drive, entry);
+    if (drive_channel_parameter(drive, entry))
+        drive_channels_update(drive);
     drive_settle(drive);
     advance_auto_tune(drive, node->now);
 }
@@ -431,6 +435,7 @@ int drive_init(drive_t *drive, const drive_config_t *config)
 void drive_start(drive_t *drive, co_time_t now)
 {
     co_node_start(&drive->node, now);
+    drive_channels_update(drive);
     drive_settle(drive);
 }
 
@@ -445,6 +450,8 @@ void drive_receive(drive_t *drive, const co_frame_t *frame, co_time_t now)
 co_time_t drive_process(drive_t *drive, co_time_t now)
 {
     if (drive->dirty || !drive_motor_at_target(&drive->motor)) {
+        if (drive->dirty)
+            drive_channels_update(drive); /* a reset restored them without writes */
         drive->dirty = false;
         drive_motor_advance(&drive->motor, now);
         drive_settle(drive);

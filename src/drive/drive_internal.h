@@ -42,9 +42,15 @@ void drive_faults_restart(drive_t *drive);
 /* Raises again every fault whose cause is present (after a reset node). */
 void drive_faults_raise_present(drive_t *drive);
 
-/* Channels (channels.c): the network gives the reference, the network commands. */
+/* Whether `entry` is the parameter `param` of the model's dictionary. */
+bool drive_is_param(const co_od_entry_t *entry, drive_param_t param);
+
+/* Channels (channels.c): the network gives the reference, the network commands. Kept in the
+ * drive, recomputed by drive_channels_update when a channel parameter is written, at a reset and
+ * at the start, so that the periodic work reads no parameter. */
+void drive_channels_update(drive_t *drive);
+bool drive_channel_parameter(const drive_t *drive, const co_od_entry_t *entry);
 bool drive_reference_from_network(const drive_t *drive);
-bool drive_command_from_network(const drive_t *drive);
 
 /* At the drive (local.c). The motor follows the reference under forced local control. */
 bool drive_local_runs(const drive_t *drive);

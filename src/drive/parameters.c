@@ -19,11 +19,6 @@ static uint32_t configuration_write(co_node_t *node, const co_od_entry_t *entry,
 
 const co_od_hook_t drive_configuration_parameter = {configuration_write, NULL};
 
-static bool is_param(const co_od_entry_t *entry, drive_param_t param)
-{
-    return entry->index == param.index && entry->subindex == param.subindex;
-}
-
 /* The value a hook is given, of an unsigned entry of 1, 2 or 4 bytes. */
 static uint32_t written_value(const uint8_t *data, size_t len)
 {
@@ -39,7 +34,7 @@ static uint32_t speed_limit_write(co_node_t *node, const co_od_entry_t *entry, c
     drive_t *drive = drive_of(node);
     const drive_profile_t *profile = drive->profile;
     uint32_t value = written_value(data, len);
-    bool is_high = is_param(entry, profile->high_speed);
+    bool is_high = drive_is_param(entry, profile->high_speed);
     uint32_t other = drive_param_value(drive, is_high ? profile->low_speed : profile->high_speed);
     uint32_t low = is_high ? other : value;
     uint32_t high = is_high ? value : other;

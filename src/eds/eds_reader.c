@@ -10,7 +10,7 @@
 
 #define EDS_LINE_MAX 1024
 
-static char *trim(char *s)
+char *eds_trim(char *s)
 {
     while (isspace((unsigned char)*s))
         s++;
@@ -160,7 +160,7 @@ static void set_device_info(eds_t *eds, const char *key, const char *value)
 
 static bool read_line(parse_state_t *st, eds_t *eds, char *line, char *err, size_t err_len)
 {
-    char *s = trim(line);
+    char *s = eds_trim(line);
     if (*s == '\0' || *s == ';' || *s == '#')
         return true;
     if (*s == '[') {
@@ -173,8 +173,8 @@ static bool read_line(parse_state_t *st, eds_t *eds, char *line, char *err, size
         uint16_t index, sub;
         st->entry = NULL;
         st->value_is_parameter = false;
-        st->in_device_info = strcasecmp(trim(s + 1), "DeviceInfo") == 0;
-        if (parse_section(trim(s + 1), &index, &sub)) {
+        st->in_device_info = strcasecmp(eds_trim(s + 1), "DeviceInfo") == 0;
+        if (parse_section(eds_trim(s + 1), &index, &sub)) {
             st->entry = add_entry(eds, index, sub);
             if (!st->entry) {
                 snprintf(err, err_len, "%s: out of memory", st->path);
@@ -191,10 +191,10 @@ static bool read_line(parse_state_t *st, eds_t *eds, char *line, char *err, size
     }
     *eq = '\0';
     if (st->in_device_info)
-        set_device_info(eds, trim(s), trim(eq + 1));
+        set_device_info(eds, eds_trim(s), eds_trim(eq + 1));
     if (!st->entry)
         return true;
-    return set_key(st, trim(s), trim(eq + 1), err, err_len);
+    return set_key(st, eds_trim(s), eds_trim(eq + 1), err, err_len);
 }
 
 eds_result_t eds_load(eds_t *eds, const char *path, uint8_t node_id, char *err, size_t err_len)

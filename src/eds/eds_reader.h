@@ -49,6 +49,10 @@ typedef enum eds_result {
 eds_result_t eds_load(eds_t *eds, const char *path, uint8_t node_id, char *err, size_t err_len);
 void eds_free(eds_t *eds);
 
+/* `s` without its leading and trailing blanks (the trailing ones cut in place): the INI readers'
+ * (EDS, DCF, the network description) shared step. */
+char *eds_trim(char *s);
+
 /* The entry of index:sub (a plain variable's object section for sub 0), or NULL. */
 const eds_entry_t *eds_find(const eds_t *eds, uint16_t index, uint8_t sub);
 /* The name of index:sub, or of its object when the sub-index has none; NULL when unknown. */

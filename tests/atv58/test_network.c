@@ -217,6 +217,23 @@ START_TEST(every_fault_of_its_table)
 }
 END_TEST
 
+/* CAN bus conditions keep their CiA 301 codes (the card's table has none) with the card's error
+ * register: 1 ("=1 fault"), not the family's 0x11; they do not fault the drive. */
+START_TEST(bus_condition_emcy_has_error_register_1)
+{
+    bench_t b;
+    bench_start_model(&b, &atv58_profile, NULL);
+    drive_bus_event(&b.drive, 0x8110, true);
+    b.deadline = drive_process(&b.drive, b.now);
+    bench_expect(&b, "084#1081010000000000");
+    bench_expect_none(&b);
+    ck_assert_uint_eq(bench_read(&b, 0x6041, 0), 0x0640);
+    drive_bus_event(&b.drive, 0x8110, false);
+    b.deadline = drive_process(&b.drive, b.now);
+    bench_expect(&b, "084#0000000000000000");
+}
+END_TEST
+
 int main(void)
 {
     Suite *s = suite_create("atv58_network");
@@ -226,6 +243,7 @@ int main(void)
     tcase_add_test(tc, sdo_error_layout);
     tcase_add_test(tc, life_guarding_fault_and_emcy);
     tcase_add_test(tc, nmt_disconnect);
+    tcase_add_test(tc, bus_condition_emcy_has_error_register_1);
     tcase_add_loop_test(tc, every_fault_of_its_table, 0,
                         (int)(sizeof atv58_table / sizeof atv58_table[0]));
     suite_add_tcase(s, tc);

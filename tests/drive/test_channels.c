@@ -70,6 +70,22 @@ START_TEST(command_switch_selects_channel_2)
 }
 END_TEST
 
+/* A reset node restores the channel parameters' defaults without writing them: the network
+ * commands again (bit 9 set, the control word obeyed). */
+START_TEST(reset_node_gives_the_command_back_to_the_network)
+{
+    bench_t b;
+    bench_start(&b);
+    ck_assert_uint_eq(write_param(&b, COMMAND_1, 1), 0);
+    ck_assert_uint_eq(bench_read(&b, 0x6041, 0), 0x0440);
+    bench_rx(&b, "000#8104");
+    bench_expect(&b, "704#00");
+    ck_assert_uint_eq(bench_read(&b, PARAMS, COMMAND_1), 0);
+    ck_assert_uint_eq(bench_read(&b, 0x6041, 0), 0x0640);
+    ck_assert_uint_eq(bench_command(&b, 0x0006), 0x0621);
+}
+END_TEST
+
 START_TEST(not_separate_command_follows_the_reference_channel)
 {
     bench_t b;
@@ -231,6 +247,7 @@ int main(void)
     TCase *tc = tcase_create("channels");
     tcase_add_test(tc, local_command_channel_records_and_ignores_the_network);
     tcase_add_test(tc, command_switch_selects_channel_2);
+    tcase_add_test(tc, reset_node_gives_the_command_back_to_the_network);
     tcase_add_test(tc, not_separate_command_follows_the_reference_channel);
     tcase_add_test(tc, local_reference_channel_gives_the_low_speed);
     tcase_add_test(tc, stop_type_ramp_stops_on_the_deceleration_ramp);

@@ -44,17 +44,24 @@ static void write_file(const char *path, const char *text)
     fclose(f);
 }
 
-/* A nodelist of node 4 (drive4.dcf of the examples) and an option file with `options`. */
-static int load_with(const char *options)
+/* Writes the nodelist and the option file, then loads the option file. */
+static int load_files(const char *nodelist, const char *options)
 {
     comaster_network_free(&net);
-    char text[1024];
-    snprintf(text, sizeof text,
-             "[Topology]\nNetName=t\nNodes=1\nNode4Present=1\nNode4DCFName=%s/drive4.dcf\n", DIR);
-    write_file(cpj, text);
-    snprintf(text, sizeof text, "[Master]\ncpj = net.cpj\n%s", options);
-    write_file(ini, text);
+    write_file(cpj, nodelist);
+    write_file(ini, options);
     return comaster_network_load(&net, ini, err, sizeof err);
+}
+
+/* A nodelist of node 4 (drive4.dcf of the examples). */
+#define NODELIST "[Topology]\nNetName=t\nNodes=1\nNode4Present=1\nNode4DCFName=" DIR "/drive4.dcf\n"
+
+/* The nodelist of node 4 and an option file with `options`. */
+static int load_with(const char *options)
+{
+    char text[1024];
+    snprintf(text, sizeof text, "[Master]\ncpj = net.cpj\n%s", options);
+    return load_files(NODELIST, text);
 }
 
 static const co_net_slave_config_t *slave(size_t i)
@@ -242,6 +249,68 @@ START_TEST(bad_files_are_refused)
 }
 END_TEST
 
+/* The INI syntax of the option file and the nodelist: comments on lines of their own or after a
+ * blank, blanks and carriage returns around everything, sections and keys of any case, a repeated
+ * key's last value, a repeated section's keys all taken, a nodelist's other sections ignored. */
+START_TEST(option_file_and_nodelist_syntax)
+{
+    ck_assert_int_eq(load_files("; nodelist\r\n"
+                                "[Tool]\r\n"
+                                "Nodes = not read\r\n"
+                                "  [ topology ]  ; the network\r\n"
+                                "  netname = syntax # name\r\n"
+                                "NODES=1\r\n"
+                                "node4present = 0x01\r\n"
+                                "Node4Name = first#drive\r\n"
+                                "node4dcfname = " DIR "/drive4.dcf\r\n",
+                                "# options\n"
+                                "[MASTER]\n"
+                                "  CPJ  =  net.cpj  ; the nodelist\n"
+                                "Interface = vcan1#2\n"
+                                "sdo_timeout = 100\n"
+                                "sdo_timeout = 200 ; the last one wins\n"
+                                "\t; indented comment\n"
+                                "[node4] # the drive\n"
+                                "heartbeat = 50\n"
+                                "[Master]\n"
+                                "boot_time = 7\n"
+                                "[Node4]\n"
+                                "guard_time = 20\n"),
+                     0);
+    ck_assert_str_eq(net.net_name, "syntax");
+    ck_assert_str_eq(net.slave[0].name, "first#drive");
+    ck_assert_str_eq(net.iface, "vcan1#2");
+    ck_assert_uint_eq(net.config.sdo_timeout_ms, 200);
+    ck_assert_uint_eq(net.config.boot_time_ms, 7);
+    ck_assert_uint_eq(slave(0)->heartbeat_ms, 50);
+    ck_assert_uint_eq(slave(0)->guard_ms, 20);
+}
+END_TEST
+
+/* Syntax errors of either file name the file and the line, comments and blank lines counted. */
+START_TEST(option_file_and_nodelist_syntax_errors)
+{
+    ck_assert_int_eq(load_with("; comment\n\n[Node4\n"), EX_DATAERR);
+    ck_assert_ptr_nonnull(strstr(err, "/net.ini:5: section header '[Node4' has no ']'"));
+    ck_assert_int_eq(load_with("[Node4 ; a comment]\n"), EX_DATAERR);
+    ck_assert_ptr_nonnull(strstr(err, "/net.ini:3: section header '[Node4' has no ']'"));
+    ck_assert_int_eq(load_with("\n  no equals sign ; comment\n"), EX_DATAERR);
+    ck_assert_ptr_nonnull(
+        strstr(err, "/net.ini:4: 'no equals sign' is neither a [section] nor a key = value line"));
+    ck_assert_int_eq(load_with("; comment\nsdo_timeout = 4 ; ms\n"), EX_DATAERR);
+    ck_assert_ptr_nonnull(strstr(err, "/net.ini:4: sdo_timeout = '4': give 5..5000 ms"));
+    ck_assert_int_eq(load_files(NODELIST, "cpj = net.cpj\n[Master]\ncpj = net.cpj\n"), EX_DATAERR);
+    ck_assert_ptr_nonnull(strstr(err, "/net.ini:1: unknown section [] (give [Master] and [NodeN]"));
+    ck_assert_int_eq(
+        load_files("; nodelist\n[Topology]\nNodes = many\n", "[Master]\ncpj = net.cpj\n"),
+        EX_DATAERR);
+    ck_assert_ptr_nonnull(strstr(err, "/net.cpj:3: Nodes = 'many': not a number of nodes 0..127"));
+    ck_assert_int_eq(load_files("[Topology\n", "[Master]\ncpj = net.cpj\n"), EX_DATAERR);
+    ck_assert_ptr_nonnull(strstr(err, "/net.cpj:1: section header '[Topology' has no ']'"));
+    ck_assert_uint_eq(net.slave_count, 0);
+}
+END_TEST
+
 static Suite *network_suite(void)
 {
     Suite *s = suite_create("network");
@@ -254,6 +323,8 @@ static Suite *network_suite(void)
     tcase_add_test(tc, one_slave_for_boot);
     tcase_add_test(tc, node_options);
     tcase_add_test(tc, bad_files_are_refused);
+    tcase_add_test(tc, option_file_and_nodelist_syntax);
+    tcase_add_test(tc, option_file_and_nodelist_syntax_errors);
     suite_add_tcase(s, tc);
     return s;
 }

@@ -1,0 +1,182 @@
+/* The EDS/DCF reader's CiA 306 syntax, file by file through eds_load: comments only on lines of
+ * their own, blanks and carriage returns around everything, keys and sections of any case, keys
+ * outside object sections ignored, a repeated key's last value (but a ParameterValue wins over a
+ * later DefaultValue), a repeated section read as a second entry, [DeviceInfo], and each syntax
+ * error with the file and the line (counting comments and blank lines). */
+#include "check_main.h"
+#include "eds_reader.h"
+
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <unistd.h>
+
+static char path[] = "/tmp/eds-reader-test-XXXXXX";
+static eds_t eds;
+static char err[512];
+
+static void setup(void)
+{
+    memcpy(path + strlen(path) - 6, "XXXXXX", 6);
+    int fd = mkstemp(path);
+    ck_assert_int_ge(fd, 0);
+    close(fd);
+    err[0] = '\0';
+}
+
+static void teardown(void)
+{
+    eds_free(&eds);
+    unlink(path);
+}
+
+static eds_result_t load(const char *text)
+{
+    FILE *f = fopen(path, "w");
+    ck_assert_ptr_nonnull(f);
+    fputs(text, f);
+    fclose(f);
+    eds_free(&eds);
+    return eds_load(&eds, path, 4, err, sizeof err);
+}
+
+/* The error the reader gives for `text`, with the file's path taken off its front. */
+static const char *error_of(const char *text)
+{
+    ck_assert_int_eq(load(text), EDS_MALFORMED);
+    ck_assert_uint_eq(eds.count, 0);
+    ck_assert_ptr_null(eds.entries);
+    size_t len = strlen(path);
+    ck_assert_msg(strncmp(err, path, len) == 0, "%s", err);
+    return err + len;
+}
+
+START_TEST(comments_only_on_lines_of_their_own)
+{
+    ck_assert_int_eq(load("; CiA 306 comment\n"
+                          "   # indented comment\n"
+                          "[1000]\n"
+                          "ParameterName=Device type ; not a comment\n"
+                          "DefaultValue=0x00010192\n"
+                          "[1008]\n"
+                          "ParameterName=Name #1\n"),
+                     EDS_OK);
+    ck_assert_str_eq(eds_name(&eds, 0x1000, 0), "Device type ; not a comment");
+    ck_assert_uint_eq(eds_find(&eds, 0x1000, 0)->value, 0x00010192);
+    ck_assert_str_eq(eds_name(&eds, 0x1008, 0), "Name #1");
+}
+END_TEST
+
+START_TEST(blanks_carriage_returns_and_case)
+{
+    ck_assert_int_eq(load("\r\n"
+                          "  [ 1a00 ]  text after the bracket\r\n"
+                          "  parametername  =  TPDO1 mapping  \r\n"
+                          "[1A00SUB1]\r\n"
+                          "DATATYPE = 0x0007\r\n"
+                          "defaultvalue\t=\t0x60410010\r\n"
+                          "accesstype = RW\r\n"
+                          "[1a00Sub2]\n"
+                          "PARAMETERVALUE = $nodeid + 0x10\n"),
+                     EDS_OK);
+    ck_assert_str_eq(eds_name(&eds, 0x1A00, 0), "TPDO1 mapping");
+    const eds_entry_t *e = eds_find(&eds, 0x1A00, 1);
+    ck_assert_ptr_nonnull(e);
+    ck_assert_uint_eq(e->data_type, 0x0007);
+    ck_assert_uint_eq(e->value, 0x60410010);
+    ck_assert_str_eq(e->text, "0x60410010");
+    ck_assert(e->writable);
+    e = eds_find(&eds, 0x1A00, 2);
+    ck_assert_ptr_nonnull(e);
+    ck_assert_uint_eq(e->value, 0x14);
+    ck_assert(e->configured);
+}
+END_TEST
+
+START_TEST(keys_outside_object_sections_ignored)
+{
+    ck_assert_int_eq(load("DataType=before any section\n"
+                          "[FileInfo]\n"
+                          "FileName=x.eds\n"
+                          "DataType=not a number\n"
+                          "[1000sub]\n"
+                          "DataType=not a number\n"
+                          "[1000]\n"
+                          "ParameterName=Device type\n"
+                          "ObjFlags=0\n"
+                          "=no key\n"),
+                     EDS_OK);
+    ck_assert_uint_eq(eds.count, 1);
+    ck_assert_str_eq(eds_name(&eds, 0x1000, 0), "Device type");
+}
+END_TEST
+
+START_TEST(repeated_keys_and_sections)
+{
+    ck_assert_int_eq(load("[1000]\n"
+                          "ParameterName=First\n"
+                          "ParameterName=Second\n"
+                          "DefaultValue=1\n"
+                          "DefaultValue=2\n"
+                          "[2000]\n"
+                          "ParameterValue=7\n"
+                          "DefaultValue=8\n"
+                          "[1000]\n"
+                          "ParameterName=Again\n"
+                          "DefaultValue=3\n"),
+                     EDS_OK);
+    ck_assert_uint_eq(eds.count, 3);
+    ck_assert_str_eq(eds_name(&eds, 0x1000, 0), "Second");
+    ck_assert_uint_eq(eds_find(&eds, 0x1000, 0)->value, 2);
+    ck_assert_str_eq(eds.entries[2].name, "Again");
+    const eds_entry_t *e = eds_find(&eds, 0x2000, 0);
+    ck_assert_uint_eq(e->value, 7);
+    ck_assert_str_eq(e->text, "7");
+    ck_assert(e->configured);
+}
+END_TEST
+
+START_TEST(device_info_of_any_case)
+{
+    ck_assert_int_eq(load("[1000]\n"
+                          "ParameterName=Device type\n"
+                          "[deviceinfo]\n"
+                          "vendornumber = 0x0500005A\n"
+                          "ProductNumber=not a number\n"
+                          "ParameterName=not an object's\n"
+                          "[1018sub1]\n"
+                          "VendorNumber=0x99\n"),
+                     EDS_OK);
+    ck_assert_uint_eq(eds.vendor_number, 0x0500005A);
+    ck_assert_uint_eq(eds.product_number, 0);
+    ck_assert_str_eq(eds_name(&eds, 0x1000, 0), "Device type");
+}
+END_TEST
+
+START_TEST(syntax_errors_name_the_line)
+{
+    ck_assert_str_eq(error_of("; comment\n\n[1000]\nParameterName=x\n[1001\n"),
+                     ":5: section header '[1001' has no ']'");
+    ck_assert_str_eq(error_of("[1000]\n  junk line \n"),
+                     ":2: 'junk line' is neither a [section] nor a key=value line");
+    ck_assert_str_eq(error_of("; comment\n\n[1000]\nDataType=seven\n"),
+                     ":4: DataType 'seven' is not a number such as 0x0006");
+    ck_assert_str_eq(error_of("; only comments\n"),
+                     ": no object sections such as [1000]: not an EDS or DCF");
+}
+END_TEST
+
+int main(void)
+{
+    Suite *s = suite_create("eds_reader");
+    TCase *tc = tcase_create("syntax");
+    tcase_add_checked_fixture(tc, setup, teardown);
+    tcase_add_test(tc, comments_only_on_lines_of_their_own);
+    tcase_add_test(tc, blanks_carriage_returns_and_case);
+    tcase_add_test(tc, keys_outside_object_sections_ignored);
+    tcase_add_test(tc, repeated_keys_and_sections);
+    tcase_add_test(tc, device_info_of_any_case);
+    tcase_add_test(tc, syntax_errors_name_the_line);
+    suite_add_tcase(s, tc);
+    return check_run_suite(s);
+}

@@ -2,6 +2,7 @@
  * nodelist, the DCFs (docs/comaster.md "Network description"). */
 #include "network.h"
 
+#include "ini_reader.h"
 #include "value.h"
 
 #include <ctype.h>
@@ -13,7 +14,6 @@
 #include <strings.h>
 #include <sysexits.h>
 
-#define LINE_MAX_LEN 1024
 #define DEVICE_TYPE_INDEX 0x1000u
 #define IDENTITY_INDEX 0x1018u
 #define HEARTBEAT_PRODUCER_INDEX 0x1017u
@@ -32,80 +32,29 @@
 #define DEFAULT_BOOT_TIME_MS 1000u
 #define DEFAULT_RETRY_DELAY_MS 1000u
 
-/* ---- a small INI reader for the option file and the nodelist ------------------------------- */
+/* ---- the option file and the nodelist, INI files --------------------------------------------- */
 
-typedef struct ini_line {
-    const char *path;
-    unsigned number;
-    const char *section; /* "" before the first one */
-    const char *key;
-    const char *value;
-} ini_line_t;
-
-/* Called for each key=value line; returns 0 or the exit status after writing err. */
-typedef int (*ini_key_fn)(void *ctx, const ini_line_t *line, char *err, size_t err_len);
-
-/* A comment starts with ';' or '#' at the beginning of a line or after a blank. */
-static void strip_comment(char *s)
-{
-    for (char *p = s; *p; p++) {
-        if ((*p == ';' || *p == '#') && (p == s || isspace((unsigned char)p[-1]))) {
-            *p = '\0';
-            return;
-        }
-    }
-}
-
-static int ini_read(const char *path, ini_key_fn on_key, void *ctx, char *err, size_t err_len)
+/* Reads an INI file of the network description: 0, EX_NOINPUT or EX_DATAERR. */
+static int read_ini(const char *path, ini_line_fn on_key, void *ctx, char *err, size_t err_len)
 {
     FILE *f = fopen(path, "re");
     if (!f) {
         snprintf(err, err_len, "cannot read '%s': %s", path, strerror(errno));
         return EX_NOINPUT;
     }
-    char section[LINE_MAX_LEN] = "";
-    char buf[LINE_MAX_LEN];
-    ini_line_t line = {.path = path, .section = section};
-    int rc = 0;
-    while (rc == 0 && fgets(buf, sizeof buf, f)) {
-        line.number++;
-        strip_comment(buf);
-        char *s = eds_trim(buf);
-        if (*s == '\0')
-            continue;
-        if (*s == '[') {
-            char *close = strchr(s, ']');
-            if (!close) {
-                snprintf(err, err_len, "%s:%u: section header '%s' has no ']'", path, line.number,
-                         s);
-                rc = EX_DATAERR;
-                break;
-            }
-            *close = '\0';
-            snprintf(section, sizeof section, "%s", eds_trim(s + 1));
-            continue;
-        }
-        char *eq = strchr(s, '=');
-        if (!eq) {
-            snprintf(err, err_len, "%s:%u: '%s' is neither a [section] nor a key = value line",
-                     path, line.number, s);
-            rc = EX_DATAERR;
-            break;
-        }
-        *eq = '\0';
-        line.key = eds_trim(s);
-        line.value = eds_trim(eq + 1);
-        rc = on_key(ctx, &line, err, err_len);
-    }
+    /* Comments after a blank, as users write them in hand-made files. */
+    const ini_reader_t syntax = {
+        .trailing_comments = true, .key_line = "key = value", .on_key = on_key};
+    bool ok = ini_read(f, path, &syntax, ctx, err, err_len);
     fclose(f);
-    return rc;
+    return ok ? 0 : EX_DATAERR;
 }
 
-static int bad_value(const ini_line_t *line, const char *what, char *err, size_t err_len)
+static bool bad_value(const ini_line_t *line, const char *what, char *err, size_t err_len)
 {
     snprintf(err, err_len, "%s:%u: %s = '%s': %s", line->path, line->number, line->key, line->value,
              what);
-    return EX_DATAERR;
+    return false;
 }
 
 static bool parse_number(const char *text, uint32_t max, uint32_t *out)
@@ -167,11 +116,11 @@ static bool node_key(const char *key, uint32_t *node, const char **rest)
     return true;
 }
 
-static int topology_key(void *ctx, const ini_line_t *line, char *err, size_t err_len)
+static bool topology_key(void *ctx, const ini_line_t *line, char *err, size_t err_len)
 {
     topology_t *t = ctx;
     if (strcasecmp(line->section, "Topology") != 0)
-        return 0; /* other sections of a nodelist (a tool's own) do not concern the master */
+        return true; /* other sections of a nodelist (a tool's own) do not concern the master */
     uint32_t node, v;
     const char *rest;
     if (strcasecmp(line->key, "NetName") == 0) {
@@ -192,7 +141,7 @@ static int topology_key(void *ctx, const ini_line_t *line, char *err, size_t err
                 return bad_value(line, "path too long", err, err_len);
         }
     }
-    return 0;
+    return true;
 }
 
 /* ---- a slave from its DCF -------------------------------------------------------------------- */
@@ -415,13 +364,13 @@ static size_t slave_of_node(const comaster_network_t *net, uint8_t node_id)
     return net->slave_count;
 }
 
-static int master_key(comaster_network_t *net, const ini_line_t *line, char *err, size_t err_len)
+static bool master_key(comaster_network_t *net, const ini_line_t *line, char *err, size_t err_len)
 {
     co_net_master_config_t *c = &net->config;
     uint32_t v;
     const char *k = line->key;
     if (strcasecmp(k, "cpj") == 0)
-        return 0; /* read first, by load */
+        return true; /* read first, by load */
     if (strcasecmp(k, "interface") == 0) {
         if (strlen(line->value) >= sizeof net->iface)
             return bad_value(line, "an interface name is at most 15 characters", err, err_len);
@@ -462,17 +411,17 @@ static int master_key(comaster_network_t *net, const ini_line_t *line, char *err
                  "%s:%u: unknown key '%s' in [Master] (cpj, interface, control, sdo_timeout, "
                  "boot_time, retry_delay, sync_period, start, reset_all)",
                  line->path, line->number, k);
-        return EX_DATAERR;
+        return false;
     }
-    return 0;
+    return true;
 }
 
 static const char *const check_names[] = {"device_type", "vendor", "product", "revision", "serial"};
 #define CHECK_NAMES (sizeof check_names / sizeof check_names[0])
 
-static int parse_check(const ini_line_t *line, uint8_t *check, char *err, size_t err_len)
+static bool parse_check(const ini_line_t *line, uint8_t *check, char *err, size_t err_len)
 {
-    char copy[LINE_MAX_LEN];
+    char copy[INI_LINE_MAX];
     snprintf(copy, sizeof copy, "%s", line->value);
     *check = 0;
     for (char *save, *word = strtok_r(copy, " ,", &save); word;
@@ -488,11 +437,11 @@ static int parse_check(const ini_line_t *line, uint8_t *check, char *err, size_t
                              err_len);
         *check |= (uint8_t)(1u << k);
     }
-    return 0;
+    return true;
 }
 
-static int node_key_value(co_net_slave_config_t *c, const ini_line_t *line, char *err,
-                          size_t err_len)
+static bool node_key_value(co_net_slave_config_t *c, const ini_line_t *line, char *err,
+                           size_t err_len)
 {
     uint32_t v;
     const char *k = line->key;
@@ -506,7 +455,7 @@ static int node_key_value(co_net_slave_config_t *c, const ini_line_t *line, char
         else
             c->identity[i - 1] = v;
         c->check |= (uint8_t)(1u << i);
-        return 0;
+        return true;
     }
     if (strcasecmp(k, "mandatory") == 0) {
         if (!parse_yes_no(line->value, &c->mandatory))
@@ -538,12 +487,12 @@ static int node_key_value(co_net_slave_config_t *c, const ini_line_t *line, char
                  "life_time_factor, on_error, check, device_type, vendor, product, revision, "
                  "serial)",
                  line->path, line->number, k, line->section);
-        return EX_DATAERR;
+        return false;
     }
-    return 0;
+    return true;
 }
 
-static int option_key(void *ctx, const ini_line_t *line, char *err, size_t err_len)
+static bool option_key(void *ctx, const ini_line_t *line, char *err, size_t err_len)
 {
     comaster_network_t *net = ctx;
     uint32_t node;
@@ -555,13 +504,13 @@ static int option_key(void *ctx, const ini_line_t *line, char *err, size_t err_l
         if (i == net->slave_count) {
             snprintf(err, err_len, "%s:%u: [%s]: node %u is not present in the nodelist",
                      line->path, line->number, line->section, node);
-            return EX_DATAERR;
+            return false;
         }
         return node_key_value(&net->slave_config[i], line, err, err_len);
     }
     snprintf(err, err_len, "%s:%u: unknown section [%s] (give [Master] and [NodeN], N = 1..127)",
              line->path, line->number, line->section);
-    return EX_DATAERR;
+    return false;
 }
 
 /* Finds [Master] cpj before anything else, since the [NodeN] keys apply to its slaves. */
@@ -569,13 +518,13 @@ typedef struct cpj_lookup {
     char path[PATH_MAX];
 } cpj_lookup_t;
 
-static int cpj_key(void *ctx, const ini_line_t *line, char *err, size_t err_len)
+static bool cpj_key(void *ctx, const ini_line_t *line, char *err, size_t err_len)
 {
     cpj_lookup_t *l = ctx;
     if (strcasecmp(line->section, "Master") == 0 && strcasecmp(line->key, "cpj") == 0 &&
         !relative_to(line->path, line->value, l->path, sizeof l->path))
         return bad_value(line, "path too long", err, err_len);
-    return 0;
+    return true;
 }
 
 static void network_init(comaster_network_t *net)
@@ -603,7 +552,7 @@ static int load_topology(comaster_network_t *net, const char *cpj, char *err, si
         return EX_OSERR;
     }
     t->net = net;
-    int rc = ini_read(cpj, topology_key, t, err, err_len);
+    int rc = read_ini(cpj, topology_key, t, err, err_len);
     uint32_t present = 0;
     for (uint8_t n = 1; rc == 0 && n <= CO_NMT_MASTER_NODE_ID_MAX; n++) {
         if (!t->present[n])
@@ -638,7 +587,7 @@ int comaster_network_load(comaster_network_t *net, const char *path, char *err, 
     network_init(net);
     net->config.reset_all = true;
     cpj_lookup_t cpj = {.path = ""};
-    int rc = ini_read(path, cpj_key, &cpj, err, err_len);
+    int rc = read_ini(path, cpj_key, &cpj, err, err_len);
     if (rc == 0 && cpj.path[0] == '\0') {
         snprintf(err, err_len, "%s: [Master] has no cpj = NODELIST (the CiA 306-3 nodelist)", path);
         rc = EX_DATAERR;
@@ -646,7 +595,7 @@ int comaster_network_load(comaster_network_t *net, const char *path, char *err, 
     if (rc == 0)
         rc = load_topology(net, cpj.path, err, err_len);
     if (rc == 0)
-        rc = ini_read(path, option_key, net, err, err_len);
+        rc = read_ini(path, option_key, net, err, err_len);
     if (rc != 0)
         comaster_network_free(net);
     finish(net);

@@ -1,5 +1,7 @@
 #include "eds_reader.h"
 
+#include "ini_reader.h"
+
 #include <ctype.h>
 #include <dirent.h>
 #include <errno.h>
@@ -7,18 +9,6 @@
 #include <stdlib.h>
 #include <string.h>
 #include <strings.h>
-
-#define EDS_LINE_MAX 1024
-
-char *eds_trim(char *s)
-{
-    while (isspace((unsigned char)*s))
-        s++;
-    char *end = s + strlen(s);
-    while (end > s && isspace((unsigned char)end[-1]))
-        *--end = '\0';
-    return s;
-}
 
 /* "1A05" -> index, "1A05sub1" -> index and sub-index; false for other sections ([FileInfo]). */
 static bool parse_section(const char *name, uint16_t *index, uint16_t *sub)
@@ -93,40 +83,41 @@ static eds_entry_t *add_entry(eds_t *eds, uint16_t index, uint16_t sub)
 }
 
 typedef struct parse_state {
+    eds_t *eds;
     eds_entry_t *entry;      /* the section being read, NULL outside object sections */
     bool in_device_info;     /* [DeviceInfo] is being read */
     bool value_is_parameter; /* a DCF ParameterValue was read: it wins over DefaultValue */
-    const char *path;
-    unsigned line;
     uint8_t node_id;
 } parse_state_t;
 
-static bool set_key(parse_state_t *st, const char *key, const char *value, char *err,
-                    size_t err_len)
+static bool out_of_memory(const ini_line_t *line, char *err, size_t err_len)
+{
+    snprintf(err, err_len, "%s: out of memory", line->path);
+    return false;
+}
+
+static bool set_key(parse_state_t *st, const ini_line_t *line, char *err, size_t err_len)
 {
     eds_entry_t *e = st->entry;
+    const char *key = line->key, *value = line->value;
     if (strcasecmp(key, "ParameterName") == 0) {
         free(e->name);
         e->name = strdup(value);
-        if (!e->name) {
-            snprintf(err, err_len, "%s: out of memory", st->path);
-            return false;
-        }
+        if (!e->name)
+            return out_of_memory(line, err, err_len);
     } else if (strcasecmp(key, "DataType") == 0) {
         uint64_t type;
         if (!parse_value(value, st->node_id, &type) || type > 0xFFFF) {
-            snprintf(err, err_len, "%s:%u: DataType '%s' is not a number such as 0x0006", st->path,
-                     st->line, value);
+            snprintf(err, err_len, "%s:%u: DataType '%s' is not a number such as 0x0006",
+                     line->path, line->number, value);
             return false;
         }
         e->data_type = (uint16_t)type;
     } else if (strcasecmp(key, "Denotation") == 0) {
         free(e->denotation);
         e->denotation = strdup(value);
-        if (!e->denotation) {
-            snprintf(err, err_len, "%s: out of memory", st->path);
-            return false;
-        }
+        if (!e->denotation)
+            return out_of_memory(line, err, err_len);
     } else if (strcasecmp(key, "AccessType") == 0) {
         e->writable = strcasecmp(value, "rw") == 0 || strcasecmp(value, "wo") == 0 ||
                       strcasecmp(value, "rww") == 0 || strcasecmp(value, "rwr") == 0;
@@ -136,10 +127,8 @@ static bool set_key(parse_state_t *st, const char *key, const char *value, char 
         e->has_value = parse_value(value, st->node_id, &e->value);
         free(e->text);
         e->text = strdup(value);
-        if (!e->text) {
-            snprintf(err, err_len, "%s: out of memory", st->path);
-            return false;
-        }
+        if (!e->text)
+            return out_of_memory(line, err, err_len);
         st->value_is_parameter = st->value_is_parameter || strcasecmp(key, "ParameterValue") == 0;
         e->configured = st->value_is_parameter;
     }
@@ -158,44 +147,35 @@ static void set_device_info(eds_t *eds, const char *key, const char *value)
         eds->product_number = (uint32_t)number;
 }
 
-static bool read_line(parse_state_t *st, eds_t *eds, char *line, char *err, size_t err_len)
+/* Every header starts a section: an object's ([1A05], [1A05sub1]) is a new entry. */
+static bool on_section(void *ctx, const ini_line_t *line, char *err, size_t err_len)
 {
-    char *s = eds_trim(line);
-    if (*s == '\0' || *s == ';' || *s == '#')
+    parse_state_t *st = ctx;
+    uint16_t index, sub;
+    st->entry = NULL;
+    st->value_is_parameter = false;
+    st->in_device_info = strcasecmp(line->section, "DeviceInfo") == 0;
+    if (!parse_section(line->section, &index, &sub))
         return true;
-    if (*s == '[') {
-        char *close = strchr(s, ']');
-        if (!close) {
-            snprintf(err, err_len, "%s:%u: section header '%s' has no ']'", st->path, st->line, s);
-            return false;
-        }
-        *close = '\0';
-        uint16_t index, sub;
-        st->entry = NULL;
-        st->value_is_parameter = false;
-        st->in_device_info = strcasecmp(eds_trim(s + 1), "DeviceInfo") == 0;
-        if (parse_section(eds_trim(s + 1), &index, &sub)) {
-            st->entry = add_entry(eds, index, sub);
-            if (!st->entry) {
-                snprintf(err, err_len, "%s: out of memory", st->path);
-                return false;
-            }
-        }
-        return true;
-    }
-    char *eq = strchr(s, '=');
-    if (!eq) {
-        snprintf(err, err_len, "%s:%u: '%s' is neither a [section] nor a key=value line", st->path,
-                 st->line, s);
-        return false;
-    }
-    *eq = '\0';
-    if (st->in_device_info)
-        set_device_info(eds, eds_trim(s), eds_trim(eq + 1));
-    if (!st->entry)
-        return true;
-    return set_key(st, eds_trim(s), eds_trim(eq + 1), err, err_len);
+    st->entry = add_entry(st->eds, index, sub);
+    return st->entry || out_of_memory(line, err, err_len);
 }
+
+static bool on_key(void *ctx, const ini_line_t *line, char *err, size_t err_len)
+{
+    parse_state_t *st = ctx;
+    if (st->in_device_info)
+        set_device_info(st->eds, line->key, line->value);
+    return !st->entry || set_key(st, line, err, err_len);
+}
+
+/* CiA 306: comments are lines of their own. */
+static const ini_reader_t cia306_syntax = {
+    .trailing_comments = false,
+    .key_line = "key=value",
+    .on_section = on_section,
+    .on_key = on_key,
+};
 
 eds_result_t eds_load(eds_t *eds, const char *path, uint8_t node_id, char *err, size_t err_len)
 {
@@ -205,13 +185,8 @@ eds_result_t eds_load(eds_t *eds, const char *path, uint8_t node_id, char *err, 
         snprintf(err, err_len, "cannot read the EDS '%s': %s", path, strerror(errno));
         return EDS_CANNOT_READ;
     }
-    parse_state_t st = {.path = path, .node_id = node_id};
-    char line[EDS_LINE_MAX];
-    bool ok = true;
-    while (ok && fgets(line, sizeof line, f)) {
-        st.line++;
-        ok = read_line(&st, eds, line, err, err_len);
-    }
+    parse_state_t st = {.eds = eds, .node_id = node_id};
+    bool ok = ini_read(f, path, &cia306_syntax, &st, err, err_len);
     fclose(f);
     if (ok && eds->count == 0) {
         snprintf(err, err_len, "%s: no object sections such as [1000]: not an EDS or DCF", path);

@@ -3,7 +3,7 @@
  * $NODEID resolved), enough to name SDO objects, to find an object by its name and to decode PDOs
  * by their mapping (1600h-17FFh, 1A00h-1BFFh) and COB-IDs (1400h-15FFh, 1800h-19FFh); the
  * device's identity ([DeviceInfo]) to find the EDS of a node. No python: the installed tools read
- * the file themselves. */
+ * the file themselves; the INI syntax is ini_reader.h's. */
 #ifndef EDS_READER_H
 #define EDS_READER_H
 
@@ -48,10 +48,6 @@ typedef enum eds_result {
  * (file, line, what is wrong) and eds is empty. */
 eds_result_t eds_load(eds_t *eds, const char *path, uint8_t node_id, char *err, size_t err_len);
 void eds_free(eds_t *eds);
-
-/* `s` without its leading and trailing blanks (the trailing ones cut in place): the INI readers'
- * (EDS, DCF, the network description) shared step. */
-char *eds_trim(char *s);
 
 /* The entry of index:sub (a plain variable's object section for sub 0), or NULL. */
 const eds_entry_t *eds_find(const eds_t *eds, uint16_t index, uint8_t sub);

@@ -1,0 +1,88 @@
+/* The INI line reader on its own: what each callback is handed (section, key, value, line
+ * number), a key before any header in the section "", and the reading stopped by a callback's
+ * false, its error kept. The dialects of its two users are tested through them
+ * (test_eds_reader.c, tests/comaster/test_network.c). */
+#include "check_main.h"
+#include "ini_reader.h"
+
+#include <stdio.h>
+#include <string.h>
+
+typedef struct seen {
+    char lines[8][64];
+    size_t count;
+    size_t stop_at; /* the callback refuses this line (1-based count), 0: none */
+} seen_t;
+
+static bool record(void *ctx, const ini_line_t *line, char *err, size_t err_len)
+{
+    seen_t *seen = ctx;
+    ck_assert_uint_lt(seen->count, 8);
+    snprintf(seen->lines[seen->count++], sizeof seen->lines[0], "%u [%s] %s=%s", line->number,
+             line->section, line->key ? line->key : "(header)", line->value ? line->value : "");
+    if (seen->count != seen->stop_at)
+        return true;
+    snprintf(err, err_len, "%s:%u: refused", line->path, line->number);
+    return false;
+}
+
+static bool read_text(const char *text, const ini_reader_t *reader, seen_t *seen, char *err,
+                      size_t err_len)
+{
+    FILE *f = fmemopen((void *)text, strlen(text), "r");
+    ck_assert_ptr_nonnull(f);
+    bool ok = ini_read(f, "test.ini", reader, seen, err, err_len);
+    fclose(f);
+    return ok;
+}
+
+START_TEST(callbacks_get_section_key_value_and_line)
+{
+    const ini_reader_t reader = {.key_line = "key=value", .on_section = record, .on_key = record};
+    seen_t seen = {0};
+    char err[128] = "";
+    ck_assert(read_text("first = 1\n; comment\n\n[ One ]\n a = b = c \n[Two]\nempty=\n", &reader,
+                        &seen, err, sizeof err));
+    ck_assert_uint_eq(seen.count, 5);
+    ck_assert_str_eq(seen.lines[0], "1 [] first=1");
+    ck_assert_str_eq(seen.lines[1], "4 [One] (header)=");
+    ck_assert_str_eq(seen.lines[2], "5 [One] a=b = c");
+    ck_assert_str_eq(seen.lines[3], "6 [Two] (header)=");
+    ck_assert_str_eq(seen.lines[4], "7 [Two] empty=");
+    ck_assert_str_eq(err, "");
+}
+END_TEST
+
+START_TEST(headers_without_callback_only_name_the_section)
+{
+    const ini_reader_t reader = {
+        .trailing_comments = true, .key_line = "key = value", .on_key = record};
+    seen_t seen = {0};
+    char err[128] = "";
+    ck_assert(read_text("[A] ; a\nk = v ; c\n", &reader, &seen, err, sizeof err));
+    ck_assert_uint_eq(seen.count, 1);
+    ck_assert_str_eq(seen.lines[0], "2 [A] k=v");
+}
+END_TEST
+
+START_TEST(a_refusing_callback_stops_the_reading)
+{
+    const ini_reader_t reader = {.key_line = "key=value", .on_section = record, .on_key = record};
+    seen_t seen = {.stop_at = 2};
+    char err[128] = "";
+    ck_assert(!read_text("[A]\nk=v\nnot read\n", &reader, &seen, err, sizeof err));
+    ck_assert_uint_eq(seen.count, 2);
+    ck_assert_str_eq(err, "test.ini:2: refused");
+}
+END_TEST
+
+int main(void)
+{
+    Suite *s = suite_create("ini_reader");
+    TCase *tc = tcase_create("lines");
+    tcase_add_test(tc, callbacks_get_section_key_value_and_line);
+    tcase_add_test(tc, headers_without_callback_only_name_the_section);
+    tcase_add_test(tc, a_refusing_callback_stops_the_reading);
+    suite_add_tcase(s, tc);
+    return check_run_suite(s);
+}

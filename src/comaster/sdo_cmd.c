@@ -151,31 +151,21 @@ static int print_value(const comaster_options_t *opts, const sdo_request_t *req,
     return 0;
 }
 
-int comaster_read_main(comaster_options_t *opts, int argc, char **argv)
+/* read: the upload, its value printed (by its type, else unsigned by its size) or saved. */
+static int upload(comaster_bus_t *bus, const comaster_options_t *opts, const comaster_args_t *args,
+                  sdo_request_t *req)
 {
-    comaster_args_t args;
-    int rc = comaster_parse_args(opts, &args, argc, argv, read_help, "--block --output", 2, 3);
-    if (rc >= 0)
+    co_sdo_client_result_t result;
+    int rc = comaster_sdo_upload(bus, req->node, req->object.index, req->object.sub, value_buffer,
+                                 VALUE_MAX, req->mode, opts->timeout_ms, &result);
+    if (rc == 0)
+        rc = comaster_sdo_status(opts, req->node, &result);
+    if (rc != 0)
         return rc;
-    static comaster_bus_t bus;
-    eds_t eds = {0};
-    sdo_request_t req = {0};
-    rc = resolve(&bus, opts, &args, args.count > 2 ? args.positional[2] : NULL, &eds, &req);
-    if (rc < 0) {
-        co_sdo_client_result_t result;
-        rc = comaster_sdo_upload(&bus, req.node, req.object.index, req.object.sub, value_buffer,
-                                 VALUE_MAX, req.mode, opts->timeout_ms, &result);
-        if (rc == 0)
-            rc = comaster_sdo_status(opts, req.node, &result);
-        if (rc == 0 && !req.type)
-            req.type = type_by_size(result.size);
-        if (rc == 0)
-            rc = args.output ? save_output(opts, &req, args.output, result.size)
-                             : print_value(opts, &req, result.size);
-    }
-    comaster_bus_close(&bus);
-    eds_free(&eds);
-    return rc;
+    if (!req->type)
+        req->type = type_by_size(result.size);
+    return args->output ? save_output(opts, req, args->output, result.size)
+                        : print_value(opts, req, result.size);
 }
 
 /* A DOMAIN's value: the bytes of a file ('-': standard input). */
@@ -212,37 +202,69 @@ static int parse_value(const comaster_options_t *opts, const sdo_request_t *req,
     return 0;
 }
 
-int comaster_write_main(comaster_options_t *opts, int argc, char **argv)
+/* write: VALUE parsed by its type, then the download. */
+static int download(comaster_bus_t *bus, const comaster_options_t *opts,
+                    const comaster_args_t *args, sdo_request_t *req)
+{
+    if (!req->type)
+        return comaster_fail(opts, EX_USAGE,
+                             "write %s %s: give the TYPE of the value (no EDS names its data "
+                             "type): one of %s",
+                             args->positional[0], args->positional[1], comaster_type_names());
+    size_t len = 0;
+    int rc = parse_value(opts, req, args->positional[args->count - 1], &len);
+    if (rc != 0)
+        return rc;
+    co_sdo_client_result_t result;
+    rc = comaster_sdo_download(bus, req->node, req->object.index, req->object.sub, value_buffer,
+                               (uint32_t)len, req->mode, opts->timeout_ms, &result);
+    if (rc == 0)
+        rc = comaster_sdo_status(opts, req->node, &result);
+    if (rc == 0 && opts->json) {
+        print_json_head(req);
+        printf(", \"written\": %zu}\n", len);
+    }
+    return rc;
+}
+
+/* What read and write do not share: their command line and their transfer. */
+typedef struct sdo_command {
+    const char *help;
+    const char *flags;
+    int min_args;
+    int max_args; /* TYPE is the third argument when all are given */
+    int (*transfer)(comaster_bus_t *bus, const comaster_options_t *opts,
+                    const comaster_args_t *args, sdo_request_t *req);
+} sdo_command_t;
+
+static int run_sdo_command(const sdo_command_t *command, comaster_options_t *opts, int argc,
+                           char **argv)
 {
     comaster_args_t args;
-    int rc = comaster_parse_args(opts, &args, argc, argv, write_help, "--block", 3, 4);
+    int rc = comaster_parse_args(opts, &args, argc, argv, command->help, command->flags,
+                                 command->min_args, command->max_args);
     if (rc >= 0)
         return rc;
     static comaster_bus_t bus;
     eds_t eds = {0};
     sdo_request_t req = {0};
-    const char *value = args.positional[args.count - 1];
-    rc = resolve(&bus, opts, &args, args.count == 4 ? args.positional[2] : NULL, &eds, &req);
-    if (rc < 0 && !req.type)
-        rc = comaster_fail(opts, EX_USAGE,
-                           "write %s %s: give the TYPE of the value (no EDS names its data "
-                           "type): one of %s",
-                           args.positional[0], args.positional[1], comaster_type_names());
-    size_t len = 0;
+    const char *type_name = args.count == command->max_args ? args.positional[2] : NULL;
+    rc = resolve(&bus, opts, &args, type_name, &eds, &req);
     if (rc < 0)
-        rc = parse_value(opts, &req, value, &len);
-    if (rc == 0) {
-        co_sdo_client_result_t result;
-        rc = comaster_sdo_download(&bus, req.node, req.object.index, req.object.sub, value_buffer,
-                                   (uint32_t)len, req.mode, opts->timeout_ms, &result);
-        if (rc == 0)
-            rc = comaster_sdo_status(opts, req.node, &result);
-        if (rc == 0 && opts->json) {
-            print_json_head(&req);
-            printf(", \"written\": %zu}\n", len);
-        }
-    }
+        rc = command->transfer(&bus, opts, &args, &req);
     comaster_bus_close(&bus);
     eds_free(&eds);
     return rc;
+}
+
+int comaster_read_main(comaster_options_t *opts, int argc, char **argv)
+{
+    static const sdo_command_t read_command = {read_help, "--block --output", 2, 3, upload};
+    return run_sdo_command(&read_command, opts, argc, argv);
+}
+
+int comaster_write_main(comaster_options_t *opts, int argc, char **argv)
+{
+    static const sdo_command_t write_command = {write_help, "--block", 3, 4, download};
+    return run_sdo_command(&write_command, opts, argc, argv);
 }

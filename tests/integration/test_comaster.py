@@ -111,6 +111,12 @@ def test_usage_errors():
         EX_USAGE, "comaster: unknown command 'frobnicate': give one of read, write, nmt, scan, monitor, drive, "
         "boot, run, set, get, status (see comaster --help)\n")
     assert comaster("read", 4, "0x1000", "u7")[0] == EX_USAGE
+    # An object the EDS does not have: no data type to write VALUE as (read would guess by size).
+    assert comaster("--eds", EDS, "write", 4, "0x1234:1", "5")[0::2] == (
+        EX_USAGE, "comaster: write 4 0x1234:1: give the TYPE of the value (no EDS names its data "
+        "type): one of bool i8 i16 i32 i64 u8 u16 u32 u64 f32 f64 string octets domain (or the "
+        "CiA 301 names: UNSIGNED16, REAL32, VISIBLE_STRING ...)\n")
+    assert comaster("write", 4, "0x1000")[0] == EX_USAGE  # no VALUE
     p = subprocess.run([COMASTER, "-i", "nosuchcan0", "read", "4", "0x1000"], capture_output=True,
                        text=True, timeout=30)
     assert p.returncode == EX_UNAVAILABLE

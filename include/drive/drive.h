@@ -136,7 +136,7 @@ typedef struct drive_entries {
     const co_od_entry_t *acceleration, *deceleration, *low_speed, *high_speed;
     const co_od_entry_t *nominal_frequency, *nominal_speed, *nominal_current;
     const co_od_entry_t *motor_current, *motor_torque, *control_word_copy, *status_word_copy;
-    const co_od_entry_t *output_frequency, *frequency_reference;
+    const co_od_entry_t *output_frequency, *frequency_reference, *stop_type;
 } drive_entries_t;
 
 typedef struct drive {

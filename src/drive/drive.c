@@ -70,6 +70,7 @@ static void find_entries(drive_t *drive)
         .status_word_copy = param_entry(drive, profile->status_word_copy),
         .output_frequency = param_entry(drive, profile->output_frequency),
         .frequency_reference = param_entry(drive, profile->frequency_reference),
+        .stop_type = param_entry(drive, profile->stop_type),
     };
 }
 
@@ -161,7 +162,7 @@ static int32_t requested_ramp_stop(const drive_t *drive)
     const drive_profile_t *profile = drive->profile;
     if (drive_local_control(drive) || (drive->cia402.control & profile->control_ramp_stop) == 0)
         return -1;
-    return (int32_t)drive_param_value(drive, profile->stop_type);
+    return (int32_t)param_unsigned(drive, drive->entries.stop_type, profile->stop_type);
 }
 
 /* A freewheel stop type cuts the output in Operation enabled while its bit is set. */

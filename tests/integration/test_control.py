@@ -82,6 +82,40 @@ def test_fault_stops_the_running_motor_on_tpdo1(bus, control):
     assert state(control)["cia402"] == "Fault"
 
 
+def test_fault_reaction_ramps_down_in_tpdos_before_the_fault(bus, control):
+    """COL = 2 (ramp stop): CnF injected into the running drive stops the motor on the DEC ramp
+    (2.0 s here) in Fault reaction active: TPDO6 (ETAD, RFRD) shows ETAD 0x020F with the speed
+    falling frame after frame, then ETAD 0x0608 at speed 0 (Fault)."""
+    bus.sdo_write(NODE, 0x2022, 2, 2, 2)  # COL: ramp stop
+    bus.sdo_write(NODE, 0x203C, 3, 20, 2)  # DEC 2.0 s
+    bus.sdo_write(NODE, 0x1805, 1, 0x284, 4)  # TPDO6 valid: ETAD + RFRD
+    bus.sdo_write(NODE, 0x6042, 0, 1500, 2)
+    bus.nmt(NMT_START, NODE)
+    bus.sdo_write(NODE, 0x6040, 0, 0x0006, 2)
+    bus.sdo_write(NODE, 0x6040, 0, 0x000F, 2)
+    bus.expect(0x284, "2706DC05", timeout=5.0)
+    mark = bus.mark()
+    status, reply = ctl(control, "fault", NODE, "CnF")
+    assert status == 0 and reply.startswith("ok node 4: CnF"), reply
+    s = state(control)
+    assert (s["cia402"], s["display"], s["statusword"]) == ("Fault reaction active", "CnF", 0x020F)
+    reaction = []
+    while True:
+        frame = bus.expect(0x284, timeout=5.0)
+        status, speed = int.from_bytes(frame.data[0:2], "little"), int.from_bytes(frame.data[2:4], "little", signed=True)
+        if (status, speed) == (0x0627, 1500) and not reaction:
+            continue  # sent before the fault
+        if status != 0x020F:
+            break
+        reaction.append(speed)
+    assert (status, speed) == (0x0608, 0), frame
+    bus.expect(0x84, "3081110000000000", since=mark)
+    assert len(reaction) >= 5, reaction
+    assert all(a > b for a, b in zip(reaction, reaction[1:])), reaction
+    assert 1500 >= reaction[0] and reaction[-1] > 0, reaction
+    assert state(control)["cia402"] == "Fault"
+
+
 def test_mains_undervoltage_ends_by_itself(bus, control):
     assert ctl(control, "mains", NODE, "undervoltage")[0] == 0
     bus.expect(0x84, "2031050000000000")

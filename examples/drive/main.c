@@ -19,10 +19,13 @@
 #define SDO_RESPONSE (0x580 + NODE_ID)
 
 /* The conveyor's faults: the communication loss the drive raises itself (heartbeat or life
- * guarding), and an overheating a test could inject (drive/faults.h). */
+ * guarding), which cuts the output, and an overheating a test could inject, which stops the belt
+ * on the deceleration ramp first (drive/faults.h). */
 static const drive_fault_def_t conveyor_fault_defs[] = {
-    {"CnF", "communication loss", 0x8130, CO_ERR_REG_COMMUNICATION, DRIVE_FAULT_RESET_COMMAND},
-    {"OHF", "overheating", 0x4210, CO_ERR_REG_TEMPERATURE, DRIVE_FAULT_RESET_COMMAND},
+    {"CnF", "communication loss", 0x8130, CO_ERR_REG_COMMUNICATION, DRIVE_FAULT_RESET_COMMAND,
+     DRIVE_FAULT_FREEWHEEL},
+    {"OHF", "overheating", 0x4210, CO_ERR_REG_TEMPERATURE, DRIVE_FAULT_RESET_COMMAND,
+     DRIVE_FAULT_RAMP_STOP},
 };
 static const drive_fault_table_t conveyor_faults = {
     .faults = conveyor_fault_defs,

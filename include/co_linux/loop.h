@@ -57,12 +57,21 @@ typedef struct co_linux_device_ops {
     const struct co_node *(*node)(void *ctx);
 } co_linux_device_ops_t;
 
+/* One device's share of the loop's traffic (co_linux_stats_t), counted where the loop routes a
+ * frame to it and where it sends one: an increment each, no search. */
+typedef struct co_linux_device_stats {
+    unsigned long long rx;         /* frames routed to it: from the bus and from local devices */
+    unsigned long long tx;         /* frames it sent */
+    unsigned long long tx_dropped; /* of those, not queued: interface down or queue full */
+} co_linux_device_stats_t;
+
 typedef struct co_linux_device {
     const co_linux_device_ops_t *ops;
     void *ctx;
     co_linux_loop_t *loop;
     co_time_t deadline;
     uint32_t generation; /* the node's consumer generation the routes were built from */
+    co_linux_device_stats_t stats;
     struct co_linux_device *next;
 } co_linux_device_t;
 

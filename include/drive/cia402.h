@@ -9,14 +9,16 @@
 #include <stdbool.h>
 #include <stdint.h>
 
-/* "Not ready to switch on" and "Malfunction reaction active" are transient and never visible
- * here: initialisation is instantaneous and the fault reaction is a freewheel stop. */
+/* "Not ready to switch on" is transient and never visible here: initialisation is instantaneous.
+ * "Fault reaction active" ("Malfunction reaction active" in the Drivecom tables) lasts while a
+ * fault's ramp or fast stop runs; a freewheel reaction goes straight on to Fault. */
 typedef enum cia402_state {
     CIA402_SWITCH_ON_DISABLED,
     CIA402_READY_TO_SWITCH_ON,
     CIA402_SWITCHED_ON,
     CIA402_OPERATION_ENABLED,
     CIA402_QUICK_STOP_ACTIVE,
+    CIA402_FAULT_REACTION_ACTIVE,
     CIA402_FAULT
 } cia402_state_t;
 
@@ -44,18 +46,23 @@ void cia402_reset(cia402_state_machine_t *sm);
 /* Applies a control word written by SDO or RPDO. Returns true when it acknowledged a fault
  * (transition 15, on the 0 -> 1 edge of bit 7). */
 bool cia402_command(cia402_state_machine_t *sm, uint16_t control, bool motor_stopped);
-/* The motor stands: completes a disable operation (5) that waited for the end of its ramp. */
+/* The motor stands: completes a disable operation (5) that waited for the end of its ramp, and
+ * a fault reaction (14: Fault reaction active -> Fault). */
 void cia402_motor_stopped(cia402_state_machine_t *sm);
-/* Only Operation enabled and Quick stop active apply voltage to the motor; every other state
- * leaves it to coast (freewheel). */
+/* Only Operation enabled, Quick stop active and Fault reaction active apply voltage to the motor;
+ * every other state leaves it to coast (freewheel). */
 bool cia402_drives_motor(const cia402_state_machine_t *sm);
 /* Operation enabled with an enable operation command: the motor follows the reference (rather
  * than stopping on the DEC ramp for a pending disable operation). */
 bool cia402_runs(const cia402_state_machine_t *sm);
-/* Transitions 13 and 14: the fault reaction (a freewheel stop) is immediate. */
-void cia402_fault(cia402_state_machine_t *sm);
-/* The last fault ended by itself (a fault whose cause went away): Fault -> Switch on disabled,
- * as a fault reset would. */
+/* Transition 13: Fault reaction active while the reaction stops the motor on a ramp
+ * (`stopping`), else at once on to Fault (14). The control word is recorded and not obeyed
+ * until Fault, where only the fault reset edge counts. */
+void cia402_fault(cia402_state_machine_t *sm, bool stopping);
+/* Fault reaction active or Fault: a fault latches the drive. */
+bool cia402_faulted(const cia402_state_machine_t *sm);
+/* The last fault ended by itself (a fault whose cause went away): Fault (or Fault reaction
+ * active) -> Switch on disabled, as a fault reset would. */
 void cia402_fault_cleared(cia402_state_machine_t *sm);
 /* A configuration parameter changed: Ready to switch on, Switched on and Operation enabled
  * return to Switch on disabled. */

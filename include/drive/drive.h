@@ -76,7 +76,8 @@ typedef struct drive_profile {
     drive_param_t control_word_copy;
     drive_param_t status_word_copy;
     /* What the drive does on a communication loss (the Altivars' COL: a DRIVE_COMMUNICATION_LOSS_*
-     * value; {0, 0}: always the fault), and where it latches the network fault code (CnF:
+     * value, the fault and its stop, or ignore; {0, 0}: always the fault with the reaction of its
+     * table entry), and where it latches the network fault code (CnF:
      * DRIVE_NETWORK_FAULT_TIME_OUT after a loss, until a reset node; {0, 0}: nowhere). */
     drive_param_t communication_loss_mode;
     drive_param_t network_fault_code;
@@ -107,8 +108,10 @@ typedef struct drive_profile {
 } drive_profile_t;
 
 /* Values of the profile's communication_loss_mode. */
-#define DRIVE_COMMUNICATION_LOSS_IGNORE 0 /* the drive goes on; only the fault code is latched */
-#define DRIVE_COMMUNICATION_LOSS_FAULT 1  /* the communication-loss fault: freewheel, Fault */
+#define DRIVE_COMMUNICATION_LOSS_IGNORE 0    /* the drive goes on; only the fault code is latched */
+#define DRIVE_COMMUNICATION_LOSS_FAULT 1     /* the communication-loss fault: freewheel, Fault */
+#define DRIVE_COMMUNICATION_LOSS_RAMP_STOP 2 /* the fault, stopping on the deceleration ramp */
+#define DRIVE_COMMUNICATION_LOSS_FAST_STOP 3 /* the fault, stopping on the fast ramp */
 /* Values of the profile's stop_type. */
 #define DRIVE_STOP_RAMP 0         /* the deceleration ramp */
 #define DRIVE_STOP_FAST 1         /* the fast ramp */
@@ -136,7 +139,7 @@ typedef struct drive_entries {
     const co_od_entry_t *acceleration, *deceleration, *low_speed, *high_speed;
     const co_od_entry_t *nominal_frequency, *nominal_speed, *nominal_current;
     const co_od_entry_t *motor_current, *motor_torque, *control_word_copy, *status_word_copy;
-    const co_od_entry_t *output_frequency, *frequency_reference;
+    const co_od_entry_t *output_frequency, *frequency_reference, *stop_type;
 } drive_entries_t;
 
 typedef struct drive {
@@ -157,6 +160,7 @@ typedef struct drive {
     uint32_t faults_active;
     uint32_t fault_causes;
     uint8_t fault_latched; /* the entry in 603Fh and on the display while faults_active */
+    drive_fault_reaction_t fault_reaction; /* the stop that runs in Fault reaction active */
     /* At the drive (local.c): forced local control, the keypad's keys, the load. */
     /* The profile's channels as last computed (channels.c): the network commands, and gives the
      * reference. */

@@ -317,6 +317,25 @@ static bool command_load(const atv312d_control_t *control, char **words, size_t 
     return succeed(r, "node %u: load %ld %%", node->drive->node.node_id, percent);
 }
 
+/* The drive's traffic: the runtime's counts of its device, the daemon's of its services. */
+static void put_counters(const atv312d_control_node_t *node, reply_t *r)
+{
+    const co_linux_device_stats_t *frames = &node->device->stats;
+    const atv312d_counters_t *services = node->counters;
+    if (r->json)
+        put(r,
+            "\"frames\":{\"received\":%llu,\"sent\":%llu,\"dropped\":%llu,\"sdo_requests\":%llu,"
+            "\"sdo_aborts\":%llu,\"emcy\":%llu}}",
+            frames->rx, frames->tx, frames->tx_dropped, services->sdo_requests,
+            services->sdo_aborts, services->emcy);
+    else
+        put(r,
+            "frames received %llu, sent %llu, dropped %llu, SDO requests %llu, SDO aborts %llu, "
+            "EMCY %llu",
+            frames->rx, frames->tx, frames->tx_dropped, services->sdo_requests,
+            services->sdo_aborts, services->emcy);
+}
+
 static void put_state(const atv312d_control_node_t *node, reply_t *r)
 {
     const drive_t *drive = node->drive;
@@ -340,16 +359,17 @@ static void put_state(const atv312d_control_node_t *node, reply_t *r)
         put(r,
             "{\"node\":%u,\"nmt\":\"%s\",\"cia402\":\"%s\",\"statusword\":%u,\"speed_rpm\":%d,"
             "\"current_a\":%u.%u,\"torque_percent\":%d,\"display\":\"%s\",\"run_led\":\"%s\","
-            "\"err_led\":\"%s\",\"fault\":%s%s%s}",
+            "\"err_led\":\"%s\",\"fault\":%s%s%s,",
             co->node_id, co_nmt_state_name(co->nmt_state), drive_state_name(drive), status, speed,
             current / 10, current % 10, torque, shows, run, err, fault ? "\"" : "",
             fault ? fault->code : "null", fault ? "\"" : "");
     else
         put(r,
             "node %u: nmt %s, cia402 %s, statusword %04X, speed %d rpm, current %u.%u A, torque "
-            "%d %%, display %s, RUN %s, ERR %s, fault %s",
+            "%d %%, display %s, RUN %s, ERR %s, fault %s, ",
             co->node_id, co_nmt_state_name(co->nmt_state), drive_state_name(drive), status, speed,
             current / 10, current % 10, torque, shows, run, err, fault ? fault->code : "none");
+    put_counters(node, r);
 }
 
 void atv312d_format_state(const atv312d_control_node_t *node, bool json, char *buf, size_t len)

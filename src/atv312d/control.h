@@ -9,6 +9,7 @@
 #define ATV312D_CONTROL_H
 
 #include "co_linux/loop.h"
+#include "counters.h"
 #include "drive/drive.h"
 
 #include <stdbool.h>
@@ -17,14 +18,15 @@
 
 /* Longest command line; a longer one is refused. */
 #define ATV312D_CONTROL_LINE_MAX 256
-/* Longest reply line: `state` of 127 drives in JSON, about 330 bytes each, fits. */
+/* Longest reply line: `state` of 127 drives in JSON, about 450 bytes each, fits. */
 #define ATV312D_CONTROL_REPLY_MAX 65536
 /* Connections served at once; more wait in the listen backlog. */
 #define ATV312D_CONTROL_CLIENTS 8
 
 typedef struct atv312d_control_node {
     drive_t *drive;
-    co_linux_device_t *device; /* processed after a command changed the drive */
+    co_linux_device_t *device; /* processed after a command changed the drive; its frame counts */
+    const atv312d_counters_t *counters;
 } atv312d_control_node_t;
 
 typedef struct atv312d_control_client {

@@ -6,6 +6,7 @@
 #include "co_linux/log.h"
 #include "co_linux/loop.h"
 #include "control.h"
+#include "counters.h"
 #include "drive/drive.h"
 #include "status.h"
 
@@ -16,8 +17,6 @@
 #include <sysexits.h>
 #include <unistd.h>
 
-#define EMCY_COB_ID_INDEX 0x1014
-#define COB_ID_MASK 0x7FFu
 #define BOOTUP_COB_ID_BASE 0x700u
 
 /* One drive and what the runtime and the logs need around it. */
@@ -29,6 +28,7 @@ typedef struct drive_slot {
     co_storage_t storage;
     co_nmt_state_t nmt_state; /* last logged */
     const char *cia402_state; /* last logged */
+    atv312d_counters_t counters;
 } drive_slot_t;
 
 static uint8_t slot_node_id(const drive_slot_t *slot)
@@ -71,17 +71,17 @@ static void log_emcy(const drive_slot_t *slot, const co_frame_t *frame)
                reg);
 }
 
-/* The drive's send callback: notes boot-ups and emergencies for the log, then transmits. */
+/* The drive's send callback: counts the frame, notes boot-ups and emergencies for the log, then
+ * transmits. */
 static void slot_send(void *user, const co_frame_t *frame)
 {
     drive_slot_t *slot = user;
-    co_node_t *node = &slot->drive.node;
-    if (frame->id == BOOTUP_COB_ID_BASE + node->node_id && frame->len == 1 && frame->data[0] == 0) {
-        co_log(CO_LOG_INFO, "node %u: boot-up", node->node_id);
-    } else if (frame->len == 8 &&
-               frame->id == ((uint32_t)co_od_value(node, EMCY_COB_ID_INDEX, 0) & COB_ID_MASK)) {
+    uint8_t node_id = slot_node_id(slot);
+    atv312d_count_sent(&slot->counters, node_id, frame);
+    if (frame->id == BOOTUP_COB_ID_BASE + node_id && frame->len == 1 && frame->data[0] == 0)
+        co_log(CO_LOG_INFO, "node %u: boot-up", node_id);
+    else if (frame->len == 8 && atv312d_is_emcy(node_id, frame))
         log_emcy(slot, frame);
-    }
     co_linux_device_send(&slot->device, frame);
 }
 
@@ -109,6 +109,7 @@ static void slot_restart(void *ctx, co_time_t now)
 static void slot_receive(void *ctx, const co_frame_t *frame, co_time_t now)
 {
     drive_slot_t *slot = ctx;
+    atv312d_count_received(&slot->counters, slot_node_id(slot), frame);
     drive_receive(&slot->drive, frame, now);
     log_state_changes(slot);
 }
@@ -326,7 +327,8 @@ static int open_surfaces(atv312d_control_t *control, atv312d_status_t *status,
                          atv312d_control_node_t *nodes)
 {
     for (size_t i = 0; i < opts->node_count; i++)
-        nodes[i] = (atv312d_control_node_t){.drive = &slots[i].drive, .device = &slots[i].device};
+        nodes[i] = (atv312d_control_node_t){
+            .drive = &slots[i].drive, .device = &slots[i].device, .counters = &slots[i].counters};
     int rc = atv312d_status_open(status, loop, opts->status_path, nodes, opts->node_count);
     if (rc == 0 && opts->control_path)
         rc = atv312d_control_open(control, loop, opts->control_path, nodes, opts->node_count);

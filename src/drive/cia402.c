@@ -63,6 +63,7 @@ static cia402_state_t transition(cia402_state_t state, command_t command, bool m
         /* Locked: "restarting is only possible after the drive has changed to the Switch on
          * disabled state" (no transition 16). Disable voltage (12) cuts the output: freewheel. */
         return command == COMMAND_DISABLE_VOLTAGE ? CIA402_SWITCH_ON_DISABLED : state;
+    case CIA402_FAULT_REACTION_ACTIVE:
     case CIA402_FAULT:
         return state;
     }
@@ -80,7 +81,7 @@ bool cia402_command(cia402_state_machine_t *sm, uint16_t control, bool motor_sto
     bool reset_edge = (control & CIA402_CW_FAULT_RESET) && !(sm->control & CIA402_CW_FAULT_RESET);
     bool fault_reset = sm->state == CIA402_FAULT && reset_edge;
     sm->control = control;
-    if (sm->state == CIA402_FAULT && !fault_reset)
+    if (cia402_faulted(sm) && !fault_reset)
         return false;
     if (fault_reset)
         sm->state = CIA402_SWITCH_ON_DISABLED;
@@ -100,11 +101,14 @@ void cia402_motor_stopped(cia402_state_machine_t *sm)
 {
     if (sm->state == CIA402_OPERATION_ENABLED && decode(sm->control) == COMMAND_SWITCH_ON)
         sm->state = CIA402_SWITCHED_ON;
+    else if (sm->state == CIA402_FAULT_REACTION_ACTIVE)
+        sm->state = CIA402_FAULT;
 }
 
 bool cia402_drives_motor(const cia402_state_machine_t *sm)
 {
-    return sm->state == CIA402_OPERATION_ENABLED || sm->state == CIA402_QUICK_STOP_ACTIVE;
+    return sm->state == CIA402_OPERATION_ENABLED || sm->state == CIA402_QUICK_STOP_ACTIVE ||
+           sm->state == CIA402_FAULT_REACTION_ACTIVE;
 }
 
 bool cia402_runs(const cia402_state_machine_t *sm)
@@ -112,14 +116,19 @@ bool cia402_runs(const cia402_state_machine_t *sm)
     return sm->state == CIA402_OPERATION_ENABLED && decode(sm->control) == COMMAND_ENABLE_OPERATION;
 }
 
-void cia402_fault(cia402_state_machine_t *sm)
+void cia402_fault(cia402_state_machine_t *sm, bool stopping)
 {
-    sm->state = CIA402_FAULT;
+    sm->state = stopping ? CIA402_FAULT_REACTION_ACTIVE : CIA402_FAULT;
+}
+
+bool cia402_faulted(const cia402_state_machine_t *sm)
+{
+    return sm->state == CIA402_FAULT_REACTION_ACTIVE || sm->state == CIA402_FAULT;
 }
 
 void cia402_fault_cleared(cia402_state_machine_t *sm)
 {
-    if (sm->state == CIA402_FAULT)
+    if (cia402_faulted(sm))
         sm->state = CIA402_SWITCH_ON_DISABLED;
 }
 
@@ -145,6 +154,8 @@ uint16_t cia402_status(const cia402_state_machine_t *sm)
         return 0x0027;
     case CIA402_QUICK_STOP_ACTIVE:
         return 0x0007;
+    case CIA402_FAULT_REACTION_ACTIVE:
+        return 0x000F;
     case CIA402_FAULT:
         return 0x0008;
     }
@@ -164,6 +175,8 @@ const char *cia402_state_name(cia402_state_t state)
         return "Operation enabled";
     case CIA402_QUICK_STOP_ACTIVE:
         return "Quick stop active";
+    case CIA402_FAULT_REACTION_ACTIVE:
+        return "Fault reaction active";
     case CIA402_FAULT:
         return "Fault";
     }

@@ -70,6 +70,7 @@ static void find_entries(drive_t *drive)
         .status_word_copy = param_entry(drive, profile->status_word_copy),
         .output_frequency = param_entry(drive, profile->output_frequency),
         .frequency_reference = param_entry(drive, profile->frequency_reference),
+        .stop_type = param_entry(drive, profile->stop_type),
     };
 }
 
@@ -161,7 +162,7 @@ static int32_t requested_ramp_stop(const drive_t *drive)
     const drive_profile_t *profile = drive->profile;
     if (drive_local_control(drive) || (drive->cia402.control & profile->control_ramp_stop) == 0)
         return -1;
-    return (int32_t)drive_param_value(drive, profile->stop_type);
+    return (int32_t)param_unsigned(drive, drive->entries.stop_type, profile->stop_type);
 }
 
 /* A freewheel stop type cuts the output in Operation enabled while its bit is set. */
@@ -171,12 +172,13 @@ static bool freewheeling(const drive_t *drive)
            requested_ramp_stop(drive) == DRIVE_STOP_FREEWHEEL;
 }
 
-/* Only Operation enabled and Quick stop active drive the motor: in any other state the output is
- * off and the motor coasts, whatever the transition that led there (freewheel on 8, 9, 12 and
- * faults). In Operation enabled the motor follows the reference unless a stop is asked: the ramp
- * stop bit as the stop type says, the fast stop bits on the fast ramp, a pending disable
- * operation (5) on the deceleration ramp; Quick stop active always stops on the fast ramp. The
- * control word only counts under network control. */
+/* Only Operation enabled, Quick stop active and Fault reaction active drive the motor: in any
+ * other state the output is off and the motor coasts, whatever the transition that led there
+ * (freewheel on 8, 9, 12 and a freewheel fault). In Operation enabled the motor follows the
+ * reference unless a stop is asked: the ramp stop bit as the stop type says, the fast stop bits
+ * on the fast ramp, a pending disable operation (5) on the deceleration ramp; Quick stop active
+ * always stops on the fast ramp, Fault reaction active on its reaction's ramp. The control word
+ * only counts under network control. */
 static void steer_motor(drive_t *drive)
 {
     const drive_profile_t *profile = drive->profile;
@@ -186,7 +188,10 @@ static void steer_motor(drive_t *drive)
     bool fast_stop = !local && (sm->control & profile->control_fast_stop) != 0;
     int32_t ramp_stop = requested_ramp_stop(drive);
     bool fast_ramp_stop = ramp_stop == DRIVE_STOP_FAST || ramp_stop == DRIVE_STOP_DC_INJECTION;
-    bool fast = sm->state == CIA402_QUICK_STOP_ACTIVE || (enabled && (fast_stop || fast_ramp_stop));
+    bool fast_reaction =
+        sm->state == CIA402_FAULT_REACTION_ACTIVE && drive->fault_reaction == DRIVE_FAULT_FAST_STOP;
+    bool fast = sm->state == CIA402_QUICK_STOP_ACTIVE || fast_reaction ||
+                (enabled && (fast_stop || fast_ramp_stop));
     if (!cia402_drives_motor(sm) || freewheeling(drive))
         drive_motor_coast(&drive->motor);
     drive->limited = false;
@@ -209,13 +214,14 @@ static uint16_t status_word(const drive_t *drive)
     return status;
 }
 
-/* The output is on in Operation enabled but for a freewheel stop, and in Quick stop active until
- * the motor stopped (then the drive locks). */
-static bool output_on(const drive_t *drive)
+/* The output is on in Operation enabled but for a freewheel stop, and in Quick stop active and
+ * Fault reaction active until the motor stopped (then the drive locks). */
+bool drive_output_on(const drive_t *drive)
 {
     cia402_state_t state = drive->cia402.state;
+    bool stopping = state == CIA402_QUICK_STOP_ACTIVE || state == CIA402_FAULT_REACTION_ACTIVE;
     return (state == CIA402_OPERATION_ENABLED && !freewheeling(drive)) ||
-           (state == CIA402_QUICK_STOP_ACTIVE && !drive_motor_stands(&drive->motor));
+           (stopping && !drive_motor_stands(&drive->motor));
 }
 
 /* Current (0.1 A) of a given torque: the magnetising current plus the torque's share. */
@@ -238,7 +244,7 @@ static void publish(drive_t *drive)
     entry_set(drive, e->velocity_demand, rpm);
     entry_set(drive, e->velocity_actual, rpm);
     entry_set(drive, e->output_frequency, drive_signed_rpm_to_frequency(drive, rpm));
-    bool on = output_on(drive);
+    bool on = drive_output_on(drive);
     int16_t torque = on ? drive_motor_torque(&drive->motor) : 0;
     int32_t current = on ? motor_current(drive, torque) : 0;
     entry_set(drive, e->motor_torque, torque);

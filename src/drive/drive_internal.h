@@ -18,6 +18,9 @@ drive_t *drive_of(co_node_t *node);
 /* Recomputes the motor's target from the state and the dictionary, and publishes the status
  * word, speeds, current and torque. */
 void drive_settle(drive_t *drive);
+/* The drive's output is on: it drives the motor (current and torque), and a fault reaction can
+ * stop it on a ramp. */
+bool drive_output_on(const drive_t *drive);
 /* A parameter of the profile, unsigned. */
 uint32_t drive_param_value(const drive_t *drive, drive_param_t param);
 /* Conversions between 0.1 Hz and rpm through the motor's nominal frequency and speed. */

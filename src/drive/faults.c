@@ -54,6 +54,38 @@ const drive_fault_def_t *drive_fault_latched(const drive_t *drive)
     return drive->faults_active ? fault_def(drive, drive->fault_latched) : NULL;
 }
 
+/* The communication-loss fault stops as the model's mode parameter says (the Altivars' COL),
+ * every other fault, and that one where the parameter is missing or says ignore (an injected
+ * fault), as its table entry says. */
+static drive_fault_reaction_t reaction_of(const drive_t *drive, uint8_t index)
+{
+    const drive_profile_t *profile = drive->profile;
+    drive_param_t mode = profile->communication_loss_mode;
+    if (index == profile->faults->communication_loss && mode.index != 0) {
+        switch (drive_param_value(drive, mode)) {
+        case DRIVE_COMMUNICATION_LOSS_FAULT:
+            return DRIVE_FAULT_FREEWHEEL;
+        case DRIVE_COMMUNICATION_LOSS_FAST_STOP:
+            return DRIVE_FAULT_FAST_STOP;
+        case DRIVE_COMMUNICATION_LOSS_RAMP_STOP:
+            return DRIVE_FAULT_RAMP_STOP;
+        }
+    }
+    return fault_def(drive, index)->reaction;
+}
+
+/* Transition 13. A ramp reaction runs only while the output drives a turning motor; one on the
+ * fast ramp already (quick stop, fast stop, a fast reaction) stays on it. */
+static void react(drive_t *drive, drive_fault_reaction_t reaction)
+{
+    bool stopping = reaction != DRIVE_FAULT_FREEWHEEL && drive_output_on(drive) &&
+                    !drive_motor_stands(&drive->motor);
+    if (reaction == DRIVE_FAULT_RAMP_STOP && drive->motor.fast)
+        reaction = DRIVE_FAULT_FAST_STOP;
+    drive->fault_reaction = reaction;
+    cia402_fault(&drive->cia402, stopping);
+}
+
 void drive_fault_raise(drive_t *drive, uint8_t index)
 {
     if (drive->faults_active & fault_bit(index))
@@ -66,7 +98,7 @@ void drive_fault_raise(drive_t *drive, uint8_t index)
         co_od_set_value(node, CIA402_IDX_ERROR_CODE, 0, def->emcy_code);
     }
     drive->faults_active |= fault_bit(index);
-    cia402_fault(&drive->cia402);
+    react(drive, reaction_of(drive, index));
     co_emcy_raise(node, def->emcy_code, CO_ERR_REG_GENERIC | def->error_register, NULL);
     drive_settle(drive);
 }

@@ -7,7 +7,7 @@
  * fault stays latched. */
 static void change_channel(drive_t *drive)
 {
-    if (drive->cia402.state != CIA402_FAULT)
+    if (!cia402_faulted(&drive->cia402))
         cia402_reset(&drive->cia402);
     drive->local_run = false;
 }
@@ -33,7 +33,7 @@ void drive_stop_key(drive_t *drive, co_time_t now)
 
 bool drive_run_key(drive_t *drive, co_time_t now)
 {
-    if (!drive_local_control(drive) || drive->cia402.state == CIA402_FAULT)
+    if (!drive_local_control(drive) || cia402_faulted(&drive->cia402))
         return false;
     drive_motor_advance(&drive->motor, now);
     drive->stop_key = false;
@@ -74,6 +74,6 @@ uint16_t drive_local_status(const drive_t *drive)
  * STOP key's bit clears. */
 void drive_local_command_applied(drive_t *drive)
 {
-    if (drive->cia402.state != CIA402_SWITCH_ON_DISABLED && drive->cia402.state != CIA402_FAULT)
+    if (drive->cia402.state != CIA402_SWITCH_ON_DISABLED && !cia402_faulted(&drive->cia402))
         drive->stop_key = false;
 }

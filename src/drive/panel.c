@@ -18,6 +18,7 @@ drive_display_t drive_panel_display(const drive_t *drive)
     case CIA402_QUICK_STOP_ACTIVE:
         return (drive_display_t){.code = "FSt"};
     case CIA402_OPERATION_ENABLED:
+    case CIA402_FAULT_REACTION_ACTIVE:
     case CIA402_FAULT:
         break;
     }

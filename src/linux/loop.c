@@ -215,6 +215,7 @@ void co_linux_device_send(void *device, const co_frame_t *frame)
 {
     co_linux_device_t *dev = device;
     co_linux_loop_t *loop = dev->loop;
+    dev->stats.tx++;
     /* Frames wait in the queue until the wake-up settles, so that the frames of one wake-up
      * leave in one sendmmsg; a full queue is written out first, so a frame is dropped only when
      * the socket cannot take any more. */
@@ -222,10 +223,12 @@ void co_linux_device_send(void *device, const co_frame_t *frame)
         transmit(loop);
     if (!loop->link_up) {
         loop->stats.down_dropped++;
+        dev->stats.tx_dropped++;
         return;
     }
     if (!co_txq_push(&loop->txq, frame, dev)) {
         frame_dropped(loop, frame, "transmit queue full");
+        dev->stats.tx_dropped++;
         return;
     }
     /* The socket does not receive its own frames (CAN_RAW_RECV_OWN_MSGS is off), so the other
@@ -360,6 +363,7 @@ static bool deliver(co_linux_device_t *dev, const co_frame_t *frame, const void 
 {
     if (dev == origin)
         return false;
+    dev->stats.rx++;
     dev->ops->receive(dev->ctx, frame, dev->loop->now);
     device_process(dev, dev->loop->now);
     return true;
@@ -765,6 +769,7 @@ void co_linux_loop_add(co_linux_loop_t *loop, co_linux_device_t *device,
     device->loop = loop;
     device->deadline = CO_TIME_NEVER;
     device->generation = 0;
+    device->stats = (co_linux_device_stats_t){0};
     device->next = NULL;
     loop->routes_stale = true;
     co_linux_device_t **tail = &loop->devices;

@@ -146,6 +146,33 @@ START_TEST(heartbeat_only_from_v1_2)
 }
 END_TEST
 
+/* COL = 3 (the family's): the network fault stops the running motor on the fast ramp, DEC / 4 =
+ * 0.7 s from 1500 rpm, in Fault reaction active (ETA 0x020F), then Fault (0x0608). */
+START_TEST(network_fault_fast_stop_with_col_3)
+{
+    bench_t b;
+    bench_start_model(&b, &atv31_profile, NULL);
+    ck_assert_uint_eq(bench_sdo_write(&b, 0x2022, 2, 3, 2), 0);
+    ck_assert_uint_eq(bench_sdo_write(&b, 0x6042, 0, 1500, 2), 0);
+    bench_command(&b, 0x0006);
+    bench_command(&b, 0x000F);
+    bench_advance(&b, 3000000);
+    int cnf = drive_fault_find(&b.drive, "CnF");
+    ck_assert_int_ge(cnf, 0);
+    drive_fault_inject(&b.drive, (uint8_t)cnf, b.now);
+    b.deadline = drive_process(&b.drive, b.now);
+    ck_assert_uint_eq(bench_read(&b, 0x6041, 0), 0x020F);
+    bench_advance(&b, 350000);
+    ck_assert_int_eq(bench_speed(&b), 750);
+    ck_assert_uint_eq(bench_read(&b, 0x6041, 0), 0x020F);
+    bench_advance(&b, 349000);
+    ck_assert_uint_eq(bench_read(&b, 0x6041, 0), 0x020F);
+    bench_advance(&b, 1000);
+    ck_assert_uint_eq(bench_read(&b, 0x6041, 0), 0x0608);
+    ck_assert_int_eq(bench_speed(&b), 0);
+}
+END_TEST
+
 int main(void)
 {
     Suite *s = suite_create("atv31_network");
@@ -154,6 +181,7 @@ int main(void)
     tcase_add_test(tc, manual_vectors_frame_for_frame);
     tcase_add_test(tc, manual_boot_up);
     tcase_add_test(tc, heartbeat_only_from_v1_2);
+    tcase_add_test(tc, network_fault_fast_stop_with_col_3);
     suite_add_tcase(s, tc);
     return check_run_suite(s);
 }

@@ -1,7 +1,9 @@
 /* The ATV312's faults: every code of its table faults the drive with the EMCY code of the
  * manuals (the ATV58 table, the seeds' only one), 603Fh, ETA 2002h:02, 1001h and 1003h, and is
  * reset by its class: the mains undervoltage USF by itself, OHF by a fault reset once the cause
- * is gone, OCF only by a reset node; the communication loss follows COL and latches CnF. */
+ * is gone, OCF only by a reset node; the communication loss follows COL (ignore, freewheel, ramp
+ * or fast stop) and latches CnF. Every fault freewheels (the project's choice where the manuals
+ * give no stop) but CnF with COL = 2 or 3. */
 #include "atv312_bench.h"
 #include "check_main.h"
 
@@ -63,7 +65,8 @@ START_TEST(table_is_the_manuals)
 }
 END_TEST
 
-/* Each fault on a fresh drive running at 1500 rpm: EMCY, freewheel, 603Fh, 1001h, 1003h, ETA. */
+/* Each fault on a fresh drive running at 1500 rpm: EMCY, freewheel (speed and current 0, Fault
+ * at once), 603Fh, 1001h, 1003h, ETA. */
 START_TEST(every_fault_reports)
 {
     bench_t b;
@@ -184,12 +187,95 @@ START_TEST(communication_loss_ignored_with_col_0)
 }
 END_TEST
 
-/* COL is a configuration parameter with the values 0 and 1; CnF is read-only. */
+/* Running at 1500 rpm with COL = `col` and a heartbeat consumer of 100 ms on node 1 whose
+ * producer then stops: the loss 100 ms after its last heartbeat, the CnF EMCY. */
+static void lose_heartbeat_at_speed(bench_t *b, uint16_t col)
+{
+    ck_assert_uint_eq(bench_sdo_write(b, 0x2022, 2, col, 2), 0);
+    ck_assert_uint_eq(bench_sdo_write(b, 0x1016, 1, 0x00010064, 4), 0);
+    ck_assert_uint_eq(bench_sdo_write(b, 0x6042, 0, 1500, 2), 0);
+    bench_command(b, 0x0006);
+    bench_command(b, 0x000F);
+    bench_advance(b, 3000000);
+    ck_assert_int_eq(bench_speed(b), 1500);
+    bench_rx(b, "701#05");
+    bench_advance(b, 100000);
+    bench_expect(b, "084#3081110000000000");
+    bench_expect_none(b);
+}
+
+/* ETA and its copy 2002:02: Fault reaction active (0x000F) with remote, not at the reference. */
+static void expect_status(bench_t *b, uint16_t status)
+{
+    ck_assert_uint_eq(bench_read(b, 0x6041, 0), status);
+    ck_assert_uint_eq(bench_read(b, 0x2002, 2), status);
+}
+
+/* COL = 2: CnF stops on the DEC ramp (3.0 s from 1500 rpm) in Fault reaction active, the output
+ * on, then the drive is in Fault. */
+START_TEST(communication_loss_ramp_stop_with_col_2)
+{
+    bench_t b;
+    bench_start(&b);
+    lose_heartbeat_at_speed(&b, 2);
+    expect_status(&b, 0x020F);
+    bench_advance(&b, 750000);
+    ck_assert_int_eq(bench_speed(&b), 1125);
+    ck_assert_uint_gt(bench_read(&b, 0x2002, 4), 0);
+    expect_status(&b, 0x020F);
+    bench_advance(&b, 2249000);
+    expect_status(&b, 0x020F);
+    bench_advance(&b, 1000);
+    expect_status(&b, 0x0608);
+    ck_assert_int_eq(bench_speed(&b), 0);
+    ck_assert_uint_eq(bench_read(&b, 0x2002, 4), 0);
+    ck_assert_uint_eq(bench_read(&b, 0x603F, 0), 0x8130);
+    ck_assert_uint_eq(bench_command(&b, 0x0080), 0x0640);
+    bench_expect(&b, "084#0000000000000000");
+}
+END_TEST
+
+/* COL = 3: CnF stops on the fast ramp, DEC / 4 = 0.7 s (in 0.1 s, rounded down) from 1500
+ * rpm. */
+START_TEST(communication_loss_fast_stop_with_col_3)
+{
+    bench_t b;
+    bench_start(&b);
+    lose_heartbeat_at_speed(&b, 3);
+    bench_advance(&b, 350000);
+    ck_assert_int_eq(bench_speed(&b), 750);
+    expect_status(&b, 0x020F);
+    bench_advance(&b, 349000);
+    expect_status(&b, 0x020F);
+    bench_advance(&b, 1000);
+    expect_status(&b, 0x0608);
+}
+END_TEST
+
+/* An injected CnF stops as COL says too (atv312d's control surface injects it). */
+START_TEST(injected_communication_loss_follows_col)
+{
+    bench_t b;
+    bench_start(&b);
+    ck_assert_uint_eq(bench_sdo_write(&b, 0x2022, 2, 2, 2), 0);
+    ck_assert_uint_eq(bench_sdo_write(&b, 0x6042, 0, 1500, 2), 0);
+    bench_command(&b, 0x0006);
+    bench_command(&b, 0x000F);
+    bench_advance(&b, 3000000);
+    inject(&b, "CnF");
+    bench_expect(&b, "084#3081110000000000");
+    expect_status(&b, 0x020F);
+    bench_advance(&b, 3000000);
+    expect_status(&b, 0x0608);
+}
+END_TEST
+
+/* COL is a configuration parameter with the values 0 to 3; CnF is read-only. */
 START_TEST(col_is_a_configuration_parameter)
 {
     bench_t b;
     bench_start(&b);
-    ck_assert_uint_eq(bench_sdo_write(&b, 0x2022, 2, 2, 2), 0x06090031);
+    ck_assert_uint_eq(bench_sdo_write(&b, 0x2022, 2, 4, 2), 0x06090031);
     ck_assert_uint_eq(bench_sdo_write(&b, 0x2022, 3, 0, 2), 0x06010002);
     ck_assert_uint_eq(bench_sdo_write(&b, 0x6042, 0, 1500, 2), 0);
     bench_command(&b, 0x0006);
@@ -210,6 +296,9 @@ int main(void)
     tcase_add_test(tc, overcurrent_needs_power_cycle);
     tcase_add_test(tc, communication_loss_faults_by_default);
     tcase_add_test(tc, communication_loss_ignored_with_col_0);
+    tcase_add_test(tc, communication_loss_ramp_stop_with_col_2);
+    tcase_add_test(tc, communication_loss_fast_stop_with_col_3);
+    tcase_add_test(tc, injected_communication_loss_follows_col);
     tcase_add_test(tc, col_is_a_configuration_parameter);
     suite_add_tcase(s, tc);
     return check_run_suite(s);

@@ -199,6 +199,11 @@ START_TEST(every_fault_of_its_table)
     ck_assert_uint_eq(atv58_faults.count, sizeof atv58_table / sizeof atv58_table[0]);
     bench_t b;
     bench_start_model(&b, &atv58_profile, NULL);
+    ck_assert_uint_eq(bench_sdo_write(&b, 0x6042, 0, 1500, 2), 0);
+    bench_command(&b, 0x0006);
+    bench_command(&b, 0x000F);
+    bench_advance(&b, 3000000);
+    ck_assert_int_eq(bench_speed(&b), 1500);
     int index = drive_fault_find(&b.drive, atv58_table[_i].code);
     ck_assert_int_eq(index, _i);
     drive_fault_inject(&b.drive, (uint8_t)index, b.now);
@@ -206,7 +211,9 @@ START_TEST(every_fault_of_its_table)
     bench_expect(&b, atv58_table[_i].emcy);
     bench_expect_none(&b);
     ck_assert_uint_eq(bench_read(&b, 0x1001, 0), 1);
+    /* Freewheel, the project's choice: the card's manual gives no fault a stop. */
     ck_assert_uint_eq(bench_read(&b, 0x6041, 0), 0x0608);
+    ck_assert_int_eq(bench_speed(&b), 0);
     drive_fault_remove_cause(&b.drive, (uint8_t)index, b.now);
     b.deadline = drive_process(&b.drive, b.now);
     if (atv58_faults.faults[index].reset == DRIVE_FAULT_RESET_COMMAND) {

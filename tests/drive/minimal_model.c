@@ -3,13 +3,19 @@
 #include "co/co_emcy.h"
 
 /* One fault of each reset class, the communication loss not first: the drive must follow the
- * table, not an Altivar's order. */
+ * table, not an Altivar's order; one fault of each reaction. */
 static const drive_fault_def_t faults[] = {
-    [FAULT_HOT] = {"HoT", "overheating", 0x4210, CO_ERR_REG_TEMPERATURE, DRIVE_FAULT_RESET_COMMAND},
-    [FAULT_LOW] = {"LoW", "undervoltage", 0x3120, CO_ERR_REG_VOLTAGE, DRIVE_FAULT_RESET_AUTOMATIC},
+    [FAULT_HOT] = {"HoT", "overheating", 0x4210, CO_ERR_REG_TEMPERATURE, DRIVE_FAULT_RESET_COMMAND,
+                   DRIVE_FAULT_FREEWHEEL},
+    [FAULT_LOW] = {"LoW", "undervoltage", 0x3120, CO_ERR_REG_VOLTAGE, DRIVE_FAULT_RESET_AUTOMATIC,
+                   DRIVE_FAULT_FREEWHEEL},
     [FAULT_NET] = {"NeT", "communication loss", 0x8130, CO_ERR_REG_COMMUNICATION,
-                   DRIVE_FAULT_RESET_COMMAND},
-    [FAULT_CPU] = {"CpU", "internal", 0x6100, 0, DRIVE_FAULT_RESET_POWER_CYCLE},
+                   DRIVE_FAULT_RESET_COMMAND, DRIVE_FAULT_FREEWHEEL},
+    [FAULT_CPU] = {"CpU", "internal", 0x6100, 0, DRIVE_FAULT_RESET_POWER_CYCLE,
+                   DRIVE_FAULT_FREEWHEEL},
+    [FAULT_EXT] = {"ExT", "external", 0x9000, 0, DRIVE_FAULT_RESET_COMMAND, DRIVE_FAULT_RAMP_STOP},
+    [FAULT_FAN] = {"FaN", "fan", 0x4310, CO_ERR_REG_TEMPERATURE, DRIVE_FAULT_RESET_AUTOMATIC,
+                   DRIVE_FAULT_FAST_STOP},
 };
 
 static const drive_fault_table_t fault_table = {

@@ -39,12 +39,14 @@ extern const drive_profile_t minimal_profile;
 #define TORQUE 2    /* % */
 #define FREQUENCY 3 /* 0.1 Hz, the output frequency */
 
-/* Its faults: code, EMCY code, 1001h class, reset class. */
+/* Its faults: code, EMCY code, 1001h class, reset class; all freewheel but the last two. */
 enum minimal_fault {
     FAULT_HOT, /* "HoT" 0x4210 temperature, reset by command once the cause is gone */
     FAULT_LOW, /* "LoW" 0x3120 voltage, resets itself when the cause goes */
     FAULT_NET, /* "NeT" 0x8130 communication: the communication loss */
-    FAULT_CPU  /* "CpU" 0x6100, only a reset node (power cycle) */
+    FAULT_CPU, /* "CpU" 0x6100, only a reset node (power cycle) */
+    FAULT_EXT, /* "ExT" 0x9000, reset by command: stops on the deceleration ramp */
+    FAULT_FAN  /* "FaN" 0x4310 temperature, resets itself: stops on the fast ramp */
 };
 
 /* Boots node 4 of the minimal model at time 0 and consumes its boot-up frame. */

@@ -120,17 +120,23 @@ START_TEST(local_reference_channel_gives_the_low_speed)
 }
 END_TEST
 
-/* Runs at 1500 rpm with the stop type `type`, sets the ramp stop bit; the speed 0.75 s later. */
-static int16_t speed_after_ramp_stop(bench_t *b, uint16_t type)
+/* Runs at 1500 rpm, sets the ramp stop bit; the speed 0.75 s later. */
+static int16_t ramp_stop_speed(bench_t *b)
 {
-    bench_start(b);
-    ck_assert_uint_eq(write_param(b, STOP_TYPE, type), 0);
     run_at_speed(b);
     bench_command(b, 0x000F | CW_RAMP_STOP);
     bench_advance(b, 750000);
     /* Every stop type keeps the drive in Operation enabled. */
     ck_assert_uint_eq(bench_read(b, 0x6041, 0) & 0x006F, 0x0027);
     return bench_speed(b);
+}
+
+/* The same from the start with the stop type `type`. */
+static int16_t speed_after_ramp_stop(bench_t *b, uint16_t type)
+{
+    bench_start(b);
+    ck_assert_uint_eq(write_param(b, STOP_TYPE, type), 0);
+    return ramp_stop_speed(b);
 }
 
 START_TEST(stop_type_ramp_stops_on_the_deceleration_ramp)
@@ -157,6 +163,25 @@ START_TEST(stop_type_freewheel_cuts_the_output)
     bench_command(&b, 0x000F);
     bench_advance(&b, 1500000);
     ck_assert_int_eq(bench_speed(&b), 750);
+}
+END_TEST
+
+/* The drive keeps the stop type's entry, not a copy of its value: every write of it counts at the
+ * next ramp stop, and so does the default a reset node restores without a write. */
+START_TEST(stop_type_follows_every_write_and_a_reset)
+{
+    bench_t b;
+    ck_assert_int_eq(speed_after_ramp_stop(&b, DRIVE_STOP_FAST), 750);
+    bench_advance(&b, 1000000);
+    ck_assert_uint_eq(write_param(&b, STOP_TYPE, DRIVE_STOP_RAMP), 0);
+    ck_assert_int_eq(ramp_stop_speed(&b), 1125);
+    bench_advance(&b, 3000000);
+    ck_assert_uint_eq(write_param(&b, STOP_TYPE, DRIVE_STOP_FREEWHEEL), 0);
+    ck_assert_int_eq(ramp_stop_speed(&b), 0);
+    bench_rx(&b, "000#8104");
+    bench_expect(&b, "704#00");
+    ck_assert_uint_eq(bench_read(&b, PARAMS, STOP_TYPE), DRIVE_STOP_RAMP);
+    ck_assert_int_eq(ramp_stop_speed(&b), 1125);
 }
 END_TEST
 
@@ -253,6 +278,7 @@ int main(void)
     tcase_add_test(tc, stop_type_ramp_stops_on_the_deceleration_ramp);
     tcase_add_test(tc, stop_type_fast_stops_on_the_fast_ramp);
     tcase_add_test(tc, stop_type_freewheel_cuts_the_output);
+    tcase_add_test(tc, stop_type_follows_every_write_and_a_reset);
     tcase_add_test(tc, stop_type_is_a_configuration_parameter);
     tcase_add_test(tc, output_frequency_follows_the_motor);
     tcase_add_test(tc, frequency_reference_is_6042_in_decihertz);

@@ -39,6 +39,9 @@ START_TEST(every_cell_of_the_command_table)
         {CIA402_QUICK_STOP_ACTIVE,
          {CIA402_SWITCH_ON_DISABLED, CIA402_QUICK_STOP_ACTIVE, CIA402_QUICK_STOP_ACTIVE,
           CIA402_QUICK_STOP_ACTIVE, CIA402_QUICK_STOP_ACTIVE}},
+        {CIA402_FAULT_REACTION_ACTIVE,
+         {CIA402_FAULT_REACTION_ACTIVE, CIA402_FAULT_REACTION_ACTIVE, CIA402_FAULT_REACTION_ACTIVE,
+          CIA402_FAULT_REACTION_ACTIVE, CIA402_FAULT_REACTION_ACTIVE}},
         {CIA402_FAULT, {CIA402_FAULT, CIA402_FAULT, CIA402_FAULT, CIA402_FAULT, CIA402_FAULT}},
     };
     for (size_t row = 0; row < sizeof table / sizeof table[0]; row++) {
@@ -50,6 +53,32 @@ START_TEST(every_cell_of_the_command_table)
                           cia402_state_name(sm.state), cia402_state_name(table[row].to[col]));
         }
     }
+}
+END_TEST
+
+/* Transitions 13 and 14: a stopping reaction is Fault reaction active (0x000F, the output on)
+ * until the motor stands, then Fault (0x0008); a reaction with nothing to stop is Fault at once.
+ * Neither obeys a command, and a fault reset edge counts only in Fault. */
+START_TEST(fault_reaction_active_ends_when_the_motor_stands)
+{
+    cia402_state_machine_t sm;
+    cia402_reset(&sm);
+    cia402_command(&sm, 0x000F, true);
+    cia402_fault(&sm, true);
+    ck_assert_uint_eq(cia402_status(&sm), 0x000F);
+    ck_assert(cia402_drives_motor(&sm));
+    ck_assert(cia402_faulted(&sm));
+    ck_assert(!cia402_command(&sm, 0x0080, false));
+    ck_assert_int_eq(sm.state, CIA402_FAULT_REACTION_ACTIVE);
+    cia402_motor_stopped(&sm);
+    ck_assert_int_eq(sm.state, CIA402_FAULT);
+    ck_assert_uint_eq(cia402_status(&sm), 0x0008);
+    ck_assert(!cia402_drives_motor(&sm));
+    cia402_command(&sm, 0x0000, true);
+    ck_assert(cia402_command(&sm, 0x0080, true));
+    ck_assert_int_eq(sm.state, CIA402_SWITCH_ON_DISABLED);
+    cia402_fault(&sm, false);
+    ck_assert_int_eq(sm.state, CIA402_FAULT);
 }
 END_TEST
 
@@ -453,6 +482,7 @@ int main(void)
     Suite *s = suite_create("drive_cia402");
     TCase *tc = tcase_create("cia402");
     tcase_add_test(tc, every_cell_of_the_command_table);
+    tcase_add_test(tc, fault_reaction_active_ends_when_the_motor_stands);
     tcase_add_test(tc, disable_operation_waits_for_the_motor);
     tcase_add_test(tc, boots_in_switch_on_disabled);
     tcase_add_test(tc, every_transition_of_the_command_table);

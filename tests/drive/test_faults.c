@@ -1,7 +1,8 @@
-/* The drive's faults on the minimal model's table (one fault of each reset class): injection
- * faults the drive with its EMCY, 603Fh, 1001h and 1003h entry and a freewheel stop; a fault
- * reset is refused while the cause is present and accepted once it is gone; an automatic fault
- * ends with its cause; a power-cycle fault ends only with a reset node. */
+/* The drive's faults on the minimal model's table (one fault of each reset class, one of each
+ * reaction): injection faults the drive with its EMCY, 603Fh, 1001h and 1003h entry and the stop
+ * of its reaction (freewheel at once; a ramp or fast stop in Fault reaction active, then Fault);
+ * a fault reset is refused while the cause is present and accepted once it is gone; an automatic
+ * fault ends with its cause; a power-cycle fault ends only with a reset node. */
 #include "check_main.h"
 #include "minimal_model.h"
 
@@ -180,6 +181,138 @@ START_TEST(communication_loss_is_the_tables_entry)
 }
 END_TEST
 
+/* Status words while a fault's ramp runs: Fault reaction active (0x000F) with remote, the
+ * reference not reached; then Fault. */
+#define SW_REACTION 0x020F
+#define SW_FAULT 0x0608
+
+/* A ramp stop reaction: Fault reaction active with the output on while the motor stops on the
+ * DEC ramp (3.0 s from 1500 rpm), the control word recorded and not obeyed (not even a fault
+ * reset edge), then Fault the instant the motor stands (transition 14). */
+START_TEST(ramp_reaction_stops_on_the_deceleration_ramp_then_faults)
+{
+    bench_t b;
+    bench_start(&b);
+    run_at_speed(&b);
+    inject(&b, FAULT_EXT);
+    bench_expect(&b, "084#0090010000000000");
+    bench_expect_none(&b);
+    ck_assert_str_eq(drive_state_name(&b.drive), "Fault reaction active");
+    ck_assert_uint_eq(bench_read(&b, 0x6041, 0), SW_REACTION);
+    ck_assert_uint_eq(bench_read(&b, 0x603F, 0), 0x9000);
+    ck_assert_str_eq(drive_fault_latched(&b.drive)->code, "ExT");
+    bench_advance(&b, 750000);
+    ck_assert_int_eq(bench_speed(&b), 1125);
+    ck_assert_uint_gt(bench_read(&b, OUTPUTS, CURRENT), 0);
+    ck_assert_uint_eq(bench_command(&b, 0x000F), SW_REACTION);
+    ck_assert_uint_eq(bench_command(&b, 0x0080), SW_REACTION);
+    bench_expect_none(&b);
+    bench_advance(&b, 2249000);
+    ck_assert_uint_eq(bench_read(&b, 0x6041, 0), SW_REACTION);
+    bench_advance(&b, 1000);
+    ck_assert_str_eq(drive_state_name(&b.drive), "Fault");
+    ck_assert_uint_eq(bench_read(&b, 0x6041, 0), SW_FAULT);
+    ck_assert_int_eq(bench_speed(&b), 0);
+    ck_assert_uint_eq(bench_read(&b, OUTPUTS, CURRENT), 0);
+    bench_expect_none(&b);
+    /* Bit 7 was set during the reaction: a new edge resets, once the cause is gone. */
+    remove_cause(&b, FAULT_EXT);
+    ck_assert_uint_eq(bench_command(&b, 0x0080), SW_FAULT);
+    ck_assert_uint_eq(bench_command(&b, 0x0000), SW_FAULT);
+    ck_assert_uint_eq(bench_command(&b, 0x0080), 0x0640);
+    bench_expect(&b, "084#0000000000000000");
+}
+END_TEST
+
+/* A fast stop reaction: the fast ramp, DEC / 2 = 1.5 s from 1500 rpm. */
+START_TEST(fast_reaction_stops_on_the_fast_ramp_then_faults)
+{
+    bench_t b;
+    bench_start(&b);
+    run_at_speed(&b);
+    inject(&b, FAULT_FAN);
+    bench_expect(&b, "084#1043090000000000");
+    bench_advance(&b, 750000);
+    ck_assert_int_eq(bench_speed(&b), 750);
+    ck_assert_uint_eq(bench_read(&b, 0x6041, 0), SW_REACTION);
+    bench_advance(&b, 749000);
+    ck_assert_uint_eq(bench_read(&b, 0x6041, 0), SW_REACTION);
+    bench_advance(&b, 1000);
+    ck_assert_uint_eq(bench_read(&b, 0x6041, 0), SW_FAULT);
+    ck_assert_int_eq(bench_speed(&b), 0);
+}
+END_TEST
+
+/* Nothing to stop: a motor standing in Operation enabled, or a drive that drives no motor, goes
+ * to Fault at once. */
+START_TEST(ramp_reaction_of_a_standing_motor_is_fault_at_once)
+{
+    bench_t b;
+    bench_start(&b);
+    bench_command(&b, 0x0006);
+    ck_assert_uint_eq(bench_command(&b, 0x000F), 0x0627);
+    inject(&b, FAULT_EXT);
+    ck_assert_str_eq(drive_state_name(&b.drive), "Fault");
+    ck_assert_uint_eq(bench_read(&b, 0x6041, 0), SW_FAULT);
+    bench_start(&b);
+    inject(&b, FAULT_FAN);
+    ck_assert_uint_eq(bench_read(&b, 0x6041, 0), SW_FAULT);
+}
+END_TEST
+
+/* A freewheel fault during a reaction cuts the output at once: Fault. */
+START_TEST(freewheel_fault_cuts_a_running_reaction)
+{
+    bench_t b;
+    bench_start(&b);
+    run_at_speed(&b);
+    inject(&b, FAULT_EXT);
+    bench_advance(&b, 750000);
+    ck_assert_int_eq(bench_speed(&b), 1125);
+    inject(&b, FAULT_HOT);
+    ck_assert_uint_eq(bench_read(&b, 0x6041, 0), SW_FAULT);
+    ck_assert_int_eq(bench_speed(&b), 0);
+    ck_assert_uint_eq(bench_read(&b, OUTPUTS, CURRENT), 0);
+    ck_assert_uint_eq(bench_read(&b, 0x603F, 0), 0x9000);
+}
+END_TEST
+
+/* A ramp reaction never slows a stop already on the fast ramp (here a quick stop): 1000 rpm/s
+ * on, not the DEC ramp's 500. */
+START_TEST(ramp_reaction_keeps_a_running_fast_ramp)
+{
+    bench_t b;
+    bench_start(&b);
+    run_at_speed(&b);
+    ck_assert_uint_eq(bench_command(&b, 0x0002), 0x0207);
+    bench_advance(&b, 375000);
+    ck_assert_int_eq(bench_speed(&b), 1125);
+    inject(&b, FAULT_EXT);
+    ck_assert_uint_eq(bench_read(&b, 0x6041, 0), SW_REACTION);
+    bench_advance(&b, 375000);
+    ck_assert_int_eq(bench_speed(&b), 750);
+    bench_advance(&b, 750000);
+    ck_assert_uint_eq(bench_read(&b, 0x6041, 0), SW_FAULT);
+}
+END_TEST
+
+/* An automatic fault whose cause goes during its reaction ends it: Switch on disabled, which
+ * drives nothing (the motor coasts), and the EMCY error reset. */
+START_TEST(automatic_fault_ending_during_its_reaction)
+{
+    bench_t b;
+    bench_start(&b);
+    run_at_speed(&b);
+    inject(&b, FAULT_FAN);
+    bench_expect(&b, "084#1043090000000000");
+    bench_advance(&b, 750000);
+    remove_cause(&b, FAULT_FAN);
+    bench_expect(&b, "084#0000000000000000");
+    ck_assert_uint_eq(bench_read(&b, 0x6041, 0), 0x0640);
+    ck_assert_int_eq(bench_speed(&b), 0);
+}
+END_TEST
+
 START_TEST(faults_found_by_code_without_case)
 {
     bench_t b;
@@ -220,6 +353,12 @@ int main(void)
     tcase_add_test(tc, second_fault_while_in_fault);
     tcase_add_test(tc, latched_code_follows_remaining_fault);
     tcase_add_test(tc, communication_loss_is_the_tables_entry);
+    tcase_add_test(tc, ramp_reaction_stops_on_the_deceleration_ramp_then_faults);
+    tcase_add_test(tc, fast_reaction_stops_on_the_fast_ramp_then_faults);
+    tcase_add_test(tc, ramp_reaction_of_a_standing_motor_is_fault_at_once);
+    tcase_add_test(tc, freewheel_fault_cuts_a_running_reaction);
+    tcase_add_test(tc, ramp_reaction_keeps_a_running_fast_ramp);
+    tcase_add_test(tc, automatic_fault_ending_during_its_reaction);
     tcase_add_test(tc, faults_found_by_code_without_case);
     tcase_add_test(tc, profile_without_faults_is_refused);
     suite_add_tcase(s, tc);

@@ -82,6 +82,40 @@ def test_fault_stops_the_running_motor_on_tpdo1(bus, control):
     assert state(control)["cia402"] == "Fault"
 
 
+def test_fault_reaction_ramps_down_in_tpdos_before_the_fault(bus, control):
+    """COL = 2 (ramp stop): CnF injected into the running drive stops the motor on the DEC ramp
+    (2.0 s here) in Fault reaction active: TPDO6 (ETAD, RFRD) shows ETAD 0x020F with the speed
+    falling frame after frame, then ETAD 0x0608 at speed 0 (Fault)."""
+    bus.sdo_write(NODE, 0x2022, 2, 2, 2)  # COL: ramp stop
+    bus.sdo_write(NODE, 0x203C, 3, 20, 2)  # DEC 2.0 s
+    bus.sdo_write(NODE, 0x1805, 1, 0x284, 4)  # TPDO6 valid: ETAD + RFRD
+    bus.sdo_write(NODE, 0x6042, 0, 1500, 2)
+    bus.nmt(NMT_START, NODE)
+    bus.sdo_write(NODE, 0x6040, 0, 0x0006, 2)
+    bus.sdo_write(NODE, 0x6040, 0, 0x000F, 2)
+    bus.expect(0x284, "2706DC05", timeout=5.0)
+    mark = bus.mark()
+    status, reply = ctl(control, "fault", NODE, "CnF")
+    assert status == 0 and reply.startswith("ok node 4: CnF"), reply
+    s = state(control)
+    assert (s["cia402"], s["display"], s["statusword"]) == ("Fault reaction active", "CnF", 0x020F)
+    reaction = []
+    while True:
+        frame = bus.expect(0x284, timeout=5.0)
+        status, speed = int.from_bytes(frame.data[0:2], "little"), int.from_bytes(frame.data[2:4], "little", signed=True)
+        if (status, speed) == (0x0627, 1500) and not reaction:
+            continue  # sent before the fault
+        if status != 0x020F:
+            break
+        reaction.append(speed)
+    assert (status, speed) == (0x0608, 0), frame
+    bus.expect(0x84, "3081110000000000", since=mark)
+    assert len(reaction) >= 5, reaction
+    assert all(a > b for a, b in zip(reaction, reaction[1:])), reaction
+    assert 1500 >= reaction[0] and reaction[-1] > 0, reaction
+    assert state(control)["cia402"] == "Fault"
+
+
 def test_mains_undervoltage_ends_by_itself(bus, control):
     assert ctl(control, "mains", NODE, "undervoltage")[0] == 0
     bus.expect(0x84, "2031050000000000")
@@ -98,8 +132,37 @@ def test_state_of_every_node_in_text(bus, control):
     assert status == 0
     assert reply == (
         "ok node 4: nmt Pre-operational, cia402 Switch on disabled, statusword 0640, speed 0 rpm, "
-        "current 0.0 A, torque 0 %, display nSt, RUN blinking, ERR off, fault none"
+        "current 0.0 A, torque 0 %, display nSt, RUN blinking, ERR off, fault none, "
+        "frames received 0, sent 1, dropped 0, SDO requests 0, SDO aborts 0, EMCY 0"
     )
+
+
+def test_frame_counters_of_each_of_two_drives(bus, start_daemon, tmp_path):
+    """N SDO requests to node 5 of two drives, one of them refused, and one fault: node 5 counts
+    exactly the N frames routed to it, its boot-up, N answers and one EMCY sent, N SDO requests, one
+    abort, one EMCY; node 4 sees none of it (node 5's COB-IDs are not routed to it), then the NMT
+    broadcast reaches both."""
+    sock = tmp_path / "atv312d.sock"
+    start_daemon(bus, "--node-id", "4-5", "--control", sock)
+    n = 7
+    for _ in range(n - 1):
+        assert bus.sdo_read(5, 0x1000, 0) == 0x00010192
+    assert bus.sdo_abort_code(5, "4034120000000000") == 0x06020000  # 1234h does not exist
+    assert ctl(sock, "fault", 5, "OHF")[0] == 0
+    bus.expect(0x85, "1042090000000000")
+
+    def frames():
+        status, reply = ctl(sock, "--json", "state")
+        assert status == 0, reply
+        return {node["node"]: node["frames"] for node in json.loads(reply)["nodes"]}
+
+    counts = frames()
+    assert counts[5] == {"received": n, "sent": 1 + n + 1, "dropped": 0, "sdo_requests": n, "sdo_aborts": 1, "emcy": 1}
+    assert counts[4] == {"received": 0, "sent": 1, "dropped": 0, "sdo_requests": 0, "sdo_aborts": 0, "emcy": 0}
+    bus.nmt(0x80, 0)  # enter pre-operational, all nodes: no answer
+    bus.expect_none(0x704, 0.2)
+    counts = frames()
+    assert (counts[4]["received"], counts[5]["received"]) == (1, n + 1)
 
 
 @pytest.mark.parametrize(
@@ -197,4 +260,5 @@ def test_state_of_a_full_bench(bus, start_daemon, tmp_path):
     assert [n["node"] for n in nodes] == list(range(1, 128))
     assert {n["cia402"] for n in nodes} == {"Switch on disabled"}
     status, reply = ctl(sock, "state")
-    assert status == 0 and reply.count("; node ") == 126 and reply.endswith("node 127: nmt Pre-operational, cia402 Switch on disabled, statusword 0640, speed 0 rpm, current 0.0 A, torque 0 %, display nSt, RUN blinking, ERR off, fault none")
+    assert status == 0 and reply.count("; node ") == 126 and reply.endswith("node 127: nmt Pre-operational, cia402 Switch on disabled, statusword 0640, speed 0 rpm, current 0.0 A, torque 0 %, display nSt, RUN blinking, ERR off, fault none, frames received 0, sent 1, dropped 0, SDO requests 0, SDO aborts 0, EMCY 0")
+    assert len(reply) < 65536

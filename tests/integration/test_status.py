@@ -39,12 +39,14 @@ def test_status_file_every_second(bus, start_daemon, tmp_path):
     m = COUNTERS.match(lines[0])
     assert m, lines[0]
     assert int(m.group(1)) >= 1  # the NMT start
+    # The NMT command is routed to both drives; each sent its boot-up (and node 5 TPDOs since).
     assert lines[1] == (
         "node 4: nmt Pre-operational, cia402 Switch on disabled, statusword 0640, speed 0 rpm, "
-        "current 0.0 A, torque 0 %, display nSt, RUN blinking, ERR off, fault none"
+        "current 0.0 A, torque 0 %, display nSt, RUN blinking, ERR off, fault none, "
+        "frames received 1, sent 1, dropped 0, SDO requests 0, SDO aborts 0, EMCY 0"
     )
     assert lines[2].startswith("node 5: nmt Operational, cia402 Switch on disabled,"), lines[2]
-    assert lines[2].endswith("RUN on, ERR off, fault none"), lines[2]
+    assert "RUN on, ERR off, fault none, frames received 1, sent " in lines[2], lines[2]
     # Rewritten about once a second, never seen half written; no temporary file left behind.
     rewrites, last, deadline = 0, path.stat().st_mtime_ns, time.monotonic() + 2.5
     while time.monotonic() < deadline:

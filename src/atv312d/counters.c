@@ -1,0 +1,34 @@
+/* Per-drive service counters (counters.h). */
+#include "counters.h"
+
+#include "co/co_emcy_consumer.h"
+
+#define SDO_REQUEST_COB_ID_BASE 0x600u
+#define SDO_RESPONSE_COB_ID_BASE 0x580u
+#define SDO_ABORT_COMMAND 0x80u /* byte 0 of an SDO "abort transfer" (CiA 301 7.2.4.3.17) */
+
+/* A data frame with an 11-bit COB-ID: remote requests and 29-bit frames carry no service here. */
+static bool is_data(const co_frame_t *frame, uint32_t cob_id)
+{
+    return frame->id == cob_id && !(frame->flags & (CO_FRAME_RTR | CO_FRAME_EFF));
+}
+
+bool atv312d_is_emcy(uint8_t node_id, const co_frame_t *frame)
+{
+    return is_data(frame, CO_EMCY_COB_ID_BASE + node_id);
+}
+
+void atv312d_count_received(atv312d_counters_t *counters, uint8_t node_id, const co_frame_t *frame)
+{
+    if (is_data(frame, SDO_REQUEST_COB_ID_BASE + node_id))
+        counters->sdo_requests++;
+}
+
+void atv312d_count_sent(atv312d_counters_t *counters, uint8_t node_id, const co_frame_t *frame)
+{
+    if (atv312d_is_emcy(node_id, frame))
+        counters->emcy++;
+    else if (is_data(frame, SDO_RESPONSE_COB_ID_BASE + node_id) && frame->len > 0 &&
+             frame->data[0] == SDO_ABORT_COMMAND)
+        counters->sdo_aborts++;
+}

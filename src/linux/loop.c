@@ -6,6 +6,7 @@
 #include "co_linux/log.h"
 
 #include <errno.h>
+#include <fcntl.h>
 #include <linux/can/error.h>
 #include <linux/can/raw.h>
 #include <linux/netlink.h>
@@ -94,9 +95,16 @@ static void device_process(co_linux_device_t *dev, co_time_t now)
         dev->loop->routes_stale = true;
 }
 
+/* A given socket's peer can hang up (EPOLLRDHUP); a CAN_RAW socket has no peer. */
+static uint32_t can_events(const co_linux_loop_t *loop)
+{
+    return EPOLLIN | (loop->socket_given ? EPOLLRDHUP : 0u);
+}
+
 static int update_epoll(co_linux_loop_t *loop, bool want_out)
 {
-    struct epoll_event ev = {.events = EPOLLIN | (want_out ? EPOLLOUT : 0u), .data.u32 = TAG_CAN};
+    struct epoll_event ev = {.events = can_events(loop) | (want_out ? EPOLLOUT : 0u),
+                             .data.u32 = TAG_CAN};
     return epoll_ctl(loop->epoll_fd, EPOLL_CTL_MOD, loop->can_fd, &ev);
 }
 
@@ -446,12 +454,24 @@ static void receive_frames(co_linux_loop_t *loop)
             return;
         }
         for (int i = 0; i < n; i++) {
-            if (loop->rx_msgs[i].msg_len == CAN_MTU)
+            /* A longer datagram (a CAN FD frame on a given socket) arrives cut to CAN_MTU. */
+            const struct mmsghdr *msg = &loop->rx_msgs[i];
+            if (msg->msg_len == CAN_MTU && !(msg->msg_hdr.msg_flags & MSG_TRUNC))
                 handle_rx_frame(loop, &loop->rx_frames[i]);
         }
         if (n < CO_LINUX_RX_BATCH)
             return;
     }
+}
+
+/* The frames it sent before are read already (EPOLLIN comes first); the replies to them still
+ * leave when the wake-up settles, then the loop ends. Reading on would return end-of-file for
+ * ever. */
+static void peer_hung_up(co_linux_loop_t *loop)
+{
+    co_log(CO_LOG_INFO, "%s: the peer closed the socket: stopping", loop->iface);
+    epoll_ctl(loop->epoll_fd, EPOLL_CTL_DEL, loop->can_fd, NULL);
+    co_linux_loop_stop(loop, 0);
 }
 
 static void handle_can_event(co_linux_loop_t *loop, uint32_t events)
@@ -469,6 +489,10 @@ static void handle_can_event(co_linux_loop_t *loop, uint32_t events)
     }
     if (events & EPOLLIN)
         receive_frames(loop);
+    if (loop->socket_given && (events & (EPOLLRDHUP | EPOLLHUP))) {
+        peer_hung_up(loop);
+        return;
+    }
     if ((events & EPOLLOUT) && loop->link_up)
         flush_txq(loop);
 }
@@ -499,6 +523,7 @@ static int can_socket_open(co_linux_loop_t *loop, co_linux_open_result_t *result
         struct epoll_event ev = {.events = EPOLLIN, .data.u32 = TAG_CAN};
         if (epoll_ctl(loop->epoll_fd, EPOLL_CTL_ADD, fd, &ev) == 0) {
             loop->can_fd = fd;
+            loop->kernel_filter = true;
             loop->filter_applied = false;
             loop->filter_stale = true;
             *result = CO_LINUX_OPEN_OK;
@@ -642,7 +667,7 @@ static void update_routes(co_linux_loop_t *loop)
 {
     if (loop->routes_stale)
         build_routes(loop);
-    if (loop->filter_stale && loop->can_fd >= 0)
+    if (loop->filter_stale && loop->can_fd >= 0 && loop->kernel_filter)
         apply_filter(loop);
 }
 
@@ -805,8 +830,9 @@ static int open_signals(co_linux_loop_t *loop)
     return add_to_epoll(loop, loop->signal_fd, TAG_SIGNAL);
 }
 
-/* The descriptors every loop needs besides the CAN socket; sets open_call on failure. */
-static int open_loop_descriptors(co_linux_loop_t *loop)
+/* The descriptors every loop needs besides the CAN socket (the link monitor only for an
+ * interface the loop opens itself); sets open_call on failure. */
+static int open_loop_descriptors(co_linux_loop_t *loop, bool monitor_link)
 {
     loop->open_call = "epoll_create1";
     loop->epoll_fd = epoll_create1(EPOLL_CLOEXEC);
@@ -819,12 +845,13 @@ static int open_loop_descriptors(co_linux_loop_t *loop)
     loop->open_call = "signalfd";
     if (open_signals(loop) != 0)
         return -1;
+    if (!monitor_link)
+        return 0;
     loop->open_call = "netlink socket (RTMGRP_LINK)";
     return open_link_monitor(loop);
 }
 
-co_linux_open_result_t co_linux_loop_open(co_linux_loop_t *loop,
-                                          const co_linux_loop_config_t *config)
+static void init_loop(co_linux_loop_t *loop, const co_linux_loop_config_t *config)
 {
     memset(loop, 0, sizeof *loop);
     loop->epoll_fd = loop->can_fd = loop->timer_fd = loop->signal_fd = loop->link_fd = -1;
@@ -852,9 +879,14 @@ co_linux_open_result_t co_linux_loop_open(co_linux_loop_t *loop,
         loop->tx_msgs[i].msg_hdr.msg_iov = &loop->tx_iov[i];
         loop->tx_msgs[i].msg_hdr.msg_iovlen = 1;
     }
+}
 
+co_linux_open_result_t co_linux_loop_open(co_linux_loop_t *loop,
+                                          const co_linux_loop_config_t *config)
+{
+    init_loop(loop, config);
     co_linux_open_result_t result = CO_LINUX_OPEN_OS_ERROR;
-    if (open_loop_descriptors(loop) != 0) {
+    if (open_loop_descriptors(loop, true) != 0) {
         loop->open_errno = errno;
     } else if (can_socket_open(loop, &result) == 0) {
         loop->link_up = true;
@@ -867,6 +899,54 @@ co_linux_open_result_t co_linux_loop_open(co_linux_loop_t *loop,
     }
     co_linux_loop_close(loop);
     return result;
+}
+
+/* Frames keep their boundaries only on a datagram or sequenced-packet socket. */
+static bool keeps_frames(int fd, int *domain)
+{
+    int type;
+    socklen_t len = sizeof type;
+    if (getsockopt(fd, SOL_SOCKET, SO_TYPE, &type, &len) != 0)
+        return false;
+    if (type != SOCK_SEQPACKET && type != SOCK_DGRAM && type != SOCK_RAW) {
+        errno = EPROTOTYPE;
+        return false;
+    }
+    len = sizeof *domain;
+    return getsockopt(fd, SOL_SOCKET, SO_DOMAIN, domain, &len) == 0;
+}
+
+co_linux_open_result_t co_linux_loop_open_fd(co_linux_loop_t *loop,
+                                             const co_linux_loop_config_t *config, int fd)
+{
+    init_loop(loop, config);
+    int domain = AF_UNSPEC;
+    loop->open_call = "getsockopt(SO_TYPE)";
+    if (!keeps_frames(fd, &domain) || open_loop_descriptors(loop, false) != 0) {
+        loop->open_errno = errno;
+        co_linux_loop_close(loop);
+        return CO_LINUX_OPEN_OS_ERROR;
+    }
+    int flags = fcntl(fd, F_GETFL);
+    loop->open_call = "fcntl(O_NONBLOCK)";
+    if (flags < 0 || fcntl(fd, F_SETFL, flags | O_NONBLOCK) != 0) {
+        loop->open_errno = errno;
+        co_linux_loop_close(loop);
+        return CO_LINUX_OPEN_OS_ERROR;
+    }
+    loop->socket_given = true;
+    loop->kernel_filter = domain == AF_CAN;
+    struct epoll_event ev = {.events = can_events(loop), .data.u32 = TAG_CAN};
+    loop->open_call = "epoll_ctl";
+    if (epoll_ctl(loop->epoll_fd, EPOLL_CTL_ADD, fd, &ev) != 0) {
+        loop->open_errno = errno;
+        co_linux_loop_close(loop);
+        return CO_LINUX_OPEN_OS_ERROR;
+    }
+    loop->can_fd = fd;
+    loop->filter_stale = true;
+    loop->link_up = true;
+    return CO_LINUX_OPEN_OK;
 }
 
 void co_linux_loop_close(co_linux_loop_t *loop)

@@ -144,6 +144,7 @@ struct co_linux_loop {
     bool filter_stale;   /* the routes, the socket or the trace changed since it was computed */
     bool kernel_filter;  /* the socket is a CAN_RAW socket: CAN_RAW_FILTER applies */
     bool socket_given;   /* co_linux_loop_open_fd: no link monitoring, a peer that can hang up */
+    bool rx_end; /* a read of the given socket returned its end (nothing, after a hang-up) */
     size_t filter_count;
 
     co_time_t now;

@@ -458,15 +458,17 @@ static void receive_frames(co_linux_loop_t *loop)
             const struct mmsghdr *msg = &loop->rx_msgs[i];
             if (msg->msg_len == CAN_MTU && !(msg->msg_hdr.msg_flags & MSG_TRUNC))
                 handle_rx_frame(loop, &loop->rx_frames[i]);
+            else if (msg->msg_len == 0)
+                loop->rx_end = true;
         }
         if (n < CO_LINUX_RX_BATCH)
             return;
     }
 }
 
-/* The frames it sent before are read already (EPOLLIN comes first); the replies to them still
- * leave when the wake-up settles, then the loop ends. Reading on would return end-of-file for
- * ever. */
+/* The frames it sent before are read already (the reads reached the end); the replies to them
+ * still leave when the wake-up settles, then the loop ends. Reading on would return end-of-file
+ * for ever. */
 static void peer_hung_up(co_linux_loop_t *loop)
 {
     co_log(CO_LOG_INFO, "%s: the peer closed the socket: stopping", loop->iface);
@@ -489,7 +491,7 @@ static void handle_can_event(co_linux_loop_t *loop, uint32_t events)
     }
     if (events & EPOLLIN)
         receive_frames(loop);
-    if (loop->socket_given && (events & (EPOLLRDHUP | EPOLLHUP))) {
+    if (loop->socket_given && loop->rx_end && (events & (EPOLLRDHUP | EPOLLHUP))) {
         peer_hung_up(loop);
         return;
     }

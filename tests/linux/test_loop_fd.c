@@ -163,6 +163,24 @@ START_TEST(datagrams_not_a_frame_are_ignored)
 }
 END_TEST
 
+/* More frames than one wake-up reads (4 batches of 32) are waiting when the peer hangs up: each
+ * is answered before the loop ends. */
+START_TEST(hang_up_after_a_burst_loses_no_frame)
+{
+    enum { BURST = 150 };
+    for (int i = 0; i < BURST; i++)
+        write_upload_request(0x1000);
+    ck_assert_int_eq(shutdown(bus[1], SHUT_WR), 0);
+    ck_assert_int_eq(co_linux_loop_run(&loop), 0);
+    ck_assert_uint_eq(loop.stats.rx, BURST);
+    co_linux_loop_close(&loop);
+    expect_frame(BOOTUP, 1, bootup);
+    for (int i = 0; i < BURST; i++)
+        expect_frame(SDO_TX, 8, device_type);
+    expect_end_of_bus();
+}
+END_TEST
+
 START_TEST(peer_gone_ends_the_loop)
 {
     write_upload_request(0x1000);
@@ -205,6 +223,7 @@ int main(void)
     tcase_add_checked_fixture(tc, setup, teardown);
     tcase_add_test(tc, drive_answers_over_socketpair);
     tcase_add_test(tc, datagrams_not_a_frame_are_ignored);
+    tcase_add_test(tc, hang_up_after_a_burst_loses_no_frame);
     tcase_add_test(tc, peer_gone_ends_the_loop);
     tcase_add_test(tc, descriptors_without_frame_boundaries_are_refused);
     suite_add_tcase(s, tc);

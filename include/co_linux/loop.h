@@ -30,7 +30,11 @@
 
 /* Received frames read per recvmmsg call. */
 #define CO_LINUX_RX_BATCH 32
-/* Queued frames written per sendmmsg call. */
+/* While each read finds one frame, frames are read one by one (recv, not recvmmsg, which looks
+ * into the empty queue a second time); every RX_PROBE_EVERY-th read is a batch again, so a burst
+ * is read in batches after at most that many wake-ups. */
+#define CO_LINUX_RX_PROBE_EVERY 8
+/* Queued frames written per sendmmsg call (a lone frame goes by send). */
 #define CO_LINUX_TX_BATCH 64
 /* Routing keys: an 11-bit CAN-ID, plus 2048 for a remote request. */
 #define CO_LINUX_ROUTE_KEYS 4096u
@@ -144,7 +148,9 @@ struct co_linux_loop {
     bool filter_stale;   /* the routes, the socket or the trace changed since it was computed */
     bool kernel_filter;  /* the socket is a CAN_RAW socket: CAN_RAW_FILTER applies */
     bool socket_given;   /* co_linux_loop_open_fd: no link monitoring, a peer that can hang up */
-    bool rx_end; /* a read of the given socket returned its end (nothing, after a hang-up) */
+    bool rx_end;        /* a read of the given socket returned its end (nothing, after a hang-up) */
+    bool rx_one_by_one; /* the last batch read brought one frame: read them one by one */
+    unsigned rx_reads_alone; /* single reads since the last batch read */
     size_t filter_count;
 
     co_time_t now;

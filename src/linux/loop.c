@@ -155,8 +155,17 @@ static void frame_dropped(co_linux_loop_t *loop, const co_frame_t *frame, const 
     set_condition(loop, COND_OVERRUN, true);
 }
 
-/* Writes up to CO_LINUX_TX_BATCH queued frames in one sendmmsg; returns how many the socket took
- * (errno says why when 0). */
+/* A lone frame goes by send: sendmmsg would copy in its message and I/O vector headers for it. */
+static int send_frames(co_linux_loop_t *loop, size_t count)
+{
+    if (count > 1)
+        return sendmmsg(loop->can_fd, loop->tx_msgs, (unsigned)count, MSG_DONTWAIT);
+    ssize_t sent = send(loop->can_fd, &loop->tx_frames[0], CAN_MTU, MSG_DONTWAIT);
+    return sent < 0 ? -1 : 1;
+}
+
+/* Writes up to CO_LINUX_TX_BATCH queued frames in one system call; returns how many the socket
+ * took (errno says why when 0). */
 static int write_batch(co_linux_loop_t *loop)
 {
     size_t count = co_txq_count(&loop->txq);
@@ -164,7 +173,7 @@ static int write_batch(co_linux_loop_t *loop)
         count = CO_LINUX_TX_BATCH;
     for (size_t i = 0; i < count; i++)
         co_linux_frame_to_can(&co_txq_at(&loop->txq, i)->frame, &loop->tx_frames[i]);
-    int sent = sendmmsg(loop->can_fd, loop->tx_msgs, (unsigned)count, MSG_DONTWAIT);
+    int sent = send_frames(loop, count);
     if (sent <= 0)
         return 0;
     loop->stats.tx_calls++;
@@ -442,17 +451,42 @@ static void handle_rx_frame(co_linux_loop_t *loop, const struct can_frame *cf)
     deliver_local(loop);
 }
 
-static void receive_frames(co_linux_loop_t *loop)
+static void read_failed(co_linux_loop_t *loop, const char *call)
 {
+    if (errno_means_down(errno))
+        link_went_down(loop, strerror(errno));
+    else if (errno != EAGAIN && errno != EINTR)
+        co_log(CO_LOG_ERROR, "%s: %s: %s", loop->iface, call, strerror(errno));
+}
+
+/* One frame, without recvmmsg's second look into a queue that is empty: the buffer has a byte
+ * more than a frame so that a longer datagram (a CAN FD frame on a given socket) shows. */
+static void receive_one(co_linux_loop_t *loop)
+{
+    union {
+        struct can_frame frame;
+        uint8_t longer[CAN_MTU + 1];
+    } rx;
+    ssize_t got = recv(loop->can_fd, &rx, sizeof rx, MSG_DONTWAIT);
+    if (got < 0)
+        read_failed(loop, "recv");
+    else if (got == CAN_MTU)
+        handle_rx_frame(loop, &rx.frame);
+    else if (got == 0)
+        loop->rx_end = true;
+}
+
+/* Returns how many datagrams were read. */
+static int receive_batches(co_linux_loop_t *loop)
+{
+    int total = 0;
     for (int round = 0; round < RX_ROUNDS && loop->can_fd >= 0; round++) {
         int n = recvmmsg(loop->can_fd, loop->rx_msgs, CO_LINUX_RX_BATCH, MSG_DONTWAIT, NULL);
         if (n < 0) {
-            if (errno_means_down(errno))
-                link_went_down(loop, strerror(errno));
-            else if (errno != EAGAIN && errno != EINTR)
-                co_log(CO_LOG_ERROR, "%s: recvmmsg: %s", loop->iface, strerror(errno));
-            return;
+            read_failed(loop, "recvmmsg");
+            return total;
         }
+        total += n;
         for (int i = 0; i < n; i++) {
             /* A longer datagram (a CAN FD frame on a given socket) arrives cut to CAN_MTU. */
             const struct mmsghdr *msg = &loop->rx_msgs[i];
@@ -462,8 +496,22 @@ static void receive_frames(co_linux_loop_t *loop)
                 loop->rx_end = true;
         }
         if (n < CO_LINUX_RX_BATCH)
-            return;
+            return total;
     }
+    return total;
+}
+
+/* A wake-up nearly always finds one frame (a CAN frame takes 50 us or more on the wire), and
+ * recvmmsg then looks into the empty queue a second time: while batches bring one frame, frames
+ * are read one by one, with a batch every CO_LINUX_RX_PROBE_EVERY reads to catch a burst. */
+static void receive_frames(co_linux_loop_t *loop)
+{
+    if (loop->rx_one_by_one && ++loop->rx_reads_alone < CO_LINUX_RX_PROBE_EVERY) {
+        receive_one(loop);
+        return;
+    }
+    loop->rx_reads_alone = 0;
+    loop->rx_one_by_one = receive_batches(loop) == 1;
 }
 
 /* The frames it sent before are read already (the reads reached the end); the replies to them

@@ -13,6 +13,7 @@
 #include <linux/can.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/eventfd.h>
 #include <sys/socket.h>
 #include <unistd.h>
 
@@ -31,7 +32,8 @@ typedef struct {
 
 static co_linux_loop_t loop;
 static test_drive_t slot;
-static int bus[2]; /* bus[0] for the loop, bus[1] the test's end */
+static int bus[2];           /* bus[0] for the loop, bus[1] the test's end */
+static int first_frame = -1; /* an eventfd written when the drive got its first frame, or -1 */
 
 static void send_frame(void *user, const co_frame_t *frame)
 {
@@ -54,6 +56,8 @@ static void restart(void *ctx, co_time_t now)
 static void receive(void *ctx, const co_frame_t *frame, co_time_t now)
 {
     drive_receive(&((test_drive_t *)ctx)->drive, frame, now);
+    if (first_frame >= 0 && loop.stats.rx == 1)
+        ck_assert_int_eq(eventfd_write(first_frame, 1), 0);
 }
 
 static co_time_t process(void *ctx, co_time_t now)
@@ -181,6 +185,48 @@ START_TEST(hang_up_after_a_burst_loses_no_frame)
 }
 END_TEST
 
+static void write_burst(void *ctx, int fd);
+
+/* A wake-up that found one frame makes the loop read one frame per wake-up; a burst that follows
+ * is read so for CO_LINUX_RX_PROBE_EVERY - 1 wake-ups, then in a batch, which also finds the end.
+ * The reads one by one ignore datagrams that are not a frame, as the batches do. */
+START_TEST(burst_after_a_lone_frame_is_read_in_a_batch_again)
+{
+    first_frame = eventfd(0, EFD_NONBLOCK);
+    ck_assert_int_ge(first_frame, 0);
+    ck_assert_int_eq(co_linux_loop_watch(&loop, first_frame, write_burst, NULL), 0);
+    write_upload_request(0x1000);
+    ck_assert_int_eq(co_linux_loop_run(&loop), 0);
+    /* The lone frame, the eventfd, 7 reads of one datagram each, one batch to the end. */
+    ck_assert_uint_eq(loop.stats.wakeups, 2 + CO_LINUX_RX_PROBE_EVERY);
+    ck_assert_uint_eq(loop.stats.rx, 1 + 18);
+    co_linux_loop_close(&loop);
+    close(first_frame);
+    first_frame = -1;
+    expect_frame(BOOTUP, 1, bootup);
+    for (int i = 0; i < 1 + 18; i++)
+        expect_frame(SDO_TX, 8, device_type);
+    expect_end_of_bus();
+}
+END_TEST
+
+/* After the first frame: a datagram too short, one too long (a CAN FD frame), 18 requests, the
+ * end. */
+static void write_burst(void *ctx, int fd)
+{
+    (void)ctx;
+    eventfd_t count;
+    ck_assert_int_eq(eventfd_read(fd, &count), 0);
+    co_linux_loop_unwatch(&loop, fd);
+    const uint8_t short_datagram[3] = {0x04, 0x06, 0x00};
+    uint8_t fd_frame[CANFD_MTU] = {0x04, 0x06, 0x00, 0x00, 8, 0, 0, 0, 0x40, 0x00, 0x10};
+    write_datagram(short_datagram, sizeof short_datagram);
+    write_datagram(fd_frame, sizeof fd_frame);
+    for (int i = 0; i < 18; i++)
+        write_upload_request(0x1000);
+    ck_assert_int_eq(shutdown(bus[1], SHUT_WR), 0);
+}
+
 START_TEST(peer_gone_ends_the_loop)
 {
     write_upload_request(0x1000);
@@ -224,6 +270,7 @@ int main(void)
     tcase_add_test(tc, drive_answers_over_socketpair);
     tcase_add_test(tc, datagrams_not_a_frame_are_ignored);
     tcase_add_test(tc, hang_up_after_a_burst_loses_no_frame);
+    tcase_add_test(tc, burst_after_a_lone_frame_is_read_in_a_batch_again);
     tcase_add_test(tc, peer_gone_ends_the_loop);
     tcase_add_test(tc, descriptors_without_frame_boundaries_are_refused);
     suite_add_tcase(s, tc);

@@ -3,6 +3,9 @@
  *   sdo_rtt IFACE NODE-ID COUNT          expedited uploads of 1000h, one at a time
  *   sdo_rtt --sync IFACE NODE-ID COUNT   SYNC -> synchronous TPDO6 latency
  *
+ * IFACE may be --fd=FD: a socket the generator inherits, one struct can_frame per datagram
+ * (bench/native: one end of an AF_UNIX SOCK_SEQPACKET socketpair, on a kernel without CAN).
+ *
  * Each transaction is timed with CLOCK_MONOTONIC from before the request's write to after the
  * answer's read; the next starts when the answer is in. WARM_UP transactions come first and are
  * not counted (the first ones fault pages in). --sync first makes TPDO6 synchronous (1805h:02 = 1,
@@ -60,6 +63,15 @@ static uint64_t now_ns(void)
 static int open_bus(bus_t *bus, const char *iface, unsigned node)
 {
     bus->node = node;
+    if (strncmp(iface, "--fd=", 5) == 0) {
+        char *end = NULL;
+        long fd = strtol(iface + 5, &end, 10);
+        bus->fd = (int)fd;
+        if (*end == '\0' && end != iface + 5 && fd >= 0 && fd <= 1023)
+            return 0;
+        fprintf(stderr, "sdo_rtt: bad %s\n", iface);
+        return -1;
+    }
     bus->fd = socket(PF_CAN, SOCK_RAW, CAN_RAW);
     if (bus->fd < 0) {
         perror("sdo_rtt: socket");
@@ -190,7 +202,8 @@ int main(int argc, char **argv)
     unsigned long count = argc == 4 + sync ? strtoul(args[2], &end_count, 0) : 0;
     if (argc != 4 + sync || *end_node != '\0' || *end_count != '\0' || node < 1 || node > 127 ||
         count < 1 || count > 10000000) {
-        fprintf(stderr, "usage: sdo_rtt [--sync] IFACE NODE-ID (1-127) COUNT (1-10000000)\n");
+        fprintf(stderr,
+                "usage: sdo_rtt [--sync] (IFACE | --fd=FD) NODE-ID (1-127) COUNT (1-10000000)\n");
         return 64;
     }
     bus_t bus;

@@ -30,7 +30,11 @@
 
 /* Received frames read per recvmmsg call. */
 #define CO_LINUX_RX_BATCH 32
-/* Queued frames written per sendmmsg call. */
+/* While each read finds one frame, frames are read one by one (recv, not recvmmsg, which looks
+ * into the empty queue a second time); every RX_PROBE_EVERY-th read is a batch again, so a burst
+ * is read in batches after at most that many wake-ups. */
+#define CO_LINUX_RX_PROBE_EVERY 8
+/* Queued frames written per sendmmsg call (a lone frame goes by send). */
 #define CO_LINUX_TX_BATCH 64
 /* Routing keys: an 11-bit CAN-ID, plus 2048 for a remote request. */
 #define CO_LINUX_ROUTE_KEYS 4096u
@@ -151,6 +155,11 @@ struct co_linux_loop {
     bool route_all;      /* every device gets every frame (a device without node, no memory) */
     bool filter_applied; /* `filters` is what the current socket has */
     bool filter_stale;   /* the routes, the socket or the trace changed since it was computed */
+    bool kernel_filter;  /* the socket is a CAN_RAW socket: CAN_RAW_FILTER applies */
+    bool socket_given;   /* co_linux_loop_open_fd: no link monitoring, a peer that can hang up */
+    bool rx_end;        /* a read of the given socket returned its end (nothing, after a hang-up) */
+    bool rx_one_by_one; /* the last batch read brought one frame: read them one by one */
+    unsigned rx_reads_alone; /* single reads since the last batch read */
     size_t filter_count;
 
     co_time_t now;
@@ -193,6 +202,19 @@ co_time_t co_linux_now(void);
  * but is down is not an error: the loop waits for it. On failure everything opened is closed. */
 co_linux_open_result_t co_linux_loop_open(co_linux_loop_t *loop,
                                           const co_linux_loop_config_t *config);
+
+/* Like co_linux_loop_open, on `fd`: a socket the caller opened that carries one struct can_frame
+ * per datagram (SOCK_SEQPACKET, SOCK_DGRAM or SOCK_RAW), such as one end of an AF_UNIX
+ * SOCK_SEQPACKET socketpair, a bus between processes on a kernel without CAN (tests, bench/native),
+ * or a CAN_RAW socket of the caller's. config->iface only names it in the logs. The loop makes
+ * fd non-blocking and owns it from then on (co_linux_loop_close closes it); on failure the caller
+ * keeps it (CO_LINUX_OPEN_OS_ERROR, open_errno ENOTSOCK for a non-socket, EPROTOTYPE for a stream
+ * socket). The bus is up as long as fd is open: no link monitoring. The receive filter is set only
+ * on a CAN_RAW socket: another socket carries the whole bus and the routes sort it. When the peer
+ * hangs up, the frames it sent before are handled, their replies written, and co_linux_loop_run
+ * returns 0. */
+co_linux_open_result_t co_linux_loop_open_fd(co_linux_loop_t *loop,
+                                             const co_linux_loop_config_t *config, int fd);
 
 /* Attaches a device (before co_linux_loop_run). */
 void co_linux_loop_add(co_linux_loop_t *loop, co_linux_device_t *device,

@@ -6,6 +6,7 @@
 #include "co_linux/log.h"
 
 #include <errno.h>
+#include <fcntl.h>
 #include <linux/can/error.h>
 #include <linux/can/raw.h>
 #include <linux/netlink.h>
@@ -94,9 +95,16 @@ static void device_process(co_linux_device_t *dev, co_time_t now)
         dev->loop->routes_stale = true;
 }
 
+/* A given socket's peer can hang up (EPOLLRDHUP); a CAN_RAW socket has no peer. */
+static uint32_t can_events(const co_linux_loop_t *loop)
+{
+    return EPOLLIN | (loop->socket_given ? EPOLLRDHUP : 0u);
+}
+
 static int update_epoll(co_linux_loop_t *loop, bool want_out)
 {
-    struct epoll_event ev = {.events = EPOLLIN | (want_out ? EPOLLOUT : 0u), .data.u32 = TAG_CAN};
+    struct epoll_event ev = {.events = can_events(loop) | (want_out ? EPOLLOUT : 0u),
+                             .data.u32 = TAG_CAN};
     return epoll_ctl(loop->epoll_fd, EPOLL_CTL_MOD, loop->can_fd, &ev);
 }
 
@@ -147,8 +155,17 @@ static void frame_dropped(co_linux_loop_t *loop, const co_frame_t *frame, const 
     set_condition(loop, COND_OVERRUN, true);
 }
 
-/* Writes up to CO_LINUX_TX_BATCH queued frames in one sendmmsg; returns how many the socket took
- * (errno says why when 0). */
+/* A lone frame goes by send: sendmmsg would copy in its message and I/O vector headers for it. */
+static int send_frames(co_linux_loop_t *loop, size_t count)
+{
+    if (count > 1)
+        return sendmmsg(loop->can_fd, loop->tx_msgs, (unsigned)count, MSG_DONTWAIT);
+    ssize_t sent = send(loop->can_fd, &loop->tx_frames[0], CAN_MTU, MSG_DONTWAIT);
+    return sent < 0 ? -1 : 1;
+}
+
+/* Writes up to CO_LINUX_TX_BATCH queued frames in one system call; returns how many the socket
+ * took (errno says why when 0). */
 static int write_batch(co_linux_loop_t *loop)
 {
     size_t count = co_txq_count(&loop->txq);
@@ -156,7 +173,7 @@ static int write_batch(co_linux_loop_t *loop)
         count = CO_LINUX_TX_BATCH;
     for (size_t i = 0; i < count; i++)
         co_linux_frame_to_can(&co_txq_at(&loop->txq, i)->frame, &loop->tx_frames[i]);
-    int sent = sendmmsg(loop->can_fd, loop->tx_msgs, (unsigned)count, MSG_DONTWAIT);
+    int sent = send_frames(loop, count);
     if (sent <= 0)
         return 0;
     loop->stats.tx_calls++;
@@ -438,24 +455,77 @@ static void handle_rx_frame(co_linux_loop_t *loop, const struct can_frame *cf)
     deliver_local(loop);
 }
 
-static void receive_frames(co_linux_loop_t *loop)
+static void read_failed(co_linux_loop_t *loop, const char *call)
 {
+    if (errno_means_down(errno))
+        link_went_down(loop, strerror(errno));
+    else if (errno != EAGAIN && errno != EINTR)
+        co_log(CO_LOG_ERROR, "%s: %s: %s", loop->iface, call, strerror(errno));
+}
+
+/* One frame, without recvmmsg's second look into a queue that is empty: the buffer has a byte
+ * more than a frame so that a longer datagram (a CAN FD frame on a given socket) shows. */
+static void receive_one(co_linux_loop_t *loop)
+{
+    union {
+        struct can_frame frame;
+        uint8_t longer[CAN_MTU + 1];
+    } rx;
+    ssize_t got = recv(loop->can_fd, &rx, sizeof rx, MSG_DONTWAIT);
+    if (got < 0)
+        read_failed(loop, "recv");
+    else if (got == CAN_MTU)
+        handle_rx_frame(loop, &rx.frame);
+    else if (got == 0)
+        loop->rx_end = true;
+}
+
+/* Returns how many datagrams were read. */
+static int receive_batches(co_linux_loop_t *loop)
+{
+    int total = 0;
     for (int round = 0; round < RX_ROUNDS && loop->can_fd >= 0; round++) {
         int n = recvmmsg(loop->can_fd, loop->rx_msgs, CO_LINUX_RX_BATCH, MSG_DONTWAIT, NULL);
         if (n < 0) {
-            if (errno_means_down(errno))
-                link_went_down(loop, strerror(errno));
-            else if (errno != EAGAIN && errno != EINTR)
-                co_log(CO_LOG_ERROR, "%s: recvmmsg: %s", loop->iface, strerror(errno));
-            return;
+            read_failed(loop, "recvmmsg");
+            return total;
         }
+        total += n;
         for (int i = 0; i < n; i++) {
-            if (loop->rx_msgs[i].msg_len == CAN_MTU)
+            /* A longer datagram (a CAN FD frame on a given socket) arrives cut to CAN_MTU. */
+            const struct mmsghdr *msg = &loop->rx_msgs[i];
+            if (msg->msg_len == CAN_MTU && !(msg->msg_hdr.msg_flags & MSG_TRUNC))
                 handle_rx_frame(loop, &loop->rx_frames[i]);
+            else if (msg->msg_len == 0)
+                loop->rx_end = true;
         }
         if (n < CO_LINUX_RX_BATCH)
-            return;
+            return total;
     }
+    return total;
+}
+
+/* A wake-up nearly always finds one frame (a CAN frame takes 50 us or more on the wire), and
+ * recvmmsg then looks into the empty queue a second time: while batches bring one frame, frames
+ * are read one by one, with a batch every CO_LINUX_RX_PROBE_EVERY reads to catch a burst. */
+static void receive_frames(co_linux_loop_t *loop)
+{
+    if (loop->rx_one_by_one && ++loop->rx_reads_alone < CO_LINUX_RX_PROBE_EVERY) {
+        receive_one(loop);
+        return;
+    }
+    loop->rx_reads_alone = 0;
+    loop->rx_one_by_one = receive_batches(loop) == 1;
+}
+
+/* The frames it sent before are read already (the reads reached the end); the replies to them
+ * still leave when the wake-up settles, then the loop ends. Reading on would return end-of-file
+ * for ever. */
+static void peer_hung_up(co_linux_loop_t *loop)
+{
+    co_log(CO_LOG_INFO, "%s: the peer closed the socket: stopping", loop->iface);
+    epoll_ctl(loop->epoll_fd, EPOLL_CTL_DEL, loop->can_fd, NULL);
+    co_linux_loop_stop(loop, 0);
 }
 
 static void handle_can_event(co_linux_loop_t *loop, uint32_t events)
@@ -473,6 +543,10 @@ static void handle_can_event(co_linux_loop_t *loop, uint32_t events)
     }
     if (events & EPOLLIN)
         receive_frames(loop);
+    if (loop->socket_given && loop->rx_end && (events & (EPOLLRDHUP | EPOLLHUP))) {
+        peer_hung_up(loop);
+        return;
+    }
     if ((events & EPOLLOUT) && loop->link_up)
         flush_txq(loop);
 }
@@ -503,6 +577,7 @@ static int can_socket_open(co_linux_loop_t *loop, co_linux_open_result_t *result
         struct epoll_event ev = {.events = EPOLLIN, .data.u32 = TAG_CAN};
         if (epoll_ctl(loop->epoll_fd, EPOLL_CTL_ADD, fd, &ev) == 0) {
             loop->can_fd = fd;
+            loop->kernel_filter = true;
             loop->filter_applied = false;
             loop->filter_stale = true;
             *result = CO_LINUX_OPEN_OK;
@@ -646,7 +721,7 @@ static void update_routes(co_linux_loop_t *loop)
 {
     if (loop->routes_stale)
         build_routes(loop);
-    if (loop->filter_stale && loop->can_fd >= 0)
+    if (loop->filter_stale && loop->can_fd >= 0 && loop->kernel_filter)
         apply_filter(loop);
 }
 
@@ -810,8 +885,9 @@ static int open_signals(co_linux_loop_t *loop)
     return add_to_epoll(loop, loop->signal_fd, TAG_SIGNAL);
 }
 
-/* The descriptors every loop needs besides the CAN socket; sets open_call on failure. */
-static int open_loop_descriptors(co_linux_loop_t *loop)
+/* The descriptors every loop needs besides the CAN socket (the link monitor only for an
+ * interface the loop opens itself); sets open_call on failure. */
+static int open_loop_descriptors(co_linux_loop_t *loop, bool monitor_link)
 {
     loop->open_call = "epoll_create1";
     loop->epoll_fd = epoll_create1(EPOLL_CLOEXEC);
@@ -824,12 +900,13 @@ static int open_loop_descriptors(co_linux_loop_t *loop)
     loop->open_call = "signalfd";
     if (open_signals(loop) != 0)
         return -1;
+    if (!monitor_link)
+        return 0;
     loop->open_call = "netlink socket (RTMGRP_LINK)";
     return open_link_monitor(loop);
 }
 
-co_linux_open_result_t co_linux_loop_open(co_linux_loop_t *loop,
-                                          const co_linux_loop_config_t *config)
+static void init_loop(co_linux_loop_t *loop, const co_linux_loop_config_t *config)
 {
     memset(loop, 0, sizeof *loop);
     loop->epoll_fd = loop->can_fd = loop->timer_fd = loop->signal_fd = loop->link_fd = -1;
@@ -857,9 +934,14 @@ co_linux_open_result_t co_linux_loop_open(co_linux_loop_t *loop,
         loop->tx_msgs[i].msg_hdr.msg_iov = &loop->tx_iov[i];
         loop->tx_msgs[i].msg_hdr.msg_iovlen = 1;
     }
+}
 
+co_linux_open_result_t co_linux_loop_open(co_linux_loop_t *loop,
+                                          const co_linux_loop_config_t *config)
+{
+    init_loop(loop, config);
     co_linux_open_result_t result = CO_LINUX_OPEN_OS_ERROR;
-    if (open_loop_descriptors(loop) != 0) {
+    if (open_loop_descriptors(loop, true) != 0) {
         loop->open_errno = errno;
     } else if (can_socket_open(loop, &result) == 0) {
         loop->link_up = true;
@@ -872,6 +954,54 @@ co_linux_open_result_t co_linux_loop_open(co_linux_loop_t *loop,
     }
     co_linux_loop_close(loop);
     return result;
+}
+
+/* Frames keep their boundaries only on a datagram or sequenced-packet socket. */
+static bool keeps_frames(int fd, int *domain)
+{
+    int type;
+    socklen_t len = sizeof type;
+    if (getsockopt(fd, SOL_SOCKET, SO_TYPE, &type, &len) != 0)
+        return false;
+    if (type != SOCK_SEQPACKET && type != SOCK_DGRAM && type != SOCK_RAW) {
+        errno = EPROTOTYPE;
+        return false;
+    }
+    len = sizeof *domain;
+    return getsockopt(fd, SOL_SOCKET, SO_DOMAIN, domain, &len) == 0;
+}
+
+co_linux_open_result_t co_linux_loop_open_fd(co_linux_loop_t *loop,
+                                             const co_linux_loop_config_t *config, int fd)
+{
+    init_loop(loop, config);
+    int domain = AF_UNSPEC;
+    loop->open_call = "getsockopt(SO_TYPE)";
+    if (!keeps_frames(fd, &domain) || open_loop_descriptors(loop, false) != 0) {
+        loop->open_errno = errno;
+        co_linux_loop_close(loop);
+        return CO_LINUX_OPEN_OS_ERROR;
+    }
+    int flags = fcntl(fd, F_GETFL);
+    loop->open_call = "fcntl(O_NONBLOCK)";
+    if (flags < 0 || fcntl(fd, F_SETFL, flags | O_NONBLOCK) != 0) {
+        loop->open_errno = errno;
+        co_linux_loop_close(loop);
+        return CO_LINUX_OPEN_OS_ERROR;
+    }
+    loop->socket_given = true;
+    loop->kernel_filter = domain == AF_CAN;
+    struct epoll_event ev = {.events = can_events(loop), .data.u32 = TAG_CAN};
+    loop->open_call = "epoll_ctl";
+    if (epoll_ctl(loop->epoll_fd, EPOLL_CTL_ADD, fd, &ev) != 0) {
+        loop->open_errno = errno;
+        co_linux_loop_close(loop);
+        return CO_LINUX_OPEN_OS_ERROR;
+    }
+    loop->can_fd = fd;
+    loop->filter_stale = true;
+    loop->link_up = true;
+    return CO_LINUX_OPEN_OK;
 }
 
 void co_linux_loop_close(co_linux_loop_t *loop)

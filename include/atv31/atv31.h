@@ -14,6 +14,10 @@
 #include "atv31_od.h"     /* generated */
 #include "atv31_v11_od.h" /* generated */
 
+/* Logic inputs LI1-LI6 on the ATV31's own terminals (its CANopen port is built in; the project's
+ * choice: the ATV31 manual names no input), switching sources. */
+#define ATV31_LOGIC_INPUTS 6
+
 extern const drive_profile_t atv31_profile;
 extern const drive_profile_t atv31_v11_profile;
 

@@ -34,10 +34,25 @@ typedef struct drive_param {
         0, 0, (value)                                                                              \
     }
 
+/* Switching sources: what a switch parameter (a channel pair's `select`, the profile's
+ * ramp_switch) may hold besides its fixed values, in one code space for every model. A logic
+ * input at the drive (drive_set_input), a bit of the network's control word whichever channel
+ * commands (the Altivars' C211..C215), or a bit of the active command channel's word (Cd11..Cd15:
+ * the network's while the network commands, 0 otherwise). Only the manufacturer-specific bits
+ * 11..15 may be assigned; an assigned bit loses its profile meaning (reverse, stops). A source is
+ * active at 1: it selects channel 2, the second ramp. */
+#define DRIVE_SOURCE_INPUT(n) (100u + (n))
+#define DRIVE_SOURCE_NETWORK_BIT(bit) (200u + (bit))
+#define DRIVE_SOURCE_COMMAND_BIT(bit) (300u + (bit))
+#define DRIVE_SOURCE_BIT_FIRST 11u
+#define DRIVE_SOURCE_BIT_LAST 15u
+/* Logic inputs a profile may give its model (LI1..LI8). */
+#define DRIVE_INPUTS_MAX 8u
+
 /* A pair of channels (command or reference) and the switch between them: each channel parameter
  * holds a channel code of the model; `network` is the code of the network this node is on.
- * Channel 2 is active while `select` equals `select_second`, channel 1 otherwise (a switch on a
- * logic input reads as channel 1: the emulation has no terminals). */
+ * Channel 2 is active while `select` equals `select_second` or holds an active switching source,
+ * channel 1 otherwise; `select` values up to `select_second` are fixed choices. */
 typedef struct drive_channels {
     drive_param_t first;
     drive_param_t second;
@@ -92,6 +107,11 @@ typedef struct drive_profile {
      * reference. */
     drive_param_t channel_mode;
     uint16_t channel_mode_separate;
+    /* The I/O mode's value of channel_mode (0: the model has none): separate channels, and the
+     * network's control word read as terminals: bit 0 is the run command (1 Operation enabled
+     * with no state chart procedure, 0 a stop on the deceleration ramp to Switched on), bit 7
+     * the fault reset, bits 11-15 keep their meaning. */
+    uint16_t channel_mode_io;
     drive_channels_t command_channels;
     drive_channels_t reference_channels;
     /* Frequencies (0.1 Hz, signed): the output frequency the drive publishes (the motor's speed
@@ -101,6 +121,19 @@ typedef struct drive_profile {
     drive_param_t frequency_reference;
     /* Auto-tuning (the Altivars' tUn): a DRIVE_AUTO_TUNE_* value, with the drive_auto_tune hook. */
     drive_param_t auto_tune;
+    /* The second ramp pair (the Altivars' AC2/dE2, 0.1 s as acceleration/deceleration), used
+     * instead of the first while the switching source in ramp_switch (rPS; 0: none) is active. */
+    drive_param_t ramp_switch;
+    drive_param_t acceleration_2;
+    drive_param_t deceleration_2;
+    /* Logic inputs LI1..LIn at the drive (0..DRIVE_INPUTS_MAX), switching sources. */
+    uint8_t logic_inputs;
+    /* The access level (the Altivars' LAC): below access_level_full the separate channel mode and
+     * control word bits as switching sources are refused, and the channels are managed by
+     * priority: the network commands and gives the reference (forced local control first).
+     * {0, 0} with access_level_full 0: always the full level. */
+    drive_param_t access_level;
+    uint16_t access_level_full;
     /* Status word bit set after the keypad's STOP key (the Altivars' ETA bit 14). */
     uint16_t status_stop_key;
     /* The faults of the model's manuals (faults.h); required. */
@@ -140,6 +173,7 @@ typedef struct drive_entries {
     const co_od_entry_t *nominal_frequency, *nominal_speed, *nominal_current;
     const co_od_entry_t *motor_current, *motor_torque, *control_word_copy, *status_word_copy;
     const co_od_entry_t *output_frequency, *frequency_reference, *stop_type;
+    const co_od_entry_t *acceleration_2, *deceleration_2;
 } drive_entries_t;
 
 typedef struct drive {
@@ -166,6 +200,10 @@ typedef struct drive {
      * reference. */
     bool command_from_network;
     bool reference_from_network;
+    bool second_ramp;        /* the ramp switch's source is active: AC2/dE2 */
+    bool io_mode;            /* channel_mode is the I/O mode */
+    uint16_t assigned_bits;  /* control word bits assigned to switching sources */
+    uint8_t inputs;          /* logic inputs on: bit n - 1 for LIn */
     bool local;              /* forced local: the network's control word is ignored, bit 9 = 0 */
     bool local_run;          /* the RUN key's run command, under forced local control */
     bool stop_key;           /* the STOP key was pressed, until the next run command */
@@ -229,6 +267,10 @@ bool drive_run_key(drive_t *drive, co_time_t now);
 /* An extra load on the motor, % of nominal torque (0..150): torque and current follow while
  * the motor turns. */
 void drive_set_load(drive_t *drive, uint8_t percent, co_time_t now);
+/* Logic input `input` (1 for LI1) on or off at `now`: a switching source on it acts at once.
+ * false (nothing happens) when the model has no such input. Inputs outlive a reset node. */
+bool drive_set_input(drive_t *drive, uint8_t input, bool on, co_time_t now);
+bool drive_input(const drive_t *drive, uint8_t input);
 /* For logs: "Switch on disabled", "Operation enabled", ... */
 const char *drive_state_name(const drive_t *drive);
 
@@ -240,11 +282,16 @@ const char *drive_state_name(const drive_t *drive);
  * drive_ramp_rate: 6048h/6049h (delta speed / delta time), views of acceleration/deceleration;
  * drive_auto_tune: auto_tune; YES only in Operation enabled with the motor standing (else
  *   0x08000022), DONE only from the drive (else 0x06090030).
+ * drive_command_setting: access_level, channel_mode, the channel pairs' selects, ramp_switch; a
+ *   configuration parameter whose value the access level must allow (separate and I/O modes and
+ *   control word bits only at the full level, nor a lower level while they are set: 0x06040043); a
+ *   switch holds a fixed value or a switching source of the model (else 0x06090030).
  * A view is written through its parameter's own checks and read from it. */
 extern const co_od_hook_t drive_configuration_parameter;
 extern const co_od_hook_t drive_speed_limit;
 extern const co_od_hook_t drive_velocity_limits;
 extern const co_od_hook_t drive_ramp_rate;
 extern const co_od_hook_t drive_auto_tune;
+extern const co_od_hook_t drive_command_setting;
 
 #endif

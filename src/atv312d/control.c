@@ -325,7 +325,7 @@ static void put_counters(const atv312d_control_node_t *node, reply_t *r)
     if (r->json)
         put(r,
             "\"frames\":{\"received\":%llu,\"sent\":%llu,\"dropped\":%llu,\"sdo_requests\":%llu,"
-            "\"sdo_aborts\":%llu,\"emcy\":%llu}}",
+            "\"sdo_aborts\":%llu,\"emcy\":%llu}",
             frames->rx, frames->tx, frames->tx_dropped, services->sdo_requests,
             services->sdo_aborts, services->emcy);
     else
@@ -334,6 +334,54 @@ static void put_counters(const atv312d_control_node_t *node, reply_t *r)
             "EMCY %llu",
             frames->rx, frames->tx, frames->tx_dropped, services->sdo_requests,
             services->sdo_aborts, services->emcy);
+}
+
+/* A logic input's name, "LI3" in any case: its number, or 0. */
+static unsigned input_number(const char *word)
+{
+    if ((word[0] != 'L' && word[0] != 'l') || (word[1] != 'I' && word[1] != 'i') || word[2] < '1' ||
+        word[2] > '9' || word[3] != '\0')
+        return 0;
+    return (unsigned)(word[2] - '0');
+}
+
+static bool command_input(const atv312d_control_t *control, char **words, size_t n, reply_t *r)
+{
+    if (n != 4 || (strcmp(words[3], "on") != 0 && strcmp(words[3], "off") != 0))
+        return fail(r, "usage: input NODE LIn on|off (e.g. input 4 LI3 on)");
+    const atv312d_control_node_t *node = find_node(control, words[1], r);
+    if (!node)
+        return false;
+    drive_t *drive = node->drive;
+    unsigned id = drive->node.node_id;
+    unsigned count = drive->profile->logic_inputs;
+    unsigned input = input_number(words[2]);
+    bool on = strcmp(words[3], "on") == 0;
+    if (count == 0)
+        return fail(r, "node %u has no logic inputs", id);
+    if (input == 0 || !drive_set_input(drive, (uint8_t)input, on, node->device->loop->now))
+        return fail(r, "node %u has no input %s: its inputs are LI1..LI%u", id, shown(words[2]),
+                    count);
+    changed(node);
+    co_log(CO_LOG_INFO, "node %u: control: LI%u %s", id, input, words[3]);
+    return succeed(r, "node %u: LI%u %s", id, input, words[3]);
+}
+
+/* The logic inputs that are on: ", inputs LI1 LI3" (nothing when none is), or the JSON list. */
+static void put_inputs(const drive_t *drive, reply_t *r)
+{
+    bool first = true;
+    put(r, "%s", r->json ? ",\"inputs\":[" : "");
+    for (uint8_t i = 1; i <= drive->profile->logic_inputs; i++) {
+        if (!drive_input(drive, i))
+            continue;
+        if (r->json)
+            put(r, "%s\"LI%u\"", first ? "" : ",", i);
+        else
+            put(r, "%sLI%u", first ? ", inputs " : " ", i);
+        first = false;
+    }
+    put(r, "%s", r->json ? "]" : "");
 }
 
 static void put_state(const atv312d_control_node_t *node, reply_t *r)
@@ -370,6 +418,8 @@ static void put_state(const atv312d_control_node_t *node, reply_t *r)
             co->node_id, co_nmt_state_name(co->nmt_state), drive_state_name(drive), status, speed,
             current / 10, current % 10, torque, shows, run, err, fault ? fault->code : "none");
     put_counters(node, r);
+    put_inputs(drive, r);
+    put(r, "%s", r->json ? "}" : "");
 }
 
 void atv312d_format_state(const atv312d_control_node_t *node, bool json, char *buf, size_t len)
@@ -405,10 +455,10 @@ static const struct {
 } commands[] = {
     {"fault", command_fault},       {"clear", command_clear},     {"mains", command_mains},
     {"stop-key", command_stop_key}, {"run-key", command_run_key}, {"local", command_local},
-    {"load", command_load},         {"state", command_state},
+    {"load", command_load},         {"input", command_input},     {"state", command_state},
 };
 
-#define COMMAND_NAMES "fault, clear, mains, stop-key, run-key, local, load, state"
+#define COMMAND_NAMES "fault, clear, mains, stop-key, run-key, local, load, input, state"
 
 bool atv312d_control_execute(const atv312d_control_t *control, const char *line, char *reply,
                              size_t reply_len)

@@ -1,28 +1,105 @@
 /* Where the commands and the reference come from (include/drive/drive.h, the profile's channel
- * fields): the network, or a channel at the drive. */
+ * fields), and which ramp pair runs: the network, or a channel at the drive, chosen by switches
+ * whose sources are logic inputs or control word bits. */
 #include "drive_internal.h"
 
-static uint32_t active_channel(const drive_t *drive, const drive_channels_t *channels)
+static bool network_bit(const drive_t *drive, uint32_t bit)
 {
-    bool second = drive_param_value(drive, channels->select) == channels->select_second;
-    return drive_param_value(drive, second ? channels->second : channels->first);
+    const co_od_entry_t *word = drive->entries.control_word;
+    return word != NULL && ((co_od_get(&drive->node, word) >> bit) & 1u) != 0;
+}
+
+bool drive_source_is_bit(uint32_t code)
+{
+    uint32_t kind = code / 100u;
+    uint32_t bit = code % 100u;
+    return (kind == DRIVE_SOURCE_NETWORK_BIT(0) / 100u ||
+            kind == DRIVE_SOURCE_COMMAND_BIT(0) / 100u) &&
+           bit >= DRIVE_SOURCE_BIT_FIRST && bit <= DRIVE_SOURCE_BIT_LAST;
+}
+
+static bool source_is_input(const drive_t *drive, uint32_t code)
+{
+    return code > DRIVE_SOURCE_INPUT(0) && code <= DRIVE_SOURCE_INPUT(drive->profile->logic_inputs);
+}
+
+bool drive_source_valid(const drive_t *drive, uint32_t code)
+{
+    return drive_source_is_bit(code) || source_is_input(drive, code);
+}
+
+bool drive_mode_separate(const drive_profile_t *profile, uint32_t mode)
+{
+    return mode == profile->channel_mode_separate ||
+           (profile->channel_mode_io != 0 && mode == profile->channel_mode_io);
+}
+
+bool drive_access_full(const drive_t *drive)
+{
+    return drive_param_value(drive, drive->profile->access_level) >=
+           drive->profile->access_level_full;
+}
+
+/* The control word bit a switch's value takes over, or 0; below the full access level none. */
+static uint16_t assigned_bit(const drive_t *drive, uint32_t code)
+{
+    return drive_source_is_bit(code) && drive_access_full(drive) ? (uint16_t)(1u << (code % 100u))
+                                                                 : 0u;
+}
+
+/* A Cd bit reads the word of the command channel active before this evaluation: the network's
+ * while it commands, none (0) while a channel at the drive does. */
+static bool source_active(const drive_t *drive, uint32_t code)
+{
+    if (assigned_bit(drive, code) != 0u)
+        return (code < DRIVE_SOURCE_COMMAND_BIT(0) || drive->command_from_network) &&
+               network_bit(drive, code % 100u);
+    return source_is_input(drive, code) &&
+           drive_input(drive, (uint8_t)(code - DRIVE_SOURCE_INPUT(0)));
+}
+
+static bool second_selected(const drive_t *drive, const drive_channels_t *channels)
+{
+    uint32_t select = drive_param_value(drive, channels->select);
+    return select == channels->select_second ||
+           (select > channels->select_second && source_active(drive, select));
 }
 
 static bool from_network(const drive_t *drive, const drive_channels_t *channels)
 {
-    return active_channel(drive, channels) == channels->network;
+    bool second = second_selected(drive, channels);
+    return drive_param_value(drive, second ? channels->second : channels->first) ==
+           channels->network;
 }
 
-/* In "not separate" mode the command comes from the reference's channel. */
+/* In "not separate" mode the command comes from the reference's channel. Below the full access
+ * level the channels are managed by priority: the network, the highest channel the emulation
+ * has after forced local control, commands and gives the reference. A change of command channel
+ * is a freewheel stop to Switch on disabled, as forced local control's. */
 void drive_channels_update(drive_t *drive)
 {
     const drive_profile_t *profile = drive->profile;
-    bool reference = from_network(drive, &profile->reference_channels);
-    bool separate =
-        drive_param_value(drive, profile->channel_mode) == profile->channel_mode_separate;
-    drive->reference_from_network = reference;
-    drive->command_from_network =
-        separate ? from_network(drive, &profile->command_channels) : reference;
+    bool was_from_network = drive->command_from_network;
+    drive->assigned_bits =
+        (uint16_t)(assigned_bit(drive, drive_param_value(drive, profile->command_channels.select)) |
+                   assigned_bit(drive,
+                                drive_param_value(drive, profile->reference_channels.select)) |
+                   assigned_bit(drive, drive_param_value(drive, profile->ramp_switch)));
+    drive->second_ramp = source_active(drive, drive_param_value(drive, profile->ramp_switch));
+    uint32_t mode = drive_param_value(drive, profile->channel_mode);
+    drive->io_mode = profile->channel_mode_io != 0 && mode == profile->channel_mode_io;
+    if (!drive_access_full(drive)) {
+        drive->reference_from_network = true;
+        drive->command_from_network = true;
+    } else {
+        bool reference = from_network(drive, &profile->reference_channels);
+        bool separate = drive_mode_separate(profile, mode);
+        drive->reference_from_network = reference;
+        drive->command_from_network =
+            separate ? from_network(drive, &profile->command_channels) : reference;
+    }
+    if (drive->command_from_network != was_from_network)
+        drive_local_channel_changed(drive);
 }
 
 static bool channels_parameter(const drive_channels_t *channels, const co_od_entry_t *entry)
@@ -35,6 +112,8 @@ bool drive_channel_parameter(const drive_t *drive, const co_od_entry_t *entry)
 {
     const drive_profile_t *profile = drive->profile;
     return drive_is_param(entry, profile->channel_mode) ||
+           drive_is_param(entry, profile->access_level) ||
+           drive_is_param(entry, profile->ramp_switch) ||
            channels_parameter(&profile->command_channels, entry) ||
            channels_parameter(&profile->reference_channels, entry);
 }

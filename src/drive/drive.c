@@ -71,6 +71,8 @@ static void find_entries(drive_t *drive)
         .output_frequency = param_entry(drive, profile->output_frequency),
         .frequency_reference = param_entry(drive, profile->frequency_reference),
         .stop_type = param_entry(drive, profile->stop_type),
+        .acceleration_2 = param_entry(drive, profile->acceleration_2),
+        .deceleration_2 = param_entry(drive, profile->deceleration_2),
     };
 }
 
@@ -120,19 +122,33 @@ int16_t drive_clamp_int16(int32_t value)
     return (int16_t)(value > INT16_MAX ? INT16_MAX : (value < INT16_MIN ? INT16_MIN : value));
 }
 
+/* The first ramp pair, or the second while the ramp switch's source is active; the fast ramp
+ * divides the deceleration of the pair in use. */
 static drive_ramp_t ramp_parameters(const drive_t *drive)
 {
+    const drive_profile_t *profile = drive->profile;
     const drive_entries_t *e = &drive->entries;
-    uint8_t divider = drive->profile->fast_ramp_divider;
-    uint32_t dec = param_unsigned(drive, e->deceleration, drive->profile->deceleration);
+    bool second = drive->second_ramp;
+    uint8_t divider = profile->fast_ramp_divider;
+    uint32_t dec = second ? param_unsigned(drive, e->deceleration_2, profile->deceleration_2)
+                          : param_unsigned(drive, e->deceleration, profile->deceleration);
+    uint32_t acc = second ? param_unsigned(drive, e->acceleration_2, profile->acceleration_2)
+                          : param_unsigned(drive, e->acceleration, profile->acceleration);
     uint32_t fast_dec = divider ? dec / divider : dec;
     return (drive_ramp_t){
-        .acc = (uint16_t)param_unsigned(drive, e->acceleration, drive->profile->acceleration),
+        .acc = (uint16_t)acc,
         .dec = (uint16_t)dec,
         .fast_dec = (uint16_t)(fast_dec ? fast_dec : 1),
         .nominal_rpm =
             (uint16_t)param_unsigned(drive, e->nominal_speed, drive->profile->nominal_speed),
     };
+}
+
+/* The control word's bits among `bits` that keep the profile's meaning: those not assigned to a
+ * switching source. */
+static uint16_t control_bits(const drive_t *drive, uint16_t bits)
+{
+    return (uint16_t)(drive->cia402.control & bits & ~drive->assigned_bits);
 }
 
 /* The reference of a running drive: 6042h (0 from a channel other than the network), reversed by
@@ -144,7 +160,7 @@ static int32_t run_reference(drive_t *drive)
     const drive_entries_t *e = &drive->entries;
     int32_t reference =
         drive_reference_from_network(drive) ? (int16_t)entry_value(drive, e->target_velocity) : 0;
-    bool reverse = (reference < 0) != ((drive->cia402.control & profile->control_reverse) != 0);
+    bool reverse = (reference < 0) != (control_bits(drive, profile->control_reverse) != 0);
     uint32_t wanted = (uint32_t)(reference < 0 ? -reference : reference);
     uint32_t high =
         drive_frequency_to_rpm(drive, param_unsigned(drive, e->high_speed, profile->high_speed));
@@ -160,7 +176,7 @@ static int32_t run_reference(drive_t *drive)
 static int32_t requested_ramp_stop(const drive_t *drive)
 {
     const drive_profile_t *profile = drive->profile;
-    if (drive_local_control(drive) || (drive->cia402.control & profile->control_ramp_stop) == 0)
+    if (drive_local_control(drive) || control_bits(drive, profile->control_ramp_stop) == 0)
         return -1;
     return (int32_t)param_unsigned(drive, drive->entries.stop_type, profile->stop_type);
 }
@@ -185,7 +201,7 @@ static void steer_motor(drive_t *drive)
     const cia402_state_machine_t *sm = &drive->cia402;
     bool local = drive_local_control(drive);
     bool enabled = sm->state == CIA402_OPERATION_ENABLED;
-    bool fast_stop = !local && (sm->control & profile->control_fast_stop) != 0;
+    bool fast_stop = !local && control_bits(drive, profile->control_fast_stop) != 0;
     int32_t ramp_stop = requested_ramp_stop(drive);
     bool fast_ramp_stop = ramp_stop == DRIVE_STOP_FAST || ramp_stop == DRIVE_STOP_DC_INJECTION;
     bool fast_reaction =
@@ -280,21 +296,55 @@ static bool is_control_word(const drive_t *drive, const co_od_entry_t *entry)
     return entry == drive->entries.control_word || entry == drive->entries.control_word_copy;
 }
 
-/* 6040h and the model's copy are the same word: both are kept equal. Under local control the
- * network's word is kept and ignored. In Fault a fault whose cause is present (or that only a
- * power cycle resets) keeps the drive there: the word is recorded, so that the reset edge counts
- * from it, and nothing else happens. */
+/* Below the full access level (and in the I/O mode, below) a run command needs no status chart
+ * procedure (ATV312 DeviceNet manual, "In access level L1 or L2": "when a run command is applied
+ * (for example: CMD = 16#000F), it starts without needing to follow the IEC 61800-7 status chart
+ * procedure"): from Switch on disabled it passes through Ready to switch on as from the shutdown
+ * command. */
+#define RUN_COMMAND                                                                                \
+    (CIA402_CW_SWITCH_ON | CIA402_CW_ENABLE_VOLTAGE | CIA402_CW_QUICK_STOP |                       \
+     CIA402_CW_ENABLE_OPERATION)
+
+static void run_without_procedure(drive_t *drive, uint16_t control)
+{
+    if ((!drive_access_full(drive) || drive->io_mode) &&
+        drive->cia402.state == CIA402_SWITCH_ON_DISABLED && (control & RUN_COMMAND) == RUN_COMMAND)
+        drive->cia402.state = CIA402_READY_TO_SWITCH_ON;
+}
+
+/* In the I/O mode the word is read as terminals: bit 0 runs (enable operation, with no state
+ * chart procedure) or stops on the ramp (disable operation, to Switched on); the fault reset
+ * and bits 8-15 are kept. */
+#define IO_RUN 0x0001u
+#define IO_KEPT_BITS (CIA402_CW_FAULT_RESET | 0xFF00u)
+
+static uint16_t io_command(uint16_t control)
+{
+    uint16_t command =
+        (control & IO_RUN) ? RUN_COMMAND : (uint16_t)(RUN_COMMAND & ~CIA402_CW_ENABLE_OPERATION);
+    return (uint16_t)(command | (control & IO_KEPT_BITS));
+}
+
+/* 6040h and the model's copy are the same word: both are kept equal. Bits assigned to switching
+ * sources switch at once, before the word is applied on the channel they select. Under local
+ * control the network's word is kept and ignored. In Fault a fault whose cause is present (or that
+ * only a power cycle resets) keeps the drive there: the word is recorded, so that the reset edge
+ * counts from it, and nothing else happens. */
 static void apply_control_word(drive_t *drive, uint16_t control)
 {
     entry_set(drive, drive->entries.control_word, control);
     entry_set(drive, drive->entries.control_word_copy, control);
+    if (drive->assigned_bits != 0)
+        drive_channels_update(drive);
     if (drive_local_control(drive))
         return;
     if (drive->cia402.state == CIA402_FAULT && !drive_faults_resettable(drive)) {
         drive->cia402.control = control;
         return;
     }
-    if (cia402_command(&drive->cia402, control, drive_motor_stands(&drive->motor)))
+    uint16_t command = drive->io_mode ? io_command(control) : control;
+    run_without_procedure(drive, command);
+    if (cia402_command(&drive->cia402, command, drive_motor_stands(&drive->motor)))
         drive_faults_acknowledge(drive);
     drive_local_command_applied(drive);
 }
@@ -431,6 +481,8 @@ int drive_init(drive_t *drive, const drive_config_t *config)
         return err;
     drive->local = false;
     drive->load = 0;
+    drive->inputs = 0;
+    drive->command_from_network = true;
     find_entries(drive);
     restart_drive(drive, 0);
     drive->bus_event_count = 0;

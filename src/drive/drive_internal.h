@@ -54,8 +54,18 @@ bool drive_is_param(const co_od_entry_t *entry, drive_param_t param);
 void drive_channels_update(drive_t *drive);
 bool drive_channel_parameter(const drive_t *drive, const co_od_entry_t *entry);
 bool drive_reference_from_network(const drive_t *drive);
+/* Switching sources (drive.h, DRIVE_SOURCE_*): a control word bit of 11..15; a bit or a logic
+ * input of the model. */
+bool drive_source_is_bit(uint32_t code);
+bool drive_source_valid(const drive_t *drive, uint32_t code);
+/* The access level allows separate channels and control word bits as switching sources. */
+bool drive_access_full(const drive_t *drive);
+/* A channel_mode value with separate command channels: the separate and the I/O modes. */
+bool drive_mode_separate(const drive_profile_t *profile, uint32_t mode);
 
-/* At the drive (local.c). The motor follows the reference under forced local control. */
+/* At the drive (local.c). The command channel changed: a freewheel stop to Switch on disabled. */
+void drive_local_channel_changed(drive_t *drive);
+/* The motor follows the reference under forced local control. */
 bool drive_local_runs(const drive_t *drive);
 /* The motor stands: a local stop ends in Switch on disabled. */
 void drive_local_motor_stopped(drive_t *drive);

@@ -1,11 +1,11 @@
 /* What happens at the drive rather than on the network (include/drive/drive.h, "At the drive"):
- * the keypad's STOP and RUN keys, forced local control, the load on the motor. */
+ * the keypad's STOP and RUN keys, forced local control, the load on the motor, the logic inputs. */
 #include "drive_internal.h"
 
-/* A change of command channel (forced local on or off) is a freewheel stop to Switch on
- * disabled, as the drive's power-up under bus control: the new channel starts from there. A
+/* A change of command channel (forced local on or off, a switch) is a freewheel stop to Switch
+ * on disabled, as the drive's power-up under bus control: the new channel starts from there. A
  * fault stays latched. */
-static void change_channel(drive_t *drive)
+void drive_local_channel_changed(drive_t *drive)
 {
     if (!cia402_faulted(&drive->cia402))
         cia402_reset(&drive->cia402);
@@ -16,7 +16,7 @@ void drive_set_local(drive_t *drive, bool local, co_time_t now)
 {
     drive_motor_advance(&drive->motor, now);
     drive->local = local;
-    change_channel(drive);
+    drive_local_channel_changed(drive);
     drive_settle(drive);
 }
 
@@ -49,6 +49,24 @@ void drive_set_load(drive_t *drive, uint8_t percent, co_time_t now)
     drive->load = percent;
     drive_motor_load(&drive->motor, percent);
     drive_settle(drive);
+}
+
+bool drive_set_input(drive_t *drive, uint8_t input, bool on, co_time_t now)
+{
+    if (input == 0 || input > drive->profile->logic_inputs)
+        return false;
+    drive_motor_advance(&drive->motor, now);
+    uint8_t bit = (uint8_t)(1u << (input - 1u));
+    drive->inputs = (uint8_t)(on ? drive->inputs | bit : drive->inputs & ~bit);
+    drive_channels_update(drive);
+    drive_settle(drive);
+    return true;
+}
+
+bool drive_input(const drive_t *drive, uint8_t input)
+{
+    return input != 0 && input <= drive->profile->logic_inputs &&
+           (drive->inputs & (1u << (input - 1u))) != 0;
 }
 
 bool drive_local_runs(const drive_t *drive)

@@ -176,3 +176,72 @@ static uint32_t auto_tune_write(co_node_t *node, const co_od_entry_t *entry, con
 }
 
 const co_od_hook_t drive_auto_tune = {auto_tune_write, NULL};
+
+/* The highest fixed value of a switch: the channel pairs' select_second, none (0) for the ramp
+ * switch; above it only switching sources. */
+static uint32_t switch_fixed_max(const drive_t *drive, const co_od_entry_t *entry)
+{
+    const drive_profile_t *profile = drive->profile;
+    if (drive_is_param(entry, profile->command_channels.select))
+        return profile->command_channels.select_second;
+    if (drive_is_param(entry, profile->reference_channels.select))
+        return profile->reference_channels.select_second;
+    return 0;
+}
+
+static bool is_switch(const drive_t *drive, const co_od_entry_t *entry)
+{
+    const drive_profile_t *profile = drive->profile;
+    return drive_is_param(entry, profile->command_channels.select) ||
+           drive_is_param(entry, profile->reference_channels.select) ||
+           drive_is_param(entry, profile->ramp_switch);
+}
+
+static bool switch_on_bit(const drive_t *drive, drive_param_t param)
+{
+    return drive_source_is_bit(drive_param_value(drive, param));
+}
+
+/* Something only the full access level allows is set: a separate channel mode (separate, I/O),
+ * or a control word bit as a switching source. */
+static bool full_access_settings(const drive_t *drive)
+{
+    const drive_profile_t *profile = drive->profile;
+    return drive_mode_separate(profile, drive_param_value(drive, profile->channel_mode)) ||
+           switch_on_bit(drive, profile->command_channels.select) ||
+           switch_on_bit(drive, profile->reference_channels.select) ||
+           switch_on_bit(drive, profile->ramp_switch);
+}
+
+/* The access level decides what the command menu may hold (ATV312 DeviceNet manual: "separate
+ * mode is only allowed when the [ACCESS LEVEL] (LAC) parameter ... is set to L3"; control word
+ * bits 11-15 are reassigned "depending on LAC": "configure LAC = L3 ... and set ... (rPS) to
+ * Cd15"). A value the level does not allow, or a lower level while such a value is set, is a
+ * parameter incompatibility: the master changes the other parameter first. */
+static uint32_t command_setting_check(const drive_t *drive, const co_od_entry_t *entry,
+                                      uint32_t value)
+{
+    const drive_profile_t *profile = drive->profile;
+    bool full = drive_access_full(drive);
+    if (drive_is_param(entry, profile->access_level))
+        return value < profile->access_level_full && full_access_settings(drive)
+                   ? SDO_ABORT_PARAM_INCOMPATIBLE
+                   : CO_SDO_OK;
+    if (drive_is_param(entry, profile->channel_mode))
+        return drive_mode_separate(profile, value) && !full ? SDO_ABORT_PARAM_INCOMPATIBLE
+                                                            : CO_SDO_OK;
+    if (!is_switch(drive, entry) || value <= switch_fixed_max(drive, entry))
+        return CO_SDO_OK;
+    if (!drive_source_valid(drive, value))
+        return SDO_ABORT_VALUE_RANGE;
+    return drive_source_is_bit(value) && !full ? SDO_ABORT_PARAM_INCOMPATIBLE : CO_SDO_OK;
+}
+
+static uint32_t command_setting_write(co_node_t *node, const co_od_entry_t *entry,
+                                      const uint8_t *data, size_t len, co_od_origin_t origin)
+{
+    uint32_t abort = command_setting_check(drive_of(node), entry, written_value(data, len));
+    return abort != CO_SDO_OK ? abort : configuration_write(node, entry, data, len, origin);
+}
+
+const co_od_hook_t drive_command_setting = {command_setting_write, NULL};

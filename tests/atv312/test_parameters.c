@@ -47,8 +47,8 @@ static const struct {
     unsigned adl;
     uint16_t low, high, fallback;
 } parameters[] = {
-    {CHCF, 1, 2, 1}, {RFC, 1, 2, 1}, {FR1, 1, 6, 6}, {FR2, 1, 6, 2},
-    {CCS, 1, 2, 1},  {CD1, 1, 4, 4}, {CD2, 1, 4, 1}, {STT, 0, 3, 0},
+    {CHCF, 1, 3, 1},  {RFC, 1, 315, 1}, {FR1, 1, 6, 6}, {FR2, 1, 6, 2},
+    {CCS, 1, 315, 1}, {CD1, 1, 4, 4},   {CD2, 1, 4, 1}, {STT, 0, 3, 0},
 };
 
 /* Defaults, limits (the abort codes of a value out of range) at each address. */

@@ -19,21 +19,28 @@ extern const drive_profile_t minimal_profile;
 
 /* Its parameters (3000h) and outputs (3001h). */
 #define PARAMS 0x3000
-#define ACC 1             /* 0.1 s, default 30 */
-#define DEC 2             /* 0.1 s, default 30: the fast ramp is DEC / 2 */
-#define LSP 3             /* 0.1 Hz, default 0 */
-#define HSP 4             /* 0.1 Hz, default 500 */
-#define FRS 5             /* 0.1 Hz, default 500 */
-#define NSP 6             /* rpm, default 1500 */
-#define NCR 7             /* 0.1 A, default 40 */
-#define STOP_TYPE 8       /* DRIVE_STOP_*, default ramp */
-#define CHANNEL_MODE 9    /* 0 separate (default), 1 the command follows the reference */
-#define COMMAND_1 10      /* command channel 1: 0 network (default), 1 local */
-#define COMMAND_2 11      /* command channel 2: default 1, local */
-#define COMMAND_SELECT 12 /* 0 channel 1 (default), 1 channel 2 */
-#define REFERENCE 13      /* reference channel: 0 network (default), 1 local */
-#define FREQUENCY_REF 14  /* 0.1 Hz, a view of 6042h */
-#define AUTO_TUNE 15      /* DRIVE_AUTO_TUNE_* */
+#define ACC 1               /* 0.1 s, default 30 */
+#define DEC 2               /* 0.1 s, default 30: the fast ramp is DEC / 2 */
+#define LSP 3               /* 0.1 Hz, default 0 */
+#define HSP 4               /* 0.1 Hz, default 500 */
+#define FRS 5               /* 0.1 Hz, default 500 */
+#define NSP 6               /* rpm, default 1500 */
+#define NCR 7               /* 0.1 A, default 40 */
+#define STOP_TYPE 8         /* DRIVE_STOP_*, default ramp */
+#define CHANNEL_MODE 9      /* 0 separate (default), 1 following the reference, 2 I/O */
+#define COMMAND_1 10        /* command channel 1: 0 network (default), 1 local */
+#define COMMAND_2 11        /* command channel 2: default 1, local */
+#define COMMAND_SELECT 12   /* 0 channel 1 (default), 1 channel 2 */
+#define REFERENCE 13        /* reference channel: 0 network (default), 1 local */
+#define FREQUENCY_REF 14    /* 0.1 Hz, a view of 6042h */
+#define AUTO_TUNE 15        /* DRIVE_AUTO_TUNE_* */
+#define RAMP_SWITCH 16      /* 0 none, or a switching source: the second ramp pair */
+#define ACC_2 17            /* 0.1 s, default 10 */
+#define DEC_2 18            /* 0.1 s, default 10 */
+#define ACCESS 19           /* access level: 0 basic, 1 full (default) */
+#define REFERENCE_SELECT 20 /* 0 reference channel 1, 1 channel 2 (local) */
+/* Its logic inputs: LI1 and LI2. */
+#define INPUTS 2
 #define OUTPUTS 0x3001
 #define CURRENT 1   /* 0.1 A */
 #define TORQUE 2    /* % */

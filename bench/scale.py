@@ -4,8 +4,8 @@
 
 Starts DAEMON on vcan0 with drives 1..N and a store file. While the drives are idle it sends 1000
 frames no drive consumes and counts the wake-ups and CPU time they cost. Then it gives each drive
-a 100 ms heartbeat (1017h by SDO, one drive after the other: the periods start at different
-times, "spread") and saves it (1010h:02), and measures from /proc/PID the CPU time (utime +
+a 100 ms heartbeat (1017h by SDO, one drive after the other: without the heartbeat grid the
+periods start at different times, "spread") and saves it (1010h:02), and measures from /proc/PID the CPU time (utime +
 stime) and the wake-ups (voluntary context switches) over SECONDS. It restarts the daemon on the
 store, so that every heartbeat starts at the boot-up ("aligned"), measures again, reads the
 resident memory and times SDO round trips (expedited upload of 1000h) to drive 1 and drive N,

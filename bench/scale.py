@@ -4,8 +4,8 @@
 
 Starts DAEMON on vcan0 with drives 1..N and a store file. While the drives are idle it sends 1000
 frames no drive consumes and counts the wake-ups and CPU time they cost. Then it gives each drive
-a 100 ms heartbeat (1017h by SDO, one drive after the other: the periods start at different
-times, "spread") and saves it (1010h:02), and measures from /proc/PID the CPU time (utime +
+a 100 ms heartbeat (1017h by SDO, one drive after the other: without the heartbeat grid the
+periods start at different times, "spread") and saves it (1010h:02), and measures from /proc/PID the CPU time (utime +
 stime) and the wake-ups (voluntary context switches) over SECONDS. It restarts the daemon on the
 store, so that every heartbeat starts at the boot-up ("aligned"), measures again, reads the
 resident memory and times SDO round trips (expedited upload of 1000h) to drive 1 and drive N,
@@ -15,10 +15,12 @@ alternated, over the same bus load. In both runs it counts the daemon's system c
 import argparse
 import json
 import os
+import shutil
 import signal
 import statistics
 import subprocess
 import sys
+import tempfile
 import time
 
 import can
@@ -113,13 +115,17 @@ def main():
     parser.add_argument("--round-trips", type=int, default=300)
     args = parser.parse_args()
     last = args.nodes
-    store = f"/tmp/scale-{os.getpid()}.store"
-    log_path = f"/tmp/scale-{os.getpid()}.log"
+    # A new directory for each run: the guest's process ids repeat from one boot to the next, and
+    # a store file left by an earlier run would start every heartbeat at the boot-up.
+    workdir = tempfile.mkdtemp(prefix="scale-")
+    store = os.path.join(workdir, "drives.store")
+    log_path = os.path.join(workdir, "atv312d.log")
     result = {"label": args.label, "nodes": last, "window_s": args.seconds / WINDOWS, "tick_s": 1 / CLOCK_TICKS}
     bus = can.Bus(interface="socketcan", channel=IFACE, receive_own_messages=False)
     try:
         # 1. Idle drives: the cost of frames for nobody. Then heartbeats written by SDO one drive
-        #    after the other, each starting its period at its write: the phases are spread.
+        #    after the other, each starting its period at its write (or at the next multiple of
+        #    the period on the heartbeat grid): without the grid the phases are spread.
         daemon = start_daemon(args.daemon, last, store, log_path)
         wait_boot(bus, last)
         result["nobody_wakeups"], result["nobody_cpu_ms"] = frames_for_nobody(bus, daemon.pid)
@@ -152,6 +158,7 @@ def main():
         result["aligned_stopped"] = stop_daemon(daemon, log_path)
     finally:
         bus.shutdown()
+        shutil.rmtree(workdir, ignore_errors=True)
     print(json.dumps(result))
 
 

@@ -2,7 +2,9 @@
  * node-id << 16 | ms).
  *
  * Producer: the first heartbeat goes out one period after the reset or after 1017h is written,
- * then exactly every period; its state byte is the node's NMT state. 1017h = 0 stops it.
+ * then exactly every period; its state byte is the node's NMT state. 1017h = 0 stops it. With
+ * CO_NODE_HEARTBEAT_GRID (co_node.h) the beats fall on the multiples of the period from time 0
+ * of the node's clock instead, the first at most one period after the reset or the write.
  * Consumers: an entry with node-id 0 (or > 127) or time 0 is unused. Monitoring of a producer
  * starts with the first frame received from it; a loss is reported once (hooks->heartbeat(lost =
  * true)) and re-armed by the next frame (hooks->heartbeat(lost = false)). A boot-up frame (state
@@ -39,6 +41,7 @@ typedef struct co_hb_consumer {
 } co_hb_consumer_t;
 
 typedef struct co_heartbeat {
+    co_time_t period;    /* 1017h in microseconds, loaded at each reset and 1017h write */
     co_time_t next_beat; /* CO_TIME_NEVER while 1017h = 0 */
     co_hb_consumer_t consumer[CO_CONFIG_HB_CONSUMERS];
     co_time_t consumers_next; /* earliest consumer deadline */

@@ -40,9 +40,10 @@ typedef struct co_app_hooks {
     void (*od_written)(co_node_t *node, const co_od_entry_t *entry, co_od_origin_t origin);
 } co_app_hooks_t;
 
-/* Behaviour options of one node (co_node_config_t.options), for a device of an older profile than
- * CiA 301 v4.2 (the Altivar 58's CANopen card, DS301 V4.0 with pre-V4 habits); 0 is plain CiA 301.
- * A model chooses them; each service consults its own (docs/architecture.md, "Node options"). */
+/* Behaviour options of one node (co_node_config_t.options), most for a device of an older profile
+ * than CiA 301 v4.2 (the Altivar 58's CANopen card, DS301 V4.0 with pre-V4 habits); 0 is plain
+ * CiA 301. A model chooses those, an application the heartbeat grid; each service consults its
+ * own (docs/architecture.md, "Node options"). */
 /* Every frame the node sends has DLC 8, its unused bytes 0; NMT commands of DLC 2..8, guarding
  * RTRs of any DLC and RPDOs of DLC 8 (longer than their mapping) are accepted. */
 #define CO_NODE_PAD_DLC8 0x01u
@@ -58,6 +59,11 @@ typedef struct co_app_hooks {
 #define CO_NODE_SDO_ERROR_CLASS 0x08u
 /* NMT command 3, Disconnect remote node (DS301 before V4): the node enters Stopped. */
 #define CO_NODE_NMT_DISCONNECT 0x10u
+/* The heartbeat producer's beats fall on the multiples of its period (1017h) from time 0 of the
+ * clock passed in, the first at most one period after the boot-up or the 1017h write, so that
+ * the nodes of one runtime send their heartbeats in the same wake-ups (a runtime's choice, not a
+ * profile's: docs/error-control.md). */
+#define CO_NODE_HEARTBEAT_GRID 0x20u
 
 typedef struct co_node_config {
     uint8_t node_id; /* 1..127 */

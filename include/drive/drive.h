@@ -221,6 +221,9 @@ typedef struct drive_config {
     co_send_fn send;
     void *send_user;
     const co_storage_t *storage; /* may be NULL: 1010h/1011h then abort */
+    /* CO_NODE_* options the application adds to the profile's (co_node.h), such as
+     * CO_NODE_HEARTBEAT_GRID for a runtime of many drives; 0 for none. */
+    uint32_t node_options;
 } drive_config_t;
 
 /* 0, the co_node_init error, or DRIVE_INIT_BAD_FAULTS. Sends nothing; call drive_start next. */

@@ -23,9 +23,25 @@ static co_time_t producer_period_us(uint16_t ms)
     return (co_time_t)ms * 1000u;
 }
 
+/* The first beat after `now` of a producer whose period (re)starts or whose call came late. By
+ * default the period counts from `now`. With CO_NODE_HEARTBEAT_GRID the beats fall on the
+ * multiples of the period from time 0 of the node's clock, at most one period after `now`
+ * (docs/error-control.md): every producer of a runtime with the same or a commensurate period is
+ * then due at the same instants, and they send in one wake-up however their periods started. */
+static co_time_t beat_after(const co_node_t *node, co_time_t now, co_time_t period)
+{
+    if (node->options & CO_NODE_HEARTBEAT_GRID)
+        return (now / period + 1u) * period;
+    return now + period;
+}
+
+/* CiA 301 7.2.8.3.2.2: the protocol begins when 1017h is written, or at the boot-up, which is
+ * then the first heartbeat; the next one is due within one period. */
 static void producer_restart(co_node_t *node, uint16_t ms)
 {
-    node->heartbeat.next_beat = ms != 0 ? node->now + producer_period_us(ms) : CO_TIME_NEVER;
+    co_heartbeat_t *hb = &node->heartbeat;
+    hb->period = producer_period_us(ms);
+    hb->next_beat = ms != 0 ? beat_after(node, node->now, hb->period) : CO_TIME_NEVER;
 }
 
 void co_hb_monitor_configure(co_hb_monitor_t *monitor, uint32_t time_us)
@@ -140,11 +156,11 @@ static co_time_t producer_process(co_node_t *node, co_time_t now)
     co_frame_t beat = {.id = HB_COB_BASE + node->node_id, .len = 1};
     beat.data[0] = (uint8_t)node->nmt_state;
     co_node_send(node, &beat);
-    /* Next beat on the period grid, so the period stays exact; a late call skips beats. */
-    co_time_t period = producer_period_us((uint16_t)co_od_value(node, 0x1017, 0));
-    hb->next_beat += period;
+    /* One period after the beat that was due, so the period stays exact; a late call skips the
+     * beats it missed. */
+    hb->next_beat += hb->period;
     if (hb->next_beat <= now)
-        hb->next_beat = now + period;
+        hb->next_beat = beat_after(node, now, hb->period);
     return hb->next_beat;
 }
 

@@ -471,7 +471,7 @@ int drive_init(drive_t *drive, const drive_config_t *config)
         .user = config->send_user,
         .hooks = &drive_hooks,
         .storage = config->storage,
-        .options = config->profile->node_options,
+        .options = config->profile->node_options | config->node_options,
     };
     if (!drive_faults_valid(config->profile))
         return DRIVE_INIT_BAD_FAULTS;

@@ -648,12 +648,12 @@ static void handle_signal(co_linux_loop_t *loop)
     }
 }
 
+/* The timerfd is not read: arm_timer's timerfd_settime resets its expiration count, and it always
+ * runs after a firing, since the earliest deadline then either moved or was disarmed. Were a
+ * deadline still due at the armed time, the timer is left as it is and, still readable, brings
+ * the loop straight back for it. */
 static void handle_timer(co_linux_loop_t *loop)
 {
-    uint64_t expirations;
-    if (read(loop->timer_fd, &expirations, sizeof expirations) < 0 && errno != EAGAIN)
-        co_log(CO_LOG_ERROR, "timerfd read: %s", strerror(errno));
-    loop->timer_armed = CO_TIME_NEVER;
     if (loop->tx_wait == CO_LINUX_TX_RETRY && loop->retry_at <= loop->now)
         flush_txq(loop);
     for (co_linux_device_t *dev = loop->devices; dev; dev = dev->next) {

@@ -1,7 +1,10 @@
-/* Heartbeat producer (exact period, restart on write) and consumers (start on the first frame,
- * one loss report per loss, re-arm, duplicate entries, unused entries). */
+/* Heartbeat producer (exact period, restart on write; on the time grid with
+ * CO_NODE_HEARTBEAT_GRID) and consumers (start on the first frame, one loss report per loss,
+ * re-arm, duplicate entries, unused entries). */
 #include "check_main.h"
+#include "memory_storage.h"
 #include "test_bus.h"
+#include "test_od.h"
 
 #include <stdlib.h>
 
@@ -215,6 +218,124 @@ START_TEST(consumers_reloaded_by_reset_communication)
 }
 END_TEST
 
+/* CO_NODE_HEARTBEAT_GRID: the beats fall on the multiples of the period from time 0. */
+static test_node_t other;
+static memory_storage_t mem;
+static co_storage_t storage;
+
+static void start_on_grid(test_node_t *node, const co_storage_t *store)
+{
+    co_node_config_t config = {
+        .node_id = 4, .od = &test_od, .storage = store, .options = CO_NODE_HEARTBEAT_GRID};
+    test_node_start_config(node, &config);
+}
+
+static void setup_grid(void)
+{
+    memory_storage_init(&mem, &storage);
+    start_on_grid(&t, &storage);
+}
+
+/* Each of `count` beats of `node`, `period` apart from `first`, and nothing in between. */
+static void expect_beats(test_node_t *node, co_time_t first, co_time_t period, int count)
+{
+    test_advance(node, first - node->bus.now - 1);
+    test_expect_none(node);
+    for (int i = 0; i < count; i++) {
+        test_advance(node, first + (co_time_t)i * period - node->bus.now);
+        ck_assert_uint_eq(test_expect(node, "704#7F"), first + (co_time_t)i * period);
+        test_advance(node, period - 1);
+        test_expect_none(node);
+    }
+}
+
+/* CiA 301: the protocol begins with the write; the first beat comes at the next multiple of the
+ * period, sooner than one period after an off-grid write, never later. */
+START_TEST(grid_first_beat_after_an_off_grid_write)
+{
+    test_advance(&t, 30000);
+    ck_assert_uint_eq(test_write(&t, 0x1017, 0, 100, 2), 0);
+    ck_assert_uint_eq(t.bus.deadline, 100000);
+    expect_beats(&t, 100000, 100000, 5);
+}
+END_TEST
+
+/* A write on a grid instant starts the period there: its first beat is one period later, not
+ * at the write. Writing the running period again does not move the beats. */
+START_TEST(grid_write_on_the_grid_and_same_value_again)
+{
+    test_advance(&t, 200000);
+    ck_assert_uint_eq(test_write(&t, 0x1017, 0, 100, 2), 0);
+    test_expect_none(&t);
+    expect_beats(&t, 300000, 100000, 1);
+    test_advance(&t, 1);
+    ck_assert_uint_eq(test_expect(&t, "704#7F"), 400000);
+    test_advance(&t, 50000);
+    ck_assert_uint_eq(test_write(&t, 0x1017, 0, 100, 2), 0);
+    expect_beats(&t, 500000, 100000, 3);
+}
+END_TEST
+
+/* CiA 301: with 1017h stored, the boot-up is the first heartbeat and the next one is due within
+ * one period: at the next grid instant after a boot-up at an off-grid time. */
+START_TEST(grid_first_beat_after_boot_up)
+{
+    ck_assert_uint_eq(test_write(&t, 0x1017, 0, 100, 2), 0);
+    ck_assert_uint_eq(test_write(&t, 0x1010, 2, CO_STORE_SIGNATURE_SAVE, 4), 0);
+    test_advance(&t, 1234567);
+    test_drain(&t);
+    test_rx(&t, "000#8104");
+    ck_assert_uint_eq(test_expect(&t, "704#00"), 1234567);
+    ck_assert_int_eq(co_od_value(&t.node, 0x1017, 0), 100);
+    expect_beats(&t, 1300000, 100000, 3);
+}
+END_TEST
+
+/* A new period starts on its own grid: 40 ms written at 250 ms beats at 280, 320, 360 ms; 30 ms
+ * written at 370 ms beats at 390, 420 ms. */
+START_TEST(grid_period_change)
+{
+    ck_assert_uint_eq(test_write(&t, 0x1017, 0, 100, 2), 0);
+    expect_beats(&t, 100000, 100000, 2);
+    test_advance(&t, 250000 - t.bus.now);
+    ck_assert_uint_eq(test_write(&t, 0x1017, 0, 40, 2), 0);
+    expect_beats(&t, 280000, 40000, 3);
+    test_advance(&t, 370000 - t.bus.now);
+    ck_assert_uint_eq(test_write(&t, 0x1017, 0, 30, 2), 0);
+    expect_beats(&t, 390000, 30000, 2);
+}
+END_TEST
+
+/* A late process call sends the beat it missed and goes back to the grid. */
+START_TEST(grid_late_call_returns_to_the_grid)
+{
+    ck_assert_uint_eq(test_write(&t, 0x1017, 0, 100, 2), 0);
+    t.bus.now = 350000;
+    ck_assert_uint_eq(co_node_process(&t.node, 350000), 400000);
+    ck_assert_uint_eq(test_expect(&t, "704#7F"), 350000);
+    test_expect_none(&t);
+}
+END_TEST
+
+/* Two nodes whose 1017h were written 40 ms apart beat at the same instants: one wake-up of a
+ * runtime serves both. The other starts without the option for contrast. */
+START_TEST(grid_two_nodes_written_at_different_times_beat_together)
+{
+    start_on_grid(&other, NULL);
+    test_advance(&t, 30000);
+    ck_assert_uint_eq(test_write(&t, 0x1017, 0, 100, 2), 0);
+    test_advance(&other, 70000);
+    ck_assert_uint_eq(test_write(&other, 0x1017, 0, 100, 2), 0);
+    for (co_time_t at = 100000; at <= 1000000; at += 100000) {
+        test_advance(&t, at - t.bus.now);
+        test_advance(&other, at - other.bus.now);
+        ck_assert_uint_eq(test_expect(&t, "704#7F"), at);
+        ck_assert_uint_eq(test_expect(&other, "704#7F"), at);
+        ck_assert_uint_eq(t.bus.deadline, other.bus.deadline);
+    }
+}
+END_TEST
+
 int main(void)
 {
     Suite *s = suite_create("heartbeat");
@@ -233,5 +354,14 @@ int main(void)
     tcase_add_test(tc, rewriting_an_entry_restarts_monitoring);
     tcase_add_test(tc, consumers_reloaded_by_reset_communication);
     suite_add_tcase(s, tc);
+    TCase *grid = tcase_create("grid");
+    tcase_add_checked_fixture(grid, setup_grid, NULL);
+    tcase_add_test(grid, grid_first_beat_after_an_off_grid_write);
+    tcase_add_test(grid, grid_write_on_the_grid_and_same_value_again);
+    tcase_add_test(grid, grid_first_beat_after_boot_up);
+    tcase_add_test(grid, grid_period_change);
+    tcase_add_test(grid, grid_late_call_returns_to_the_grid);
+    tcase_add_test(grid, grid_two_nodes_written_at_different_times_beat_together);
+    suite_add_tcase(s, grid);
     return check_run_suite(s);
 }

@@ -10,7 +10,7 @@ import time
 
 import pytest
 
-from conftest import BOOT_TIMEOUT, EX_OK, EX_USAGE, IFACE, cansend, daemon_path
+from conftest import BOOT_TIMEOUT, EX_OK, EX_USAGE, IFACE, Frame, cansend, daemon_path
 
 NODE = 4
 EX_UNAVAILABLE = 69  # sysexits.h: interface or CAN support missing
@@ -50,6 +50,48 @@ def test_idle_daemon_makes_almost_no_wakeups(bus, drive):
     after = drive.proc_status("voluntary_ctxt_switches")
     assert frames == [], "the bus was not idle"
     assert after - before <= 2, f"{after - before} wake-ups in 1 s of idle"
+
+
+def test_timer_that_fired_with_nothing_left_due_is_disarmed(bus, drive):
+    # A segmented upload of 1008h left unanswered: the SDO timeout (1 s) fires the timer, and
+    # then nothing is due. The timerfd is not read, so it must be disarmed (timerfd_settime resets
+    # its expiration count), or epoll would report it again at once, forever.
+    reply = bus.request(Frame(0x604, bytes.fromhex("4008100000000000")), 0x584)
+    assert reply.data[:4] == bytes.fromhex("41081000"), reply
+    abort = bus.expect(0x584, timeout=2.0)
+    assert abort.data == bytes.fromhex("8008100000000405"), abort  # 0x05040000: SDO timeout
+    # A loop that spins on a readable descriptor never sleeps, so it makes no context switch:
+    # count its system calls instead.
+    calls = strace_counts(drive.pid, 1.0)
+    assert calls.get("epoll_wait", 0) <= 1, f"system calls in 1 s after the last deadline: {calls}"
+
+
+def strace_counts(pid, seconds):
+    """{system call: calls} of a process over `seconds` (strace -c; nothing for a sleeping one)."""
+    run = subprocess.run(["timeout", "-s", "INT", str(seconds), "strace", "-c", "-p", str(pid)],
+                         capture_output=True, text=True)
+    assert "attached" in run.stderr, f"strace -p {pid} failed: {run.stderr}"
+    calls = {}
+    for line in run.stderr.splitlines():
+        fields = line.split()
+        if len(fields) >= 5 and fields[0][0].isdigit() and fields[-1] != "total":
+            calls[fields[-1]] = int(fields[3])
+    return calls
+
+
+def test_timer_wake_up_makes_four_system_calls(bus, drive):
+    # A 20 ms heartbeat and nothing else: each wake-up is the timer's. It waits (epoll_wait),
+    # reads the clock, sends the heartbeat (sendmmsg) and arms the next deadline
+    # (timerfd_settime); the timerfd is never read (docs/runtime.md).
+    bus.sdo_write(NODE, 0x1017, 0, 20, 2)
+    bus.expect(0x704, "7F")
+    calls = strace_counts(drive.pid, 1.0)
+    wakeups = calls.get("epoll_wait", 0)
+    assert wakeups >= 25, calls
+    assert "read" not in calls, calls
+    assert abs(calls.get("timerfd_settime", 0) - wakeups) <= 2, calls
+    assert abs(calls.get("sendmmsg", 0) - wakeups) <= 2, calls
+    assert sum(calls.values()) <= 4 * wakeups + 4, calls
 
 
 def test_operational_wakeups_follow_the_event_timer(bus, drive):

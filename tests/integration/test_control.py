@@ -85,7 +85,9 @@ def test_fault_stops_the_running_motor_on_tpdo1(bus, control):
 def test_fault_reaction_ramps_down_in_tpdos_before_the_fault(bus, control):
     """COL = 2 (ramp stop): CnF injected into the running drive stops the motor on the DEC ramp
     (2.0 s here) in Fault reaction active: TPDO6 (ETAD, RFRD) shows ETAD 0x020F with the speed
-    falling frame after frame, then ETAD 0x0608 at speed 0 (Fault)."""
+    falling frame after frame, then ETAD 0x0608 at speed 0 (Fault). The speed is whole rpm of a
+    motor modelled in milli-rpm: when a 10 ms step leaves it under 1 rpm, the last reaction frame
+    shows 0 rpm while the motor still turns."""
     bus.sdo_write(NODE, 0x2022, 2, 2, 2)  # COL: ramp stop
     bus.sdo_write(NODE, 0x203C, 3, 20, 2)  # DEC 2.0 s
     bus.sdo_write(NODE, 0x1805, 1, 0x284, 4)  # TPDO6 valid: ETAD + RFRD
@@ -112,7 +114,7 @@ def test_fault_reaction_ramps_down_in_tpdos_before_the_fault(bus, control):
     bus.expect(0x84, "3081110000000000", since=mark)
     assert len(reaction) >= 5, reaction
     assert all(a > b for a, b in zip(reaction, reaction[1:])), reaction
-    assert 1500 >= reaction[0] and reaction[-1] > 0, reaction
+    assert 1500 >= reaction[0] and reaction[-1] >= 0, reaction
     assert state(control)["cia402"] == "Fault"
 
 

@@ -212,6 +212,10 @@ def report(args):
             if field == "per_s":
                 verdicts.append((name, middle, low, high))
         print("| " + " | ".join(row) + " |")
+    extra = [(d["cpu_ms_per_10k"] - f["cpu_ms_per_10k"]) * 100 for f, d in zip(r["floor"], r["daemon"])]
+    middle, low, high = median_interval(extra)
+    print(f"\nCPU per transaction, daemon's drive minus floor: {middle:.0f} ns ({low:.0f}-{high:.0f}) "
+          "in the same pairs.")
     for name, middle, low, high in verdicts:
         if low >= 0.97:
             verdict = "meets the goal of 0.97 or better, the whole 95% interval above it"

@@ -2,25 +2,32 @@
 what User-Mode Linux cannot show (a vDSO clock, the native cost of a system call). Run by
 bench/native.
 
-    native.py measure RESPONDER NODE GENERATOR [--rounds 15] [--count 20000] [--cpu 0]
+    native.py measure RESPONDER NODE GENERATOR [--rounds 10] [--passes 10] [--count 5000] [--cpu 0]
     native.py report RESULTS.json COMMAND REVISION      the section of docs/benchmarks.md
 
 The kernel here has no vcan, so the bus is an AF_UNIX SOCK_SEQPACKET socketpair carrying one
 struct can_frame per datagram: the generator (bench/sdo_rtt.c) holds one end, the answering
 program the other: the floor (bench/responder.c --fd=FD), the floor reading CLOCK_MONOTONIC at
 each wake-up (--clock), and the daemon's drive on the runtime loop (bench/native_node.c,
-co_linux_loop_open_fd). Both processes are pinned to one CPU (taskset -c CPU), as the UML figures
-are. In each round the three take turns, each started afresh on a new socketpair, answering one
-upload first (it is ready) and then COUNT timed after the generator's 100 of warm-up; the
-daemon's turn also times COUNT SYNC -> synchronous TPDO6 latencies. CPU time of the answering
-program: the run time in nanoseconds the scheduler accounted to it (/proc/PID/schedstat) around
-the generator's run. System calls: in a separate run of STRACE_COUNT (+100) transactions per
-program (strace slows what it traces), strace -c -f -p on the answering program, divided by the
+co_linux_loop_open_fd). Both processes are pinned to one CPU (taskset -c CPU).
+
+The machine is shared: its speed drifts by more than the programs differ, so they are compared in
+pairs measured close together. Each round starts the three afresh, each on a new socketpair (each
+answers one upload first: it is ready), then makes PASSES passes; a pass times COUNT uploads (after
+the generator's 100 of warm-up) of each program in turn, in the order floor, floor + clock, daemon
+and back in the next pass (ABC CBA: a drift within a pass weighs on both sides alike). The ratio
+daemon / floor of a pass is one pair; the figures are the median of ROUNDS x PASSES pairs and its
+95% confidence interval (distribution-free, from the order statistics). After its passes the
+daemon also times COUNT SYNC -> synchronous TPDO6 latencies. CPU time of the answering program:
+the run time in nanoseconds the scheduler accounted to it (/proc/PID/schedstat) around the
+generator's run. System calls: in a separate run of STRACE_COUNT (+100) transactions per program
+(strace slows what it traces), strace -c -f -p on the answering program, divided by the
 transactions. Prints one JSON object."""
 
 import argparse
 import datetime
 import json
+import math
 import os
 import platform
 import signal
@@ -99,14 +106,17 @@ def measure(args):
                 "floor_clock": [args.responder, "--clock", "--fd={fd}", str(NODE_ID)],
                 "daemon": [args.node, "{fd}", str(NODE_ID)]}
     result = {key: [] for key in PROGRAMS}
-    result.update(sync=[], loop=[], rounds=args.rounds, count=args.count, cpu=args.cpu)
+    result.update(sync=[], loop=[], rounds=args.rounds, passes=args.passes, count=args.count,
+                  cpu=args.cpu)
     for _ in range(args.rounds):
-        for key in PROGRAMS:
-            program = Answering(commands[key], args.cpu)
+        programs = {key: Answering(commands[key], args.cpu) for key in PROGRAMS}
+        for program in programs.values():
             program.generate(args.generator, 1, args.cpu)  # it answers: it is ready
-            result[key].append(timed(program, args.generator, args.count, args.cpu))
-            if key == "daemon":
-                result["sync"].append(timed(program, args.generator, args.count, args.cpu, True))
+        for turn in range(args.passes):
+            for key in PROGRAMS if turn % 2 == 0 else reversed(PROGRAMS):
+                result[key].append(timed(programs[key], args.generator, args.count, args.cpu))
+        result["sync"].append(timed(programs["daemon"], args.generator, args.count, args.cpu, True))
+        for key, program in programs.items():
             out = program.close()
             if key == "daemon":
                 result["loop"].append(json.loads(out))
@@ -116,6 +126,20 @@ def measure(args):
         result[f"{key}_calls"] = calls_per_transaction(program, args.generator, args.cpu)
         program.close()
     print(json.dumps(result))
+
+
+def median_interval(values):
+    """The median and its 95% confidence interval: the order statistics k and n-1-k that hold the
+    true median between them with 95% probability whatever the distribution (binomial, normal
+    approximation)."""
+    ordered = sorted(values)
+    k = max(0, math.floor((len(ordered) - 1.96 * math.sqrt(len(ordered))) / 2))
+    return statistics.median(ordered), ordered[k], ordered[len(ordered) - 1 - k]
+
+
+def quartiles(values):
+    q = statistics.quantiles(values, n=4)
+    return q[0], q[2]
 
 
 def machine():
@@ -137,6 +161,7 @@ def report(args):
         c = r[f"{key}_calls"]
         return sum(c.values()), ", ".join(f"{n:g} {name}" for name, n in sorted(c.items(), key=lambda kv: -kv[1]))
 
+    pairs = r["rounds"] * r["passes"]
     per_transaction = [run["rx"] and run["wakeups"] / run["rx"] for run in r["loop"]]
     print("## SDO on the native kernel: the daemon's drive against the floor (`bench/native`)\n")
     print(f"Made by `{args.command}` on {datetime.date.today()} ({args.revision}): {machine()}; "
@@ -151,29 +176,55 @@ def report(args):
           "socket by `co_linux_loop_open_fd` (Release). The generator bench/sdo_rtt.c holds the "
           "other end and times expedited uploads of 1000h one at a time, "
           f"{r['count']} per run after 100 not timed. Generator and answering program are pinned "
-          f"to CPU {r['cpu']} (`taskset`). The three take turns, {r['rounds']} rounds, each "
-          "started afresh: figures are medians of the rounds (max: the largest of all). *CPU*: "
-          "run time of the answering program as the scheduler accounts it (/proc/PID/schedstat), "
-          f"per 10,000 transactions. *System calls*: strace -c -f -p on the answering program in a "
-          f"separate run of {STRACE_COUNT} (+100) transactions (strace slows what it traces), "
-          "divided by them. Targets (issue 10): the daemon at 0.97 of the floor's round trips per "
-          "second or better, 3 system calls per transaction.\n")
+          f"to CPU {r['cpu']} (`taskset`). *Pairs*: the machine's speed drifts by more than the "
+          "programs differ, so they are compared in runs close together: each of "
+          f"{r['rounds']} rounds starts the three programs afresh and makes {r['passes']} passes, "
+          "a pass one run of each in turn (floor, floor + clock_gettime, daemon, and the other "
+          f"way round in the next pass); the ratio daemon / floor of a pass is one of {pairs} "
+          "pairs. Ratios are the median of the pairs with its 95% confidence interval "
+          "(distribution-free, from the order statistics) and the middle half of the pairs "
+          "(quartiles). The generator runs on the same CPU, so its work is in every round trip "
+          "and the daemon's extra CPU per transaction moves the ratio of round trips by less. "
+          "The table gives the medians of all runs (max: the largest of all). "
+          "*CPU*: run time of the answering program as the scheduler accounts it "
+          "(/proc/PID/schedstat), per 10,000 transactions. *System calls*: strace -c -f -p on the "
+          f"answering program in a separate run of {STRACE_COUNT} (+100) transactions (strace "
+          "slows what it traces), divided by them. Targets (issue 10): the daemon at 0.97 of the "
+          "floor's round trips per second or better, 3 system calls per transaction.\n")
     print("| program | round trips/s | p50 | p99 | max | system calls / transaction | CPU / 10,000 |")
     print("|---|---:|---:|---:|---:|---:|---:|")
     for key in PROGRAMS:
         print(f"| {NAMES[key]} | {med(key, 'per_s'):.0f} | {med(key, 'p50_us'):.1f} us | "
               f"{med(key, 'p99_us'):.1f} us | {max(run['max_us'] for run in r[key]):.1f} us | "
               f"{calls(key)[0]:g} | {med(key, 'cpu_ms_per_10k'):.1f} ms |")
+    print("\n| daemon / | pairs | round trips/s: median | 95% interval | quartiles | CPU per "
+          "transaction: median | 95% interval | quartiles | p50 latency: median |")
+    print("|---|---:|---:|---:|---:|---:|---:|---:|---:|")
+    verdicts = []
     for floor, name in (("floor", "floor"), ("floor_clock", "floor + clock_gettime")):
-        ratio = med("daemon", "per_s") / med(floor, "per_s")
-        pairs = [d["per_s"] / f["per_s"] for f, d in zip(r[floor], r["daemon"])]
-        verdict = "meets" if ratio >= 0.97 else "does not meet"
-        print(f"\nRatio daemon / {name}, round trips per second: **{ratio:.2f}** ({verdict} the goal "
-              f"of 0.97 or better; median of the round-by-round ratios {statistics.median(pairs):.2f}); "
-              f"p50 latency {med('daemon', 'p50_us') / med(floor, 'p50_us'):.2f} times that of the "
-              f"{name}; CPU per transaction "
-              f"{med('daemon', 'cpu_ms_per_10k') / med(floor, 'cpu_ms_per_10k'):.2f} times. Round by "
-              "round: " + ", ".join(f"{p:.2f}" for p in pairs) + ".")
+        row = [name, str(pairs)]
+        for field in ("per_s", "cpu_ms_per_10k", "p50_us"):
+            ratios = [d[field] / f[field] for f, d in zip(r[floor], r["daemon"])]
+            middle, low, high = median_interval(ratios)
+            row.append(f"**{middle:.3f}**" if field == "per_s" else f"{middle:.3f}")
+            if field != "p50_us":
+                row += [f"{low:.3f}-{high:.3f}", "{:.3f}-{:.3f}".format(*quartiles(ratios))]
+            if field == "per_s":
+                verdicts.append((name, middle, low, high))
+        print("| " + " | ".join(row) + " |")
+    extra = [(d["cpu_ms_per_10k"] - f["cpu_ms_per_10k"]) * 100 for f, d in zip(r["floor"], r["daemon"])]
+    middle, low, high = median_interval(extra)
+    print(f"\nCPU per transaction, daemon's drive minus floor: {middle:.0f} ns ({low:.0f}-{high:.0f}) "
+          "in the same pairs.")
+    for name, middle, low, high in verdicts:
+        if low >= 0.97:
+            verdict = "meets the goal of 0.97 or better, the whole 95% interval above it"
+        elif middle >= 0.97:
+            verdict = "meets the goal of 0.97 or better at the median, its 95% interval reaching below"
+        else:
+            verdict = "does not meet the goal of 0.97 or better"
+        print(f"\nDaemon / {name}, round trips per second: {middle:.3f} ({low:.3f}-{high:.3f}): "
+              f"{verdict}.")
     for key, name in (("floor", "Floor"), ("floor_clock", "Floor + clock_gettime"), ("daemon", "Daemon's drive")):
         print(f"\n{name}, system calls per transaction: {calls(key)[1]}.", end="")
     total = calls("daemon")[0]
@@ -183,9 +234,9 @@ def report(args):
           "vDSO on this kernel and no longer shows. Wake-ups of the loop per frame received "
           f"(its own counters): {statistics.median(per_transaction):.3f}.")
     s = r["sync"]
-    print(f"\nSYNC -> synchronous TPDO6 (made synchronous by SDO, as in the SocketCAN section): "
-          f"{statistics.median(run['per_s'] for run in s):.0f} per second, latency p50 "
-          f"{statistics.median(run['p50_us'] for run in s):.1f} us, p99 "
+    print(f"\nSYNC -> synchronous TPDO6 (made synchronous by SDO, as in the SocketCAN section; one "
+          f"run per round): {statistics.median(run['per_s'] for run in s):.0f} per second, latency "
+          f"p50 {statistics.median(run['p50_us'] for run in s):.1f} us, p99 "
           f"{statistics.median(run['p99_us'] for run in s):.1f} us, max "
           f"{max(run['max_us'] for run in s):.1f} us; CPU of the daemon's drive "
           f"{statistics.median(run['cpu_ms_per_10k'] for run in s):.1f} ms per 10,000.")
@@ -202,8 +253,9 @@ def main():
     m.add_argument("responder")
     m.add_argument("node")
     m.add_argument("generator")
-    m.add_argument("--rounds", type=int, default=15)
-    m.add_argument("--count", type=int, default=20000)
+    m.add_argument("--rounds", type=int, default=10)
+    m.add_argument("--passes", type=int, default=10)
+    m.add_argument("--count", type=int, default=5000)
     m.add_argument("--cpu", type=int, default=0)
     r = sub.add_parser("report")
     r.add_argument("results")

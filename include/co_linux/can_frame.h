@@ -7,6 +7,20 @@
 #include <linux/can.h>
 #include <string.h>
 
+/* The first `len` (at most CAN_MAX_DLEN) data bytes, the rest zero, without a call into the C
+ * library per frame, as a memcpy of a variable length is: the eight bytes are copied whole and
+ * masked with a window into a row of 0xFF bytes followed by zero bytes, which keeps byte order. */
+static inline void co_linux_copy_data(uint8_t *out, const uint8_t *in, size_t len)
+{
+    static const uint8_t window[2 * CAN_MAX_DLEN] = {0xFF, 0xFF, 0xFF, 0xFF,
+                                                     0xFF, 0xFF, 0xFF, 0xFF};
+    uint64_t data, mask;
+    memcpy(&data, in, sizeof data);
+    memcpy(&mask, &window[CAN_MAX_DLEN - len], sizeof mask);
+    data &= mask;
+    memcpy(out, &data, sizeof data);
+}
+
 static inline void co_linux_frame_to_can(const co_frame_t *in, struct can_frame *out)
 {
     memset(out, 0, sizeof *out);
@@ -17,8 +31,7 @@ static inline void co_linux_frame_to_can(const co_frame_t *in, struct can_frame 
     if (in->flags & CO_FRAME_RTR)
         out->can_id |= CAN_RTR_FLAG;
     out->len = in->len > CAN_MAX_DLEN ? CAN_MAX_DLEN : in->len;
-    if (!(in->flags & CO_FRAME_RTR))
-        memcpy(out->data, in->data, out->len);
+    co_linux_copy_data(out->data, in->data, in->flags & CO_FRAME_RTR ? 0 : out->len);
 }
 
 /* Error frames are not CANopen frames: the caller handles CAN_ERR_FLAG before converting. */
@@ -34,8 +47,7 @@ static inline void co_linux_frame_from_can(const struct can_frame *in, co_frame_
     if (in->can_id & CAN_RTR_FLAG)
         out->flags |= CO_FRAME_RTR;
     out->len = in->len > CAN_MAX_DLEN ? CAN_MAX_DLEN : in->len;
-    if (!(in->can_id & CAN_RTR_FLAG))
-        memcpy(out->data, in->data, out->len);
+    co_linux_copy_data(out->data, in->data, in->can_id & CAN_RTR_FLAG ? 0 : out->len);
 }
 
 #endif

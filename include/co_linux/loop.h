@@ -31,9 +31,10 @@
 /* Received frames read per recvmmsg call. */
 #define CO_LINUX_RX_BATCH 32
 /* While each read finds one frame, frames are read one by one (recv, not recvmmsg, which looks
- * into the empty queue a second time); every RX_PROBE_EVERY-th read is a batch again, so a burst
- * is read in batches after at most that many wake-ups. */
-#define CO_LINUX_RX_PROBE_EVERY 8
+ * into the empty queue a second time, some 400 ns natively); every RX_PROBE_EVERY-th read is a
+ * batch again, so a burst is read in batches after at most that many wake-ups: as many frames as
+ * one batch, read one per wake-up, at most. */
+#define CO_LINUX_RX_PROBE_EVERY 32
 /* Queued frames written per sendmmsg call (a lone frame goes by send). */
 #define CO_LINUX_TX_BATCH 64
 /* Routing keys: an 11-bit CAN-ID, plus 2048 for a remote request. */

@@ -187,6 +187,9 @@ END_TEST
 
 static void write_burst(void *ctx, int fd);
 
+/* Requests of the burst after the lone frame: more than the reads one by one take. */
+#define BURST_REQUESTS (CO_LINUX_RX_PROBE_EVERY + 10)
+
 /* A wake-up that found one frame makes the loop read one frame per wake-up; a burst that follows
  * is read so for CO_LINUX_RX_PROBE_EVERY - 1 wake-ups, then in a batch, which also finds the end.
  * The reads one by one ignore datagrams that are not a frame, as the batches do. */
@@ -197,21 +200,22 @@ START_TEST(burst_after_a_lone_frame_is_read_in_a_batch_again)
     ck_assert_int_eq(co_linux_loop_watch(&loop, first_frame, write_burst, NULL), 0);
     write_upload_request(0x1000);
     ck_assert_int_eq(co_linux_loop_run(&loop), 0);
-    /* The lone frame, the eventfd, 7 reads of one datagram each, one batch to the end. */
+    /* The lone frame, the eventfd, CO_LINUX_RX_PROBE_EVERY - 1 reads of one datagram each, one
+     * batch to the end. */
     ck_assert_uint_eq(loop.stats.wakeups, 2 + CO_LINUX_RX_PROBE_EVERY);
-    ck_assert_uint_eq(loop.stats.rx, 1 + 18);
+    ck_assert_uint_eq(loop.stats.rx, 1 + BURST_REQUESTS);
     co_linux_loop_close(&loop);
     close(first_frame);
     first_frame = -1;
     expect_frame(BOOTUP, 1, bootup);
-    for (int i = 0; i < 1 + 18; i++)
+    for (int i = 0; i < 1 + BURST_REQUESTS; i++)
         expect_frame(SDO_TX, 8, device_type);
     expect_end_of_bus();
 }
 END_TEST
 
-/* After the first frame: a datagram too short, one too long (a CAN FD frame), 18 requests, the
- * end. */
+/* After the first frame: a datagram too short, one too long (a CAN FD frame), BURST_REQUESTS
+ * requests, the end. */
 static void write_burst(void *ctx, int fd)
 {
     (void)ctx;
@@ -222,7 +226,7 @@ static void write_burst(void *ctx, int fd)
     uint8_t fd_frame[CANFD_MTU] = {0x04, 0x06, 0x00, 0x00, 8, 0, 0, 0, 0x40, 0x00, 0x10};
     write_datagram(short_datagram, sizeof short_datagram);
     write_datagram(fd_frame, sizeof fd_frame);
-    for (int i = 0; i < 18; i++)
+    for (int i = 0; i < BURST_REQUESTS; i++)
         write_upload_request(0x1000);
     ck_assert_int_eq(shutdown(bus[1], SHUT_WR), 0);
 }

@@ -43,7 +43,9 @@ typedef struct co_app_hooks {
 /* Behaviour options of one node (co_node_config_t.options), most for a device of an older profile
  * than CiA 301 v4.2 (the Altivar 58's CANopen card, DS301 V4.0 with pre-V4 habits); 0 is plain
  * CiA 301. A model chooses those, an application the heartbeat grid; each service consults its
- * own (docs/architecture.md, "Node options"). */
+ * own (docs/architecture.md, "Node options"). Their code is in co_node_options, which a node
+ * with any option must be given (co_node_config_t.options_code), so that a firmware without
+ * options does not link it. */
 /* Every frame the node sends has DLC 8, its unused bytes 0; NMT commands of DLC 2..8, guarding
  * RTRs of any DLC and RPDOs of DLC 8 (longer than their mapping) are accepted. */
 #define CO_NODE_PAD_DLC8 0x01u
@@ -65,6 +67,25 @@ typedef struct co_app_hooks {
  * profile's: docs/error-control.md). */
 #define CO_NODE_HEARTBEAT_GRID 0x20u
 
+/* The code of the options (src/core/node_options.c), one function for each option that needs
+ * more than a test of its flag. */
+typedef struct co_node_options_code {
+    /* CO_NODE_PAD_DLC8: sends a data frame padded to DLC 8 with zeros. */
+    void (*send_padded)(co_node_t *node, const co_frame_t *frame);
+    /* CO_NODE_SDO_EXPEDITED_ONLY: whether the server refuses an initiate of this command byte. */
+    bool (*sdo_refused_initiate)(uint8_t command);
+    /* CO_NODE_SDO_LONG_EXPEDITED: the length of an expedited write of `len` bytes to `entry`
+     * (NULL when absent) once its zero extension is dropped. */
+    size_t (*sdo_expedited_length)(const co_od_entry_t *entry, const uint8_t *value, size_t len);
+    /* CO_NODE_SDO_ERROR_CLASS: the abort code sent for a CiA 301 abort code. */
+    uint32_t (*sdo_abort_code)(uint32_t code);
+    /* CO_NODE_HEARTBEAT_GRID: the producer's first beat after `now`. */
+    co_time_t (*beat_on_grid)(co_time_t now, co_time_t period);
+} co_node_options_code_t;
+
+/* The options' code, for co_node_config_t.options_code. */
+extern const co_node_options_code_t co_node_options;
+
 typedef struct co_node_config {
     uint8_t node_id; /* 1..127 */
     const co_od_t *od;
@@ -77,6 +98,9 @@ typedef struct co_node_config {
      * CO_CONFIG_SDO_BUFFER bytes; required when CO_CONFIG_SDO_BUFFER is 0. */
     co_sdo_buffer_t *sdo_buffer;
     uint32_t options; /* CO_NODE_* behaviour options, 0 for plain CiA 301 */
+    /* &co_node_options when options is not 0 (else co_node_init refuses the node with
+     * CO_NODE_ERR_OPTIONS); NULL links none of the options' code. */
+    const co_node_options_code_t *options_code;
 } co_node_config_t;
 
 struct co_node {
@@ -88,7 +112,8 @@ struct co_node {
     void *user;
     const co_app_hooks_t *hooks;
     const co_storage_t *storage;
-    uint32_t options;             /* CO_NODE_* */
+    uint32_t options; /* CO_NODE_* */
+    const co_node_options_code_t *options_code;
     co_time_t now;                /* time of the frame or process call being handled */
     uint32_t consumer_generation; /* co_consumers.h */
     /* co_node_process: the earliest deadline of the services other than the PDOs, valid while
@@ -110,6 +135,8 @@ struct co_node {
 /* The dictionary has more RPDOs or TPDOs than co_config.h gives a node (CO_CONFIG_RPDO_MAX,
  * CO_CONFIG_TPDO_MAX). */
 #define CO_NODE_ERR_TABLES 0x102
+/* Options (co_node_config_t.options) without their code (options_code NULL). */
+#define CO_NODE_ERR_OPTIONS 0x103
 
 /* Prepares a node in Initialising: validates the dictionary and loads its defaults. Sends
  * nothing. Returns 0, a co_od_error_t, or a CO_NODE_ERR_* code. */

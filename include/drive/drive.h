@@ -65,6 +65,8 @@ typedef struct drive_channels {
 typedef struct drive_profile {
     const co_od_t *od;
     uint32_t node_options; /* the core's CO_NODE_* options of the model's profile (co_node.h) */
+    /* &co_node_options when node_options is not 0: the options' code (co_node.h). */
+    const co_node_options_code_t *node_options_code;
     /* The 1001h bits of the EMCYs of CAN bus conditions (drive_bus_event; CiA 301 table 48);
      * 0: bits 0 and 4, generic and communication. A fault's bits are in its table entry. */
     uint8_t bus_error_register;
@@ -224,6 +226,8 @@ typedef struct drive_config {
     /* CO_NODE_* options the application adds to the profile's (co_node.h), such as
      * CO_NODE_HEARTBEAT_GRID for a runtime of many drives; 0 for none. */
     uint32_t node_options;
+    /* &co_node_options when node_options is not 0; NULL takes the profile's. */
+    const co_node_options_code_t *node_options_code;
 } drive_config_t;
 
 /* 0, the co_node_init error, or DRIVE_INIT_BAD_FAULTS. Sends nothing; call drive_start next. */

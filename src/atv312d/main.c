@@ -295,6 +295,7 @@ static int init_drive(drive_slot_t *slot, uint8_t node_id, const atv312d_model_t
         /* The heartbeats of every drive on one grid: one wake-up per period for the whole bench,
          * however a master staggered its 1017h writes (docs/atv312d.md). */
         .node_options = CO_NODE_HEARTBEAT_GRID,
+        .node_options_code = &co_node_options,
     };
     int rc = drive_init(&slot->drive, &config);
     if (rc == 0)

@@ -12,6 +12,7 @@ const drive_profile_t atv58_profile = {
     .od = &atv58_od,
     .node_options = CO_NODE_PAD_DLC8 | CO_NODE_SDO_EXPEDITED_ONLY | CO_NODE_SDO_LONG_EXPEDITED |
                     CO_NODE_SDO_ERROR_CLASS | CO_NODE_NMT_DISCONNECT,
+    .node_options_code = &co_node_options,
     .bus_error_register = ATV58_ERROR_REGISTER,
     .faults = &atv58_faults,
     .acceleration = DRIVE_PARAM(0x5FE5, 3),

@@ -31,7 +31,7 @@ static co_time_t producer_period_us(uint16_t ms)
 static co_time_t beat_after(const co_node_t *node, co_time_t now, co_time_t period)
 {
     if (node->options & CO_NODE_HEARTBEAT_GRID)
-        return (now / period + 1u) * period;
+        return node->options_code->beat_on_grid(now, period);
     return now + period;
 }
 

@@ -38,6 +38,8 @@ int co_node_init(co_node_t *node, const co_node_config_t *config)
         return CO_NODE_ERR_CONFIG;
     if (config->sdo_buffer != NULL ? config->sdo_buffer->data == NULL : CO_CONFIG_SDO_BUFFER == 0)
         return CO_NODE_ERR_CONFIG;
+    if (config->options != 0 && config->options_code == NULL)
+        return CO_NODE_ERR_OPTIONS;
     uint16_t position;
     co_od_error_t err = co_od_validate(config->od, &position);
     if (err != CO_OD_VALID)
@@ -54,6 +56,7 @@ int co_node_init(co_node_t *node, const co_node_config_t *config)
     node->hooks = config->hooks;
     node->storage = config->storage;
     node->options = config->options;
+    node->options_code = config->options_code;
     node->sdo.timeout_us = CO_CONFIG_SDO_TIMEOUT_US;
     node->sdo.buffer = config->sdo_buffer;
 #if CO_CONFIG_SDO_BUFFER > 0
@@ -73,23 +76,12 @@ void co_node_start(co_node_t *node, co_time_t now)
     co_nmt_reset(node, CO_NMT_RESET_NODE);
 }
 
-/* CO_NODE_PAD_DLC8: the older profile's "8 bytes, fixed length" user data, unused bytes 0. */
-static co_frame_t padded(const co_frame_t *frame)
-{
-    co_frame_t out = *frame;
-    memset(&out.data[out.len], 0, CO_FRAME_DLC_MAX - out.len);
-    out.len = CO_FRAME_DLC_MAX;
-    return out;
-}
-
 void co_node_send(co_node_t *node, const co_frame_t *frame)
 {
-    if ((node->options & CO_NODE_PAD_DLC8) && !(frame->flags & CO_FRAME_RTR)) {
-        co_frame_t eight = padded(frame);
-        node->send(node->user, &eight);
-        return;
-    }
-    node->send(node->user, frame);
+    if ((node->options & CO_NODE_PAD_DLC8) && !(frame->flags & CO_FRAME_RTR))
+        node->options_code->send_padded(node, frame);
+    else
+        node->send(node->user, frame);
 }
 
 void co_node_receive(co_node_t *node, const co_frame_t *frame, co_time_t now)

@@ -11,13 +11,6 @@
 
 #include <string.h>
 
-/* The DS301 V3 abort layout (CO_NODE_SDO_ERROR_CLASS): error class in the top byte, error code
- * below it, no additional code. Its codes for a missing sub-index and an unsupported request
- * (ATV58 CANopen card manual, "Invalid SDO transactions"); the other two are CiA 301's
- * SDO_ABORT_NO_OBJECT and SDO_ABORT_UNSUPPORTED_ACCESS. */
-#define SDO_ERROR_CLASS_NO_SUBINDEX 0x06090000u
-#define SDO_ERROR_CLASS_NOT_SUPPORTED 0x05030000u
-
 /* Continues a CRC over more bytes, so that a streamed value's CRC is built segment by segment. */
 static uint16_t crc16_update(uint16_t crc, const uint8_t *data, size_t len)
 {
@@ -151,24 +144,10 @@ static void send_with_mux(co_node_t *node, uint8_t command, uint32_t value)
     send_response(node, p);
 }
 
-/* A CiA 301 abort code in the DS301 V3 layout: the error class and code its cause has there,
- * the nearest of the four for the others (command specifiers: not supported; every refusal of
- * an existing object's access, value or state: access not supported). */
-static uint32_t error_class_code(uint32_t code)
-{
-    if (code == SDO_ABORT_NO_OBJECT)
-        return SDO_ABORT_NO_OBJECT;
-    if (code == SDO_ABORT_NO_SUBINDEX)
-        return SDO_ERROR_CLASS_NO_SUBINDEX;
-    if ((code >> 16) == (SDO_ABORT_COMMAND >> 16) || (code >> 16) == (SDO_ABORT_TOGGLE >> 16))
-        return SDO_ERROR_CLASS_NOT_SUPPORTED;
-    return SDO_ABORT_UNSUPPORTED_ACCESS;
-}
-
 static void transfer_abort(co_node_t *node, uint32_t code)
 {
     if (node->options & CO_NODE_SDO_ERROR_CLASS)
-        code = error_class_code(code);
+        code = node->options_code->sdo_abort_code(code);
     send_with_mux(node, CS_ABORT, code);
     transfer_idle(node);
 }
@@ -226,18 +205,13 @@ static uint32_t unindicated_length(co_node_t *node, size_t *len)
     return abort;
 }
 
-/* CO_NODE_SDO_LONG_EXPEDITED: the length of the object itself when the write is longer and
- * every extra byte is 0 (the ATV58 manual writes its 16-bit guard time with 0x23, 4 bytes). */
+/* CO_NODE_SDO_LONG_EXPEDITED: a write longer than its object, the extra bytes 0, is taken. */
 static size_t without_zero_extension(co_node_t *node, const uint8_t *value, size_t len)
 {
-    const co_od_entry_t *e = co_od_find(node->od, node->sdo.index, node->sdo.subindex);
-    size_t fixed = e != NULL ? co_od_type_size(e->type) : 0;
-    if (!(node->options & CO_NODE_SDO_LONG_EXPEDITED) || fixed == 0 || fixed >= len)
+    if (!(node->options & CO_NODE_SDO_LONG_EXPEDITED))
         return len;
-    for (size_t i = fixed; i < len; i++)
-        if (value[i] != 0)
-            return len;
-    return fixed;
+    const co_od_entry_t *e = co_od_find(node->od, node->sdo.index, node->sdo.subindex);
+    return node->options_code->sdo_expedited_length(e, value, len);
 }
 
 static void download_initiate(co_node_t *node, const co_frame_t *frame)
@@ -705,16 +679,8 @@ static bool is_initiate(uint8_t command)
 }
 
 /* A new request replaces whatever transfer was under way: the client has given up on it, and an
- * abort for the old multiplexer would be taken by the client as the answer to its new request. */
-/* CO_NODE_SDO_EXPEDITED_ONLY: the initiates of segmented and block transfers. */
-static bool refused_initiate(const co_node_t *node, uint8_t command)
-{
-    uint8_t ccs = command >> 5;
-    if (!(node->options & CO_NODE_SDO_EXPEDITED_ONLY) || ccs == CCS_UPLOAD_INITIATE)
-        return false;
-    return ccs != CCS_DOWNLOAD_INITIATE || !(command & SDO_EXPEDITED);
-}
-
+ * abort for the old multiplexer would be taken by the client as the answer to its new request.
+ * CO_NODE_SDO_EXPEDITED_ONLY refuses the initiates of segmented and block transfers. */
 static void initiate(co_node_t *node, const co_frame_t *frame)
 {
     co_sdo_server_t *sdo = &node->sdo;
@@ -722,7 +688,8 @@ static void initiate(co_node_t *node, const co_frame_t *frame)
     transfer_idle(node);
     sdo->index = co_get_u16(&frame->data[1]);
     sdo->subindex = frame->data[3];
-    if (refused_initiate(node, frame->data[0]))
+    if ((node->options & CO_NODE_SDO_EXPEDITED_ONLY) &&
+        node->options_code->sdo_refused_initiate(frame->data[0]))
         transfer_abort(node, SDO_ABORT_COMMAND);
     else if (ccs == CCS_DOWNLOAD_INITIATE)
         download_initiate(node, frame);

@@ -225,8 +225,11 @@ static co_storage_t storage;
 
 static void start_on_grid(test_node_t *node, const co_storage_t *store)
 {
-    co_node_config_t config = {
-        .node_id = 4, .od = &test_od, .storage = store, .options = CO_NODE_HEARTBEAT_GRID};
+    co_node_config_t config = {.node_id = 4,
+                               .od = &test_od,
+                               .storage = store,
+                               .options = CO_NODE_HEARTBEAT_GRID,
+                               .options_code = &co_node_options};
     test_node_start_config(node, &config);
 }
 

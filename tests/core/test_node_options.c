@@ -9,7 +9,8 @@ static test_node_t t;
 
 static void start(uint32_t options)
 {
-    co_node_config_t config = {.node_id = 4, .od = &test_od, .options = options};
+    co_node_config_t config = {
+        .node_id = 4, .od = &test_od, .options = options, .options_code = &co_node_options};
     test_node_start_config(&t, &config);
 }
 
@@ -167,6 +168,35 @@ START_TEST(nmt_disconnect)
 }
 END_TEST
 
+static void ignore_frame(void *user, const co_frame_t *frame)
+{
+    (void)user;
+    (void)frame;
+}
+
+/* Every option's code is reached through options_code: a node given options without it is
+ * refused, each option alone, so that the firmware cannot link without the code it would call. */
+START_TEST(options_without_their_code_are_refused)
+{
+    static uint8_t data[2048];
+    co_node_t node;
+    ck_assert_uint_le(test_od.data_size, sizeof(data));
+    const uint32_t options[] = {CO_NODE_PAD_DLC8,           CO_NODE_SDO_EXPEDITED_ONLY,
+                                CO_NODE_SDO_LONG_EXPEDITED, CO_NODE_SDO_ERROR_CLASS,
+                                CO_NODE_NMT_DISCONNECT,     CO_NODE_HEARTBEAT_GRID};
+    for (size_t i = 0; i < sizeof(options) / sizeof(options[0]); i++) {
+        co_node_config_t config = {.node_id = 4,
+                                   .od = &test_od,
+                                   .od_data = data,
+                                   .send = ignore_frame,
+                                   .options = options[i]};
+        ck_assert_int_eq(co_node_init(&node, &config), CO_NODE_ERR_OPTIONS);
+        config.options_code = &co_node_options;
+        ck_assert_int_eq(co_node_init(&node, &config), 0);
+    }
+}
+END_TEST
+
 int main(void)
 {
     Suite *s = suite_create("node_options");
@@ -178,6 +208,7 @@ int main(void)
     tcase_add_test(tc, long_expedited_write);
     tcase_add_test(tc, error_class_layout);
     tcase_add_test(tc, nmt_disconnect);
+    tcase_add_test(tc, options_without_their_code_are_refused);
     suite_add_tcase(s, tc);
     return check_run_suite(s);
 }

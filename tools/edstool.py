@@ -810,9 +810,12 @@ def render(entries, eds_name, prefix, data_size, hooks_name, dummies):
         c.append("    %s,\n" % c_string(e.name))
     c.append("};\n\n")
     dummy = " | ".join("CO_OD_DUMMY(CO_DT_%s)" % DATA_TYPES[t][0] for t in dummies) or "0"
+    # The code of streamed entries is linked only by a dictionary that has one (docs/sdo.md).
+    streaming = "&co_od_streaming" if streams else "NULL"
     c.append('const co_od_t %s_od = {"%s", %s_od_entries, %s_OD_ENTRIES, %s_OD_DATA_SIZE,\n'
-             "    %s_od_defaults, /* [DummyUsage] */ %s, %s_od_names};\n"
-             % (prefix, prefix, prefix, macro, macro, prefix, dummy, prefix))
+             "    %s_od_defaults, /* [DummyUsage] */ %s, %s_od_names,\n"
+             "    /* streamed entries */ %s};\n"
+             % (prefix, prefix, prefix, macro, macro, prefix, dummy, prefix, streaming))
     return "".join(h), "".join(c)
 
 

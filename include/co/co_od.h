@@ -105,6 +105,29 @@ struct co_od_entry {
     const co_od_hook_t *hook;     /* NULL: plain storage */
 };
 
+/* The code of streamed DOMAIN entries (src/core/od_stream.c): the dictionary's validation and
+ * write, and the SDO server's transfers of a streamed entry, whose state is node->sdo. */
+typedef struct co_od_streaming {
+    /* Whether a CO_OD_STREAM entry is a DOMAIN of size 0 with the functions of its access. */
+    bool (*entry_valid)(const co_od_entry_t *entry);
+    /* The value written in one piece (co_od_write of a streamed entry). */
+    uint32_t (*write)(co_node_t *node, const co_od_entry_t *entry, const uint8_t *data, size_t len);
+    /* SDO server: a download of the entry starts (node->sdo.size_indicated, size), an upload
+     * opens (the size into node->sdo.size); both make it node->sdo.stream. */
+    uint32_t (*sdo_begin)(co_node_t *node, const co_od_entry_t *entry);
+    uint32_t (*sdo_open)(co_node_t *node, const co_od_entry_t *entry);
+    /* SDO server: bytes of node->sdo.stream read or written at `offset`. */
+    uint32_t (*sdo_read)(co_node_t *node, uint32_t offset, uint8_t *buf, uint32_t len);
+    uint32_t (*sdo_write)(co_node_t *node, uint32_t offset, const uint8_t *data, uint32_t len);
+    /* SDO server: the download completed; the application's end decides. */
+    uint32_t (*sdo_commit)(co_node_t *node);
+    /* SDO server: the transfer of `entry` ended otherwise, a download or an upload. */
+    void (*sdo_abandoned)(co_node_t *node, const co_od_entry_t *entry, bool download);
+} co_od_streaming_t;
+
+/* The code of streamed entries, for co_od_t.streaming. */
+extern const co_od_streaming_t co_od_streaming;
+
 /* Bit of co_od_t.dummy_types for a data type index 0002h..0007h (co_dtype_t). */
 #define CO_OD_DUMMY(type) (1u << (type))
 
@@ -122,6 +145,10 @@ typedef struct co_od {
     uint8_t dummy_types;
     /* ParameterName of each entry, in table order, for diagnostics; NULL when not generated. */
     const char *const *names;
+    /* &co_od_streaming when the dictionary has a streamed entry (CO_OD_STREAM), else NULL, so
+     * that a firmware without one does not link that code: co_od_validate refuses a streamed
+     * entry in a dictionary without it (CO_OD_ERR_STREAM). */
+    const co_od_streaming_t *streaming;
 } co_od_t;
 
 /* Result of co_od_validate(). */
@@ -133,7 +160,8 @@ typedef enum co_od_error {
     CO_OD_ERR_BOUNDS,    /* entry at position lies outside the data block */
     CO_OD_ERR_SIZE,      /* entry at position has a size that does not fit its type */
     CO_OD_ERR_STREAM     /* entry at position is CO_OD_STREAM but not a DOMAIN of size 0 with
-                            a hook, or lacks the stream functions its access needs */
+                            a hook, or lacks the stream functions its access needs, or the
+                            dictionary has no streaming code (co_od_t.streaming NULL) */
 } co_od_error_t;
 
 /* Checks the table once at start-up. On error *position is the offending entry. */
@@ -150,7 +178,7 @@ const co_od_entry_t *co_od_find(const co_od_t *od, uint16_t index, uint8_t subin
 uint32_t co_od_lookup(const co_od_t *od, uint16_t index, uint8_t subindex,
                       const co_od_entry_t **entry);
 
-/* The stream of a streamed DOMAIN (CO_OD_STREAM), NULL for any other entry. */
+/* The stream of a streamed DOMAIN (CO_OD_STREAM), NULL for any other entry (od_stream.c). */
 const co_od_stream_t *co_od_stream(const co_od_entry_t *entry);
 
 /* Byte size of a fixed-size type, 0 for strings and domains. */

@@ -45,28 +45,6 @@ static bool type_is_string(uint8_t type)
     return type == CO_DT_VISIBLE_STRING || type == CO_DT_UNICODE_STRING;
 }
 
-const co_od_stream_t *co_od_stream(const co_od_entry_t *entry)
-{
-    if (!(entry->flags & CO_OD_STREAM) || entry->hook == NULL)
-        return NULL;
-    /* The hook is the stream's first member (C11 6.7.2.1: a pointer to a structure, suitably
-     * converted, points to its first member, and back). */
-    return (const co_od_stream_t *)(const void *)entry->hook;
-}
-
-/* A streamed entry is a DOMAIN without bytes in the data block, with the functions its access
- * needs. */
-static bool stream_complete(const co_od_entry_t *e)
-{
-    const co_od_stream_t *s = co_od_stream(e);
-    if (s == NULL)
-        return false;
-    bool readable = s->size != NULL && s->read != NULL;
-    bool writable = s->begin != NULL && s->write != NULL && s->end != NULL;
-    return e->type == CO_DT_DOMAIN && e->size == 0 && (readable || !(e->flags & CO_OD_READ)) &&
-           (writable || !(e->flags & CO_OD_WRITE));
-}
-
 co_od_error_t co_od_validate(const co_od_t *od, uint16_t *position)
 {
     *position = 0;
@@ -84,7 +62,7 @@ co_od_error_t co_od_validate(const co_od_t *od, uint16_t *position)
                 return CO_OD_ERR_UNSORTED;
         }
         bool stream = (e->flags & CO_OD_STREAM) != 0;
-        if (stream && !stream_complete(e))
+        if (stream && (od->streaming == NULL || !od->streaming->entry_valid(e)))
             return CO_OD_ERR_STREAM;
         size_t fixed = co_od_type_size(e->type);
         if ((e->size == 0 && !stream) || (fixed != 0 && e->size != fixed))
@@ -294,26 +272,6 @@ static uint32_t service_write(co_node_t *node, const co_od_entry_t *e, const uin
     return CO_SDO_OK;
 }
 
-/* A streamed DOMAIN written in one piece (an expedited download): the stream's begin, write and
- * end, as the SDO server calls them segment by segment. */
-static uint32_t stream_write_whole(co_node_t *node, const co_od_entry_t *e, const uint8_t *data,
-                                   size_t len)
-{
-    if (len > UINT32_MAX)
-        return SDO_ABORT_LENGTH_HIGH;
-    const co_od_stream_t *s = co_od_stream(e);
-    uint32_t abort = s->begin(node, e, true, (uint32_t)len);
-    if (abort != CO_SDO_OK)
-        return abort;
-    if (len > 0)
-        abort = s->write(node, e, 0, data, len);
-    if (abort != CO_SDO_OK) {
-        s->end(node, e, 0, false);
-        return abort;
-    }
-    return s->end(node, e, (uint32_t)len, true);
-}
-
 uint32_t co_od_write(co_node_t *node, uint16_t index, uint8_t subindex, const uint8_t *data,
                      size_t len, co_od_origin_t origin)
 {
@@ -324,7 +282,7 @@ uint32_t co_od_write(co_node_t *node, uint16_t index, uint8_t subindex, const ui
     if (!(e->flags & CO_OD_WRITE) && origin != CO_OD_ORIGIN_APP)
         return SDO_ABORT_READ_ONLY;
     if (e->flags & CO_OD_STREAM)
-        return stream_write_whole(node, e, data, len);
+        return node->od->streaming->write(node, e, data, len);
     abort = check_length(e, len);
     if (abort == CO_SDO_OK)
         abort = check_limits(e, data);

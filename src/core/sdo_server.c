@@ -34,18 +34,19 @@ static bool in_download(const co_sdo_server_t *sdo)
 }
 
 /* Every end of a transfer comes here, so that a shared buffer is never left held and the
- * application hears of every streamed download that did not complete. */
+ * application hears of every streamed download that did not complete. A stream is set only in a
+ * dictionary with streaming code (co_od_t.streaming, od_stream.c). */
 static void transfer_idle(co_node_t *node)
 {
     co_sdo_server_t *sdo = &node->sdo;
     const co_od_entry_t *stream = sdo->stream;
-    bool stream_download = stream != NULL && in_download(sdo);
+    bool download = in_download(sdo);
     sdo->stream = NULL;
     sdo->state = CO_SDO_IDLE;
     if (sdo->buffer->owner == node)
         sdo->buffer->owner = NULL;
-    if (stream_download)
-        co_od_stream(stream)->end(node, stream, sdo->offset, false);
+    if (stream != NULL)
+        node->od->streaming->sdo_abandoned(node, stream, download);
 }
 
 /* Reads `len` bytes of the value being uploaded, at `offset`: from the application's stream, or
@@ -56,28 +57,21 @@ static uint32_t value_read(co_node_t *node, uint32_t offset, uint8_t *buf, uint3
     if (len == 0)
         return CO_SDO_OK;
     if (sdo->stream != NULL)
-        return co_od_stream(sdo->stream)->read(node, sdo->stream, offset, buf, len);
+        return node->od->streaming->sdo_read(node, offset, buf, len);
     memcpy(buf, &sdo->buffer->data[offset], len);
     return CO_SDO_OK;
 }
 
-/* Takes `len` bytes of a download at `offset`: into the application's stream, which gets no byte
- * past the announced size (0x06070010, as when the amount differs at the end) nor past 4 GiB, or
- * into the buffer while it has room. */
+/* Takes `len` bytes of a download at `offset`: into the application's stream, or into the buffer
+ * while it has room. */
 static uint32_t value_write(co_node_t *node, uint32_t offset, const uint8_t *data, uint32_t len)
 {
     co_sdo_server_t *sdo = &node->sdo;
-    uint64_t end = (uint64_t)offset + len;
     if (len == 0)
         return CO_SDO_OK;
-    if (sdo->stream != NULL) {
-        if (sdo->size_indicated && end > sdo->size)
-            return SDO_ABORT_TYPE_LENGTH;
-        if (end > UINT32_MAX)
-            return SDO_ABORT_NO_MEMORY;
-        return co_od_stream(sdo->stream)->write(node, sdo->stream, offset, data, len);
-    }
-    if (end > sdo->buffer->size)
+    if (sdo->stream != NULL)
+        return node->od->streaming->sdo_write(node, offset, data, len);
+    if ((uint64_t)offset + len > sdo->buffer->size)
         return SDO_ABORT_NO_MEMORY;
     memcpy(&sdo->buffer->data[offset], data, len);
     return CO_SDO_OK;
@@ -188,10 +182,7 @@ static uint32_t download_prepare(co_node_t *node, const co_frame_t *frame, bool 
         return abort;
     if (!(e->flags & CO_OD_STREAM))
         return buffer_take(node, sdo->size);
-    abort = co_od_stream(e)->begin(node, e, size_indicated, sdo->size);
-    if (abort == CO_SDO_OK)
-        sdo->stream = e;
-    return abort;
+    return node->od->streaming->sdo_begin(node, e);
 }
 
 /* Expedited download without size indicated (e = 1, s = 0): the entry's size for fixed types that
@@ -251,12 +242,10 @@ static uint32_t download_complete(co_node_t *node)
     co_sdo_server_t *sdo = &node->sdo;
     if (sdo->size_indicated && sdo->offset != sdo->size)
         return SDO_ABORT_TYPE_LENGTH;
-    const co_od_entry_t *stream = sdo->stream;
-    if (stream == NULL)
-        return co_od_write(node, sdo->index, sdo->subindex, sdo->buffer->data, sdo->offset,
-                           CO_OD_ORIGIN_SDO);
-    sdo->stream = NULL;
-    return co_od_stream(stream)->end(node, stream, sdo->offset, true);
+    if (sdo->stream != NULL)
+        return node->od->streaming->sdo_commit(node);
+    return co_od_write(node, sdo->index, sdo->subindex, sdo->buffer->data, sdo->offset,
+                       CO_OD_ORIGIN_SDO);
 }
 
 static void download_segment(co_node_t *node, const co_frame_t *frame)
@@ -318,11 +307,9 @@ static void upload_expedited(co_node_t *node, const uint8_t *value, size_t len)
  * DOMAIN's size from the application, or a snapshot in the buffer. */
 static uint32_t upload_open(co_node_t *node, const co_od_entry_t *entry)
 {
-    co_sdo_server_t *sdo = &node->sdo;
     if (!(entry->flags & CO_OD_STREAM))
         return upload_snapshot(node, entry);
-    sdo->stream = entry;
-    return co_od_stream(entry)->size(node, entry, &sdo->size);
+    return node->od->streaming->sdo_open(node, entry);
 }
 
 static bool fits_expedited(uint32_t size)

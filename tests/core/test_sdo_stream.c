@@ -120,6 +120,7 @@ static const co_od_t od = {
     .count = sizeof(entries) / sizeof(entries[0]),
     .data_size = sizeof(od_data_t),
     .defaults = (const uint8_t *)&defaults,
+    .streaming = &co_od_streaming,
 };
 
 /* The bus: every frame sent is logged, then delivered in order to the server and the client;
@@ -637,6 +638,29 @@ START_TEST(validation)
 }
 END_TEST
 
+/* A dictionary with a streamed entry but without the streaming code (co_od_t.streaming NULL: a
+ * table written by hand) is refused at that entry, and so is a node on it: the SDO server never
+ * meets a stream it has no code for. */
+START_TEST(streamed_entry_without_streaming_code)
+{
+    co_od_t table = od;
+    table.streaming = NULL;
+    uint16_t position;
+    ck_assert_int_eq(co_od_validate(&table, &position), CO_OD_ERR_STREAM);
+    ck_assert_uint_eq(position, 2);
+    co_node_t node;
+    co_node_config_t config = {.node_id = 4,
+                               .od = &table,
+                               .od_data = (uint8_t *)&server_data,
+                               .send = bus_send,
+                               .sdo_buffer = &buffer};
+    ck_assert_int_eq(co_node_init(&node, &config), CO_OD_ERR_STREAM);
+    table.entries = entries;
+    table.count = 2;
+    ck_assert_int_eq(co_od_validate(&table, &position), CO_OD_VALID);
+}
+END_TEST
+
 int main(void)
 {
     Suite *s = suite_create("sdo_stream");
@@ -662,6 +686,7 @@ int main(void)
     tcase_add_test(tc, size_too_big);
     tcase_add_test(tc, more_than_announced);
     tcase_add_test(tc, validation);
+    tcase_add_test(tc, streamed_entry_without_streaming_code);
     suite_add_tcase(s, tc);
     return check_run_suite(s);
 }

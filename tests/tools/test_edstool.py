@@ -330,7 +330,7 @@ class GeneratedTable(ToolCase):
         for edit, types in cases:
             with self.subTest(types=types):
                 self.assertEqual(self.generate(self.eds(edit))[0], 0)
-                self.assertIn("    t_od_defaults, /* [DummyUsage] */ %s, t_od_names};\n" % types,
+                self.assertIn("    t_od_defaults, /* [DummyUsage] */ %s, t_od_names,\n" % types,
                               self.read("t_od.c"))
 
     def test_atv312_declares_no_dummy(self):
@@ -402,6 +402,9 @@ class Hooks(ToolCase):
         self.assertRegex(source, r"\{0x2000, 0x03, CO_DT_DOMAIN, CO_OD_READ \| CO_OD_WRITE \| "
                                  r"CO_OD_STREAM, 0, \d+, NULL, &image_stream\.hook\},")
         self.assertNotIn("co_od_hook_t", source)
+        self.assertIn("    /* streamed entries */ &co_od_streaming};\n", source)
+        self.assertEqual(self.generate(self.domain_eds())[0], 0)
+        self.assertIn("    /* streamed entries */ NULL};\n", self.read("t_od.c"))
         code, out, err = self.run_tool("dump", self.domain_eds(), "--hooks", hooks)
         self.assertEqual(code, 0, err)
         self.assertIn("(stream image_stream)", out)

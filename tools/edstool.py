@@ -757,7 +757,11 @@ def render(entries, eds_name, prefix, data_size, hooks_name, dummies):
          "extern const uint8_t %s_od_defaults[%s_OD_DATA_SIZE];\n\n" % (prefix, macro),
          "#endif\n"]
 
-    c = [banner, '#include "%s_od.h"\n\n#include <stddef.h>\n#include <stdint.h>\n\n' % prefix]
+    producer = any(e.index == 0x1006 for e in entries)
+    c = [banner, '#include "%s_od.h"\n\n' % prefix]
+    if producer:
+        c.append('#include "co/co_sync.h"\n\n')
+    c.append("#include <stddef.h>\n#include <stdint.h>\n\n")
     hooks = sorted({e.hook for e in entries if e.hook})
     if hooks:
         c.append("/* Hooks named in %s, defined by the application. */\n" % hooks_name)
@@ -812,10 +816,12 @@ def render(entries, eds_name, prefix, data_size, hooks_name, dummies):
     dummy = " | ".join("CO_OD_DUMMY(CO_DT_%s)" % DATA_TYPES[t][0] for t in dummies) or "0"
     # The code of streamed entries is linked only by a dictionary that has one (docs/sdo.md).
     streaming = "&co_od_streaming" if streams else "NULL"
+    # So is the SYNC producer, by a dictionary with its period 1006h (docs/porting.md).
+    producer = "co_sync_produce" if producer else "NULL"
     c.append('const co_od_t %s_od = {"%s", %s_od_entries, %s_OD_ENTRIES, %s_OD_DATA_SIZE,\n'
              "    %s_od_defaults, /* [DummyUsage] */ %s, %s_od_names,\n"
-             "    /* streamed entries */ %s};\n"
-             % (prefix, prefix, prefix, macro, macro, prefix, dummy, prefix, streaming))
+             "    /* streamed entries */ %s, /* SYNC producer */ %s};\n"
+             % (prefix, prefix, prefix, macro, macro, prefix, dummy, prefix, streaming, producer))
     return "".join(h), "".join(c)
 
 

@@ -149,6 +149,10 @@ typedef struct co_od {
      * that a firmware without one does not link that code: co_od_validate refuses a streamed
      * entry in a dictionary without it (CO_OD_ERR_STREAM). */
     const co_od_streaming_t *streaming;
+    /* co_sync_produce when the dictionary has 1006h (the SYNC producer's period), else NULL, so
+     * that a firmware that cannot produce the SYNC does not link the producer: 1005h bit 30 is
+     * then refused (0x06090030). */
+    co_time_t (*sync_producer)(co_node_t *node, co_time_t now);
 } co_od_t;
 
 /* Result of co_od_validate(). */

@@ -62,8 +62,14 @@ uint32_t co_sync_window_us(const co_node_t *node);
  */
 void co_sync_reset(co_node_t *node);
 bool co_sync_receive(co_node_t *node, const co_frame_t *frame);
-/* Produces the SYNC when due; returns the next one (CO_TIME_NEVER when not producing). */
+/* Produces the SYNC when due, through the dictionary's co_od_t.sync_producer; returns the next
+ * one (CO_TIME_NEVER when not producing, or when the dictionary has no producer). */
 co_time_t co_sync_process(co_node_t *node, co_time_t now);
+/* The node's producer (sync_producer.c), for co_od_t.sync_producer: produces the SYNC when
+ * 1005h bit 30 and 1006h say so, in Pre-operational and Operational. */
+co_time_t co_sync_produce(co_node_t *node, co_time_t now);
+/* A SYNC received or produced: to the PDO engine and the application (used by the producer). */
+void co_sync_event(co_node_t *node, uint8_t counter);
 uint32_t co_sync_od_write(co_node_t *node, const co_od_entry_t *entry, const uint8_t *data,
                           size_t len);
 

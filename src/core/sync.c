@@ -1,5 +1,6 @@
-/* SYNC consumer and producer (CiA 301 section 7.2.5; parameters 7.5.2.5-7.5.2.7 and 7.5.2.41).
- * Every SYNC, received or produced, is handed to the PDO engine and to the application. */
+/* SYNC consumer and the producer's parameters (CiA 301 section 7.2.5; parameters 7.5.2.5-7.5.2.7
+ * and 7.5.2.41); the producer itself is in sync_producer.c. Every SYNC, received or produced, is
+ * handed to the PDO engine and to the application. */
 #include "co/co_node.h"
 
 /* The SYNC parameters are read from the dictionary at init, at each reset (after the defaults and
@@ -39,17 +40,7 @@ uint32_t co_sync_window_us(const co_node_t *node)
     return node->sync.window_us;
 }
 
-static bool sync_production_allowed(const co_node_t *node)
-{
-    return node->nmt_state == CO_NMT_PRE_OPERATIONAL || node->nmt_state == CO_NMT_OPERATIONAL;
-}
-
-static bool sync_producer_configured(const co_node_t *node)
-{
-    return (sync_cob_id(node) & CO_SYNC_COBID_PRODUCER) && sync_period_us(node) != 0;
-}
-
-static void sync_event(co_node_t *node, uint8_t counter)
+void co_sync_event(co_node_t *node, uint8_t counter)
 {
     co_pdo_sync(node, counter);
     if (node->hooks != NULL && node->hooks->sync != NULL)
@@ -77,77 +68,17 @@ void co_sync_reset(co_node_t *node)
     sync_length_error_end(node);
 }
 
-bool co_sync_producer_init(co_sync_producer_t *producer, uint32_t can_id, uint32_t period_us,
-                           uint8_t overflow)
-{
-    if (can_id > CO_SYNC_COBID_CAN_ID || co_can_id_restricted(can_id) || period_us == 0)
-        return false;
-    if (overflow != 0 && (overflow < CO_SYNC_OVERFLOW_MIN || overflow > CO_SYNC_OVERFLOW_MAX))
-        return false;
-    *producer = (co_sync_producer_t){
-        .can_id = can_id, .period_us = period_us, .overflow = overflow, .next = CO_TIME_NEVER};
-    return true;
-}
-
-void co_sync_producer_start(co_sync_producer_t *producer, co_time_t start)
-{
-    producer->counter = 0;
-    producer->next = start + producer->period_us;
-}
-
 void co_sync_producer_stop(co_sync_producer_t *producer)
 {
     producer->next = CO_TIME_NEVER;
 }
 
-/* The counter starts at 1 and wraps from the overflow value back to 1 (CiA 301 7.2.5.2). */
-static uint8_t sync_next_counter(uint8_t counter, uint8_t overflow)
-{
-    return counter < overflow ? (uint8_t)(counter + 1) : 1;
-}
-
-bool co_sync_producer_take(co_sync_producer_t *producer, co_time_t now, co_frame_t *frame)
-{
-    if (now < producer->next)
-        return false;
-    *frame = (co_frame_t){.id = producer->can_id};
-    if (producer->overflow != 0) {
-        producer->counter = sync_next_counter(producer->counter, producer->overflow);
-        frame->len = 1;
-        frame->data[0] = producer->counter;
-    }
-    producer->next += producer->period_us;
-    if (producer->next <= now)
-        producer->next = now + producer->period_us;
-    return true;
-}
-
+/* The producer's code is linked only by a dictionary that has it (co_od_t.sync_producer,
+ * sync_producer.c). */
 co_time_t co_sync_process(co_node_t *node, co_time_t now)
 {
-    co_sync_producer_t *producer = &node->sync.producer;
-    if (!sync_production_allowed(node)) {
-        /* Leaving Pre-operational/Operational restarts the counter at 1. */
-        producer->counter = 0;
-        co_sync_producer_stop(producer);
-        return CO_TIME_NEVER;
-    }
-    if (!sync_producer_configured(node)) {
-        co_sync_producer_stop(producer);
-        return CO_TIME_NEVER;
-    }
-    /* 1005h, 1006h and 1019h may have changed since the last call; their writes stop the
-     * producer, so that a new configuration starts a fresh period here, counter kept. */
-    producer->can_id = sync_cob_id(node) & CO_SYNC_COBID_CAN_ID;
-    producer->period_us = sync_period_us(node);
-    producer->overflow = co_sync_overflow(node);
-    if (producer->next == CO_TIME_NEVER)
-        producer->next = now + producer->period_us;
-    co_frame_t frame;
-    if (co_sync_producer_take(producer, now, &frame)) {
-        co_node_send(node, &frame);
-        sync_event(node, frame.data[0]);
-    }
-    return producer->next;
+    co_time_t (*produce)(co_node_t *, co_time_t) = node->od->sync_producer;
+    return produce != NULL ? produce(node, now) : CO_TIME_NEVER;
 }
 
 bool co_sync_receive(co_node_t *node, const co_frame_t *frame)
@@ -167,14 +98,15 @@ bool co_sync_receive(co_node_t *node, const co_frame_t *frame)
         return true;
     }
     sync_length_error_end(node);
-    sync_event(node, overflow != 0 ? frame->data[0] : 0);
+    co_sync_event(node, overflow != 0 ? frame->data[0] : 0);
     return true;
 }
 
 /* CiA 301 7.5.2.5: 11-bit CAN-IDs only, no restricted CAN-ID (7.3.5, co_can_id_restricted; the
  * default 080h is not one), and the CAN-ID may not change while this node produces the SYNC and
- * keeps producing it. Bit 30 (producer) needs a communication cycle period: a dictionary without
- * 1006h (7.5.2.6) could never produce, so it refuses the bit. Bit 31 is "do not care". */
+ * keeps producing it. Bit 30 (producer) needs the producer's code, which the generator gives a
+ * dictionary that has the communication cycle period 1006h (7.5.2.6): one without could never
+ * produce, so it refuses the bit. Bit 31 is "do not care". */
 static uint32_t sync_write_cob_id(co_node_t *node, uint32_t value)
 {
     uint32_t old = sync_cob_id(node);
@@ -182,7 +114,7 @@ static uint32_t sync_write_cob_id(co_node_t *node, uint32_t value)
         return SDO_ABORT_VALUE_RANGE;
     if (co_can_id_restricted(value & CO_SYNC_COBID_CAN_ID))
         return SDO_ABORT_VALUE_RANGE;
-    if ((value & CO_SYNC_COBID_PRODUCER) && co_od_find(node->od, 0x1006, 0) == NULL)
+    if ((value & CO_SYNC_COBID_PRODUCER) && node->od->sync_producer == NULL)
         return SDO_ABORT_VALUE_RANGE;
     if ((old & CO_SYNC_COBID_PRODUCER) && (value & CO_SYNC_COBID_PRODUCER) &&
         (old & CO_SYNC_COBID_CAN_ID) != (value & CO_SYNC_COBID_CAN_ID))

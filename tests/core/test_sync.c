@@ -181,6 +181,23 @@ START_TEST(restricted_can_ids_at_every_edge)
 }
 END_TEST
 
+/* A dictionary with 1006h but without the producer's code (co_od_t.sync_producer NULL: a table
+ * written by hand) refuses bit 30 as one without 1006h does, and never produces. */
+START_TEST(producer_refused_without_its_code)
+{
+    static co_od_t od;
+    od = test_od;
+    od.sync_producer = NULL;
+    test_node_start_od(&t, &od, 4, &hooks, NULL);
+    ck_assert_uint_eq(write_param(0x1006, 0, 1000, 4), 0);
+    test_rx(&t, "604#2305100080000040"); /* 1005h = 40000080h */
+    test_expect(&t, "584#8005100030000906");
+    ck_assert_int_eq(co_od_value(&t.node, 0x1005, 0), 0x80);
+    test_advance(&t, 100 * MS);
+    test_expect_none(&t);
+}
+END_TEST
+
 /* CiA 301 7.5.2.5/7.5.2.6: without 1006h nothing could be produced, so bit 30 is refused; the
  * consumer works as before and no SYNC is ever sent. */
 START_TEST(producer_refused_without_1006)
@@ -323,6 +340,7 @@ int main(void)
     tcase_add_test(tc, cob_id_rules);
     tcase_add_test(tc, restricted_can_ids_at_every_edge);
     tcase_add_test(tc, producer_refused_without_1006);
+    tcase_add_test(tc, producer_refused_without_its_code);
     tcase_add_test(tc, consumer_counter_and_hook);
     tcase_add_test(tc, consumer_wrong_length_emcy_8240);
     tcase_add_test(tc, sync_length_error_ends_with_reset_communication);

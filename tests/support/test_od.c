@@ -1,5 +1,7 @@
 #include "test_od.h"
 
+#include "co/co_sync.h"
+
 #include <stddef.h>
 
 /* Every value is a byte array in CANopen (little-endian) order, so the struct has no padding. */
@@ -277,6 +279,7 @@ const co_od_t test_od = {
     .dummy_types = CO_OD_DUMMY(CO_DT_INTEGER8) | CO_OD_DUMMY(CO_DT_INTEGER16) |
                    CO_OD_DUMMY(CO_DT_INTEGER32) | CO_OD_DUMMY(CO_DT_UNSIGNED8) |
                    CO_OD_DUMMY(CO_DT_UNSIGNED16) | CO_OD_DUMMY(CO_DT_UNSIGNED32),
+    .sync_producer = co_sync_produce,
 };
 
 const co_od_t *test_od_without(uint16_t index)
@@ -291,5 +294,7 @@ const co_od_t *test_od_without(uint16_t index)
     od = test_od;
     od.entries = kept;
     od.count = count;
+    if (index == 0x1006) /* as the generator leaves it out */
+        od.sync_producer = NULL;
     return &od;
 }

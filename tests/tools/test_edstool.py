@@ -200,6 +200,23 @@ class GeneratedTable(ToolCase):
         self.assertNotIn("/* 2000:01 */", source)
         self.assertIn("/* 1018:00 */", source)
 
+    def test_sync_producer_with_1006(self):
+        def with_producer(sections):
+            sections["OptionalObjects"].update({"SupportedObjects": "8", "7": "0x1005",
+                                                "8": "0x1006"})
+            sections["1005"] = var("COB-ID SYNC", "0x0007", "rw", "0x80")
+            sections["1006"] = var("Communication cycle period", "0x0007", "rw", "0")
+        self.assertEqual(self.generate(self.eds(with_producer))[0], 0)
+        source = self.read("t_od.c")
+        self.assertIn('#include "co/co_sync.h"\n', source)
+        self.assertIn("/* SYNC producer */ co_sync_produce};\n", source)
+        code, _, err = self.run_tool("generate", self.eds(with_producer), "--prefix", "t",
+                                     "--out-dir", os.path.join(self.dir, "gen"), "--omit", "1006")
+        self.assertEqual((code, err), (0, ""))
+        source = self.read("t_od.c")
+        self.assertNotIn("co/co_sync.h", source)
+        self.assertIn("/* SYNC producer */ NULL};\n", source)
+
     def test_omit_refuses_an_object_the_eds_lacks(self):
         code, _, err = self.run_tool("generate", self.eds(), "--prefix", "t", "--out-dir",
                                      os.path.join(self.dir, "gen"), "--omit", "0x1017")
@@ -402,9 +419,11 @@ class Hooks(ToolCase):
         self.assertRegex(source, r"\{0x2000, 0x03, CO_DT_DOMAIN, CO_OD_READ \| CO_OD_WRITE \| "
                                  r"CO_OD_STREAM, 0, \d+, NULL, &image_stream\.hook\},")
         self.assertNotIn("co_od_hook_t", source)
-        self.assertIn("    /* streamed entries */ &co_od_streaming};\n", source)
+        self.assertIn("    /* streamed entries */ &co_od_streaming, /* SYNC producer */ NULL};\n",
+                      source)
         self.assertEqual(self.generate(self.domain_eds())[0], 0)
-        self.assertIn("    /* streamed entries */ NULL};\n", self.read("t_od.c"))
+        self.assertIn("    /* streamed entries */ NULL, /* SYNC producer */ NULL};\n",
+                      self.read("t_od.c"))
         code, out, err = self.run_tool("dump", self.domain_eds(), "--hooks", hooks)
         self.assertEqual(code, 0, err)
         self.assertIn("(stream image_stream)", out)

@@ -69,8 +69,6 @@ typedef struct co_sdo_server {
 void co_sdo_reset(co_node_t *node);
 bool co_sdo_receive(co_node_t *node, const co_frame_t *frame);
 co_time_t co_sdo_process(co_node_t *node, co_time_t now);
-uint32_t co_sdo_od_write(co_node_t *node, const co_od_entry_t *entry, const uint8_t *data,
-                         size_t len);
 
 /* Sets the server's protocol timeout (default CO_CONFIG_SDO_TIMEOUT_US). */
 void co_sdo_set_timeout(co_node_t *node, co_time_t timeout_us);

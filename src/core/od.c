@@ -232,22 +232,34 @@ static uint32_t check_limits(const co_od_entry_t *e, const uint8_t *data)
     uint64_t raw = raw_value(data, size);
     if (raw == 0 && (e->flags & CO_OD_ZERO_OK))
         return CO_SDO_OK;
-    if (type_is_signed(e->type)) {
-        int64_t v = sign_extend(raw, size);
-        if (v > (int64_t)e->limits->high)
-            return SDO_ABORT_VALUE_HIGH;
-        if (v < (int64_t)e->limits->low)
-            return SDO_ABORT_VALUE_LOW;
-    } else {
-        if (raw > e->limits->high)
-            return SDO_ABORT_VALUE_HIGH;
-        if (raw < e->limits->low)
-            return SDO_ABORT_VALUE_LOW;
-    }
+    /* Signed values compare as unsigned once the sign bit of all three is flipped: the order of
+     * int64_t maps onto that of uint64_t. */
+    uint64_t bias = type_is_signed(e->type) ? UINT64_C(1) << 63 : 0;
+    uint64_t v = bias != 0 ? (uint64_t)sign_extend(raw, size) ^ bias : raw;
+    if (v > (e->limits->high ^ bias))
+        return SDO_ABORT_VALUE_HIGH;
+    if (v < (e->limits->low ^ bias))
+        return SDO_ABORT_VALUE_LOW;
     return CO_SDO_OK;
 }
 
-/* The service that owns a communication parameter enforces its CiA 301 rules. */
+/* The service that owns each communication parameter and enforces its CiA 301 rules, by index
+ * range. 1200h, the default SDO server channel, has none: CiA 301 makes its COB-IDs read-only,
+ * which the dictionary's access type enforces; a dictionary that makes them writable gets the
+ * new values at the next reset (co_sdo_reset). */
+typedef struct service_range {
+    uint16_t first;
+    uint16_t last;
+    uint32_t (*write)(co_node_t *node, const co_od_entry_t *entry, const uint8_t *data, size_t len);
+} service_range_t;
+
+static const service_range_t service_ranges[] = {
+    {0x1003, 0x1003, co_emcy_od_write},     {0x1005, 0x1007, co_sync_od_write},
+    {0x100C, 0x100E, co_guarding_od_write}, {0x1010, 0x1011, co_store_od_write},
+    {0x1014, 0x1015, co_emcy_od_write},     {0x1016, 0x1017, co_heartbeat_od_write},
+    {0x1019, 0x1019, co_sync_od_write},     {0x1400, 0x1BFF, co_pdo_od_write},
+};
+
 static uint32_t service_write(co_node_t *node, const co_od_entry_t *e, const uint8_t *data,
                               size_t len)
 {
@@ -255,20 +267,9 @@ static uint32_t service_write(co_node_t *node, const co_od_entry_t *e, const uin
     /* A communication parameter may move a service's deadline. */
     if (i >= 0x1000 && i <= 0x1FFF)
         co_node_changed(node);
-    if (i == 0x1003 || i == 0x1014 || i == 0x1015)
-        return co_emcy_od_write(node, e, data, len);
-    if (i == 0x1005 || i == 0x1006 || i == 0x1007 || i == 0x1019)
-        return co_sync_od_write(node, e, data, len);
-    if (i == 0x100C || i == 0x100D || i == 0x100E)
-        return co_guarding_od_write(node, e, data, len);
-    if (i == 0x1016 || i == 0x1017)
-        return co_heartbeat_od_write(node, e, data, len);
-    if (i == 0x1010 || i == 0x1011)
-        return co_store_od_write(node, e, data, len);
-    if (i >= 0x1200 && i <= 0x12FF)
-        return co_sdo_od_write(node, e, data, len);
-    if (i >= 0x1400 && i <= 0x1BFF)
-        return co_pdo_od_write(node, e, data, len);
+    for (size_t r = 0; r < sizeof(service_ranges) / sizeof(service_ranges[0]); r++)
+        if (i >= service_ranges[r].first && i <= service_ranges[r].last)
+            return service_ranges[r].write(node, e, data, len);
     return CO_SDO_OK;
 }
 

@@ -614,40 +614,30 @@ static void tpdo_written(co_node_t *node, uint16_t n, bool event_timer)
         t->event_due = t->event_us != 0 && t->sent ? node->now + t->event_us : CO_TIME_NEVER;
 }
 
+/* The four parameter ranges (CiA 301 7.5.2): RPDO communication and mapping, then TPDO
+ * communication and mapping, each PDO_INDEX_SPAN indexes; a PDO's mapping follows its
+ * communication parameter by one span. */
+#define PDO_INDEX_SPAN 0x200u
+
 uint32_t co_pdo_od_write(co_node_t *node, const co_od_entry_t *entry, const uint8_t *data,
                          size_t len)
 {
-    uint16_t index = entry->index;
-    uint32_t abort;
-    if (index >= RPDO_COMM_BASE && index < RPDO_COMM_BASE + CO_CONFIG_RPDO_MAX) {
-        abort = pdo_write_comm(node, entry, data, PDO_RX);
-        if (abort == CO_SDO_OK) {
-            co_od_store(node, entry, data, len);
-            rpdo_written(node, (uint16_t)(index - RPDO_COMM_BASE));
-        }
-    } else if (index >= RPDO_MAP_BASE && index < RPDO_MAP_BASE + CO_CONFIG_RPDO_MAX) {
-        uint16_t n = (uint16_t)(index - RPDO_MAP_BASE);
-        abort = pdo_write_map(node, entry, data, (uint16_t)(RPDO_COMM_BASE + n), PDO_RX);
-        if (abort == CO_SDO_OK) {
-            co_od_store(node, entry, data, len);
-            rpdo_written(node, n);
-        }
-    } else if (index >= TPDO_COMM_BASE && index < TPDO_COMM_BASE + CO_CONFIG_TPDO_MAX) {
-        abort = pdo_write_comm(node, entry, data, PDO_TX);
-        if (abort == CO_SDO_OK) {
-            co_od_store(node, entry, data, len);
-            tpdo_written(node, (uint16_t)(index - TPDO_COMM_BASE),
-                         entry->subindex == PDO_SUB_EVENT_TIMER);
-        }
-    } else if (index >= TPDO_MAP_BASE && index < TPDO_MAP_BASE + CO_CONFIG_TPDO_MAX) {
-        uint16_t n = (uint16_t)(index - TPDO_MAP_BASE);
-        abort = pdo_write_map(node, entry, data, (uint16_t)(TPDO_COMM_BASE + n), PDO_TX);
-        if (abort == CO_SDO_OK) {
-            co_od_store(node, entry, data, len);
-            tpdo_written(node, n, false);
-        }
-    } else {
+    pdo_dir_t dir = entry->index >= TPDO_COMM_BASE ? PDO_TX : PDO_RX;
+    uint16_t comm_base = dir == PDO_TX ? TPDO_COMM_BASE : RPDO_COMM_BASE;
+    uint16_t offset = (uint16_t)(entry->index - comm_base);
+    bool mapping = offset >= PDO_INDEX_SPAN;
+    uint16_t n = (uint16_t)(offset % PDO_INDEX_SPAN);
+    if (n >= (dir == PDO_TX ? CO_CONFIG_TPDO_MAX : CO_CONFIG_RPDO_MAX))
         return CO_SDO_OK;
-    }
-    return abort == CO_SDO_OK ? CO_OD_HANDLED : abort;
+    uint16_t comm = (uint16_t)(comm_base + n);
+    uint32_t abort = mapping ? pdo_write_map(node, entry, data, comm, dir)
+                             : pdo_write_comm(node, entry, data, dir);
+    if (abort != CO_SDO_OK)
+        return abort;
+    co_od_store(node, entry, data, len);
+    if (dir == PDO_RX)
+        rpdo_written(node, n);
+    else
+        tpdo_written(node, n, !mapping && entry->subindex == PDO_SUB_EVENT_TIMER);
+    return CO_OD_HANDLED;
 }

@@ -108,19 +108,6 @@ void co_sdo_set_timeout(co_node_t *node, co_time_t timeout_us)
     node->sdo.timeout_us = timeout_us;
 }
 
-/* 1200h is the default server channel, fixed by the node-id: CiA 301 (object 1200h, SDO server
- * parameter) makes its COB-IDs read-only, which the dictionary's access type already enforces in
- * co_od_write. A dictionary that makes them writable gets the new values at the next reset. */
-uint32_t co_sdo_od_write(co_node_t *node, const co_od_entry_t *entry, const uint8_t *data,
-                         size_t len)
-{
-    (void)node;
-    (void)entry;
-    (void)data;
-    (void)len;
-    return CO_SDO_OK;
-}
-
 static void send_response(co_node_t *node, const uint8_t payload[8])
 {
     co_frame_t f = {.id = node->sdo.tx_id, .len = 8, .flags = 0};
@@ -146,13 +133,12 @@ static void transfer_abort(co_node_t *node, uint32_t code)
     transfer_idle(node);
 }
 
-/* Ends a transfer with the result of a dictionary access: the response, or the abort code. */
-static void finish(co_node_t *node, uint32_t abort, uint8_t command, bool with_mux)
+/* Ends a transfer with the result of a dictionary access: the response, or the abort code for
+ * co_sdo_receive to send. */
+static uint32_t finish(co_node_t *node, uint32_t abort, uint8_t command, bool with_mux)
 {
-    if (abort != CO_SDO_OK) {
-        transfer_abort(node, abort);
-        return;
-    }
+    if (abort != CO_SDO_OK)
+        return abort;
     if (with_mux) {
         send_with_mux(node, command, 0);
     } else {
@@ -160,6 +146,7 @@ static void finish(co_node_t *node, uint32_t abort, uint8_t command, bool with_m
         send_response(node, p);
     }
     transfer_idle(node);
+    return CO_SDO_OK;
 }
 
 /* Initiate of a segmented or block download: an announced size must be in the frame and fit the
@@ -205,7 +192,7 @@ static size_t without_zero_extension(co_node_t *node, const uint8_t *value, size
     return node->options_code->sdo_expedited_length(e, value, len);
 }
 
-static void download_initiate(co_node_t *node, const co_frame_t *frame)
+static uint32_t download_initiate(co_node_t *node, const co_frame_t *frame)
 {
     co_sdo_server_t *sdo = &node->sdo;
     uint8_t command = frame->data[0];
@@ -221,17 +208,15 @@ static void download_initiate(co_node_t *node, const co_frame_t *frame)
         if (abort == CO_SDO_OK)
             abort = co_od_write(node, sdo->index, sdo->subindex, &frame->data[4], len,
                                 CO_OD_ORIGIN_SDO);
-        finish(node, abort, SCS_DOWNLOAD_INITIATE, true);
-        return;
+        return finish(node, abort, SCS_DOWNLOAD_INITIATE, true);
     }
     uint32_t abort = download_prepare(node, frame, (command & SDO_SIZE_INDICATED) != 0);
-    if (abort != CO_SDO_OK) {
-        transfer_abort(node, abort);
-        return;
-    }
+    if (abort != CO_SDO_OK)
+        return abort;
     sdo->toggle = 0;
     sdo->state = CO_SDO_DOWNLOAD_SEGMENT;
     send_with_mux(node, SCS_DOWNLOAD_INITIATE, 0);
+    return CO_SDO_OK;
 }
 
 /* A completed segmented or block download: its length against the announced size, then the write
@@ -248,34 +233,27 @@ static uint32_t download_complete(co_node_t *node)
                        CO_OD_ORIGIN_SDO);
 }
 
-static void download_segment(co_node_t *node, const co_frame_t *frame)
+static uint32_t download_segment(co_node_t *node, const co_frame_t *frame)
 {
     co_sdo_server_t *sdo = &node->sdo;
     uint8_t command = frame->data[0];
     uint8_t toggle = command & SDO_TOGGLE;
     size_t count = SEGMENT_BYTES - ((command >> 1) & 7u);
-    if (toggle != sdo->toggle) {
-        transfer_abort(node, SDO_ABORT_TOGGLE);
-        return;
-    }
-    if (frame->len < 1 + count) {
-        transfer_abort(node, SDO_ABORT_COMMAND);
-        return;
-    }
+    if (toggle != sdo->toggle)
+        return SDO_ABORT_TOGGLE;
+    if (frame->len < 1 + count)
+        return SDO_ABORT_COMMAND;
     uint32_t abort = value_write(node, sdo->offset, &frame->data[1], (uint32_t)count);
-    if (abort != CO_SDO_OK) {
-        transfer_abort(node, abort);
-        return;
-    }
+    if (abort != CO_SDO_OK)
+        return abort;
     sdo->offset += (uint32_t)count;
     uint8_t response = (uint8_t)(SCS_DOWNLOAD_SEGMENT | toggle);
-    if (command & SDO_LAST) {
-        finish(node, download_complete(node), response, false);
-        return;
-    }
+    if (command & SDO_LAST)
+        return finish(node, download_complete(node), response, false);
     sdo->toggle ^= SDO_TOGGLE;
     uint8_t p[8] = {response};
     send_response(node, p);
+    return CO_SDO_OK;
 }
 
 /* Reads the whole value into the buffer; sdo->size is its current length (strings: up to NUL). */
@@ -319,28 +297,27 @@ static bool fits_expedited(uint32_t size)
 
 /* Expedited when 1..4 bytes, else segmented with the size indicated (an empty string too): a
  * value opened by upload_open. */
-static void upload_response(co_node_t *node)
+static uint32_t upload_response(co_node_t *node)
 {
     co_sdo_server_t *sdo = &node->sdo;
     if (fits_expedited(sdo->size)) {
         uint8_t value[EXPEDITED_BYTES];
         uint32_t abort = value_read(node, 0, value, sdo->size);
-        if (abort != CO_SDO_OK)
-            transfer_abort(node, abort);
-        else
+        if (abort == CO_SDO_OK)
             upload_expedited(node, value, sdo->size);
-        return;
+        return abort;
     }
     sdo->offset = 0;
     sdo->toggle = 0;
     sdo->state = CO_SDO_UPLOAD_SEGMENT;
     send_with_mux(node, SCS_UPLOAD_INITIATE | SDO_SIZE_INDICATED, sdo->size);
+    return CO_SDO_OK;
 }
 
 /* A value of 1..4 bytes goes out expedited straight from the dictionary: the buffer, which
  * another node may hold, is needed only for a segmented upload. A streamed DOMAIN's size is known
  * only once it is opened. */
-static void upload_initiate(co_node_t *node)
+static uint32_t upload_initiate(co_node_t *node)
 {
     co_sdo_server_t *sdo = &node->sdo;
     const co_od_entry_t *e;
@@ -349,7 +326,7 @@ static void upload_initiate(co_node_t *node)
     size_t len = abort == CO_SDO_OK && !stream ? co_od_length(node, e) : 0;
     if (abort == CO_SDO_OK && !stream && len >= 1 && len <= EXPEDITED_BYTES) {
         upload_expedited(node, co_od_bytes(node, e), len);
-        return;
+        return CO_SDO_OK;
     }
     if (stream)
         abort = upload_open(node, e);
@@ -358,21 +335,17 @@ static void upload_initiate(co_node_t *node)
         abort = SDO_ABORT_UNSUPPORTED_ACCESS;
     if (abort == CO_SDO_OK && !stream)
         abort = upload_open(node, e);
-    if (abort != CO_SDO_OK) {
-        transfer_abort(node, abort);
-        return;
-    }
-    upload_response(node);
+    if (abort != CO_SDO_OK)
+        return abort;
+    return upload_response(node);
 }
 
-static void upload_segment(co_node_t *node, const co_frame_t *frame)
+static uint32_t upload_segment(co_node_t *node, const co_frame_t *frame)
 {
     co_sdo_server_t *sdo = &node->sdo;
     uint8_t toggle = frame->data[0] & SDO_TOGGLE;
-    if (toggle != sdo->toggle) {
-        transfer_abort(node, SDO_ABORT_TOGGLE);
-        return;
-    }
+    if (toggle != sdo->toggle)
+        return SDO_ABORT_TOGGLE;
     uint32_t count = sdo->size - sdo->offset;
     if (count > SEGMENT_BYTES)
         count = SEGMENT_BYTES;
@@ -380,15 +353,14 @@ static void upload_segment(co_node_t *node, const co_frame_t *frame)
     uint8_t p[8] = {
         (uint8_t)(SCS_UPLOAD_SEGMENT | toggle | ((SEGMENT_BYTES - count) << 1) | (last ? 1 : 0))};
     uint32_t abort = value_read(node, sdo->offset, &p[1], count);
-    if (abort != CO_SDO_OK) {
-        transfer_abort(node, abort);
-        return;
-    }
+    if (abort != CO_SDO_OK)
+        return abort;
     send_response(node, p);
     sdo->offset += count;
     sdo->toggle ^= SDO_TOGGLE;
     if (last)
         transfer_idle(node);
+    return CO_SDO_OK;
 }
 
 /* The server can always compute the CRC, but the CRC is used only when both sides support it, and
@@ -413,15 +385,13 @@ static uint8_t download_blksize(const co_sdo_server_t *sdo)
     return (uint8_t)(segments == 0 ? 1 : segments);
 }
 
-static void block_download_initiate(co_node_t *node, const co_frame_t *frame)
+static uint32_t block_download_initiate(co_node_t *node, const co_frame_t *frame)
 {
     co_sdo_server_t *sdo = &node->sdo;
     uint8_t command = frame->data[0];
     uint32_t abort = download_prepare(node, frame, (command & BLOCK_SIZE_INDICATED) != 0);
-    if (abort != CO_SDO_OK) {
-        transfer_abort(node, abort);
-        return;
-    }
+    if (abort != CO_SDO_OK)
+        return abort;
     sdo->crc = (command & BLOCK_CRC) != 0;
     sdo->crc_sum = 0;
     sdo->seqno = 0;
@@ -430,6 +400,7 @@ static void block_download_initiate(co_node_t *node, const co_frame_t *frame)
     sdo->blksize = download_blksize(sdo);
     sdo->state = CO_SDO_BLOCK_DOWNLOAD_SUB;
     send_with_mux(node, (uint8_t)(SCS_BLOCK_DOWNLOAD | crc_bit(sdo)), sdo->blksize);
+    return CO_SDO_OK;
 }
 
 /* Stores an in-sequence segment, so that the value is written in order, each byte once, and its
@@ -471,61 +442,50 @@ static void block_download_acknowledge(co_node_t *node)
     send_response(node, p);
 }
 
-static void block_download_segment(co_node_t *node, const co_frame_t *frame)
+static uint32_t block_download_segment(co_node_t *node, const co_frame_t *frame)
 {
     co_sdo_server_t *sdo = &node->sdo;
     uint8_t seqno = frame->data[0] & BLOCK_SEQNO;
     bool last = (frame->data[0] & BLOCK_LAST) != 0;
-    if (seqno == 0 || seqno > sdo->blksize) {
-        transfer_abort(node, SDO_ABORT_SEQUENCE);
-        return;
-    }
+    if (seqno == 0 || seqno > sdo->blksize)
+        return SDO_ABORT_SEQUENCE;
     if (sdo->block_broken || seqno != sdo->seqno + 1) {
         sdo->block_broken = true;
     } else {
         uint32_t abort = block_download_store(node, frame, last);
-        if (abort != CO_SDO_OK) {
-            transfer_abort(node, abort);
-            return;
-        }
+        if (abort != CO_SDO_OK)
+            return abort;
         sdo->seqno = seqno;
         sdo->last_in_block = last;
     }
     if (last || seqno == sdo->blksize)
         block_download_acknowledge(node);
+    return CO_SDO_OK;
 }
 
-static void block_download_end(co_node_t *node, const co_frame_t *frame)
+static uint32_t block_download_end(co_node_t *node, const co_frame_t *frame)
 {
     co_sdo_server_t *sdo = &node->sdo;
     uint8_t unused = (frame->data[0] >> 2) & 7u;
-    if ((sdo->crc && frame->len < BLOCK_END_CRC_LEN) || SEGMENT_BYTES - unused > sdo->last_len) {
-        transfer_abort(node, SDO_ABORT_COMMAND);
-        return;
-    }
+    if ((sdo->crc && frame->len < BLOCK_END_CRC_LEN) || SEGMENT_BYTES - unused > sdo->last_len)
+        return SDO_ABORT_COMMAND;
     uint32_t final_len = SEGMENT_BYTES - unused;
     uint32_t final_pos = sdo->offset - SEGMENT_BYTES;
     uint32_t abort = value_write(node, final_pos, sdo->last_segment, final_len);
-    if (abort != CO_SDO_OK) {
-        transfer_abort(node, abort);
-        return;
-    }
+    if (abort != CO_SDO_OK)
+        return abort;
     sdo->offset = final_pos + final_len;
     uint16_t crc = crc16_update(sdo->crc_sum, sdo->last_segment, final_len);
-    if (sdo->crc && crc != co_get_u16(&frame->data[1])) {
-        transfer_abort(node, SDO_ABORT_CRC);
-        return;
-    }
-    finish(node, download_complete(node), SCS_BLOCK_DOWNLOAD | BLOCK_DOWNLOAD_END, false);
+    if (sdo->crc && crc != co_get_u16(&frame->data[1]))
+        return SDO_ABORT_CRC;
+    return finish(node, download_complete(node), SCS_BLOCK_DOWNLOAD | BLOCK_DOWNLOAD_END, false);
 }
 
-static void block_upload_initiate(co_node_t *node, const co_frame_t *frame)
+static uint32_t block_upload_initiate(co_node_t *node, const co_frame_t *frame)
 {
     co_sdo_server_t *sdo = &node->sdo;
-    if (frame->len < BLOCK_UPLOAD_INITIATE_LEN) {
-        transfer_abort(node, SDO_ABORT_COMMAND);
-        return;
-    }
+    if (frame->len < BLOCK_UPLOAD_INITIATE_LEN)
+        return SDO_ABORT_COMMAND;
     uint8_t blksize = frame->data[4];
     uint8_t pst = frame->len > BLOCK_UPLOAD_INITIATE_LEN ? frame->data[5] : 0;
     const co_od_entry_t *e;
@@ -534,16 +494,12 @@ static void block_upload_initiate(co_node_t *node, const co_frame_t *frame)
         abort = upload_open(node, e);
     if (abort == CO_SDO_OK && (blksize == 0 || blksize > BLKSIZE_MAX))
         abort = SDO_ABORT_BLOCK_SIZE;
-    if (abort != CO_SDO_OK) {
-        transfer_abort(node, abort);
-        return;
-    }
+    if (abort != CO_SDO_OK)
+        return abort;
     /* CiA 301, initiate SDO block upload protocol: at or below the client's protocol switch
      * threshold the server may answer with the plain upload protocol. */
-    if (pst != 0 && sdo->size <= pst) {
-        upload_response(node);
-        return;
-    }
+    if (pst != 0 && sdo->size <= pst)
+        return upload_response(node);
     sdo->crc = (frame->data[0] & BLOCK_CRC) != 0;
     sdo->crc_sum = 0;
     sdo->blksize = blksize;
@@ -551,11 +507,12 @@ static void block_upload_initiate(co_node_t *node, const co_frame_t *frame)
     sdo->state = CO_SDO_BLOCK_UPLOAD_START;
     send_with_mux(node, (uint8_t)(SCS_BLOCK_UPLOAD | crc_bit(sdo) | BLOCK_SIZE_INDICATED),
                   sdo->size);
+    return CO_SDO_OK;
 }
 
 /* Sends up to blksize segments from sdo->offset; the final segment of the value carries c = 1
  * (an empty value is one segment with no data). crc_sent follows what was sent. */
-static void block_upload_send_subblock(co_node_t *node)
+static uint32_t block_upload_send_subblock(co_node_t *node)
 {
     co_sdo_server_t *sdo = &node->sdo;
     sdo->last_in_block = false;
@@ -566,16 +523,15 @@ static void block_upload_send_subblock(co_node_t *node)
         sdo->last_in_block = pos + count == sdo->size;
         uint8_t p[8] = {(uint8_t)(seqno | (sdo->last_in_block ? BLOCK_LAST : 0))};
         uint32_t abort = value_read(node, pos, &p[1], count);
-        if (abort != CO_SDO_OK) {
-            transfer_abort(node, abort);
-            return;
-        }
+        if (abort != CO_SDO_OK)
+            return abort;
         if (sdo->crc)
             sdo->crc_sent = crc16_update(sdo->crc_sent, &p[1], count);
         send_response(node, p);
         sdo->seqno = seqno;
     }
     sdo->state = CO_SDO_BLOCK_UPLOAD_ACK;
+    return CO_SDO_OK;
 }
 
 /* The CRC up to the client's acknowledge: of everything sent when it got the whole sub-block,
@@ -612,49 +568,41 @@ static void block_upload_end(co_node_t *node)
     sdo->state = CO_SDO_BLOCK_UPLOAD_END;
 }
 
-static void block_upload_acknowledged(co_node_t *node, const co_frame_t *frame)
+static uint32_t block_upload_acknowledged(co_node_t *node, const co_frame_t *frame)
 {
     co_sdo_server_t *sdo = &node->sdo;
-    if (frame->len < BLOCK_ACK_LEN) {
-        transfer_abort(node, SDO_ABORT_COMMAND);
-        return;
-    }
+    if (frame->len < BLOCK_ACK_LEN)
+        return SDO_ABORT_COMMAND;
     uint8_t ackseq = frame->data[1];
     uint8_t blksize = frame->data[2];
-    if (ackseq > sdo->seqno) {
-        transfer_abort(node, SDO_ABORT_SEQUENCE);
-        return;
-    }
-    if (blksize == 0 || blksize > BLKSIZE_MAX) {
-        transfer_abort(node, SDO_ABORT_BLOCK_SIZE);
-        return;
-    }
+    if (ackseq > sdo->seqno)
+        return SDO_ABORT_SEQUENCE;
+    if (blksize == 0 || blksize > BLKSIZE_MAX)
+        return SDO_ABORT_BLOCK_SIZE;
     uint32_t abort = block_upload_crc_acknowledged(node, ackseq);
-    if (abort != CO_SDO_OK) {
-        transfer_abort(node, abort);
-        return;
-    }
+    if (abort != CO_SDO_OK)
+        return abort;
     if (ackseq == sdo->seqno && sdo->last_in_block) {
         block_upload_end(node);
-        return;
+        return CO_SDO_OK;
     }
     sdo->offset += (uint32_t)ackseq * SEGMENT_BYTES;
     sdo->blksize = blksize;
-    block_upload_send_subblock(node);
+    return block_upload_send_subblock(node);
 }
 
-static void block_upload_command(co_node_t *node, const co_frame_t *frame)
+static uint32_t block_upload_command(co_node_t *node, const co_frame_t *frame)
 {
     co_sdo_server_t *sdo = &node->sdo;
     uint8_t cs = frame->data[0] & 3u;
     if (sdo->state == CO_SDO_BLOCK_UPLOAD_START && cs == BLOCK_UPLOAD_START)
-        block_upload_send_subblock(node);
-    else if (sdo->state == CO_SDO_BLOCK_UPLOAD_ACK && cs == BLOCK_UPLOAD_ACK)
-        block_upload_acknowledged(node, frame);
-    else if (sdo->state == CO_SDO_BLOCK_UPLOAD_END && cs == BLOCK_UPLOAD_END)
-        transfer_idle(node);
-    else
-        transfer_abort(node, SDO_ABORT_COMMAND);
+        return block_upload_send_subblock(node);
+    if (sdo->state == CO_SDO_BLOCK_UPLOAD_ACK && cs == BLOCK_UPLOAD_ACK)
+        return block_upload_acknowledged(node, frame);
+    if (sdo->state != CO_SDO_BLOCK_UPLOAD_END || cs != BLOCK_UPLOAD_END)
+        return SDO_ABORT_COMMAND;
+    transfer_idle(node);
+    return CO_SDO_OK;
 }
 
 static bool is_initiate(uint8_t command)
@@ -668,7 +616,7 @@ static bool is_initiate(uint8_t command)
 /* A new request replaces whatever transfer was under way: the client has given up on it, and an
  * abort for the old multiplexer would be taken by the client as the answer to its new request.
  * CO_NODE_SDO_EXPEDITED_ONLY refuses the initiates of segmented and block transfers. */
-static void initiate(co_node_t *node, const co_frame_t *frame)
+static uint32_t initiate(co_node_t *node, const co_frame_t *frame)
 {
     co_sdo_server_t *sdo = &node->sdo;
     uint8_t ccs = frame->data[0] >> 5;
@@ -677,20 +625,19 @@ static void initiate(co_node_t *node, const co_frame_t *frame)
     sdo->subindex = frame->data[3];
     if ((node->options & CO_NODE_SDO_EXPEDITED_ONLY) &&
         node->options_code->sdo_refused_initiate(frame->data[0]))
-        transfer_abort(node, SDO_ABORT_COMMAND);
-    else if (ccs == CCS_DOWNLOAD_INITIATE)
-        download_initiate(node, frame);
-    else if (ccs == CCS_UPLOAD_INITIATE)
-        upload_initiate(node);
-    else if (ccs == CCS_BLOCK_DOWNLOAD)
-        block_download_initiate(node, frame);
-    else
-        block_upload_initiate(node, frame);
+        return SDO_ABORT_COMMAND;
+    if (ccs == CCS_DOWNLOAD_INITIATE)
+        return download_initiate(node, frame);
+    if (ccs == CCS_UPLOAD_INITIATE)
+        return upload_initiate(node);
+    if (ccs == CCS_BLOCK_DOWNLOAD)
+        return block_download_initiate(node, frame);
+    return block_upload_initiate(node, frame);
 }
 
 /* A command that does not belong to the current state. Outside a transfer there is no
  * multiplexer to report, except for an unknown specifier shaped like an initiate. */
-static void unexpected_command(co_node_t *node, const co_frame_t *frame)
+static uint32_t unexpected_command(co_node_t *node, const co_frame_t *frame)
 {
     co_sdo_server_t *sdo = &node->sdo;
     if (sdo->state == CO_SDO_IDLE) {
@@ -698,7 +645,7 @@ static void unexpected_command(co_node_t *node, const co_frame_t *frame)
         sdo->index = has_mux ? co_get_u16(&frame->data[1]) : 0;
         sdo->subindex = has_mux ? frame->data[3] : 0;
     }
-    transfer_abort(node, SDO_ABORT_COMMAND);
+    return SDO_ABORT_COMMAND;
 }
 
 static bool in_block_upload(const co_sdo_server_t *sdo)
@@ -707,20 +654,23 @@ static bool in_block_upload(const co_sdo_server_t *sdo)
            sdo->state == CO_SDO_BLOCK_UPLOAD_END;
 }
 
-static void dispatch(co_node_t *node, const co_frame_t *frame)
+static uint32_t dispatch(co_node_t *node, const co_frame_t *frame)
 {
     co_sdo_server_t *sdo = &node->sdo;
     uint8_t ccs = frame->data[0] >> 5;
+    if (sdo->state == CO_SDO_BLOCK_DOWNLOAD_SUB)
+        return block_download_segment(node, frame);
+    if (is_initiate(frame->data[0]))
+        return initiate(node, frame);
     if (sdo->state == CO_SDO_DOWNLOAD_SEGMENT && ccs == CCS_DOWNLOAD_SEGMENT)
-        download_segment(node, frame);
-    else if (sdo->state == CO_SDO_UPLOAD_SEGMENT && ccs == CCS_UPLOAD_SEGMENT)
-        upload_segment(node, frame);
-    else if (sdo->state == CO_SDO_BLOCK_DOWNLOAD_END && ccs == CCS_BLOCK_DOWNLOAD)
-        block_download_end(node, frame);
-    else if (in_block_upload(sdo) && ccs == CCS_BLOCK_UPLOAD)
-        block_upload_command(node, frame);
-    else
-        unexpected_command(node, frame);
+        return download_segment(node, frame);
+    if (sdo->state == CO_SDO_UPLOAD_SEGMENT && ccs == CCS_UPLOAD_SEGMENT)
+        return upload_segment(node, frame);
+    if (sdo->state == CO_SDO_BLOCK_DOWNLOAD_END && ccs == CCS_BLOCK_DOWNLOAD)
+        return block_download_end(node, frame);
+    if (in_block_upload(sdo) && ccs == CCS_BLOCK_UPLOAD)
+        return block_upload_command(node, frame);
+    return unexpected_command(node, frame);
 }
 
 bool co_sdo_receive(co_node_t *node, const co_frame_t *frame)
@@ -739,16 +689,14 @@ bool co_sdo_receive(co_node_t *node, const co_frame_t *frame)
         transfer_idle(node);
         return true;
     }
-    if (sdo->state == CO_SDO_BLOCK_DOWNLOAD_SUB) {
-        block_download_segment(node, frame);
-    } else if (is_initiate(command)) {
-        /* Without index and sub-index there is nobody to answer. */
-        if (frame->len < INITIATE_LEN)
-            return true;
-        initiate(node, frame);
-    } else {
-        dispatch(node, frame);
-    }
+    /* Without index and sub-index there is nobody to answer an initiate. */
+    if (sdo->state != CO_SDO_BLOCK_DOWNLOAD_SUB && is_initiate(command) &&
+        frame->len < INITIATE_LEN)
+        return true;
+    /* Every refusal of every state ends here: one abort path. */
+    uint32_t abort = dispatch(node, frame);
+    if (abort != CO_SDO_OK)
+        transfer_abort(node, abort);
     sdo->deadline = node->now + sdo->timeout_us;
     return true;
 }

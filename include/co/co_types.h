@@ -29,13 +29,20 @@ typedef struct co_frame {
 /* CiA 301 7.3.5, table "restricted CAN-IDs": identifiers no configurable COB-ID (PDO, SYNC, EMCY)
  * may use, since NMT, the default SDO channels and NMT error control own them, or they are
  * reserved: 000h, 001h-07Fh, 101h-180h, 581h-5FFh, 601h-67Fh, 6E0h-6FFh, 701h-77Fh, 780h-7FFh.
- * The defaults 080h (SYNC) and 081h-0FFh (EMCY) are allowed. `can_id` is the 11-bit CAN-ID. */
-static inline bool co_can_id_restricted(uint32_t can_id)
-{
-    return can_id <= 0x07Fu || (can_id >= 0x101u && can_id <= 0x180u) ||
-           (can_id >= 0x581u && can_id <= 0x5FFu) || (can_id >= 0x601u && can_id <= 0x67Fu) ||
-           (can_id >= 0x6E0u && can_id <= 0x6FFu) || (can_id >= 0x701u && can_id <= 0x7FFu);
-}
+ * The defaults 080h (SYNC) and 081h-0FFh (EMCY) are allowed. `can_id` is the 11-bit CAN-ID
+ * (src/core/cob_id.c). */
+bool co_can_id_restricted(uint32_t can_id);
+
+/* The bits a configurable COB-ID (PDO 1400h/1800h:01, SYNC 1005h, EMCY 1014h) may have: bit 31,
+ * bit 30 and an 11-bit CAN-ID; bit 29 (29-bit CAN-ID) and bits 28..11 are refused. */
+#define CO_COB_ID_ALLOWED 0xC00007FFu
+#define CO_COB_ID_CAN_ID 0x7FFu
+
+/* CiA 301's rules of a COB-ID write shared by PDO, SYNC and EMCY: only CO_COB_ID_ALLOWED bits, no
+ * restricted CAN-ID, and no new CAN-ID while the old and the new value are both in use, which
+ * (cob_id & in_use_mask) == in_use says (the PDO or EMCY valid, bit 31 clear; the SYNC produced,
+ * bit 30 set). 0 or SDO_ABORT_VALUE_RANGE. */
+uint32_t co_cob_id_check(uint32_t old, uint32_t value, uint32_t in_use_mask, uint32_t in_use);
 
 /* CiA 301 table 44: static data types, by their object dictionary index. */
 typedef enum co_dtype {

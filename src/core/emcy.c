@@ -4,8 +4,6 @@
 #include <string.h>
 
 #define COBID_INVALID 0x80000000u /* bit 31: the EMCY does not exist */
-#define COBID_FRAME 0x20000000u   /* bit 29: 29-bit CAN-ID, not supported */
-#define COBID_CAN_ID 0x1FFFFFFFu
 #define CAN_ID_11BIT 0x7FFu
 #define INHIBIT_UNIT_US 100u
 #define MSEF_LEN 5u
@@ -161,17 +159,7 @@ void co_emcy_reset(co_node_t *node, co_nmt_reset_t scope)
  * one; the default 080h + node-id (081h-0FFh) is allowed. */
 static uint32_t write_cobid(co_node_t *node, uint32_t cobid)
 {
-    uint32_t old = (uint32_t)co_od_value(node, 0x1014, 0);
-    if (cobid & COBID_FRAME)
-        return SDO_ABORT_VALUE_RANGE;
-    if ((cobid & COBID_CAN_ID) > CAN_ID_11BIT)
-        return SDO_ABORT_VALUE_RANGE;
-    if (co_can_id_restricted(cobid & CAN_ID_11BIT))
-        return SDO_ABORT_VALUE_RANGE;
-    bool stays_valid = !(cobid & COBID_INVALID) && !(old & COBID_INVALID);
-    if (stays_valid && (cobid & COBID_CAN_ID) != (old & COBID_CAN_ID))
-        return SDO_ABORT_VALUE_RANGE;
-    return CO_SDO_OK;
+    return co_cob_id_check((uint32_t)co_od_value(node, 0x1014, 0), cobid, COBID_INVALID, 0);
 }
 
 /* CiA 301 1003h: only 0 may be written to sub-index 0, and it clears the history. */

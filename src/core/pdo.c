@@ -513,15 +513,11 @@ co_time_t co_pdo_process(co_node_t *node, co_time_t now)
 static uint32_t pdo_write_cob_id(const co_node_t *node, uint16_t comm, uint32_t value,
                                  pdo_dir_t dir)
 {
-    uint32_t old = pdo_cob_id(node, comm);
-    if (value & ~(CO_PDO_COBID_INVALID | CO_PDO_COBID_NO_RTR | CO_PDO_COBID_CAN_ID))
-        return SDO_ABORT_VALUE_RANGE;
     if (!pdo_cob_id_valid(value))
-        return CO_SDO_OK;
-    if (pdo_cob_id_valid(old) && (old & CO_PDO_COBID_CAN_ID) != (value & CO_PDO_COBID_CAN_ID))
-        return SDO_ABORT_VALUE_RANGE;
-    if (co_can_id_restricted(value & CO_PDO_COBID_CAN_ID))
-        return SDO_ABORT_VALUE_RANGE;
+        return value & ~CO_COB_ID_ALLOWED ? SDO_ABORT_VALUE_RANGE : CO_SDO_OK;
+    uint32_t abort = co_cob_id_check(pdo_cob_id(node, comm), value, CO_PDO_COBID_INVALID, 0);
+    if (abort != CO_SDO_OK)
+        return abort;
     uint8_t type = (uint8_t)od_param(node, comm, PDO_SUB_TYPE, CO_PDO_TYPE_EVENT_PROFILE);
     if (dir == PDO_TX && (value & CO_PDO_COBID_NO_RTR) && tpdo_type_is_rtr(type))
         return SDO_ABORT_VALUE_RANGE;

@@ -109,17 +109,10 @@ bool co_sync_receive(co_node_t *node, const co_frame_t *frame)
  * produce, so it refuses the bit. Bit 31 is "do not care". */
 static uint32_t sync_write_cob_id(co_node_t *node, uint32_t value)
 {
-    uint32_t old = sync_cob_id(node);
-    if (value & ~(0x80000000u | CO_SYNC_COBID_PRODUCER | CO_SYNC_COBID_CAN_ID))
-        return SDO_ABORT_VALUE_RANGE;
-    if (co_can_id_restricted(value & CO_SYNC_COBID_CAN_ID))
-        return SDO_ABORT_VALUE_RANGE;
     if ((value & CO_SYNC_COBID_PRODUCER) && node->od->sync_producer == NULL)
         return SDO_ABORT_VALUE_RANGE;
-    if ((old & CO_SYNC_COBID_PRODUCER) && (value & CO_SYNC_COBID_PRODUCER) &&
-        (old & CO_SYNC_COBID_CAN_ID) != (value & CO_SYNC_COBID_CAN_ID))
-        return SDO_ABORT_VALUE_RANGE;
-    return CO_SDO_OK;
+    return co_cob_id_check(sync_cob_id(node), value, CO_SYNC_COBID_PRODUCER,
+                           CO_SYNC_COBID_PRODUCER);
 }
 
 /* CiA 301 7.5.2.41: 0 or 2..240, and only while no SYNC period is set (1006h = 0). */

@@ -161,11 +161,14 @@ static uint64_t raw_value(const uint8_t *p, size_t size)
     return v;
 }
 
+/* Signed types are 1, 2, 4 or 8 bytes: below 8 the value and its sign bit fit in 32 bits, whose
+ * arithmetic is cheaper than 64-bit shifts on a 32-bit processor. */
 static int64_t sign_extend(uint64_t v, size_t size)
 {
-    if (size < 8 && (v & ((uint64_t)1 << (size * 8 - 1))))
-        v |= ~(uint64_t)0 << (size * 8);
-    return (int64_t)v;
+    if (size >= 8)
+        return (int64_t)v;
+    uint32_t sign = 1u << (size * 8 - 1);
+    return (int32_t)(((uint32_t)v ^ sign) - sign);
 }
 
 int64_t co_od_get(const co_node_t *node, const co_od_entry_t *entry)

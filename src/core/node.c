@@ -4,14 +4,11 @@
 
 #include <string.h>
 
-/* CiA 301 7.5.2: the RPDO communication (1400h), RPDO mapping (1600h), TPDO communication (1800h)
- * and TPDO mapping (1A00h) parameters each span 512 indexes. */
+/* CiA 301 7.5.2: the RPDO communication (1400h) and mapping (1600h) parameters, then the TPDO
+ * communication (1800h) and mapping (1A00h) parameters, each span 512 indexes. */
+#define PDO_PARAM_FIRST 0x1400u
+#define TPDO_PARAM_FIRST 0x1800u
 #define PDO_INDEX_SPAN 0x200u
-
-static bool beyond(uint16_t index, uint16_t base, uint16_t max)
-{
-    return index >= base + max && index < base + PDO_INDEX_SPAN;
-}
 
 /* Every PDO of the dictionary has its place in co_node_t, whose tables a firmware may size to its
  * dictionary (CO_CONFIG_RPDO_MAX, CO_CONFIG_TPDO_MAX): one too many would be a PDO that silently
@@ -20,11 +17,12 @@ static bool beyond(uint16_t index, uint16_t base, uint16_t max)
 static bool tables_fit(const co_od_t *od)
 {
     for (uint16_t i = 0; i < od->count; i++) {
-        const co_od_entry_t *e = &od->entries[i];
-        if (beyond(e->index, 0x1400, CO_CONFIG_RPDO_MAX) ||
-            beyond(e->index, 0x1600, CO_CONFIG_RPDO_MAX) ||
-            beyond(e->index, 0x1800, CO_CONFIG_TPDO_MAX) ||
-            beyond(e->index, 0x1A00, CO_CONFIG_TPDO_MAX))
+        uint16_t offset = (uint16_t)(od->entries[i].index - PDO_PARAM_FIRST);
+        if (offset >= 4 * PDO_INDEX_SPAN)
+            continue;
+        unsigned max =
+            offset >= TPDO_PARAM_FIRST - PDO_PARAM_FIRST ? CO_CONFIG_TPDO_MAX : CO_CONFIG_RPDO_MAX;
+        if (offset % PDO_INDEX_SPAN >= max)
             return false;
     }
     return true;

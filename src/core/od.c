@@ -267,9 +267,10 @@ static uint32_t service_write(co_node_t *node, const co_od_entry_t *e, const uin
                               size_t len)
 {
     uint16_t i = e->index;
+    if (i < 0x1000 || i > 0x1FFF)
+        return CO_SDO_OK;
     /* A communication parameter may move a service's deadline. */
-    if (i >= 0x1000 && i <= 0x1FFF)
-        co_node_changed(node);
+    co_node_changed(node);
     for (size_t r = 0; r < sizeof(service_ranges) / sizeof(service_ranges[0]); r++)
         if (i >= service_ranges[r].first && i <= service_ranges[r].last)
             return service_ranges[r].write(node, e, data, len);

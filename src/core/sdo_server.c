@@ -233,29 +233,6 @@ static uint32_t download_complete(co_node_t *node)
                        CO_OD_ORIGIN_SDO);
 }
 
-static uint32_t download_segment(co_node_t *node, const co_frame_t *frame)
-{
-    co_sdo_server_t *sdo = &node->sdo;
-    uint8_t command = frame->data[0];
-    uint8_t toggle = command & SDO_TOGGLE;
-    size_t count = SEGMENT_BYTES - ((command >> 1) & 7u);
-    if (toggle != sdo->toggle)
-        return SDO_ABORT_TOGGLE;
-    if (frame->len < 1 + count)
-        return SDO_ABORT_COMMAND;
-    uint32_t abort = value_write(node, sdo->offset, &frame->data[1], (uint32_t)count);
-    if (abort != CO_SDO_OK)
-        return abort;
-    sdo->offset += (uint32_t)count;
-    uint8_t response = (uint8_t)(SCS_DOWNLOAD_SEGMENT | toggle);
-    if (command & SDO_LAST)
-        return finish(node, download_complete(node), response, false);
-    sdo->toggle ^= SDO_TOGGLE;
-    uint8_t p[8] = {response};
-    send_response(node, p);
-    return CO_SDO_OK;
-}
-
 /* Reads the whole value into the buffer; sdo->size is its current length (strings: up to NUL). */
 static uint32_t upload_snapshot(co_node_t *node, const co_od_entry_t *entry)
 {
@@ -340,24 +317,42 @@ static uint32_t upload_initiate(co_node_t *node)
     return upload_response(node);
 }
 
-static uint32_t upload_segment(co_node_t *node, const co_frame_t *frame)
+/* A segment of a segmented transfer, either way (CiA 301 7.2.4.3.4, 7.2.4.3.7): the toggle
+ * alternates from 0; a download segment's data goes to the value, an upload segment's comes from
+ * it, and the last one ends the transfer (a download: with its write). */
+static uint32_t transfer_segment(co_node_t *node, const co_frame_t *frame)
 {
     co_sdo_server_t *sdo = &node->sdo;
-    uint8_t toggle = frame->data[0] & SDO_TOGGLE;
+    uint8_t command = frame->data[0];
+    uint8_t toggle = command & SDO_TOGGLE;
     if (toggle != sdo->toggle)
         return SDO_ABORT_TOGGLE;
-    uint32_t count = sdo->size - sdo->offset;
-    if (count > SEGMENT_BYTES)
-        count = SEGMENT_BYTES;
-    bool last = sdo->offset + count == sdo->size;
-    uint8_t p[8] = {
-        (uint8_t)(SCS_UPLOAD_SEGMENT | toggle | ((SEGMENT_BYTES - count) << 1) | (last ? 1 : 0))};
-    uint32_t abort = value_read(node, sdo->offset, &p[1], count);
+    bool upload = sdo->state == CO_SDO_UPLOAD_SEGMENT;
+    uint8_t p[8] = {0};
+    uint32_t count;
+    bool last;
+    uint32_t abort;
+    if (upload) {
+        count = sdo->size - sdo->offset < SEGMENT_BYTES ? sdo->size - sdo->offset : SEGMENT_BYTES;
+        last = sdo->offset + count == sdo->size;
+        p[0] = (uint8_t)(SCS_UPLOAD_SEGMENT | toggle | ((SEGMENT_BYTES - count) << 1) |
+                         (last ? SDO_LAST : 0));
+        abort = value_read(node, sdo->offset, &p[1], count);
+    } else {
+        count = SEGMENT_BYTES - ((command >> 1) & 7u);
+        last = (command & SDO_LAST) != 0;
+        if (frame->len < 1 + count)
+            return SDO_ABORT_COMMAND;
+        p[0] = (uint8_t)(SCS_DOWNLOAD_SEGMENT | toggle);
+        abort = value_write(node, sdo->offset, &frame->data[1], count);
+    }
     if (abort != CO_SDO_OK)
         return abort;
-    send_response(node, p);
     sdo->offset += count;
     sdo->toggle ^= SDO_TOGGLE;
+    if (last && !upload)
+        return finish(node, download_complete(node), p[0], false);
+    send_response(node, p);
     if (last)
         transfer_idle(node);
     return CO_SDO_OK;
@@ -662,10 +657,9 @@ static uint32_t dispatch(co_node_t *node, const co_frame_t *frame)
         return block_download_segment(node, frame);
     if (is_initiate(frame->data[0]))
         return initiate(node, frame);
-    if (sdo->state == CO_SDO_DOWNLOAD_SEGMENT && ccs == CCS_DOWNLOAD_SEGMENT)
-        return download_segment(node, frame);
-    if (sdo->state == CO_SDO_UPLOAD_SEGMENT && ccs == CCS_UPLOAD_SEGMENT)
-        return upload_segment(node, frame);
+    if ((sdo->state == CO_SDO_DOWNLOAD_SEGMENT && ccs == CCS_DOWNLOAD_SEGMENT) ||
+        (sdo->state == CO_SDO_UPLOAD_SEGMENT && ccs == CCS_UPLOAD_SEGMENT))
+        return transfer_segment(node, frame);
     if (sdo->state == CO_SDO_BLOCK_DOWNLOAD_END && ccs == CCS_BLOCK_DOWNLOAD)
         return block_download_end(node, frame);
     if (in_block_upload(sdo) && ccs == CCS_BLOCK_UPLOAD)

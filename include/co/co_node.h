@@ -112,10 +112,11 @@ struct co_node {
     void *user;
     const co_app_hooks_t *hooks;
     const co_storage_t *storage;
-    uint32_t options; /* CO_NODE_* */
-    const co_node_options_code_t *options_code;
+    uint32_t options;             /* CO_NODE_* */
     co_time_t now;                /* time of the frame or process call being handled */
     uint32_t consumer_generation; /* co_consumers.h */
+    /* The options' code, beside a 32-bit member so that a 32-bit processor pads nothing. */
+    const co_node_options_code_t *options_code;
     /* co_node_process: the earliest deadline of the services other than the PDOs, valid while
      * schedule_changed is false (co_node_changed). */
     co_time_t services_due;

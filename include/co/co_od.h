@@ -204,6 +204,11 @@ uint32_t co_od_read_check(co_node_t *node, uint16_t index, uint8_t subindex,
 uint32_t co_od_write(co_node_t *node, uint16_t index, uint8_t subindex, const uint8_t *data,
                      size_t len, co_od_origin_t origin);
 
+/* co_od_write of an entry already found in the node's dictionary (a mapped object, a stored
+ * value): the same checks but the lookup. */
+uint32_t co_od_write_entry(co_node_t *node, const co_od_entry_t *entry, const uint8_t *data,
+                           size_t len, co_od_origin_t origin);
+
 /* Stores bytes without any check (used by hooks and services after their own checks). */
 void co_od_store(co_node_t *node, const co_od_entry_t *entry, const uint8_t *data, size_t len);
 

@@ -93,11 +93,9 @@ static uint16_t lower_bound(const co_od_t *od, uint32_t key)
 
 const co_od_entry_t *co_od_find(const co_od_t *od, uint16_t index, uint8_t subindex)
 {
-    uint32_t key = entry_key(index, subindex);
-    uint16_t pos = lower_bound(od, key);
-    if (pos < od->count && entry_key(od->entries[pos].index, od->entries[pos].subindex) == key)
-        return &od->entries[pos];
-    return NULL;
+    const co_od_entry_t *e;
+    (void)co_od_lookup(od, index, subindex, &e);
+    return e;
 }
 
 const char *co_od_name(const co_od_t *od, uint16_t index, uint8_t subindex)
@@ -284,6 +282,13 @@ uint32_t co_od_write(co_node_t *node, uint16_t index, uint8_t subindex, const ui
     uint32_t abort = co_od_lookup(node->od, index, subindex, &e);
     if (abort != CO_SDO_OK)
         return abort;
+    return co_od_write_entry(node, e, data, len, origin);
+}
+
+uint32_t co_od_write_entry(co_node_t *node, const co_od_entry_t *e, const uint8_t *data, size_t len,
+                           co_od_origin_t origin)
+{
+    uint32_t abort;
     if (!(e->flags & CO_OD_WRITE) && origin != CO_OD_ORIGIN_APP)
         return SDO_ABORT_READ_ONLY;
     if (e->flags & CO_OD_STREAM)
@@ -299,7 +304,7 @@ uint32_t co_od_write(co_node_t *node, uint16_t index, uint8_t subindex, const ui
         co_od_store(node, e, data, len);
     else if (abort != CO_OD_HANDLED)
         return abort;
-    co_consumers_written(node, index);
+    co_consumers_written(node, e->index);
     if (node->hooks != NULL && node->hooks->od_written != NULL)
         node->hooks->od_written(node, e, origin);
     return CO_SDO_OK;

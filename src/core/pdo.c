@@ -400,8 +400,7 @@ static void rpdo_apply(co_node_t *node, uint16_t n, const uint8_t *data)
     for (uint8_t i = 0; i < map.count; i++) {
         const co_od_entry_t *e = map.entry[i];
         if (e != NULL)
-            (void)co_od_write(node, e->index, e->subindex, data + pos, map.size[i],
-                              CO_OD_ORIGIN_PDO);
+            (void)co_od_write_entry(node, e, data + pos, map.size[i], CO_OD_ORIGIN_PDO);
         pos = (uint8_t)(pos + map.size[i]);
     }
     if (node->hooks != NULL && node->hooks->rpdo != NULL)

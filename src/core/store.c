@@ -337,7 +337,7 @@ static void apply_value(co_node_t *node, const co_od_entry_t *e, const uint8_t *
     if (abort == CO_SDO_OK && memcmp(co_od_bytes(node, e), value, len) == 0)
         return;
     if (abort == CO_SDO_OK)
-        abort = co_od_write(node, e->index, e->subindex, value, len, CO_OD_ORIGIN_STORE);
+        abort = co_od_write_entry(node, e, value, len, CO_OD_ORIGIN_STORE);
     if (abort == CO_SDO_OK)
         return;
     pass->refused++;

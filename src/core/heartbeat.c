@@ -99,10 +99,8 @@ void co_heartbeat_reset(co_node_t *node)
 {
     co_heartbeat_t *hb = &node->heartbeat;
     producer_restart(node, (uint16_t)co_od_value(node, 0x1017, 0));
-    for (uint8_t i = 0; i < CO_CONFIG_HB_CONSUMERS; i++) {
-        const co_od_entry_t *e = co_od_find(node->od, 0x1016, (uint8_t)(i + 1));
-        consumer_configure(&hb->consumer[i], e != NULL ? (uint32_t)co_od_get(node, e) : 0);
-    }
+    for (uint8_t i = 0; i < CO_CONFIG_HB_CONSUMERS; i++)
+        consumer_configure(&hb->consumer[i], (uint32_t)co_od_value(node, 0x1016, (uint8_t)(i + 1)));
     consumers_schedule(hb);
 }
 

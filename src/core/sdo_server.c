@@ -404,10 +404,11 @@ static uint32_t block_download_initiate(co_node_t *node, const co_frame_t *frame
 static uint32_t block_download_store(co_node_t *node, const co_frame_t *frame, bool last)
 {
     co_sdo_server_t *sdo = &node->sdo;
-    uint64_t pos = sdo->offset + (uint64_t)sdo->seqno * SEGMENT_BYTES;
     uint32_t count = (uint32_t)frame->len - 1;
-    if (pos + SEGMENT_BYTES > UINT32_MAX)
+    /* The segment's end, offset + (seqno + 1) * 7 bytes, must be a 32-bit position. */
+    if (sdo->offset > UINT32_MAX - (sdo->seqno + 1u) * SEGMENT_BYTES)
         return SDO_ABORT_NO_MEMORY;
+    uint32_t pos = sdo->offset + sdo->seqno * SEGMENT_BYTES;
     if (last) {
         memcpy(sdo->last_segment, &frame->data[1], count);
         sdo->last_len = (uint8_t)count;
@@ -415,7 +416,7 @@ static uint32_t block_download_store(co_node_t *node, const co_frame_t *frame, b
     }
     if (count < SEGMENT_BYTES)
         return SDO_ABORT_COMMAND;
-    uint32_t abort = value_write(node, (uint32_t)pos, &frame->data[1], SEGMENT_BYTES);
+    uint32_t abort = value_write(node, pos, &frame->data[1], SEGMENT_BYTES);
     if (abort == CO_SDO_OK && sdo->crc)
         sdo->crc_sum = crc16_update(sdo->crc_sum, &frame->data[1], SEGMENT_BYTES);
     return abort;

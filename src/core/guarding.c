@@ -15,14 +15,14 @@ static uint32_t guarding_cob_id(const co_node_t *node)
     return e != NULL ? (uint32_t)co_od_get(node, e) : GUARD_COB_BASE + node->node_id;
 }
 
-static co_time_t life_time_us(uint16_t guard_time_ms, uint8_t life_time_factor)
-{
-    return (co_time_t)guard_time_ms * life_time_factor * 1000u;
-}
-
-static void restart_life_timer(co_node_t *node, co_time_t life_us)
+/* The life time, guard time (100Ch, ms) times life time factor (100Dh), from now while guarding
+ * has started and is not lost; off when either is 0. */
+static void restart_life_timer(co_node_t *node)
 {
     co_guarding_t *g = &node->guarding;
+    uint16_t guard_time_ms = (uint16_t)co_od_value(node, 0x100C, 0);
+    uint8_t life_time_factor = (uint8_t)co_od_value(node, 0x100D, 0);
+    co_time_t life_us = (co_time_t)guard_time_ms * life_time_factor * 1000u;
     bool armed = g->started && !g->lost && life_us != 0;
     g->deadline = armed ? node->now + life_us : CO_TIME_NEVER;
 }
@@ -67,8 +67,7 @@ bool co_guarding_receive(co_node_t *node, const co_frame_t *frame)
     g->started = true;
     bool resumed = g->lost;
     g->lost = false;
-    restart_life_timer(node, life_time_us((uint16_t)co_od_value(node, 0x100C, 0),
-                                          (uint8_t)co_od_value(node, 0x100D, 0)));
+    restart_life_timer(node);
     if (resumed)
         report(node, false);
     return true;
@@ -88,20 +87,14 @@ co_time_t co_guarding_process(co_node_t *node, co_time_t now)
 /* 100Eh (ATV312 manual, COB-ID node guarding): an 11-bit CAN-ID, bits 11-31 clear, else
  * 0x06090030; it applies from the next request. Its default 700h + node-id lies in the CiA 301
  * restricted range, which binds the configurable PDO/SYNC/EMCY COB-IDs only, so it is not checked.
- * 100Ch/100Dh: the new guard time or life time factor is not stored yet: combine it with the
- * other one and restart a running life timer. */
+ * 100Ch/100Dh: the new guard time or life time factor is stored, then a running life timer restarts
+ * with both. */
 uint32_t co_guarding_od_write(co_node_t *node, const co_od_entry_t *entry, const uint8_t *data,
                               size_t len)
 {
-    (void)len;
     if (entry->index == 0x100E)
         return co_get_u32(data) & ~GUARD_COB_ID_11BIT ? SDO_ABORT_VALUE_RANGE : CO_SDO_OK;
-    uint16_t guard_time = (uint16_t)co_od_value(node, 0x100C, 0);
-    uint8_t factor = (uint8_t)co_od_value(node, 0x100D, 0);
-    if (entry->index == 0x100C)
-        guard_time = co_get_u16(data);
-    else
-        factor = data[0];
-    restart_life_timer(node, life_time_us(guard_time, factor));
-    return CO_SDO_OK;
+    co_od_store(node, entry, data, len);
+    restart_life_timer(node);
+    return CO_OD_HANDLED;
 }

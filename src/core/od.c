@@ -211,21 +211,21 @@ void co_od_store(co_node_t *node, const co_od_entry_t *entry, const uint8_t *dat
     memset(p + len, 0, entry->size - len);
 }
 
-/* CiA 301 7.2.4.3.17: too long 0x06070012, too short 0x06070013; strings may be shorter. */
-static uint32_t check_length(const co_od_entry_t *e, size_t len)
+/* CiA 301 7.2.4.3.17: too long 0x06070012, too short 0x06070013; strings may be shorter. `size`
+ * is the type's fixed size, 0 for strings and domains. */
+static uint32_t check_length(const co_od_entry_t *e, size_t size, size_t len)
 {
     if (len > e->size)
         return SDO_ABORT_LENGTH_HIGH;
-    if (co_od_type_size(e->type) != 0 && len < e->size)
+    if (size != 0 && len < e->size)
         return SDO_ABORT_LENGTH_LOW;
     if (e->type == CO_DT_OCTET_STRING && len < e->size)
         return SDO_ABORT_LENGTH_LOW;
     return CO_SDO_OK;
 }
 
-static uint32_t check_limits(const co_od_entry_t *e, const uint8_t *data)
+static uint32_t check_limits(const co_od_entry_t *e, size_t size, const uint8_t *data)
 {
-    size_t size = co_od_type_size(e->type);
     if (e->type == CO_DT_BOOLEAN && data[0] > 1)
         return SDO_ABORT_VALUE_RANGE;
     if (e->limits == NULL || size == 0 || e->type == CO_DT_REAL32 || e->type == CO_DT_REAL64)
@@ -293,9 +293,10 @@ uint32_t co_od_write_entry(co_node_t *node, const co_od_entry_t *e, const uint8_
         return SDO_ABORT_READ_ONLY;
     if (e->flags & CO_OD_STREAM)
         return node->od->streaming->write(node, e, data, len);
-    abort = check_length(e, len);
+    size_t size = co_od_type_size(e->type);
+    abort = check_length(e, size, len);
     if (abort == CO_SDO_OK)
-        abort = check_limits(e, data);
+        abort = check_limits(e, size, data);
     if (abort == CO_SDO_OK && e->hook != NULL && e->hook->write != NULL)
         abort = e->hook->write(node, e, data, len, origin);
     if (abort == CO_SDO_OK)

@@ -509,12 +509,12 @@ co_time_t co_pdo_process(co_node_t *node, co_time_t now)
 /* CiA 301 table 72: 11-bit CAN-IDs only (bit 29 and bits 28..11 clear), no restricted CAN-ID for
  * a valid PDO (7.3.5, co_can_id_restricted), and the CAN-ID of a valid PDO may only change together
  * with invalidating it. A TPDO that answers RTRs (252/253) cannot forbid them (bit 30). */
-static uint32_t pdo_write_cob_id(const co_node_t *node, uint16_t comm, uint32_t value,
-                                 pdo_dir_t dir)
+static uint32_t pdo_write_cob_id(const co_node_t *node, uint16_t comm, uint32_t cob_id,
+                                 uint32_t value, pdo_dir_t dir)
 {
     if (!pdo_cob_id_valid(value))
         return value & ~CO_COB_ID_ALLOWED ? SDO_ABORT_VALUE_RANGE : CO_SDO_OK;
-    uint32_t abort = co_cob_id_check(pdo_cob_id(node, comm), value, CO_PDO_COBID_INVALID, 0);
+    uint32_t abort = co_cob_id_check(cob_id, value, CO_PDO_COBID_INVALID, 0);
     if (abort != CO_SDO_OK)
         return abort;
     uint8_t type = (uint8_t)od_param(node, comm, PDO_SUB_TYPE, CO_PDO_TYPE_EVENT_PROFILE);
@@ -524,11 +524,11 @@ static uint32_t pdo_write_cob_id(const co_node_t *node, uint16_t comm, uint32_t 
 }
 
 /* CiA 301 tables 71/73: 241..251 reserved; 252/253 are TPDO-only and need RTRs allowed. */
-static uint32_t pdo_write_type(const co_node_t *node, uint16_t comm, uint8_t type, pdo_dir_t dir)
+static uint32_t pdo_write_type(uint32_t cob_id, uint8_t type, pdo_dir_t dir)
 {
     if (type > CO_PDO_TYPE_SYNC_MAX && type < CO_PDO_TYPE_RTR_SYNC)
         return SDO_ABORT_VALUE_RANGE;
-    if (tpdo_type_is_rtr(type) && (dir == PDO_RX || (pdo_cob_id(node, comm) & CO_PDO_COBID_NO_RTR)))
+    if (tpdo_type_is_rtr(type) && (dir == PDO_RX || (cob_id & CO_PDO_COBID_NO_RTR)))
         return SDO_ABORT_VALUE_RANGE;
     return CO_SDO_OK;
 }
@@ -546,12 +546,13 @@ static uint32_t pdo_write_comm(co_node_t *node, const co_od_entry_t *entry, cons
                                pdo_dir_t dir)
 {
     uint32_t value = entry_value(entry, data);
-    bool valid = pdo_cob_id_valid(pdo_cob_id(node, entry->index));
+    uint32_t cob_id = pdo_cob_id(node, entry->index);
+    bool valid = pdo_cob_id_valid(cob_id);
     switch (entry->subindex) {
     case PDO_SUB_COB_ID:
-        return pdo_write_cob_id(node, entry->index, value, dir);
+        return pdo_write_cob_id(node, entry->index, cob_id, value, dir);
     case PDO_SUB_TYPE:
-        return pdo_write_type(node, entry->index, (uint8_t)value, dir);
+        return pdo_write_type(cob_id, (uint8_t)value, dir);
     case PDO_SUB_INHIBIT:
         /* CiA 301 table 72: the inhibit time may only change while the PDO is invalid. */
         return dir == PDO_TX && valid ? SDO_ABORT_VALUE_RANGE : CO_SDO_OK;

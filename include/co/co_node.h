@@ -162,6 +162,10 @@ void co_node_changed(co_node_t *node);
 /* Sends a frame through the node's callback (used by the services). */
 void co_node_send(co_node_t *node, const co_frame_t *frame);
 
+/* Sends the one data byte of an error control frame (CiA 301 7.2.8.3): a boot-up, a heartbeat, a
+ * node guarding reply. */
+void co_node_send_byte(co_node_t *node, uint32_t id, uint8_t byte);
+
 /* Earlier of two deadlines. */
 static inline co_time_t co_time_min(co_time_t a, co_time_t b)
 {

@@ -60,10 +60,9 @@ bool co_guarding_receive(co_node_t *node, const co_frame_t *frame)
     if ((frame->len > 1 && !any_dlc) || co_heartbeat_producing(node))
         return true;
     co_guarding_t *g = &node->guarding;
-    co_frame_t reply = {.id = frame->id, .len = 1};
-    reply.data[0] = (uint8_t)(g->toggle | (uint8_t)node->nmt_state);
+    uint8_t reply = (uint8_t)(g->toggle | (uint8_t)node->nmt_state);
     g->toggle ^= GUARD_TOGGLE;
-    co_node_send(node, &reply);
+    co_node_send_byte(node, frame->id, reply);
     g->started = true;
     bool resumed = g->lost;
     g->lost = false;

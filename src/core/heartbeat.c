@@ -151,9 +151,7 @@ static co_time_t producer_process(co_node_t *node, co_time_t now)
     co_heartbeat_t *hb = &node->heartbeat;
     if (now < hb->next_beat)
         return hb->next_beat;
-    co_frame_t beat = {.id = HB_COB_BASE + node->node_id, .len = 1};
-    beat.data[0] = (uint8_t)node->nmt_state;
-    co_node_send(node, &beat);
+    co_node_send_byte(node, HB_COB_BASE + node->node_id, (uint8_t)node->nmt_state);
     /* One period after the beat that was due, so the period stays exact; a late call skips the
      * beats it missed. */
     hb->next_beat += hb->period;

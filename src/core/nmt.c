@@ -45,8 +45,7 @@ void co_nmt_reset(co_node_t *node, co_nmt_reset_t scope)
     co_store_apply(node, 0x1000, 0x1FFF);
     reset_services(node, scope);
     co_consumers_changed(node);
-    co_frame_t boot = {.id = BOOT_UP_COB_BASE + node->node_id, .len = 1, .data = {0}};
-    co_node_send(node, &boot);
+    co_node_send_byte(node, BOOT_UP_COB_BASE + node->node_id, 0);
     co_nmt_enter(node, CO_NMT_PRE_OPERATIONAL);
 }
 

@@ -82,6 +82,12 @@ void co_node_send(co_node_t *node, const co_frame_t *frame)
         node->send(node->user, frame);
 }
 
+void co_node_send_byte(co_node_t *node, uint32_t id, uint8_t byte)
+{
+    co_frame_t frame = {.id = id, .len = 1, .data = {byte}};
+    co_node_send(node, &frame);
+}
+
 void co_node_receive(co_node_t *node, const co_frame_t *frame, co_time_t now)
 {
     node->now = now;

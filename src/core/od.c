@@ -50,17 +50,16 @@ co_od_error_t co_od_validate(const co_od_t *od, uint16_t *position)
     *position = 0;
     if (od == NULL || od->entries == NULL || od->count == 0)
         return CO_OD_ERR_EMPTY;
+    uint32_t prev = 0;
     for (uint16_t i = 0; i < od->count; i++) {
         const co_od_entry_t *e = &od->entries[i];
+        uint32_t key = entry_key(e->index, e->subindex);
         *position = i;
-        if (i > 0) {
-            uint32_t prev = entry_key(od->entries[i - 1].index, od->entries[i - 1].subindex);
-            uint32_t key = entry_key(e->index, e->subindex);
-            if (key == prev)
-                return CO_OD_ERR_DUPLICATE;
-            if (key < prev)
-                return CO_OD_ERR_UNSORTED;
-        }
+        if (i > 0 && key == prev)
+            return CO_OD_ERR_DUPLICATE;
+        if (i > 0 && key < prev)
+            return CO_OD_ERR_UNSORTED;
+        prev = key;
         bool stream = (e->flags & CO_OD_STREAM) != 0;
         if (stream && (od->streaming == NULL || !od->streaming->entry_valid(e)))
             return CO_OD_ERR_STREAM;

@@ -55,15 +55,15 @@ typedef struct co_tpdo {
     uint32_t event_us;
     uint8_t sync_start; /* 0 = not used */
     co_pdo_map_t map;
-    uint8_t last[8]; /* data of the last transmission */
-    bool sent;       /* `last` holds a transmission since the PDO (re)started */
-    bool pending;    /* event-driven: a transmission waits for the end of the inhibit time */
-    bool requested;  /* acyclic synchronous: the application asked for the next SYNC */
-    bool sync_due;   /* synchronous: `sample` goes out in the SYNC window */
-    bool sampled;    /* `sample` holds data taken at a SYNC */
-    uint8_t sample[8];
+    uint8_t last[8];    /* data of the last transmission */
+    bool sent;          /* `last` holds a transmission since the PDO (re)started */
+    bool pending;       /* event-driven: a transmission waits for the end of the inhibit time */
+    bool requested;     /* acyclic synchronous: the application asked for the next SYNC */
+    bool sync_due;      /* synchronous: `sample` goes out in the SYNC window */
+    bool sampled;       /* `sample` holds data taken at a SYNC */
     bool started;       /* cyclic synchronous: first transmission done (SYNC start value) */
     uint8_t sync_count; /* SYNCs since the last cyclic transmission */
+    uint8_t sample[8];
     co_time_t inhibit_end;
     co_time_t event_due; /* CO_TIME_NEVER when the event timer is off */
 } co_tpdo_t;

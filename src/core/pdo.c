@@ -615,25 +615,32 @@ static void tpdo_written(co_node_t *node, uint16_t n, bool event_timer)
  * communication parameter by one span. */
 #define PDO_INDEX_SPAN 0x200u
 
+/* PDO n of the parameter just stored, RPDO or TPDO by the parameter's index: a new event timer
+ * of a TPDO only restarts its timer. */
+static void pdo_written(co_node_t *node, const co_od_entry_t *entry, uint16_t n)
+{
+    if (entry->index < TPDO_COMM_BASE)
+        rpdo_written(node, n);
+    else
+        tpdo_written(node, n,
+                     entry->index < TPDO_MAP_BASE && entry->subindex == PDO_SUB_EVENT_TIMER);
+}
+
 uint32_t co_pdo_od_write(co_node_t *node, const co_od_entry_t *entry, const uint8_t *data,
                          size_t len)
 {
-    pdo_dir_t dir = entry->index >= TPDO_COMM_BASE ? PDO_TX : PDO_RX;
-    uint16_t comm_base = dir == PDO_TX ? TPDO_COMM_BASE : RPDO_COMM_BASE;
-    uint16_t offset = (uint16_t)(entry->index - comm_base);
-    bool mapping = offset >= PDO_INDEX_SPAN;
-    uint16_t n = (uint16_t)(offset % PDO_INDEX_SPAN);
+    unsigned range = (entry->index - RPDO_COMM_BASE) / PDO_INDEX_SPAN; /* 0..3 */
+    pdo_dir_t dir = range >= 2 ? PDO_TX : PDO_RX;
+    bool mapping = (range & 1u) != 0;
+    uint16_t n = (uint16_t)(entry->index % PDO_INDEX_SPAN);
     if (n >= (dir == PDO_TX ? CO_CONFIG_TPDO_MAX : CO_CONFIG_RPDO_MAX))
         return CO_SDO_OK;
-    uint16_t comm = (uint16_t)(comm_base + n);
+    uint16_t comm = (uint16_t)(entry->index - (mapping ? PDO_INDEX_SPAN : 0));
     uint32_t abort = mapping ? pdo_write_map(node, entry, data, comm, dir)
                              : pdo_write_comm(node, entry, data, dir);
     if (abort != CO_SDO_OK)
         return abort;
     co_od_store(node, entry, data, len);
-    if (dir == PDO_RX)
-        rpdo_written(node, n);
-    else
-        tpdo_written(node, n, !mapping && entry->subindex == PDO_SUB_EVENT_TIMER);
+    pdo_written(node, entry, n);
     return CO_OD_HANDLED;
 }

@@ -600,10 +600,12 @@ static void rpdo_written(co_node_t *node, uint16_t n)
         rpdo_errors_end(node, r);
 }
 
-static void tpdo_written(co_node_t *node, uint16_t n, bool event_timer)
+/* A new event timer (sub-index 5 of the communication parameter) only restarts the timer. */
+static void tpdo_written(co_node_t *node, uint16_t n, const co_od_entry_t *entry)
 {
     co_tpdo_t *t = &node->pdo.tpdo[n];
     tpdo_load(node, n);
+    bool event_timer = entry->index < TPDO_MAP_BASE && entry->subindex == PDO_SUB_EVENT_TIMER;
     if (!event_timer)
         tpdo_restart(t);
     else
@@ -615,15 +617,13 @@ static void tpdo_written(co_node_t *node, uint16_t n, bool event_timer)
  * communication parameter by one span. */
 #define PDO_INDEX_SPAN 0x200u
 
-/* PDO n of the parameter just stored, RPDO or TPDO by the parameter's index: a new event timer
- * of a TPDO only restarts its timer. */
+/* PDO n of the parameter just stored, an RPDO or a TPDO by the parameter's index. */
 static void pdo_written(co_node_t *node, const co_od_entry_t *entry, uint16_t n)
 {
     if (entry->index < TPDO_COMM_BASE)
         rpdo_written(node, n);
     else
-        tpdo_written(node, n,
-                     entry->index < TPDO_MAP_BASE && entry->subindex == PDO_SUB_EVENT_TIMER);
+        tpdo_written(node, n, entry);
 }
 
 uint32_t co_pdo_od_write(co_node_t *node, const co_od_entry_t *entry, const uint8_t *data,

@@ -375,11 +375,9 @@ static void rpdo_check_length(co_node_t *node, uint16_t n, uint8_t len)
 {
     co_rpdo_t *r = &node->pdo.rpdo[n];
     bool padded = (node->options & CO_NODE_PAD_DLC8) && len == CO_FRAME_DLC_MAX;
-    uint16_t code = 0;
-    if (len < r->map.length)
-        code = CO_EMCY_PDO_LENGTH;
-    else if (len > r->map.length && !padded)
-        code = CO_EMCY_PDO_LENGTH_EXCEEDED;
+    uint16_t code = len < r->map.length              ? CO_EMCY_PDO_LENGTH
+                    : len > r->map.length && !padded ? CO_EMCY_PDO_LENGTH_EXCEEDED
+                                                     : 0;
     if (code == r->length_error)
         return;
     uint16_t previous = r->length_error;

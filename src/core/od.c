@@ -72,8 +72,8 @@ co_od_error_t co_od_validate(const co_od_t *od, uint16_t *position)
     return CO_OD_VALID;
 }
 
-/* First entry whose key is >= the wanted key, or od->count. */
-static uint16_t lower_bound(const co_od_t *od, uint32_t key)
+/* First entry whose key is >= the wanted key, or the end of the table. */
+static const co_od_entry_t *lower_bound(const co_od_t *od, uint32_t key)
 {
     const co_od_entry_t *first = od->entries;
     size_t len = od->count;
@@ -87,7 +87,7 @@ static uint16_t lower_bound(const co_od_t *od, uint32_t key)
             len = half;
         }
     }
-    return (uint16_t)(first - od->entries);
+    return first;
 }
 
 const co_od_entry_t *co_od_find(const co_od_t *od, uint16_t index, uint8_t subindex)
@@ -108,15 +108,15 @@ const char *co_od_name(const co_od_t *od, uint16_t index, uint8_t subindex)
 uint32_t co_od_lookup(const co_od_t *od, uint16_t index, uint8_t subindex,
                       const co_od_entry_t **entry)
 {
-    uint16_t pos = lower_bound(od, entry_key(index, subindex));
+    const co_od_entry_t *e = lower_bound(od, entry_key(index, subindex));
     *entry = NULL;
-    if (pos < od->count && od->entries[pos].index == index) {
-        if (od->entries[pos].subindex != subindex)
+    if (e < od->entries + od->count && e->index == index) {
+        if (e->subindex != subindex)
             return SDO_ABORT_NO_SUBINDEX;
-        *entry = &od->entries[pos];
+        *entry = e;
         return CO_SDO_OK;
     }
-    if (pos > 0 && od->entries[pos - 1].index == index)
+    if (e > od->entries && e[-1].index == index)
         return SDO_ABORT_NO_SUBINDEX;
     return SDO_ABORT_NO_OBJECT;
 }
@@ -313,9 +313,8 @@ uint32_t co_od_write_entry(co_node_t *node, const co_od_entry_t *e, const uint8_
 void co_od_restore_defaults(co_node_t *node, uint16_t first, uint16_t last)
 {
     const co_od_t *od = node->od;
-    for (uint16_t i = lower_bound(od, entry_key(first, 0));
-         i < od->count && od->entries[i].index <= last; i++) {
-        const co_od_entry_t *e = &od->entries[i];
+    for (const co_od_entry_t *e = lower_bound(od, entry_key(first, 0));
+         e < od->entries + od->count && e->index <= last; e++) {
         memcpy(co_od_bytes(node, e), od->defaults + e->offset, e->size);
         if (e->flags & CO_OD_NODEID)
             co_od_set(node, e, co_od_get(node, e) + node->node_id);

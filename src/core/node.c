@@ -16,8 +16,8 @@
  * 0x06040047, so that a dictionary may offer more than a node monitors.) */
 static bool tables_fit(const co_od_t *od)
 {
-    for (uint16_t i = 0; i < od->count; i++) {
-        uint16_t offset = (uint16_t)(od->entries[i].index - PDO_PARAM_FIRST);
+    for (const co_od_entry_t *e = od->entries; e < od->entries + od->count; e++) {
+        uint16_t offset = (uint16_t)(e->index - PDO_PARAM_FIRST);
         if (offset >= 4 * PDO_INDEX_SPAN)
             continue;
         unsigned max =

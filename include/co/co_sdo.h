@@ -14,9 +14,9 @@
 typedef enum co_sdo_state {
     CO_SDO_IDLE = 0,
     CO_SDO_DOWNLOAD_SEGMENT,   /* segmented download: waiting for the next segment */
-    CO_SDO_UPLOAD_SEGMENT,     /* segmented upload: waiting for the next segment request */
     CO_SDO_BLOCK_DOWNLOAD_SUB, /* block download: receiving a sub-block */
     CO_SDO_BLOCK_DOWNLOAD_END, /* block download: waiting for the end request */
+    CO_SDO_UPLOAD_SEGMENT,     /* segmented upload: waiting for the next segment request */
     CO_SDO_BLOCK_UPLOAD_START, /* block upload: waiting for the start command */
     CO_SDO_BLOCK_UPLOAD_ACK,   /* block upload: sub-block sent, waiting for its acknowledge */
     CO_SDO_BLOCK_UPLOAD_END    /* block upload: end sent, waiting for the end response */

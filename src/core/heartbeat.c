@@ -82,12 +82,15 @@ static void consumers_schedule(co_heartbeat_t *hb)
     hb->consumers_next = next;
 }
 
-static void consumer_configure(co_hb_consumer_t *c, uint32_t value)
+/* Consumer i takes a 1016h value: its monitoring restarts, and with it the consumers' schedule. */
+static void consumer_configure(co_heartbeat_t *hb, uint8_t i, uint32_t value)
 {
+    co_hb_consumer_t *c = &hb->consumer[i];
     bool used = consumer_in_use(value);
     c->node_id = used ? (uint8_t)consumer_node(value) : 0;
     c->state = 0;
     co_hb_monitor_configure(&c->monitor, (uint32_t)(value & HB_TIME_MASK) * 1000u);
+    consumers_schedule(hb);
 }
 
 bool co_heartbeat_producing(const co_node_t *node)
@@ -100,8 +103,7 @@ void co_heartbeat_reset(co_node_t *node)
     co_heartbeat_t *hb = &node->heartbeat;
     producer_restart(node, (uint16_t)co_od_value(node, 0x1017, 0));
     for (uint8_t i = 0; i < CO_CONFIG_HB_CONSUMERS; i++)
-        consumer_configure(&hb->consumer[i], (uint32_t)co_od_value(node, 0x1016, (uint8_t)(i + 1)));
-    consumers_schedule(hb);
+        consumer_configure(hb, i, (uint32_t)co_od_value(node, 0x1016, (uint8_t)(i + 1)));
 }
 
 static void report(co_node_t *node, uint8_t producer, bool lost)
@@ -193,8 +195,7 @@ static uint32_t write_consumer(co_node_t *node, uint8_t subindex, uint32_t value
         /* The dictionary has more entries than the node can monitor: refuse to enable one. */
         return consumer_in_use(value) ? SDO_ABORT_INTERNAL_INCOMPATIBLE : CO_SDO_OK;
     }
-    consumer_configure(&node->heartbeat.consumer[subindex - 1], value);
-    consumers_schedule(&node->heartbeat);
+    consumer_configure(&node->heartbeat, (uint8_t)(subindex - 1), value);
     return CO_SDO_OK;
 }
 

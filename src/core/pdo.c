@@ -176,16 +176,27 @@ static void rpdo_errors_end(co_node_t *node, co_rpdo_t *r)
 
 /* ---- Configuration ---------------------------------------------------------------------- */
 
+/* Sub-indexes 1..6 of a communication parameter, for an RPDO and a TPDO alike (an RPDO uses
+ * fewer); an absent one reads as the PDO's default: an invalid COB-ID, event-driven, no times, no
+ * SYNC start value. */
+static void comm_load(const co_node_t *node, uint16_t comm, uint32_t param[PDO_SUB_SYNC_START + 1])
+{
+    param[PDO_SUB_COB_ID] = pdo_cob_id(node, comm);
+    param[PDO_SUB_TYPE] = od_param(node, comm, PDO_SUB_TYPE, CO_PDO_TYPE_EVENT_PROFILE);
+    for (uint8_t sub = PDO_SUB_INHIBIT; sub <= PDO_SUB_SYNC_START; sub++)
+        param[sub] = od_param(node, comm, sub, 0);
+}
+
 static void rpdo_load(co_node_t *node, uint16_t n)
 {
     co_rpdo_t *r = &node->pdo.rpdo[n];
-    uint16_t comm = (uint16_t)(RPDO_COMM_BASE + n);
-    uint32_t cob_id = pdo_cob_id(node, comm);
+    uint32_t param[PDO_SUB_SYNC_START + 1];
+    comm_load(node, (uint16_t)(RPDO_COMM_BASE + n), param);
     bool map_ok = pdo_map_load(node, (uint16_t)(RPDO_MAP_BASE + n), PDO_RX, &r->map);
-    r->valid = pdo_cob_id_valid(cob_id) && map_ok;
-    r->can_id = (uint16_t)(cob_id & CO_PDO_COBID_CAN_ID);
-    r->type = (uint8_t)od_param(node, comm, PDO_SUB_TYPE, CO_PDO_TYPE_EVENT_PROFILE);
-    r->event_us = od_param(node, comm, PDO_SUB_EVENT_TIMER, 0) * PDO_EVENT_UNIT_US;
+    r->valid = pdo_cob_id_valid(param[PDO_SUB_COB_ID]) && map_ok;
+    r->can_id = (uint16_t)(param[PDO_SUB_COB_ID] & CO_PDO_COBID_CAN_ID);
+    r->type = (uint8_t)param[PDO_SUB_TYPE];
+    r->event_us = param[PDO_SUB_EVENT_TIMER] * PDO_EVENT_UNIT_US;
 }
 
 static void rpdo_restart(co_rpdo_t *r)
@@ -197,16 +208,17 @@ static void rpdo_restart(co_rpdo_t *r)
 static void tpdo_load(co_node_t *node, uint16_t n)
 {
     co_tpdo_t *t = &node->pdo.tpdo[n];
-    uint16_t comm = (uint16_t)(TPDO_COMM_BASE + n);
-    uint32_t cob_id = pdo_cob_id(node, comm);
+    uint32_t param[PDO_SUB_SYNC_START + 1];
+    comm_load(node, (uint16_t)(TPDO_COMM_BASE + n), param);
+    uint32_t cob_id = param[PDO_SUB_COB_ID];
     bool map_ok = pdo_map_load(node, (uint16_t)(TPDO_MAP_BASE + n), PDO_TX, &t->map);
     t->valid = pdo_cob_id_valid(cob_id) && map_ok;
     t->rtr_allowed = !(cob_id & CO_PDO_COBID_NO_RTR);
     t->can_id = (uint16_t)(cob_id & CO_PDO_COBID_CAN_ID);
-    t->type = (uint8_t)od_param(node, comm, PDO_SUB_TYPE, CO_PDO_TYPE_EVENT_PROFILE);
-    t->inhibit_us = od_param(node, comm, PDO_SUB_INHIBIT, 0) * PDO_INHIBIT_UNIT_US;
-    t->event_us = od_param(node, comm, PDO_SUB_EVENT_TIMER, 0) * PDO_EVENT_UNIT_US;
-    t->sync_start = (uint8_t)od_param(node, comm, PDO_SUB_SYNC_START, 0);
+    t->type = (uint8_t)param[PDO_SUB_TYPE];
+    t->inhibit_us = param[PDO_SUB_INHIBIT] * PDO_INHIBIT_UNIT_US;
+    t->event_us = param[PDO_SUB_EVENT_TIMER] * PDO_EVENT_UNIT_US;
+    t->sync_start = (uint8_t)param[PDO_SUB_SYNC_START];
 }
 
 /* Forgets the transmission state: the next transmission is immediate (event-driven) or waits

@@ -7,9 +7,13 @@
 #include <string.h>
 
 #define RPDO_COMM_BASE 0x1400u
-#define RPDO_MAP_BASE 0x1600u
 #define TPDO_COMM_BASE 0x1800u
 #define TPDO_MAP_BASE 0x1A00u
+
+/* The four parameter ranges (CiA 301 7.5.2): RPDO communication and mapping, then TPDO
+ * communication and mapping, each PDO_INDEX_SPAN indexes; a PDO's mapping follows its
+ * communication parameter by one span. */
+#define PDO_INDEX_SPAN 0x200u
 
 /* Communication parameter sub-indices (CiA 301 tables 71 and 73). */
 #define PDO_SUB_COB_ID 1u
@@ -176,24 +180,25 @@ static void rpdo_errors_end(co_node_t *node, co_rpdo_t *r)
 
 /* ---- Configuration ---------------------------------------------------------------------- */
 
-/* Sub-indexes 1..6 of a communication parameter, for an RPDO and a TPDO alike (an RPDO uses
- * fewer); an absent one reads as the PDO's default: an invalid COB-ID, event-driven, no times, no
- * SYNC start value. */
-static void comm_load(const co_node_t *node, uint16_t comm, uint32_t param[PDO_SUB_SYNC_START + 1])
+/* Loads an RPDO's or a TPDO's mapping and reads sub-indexes 1..6 of its communication parameter
+ * (an RPDO uses fewer), an absent one as the PDO's default: an invalid COB-ID, event-driven, no
+ * times, no SYNC start value. The PDO is valid when both its COB-ID and its mapping are. */
+static bool pdo_load(const co_node_t *node, uint16_t comm, pdo_dir_t dir,
+                     uint32_t param[PDO_SUB_SYNC_START + 1], co_pdo_map_t *map)
 {
     param[PDO_SUB_COB_ID] = pdo_cob_id(node, comm);
     param[PDO_SUB_TYPE] = od_param(node, comm, PDO_SUB_TYPE, CO_PDO_TYPE_EVENT_PROFILE);
     for (uint8_t sub = PDO_SUB_INHIBIT; sub <= PDO_SUB_SYNC_START; sub++)
         param[sub] = od_param(node, comm, sub, 0);
+    bool map_ok = pdo_map_load(node, (uint16_t)(comm + PDO_INDEX_SPAN), dir, map);
+    return pdo_cob_id_valid(param[PDO_SUB_COB_ID]) && map_ok;
 }
 
 static void rpdo_load(co_node_t *node, uint16_t n)
 {
     co_rpdo_t *r = &node->pdo.rpdo[n];
     uint32_t param[PDO_SUB_SYNC_START + 1];
-    comm_load(node, (uint16_t)(RPDO_COMM_BASE + n), param);
-    bool map_ok = pdo_map_load(node, (uint16_t)(RPDO_MAP_BASE + n), PDO_RX, &r->map);
-    r->valid = pdo_cob_id_valid(param[PDO_SUB_COB_ID]) && map_ok;
+    r->valid = pdo_load(node, (uint16_t)(RPDO_COMM_BASE + n), PDO_RX, param, &r->map);
     r->can_id = (uint16_t)(param[PDO_SUB_COB_ID] & CO_PDO_COBID_CAN_ID);
     r->type = (uint8_t)param[PDO_SUB_TYPE];
     r->event_us = param[PDO_SUB_EVENT_TIMER] * PDO_EVENT_UNIT_US;
@@ -209,10 +214,8 @@ static void tpdo_load(co_node_t *node, uint16_t n)
 {
     co_tpdo_t *t = &node->pdo.tpdo[n];
     uint32_t param[PDO_SUB_SYNC_START + 1];
-    comm_load(node, (uint16_t)(TPDO_COMM_BASE + n), param);
+    t->valid = pdo_load(node, (uint16_t)(TPDO_COMM_BASE + n), PDO_TX, param, &t->map);
     uint32_t cob_id = param[PDO_SUB_COB_ID];
-    bool map_ok = pdo_map_load(node, (uint16_t)(TPDO_MAP_BASE + n), PDO_TX, &t->map);
-    t->valid = pdo_cob_id_valid(cob_id) && map_ok;
     t->rtr_allowed = !(cob_id & CO_PDO_COBID_NO_RTR);
     t->can_id = (uint16_t)(cob_id & CO_PDO_COBID_CAN_ID);
     t->type = (uint8_t)param[PDO_SUB_TYPE];
@@ -621,11 +624,6 @@ static void tpdo_written(co_node_t *node, uint16_t n, const co_od_entry_t *entry
     else
         t->event_due = t->event_us != 0 && t->sent ? node->now + t->event_us : CO_TIME_NEVER;
 }
-
-/* The four parameter ranges (CiA 301 7.5.2): RPDO communication and mapping, then TPDO
- * communication and mapping, each PDO_INDEX_SPAN indexes; a PDO's mapping follows its
- * communication parameter by one span. */
-#define PDO_INDEX_SPAN 0x200u
 
 /* PDO n of the parameter just stored, an RPDO or a TPDO by the parameter's index. */
 static void pdo_written(co_node_t *node, const co_od_entry_t *entry, uint16_t n)

@@ -194,7 +194,8 @@ static bool pdo_load(const co_node_t *node, uint16_t comm, pdo_dir_t dir,
     return pdo_cob_id_valid(param[PDO_SUB_COB_ID]) && map_ok;
 }
 
-static void rpdo_load(co_node_t *node, uint16_t n)
+/* An RPDO takes its parameters and restarts: nothing buffered, no deadline before a frame. */
+static void rpdo_reload(co_node_t *node, uint16_t n)
 {
     co_rpdo_t *r = &node->pdo.rpdo[n];
     uint32_t param[PDO_SUB_SYNC_START + 1];
@@ -202,10 +203,6 @@ static void rpdo_load(co_node_t *node, uint16_t n)
     r->can_id = (uint16_t)(param[PDO_SUB_COB_ID] & CO_PDO_COBID_CAN_ID);
     r->type = (uint8_t)param[PDO_SUB_TYPE];
     r->event_us = param[PDO_SUB_EVENT_TIMER] * PDO_EVENT_UNIT_US;
-}
-
-static void rpdo_restart(co_rpdo_t *r)
-{
     r->buffered = false;
     r->deadline = CO_TIME_NEVER;
 }
@@ -241,10 +238,8 @@ static void tpdo_restart(co_tpdo_t *t)
 
 void co_pdo_restart(co_node_t *node)
 {
-    for (uint16_t n = 0; n < CO_CONFIG_RPDO_MAX; n++) {
-        rpdo_load(node, n);
-        rpdo_restart(&node->pdo.rpdo[n]);
-    }
+    for (uint16_t n = 0; n < CO_CONFIG_RPDO_MAX; n++)
+        rpdo_reload(node, n);
     for (uint16_t n = 0; n < CO_CONFIG_TPDO_MAX; n++) {
         tpdo_load(node, n);
         tpdo_restart(&node->pdo.tpdo[n]);
@@ -607,8 +602,7 @@ static uint32_t pdo_write_map(co_node_t *node, const co_od_entry_t *entry, const
 static void rpdo_written(co_node_t *node, uint16_t n)
 {
     co_rpdo_t *r = &node->pdo.rpdo[n];
-    rpdo_load(node, n);
-    rpdo_restart(r);
+    rpdo_reload(node, n);
     if (!r->valid)
         rpdo_errors_end(node, r);
 }

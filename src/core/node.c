@@ -125,16 +125,18 @@ void co_node_changed(co_node_t *node)
 /* Heartbeat, guarding, SDO, SYNC and EMCY: what they do and their next deadline change only with
  * time, frames and the calls that mark the node changed (co_node_changed), so while neither
  * happened a process call looks at none of them. */
+static co_time_t (*const services[])(co_node_t *node, co_time_t now) = {
+    co_heartbeat_process, co_guarding_process, co_sdo_process, co_sync_process, co_emcy_process,
+};
+
 static co_time_t services_process(co_node_t *node, co_time_t now)
 {
     if (!node->schedule_changed && now < node->services_due)
         return node->services_due;
     node->schedule_changed = false;
-    co_time_t next = co_heartbeat_process(node, now);
-    next = co_time_min(next, co_guarding_process(node, now));
-    next = co_time_min(next, co_sdo_process(node, now));
-    next = co_time_min(next, co_sync_process(node, now));
-    next = co_time_min(next, co_emcy_process(node, now));
+    co_time_t next = CO_TIME_NEVER;
+    for (size_t i = 0; i < sizeof(services) / sizeof(services[0]); i++)
+        next = co_time_min(next, services[i](node, now));
     node->services_due = next;
     return next;
 }

@@ -168,11 +168,16 @@ static int64_t sign_extend(uint64_t v, size_t size)
     return (int32_t)(((uint32_t)v ^ sign) - sign);
 }
 
+/* The value of `size` bytes (1..8, little-endian) of the given type. */
+static int64_t typed_value(const uint8_t *p, size_t size, uint8_t type)
+{
+    uint64_t v = raw_value(p, size);
+    return type_is_signed(type) ? sign_extend(v, size) : (int64_t)v;
+}
+
 int64_t co_od_get(const co_node_t *node, const co_od_entry_t *entry)
 {
-    size_t size = entry->size < 8 ? entry->size : 8;
-    uint64_t v = raw_value(co_od_bytes(node, entry), size);
-    return type_is_signed(entry->type) ? sign_extend(v, size) : (int64_t)v;
+    return typed_value(co_od_bytes(node, entry), entry->size < 8 ? entry->size : 8, entry->type);
 }
 
 void co_od_set(co_node_t *node, const co_od_entry_t *entry, int64_t value)
@@ -229,13 +234,13 @@ static uint32_t check_limits(const co_od_entry_t *e, size_t size, const uint8_t 
         return SDO_ABORT_VALUE_RANGE;
     if (e->limits == NULL || size == 0 || e->type == CO_DT_REAL32 || e->type == CO_DT_REAL64)
         return CO_SDO_OK;
-    uint64_t raw = raw_value(data, size);
-    if (raw == 0 && (e->flags & CO_OD_ZERO_OK))
+    uint64_t value = (uint64_t)typed_value(data, size, e->type);
+    if (value == 0 && (e->flags & CO_OD_ZERO_OK))
         return CO_SDO_OK;
     /* Signed values compare as unsigned once the sign bit of all three is flipped: the order of
      * int64_t maps onto that of uint64_t. */
     uint64_t bias = type_is_signed(e->type) ? UINT64_C(1) << 63 : 0;
-    uint64_t v = bias != 0 ? (uint64_t)sign_extend(raw, size) ^ bias : raw;
+    uint64_t v = value ^ bias;
     if (v > (e->limits->high ^ bias))
         return SDO_ABORT_VALUE_HIGH;
     if (v < (e->limits->low ^ bias))

@@ -7,9 +7,13 @@
 #include <string.h>
 
 #define RPDO_COMM_BASE 0x1400u
-#define RPDO_MAP_BASE 0x1600u
 #define TPDO_COMM_BASE 0x1800u
 #define TPDO_MAP_BASE 0x1A00u
+
+/* The four parameter ranges (CiA 301 7.5.2): RPDO communication and mapping, then TPDO
+ * communication and mapping, each PDO_INDEX_SPAN indexes; a PDO's mapping follows its
+ * communication parameter by one span. */
+#define PDO_INDEX_SPAN 0x200u
 
 /* Communication parameter sub-indices (CiA 301 tables 71 and 73). */
 #define PDO_SUB_COB_ID 1u
@@ -176,20 +180,29 @@ static void rpdo_errors_end(co_node_t *node, co_rpdo_t *r)
 
 /* ---- Configuration ---------------------------------------------------------------------- */
 
-static void rpdo_load(co_node_t *node, uint16_t n)
+/* Loads an RPDO's or a TPDO's mapping and reads sub-indexes 1..6 of its communication parameter
+ * (an RPDO uses fewer), an absent one as the PDO's default: an invalid COB-ID, event-driven, no
+ * times, no SYNC start value. The PDO is valid when both its COB-ID and its mapping are. */
+static bool pdo_load(const co_node_t *node, uint16_t comm, pdo_dir_t dir,
+                     uint32_t param[PDO_SUB_SYNC_START + 1], co_pdo_map_t *map)
 {
-    co_rpdo_t *r = &node->pdo.rpdo[n];
-    uint16_t comm = (uint16_t)(RPDO_COMM_BASE + n);
-    uint32_t cob_id = pdo_cob_id(node, comm);
-    bool map_ok = pdo_map_load(node, (uint16_t)(RPDO_MAP_BASE + n), PDO_RX, &r->map);
-    r->valid = pdo_cob_id_valid(cob_id) && map_ok;
-    r->can_id = (uint16_t)(cob_id & CO_PDO_COBID_CAN_ID);
-    r->type = (uint8_t)od_param(node, comm, PDO_SUB_TYPE, CO_PDO_TYPE_EVENT_PROFILE);
-    r->event_us = od_param(node, comm, PDO_SUB_EVENT_TIMER, 0) * PDO_EVENT_UNIT_US;
+    param[PDO_SUB_COB_ID] = pdo_cob_id(node, comm);
+    param[PDO_SUB_TYPE] = od_param(node, comm, PDO_SUB_TYPE, CO_PDO_TYPE_EVENT_PROFILE);
+    for (uint8_t sub = PDO_SUB_INHIBIT; sub <= PDO_SUB_SYNC_START; sub++)
+        param[sub] = od_param(node, comm, sub, 0);
+    bool map_ok = pdo_map_load(node, (uint16_t)(comm + PDO_INDEX_SPAN), dir, map);
+    return pdo_cob_id_valid(param[PDO_SUB_COB_ID]) && map_ok;
 }
 
-static void rpdo_restart(co_rpdo_t *r)
+/* An RPDO takes its parameters and restarts: nothing buffered, no deadline before a frame. */
+static void rpdo_reload(co_node_t *node, uint16_t n)
 {
+    co_rpdo_t *r = &node->pdo.rpdo[n];
+    uint32_t param[PDO_SUB_SYNC_START + 1];
+    r->valid = pdo_load(node, (uint16_t)(RPDO_COMM_BASE + n), PDO_RX, param, &r->map);
+    r->can_id = (uint16_t)(param[PDO_SUB_COB_ID] & CO_PDO_COBID_CAN_ID);
+    r->type = (uint8_t)param[PDO_SUB_TYPE];
+    r->event_us = param[PDO_SUB_EVENT_TIMER] * PDO_EVENT_UNIT_US;
     r->buffered = false;
     r->deadline = CO_TIME_NEVER;
 }
@@ -197,16 +210,15 @@ static void rpdo_restart(co_rpdo_t *r)
 static void tpdo_load(co_node_t *node, uint16_t n)
 {
     co_tpdo_t *t = &node->pdo.tpdo[n];
-    uint16_t comm = (uint16_t)(TPDO_COMM_BASE + n);
-    uint32_t cob_id = pdo_cob_id(node, comm);
-    bool map_ok = pdo_map_load(node, (uint16_t)(TPDO_MAP_BASE + n), PDO_TX, &t->map);
-    t->valid = pdo_cob_id_valid(cob_id) && map_ok;
+    uint32_t param[PDO_SUB_SYNC_START + 1];
+    t->valid = pdo_load(node, (uint16_t)(TPDO_COMM_BASE + n), PDO_TX, param, &t->map);
+    uint32_t cob_id = param[PDO_SUB_COB_ID];
     t->rtr_allowed = !(cob_id & CO_PDO_COBID_NO_RTR);
     t->can_id = (uint16_t)(cob_id & CO_PDO_COBID_CAN_ID);
-    t->type = (uint8_t)od_param(node, comm, PDO_SUB_TYPE, CO_PDO_TYPE_EVENT_PROFILE);
-    t->inhibit_us = od_param(node, comm, PDO_SUB_INHIBIT, 0) * PDO_INHIBIT_UNIT_US;
-    t->event_us = od_param(node, comm, PDO_SUB_EVENT_TIMER, 0) * PDO_EVENT_UNIT_US;
-    t->sync_start = (uint8_t)od_param(node, comm, PDO_SUB_SYNC_START, 0);
+    t->type = (uint8_t)param[PDO_SUB_TYPE];
+    t->inhibit_us = param[PDO_SUB_INHIBIT] * PDO_INHIBIT_UNIT_US;
+    t->event_us = param[PDO_SUB_EVENT_TIMER] * PDO_EVENT_UNIT_US;
+    t->sync_start = (uint8_t)param[PDO_SUB_SYNC_START];
 }
 
 /* Forgets the transmission state: the next transmission is immediate (event-driven) or waits
@@ -226,10 +238,8 @@ static void tpdo_restart(co_tpdo_t *t)
 
 void co_pdo_restart(co_node_t *node)
 {
-    for (uint16_t n = 0; n < CO_CONFIG_RPDO_MAX; n++) {
-        rpdo_load(node, n);
-        rpdo_restart(&node->pdo.rpdo[n]);
-    }
+    for (uint16_t n = 0; n < CO_CONFIG_RPDO_MAX; n++)
+        rpdo_reload(node, n);
     for (uint16_t n = 0; n < CO_CONFIG_TPDO_MAX; n++) {
         tpdo_load(node, n);
         tpdo_restart(&node->pdo.tpdo[n]);
@@ -592,8 +602,7 @@ static uint32_t pdo_write_map(co_node_t *node, const co_od_entry_t *entry, const
 static void rpdo_written(co_node_t *node, uint16_t n)
 {
     co_rpdo_t *r = &node->pdo.rpdo[n];
-    rpdo_load(node, n);
-    rpdo_restart(r);
+    rpdo_reload(node, n);
     if (!r->valid)
         rpdo_errors_end(node, r);
 }
@@ -609,11 +618,6 @@ static void tpdo_written(co_node_t *node, uint16_t n, const co_od_entry_t *entry
     else
         t->event_due = t->event_us != 0 && t->sent ? node->now + t->event_us : CO_TIME_NEVER;
 }
-
-/* The four parameter ranges (CiA 301 7.5.2): RPDO communication and mapping, then TPDO
- * communication and mapping, each PDO_INDEX_SPAN indexes; a PDO's mapping follows its
- * communication parameter by one span. */
-#define PDO_INDEX_SPAN 0x200u
 
 /* PDO n of the parameter just stored, an RPDO or a TPDO by the parameter's index. */
 static void pdo_written(co_node_t *node, const co_od_entry_t *entry, uint16_t n)

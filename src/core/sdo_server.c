@@ -71,7 +71,7 @@ static uint32_t value_write(co_node_t *node, uint32_t offset, const uint8_t *dat
         return CO_SDO_OK;
     if (sdo->stream != NULL)
         return node->od->streaming->sdo_write(node, offset, data, len);
-    if ((uint64_t)offset + len > sdo->buffer->size)
+    if (len > sdo->buffer->size || offset > sdo->buffer->size - len)
         return SDO_ABORT_NO_MEMORY;
     memcpy(&sdo->buffer->data[offset], data, len);
     return CO_SDO_OK;

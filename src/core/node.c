@@ -4,12 +4,6 @@
 
 #include <string.h>
 
-/* CiA 301 7.5.2: the RPDO communication (1400h) and mapping (1600h) parameters, then the TPDO
- * communication (1800h) and mapping (1A00h) parameters, each span 512 indexes. */
-#define PDO_PARAM_FIRST 0x1400u
-#define TPDO_PARAM_FIRST 0x1800u
-#define PDO_INDEX_SPAN 0x200u
-
 /* Every PDO of the dictionary has its place in co_node_t, whose tables a firmware may size to its
  * dictionary (CO_CONFIG_RPDO_MAX, CO_CONFIG_TPDO_MAX): one too many would be a PDO that silently
  * does nothing. (A heartbeat consumer beyond CO_CONFIG_HB_CONSUMERS is refused when it is enabled,
@@ -17,12 +11,12 @@
 static bool tables_fit(const co_od_t *od)
 {
     for (const co_od_entry_t *e = od->entries; e < od->entries + od->count; e++) {
-        uint16_t offset = (uint16_t)(e->index - PDO_PARAM_FIRST);
-        if (offset >= 4 * PDO_INDEX_SPAN)
+        uint16_t offset = (uint16_t)(e->index - CO_PDO_RPDO_COMM);
+        if (offset >= 4 * CO_PDO_INDEX_SPAN)
             continue;
         unsigned max =
-            offset >= TPDO_PARAM_FIRST - PDO_PARAM_FIRST ? CO_CONFIG_TPDO_MAX : CO_CONFIG_RPDO_MAX;
-        if (offset % PDO_INDEX_SPAN >= max)
+            offset >= CO_PDO_TPDO_COMM - CO_PDO_RPDO_COMM ? CO_CONFIG_TPDO_MAX : CO_CONFIG_RPDO_MAX;
+        if (offset % CO_PDO_INDEX_SPAN >= max)
             return false;
     }
     return true;

@@ -6,15 +6,6 @@
 
 #include <string.h>
 
-#define RPDO_COMM_BASE 0x1400u
-#define TPDO_COMM_BASE 0x1800u
-#define TPDO_MAP_BASE 0x1A00u
-
-/* The four parameter ranges (CiA 301 7.5.2): RPDO communication and mapping, then TPDO
- * communication and mapping, each PDO_INDEX_SPAN indexes; a PDO's mapping follows its
- * communication parameter by one span. */
-#define PDO_INDEX_SPAN 0x200u
-
 /* Communication parameter sub-indices (CiA 301 tables 71 and 73). */
 #define PDO_SUB_COB_ID 1u
 #define PDO_SUB_TYPE 2u
@@ -190,7 +181,7 @@ static bool pdo_load(const co_node_t *node, uint16_t comm, pdo_dir_t dir,
     param[PDO_SUB_TYPE] = od_param(node, comm, PDO_SUB_TYPE, CO_PDO_TYPE_EVENT_PROFILE);
     for (uint8_t sub = PDO_SUB_INHIBIT; sub <= PDO_SUB_SYNC_START; sub++)
         param[sub] = od_param(node, comm, sub, 0);
-    bool map_ok = pdo_map_load(node, (uint16_t)(comm + PDO_INDEX_SPAN), dir, map);
+    bool map_ok = pdo_map_load(node, (uint16_t)(comm + CO_PDO_INDEX_SPAN), dir, map);
     return pdo_cob_id_valid(param[PDO_SUB_COB_ID]) && map_ok;
 }
 
@@ -199,7 +190,7 @@ static void rpdo_reload(co_node_t *node, uint16_t n)
 {
     co_rpdo_t *r = &node->pdo.rpdo[n];
     uint32_t param[PDO_SUB_SYNC_START + 1];
-    r->valid = pdo_load(node, (uint16_t)(RPDO_COMM_BASE + n), PDO_RX, param, &r->map);
+    r->valid = pdo_load(node, (uint16_t)(CO_PDO_RPDO_COMM + n), PDO_RX, param, &r->map);
     r->can_id = (uint16_t)(param[PDO_SUB_COB_ID] & CO_PDO_COBID_CAN_ID);
     r->type = (uint8_t)param[PDO_SUB_TYPE];
     r->event_us = param[PDO_SUB_EVENT_TIMER] * PDO_EVENT_UNIT_US;
@@ -211,7 +202,7 @@ static void tpdo_load(co_node_t *node, uint16_t n)
 {
     co_tpdo_t *t = &node->pdo.tpdo[n];
     uint32_t param[PDO_SUB_SYNC_START + 1];
-    t->valid = pdo_load(node, (uint16_t)(TPDO_COMM_BASE + n), PDO_TX, param, &t->map);
+    t->valid = pdo_load(node, (uint16_t)(CO_PDO_TPDO_COMM + n), PDO_TX, param, &t->map);
     uint32_t cob_id = param[PDO_SUB_COB_ID];
     t->rtr_allowed = !(cob_id & CO_PDO_COBID_NO_RTR);
     t->can_id = (uint16_t)(cob_id & CO_PDO_COBID_CAN_ID);
@@ -612,7 +603,7 @@ static void tpdo_written(co_node_t *node, uint16_t n, const co_od_entry_t *entry
 {
     co_tpdo_t *t = &node->pdo.tpdo[n];
     tpdo_load(node, n);
-    bool event_timer = entry->index < TPDO_MAP_BASE && entry->subindex == PDO_SUB_EVENT_TIMER;
+    bool event_timer = entry->index < CO_PDO_TPDO_MAP && entry->subindex == PDO_SUB_EVENT_TIMER;
     if (!event_timer)
         tpdo_restart(t);
     else
@@ -622,7 +613,7 @@ static void tpdo_written(co_node_t *node, uint16_t n, const co_od_entry_t *entry
 /* PDO n of the parameter just stored, an RPDO or a TPDO by the parameter's index. */
 static void pdo_written(co_node_t *node, const co_od_entry_t *entry, uint16_t n)
 {
-    if (entry->index < TPDO_COMM_BASE)
+    if (entry->index < CO_PDO_TPDO_COMM)
         rpdo_written(node, n);
     else
         tpdo_written(node, n, entry);
@@ -631,13 +622,13 @@ static void pdo_written(co_node_t *node, const co_od_entry_t *entry, uint16_t n)
 uint32_t co_pdo_od_write(co_node_t *node, const co_od_entry_t *entry, const uint8_t *data,
                          size_t len)
 {
-    unsigned range = (entry->index - RPDO_COMM_BASE) / PDO_INDEX_SPAN; /* 0..3 */
+    unsigned range = (entry->index - CO_PDO_RPDO_COMM) / CO_PDO_INDEX_SPAN; /* 0..3 */
     pdo_dir_t dir = range >= 2 ? PDO_TX : PDO_RX;
     bool mapping = (range & 1u) != 0;
-    uint16_t n = (uint16_t)(entry->index % PDO_INDEX_SPAN);
+    uint16_t n = (uint16_t)(entry->index % CO_PDO_INDEX_SPAN);
     if (n >= (dir == PDO_TX ? CO_CONFIG_TPDO_MAX : CO_CONFIG_RPDO_MAX))
         return CO_SDO_OK;
-    uint16_t comm = (uint16_t)(entry->index - (mapping ? PDO_INDEX_SPAN : 0));
+    uint16_t comm = (uint16_t)(entry->index - (mapping ? CO_PDO_INDEX_SPAN : 0));
     uint32_t abort = mapping ? pdo_write_map(node, entry, data, comm, dir)
                              : pdo_write_comm(node, entry, data, dir);
     if (abort != CO_SDO_OK)

@@ -217,6 +217,9 @@ int64_t co_od_get(const co_node_t *node, const co_od_entry_t *entry);
 /* Application access by index; absent entries read as 0 and ignore writes (return false). */
 int64_t co_od_value(const co_node_t *node, uint16_t index, uint8_t subindex);
 bool co_od_set_value(co_node_t *node, uint16_t index, uint8_t subindex, int64_t value);
+/* A parameter of up to 32 bits, `absent` when the dictionary does not have it: the services read
+ * an optional parameter (a PDO's, 100Eh, 1200h) as CiA 301's default for it. */
+uint32_t co_od_param(const co_node_t *node, uint16_t index, uint8_t subindex, uint32_t absent);
 /* Stores a numeric value into an entry without checks. */
 void co_od_set(co_node_t *node, const co_od_entry_t *entry, int64_t value);
 

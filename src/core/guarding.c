@@ -11,8 +11,7 @@
  * boot-up stay on 700h + node-id (nmt.c, heartbeat.c). */
 static uint32_t guarding_cob_id(const co_node_t *node)
 {
-    const co_od_entry_t *e = co_od_find(node->od, 0x100E, 0);
-    return e != NULL ? (uint32_t)co_od_get(node, e) : GUARD_COB_BASE + node->node_id;
+    return co_od_param(node, 0x100E, 0, GUARD_COB_BASE + node->node_id);
 }
 
 /* The life time, guard time (100Ch, ms) times life time factor (100Dh), from now while guarding

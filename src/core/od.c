@@ -197,6 +197,12 @@ int64_t co_od_value(const co_node_t *node, uint16_t index, uint8_t subindex)
     return e != NULL ? co_od_get(node, e) : 0;
 }
 
+uint32_t co_od_param(const co_node_t *node, uint16_t index, uint8_t subindex, uint32_t absent)
+{
+    const co_od_entry_t *e = co_od_find(node->od, index, subindex);
+    return e != NULL ? (uint32_t)co_od_get(node, e) : absent;
+}
+
 bool co_od_set_value(co_node_t *node, uint16_t index, uint8_t subindex, int64_t value)
 {
     const co_od_entry_t *e = co_od_find(node->od, index, subindex);

@@ -22,15 +22,9 @@
 
 typedef enum pdo_dir { PDO_RX, PDO_TX } pdo_dir_t;
 
-static uint32_t od_param(const co_node_t *node, uint16_t index, uint8_t subindex, uint32_t absent)
-{
-    const co_od_entry_t *e = co_od_find(node->od, index, subindex);
-    return e != NULL ? (uint32_t)co_od_get(node, e) : absent;
-}
-
 static uint32_t pdo_cob_id(const co_node_t *node, uint16_t comm_index)
 {
-    return od_param(node, comm_index, PDO_SUB_COB_ID, CO_PDO_COBID_INVALID);
+    return co_od_param(node, comm_index, PDO_SUB_COB_ID, CO_PDO_COBID_INVALID);
 }
 
 static bool pdo_cob_id_valid(uint32_t cob_id)
@@ -118,7 +112,7 @@ static uint32_t map_load(const co_node_t *node, uint16_t map_index, uint8_t coun
 static bool pdo_map_load(const co_node_t *node, uint16_t map_index, pdo_dir_t dir,
                          co_pdo_map_t *map)
 {
-    uint8_t count = (uint8_t)od_param(node, map_index, 0, 0);
+    uint8_t count = (uint8_t)co_od_param(node, map_index, 0, 0);
     return map_load(node, map_index, count, dir, map) == CO_SDO_OK;
 }
 
@@ -178,9 +172,9 @@ static bool pdo_load(const co_node_t *node, uint16_t comm, pdo_dir_t dir,
                      uint32_t param[PDO_SUB_SYNC_START + 1], co_pdo_map_t *map)
 {
     param[PDO_SUB_COB_ID] = pdo_cob_id(node, comm);
-    param[PDO_SUB_TYPE] = od_param(node, comm, PDO_SUB_TYPE, CO_PDO_TYPE_EVENT_PROFILE);
+    param[PDO_SUB_TYPE] = co_od_param(node, comm, PDO_SUB_TYPE, CO_PDO_TYPE_EVENT_PROFILE);
     for (uint8_t sub = PDO_SUB_INHIBIT; sub <= PDO_SUB_SYNC_START; sub++)
-        param[sub] = od_param(node, comm, sub, 0);
+        param[sub] = co_od_param(node, comm, sub, 0);
     bool map_ok = pdo_map_load(node, (uint16_t)(comm + CO_PDO_INDEX_SPAN), dir, map);
     return pdo_cob_id_valid(param[PDO_SUB_COB_ID]) && map_ok;
 }
@@ -198,20 +192,6 @@ static void rpdo_reload(co_node_t *node, uint16_t n)
     r->deadline = CO_TIME_NEVER;
 }
 
-static void tpdo_load(co_node_t *node, uint16_t n)
-{
-    co_tpdo_t *t = &node->pdo.tpdo[n];
-    uint32_t param[PDO_SUB_SYNC_START + 1];
-    t->valid = pdo_load(node, (uint16_t)(CO_PDO_TPDO_COMM + n), PDO_TX, param, &t->map);
-    uint32_t cob_id = param[PDO_SUB_COB_ID];
-    t->rtr_allowed = !(cob_id & CO_PDO_COBID_NO_RTR);
-    t->can_id = (uint16_t)(cob_id & CO_PDO_COBID_CAN_ID);
-    t->type = (uint8_t)param[PDO_SUB_TYPE];
-    t->inhibit_us = param[PDO_SUB_INHIBIT] * PDO_INHIBIT_UNIT_US;
-    t->event_us = param[PDO_SUB_EVENT_TIMER] * PDO_EVENT_UNIT_US;
-    t->sync_start = (uint8_t)param[PDO_SUB_SYNC_START];
-}
-
 /* Forgets the transmission state: the next transmission is immediate (event-driven) or waits
  * for the next SYNC (synchronous). */
 static void tpdo_restart(co_tpdo_t *t)
@@ -227,14 +207,32 @@ static void tpdo_restart(co_tpdo_t *t)
     t->event_due = CO_TIME_NEVER;
 }
 
+/* A TPDO takes its parameters, and restarts unless only its event timer changed (then only the
+ * timer restarts). */
+static void tpdo_load(co_node_t *node, uint16_t n, bool restart)
+{
+    co_tpdo_t *t = &node->pdo.tpdo[n];
+    uint32_t param[PDO_SUB_SYNC_START + 1];
+    t->valid = pdo_load(node, (uint16_t)(CO_PDO_TPDO_COMM + n), PDO_TX, param, &t->map);
+    uint32_t cob_id = param[PDO_SUB_COB_ID];
+    t->rtr_allowed = !(cob_id & CO_PDO_COBID_NO_RTR);
+    t->can_id = (uint16_t)(cob_id & CO_PDO_COBID_CAN_ID);
+    t->type = (uint8_t)param[PDO_SUB_TYPE];
+    t->inhibit_us = param[PDO_SUB_INHIBIT] * PDO_INHIBIT_UNIT_US;
+    t->event_us = param[PDO_SUB_EVENT_TIMER] * PDO_EVENT_UNIT_US;
+    t->sync_start = (uint8_t)param[PDO_SUB_SYNC_START];
+    if (restart)
+        tpdo_restart(t);
+    else
+        t->event_due = t->event_us != 0 && t->sent ? node->now + t->event_us : CO_TIME_NEVER;
+}
+
 void co_pdo_restart(co_node_t *node)
 {
     for (uint16_t n = 0; n < CO_CONFIG_RPDO_MAX; n++)
         rpdo_reload(node, n);
-    for (uint16_t n = 0; n < CO_CONFIG_TPDO_MAX; n++) {
-        tpdo_load(node, n);
-        tpdo_restart(&node->pdo.tpdo[n]);
-    }
+    for (uint16_t n = 0; n < CO_CONFIG_TPDO_MAX; n++)
+        tpdo_load(node, n, true);
 }
 
 /* The errors were detected by the communication that the reset restarts from its restored
@@ -516,7 +514,7 @@ static uint32_t pdo_write_cob_id(const co_node_t *node, uint16_t comm, uint32_t 
     uint32_t abort = co_cob_id_check(cob_id, value, CO_PDO_COBID_INVALID, 0);
     if (abort != CO_SDO_OK)
         return abort;
-    uint8_t type = (uint8_t)od_param(node, comm, PDO_SUB_TYPE, CO_PDO_TYPE_EVENT_PROFILE);
+    uint8_t type = (uint8_t)co_od_param(node, comm, PDO_SUB_TYPE, CO_PDO_TYPE_EVENT_PROFILE);
     if (dir == PDO_TX && (value & CO_PDO_COBID_NO_RTR) && tpdo_type_is_rtr(type))
         return SDO_ABORT_VALUE_RANGE;
     return CO_SDO_OK;
@@ -578,7 +576,7 @@ static uint32_t pdo_write_map(co_node_t *node, const co_od_entry_t *entry, const
         co_pdo_map_t map;
         return map_load(node, entry->index, (uint8_t)value, dir, &map);
     }
-    if (od_param(node, entry->index, 0, 0) != 0)
+    if (co_od_param(node, entry->index, 0, 0) != 0)
         return SDO_ABORT_UNSUPPORTED_ACCESS;
     if (value == 0)
         return CO_SDO_OK;
@@ -601,13 +599,8 @@ static void rpdo_written(co_node_t *node, uint16_t n)
 /* A new event timer (sub-index 5 of the communication parameter) only restarts the timer. */
 static void tpdo_written(co_node_t *node, uint16_t n, const co_od_entry_t *entry)
 {
-    co_tpdo_t *t = &node->pdo.tpdo[n];
-    tpdo_load(node, n);
     bool event_timer = entry->index < CO_PDO_TPDO_MAP && entry->subindex == PDO_SUB_EVENT_TIMER;
-    if (!event_timer)
-        tpdo_restart(t);
-    else
-        t->event_due = t->event_us != 0 && t->sent ? node->now + t->event_us : CO_TIME_NEVER;
+    tpdo_load(node, n, !event_timer);
 }
 
 /* PDO n of the parameter just stored, an RPDO or a TPDO by the parameter's index. */

@@ -89,10 +89,10 @@ static uint32_t buffer_take(co_node_t *node, uint32_t size)
     return CO_SDO_OK;
 }
 
+/* The default channel's COB-IDs (1200h), CiA 301's 600h / 580h + node-id without it. */
 static uint16_t channel_cob_id(co_node_t *node, uint8_t subindex, uint16_t fallback)
 {
-    const co_od_entry_t *e = co_od_find(node->od, 0x1200, subindex);
-    return e != NULL ? (uint16_t)(co_od_get(node, e) & 0x7FF) : fallback;
+    return (uint16_t)(co_od_param(node, 0x1200, subindex, fallback) & 0x7FF);
 }
 
 void co_sdo_reset(co_node_t *node)
@@ -299,19 +299,22 @@ static uint32_t upload_initiate(co_node_t *node)
     co_sdo_server_t *sdo = &node->sdo;
     const co_od_entry_t *e;
     uint32_t abort = co_od_read_check(node, sdo->index, sdo->subindex, &e);
-    bool stream = abort == CO_SDO_OK && (e->flags & CO_OD_STREAM);
-    size_t len = abort == CO_SDO_OK && !stream ? co_od_length(node, e) : 0;
-    if (abort == CO_SDO_OK && !stream && len >= 1 && len <= EXPEDITED_BYTES) {
-        upload_expedited(node, co_od_bytes(node, e), len);
-        return CO_SDO_OK;
+    if (abort != CO_SDO_OK)
+        return abort;
+    bool expedited_only = (node->options & CO_NODE_SDO_EXPEDITED_ONLY) != 0;
+    if (!(e->flags & CO_OD_STREAM)) {
+        size_t len = co_od_length(node, e);
+        if (len >= 1 && len <= EXPEDITED_BYTES) {
+            upload_expedited(node, co_od_bytes(node, e), len);
+            return CO_SDO_OK;
+        }
+        /* Refused before the snapshot would take the buffer. */
+        if (expedited_only)
+            return SDO_ABORT_UNSUPPORTED_ACCESS;
     }
-    if (stream)
-        abort = upload_open(node, e);
-    if (abort == CO_SDO_OK && (node->options & CO_NODE_SDO_EXPEDITED_ONLY) &&
-        !(stream && fits_expedited(sdo->size)))
+    abort = upload_open(node, e);
+    if (abort == CO_SDO_OK && expedited_only && !fits_expedited(sdo->size))
         abort = SDO_ABORT_UNSUPPORTED_ACCESS;
-    if (abort == CO_SDO_OK && !stream)
-        abort = upload_open(node, e);
     if (abort != CO_SDO_OK)
         return abort;
     return upload_response(node);

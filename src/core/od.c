@@ -236,9 +236,11 @@ static uint32_t check_length(const co_od_entry_t *e, size_t size, size_t len)
 
 static uint32_t check_limits(const co_od_entry_t *e, size_t size, const uint8_t *data)
 {
+    if (size == 0)
+        return CO_SDO_OK;
     if (e->type == CO_DT_BOOLEAN && data[0] > 1)
         return SDO_ABORT_VALUE_RANGE;
-    if (e->limits == NULL || size == 0 || e->type == CO_DT_REAL32 || e->type == CO_DT_REAL64)
+    if (e->limits == NULL || e->type == CO_DT_REAL32 || e->type == CO_DT_REAL64)
         return CO_SDO_OK;
     uint64_t value = (uint64_t)typed_value(data, size, e->type);
     if (value == 0 && (e->flags & CO_OD_ZERO_OK))

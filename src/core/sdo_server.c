@@ -248,13 +248,12 @@ static uint32_t upload_snapshot(co_node_t *node, const co_od_entry_t *entry)
 
 static void upload_expedited(co_node_t *node, const uint8_t *value, size_t len)
 {
-    co_sdo_server_t *sdo = &node->sdo;
-    uint8_t p[8] = {(uint8_t)(SCS_UPLOAD_INITIATE | ((EXPEDITED_BYTES - len) << 2) | SDO_EXPEDITED |
-                              SDO_SIZE_INDICATED)};
-    co_put_u16(&p[1], sdo->index);
-    p[3] = sdo->subindex;
-    memcpy(&p[4], value, len);
-    send_response(node, p);
+    uint8_t data[EXPEDITED_BYTES] = {0}; /* the bytes after the value are 0 */
+    memcpy(data, value, len);
+    send_with_mux(node,
+                  (uint8_t)(SCS_UPLOAD_INITIATE | ((EXPEDITED_BYTES - len) << 2) | SDO_EXPEDITED |
+                            SDO_SIZE_INDICATED),
+                  co_get_u32(data));
     transfer_idle(node);
 }
 

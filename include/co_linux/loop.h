@@ -106,7 +106,7 @@ typedef struct co_linux_stats {
     unsigned long long tx_dropped;   /* frames dropped: TX queue full or write error */
     unsigned long long down_dropped; /* frames sent while the interface was down */
     unsigned long long error_frames; /* error frames received */
-    unsigned long long tx_calls;     /* sendmmsg calls that wrote frames */
+    unsigned long long tx_calls;     /* system calls that wrote frames (send for a lone one) */
     unsigned long long unrouted;     /* frames received that no device consumes */
     unsigned long long filters;      /* receive filters set on the socket */
 } co_linux_stats_t;

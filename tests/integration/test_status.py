@@ -12,7 +12,7 @@ NODE = 4
 
 COUNTERS = re.compile(
     r"^vcan0: CAN error-active; frames received (\d+), sent (\d+), dropped 0, lost while down 0, "
-    r"error frames 0; wake-ups (\d+)$"
+    r"error frames 0; wake-ups (\d+), sendmmsg calls (\d+)$"
 )
 
 
@@ -39,6 +39,7 @@ def test_status_file_every_second(bus, start_daemon, tmp_path):
     m = COUNTERS.match(lines[0])
     assert m, lines[0]
     assert int(m.group(1)) >= 1  # the NMT start
+    assert 1 <= int(m.group(4)) <= int(m.group(2)), lines[0]  # a write call carries 1 frame or more
     # The NMT command is routed to both drives; each sent its boot-up (and node 5 TPDOs since).
     assert lines[1] == (
         "node 4: nmt Pre-operational, cia402 Switch on disabled, statusword 0640, speed 0 rpm, "

@@ -65,6 +65,19 @@ START_TEST(node_id_relative_defaults)
 }
 END_TEST
 
+START_TEST(param_reads_value_or_absent_default)
+{
+    test_node_start(&t, 4, NULL, NULL);
+    ck_assert_uint_eq(co_od_param(&t.node, 0x1800, 1, 0xDEAD), 0x184);
+    ck_assert_uint_eq(co_od_param(&t.node, 0x1805, 1, 0), 0x80000284);
+    ck_assert_uint_eq(co_od_param(&t.node, 0x1004, 0, 0x80000000), 0x80000000);
+    ck_assert_uint_eq(co_od_param(&t.node, 0x1018, 5, 7), 7);
+    uint8_t v[2] = {0x9C, 0xFF}; /* -100: the low 32 bits of the sign-extended value */
+    ck_assert_uint_eq(co_od_write(&t.node, 0x2000, 0x0E, v, 2, CO_OD_ORIGIN_SDO), 0);
+    ck_assert_uint_eq(co_od_param(&t.node, 0x2000, 0x0E, 0), 0xFFFFFF9Cu);
+}
+END_TEST
+
 START_TEST(signed_values_and_limits)
 {
     test_node_start(&t, 4, NULL, NULL);
@@ -146,6 +159,7 @@ int main(void)
     tcase_add_test(tc, lookup_gives_most_specific_abort);
     tcase_add_test(tc, validate_rejects_unsorted_and_duplicate);
     tcase_add_test(tc, node_id_relative_defaults);
+    tcase_add_test(tc, param_reads_value_or_absent_default);
     tcase_add_test(tc, signed_values_and_limits);
     tcase_add_test(tc, zero_allowed_below_low_limit);
     tcase_add_test(tc, length_and_access_checks);

@@ -271,8 +271,7 @@ static co_time_t tpdo_process_event(co_node_t *node, co_tpdo_t *t, co_time_t now
 {
     uint8_t data[8];
     map_read(node, &t->map, data);
-    if (tpdo_changed(t, data) || now >= t->event_due)
-        t->pending = true;
+    t->pending = t->pending || tpdo_changed(t, data) || now >= t->event_due;
     if (t->pending && now >= t->inhibit_end)
         tpdo_send(node, t, data);
     return t->pending ? t->inhibit_end : t->event_due;
@@ -377,13 +376,11 @@ static void rpdo_check_length(co_node_t *node, uint16_t n, uint8_t len)
     uint16_t code = len < r->map.length              ? CO_EMCY_PDO_LENGTH
                     : len > r->map.length && !padded ? CO_EMCY_PDO_LENGTH_EXCEEDED
                                                      : 0;
-    if (code == r->length_error)
-        return;
     uint16_t previous = r->length_error;
     r->length_error = code;
-    if (previous != 0)
+    if (previous != 0 && previous != code)
         rpdo_error_release(node, previous);
-    if (code != 0)
+    if (code != 0 && previous != code)
         rpdo_emcy(node, n, code, len);
 }
 

@@ -51,8 +51,8 @@ co_od_error_t co_od_validate(const co_od_t *od, uint16_t *position)
     if (od == NULL || od->entries == NULL || od->count == 0)
         return CO_OD_ERR_EMPTY;
     uint32_t prev = 0;
-    for (uint16_t i = 0; i < od->count; i++) {
-        const co_od_entry_t *e = &od->entries[i];
+    const co_od_entry_t *e = od->entries;
+    for (uint16_t i = 0; i < od->count; i++, e++) {
         uint32_t key = entry_key(e->index, e->subindex);
         *position = i;
         if (i > 0 && key == prev)

@@ -605,10 +605,17 @@ static uint32_t block_upload_command(co_node_t *node, const co_frame_t *frame)
 
 static bool is_initiate(uint8_t command)
 {
-    uint8_t ccs = command >> 5;
-    return ccs == CCS_DOWNLOAD_INITIATE || ccs == CCS_UPLOAD_INITIATE ||
-           (ccs == CCS_BLOCK_UPLOAD && (command & 3u) == BLOCK_UPLOAD_INITIATE) ||
-           (ccs == CCS_BLOCK_DOWNLOAD && (command & 1u) == BLOCK_DOWNLOAD_INITIATE);
+    switch (command >> 5) {
+    case CCS_DOWNLOAD_INITIATE:
+    case CCS_UPLOAD_INITIATE:
+        return true;
+    case CCS_BLOCK_UPLOAD:
+        return (command & 3u) == BLOCK_UPLOAD_INITIATE;
+    case CCS_BLOCK_DOWNLOAD:
+        return (command & 1u) == BLOCK_DOWNLOAD_INITIATE;
+    default:
+        return false;
+    }
 }
 
 /* A new request replaces whatever transfer was under way: the client has given up on it, and an

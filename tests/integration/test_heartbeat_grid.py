@@ -8,7 +8,7 @@ import re
 import signal
 import time
 
-from conftest import BOOT_TIMEOUT, MARKER_ID, PERIODIC_LATENESS, assert_periodic
+from conftest import BOOT_TIMEOUT, IFACE, MARKER_ID, PERIODIC_LATENESS, assert_periodic
 
 PERIOD = 0.100
 BEATS = 10
@@ -16,7 +16,8 @@ SPACING = 0.040
 # The loop's line of the status (docs/atv312d.md, "Status surface"), whole lines only: the log is
 # read while the daemon may be writing it.
 LOOP_COUNTERS = re.compile(
-    r"status: vcan0: CAN [^;]*; frames received \d+, sent (\d+), [^;]*; wake-ups \d+, sendmmsg calls (\d+)\n"
+    rf"status: {re.escape(IFACE)}: CAN [^;]*; frames received \d+, sent (\d+), [^;]*; wake-ups \d+, "
+    r"sendmmsg calls (\d+)\n"
 )
 # This test's own frames on the bus: the 1017h writes and candump's readiness marker.
 OWN_IDS = (0x604, 0x605, MARKER_ID)

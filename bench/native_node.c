@@ -5,7 +5,7 @@
  *
  *   native_node FD NODE-ID
  *
- * The device operations are the daemon's (src/atv312d/main.c) without its logging: atv312d also
+ * The device operations are the daemon's (apps/atv312d/main.c) without its logging: atv312d also
  * compares the NMT and CiA 402 states after each call into the drive and looks up 1014h for each
  * frame it sends, to log state changes and emergencies. Runs until the peer hangs up or SIGTERM,
  * then prints the loop's counters as one JSON line on standard output. */
@@ -91,7 +91,7 @@ int main(int argc, char **argv)
         fprintf(stderr, "native_node: %s: %s\n", loop.open_call, strerror(loop.open_errno));
         return EX_OSERR;
     }
-    const atv312d_model_t *model = atv312d_find_model("atv312");
+    const drive_model_t *model = drive_model_find("atv312");
     static bench_drive_t bench;
     uint8_t *od_data = calloc(1, model->profile->od->data_size);
     drive_config_t dc = {.profile = model->profile,

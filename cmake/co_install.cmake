@@ -29,8 +29,8 @@ endif()
 set(CO_INSTALL_CMAKEDIR ${CMAKE_INSTALL_LIBDIR}/cmake/canopen)
 set(CO_INSTALL_EDSDIR ${CMAKE_INSTALL_DATADIR}/${PROJECT_NAME}/eds)
 
-# Libraries and their headers. The models' folders of include/ (atv312/, ...) are the daemon's:
-# their libraries are not installed, so neither are their headers.
+# Libraries and their headers. The models' headers (src/drive/models/<model>/<model>.h) are the
+# daemon's: their libraries are not installed, so neither are their headers.
 set(CO_INSTALL_HEADER_DIRS co co_linux drive)
 set_target_properties(canopen PROPERTIES EXPORT_NAME core)
 set_target_properties(co_linux PROPERTIES EXPORT_NAME linux)

@@ -7,7 +7,7 @@
 find_program(ARM_GCC arm-none-eabi-gcc)
 find_program(ARM_NM arm-none-eabi-nm)
 if(NOT ARM_GCC OR NOT ARM_NM)
-  message(FATAL_ERROR "arm-none-eabi-gcc not found: install Debian's gcc-arm-none-eabi (tools/setup)")
+  message(FATAL_ERROR "arm-none-eabi-gcc not found: install Debian's gcc-arm-none-eabi (scripts/setup)")
 endif()
 if(NOT CPU)
   set(CPU cortex-m4)

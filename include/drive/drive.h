@@ -197,7 +197,7 @@ typedef struct drive {
     uint32_t fault_causes;
     uint8_t fault_latched; /* the entry in 603Fh and on the display while faults_active */
     drive_fault_reaction_t fault_reaction; /* the stop that runs in Fault reaction active */
-    /* At the drive (local.c): forced local control, the keypad's keys, the load. */
+    /* At the drive (local_control.c): forced local control, the keypad's keys, the load. */
     /* The profile's channels as last computed (channels.c): the network commands, and gives the
      * reference. */
     bool command_from_network;

@@ -63,7 +63,8 @@ bool drive_access_full(const drive_t *drive);
 /* A channel_mode value with separate command channels: the separate and the I/O modes. */
 bool drive_mode_separate(const drive_profile_t *profile, uint32_t mode);
 
-/* At the drive (local.c). The command channel changed: a freewheel stop to Switch on disabled. */
+/* At the drive (local_control.c). The command channel changed: a freewheel stop to Switch on
+ * disabled. */
 void drive_local_channel_changed(drive_t *drive);
 /* The motor follows the reference under forced local control. */
 bool drive_local_runs(const drive_t *drive);

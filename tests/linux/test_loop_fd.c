@@ -79,7 +79,7 @@ static void setup(void)
     ck_assert_int_eq(socketpair(AF_UNIX, SOCK_SEQPACKET, 0, bus), 0);
     co_linux_loop_config_t config = {.iface = "pair"};
     ck_assert_int_eq(co_linux_loop_open_fd(&loop, &config, bus[0]), CO_LINUX_OPEN_OK);
-    const atv312d_model_t *model = atv312d_find_model("atv312");
+    const drive_model_t *model = drive_model_find("atv312");
     ck_assert_ptr_nonnull(model);
     slot.od_data = calloc(1, model->profile->od->data_size);
     ck_assert_ptr_nonnull(slot.od_data);

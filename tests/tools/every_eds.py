@@ -32,7 +32,7 @@ def run_canopen(files):
     try:
         import canopen
     except ImportError as e:
-        print("FAIL: python canopen cannot be imported by %s (%s): run tools/setup and configure "
+        print("FAIL: python canopen cannot be imported by %s (%s): run scripts/setup and configure "
               "with -DPython3_EXECUTABLE=$PWD/.venv/bin/python" % (sys.executable, e))
         return 1
     if not sys.warnoptions or "error" not in sys.warnoptions:

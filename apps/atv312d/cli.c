@@ -1,0 +1,338 @@
+#include "cli.h"
+
+#include <ctype.h>
+#include <errno.h>
+#include <net/if.h>
+#include <stdarg.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sysexits.h>
+
+static int usage_error(char *err, size_t err_len, const char *format, ...)
+    __attribute__((format(printf, 3, 4)));
+
+static int usage_error(char *err, size_t err_len, const char *format, ...)
+{
+    va_list args;
+    va_start(args, format);
+    vsnprintf(err, err_len, format, args);
+    va_end(args);
+    return EX_USAGE;
+}
+
+/* Decimal, or hexadecimal with 0x (CANopen people write both); no sign, no trailing text. */
+static bool parse_number(const char *text, size_t len, unsigned long *value)
+{
+    char buf[16];
+    if (len == 0 || len >= sizeof buf || !isdigit((unsigned char)text[0]))
+        return false;
+    memcpy(buf, text, len);
+    buf[len] = '\0';
+    int base = (len > 2 && buf[0] == '0' && (buf[1] == 'x' || buf[1] == 'X')) ? 16 : 10;
+    char *end;
+    errno = 0;
+    *value = strtoul(buf, &end, base);
+    return errno == 0 && *end == '\0' && end != buf + (base == 16 ? 2 : 0);
+}
+
+static int parse_node_id(const char *text, size_t len, unsigned long *id, char *err, size_t err_len)
+{
+    if (!parse_number(text, len, id))
+        return usage_error(err, err_len,
+                           "--node-id: '%.*s' is not a node-id: use a number %d..%d, a range "
+                           "like 4-9 or a list like 4,6",
+                           (int)len, text, ATV312D_NODE_ID_MIN, ATV312D_NODE_ID_MAX);
+    if (*id < ATV312D_NODE_ID_MIN || *id > ATV312D_NODE_ID_MAX)
+        return usage_error(err, err_len, "--node-id: %.*s is out of range: node-ids are %d..%d",
+                           (int)len, text, ATV312D_NODE_ID_MIN, ATV312D_NODE_ID_MAX);
+    return 0;
+}
+
+/* The drives given so far: each --node-id option is a group, and a --model after it names the
+ * model of that group. Every group adds at least one node-id, so there are at most 127. */
+typedef struct node_groups {
+    uint8_t group_of[ATV312D_NODE_ID_MAX + 1]; /* 0: not given; n: given by the n-th --node-id */
+    const drive_model_t *model_of[ATV312D_NODE_ID_MAX + 1]; /* per group; NULL: default */
+    uint8_t count;                                          /* --node-id options so far */
+} node_groups_t;
+
+/* One --node-id value: "N", "A-B" or a comma-separated list of those, a new group. */
+static int parse_node_ids(const char *value, node_groups_t *groups, char *err, size_t err_len)
+{
+    groups->count++;
+    const char *item = value;
+    for (;;) {
+        size_t len = strcspn(item, ",");
+        const char *dash = memchr(item, '-', len);
+        unsigned long first = 0, last = 0;
+        int rc;
+        if (dash) {
+            rc = parse_node_id(item, (size_t)(dash - item), &first, err, err_len);
+            if (rc == 0)
+                rc = parse_node_id(dash + 1, len - (size_t)(dash - item) - 1, &last, err, err_len);
+            if (rc == 0 && first > last)
+                rc = usage_error(err, err_len,
+                                 "--node-id: range %.*s is backwards: write it as %lu-%lu",
+                                 (int)len, item, last, first);
+        } else {
+            rc = parse_node_id(item, len, &first, err, err_len);
+            last = first;
+        }
+        if (rc)
+            return rc;
+        for (unsigned long id = first; id <= last; id++) {
+            if (groups->group_of[id])
+                return usage_error(err, err_len,
+                                   "--node-id: node-id %lu is given twice: each drive needs "
+                                   "its own node-id in %d..%d",
+                                   id, ATV312D_NODE_ID_MIN, ATV312D_NODE_ID_MAX);
+            groups->group_of[id] = groups->count;
+        }
+        if (item[len] == '\0')
+            return 0;
+        item += len + 1;
+    }
+}
+
+/* "atv312" or "atv312, atv31, atv58": the names --model takes. */
+static void list_models(char *buf, size_t len)
+{
+    size_t used = 0;
+    buf[0] = '\0';
+    for (size_t i = 0; i < drive_model_count && used < len; i++)
+        used +=
+            (size_t)snprintf(buf + used, len - used, "%s%s", i ? ", " : "", drive_models[i].name);
+}
+
+/* --model names the model of the drives of the --node-id just before it. */
+static int parse_model(const char *name, node_groups_t *groups, char *err, size_t err_len)
+{
+    const drive_model_t *model = drive_model_find(name);
+    if (!model) {
+        char names[128];
+        list_models(names, sizeof names);
+        return usage_error(err, err_len, "--model: unknown model '%s': the models are %s", name,
+                           names);
+    }
+    if (groups->count == 0)
+        return usage_error(err, err_len,
+                           "--model %s: no --node-id before it: a model follows the node-ids of "
+                           "its drives, e.g. --node-id 4 --model %s",
+                           name, name);
+    if (groups->model_of[groups->count])
+        return usage_error(err, err_len,
+                           "--model %s: the drives of the --node-id before it are already %s: "
+                           "give one --model after each --node-id",
+                           name, groups->model_of[groups->count]->name);
+    groups->model_of[groups->count] = model;
+    return 0;
+}
+
+typedef enum {
+    OPT_NODE_ID,
+    OPT_MODEL,
+    OPT_STORE,
+    OPT_TRACE,
+    OPT_CONTROL,
+    OPT_STATUS,
+    OPT_LOG_LEVEL,
+    OPT_HELP,
+    OPT_VERSION
+} opt_t;
+
+static const struct {
+    const char *name;
+    opt_t opt;
+    bool has_value;
+} options[] = {
+    {"--node-id", OPT_NODE_ID, true},
+    {"--model", OPT_MODEL, true},
+    {"--store", OPT_STORE, true},
+    {"--trace", OPT_TRACE, true},
+    {"--control", OPT_CONTROL, true},
+    {"--status", OPT_STATUS, true},
+    {"--log-level", OPT_LOG_LEVEL, true},
+    {"--help", OPT_HELP, false},
+    {"-h", OPT_HELP, false},
+    {"--version", OPT_VERSION, false},
+    {"-V", OPT_VERSION, false},
+};
+
+/* Finds the option of "--name" or "--name=value"; *inline_value points after '='. */
+static int find_option(const char *arg, const char **inline_value)
+{
+    for (size_t i = 0; i < sizeof options / sizeof options[0]; i++) {
+        size_t n = strlen(options[i].name);
+        if (strncmp(arg, options[i].name, n) != 0)
+            continue;
+        if (arg[n] == '\0') {
+            *inline_value = NULL;
+            return (int)i;
+        }
+        if (arg[n] == '=' && options[i].has_value) {
+            *inline_value = arg + n + 1;
+            return (int)i;
+        }
+    }
+    return -1;
+}
+
+static int apply_option(opt_t opt, const char *value, atv312d_options_t *opts,
+                        node_groups_t *groups, char *err, size_t err_len)
+{
+    switch (opt) {
+    case OPT_NODE_ID:
+        return parse_node_ids(value, groups, err, err_len);
+    case OPT_MODEL:
+        return parse_model(value, groups, err, err_len);
+    case OPT_STORE:
+        opts->store_path = value;
+        return 0;
+    case OPT_TRACE:
+        opts->trace_path = value;
+        return 0;
+    case OPT_CONTROL:
+        opts->control_path = value;
+        return 0;
+    case OPT_STATUS:
+        opts->status_path = value;
+        return 0;
+    case OPT_LOG_LEVEL:
+        if (!co_log_level_parse(value, &opts->log_level))
+            return usage_error(err, err_len,
+                               "--log-level: unknown level '%s': use error, warn, info or debug",
+                               value);
+        return 0;
+    case OPT_HELP:
+        opts->help = true;
+        return 0;
+    case OPT_VERSION:
+        opts->version = true;
+        return 0;
+    }
+    return 0;
+}
+
+static int check_complete(atv312d_options_t *opts, const node_groups_t *groups, char *err,
+                          size_t err_len)
+{
+    if (!opts->iface)
+        return usage_error(err, err_len,
+                           "missing interface: run atv312d IFACE --node-id N, e.g. atv312d vcan0 "
+                           "--node-id 4");
+    if (strlen(opts->iface) >= IFNAMSIZ)
+        return usage_error(err, err_len,
+                           "interface name '%s' is too long: Linux allows at most %d characters",
+                           opts->iface, IFNAMSIZ - 1);
+    for (int id = ATV312D_NODE_ID_MIN; id <= ATV312D_NODE_ID_MAX; id++) {
+        uint8_t group = groups->group_of[id];
+        if (!group)
+            continue;
+        const drive_model_t *model = groups->model_of[group];
+        if (model && id > model->node_id_max)
+            return usage_error(err, err_len,
+                               "--node-id %d: the %s takes node-ids %d..%d, give it one of those",
+                               id, model->name, ATV312D_NODE_ID_MIN, model->node_id_max);
+        opts->models[opts->node_count] = model ? model : &drive_models[0];
+        opts->node_ids[opts->node_count++] = (uint8_t)id;
+    }
+    if (opts->node_count == 0)
+        return usage_error(err, err_len,
+                           "missing --node-id: give the drive's node-id (%d..%d), e.g. --node-id 4",
+                           ATV312D_NODE_ID_MIN, ATV312D_NODE_ID_MAX);
+    return 0;
+}
+
+int atv312d_parse_args(int argc, char *const argv[], atv312d_options_t *opts, char *err,
+                       size_t err_len)
+{
+    memset(opts, 0, sizeof *opts);
+    opts->log_level = CO_LOG_INFO;
+    node_groups_t groups = {0};
+    for (int i = 1; i < argc; i++) {
+        const char *arg = argv[i];
+        if (arg[0] != '-' || strcmp(arg, "-") == 0) {
+            if (opts->iface)
+                return usage_error(err, err_len,
+                                   "unexpected argument '%s': give one interface (it is '%s')", arg,
+                                   opts->iface);
+            opts->iface = arg;
+            continue;
+        }
+        const char *value;
+        int k = find_option(arg, &value);
+        if (k < 0)
+            return usage_error(err, err_len, "unknown option '%s' (see atv312d --help)", arg);
+        if (options[k].has_value && !value) {
+            if (i + 1 >= argc)
+                return usage_error(err, err_len, "option %s needs a value (see atv312d --help)",
+                                   options[k].name);
+            value = argv[++i];
+        }
+        if (options[k].has_value && value[0] == '\0')
+            return usage_error(err, err_len, "option %s needs a non-empty value", options[k].name);
+        int rc = apply_option(options[k].opt, value, opts, &groups, err, err_len);
+        if (rc)
+            return rc;
+        if (opts->help || opts->version)
+            return 0;
+    }
+    return check_complete(opts, &groups, err, err_len);
+}
+
+void atv312d_print_usage(FILE *out)
+{
+    fputs("usage: atv312d IFACE --node-id N [--model M] [--node-id N [--model M]...] [options]\n"
+          "       atv312d ctl PATH [--json] COMMAND...\n"
+          "\n"
+          "Puts emulated Schneider Altivar drives (CANopen, CiA 402) on a SocketCAN\n"
+          "interface.\n"
+          "\n"
+          "  IFACE               SocketCAN interface, e.g. can0 or vcan0\n"
+          "  --node-id N         node-id 1..127 of a drive; a range 4-9 or a list 4,6 puts\n"
+          "                      several drives on one socket; may be repeated\n"
+          "  --model M           model of the drives of the --node-id just before it\n",
+          out);
+    fprintf(out, "                      (default %s), one of:\n", drive_models[0].name);
+    for (size_t i = 0; i < drive_model_count; i++)
+        fprintf(out, "                        %-10s %s\n", drive_models[i].name,
+                drive_models[i].description);
+    fputs("  --store FILE        keep parameters saved with 1010h in FILE (all drives share\n"
+          "                      it, one record per node-id); without it 1010h aborts\n"
+          "  --trace FILE        write every frame in and out to FILE in candump -L format\n"
+          "                      ('-' = standard output)\n"
+          "  --control PATH      take control commands on a UNIX socket at PATH (see below)\n"
+          "  --status FILE       rewrite FILE once a second with the CAN controller state,\n"
+          "                      the frame counters and the state of every drive; SIGUSR1\n"
+          "                      writes the same to the log (also without --status)\n"
+          "  --log-level LEVEL   error, warn, info (default) or debug, on standard error\n"
+          "  -h, --help          show this help\n"
+          "  -V, --version       show the version\n"
+          "\n"
+          "Example: atv312d vcan0 --node-id 4-5 --model atv312 --node-id 6\n"
+          "\n"
+          "Control commands, for testing a master: atv312d ctl PATH COMMAND sends one to the\n"
+          "daemon started with --control PATH and prints its one-line reply, 'ok ...' (exit 0)\n"
+          "or 'error: ...' (exit 65); with --json the reply is a JSON object.\n"
+          "  fault NODE CODE     the fault CODE (OHF, OCF, USF, CnF, ...) happens: EMCY, 603Fh,\n"
+          "                      state Fault; its cause stays until cleared\n"
+          "  clear NODE CODE|all the cause of the fault is gone (a fault reset is then\n"
+          "                      accepted; USF, CFF and CFI end by themselves)\n"
+          "  mains NODE undervoltage|normal  mains undervoltage (the fault USF) or back\n"
+          "  stop-key NODE       the keypad's STOP key: status word bit 14; a freewheel stop\n"
+          "                      under network control, a ramp stop under local control\n"
+          "  run-key NODE        the keypad's RUN key, under local control: runs to 6042h\n"
+          "  local NODE on|off   forced local control (status word bit 9 = 0): the network's\n"
+          "                      control word is ignored; either way a freewheel stop\n"
+          "  load NODE PERCENT   extra load torque, 0..150 % of nominal: torque and current\n"
+          "  input NODE LIn on|off  a logic input (LI1..LI3 on an ATV312): a switch assigned\n"
+          "                      to it (rFC, CCS, rPS) acts at once\n"
+          "  state [NODE]        NMT and CiA 402 state, status word, speed, current, torque,\n"
+          "                      front panel display, RUN and ERR LEDs, latched fault, inputs\n"
+          "Example: atv312d ctl /tmp/atv312d.sock fault 4 OHF\n"
+          "\n"
+          "Exit status: 0 after SIGINT/SIGTERM, 64 usage error, 69 interface or CAN support\n"
+          "missing, 70 internal error, 71 system error, 73 cannot create the trace or store\n"
+          "file, 74 I/O error on the store file. See docs/atv312d.md.\n",
+          out);
+}

@@ -1,0 +1,38 @@
+/* The command line of atv312d: `atv312d IFACE --node-id N [--model M] [options]`. Parsing is
+ * separate from main() so the unit tests can check every error and its exit code. */
+#ifndef ATV312D_CLI_H
+#define ATV312D_CLI_H
+
+#include "co_linux/log.h"
+#include "models.h"
+
+#include <stdbool.h>
+#include <stddef.h>
+#include <stdint.h>
+#include <stdio.h>
+
+#define ATV312D_NODE_ID_MIN 1
+#define ATV312D_NODE_ID_MAX DRIVE_MODEL_NODE_ID_MAX
+
+typedef struct atv312d_options {
+    const char *iface;
+    uint8_t node_ids[ATV312D_NODE_ID_MAX];            /* ascending, each once */
+    const drive_model_t *models[ATV312D_NODE_ID_MAX]; /* the model of node_ids[i] */
+    size_t node_count;
+    const char *store_path;   /* NULL: no storage, 1010h aborts */
+    const char *trace_path;   /* NULL: no trace; "-": stdout */
+    const char *control_path; /* NULL: no control socket */
+    const char *status_path;  /* NULL: no status file (SIGUSR1 still logs the status) */
+    co_log_level_t log_level;
+    bool help;
+    bool version;
+} atv312d_options_t;
+
+/* Parses argv. Returns 0 (run, or print help / version when those flags are set) or EX_USAGE
+ * with a message in err saying what is wrong and what would be right. */
+int atv312d_parse_args(int argc, char *const argv[], atv312d_options_t *opts, char *err,
+                       size_t err_len);
+
+void atv312d_print_usage(FILE *out);
+
+#endif

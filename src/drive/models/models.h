@@ -1,0 +1,28 @@
+/* The table of drive models by name, as a program's --model takes it (atv312d), with what its
+ * --help says of each. Adding a model is adding its library (its dictionary, hooks and
+ * drive_profile_t, docs/drive.md) and one entry to the table of models.c. */
+#ifndef DRIVE_MODELS_H
+#define DRIVE_MODELS_H
+
+#include "drive/drive.h"
+
+#include <stddef.h>
+
+/* The highest node-id of CiA 301 (1..127), which every model but the ATV58 takes. */
+#define DRIVE_MODEL_NODE_ID_MAX 127
+
+typedef struct drive_model {
+    const char *name;        /* as --model takes it */
+    const char *description; /* for --help */
+    const drive_profile_t *profile;
+    uint8_t node_id_max; /* highest node-id the model takes (the ATV58's card: 63) */
+} drive_model_t;
+
+/* The models; the first is the default of a --node-id without --model. */
+extern const drive_model_t drive_models[];
+extern const size_t drive_model_count;
+
+/* NULL when no model has that name. */
+const drive_model_t *drive_model_find(const char *name);
+
+#endif

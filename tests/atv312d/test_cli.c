@@ -1,0 +1,249 @@
+/* The atv312d command line: node-id forms, duplicates and ranges, the model of each --node-id,
+ * every usage error with its exit code and a message naming what would be right. */
+#include "atv31/atv31.h"
+#include "atv312/atv312.h"
+#include "atv58/atv58.h"
+#include "check_main.h"
+#include "cli.h"
+
+#include <check.h>
+#include <stdarg.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sysexits.h>
+
+static atv312d_options_t opts;
+static char err[256];
+
+/* Parses a NULL-terminated list of arguments after the program name. */
+static int parse(const char *first, ...)
+{
+    char *argv[32] = {"atv312d"};
+    int argc = 1;
+    va_list args;
+    va_start(args, first);
+    for (const char *a = first; a; a = va_arg(args, const char *))
+        argv[argc++] = (char *)a;
+    va_end(args);
+    err[0] = '\0';
+    return atv312d_parse_args(argc, argv, &opts, err, sizeof err);
+}
+
+static void assert_ids(size_t count, const uint8_t *ids)
+{
+    ck_assert_uint_eq(opts.node_count, count);
+    ck_assert_mem_eq(opts.node_ids, ids, count);
+}
+
+START_TEST(single_node_with_defaults)
+{
+    ck_assert_int_eq(parse("vcan0", "--node-id", "4", NULL), 0);
+    ck_assert_str_eq(opts.iface, "vcan0");
+    assert_ids(1, (const uint8_t[]){4});
+    ck_assert_ptr_null(opts.store_path);
+    ck_assert_ptr_null(opts.trace_path);
+    ck_assert_ptr_null(opts.control_path);
+    ck_assert_ptr_null(opts.status_path);
+    ck_assert_int_eq(opts.log_level, CO_LOG_INFO);
+    ck_assert(!opts.help && !opts.version);
+    ck_assert_str_eq(opts.models[0]->name, "atv312");
+    ck_assert_ptr_eq(opts.models[0]->profile, &atv312_profile);
+}
+END_TEST
+
+/* --model names the model of the node-ids of the --node-id just before it; the others are the
+ * default's. */
+START_TEST(model_of_each_node_id_group)
+{
+    const drive_model_t *atv312 = drive_model_find("atv312");
+    ck_assert_ptr_nonnull(atv312);
+    ck_assert_ptr_eq(atv312, &drive_models[0]);
+    ck_assert_int_eq(parse("vcan0", "--node-id", "6", "--node-id", "4-5", "--model=atv312", NULL),
+                     0);
+    assert_ids(3, (const uint8_t[]){4, 5, 6});
+    for (size_t i = 0; i < 3; i++)
+        ck_assert_ptr_eq(opts.models[i], atv312);
+    ck_assert_int_eq(parse("--node-id", "4", "--model", "atv312", "vcan0", NULL), 0);
+    ck_assert_ptr_eq(opts.models[0], atv312);
+    ck_assert_ptr_null(drive_model_find("ATV312"));
+    /* A mixed bench: the ATV31 of firmware V1.2 and the one before, beside the default. */
+    ck_assert_int_eq(parse("vcan0", "--node-id", "4", "--node-id", "5", "--model", "atv31",
+                           "--node-id", "6", "--model", "atv31-v1.1", NULL),
+                     0);
+    assert_ids(3, (const uint8_t[]){4, 5, 6});
+    ck_assert_ptr_eq(opts.models[0]->profile, &atv312_profile);
+    ck_assert_ptr_eq(opts.models[1]->profile, &atv31_profile);
+    ck_assert_ptr_eq(opts.models[2]->profile, &atv31_v11_profile);
+}
+END_TEST
+
+START_TEST(model_errors)
+{
+    ck_assert_int_eq(parse("vcan0", "--node-id", "4", "--model", "atv99", NULL), EX_USAGE);
+    ck_assert_str_eq(
+        err, "--model: unknown model 'atv99': the models are atv312, atv31, atv31-v1.1, atv58");
+    ck_assert_int_eq(parse("vcan0", "--model", "atv312", "--node-id", "4", NULL), EX_USAGE);
+    ck_assert_str_eq(err, "--model atv312: no --node-id before it: a model follows the node-ids "
+                          "of its drives, e.g. --node-id 4 --model atv312");
+    ck_assert_int_eq(
+        parse("vcan0", "--node-id", "4", "--model", "atv312", "--model", "atv312", NULL), EX_USAGE);
+    ck_assert_str_eq(err, "--model atv312: the drives of the --node-id before it are already "
+                          "atv312: give one --model after each --node-id");
+    ck_assert_int_eq(parse("vcan0", "--node-id", "4", "--model", NULL), EX_USAGE);
+    ck_assert_str_eq(err, "option --model needs a value (see atv312d --help)");
+}
+END_TEST
+
+/* The ATV58's card takes node-ids 1..63 (its address switches): one above is refused, naming the
+ * range, and the same id is fine for the other models. */
+START_TEST(atv58_node_ids_up_to_63)
+{
+    ck_assert_int_eq(
+        parse("vcan0", "--node-id", "4", "--node-id", "60-64", "--model", "atv58", NULL), EX_USAGE);
+    ck_assert_str_eq(err, "--node-id 64: the atv58 takes node-ids 1..63, give it one of those");
+    ck_assert_int_eq(parse("vcan0", "--node-id", "64", "--model", "atv31", "--node-id", "1,63",
+                           "--model", "atv58", NULL),
+                     0);
+    assert_ids(3, (const uint8_t[]){1, 63, 64});
+    ck_assert_ptr_eq(opts.models[0]->profile, &atv58_profile);
+    ck_assert_ptr_eq(opts.models[1]->profile, &atv58_profile);
+    ck_assert_ptr_eq(opts.models[2]->profile, &atv31_profile);
+}
+END_TEST
+
+/* --help lists every model with its description, the default first. */
+START_TEST(help_lists_the_models)
+{
+    char *text = NULL;
+    size_t size = 0;
+    FILE *out = open_memstream(&text, &size);
+    ck_assert_ptr_nonnull(out);
+    atv312d_print_usage(out);
+    fclose(out);
+    ck_assert_msg(strstr(text, "(default atv312)") != NULL, "%s", text);
+    for (size_t i = 0; i < drive_model_count; i++)
+        ck_assert_msg(strstr(text, drive_models[i].description) != NULL, "%s", text);
+    free(text);
+}
+END_TEST
+
+START_TEST(every_option_in_both_spellings)
+{
+    ck_assert_int_eq(parse("--node-id=0x7F", "--store", "/tmp/s", "--trace=-", "--log-level",
+                           "debug", "--control=/tmp/c.sock", "--status", "/tmp/st", "can1", NULL),
+                     0);
+    ck_assert_str_eq(opts.control_path, "/tmp/c.sock");
+    ck_assert_str_eq(opts.status_path, "/tmp/st");
+    ck_assert_str_eq(opts.iface, "can1");
+    assert_ids(1, (const uint8_t[]){127});
+    ck_assert_str_eq(opts.store_path, "/tmp/s");
+    ck_assert_str_eq(opts.trace_path, "-");
+    ck_assert_int_eq(opts.log_level, CO_LOG_DEBUG);
+}
+END_TEST
+
+START_TEST(ranges_lists_and_repeats_are_sorted)
+{
+    ck_assert_int_eq(parse("vcan0", "--node-id", "7-9", "--node-id", "2,4", "--node-id=1", NULL),
+                     0);
+    assert_ids(6, (const uint8_t[]){1, 2, 4, 7, 8, 9});
+    ck_assert_int_eq(parse("vcan0", "--node-id", "1-127", NULL), 0);
+    ck_assert_uint_eq(opts.node_count, 127);
+    ck_assert_uint_eq(opts.node_ids[126], 127);
+    ck_assert_int_eq(parse("vcan0", "--node-id", "5-5", NULL), 0);
+    assert_ids(1, (const uint8_t[]){5});
+}
+END_TEST
+
+START_TEST(out_of_range_names_the_range)
+{
+    static const char *const bad[] = {"0", "128", "0-4", "120-130", "300"};
+    for (size_t i = 0; i < sizeof bad / sizeof bad[0]; i++) {
+        ck_assert_int_eq(parse("vcan0", "--node-id", bad[i], NULL), EX_USAGE);
+        ck_assert_msg(strstr(err, "1..127") != NULL, "%s: %s", bad[i], err);
+        ck_assert_msg(strstr(err, "out of range") != NULL, "%s: %s", bad[i], err);
+    }
+}
+END_TEST
+
+START_TEST(malformed_node_ids)
+{
+    static const char *const bad[] = {"abc", "4x", "-4", "4-", "-", "4,,5", "", "+4", "0x"};
+    for (size_t i = 0; i < sizeof bad / sizeof bad[0]; i++) {
+        ck_assert_msg(parse("vcan0", "--node-id", bad[i], NULL) == EX_USAGE, "accepted '%s'",
+                      bad[i]);
+        ck_assert_msg(strstr(err, "--node-id") != NULL, "%s: %s", bad[i], err);
+    }
+    ck_assert_int_eq(parse("vcan0", "--node-id", "9-4", NULL), EX_USAGE);
+    ck_assert_str_eq(err, "--node-id: range 9-4 is backwards: write it as 4-9");
+}
+END_TEST
+
+START_TEST(duplicates_are_refused)
+{
+    ck_assert_int_eq(parse("vcan0", "--node-id", "4-9", "--node-id", "5", NULL), EX_USAGE);
+    ck_assert_str_eq(err,
+                     "--node-id: node-id 5 is given twice: each drive needs its own node-id in "
+                     "1..127");
+    ck_assert_int_eq(parse("vcan0", "--node-id", "4,0x4", NULL), EX_USAGE);
+    ck_assert(strstr(err, "node-id 4 is given twice") != NULL);
+}
+END_TEST
+
+START_TEST(missing_pieces)
+{
+    ck_assert_int_eq(parse("--node-id", "4", NULL), EX_USAGE);
+    ck_assert(strstr(err, "missing interface") != NULL);
+    ck_assert_int_eq(parse("vcan0", NULL), EX_USAGE);
+    ck_assert(strstr(err, "missing --node-id") != NULL);
+    ck_assert_int_eq(parse("vcan0", "--node-id", NULL), EX_USAGE);
+    ck_assert_str_eq(err, "option --node-id needs a value (see atv312d --help)");
+    ck_assert_int_eq(parse("vcan0", "--node-id", "4", "--store=", NULL), EX_USAGE);
+    ck_assert(strstr(err, "--store") != NULL);
+}
+END_TEST
+
+START_TEST(unknown_options_and_extra_arguments)
+{
+    ck_assert_int_eq(parse("vcan0", "--node-id", "4", "--bitrate", "250000", NULL), EX_USAGE);
+    ck_assert_str_eq(err, "unknown option '--bitrate' (see atv312d --help)");
+    ck_assert_int_eq(parse("vcan0", "vcan1", "--node-id", "4", NULL), EX_USAGE);
+    ck_assert(strstr(err, "'vcan1'") != NULL);
+    ck_assert_int_eq(parse("vcan0", "--help=yes", NULL), EX_USAGE);
+    ck_assert_int_eq(parse("vcan0", "--node-id", "4", "--log-level", "verbose", NULL), EX_USAGE);
+    ck_assert_str_eq(err, "--log-level: unknown level 'verbose': use error, warn, info or debug");
+    ck_assert_int_eq(parse("averyverylongname0", "--node-id", "4", NULL), EX_USAGE);
+    ck_assert(strstr(err, "at most 15 characters") != NULL);
+}
+END_TEST
+
+START_TEST(help_and_version_win)
+{
+    ck_assert_int_eq(parse("--help", NULL), 0);
+    ck_assert(opts.help);
+    ck_assert_int_eq(parse("-V", "--node-id", "0", NULL), 0);
+    ck_assert(opts.version);
+    ck_assert_int_eq(parse("vcan0", "--node-id", "0", "--help", NULL), EX_USAGE);
+}
+END_TEST
+
+int main(void)
+{
+    Suite *s = suite_create("cli");
+    TCase *tc = tcase_create("cli");
+    tcase_add_test(tc, single_node_with_defaults);
+    tcase_add_test(tc, model_of_each_node_id_group);
+    tcase_add_test(tc, model_errors);
+    tcase_add_test(tc, atv58_node_ids_up_to_63);
+    tcase_add_test(tc, help_lists_the_models);
+    tcase_add_test(tc, every_option_in_both_spellings);
+    tcase_add_test(tc, ranges_lists_and_repeats_are_sorted);
+    tcase_add_test(tc, out_of_range_names_the_range);
+    tcase_add_test(tc, malformed_node_ids);
+    tcase_add_test(tc, duplicates_are_refused);
+    tcase_add_test(tc, missing_pieces);
+    tcase_add_test(tc, unknown_options_and_extra_arguments);
+    tcase_add_test(tc, help_and_version_win);
+    suite_add_tcase(s, tc);
+    return check_run_suite(s);
+}

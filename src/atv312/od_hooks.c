@@ -1,6 +1,7 @@
 /* Hooks of the ATV312's own, named in atv312.hooks (which the ATV31's dictionary is generated with
- * too, src/atv31/CMakeLists.txt): the transmission types its PDO6 accepts (docs/decisions.md,
- * D-TRANSMISSION-TYPES). The drive's parameter hooks are the drive layer's (drive/drive.h). */
+ * too, src/drive/models/atv31/CMakeLists.txt): the transmission types its PDO6 accepts
+ * (docs/decisions.md, D-TRANSMISSION-TYPES). The drive's parameter hooks are the drive layer's
+ * (drive/drive.h). */
 #include "atv312/atv312.h"
 
 /* D-TRANSMISSION-TYPES: RPDO6 accepts 1-240 (synchronous), 254 and 255 (asynchronous). */

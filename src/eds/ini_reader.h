@@ -1,5 +1,5 @@
 /* The INI line reader of the installed tools' files: the CiA 306 EDS and DCF (eds_reader.c), the
- * CiA 306-3 nodelist and comaster's option file (src/comaster/network.c). It owns the syntax:
+ * CiA 306-3 nodelist and comaster's option file (apps/comaster/network.c). It owns the syntax:
  * [section] headers, key = value lines, comments, blanks, line numbers and the errors of a line
  * that is none of these; what the sections and keys mean is the caller's, told line by line. */
 #ifndef INI_READER_H

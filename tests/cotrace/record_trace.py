@@ -2,12 +2,12 @@
 """Records tests/cotrace/atv312.log, the trace cotrace's tool test decodes: atv312d --trace while
 a master plays every kind of frame cotrace knows at node 4. Run it where vcan0 exists:
 
-  tools/vcan-run .venv/bin/python tests/cotrace/record_trace.py build/src/atv312d/atv312d \\
+  tools/vcan-run .venv/bin/python tests/cotrace/record_trace.py build/apps/atv312d/atv312d \\
       tests/cotrace/atv312.log
 
 then regenerate the expected text and review the difference before committing both:
 
-  build/src/cotrace/cotrace --eds eds/ATV312.eds --node 4 tests/cotrace/atv312.log \\
+  build/apps/cotrace/cotrace --eds eds/ATV312.eds --node 4 tests/cotrace/atv312.log \\
       > tests/cotrace/atv312.expected
 
 The sequence: boot-up; expedited, segmented and block uploads; expedited, segmented and block

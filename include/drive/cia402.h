@@ -1,8 +1,8 @@
 /* The CiA 402 power state machine of a drive (CiA 402 "device control"), as the Drivecom profile
  * of the Altivar drives applies it (ATV312 DeviceNet manual, "CMD control word", "ETA status word",
- * "Drive state machine"; SPEC section 3): the states, the commands of control word bits 0-3 and 7,
- * the state bits of the status word. It knows nothing of a dictionary or a motor: the drive
- * (drive.h) feeds it the control word and tells it when the motor stands. */
+ * "IEC 61800-7 status chart"; docs/decisions.md, D-STATE-MACHINE): the states, the commands of
+ * control word bits 0-3 and 7, the state bits of the status word. It knows nothing of a dictionary
+ * or a motor: the drive (drive.h) feeds it the control word and tells it when the motor stands. */
 #ifndef DRIVE_CIA402_H
 #define DRIVE_CIA402_H
 

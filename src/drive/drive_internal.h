@@ -1,5 +1,9 @@
-/* Internal interface between the drive's glue (drive.c), its dictionary hooks (parameters.c)
- * and its faults (faults.c). */
+/* Internal interface of the drive layer, for its own files and never a model's: the CiA 402
+ * indexes every model has; from drive.c the drive of a node, its settling, its output, its
+ * parameters and unit conversions; the faults (faults.c); the command and reference channels and
+ * switching sources (channels.c); forced local control (local_control.c). Included by drive.c,
+ * parameters.c, faults.c, channels.c, local_control.c and panel.c; cia402.c and motor.c need none
+ * of it. */
 #ifndef DRIVE_INTERNAL_H
 #define DRIVE_INTERNAL_H
 

@@ -23,9 +23,9 @@ static char label[96];
 
 /* ---- The application ------------------------------------------------------------------- */
 
-/* As on the ATV312 (SPEC): the loss of a heartbeat producer or of life guarding is a latched
- * fault, EMCY 8130h until the application's fault reset; a CAN condition of the runtime is an
- * EMCY while it lasts (atv312_bus_event). */
+/* As on the ATV312 (docs/decisions.md, D-COMM-LOSS-CNF): the loss of a heartbeat producer or of
+ * life guarding is a latched fault, EMCY 8130h until the application's fault reset; a CAN
+ * condition of the runtime is an EMCY while it lasts (atv312_bus_event). */
 static void application_fault(co_node_t *node)
 {
     co_emcy_raise(node, CO_EMCY_HEARTBEAT, COMMUNICATION_ERROR, NULL);

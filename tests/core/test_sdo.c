@@ -202,7 +202,7 @@ static const uint8_t *entry_bytes(uint16_t index, uint8_t sub)
 
 static const char hello[] = "Hello, CANopen!"; /* 15 bytes */
 
-/* ---- ATV312 manual (seeds part D, T31-08..T31-15) ---------------------------------------- */
+/* ---- ATV312 manual (example frames T31-08..T31-15, docs/manuals.md) ---------------------- */
 
 START_TEST(atv312_manual_frames)
 {
@@ -1150,8 +1150,9 @@ static void client_abort(uint16_t index, uint8_t sub, size_t len)
     test_rx(&t, text);
 }
 
-/* SPEC: command byte 0x80 can only be an abort (unconfirmed), so it ends any transfer silently
- * whatever its DLC: the issue's frame first, then every DLC in every state of the server. */
+/* docs/decisions.md, D-SDO-SHORT-ABORT: command byte 0x80 can only be an abort (unconfirmed), so
+ * it ends any transfer silently whatever its DLC: the issue's frame first, then every DLC in every
+ * state of the server. */
 START_TEST(short_client_abort_ends_any_transfer_silently)
 {
     test_rx(&t, "604#4008100000000000");

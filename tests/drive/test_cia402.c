@@ -1,7 +1,7 @@
 /* The CiA 402 / Drivecom power state machine and the stop types of the drive layer: every cell of
  * the command table on the state machine alone, then on the minimal model every command, every
  * status value, quick stop vs fast stop, freewheel, the profile's reverse and ramp stop bits, the
- * fault reset edge (seed-devicenet.md sections 1.2-1.4 and 6; SPEC section 3). */
+ * fault reset edge (the DeviceNet manual's status chart; docs/decisions.md, D-STATE-MACHINE). */
 #include "check_main.h"
 #include "minimal_model.h"
 

@@ -1,6 +1,7 @@
-"""The drive against python `canopen` as the master (the yardstick of SPEC.md section 1.4): SDO
-transfers of every kind, PDO configuration through its `pdo` API, its CiA 402 state machine, and
-every object of each model's EDS checked against the running daemon of that model."""
+"""The drive against python `canopen` as the master (the yardstick, docs/decisions.md,
+D-EDS-SOURCE): SDO transfers of every kind, PDO configuration through its `pdo` API, its CiA 402
+state machine, and every object of each model's EDS checked against the running daemon of that
+model."""
 
 import time
 
@@ -125,7 +126,7 @@ def test_pdo_configuration_through_the_pdo_api(network, node):
     t1, t6, r1, r6 = node.tpdo[1], node.tpdo[6], node.rpdo[1], node.rpdo[6]
     assert (t1.cob_id, t1.enabled, t1.trans_type, t1.event_timer) == (0x184, True, 255, 100)
     assert mapping(t1) == [(0x6041, 0, 16)]
-    assert (t6.cob_id, t6.enabled) == (0x284, False)  # PDO6 deactivated by default (SPEC section 2)
+    assert (t6.cob_id, t6.enabled) == (0x284, False)  # PDO6 deactivated by default (D-PDO6-DEFAULT)
     assert mapping(t6) == [(0x6041, 0, 16), (0x6044, 0, 16)]
     assert (r1.cob_id, r1.enabled) == (0x204, True)
     assert mapping(r1) == [(0x6040, 0, 16)]
@@ -179,7 +180,7 @@ def test_basenode402_to_operation_enabled_and_back(network, drive):
     node.sdo[0x6042].raw = 300
     wait_until("the motor turns", lambda: node.sdo[0x6044].raw > 0)
     # Configuration parameters (motor data, e.g. NSP 2042:05) change only with the motor stopped
-    # (SPEC section 3); ACC is an adjustment parameter, accepted while running.
+    # (docs/decisions.md, D-CONFIG-STOPPED); ACC is an adjustment parameter, accepted while running.
     assert abort_code(lambda: node.sdo.download(0x2042, 5, (1450).to_bytes(2, "little"))) == SDO_ABORT_STATE
     assert node.sdo[0x2042][5].raw == 1500
     node.sdo[0x203C][2].raw = 20

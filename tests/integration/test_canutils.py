@@ -1,8 +1,8 @@
 """The drive on real SocketCAN, driven with can-utils: `cansend` for the master's frames, `candump -L`
 for what is on the bus (with the kernel's receive timestamps, used for every timing check).
 
-Frames are for node-id 4. Byte strings come from the ATV312 manual (test vectors T31-xx in
-reference/seeds-atv31-atv58.md part D), CiA 301 and CiA 402."""
+Frames are for node-id 4. Byte strings come from the ATV312 manual (its example frames T31-xx,
+numbered in docs/manuals.md), CiA 301 and CiA 402."""
 
 import pytest
 

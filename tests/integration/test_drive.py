@@ -1,6 +1,6 @@
 """What a PLC relies on, on the running daemon over SocketCAN: how the motor stops on each way out
-of Operation enabled and Quick stop active, and what storage keeps across a restart (SPEC.md
-section 3, "Stops" and "Storage")."""
+of Operation enabled and Quick stop active, and what storage keeps across a restart
+(docs/decisions.md, D-STOPS and D-STORE-PARAMETERS)."""
 
 import time
 import zlib

@@ -1,5 +1,5 @@
 """Several drives in one atv312d process (one loop, one socket): each boots and answers on its own
-node-id, as a bench of drives for testing a master (SPEC.md section 3)."""
+node-id, as a bench of drives for testing a master (docs/decisions.md, D-SEVERAL-DRIVES)."""
 
 import pytest
 

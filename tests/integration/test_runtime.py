@@ -1,5 +1,5 @@
 """The daemon as a Linux process: trace file, signals, tickless idle, interface down/up, command-line
-errors (sysexits.h) and parameter storage (SPEC.md sections 1.2 and 3)."""
+errors (sysexits.h) and parameter storage (docs/decisions.md, D-ERRORS, D-STORE-FILE)."""
 
 import os
 import re

@@ -2,8 +2,8 @@
  * dictionary atv312_od (generated from eds/ATV312.eds with the hooks of
  * src/drive/models/atv312/atv312.hooks; a node's data block is ATV312_OD_DATA_SIZE bytes) and its
  * profile, where its parameters are and what its control word bits 11-14 do. The behaviour is the
- * drive layer's: give atv312_profile to drive_init. Portable like the core: no malloc, no OS calls,
- * no globals. */
+ * drive layer's: give atv312_profile to drive_init. Portable like the core: no malloc, no OS
+ * calls, no globals. */
 #ifndef ATV312_H
 #define ATV312_H
 
@@ -36,12 +36,13 @@ extern const drive_fault_table_t atv312_family_faults;
  * "CMD = 16#080F: reverse operation" ...): bit 11 reverses, bit 12 stops on the ramp (Stt), bits 13
  * (DC injection stop, modelled as the fast stop) and 14 stop on the fast ramp, DEC / 4 (dCF's
  * default); status word bit 15 is the direction of rotation, bit 14 "stop via the STOP key". Its
- * parameters, at 0x2000 + (ADL - 3000) / 100, sub-index ADL mod 100 + 1 (SPEC section 2): ACC 9001,
- * DEC 9002, HSP 3104, LSP 3105, FRS 9602, NCR 9603, NSP 9604, LCR 3203, OTR 3208, CMD 8501, ETA
- * 3201, COL 6401, CnF 6402, RFR 3202, LFR 8502, CHCF 8401, rFC 8411, Fr1 8413, Fr2 8414, CCS 8421,
- * Cd1 8423, Cd2 8424, Stt 11203, tUn 9608, LAC 8400, rPS 9010, AC2 9012, dE2 9013. A macro, not a
- * function, so that each model's profile stays a constant initialiser (in flash on a
- * microcontroller); the ATV31 (atv31/atv31.h) is the same drive under another name. */
+ * parameters, at 0x2000 + (ADL - 3000) / 100, sub-index ADL mod 100 + 1 (docs/decisions.md,
+ * D-MANUFACTURER-ADDRESS): ACC 9001, DEC 9002, HSP 3104, LSP 3105, FRS 9602, NCR 9603, NSP 9604,
+ * LCR 3203, OTR 3208, CMD 8501, ETA 3201, COL 6401, CnF 6402, RFR 3202, LFR 8502, CHCF 8401,
+ * rFC 8411, Fr1 8413, Fr2 8414, CCS 8421, Cd1 8423, Cd2 8424, Stt 11203, tUn 9608, LAC 8400,
+ * rPS 9010, AC2 9012, dE2 9013. A macro, not a function, so that each model's profile stays a
+ * constant initialiser (in flash on a microcontroller); the ATV31 (atv31/atv31.h) is the same
+ * drive under another name. */
 #define ATV312_FAMILY_PROFILE(dictionary, inputs)                                                  \
     {                                                                                              \
         .od = (dictionary), .control_reverse = 0x0800, .control_ramp_stop = 0x1000,                \

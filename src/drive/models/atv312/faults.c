@@ -1,10 +1,10 @@
 /* The faults of the Altivar 31/312 family (docs/atv312.md, "Faults"). Codes as the front panel
- * shows them; EMCY codes from the only code table of the seeds, the Altivar 58 CANopen manual's
+ * shows them; EMCY codes from the manuals' only code table, the Altivar 58 CANopen card manual's
  * (the ATV31/312 manuals: "the Emergency Error Code is the same as the variable Fault code
  * (603F)" without a list), where the ATV58 and the ATV312 share the fault; the error register
  * class is the CiA 301 class of the code. Reset classes after the Altivar 31/312 programming
- * manual's three lists (not among the seeds: the project's reading). Every fault freewheels: the
- * seeds give a stop to CnF alone, chosen by COL (the profile's communication_loss_mode), and
+ * manual's three lists (not among docs/manuals.md: the project's reading). Every fault freewheels:
+ * the manuals give a stop to CnF alone, chosen by COL (the profile's communication_loss_mode), and
  * nothing for the others (the project's choice, docs/atv312.md). */
 #include "atv312/atv312.h"
 #include "co/co_emcy.h"
@@ -19,8 +19,8 @@
 #define FREEWHEEL DRIVE_FAULT_FREEWHEEL
 
 /* The communication-loss fault (life guarding or heartbeat consumer timeout) is entry 0: CnF,
- * the network fault as SPEC section 3 names it (the ATV312 CANopen manual calls the life guarding
- * fault COF), EMCY 0x8130. */
+ * the network fault as the DeviceNet manual names it (docs/decisions.md, D-COMM-LOSS-CNF; the
+ * ATV312 CANopen manual calls the life guarding fault COF), EMCY 0x8130. */
 static const drive_fault_def_t faults[] = {
     {"CnF", "network fault (life guarding, heartbeat)", 0x8130, COMMUNICATION, COMMAND, FREEWHEEL},
     {"ILF", "internal communication link fault (option card)", 0x7520, COMMUNICATION, POWER_CYCLE,

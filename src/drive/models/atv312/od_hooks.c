@@ -1,9 +1,10 @@
 /* Hooks of the ATV312's own, named in atv312.hooks (which the ATV31's dictionary is generated with
- * too, src/drive/models/atv31/CMakeLists.txt): the transmission types SPEC section 2 allows its
- * PDO6. The drive's parameter hooks are the drive layer's (drive/drive.h). */
+ * too, src/drive/models/atv31/CMakeLists.txt): the transmission types its PDO6 accepts
+ * (docs/decisions.md, D-TRANSMISSION-TYPES). The drive's parameter hooks are the drive layer's
+ * (drive/drive.h). */
 #include "atv312/atv312.h"
 
-/* SPEC section 2: RPDO6 accepts 1-240 (synchronous), 254 and 255 (asynchronous). */
+/* D-TRANSMISSION-TYPES: RPDO6 accepts 1-240 (synchronous), 254 and 255 (asynchronous). */
 static uint32_t rpdo6_type_write(co_node_t *node, const co_od_entry_t *entry, const uint8_t *data,
                                  size_t len, co_od_origin_t origin)
 {
@@ -12,7 +13,7 @@ static uint32_t rpdo6_type_write(co_node_t *node, const co_od_entry_t *entry, co
     return (type >= 1 && type <= 240) || type >= 254 ? CO_SDO_OK : SDO_ABORT_VALUE_RANGE;
 }
 
-/* SPEC section 2: TPDO6 accepts 0 (synchronous acyclic), 1-240, 254 and 255. */
+/* D-TRANSMISSION-TYPES: TPDO6 accepts 0 (synchronous acyclic), 1-240, 254 and 255. */
 static uint32_t tpdo6_type_write(co_node_t *node, const co_od_entry_t *entry, const uint8_t *data,
                                  size_t len, co_od_origin_t origin)
 {

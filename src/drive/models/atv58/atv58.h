@@ -2,10 +2,10 @@
  * (drive/drive.h): its dictionary atv58_od (generated from eds/ATV58.eds without 1018h, with the
  * hooks of src/drive/models/atv58/atv58.hooks; ATV58_OD_DATA_SIZE bytes a node) and its profile.
  * The card is an older profile (DS301 V4.0): the profile picks the core's options for it (8-byte
- * frames, expedited-only SDO with its error layout, long expedited writes, NMT Disconnect), and its
- * dictionary has what the card lacks absent: no SYNC, no heartbeat, one fixed PDO pair. Node-ids
- * are 1..ATV58_NODE_ID_MAX. docs/atv58.md. Portable like the core: no malloc, no OS calls, no
- * globals. */
+ * frames, expedited-only SDO with its error layout, long expedited writes, NMT Disconnect), and
+ * its dictionary has what the card lacks absent: no SYNC, no heartbeat, one fixed PDO pair.
+ * Node-ids are 1..ATV58_NODE_ID_MAX. docs/atv58.md. Portable like the core: no malloc, no OS
+ * calls, no globals. */
 #ifndef ATV58_H
 #define ATV58_H
 

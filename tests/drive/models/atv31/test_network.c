@@ -1,6 +1,6 @@
 /* The ATV31 on the bus: what differs from the ATV312 (its name, heartbeat only from firmware
  * V1.2) and every example frame of the ATV31 manual (T31-01..17 of
- * reference/seeds-atv31-atv58.md), frame for frame, on the real generated dictionaries. */
+ * docs/manuals.md), frame for frame, on the real generated dictionaries. */
 #include "atv31/atv31.h"
 #include "check_main.h"
 #include "drive_bench.h"
@@ -35,9 +35,10 @@ START_TEST(identity_is_the_atv31s)
 }
 END_TEST
 
-/* T31-01..17 in one session: PDO6 enabled (SPEC: deactivated by default), event timers off so
+/* T31-01..17 in one session: PDO6 enabled (off by default, D-PDO6-DEFAULT), event timers off so
  * that TPDOs follow changes only; the drive runs by RPDO6 and RPDO1. The status word in
- * Operation enabled is 0x0627 where the manual prints 0x0607 (SPEC section 2). */
+ * Operation enabled is 0x0627 where the manual prints 0x0607 (docs/decisions.md,
+ * D-STATUS-WORD-0627). */
 START_TEST(manual_vectors_frame_for_frame)
 {
     bench_t b;

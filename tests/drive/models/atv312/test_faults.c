@@ -1,5 +1,5 @@
 /* The ATV312's faults: every code of its table faults the drive with the EMCY code of the
- * manuals (the ATV58 table, the seeds' only one), 603Fh, ETA 2002h:02, 1001h and 1003h, and is
+ * manuals (the ATV58 table, the manuals' only one), 603Fh, ETA 2002h:02, 1001h and 1003h, and is
  * reset by its class: the mains undervoltage USF by itself, OHF by a fault reset once the cause
  * is gone, OCF only by a reset node; the communication loss follows COL (ignore, freewheel, ramp
  * or fast stop) and latches CnF. Every fault freewheels (the project's choice where the manuals

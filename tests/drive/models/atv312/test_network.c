@@ -49,7 +49,8 @@ START_TEST(dictionary_as_the_manual_tables_it)
 }
 END_TEST
 
-/* SPEC section 2: transmission types of PDO6, 10 ms minimum of inhibit time and event timer. */
+/* D-TRANSMISSION-TYPES and D-PDO-TIME-MINIMUM (docs/decisions.md): transmission types of PDO6,
+ * 10 ms minimum of inhibit time and event timer. */
 START_TEST(pdo6_parameter_rules)
 {
     bench_t b;
@@ -112,7 +113,8 @@ START_TEST(manual_sdo_vectors)
 END_TEST
 
 /* T31-03 and T31-02: RPDO1 carries the control word, TPDO1 the status word on every change
- * (0x0627 where the manual misprints 0x0607, SPEC section 2), spaced by the 30 ms inhibit. */
+ * (0x0627 where the manual misprints 0x0607, docs/decisions.md, D-STATUS-WORD-0627), spaced by
+ * the 30 ms inhibit. */
 START_TEST(tpdo1_follows_the_status_word)
 {
     bench_t b;

@@ -1,6 +1,6 @@
-/* What storage keeps of the drive (SPEC section 3, "Storage"): parameters, never process data;
- * the values the CiA 402 views stand for; every stored value checked like an SDO write. Reset node
- * (000#8104) reloads the dictionary as a restart of the daemon does. */
+/* What storage keeps of the drive (docs/decisions.md, D-STORE-PARAMETERS): parameters, never
+ * process data; the values the CiA 402 views stand for; every stored value checked like an SDO
+ * write. Reset node (000#8104) reloads the dictionary as a restart of the daemon does. */
 #include "atv312_bench.h"
 #include "check_main.h"
 #include "memory_storage.h"

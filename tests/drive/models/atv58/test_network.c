@@ -1,5 +1,5 @@
 /* The ATV58 with its VW3-A58308 card on the bus: every example frame of the card's manual
- * (T58-01..15 of reference/seeds-atv31-atv58.md), frame for frame, on the real generated
+ * (T58-01..15, docs/manuals.md), frame for frame, on the real generated
  * dictionary; its dictionary (what it has, and "object does not exist" for the rest); its SDO
  * error layout; node guarding, the life guarding fault and its EMCY; NMT Disconnect. */
 #include "atv58/atv58.h"

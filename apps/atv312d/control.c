@@ -1,5 +1,5 @@
-/* The control surface: command execution on the drives, the socket in the daemon's loop, and the
- * `atv312d ctl` client (control.h). */
+/* The control surface: command execution on the drives, its session on the runtime's line socket
+ * in the daemon's loop, and the `atv312d ctl` client (control.h). */
 #include "control.h"
 
 #include "co_linux/log.h"
@@ -10,16 +10,12 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
-#include <sys/socket.h>
-#include <sys/stat.h>
 #include <sysexits.h>
-#include <unistd.h>
 
 #define WORDS_MAX 4
 #define JSON_PREFIX "json "
 #define STATUSWORD_INDEX 0x6041
 #define VELOCITY_ACTUAL_INDEX 0x6044
-#define CLIENT_TIMEOUT_S 5
 
 /* A reply being written: "ok ..." / "error: ..." or the JSON object. */
 typedef struct reply {
@@ -492,137 +488,43 @@ bool atv312d_control_execute(const atv312d_control_t *control, const char *line,
 
 /* ---- the socket in the loop ---- */
 
-static void drop_client(atv312d_control_t *control, atv312d_control_client_t *client)
+static size_t answer(void *ctx, const char *line, bool cut, char *reply, size_t cap)
 {
-    co_linux_loop_unwatch(control->loop, client->fd);
-    close(client->fd);
-    client->fd = -1;
-}
-
-static atv312d_control_client_t *client_of(atv312d_control_t *control, int fd)
-{
-    for (size_t i = 0; i < ATV312D_CONTROL_CLIENTS; i++) {
-        if (control->clients[i].fd == fd)
-            return &control->clients[i];
-    }
-    return NULL;
-}
-
-/* One reply line; a client that does not read it in time loses it (the socket is non-blocking,
- * the loop never waits for a client). */
-static void answer(atv312d_control_t *control, atv312d_control_client_t *client)
-{
-    static char reply[ATV312D_CONTROL_REPLY_MAX];
-    client->line[client->len] = '\0';
-    if (client->overlong)
-        snprintf(reply, sizeof reply, "error: command longer than %d characters",
+    const atv312d_control_t *control = ctx;
+    if (cut)
+        snprintf(reply, cap, "error: command longer than %d characters",
                  ATV312D_CONTROL_LINE_MAX - 1);
     else
-        atv312d_control_execute(control, client->line, reply, sizeof reply - 1);
+        atv312d_control_execute(control, line, reply, cap - 1);
     size_t len = strlen(reply);
     reply[len++] = '\n';
-    if (send(client->fd, reply, len, MSG_NOSIGNAL | MSG_DONTWAIT) != (ssize_t)len)
-        co_log(CO_LOG_WARN, "control: a reply could not be sent whole: %s", strerror(errno));
-    client->len = 0;
-    client->overlong = false;
-}
-
-static void on_client(void *ctx, int fd)
-{
-    atv312d_control_t *control = ctx;
-    atv312d_control_client_t *client = client_of(control, fd);
-    char buf[512];
-    ssize_t n = recv(fd, buf, sizeof buf, MSG_DONTWAIT);
-    if (n < 0 && (errno == EAGAIN || errno == EINTR))
-        return;
-    if (n <= 0) {
-        drop_client(control, client);
-        return;
-    }
-    for (ssize_t i = 0; i < n; i++) {
-        if (buf[i] == '\n') {
-            answer(control, client);
-        } else if (client->len + 1 < sizeof client->line) {
-            client->line[client->len++] = buf[i];
-        } else {
-            client->overlong = true;
-        }
-    }
-}
-
-static void on_listen(void *ctx, int fd)
-{
-    atv312d_control_t *control = ctx;
-    int conn = accept4(fd, NULL, NULL, SOCK_NONBLOCK | SOCK_CLOEXEC);
-    if (conn < 0)
-        return;
-    atv312d_control_client_t *client = client_of(control, -1);
-    if (!client || co_linux_loop_watch(control->loop, conn, on_client, control) != 0) {
-        const char *busy = "error: too many control connections\n";
-        send(conn, busy, strlen(busy), MSG_NOSIGNAL | MSG_DONTWAIT);
-        close(conn);
-        return;
-    }
-    *client = (atv312d_control_client_t){.fd = conn};
-}
-
-/* A socket file nobody accepts on is a leftover of a daemon that died: it may be replaced. */
-static bool stale_socket(const char *path)
-{
-    struct stat st;
-    if (lstat(path, &st) != 0 || !S_ISSOCK(st.st_mode))
-        return false;
-    int fd = socket(AF_UNIX, SOCK_STREAM | SOCK_CLOEXEC, 0);
-    struct sockaddr_un addr = {.sun_family = AF_UNIX};
-    snprintf(addr.sun_path, sizeof addr.sun_path, "%s", path);
-    bool stale =
-        fd >= 0 && connect(fd, (struct sockaddr *)&addr, sizeof addr) != 0 && errno == ECONNREFUSED;
-    if (fd >= 0)
-        close(fd);
-    return stale;
-}
-
-static int open_failed(atv312d_control_t *control, const char *what)
-{
-    co_log(CO_LOG_ERROR, "control socket %s: %s: %s", control->path, what, strerror(errno));
-    if (control->listen_fd >= 0)
-        close(control->listen_fd);
-    control->listen_fd = -1;
-    return EX_CANTCREAT;
+    return len;
 }
 
 int atv312d_control_open(atv312d_control_t *control, co_linux_loop_t *loop, const char *path,
                          const atv312d_control_node_t *nodes, size_t count)
 {
-    memset(control, 0, sizeof *control);
-    control->loop = loop;
+    static char reply[ATV312D_CONTROL_REPLY_MAX];
     control->nodes = nodes;
     control->count = count;
-    control->listen_fd = -1;
-    for (size_t i = 0; i < ATV312D_CONTROL_CLIENTS; i++)
-        control->clients[i].fd = -1;
-    if (strlen(path) >= sizeof control->path) {
+    co_line_server_config_t config = {.mode = CO_LINE_SESSION,
+                                      .answer = answer,
+                                      .ctx = control,
+                                      .reply = reply,
+                                      .reply_cap = sizeof reply};
+    const char *call = NULL;
+    co_line_result_t result = co_line_server_open(&control->server, loop, path, &config, &call);
+    if (result == CO_LINE_TOO_LONG) {
         co_log(CO_LOG_ERROR, "--control %s: the path is longer than %zu characters", path,
-               sizeof control->path - 1);
+               CO_LINE_PATH_MAX - 1);
         return EX_USAGE;
     }
-    snprintf(control->path, sizeof control->path, "%s", path);
-    if (stale_socket(path))
-        unlink(path);
-    control->listen_fd = socket(AF_UNIX, SOCK_STREAM | SOCK_NONBLOCK | SOCK_CLOEXEC, 0);
-    if (control->listen_fd < 0)
-        return open_failed(control, "socket");
-    struct sockaddr_un addr = {.sun_family = AF_UNIX};
-    snprintf(addr.sun_path, sizeof addr.sun_path, "%s", path);
-    if (bind(control->listen_fd, (struct sockaddr *)&addr, sizeof addr) != 0)
-        return open_failed(control,
-                           errno == EADDRINUSE
-                               ? "bind (the path exists: another daemon's socket or a file)"
-                               : "bind");
-    if (listen(control->listen_fd, ATV312D_CONTROL_CLIENTS) != 0 ||
-        co_linux_loop_watch(loop, control->listen_fd, on_listen, control) != 0) {
-        unlink(path);
-        return open_failed(control, "listen");
+    if (result != CO_LINE_OK) {
+        /* Another daemon answers there, or the path is a file of another kind. */
+        if (errno == EADDRINUSE)
+            call = "bind (the path exists: another daemon's socket or a file)";
+        co_log(CO_LOG_ERROR, "control socket %s: %s: %s", path, call, strerror(errno));
+        return EX_CANTCREAT;
     }
     co_log(CO_LOG_INFO, "control socket %s: listening (atv312d ctl %s state)", path, path);
     return 0;
@@ -630,16 +532,7 @@ int atv312d_control_open(atv312d_control_t *control, co_linux_loop_t *loop, cons
 
 void atv312d_control_close(atv312d_control_t *control)
 {
-    if (control->listen_fd < 0)
-        return;
-    for (size_t i = 0; i < ATV312D_CONTROL_CLIENTS; i++) {
-        if (control->clients[i].fd >= 0)
-            drop_client(control, &control->clients[i]);
-    }
-    co_linux_loop_unwatch(control->loop, control->listen_fd);
-    close(control->listen_fd);
-    control->listen_fd = -1;
-    unlink(control->path);
+    co_line_server_close(&control->server);
 }
 
 /* ---- the client ---- */
@@ -649,28 +542,6 @@ static int client_usage(void)
     fprintf(stderr, "usage: atv312d ctl PATH [--json] COMMAND... (e.g. atv312d ctl "
                     "/tmp/atv312d.sock fault 4 OHF; see atv312d --help)\n");
     return EX_USAGE;
-}
-
-static int connect_to(const char *path)
-{
-    struct sockaddr_un addr = {.sun_family = AF_UNIX};
-    if (strlen(path) >= sizeof addr.sun_path) {
-        fprintf(stderr, "atv312d ctl: the path %s is too long\n", path);
-        return -1;
-    }
-    snprintf(addr.sun_path, sizeof addr.sun_path, "%s", path);
-    int fd = socket(AF_UNIX, SOCK_STREAM | SOCK_CLOEXEC, 0);
-    if (fd >= 0 && connect(fd, (struct sockaddr *)&addr, sizeof addr) == 0) {
-        struct timeval timeout = {.tv_sec = CLIENT_TIMEOUT_S};
-        setsockopt(fd, SOL_SOCKET, SO_RCVTIMEO, &timeout, sizeof timeout);
-        return fd;
-    }
-    fprintf(stderr,
-            "atv312d ctl: cannot connect to %s: %s (is atv312d running with --control %s?)\n", path,
-            strerror(errno), path);
-    if (fd >= 0)
-        close(fd);
-    return -1;
 }
 
 int atv312d_control_client(int argc, char *const argv[])
@@ -694,27 +565,22 @@ int atv312d_control_client(int argc, char *const argv[])
         fprintf(stderr, "atv312d ctl: the command is too long or has a newline\n");
         return EX_USAGE;
     }
-    line[used++] = '\n';
-    int fd = connect_to(path);
-    if (fd < 0)
-        return EX_UNAVAILABLE;
     static char reply[ATV312D_CONTROL_REPLY_MAX];
-    size_t got = 0;
-    bool complete = false;
-    if (send(fd, line, used, MSG_NOSIGNAL) == (ssize_t)used) {
-        ssize_t n;
-        while (!complete && got + 1 < sizeof reply &&
-               (n = recv(fd, reply + got, sizeof reply - 1 - got, 0)) > 0) {
-            got += (size_t)n;
-            complete = memchr(reply, '\n', got) != NULL;
-        }
-    }
-    close(fd);
-    if (!complete) {
+    switch (co_line_request(path, CO_LINE_SESSION, line, reply, sizeof reply)) {
+    case CO_LINE_OK:
+        break;
+    case CO_LINE_TOO_LONG:
+        fprintf(stderr, "atv312d ctl: the path %s is too long\n", path);
+        return EX_UNAVAILABLE;
+    case CO_LINE_NO_SERVER:
+        fprintf(stderr,
+                "atv312d ctl: cannot connect to %s: %s (is atv312d running with --control %s?)\n",
+                path, strerror(errno), path);
+        return EX_UNAVAILABLE;
+    default:
         fprintf(stderr, "atv312d ctl: no reply from %s\n", path);
         return EX_UNAVAILABLE;
     }
-    reply[got] = '\0';
     fputs(reply, stdout);
     bool ok = strncmp(reply, "ok", 2) == 0 || strncmp(reply, "{\"ok\":true", 10) == 0;
     return ok ? 0 : EX_DATAERR;

@@ -8,20 +8,18 @@
 #ifndef ATV312D_CONTROL_H
 #define ATV312D_CONTROL_H
 
+#include "co_linux/line_socket.h"
 #include "co_linux/loop.h"
 #include "counters.h"
 #include "drive/drive.h"
 
 #include <stdbool.h>
 #include <stddef.h>
-#include <sys/un.h>
 
 /* Longest command line; a longer one is refused. */
-#define ATV312D_CONTROL_LINE_MAX 256
+#define ATV312D_CONTROL_LINE_MAX CO_LINE_MAX
 /* Longest reply line: `state` of 127 drives in JSON, about 450 bytes each, fits. */
 #define ATV312D_CONTROL_REPLY_MAX 65536
-/* Connections served at once; more wait in the listen backlog. */
-#define ATV312D_CONTROL_CLIENTS 8
 
 typedef struct atv312d_control_node {
     drive_t *drive;
@@ -29,20 +27,10 @@ typedef struct atv312d_control_node {
     const atv312d_counters_t *counters;
 } atv312d_control_node_t;
 
-typedef struct atv312d_control_client {
-    int fd; /* -1: free */
-    char line[ATV312D_CONTROL_LINE_MAX];
-    size_t len;
-    bool overlong; /* the current line passed ATV312D_CONTROL_LINE_MAX: refused at its end */
-} atv312d_control_client_t;
-
 typedef struct atv312d_control {
-    co_linux_loop_t *loop;
+    co_line_server_t server;
     const atv312d_control_node_t *nodes; /* ascending node-ids */
     size_t count;
-    int listen_fd;
-    char path[sizeof(((struct sockaddr_un *)0)->sun_path)];
-    atv312d_control_client_t clients[ATV312D_CONTROL_CLIENTS];
 } atv312d_control_t;
 
 /* One node's state as `state` reports it: "node 4: nmt ..., fault none" or its JSON object. */

@@ -341,7 +341,7 @@ static int open_surfaces(atv312d_control_t *control, atv312d_status_t *status,
 
 static int run(const atv312d_options_t *opts, FILE *trace, co_file_store_t *store)
 {
-    static atv312d_control_t control = {.listen_fd = -1};
+    static atv312d_control_t control = {.server.listen_fd = -1};
     static atv312d_status_t status = {.timer_fd = -1, .signal_fd = -1};
     static atv312d_control_node_t control_nodes[ATV312D_NODE_ID_MAX];
     static co_linux_loop_t loop;

@@ -17,18 +17,14 @@
 
 static bool condition(const co_linux_loop_t *loop, uint16_t emcy_code)
 {
-    for (size_t i = 0; i < sizeof loop->conditions / sizeof loop->conditions[0]; i++) {
-        if (loop->conditions[i].emcy_code == emcy_code)
-            return loop->conditions[i].wanted;
-    }
-    return false;
+    return co_linux_conditions_active(&loop->bus.conditions, emcy_code);
 }
 
 /* The CAN controller as the loop sees it: down (the interface), bus-off, error-passive or
  * error-active; overrun when frames are being lost. */
 static const char *can_state(const co_linux_loop_t *loop)
 {
-    if (!loop->link_up)
+    if (!loop->bus.link_up)
         return "down";
     if (condition(loop, CO_LINUX_EMCY_BUS_OFF))
         return "bus-off";

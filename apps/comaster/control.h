@@ -4,13 +4,14 @@
 #ifndef COMASTER_CONTROL_H
 #define COMASTER_CONTROL_H
 
+#include "co_linux/line_socket.h"
 #include "co_linux/loop.h"
-#include "network.h" /* COMASTER_CONTROL_PATH_MAX */
+#include "network.h" /* COMASTER_CONTROL_PATH_MAX, the callers' path buffers */
 
 #include <stdbool.h>
 #include <stddef.h>
 
-#define COMASTER_CONTROL_LINE_MAX 256u
+#define COMASTER_CONTROL_LINE_MAX CO_LINE_MAX
 #define COMASTER_CONTROL_REPLY_MAX 8192u
 
 /* Answers one request line (without its newline) into `reply` (cap bytes, newline-terminated
@@ -18,9 +19,7 @@
 typedef void (*comaster_control_fn)(void *ctx, const char *request, char *reply, size_t cap);
 
 typedef struct comaster_control {
-    int fd;
-    char path[COMASTER_CONTROL_PATH_MAX];
-    co_linux_loop_t *loop;
+    co_line_server_t server;
     comaster_control_fn handle;
     void *ctx;
 } comaster_control_t;

@@ -67,8 +67,8 @@ typedef struct co_app_hooks {
  * profile's: docs/error-control.md). */
 #define CO_NODE_HEARTBEAT_GRID 0x20u
 
-/* The code of the options (src/core/node_options.c), one function for each option that needs
- * more than a test of its flag. */
+/* The code of the options (src/canopen/slave/node_options.c), one function for each option that
+ * needs more than a test of its flag. */
 typedef struct co_node_options_code {
     /* CO_NODE_PAD_DLC8: sends a data frame padded to DLC 8 with zeros. */
     void (*send_padded)(co_node_t *node, const co_frame_t *frame);

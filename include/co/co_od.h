@@ -105,8 +105,8 @@ struct co_od_entry {
     const co_od_hook_t *hook;     /* NULL: plain storage */
 };
 
-/* The code of streamed DOMAIN entries (src/core/od_stream.c): the dictionary's validation and
- * write, and the SDO server's transfers of a streamed entry, whose state is node->sdo. */
+/* The code of streamed DOMAIN entries (src/canopen/common/od_stream.c): the dictionary's validation
+ * and write, and the SDO server's transfers of a streamed entry, whose state is node->sdo. */
 typedef struct co_od_streaming {
     /* Whether a CO_OD_STREAM entry is a DOMAIN of size 0 with the functions of its access. */
     bool (*entry_valid)(const co_od_entry_t *entry);

@@ -75,5 +75,7 @@ void co_sdo_set_timeout(co_node_t *node, co_time_t timeout_us);
 
 /* CRC-16-CCITT (polynomial 0x1021, initial value 0) of SDO block transfers (CiA 301). */
 uint16_t co_sdo_crc16(const uint8_t *data, size_t len);
+/* Continues a CRC over more bytes, so that a streamed value's CRC is built segment by segment. */
+uint16_t co_sdo_crc16_update(uint16_t crc, const uint8_t *data, size_t len);
 
 #endif

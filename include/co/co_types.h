@@ -30,7 +30,7 @@ typedef struct co_frame {
  * may use, since NMT, the default SDO channels and NMT error control own them, or they are
  * reserved: 000h, 001h-07Fh, 101h-180h, 581h-5FFh, 601h-67Fh, 6E0h-6FFh, 701h-77Fh, 780h-7FFh.
  * The defaults 080h (SYNC) and 081h-0FFh (EMCY) are allowed. `can_id` is the 11-bit CAN-ID
- * (src/core/cob_id.c). */
+ * (src/canopen/common/cob_id.c). */
 bool co_can_id_restricted(uint32_t can_id);
 
 /* The bits a configurable COB-ID (PDO 1400h/1800h:01, SYNC 1005h, EMCY 1014h) may have: bit 31,

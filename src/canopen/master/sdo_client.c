@@ -1,9 +1,9 @@
 /* SDO client (CiA 301 section 7.2.4, client side): expedited, segmented and block upload and
  * download between the application's buffer and one server. Uploads are written straight into
  * the application's buffer, downloads are sent from the application's data, so the client needs
- * no buffer of its own; the block CRC is the server's co_sdo_crc16. */
+ * no buffer of its own; the block CRC is co_sdo_crc16, shared with the server. */
+#include "../common/sdo_protocol.h"
 #include "co/co_sdo_client.h"
-#include "sdo_protocol.h"
 
 #include <string.h>
 

@@ -6,26 +6,10 @@
  * streamed DOMAIN (co_od_stream_t) needs no buffer: its segments are read from and written to the
  * application as they go, and its download's end is reported to the application however the
  * transfer ends. */
+#include "../common/sdo_protocol.h"
 #include "co/co_node.h"
-#include "sdo_protocol.h"
 
 #include <string.h>
-
-/* Continues a CRC over more bytes, so that a streamed value's CRC is built segment by segment. */
-static uint16_t crc16_update(uint16_t crc, const uint8_t *data, size_t len)
-{
-    for (size_t i = 0; i < len; i++) {
-        crc ^= (uint16_t)(data[i] << 8);
-        for (int bit = 0; bit < 8; bit++)
-            crc = (crc & 0x8000u) ? (uint16_t)((crc << 1) ^ 0x1021u) : (uint16_t)(crc << 1);
-    }
-    return crc;
-}
-
-uint16_t co_sdo_crc16(const uint8_t *data, size_t len)
-{
-    return crc16_update(0, data, len);
-}
 
 static bool in_download(const co_sdo_server_t *sdo)
 {
@@ -420,7 +404,7 @@ static uint32_t block_download_store(co_node_t *node, const co_frame_t *frame, b
         return SDO_ABORT_COMMAND;
     uint32_t abort = value_write(node, pos, &frame->data[1], SEGMENT_BYTES);
     if (abort == CO_SDO_OK && sdo->crc)
-        sdo->crc_sum = crc16_update(sdo->crc_sum, &frame->data[1], SEGMENT_BYTES);
+        sdo->crc_sum = co_sdo_crc16_update(sdo->crc_sum, &frame->data[1], SEGMENT_BYTES);
     return abort;
 }
 
@@ -473,7 +457,7 @@ static uint32_t block_download_end(co_node_t *node, const co_frame_t *frame)
     if (abort != CO_SDO_OK)
         return abort;
     sdo->offset = final_pos + final_len;
-    uint16_t crc = crc16_update(sdo->crc_sum, sdo->last_segment, final_len);
+    uint16_t crc = co_sdo_crc16_update(sdo->crc_sum, sdo->last_segment, final_len);
     if (sdo->crc && crc != co_get_u16(&frame->data[1]))
         return SDO_ABORT_CRC;
     return finish(node, download_complete(node), SCS_BLOCK_DOWNLOAD | BLOCK_DOWNLOAD_END, false);
@@ -524,7 +508,7 @@ static uint32_t block_upload_send_subblock(co_node_t *node)
         if (abort != CO_SDO_OK)
             return abort;
         if (sdo->crc)
-            sdo->crc_sent = crc16_update(sdo->crc_sent, &p[1], count);
+            sdo->crc_sent = co_sdo_crc16_update(sdo->crc_sent, &p[1], count);
         send_response(node, p);
         sdo->seqno = seqno;
     }
@@ -549,7 +533,7 @@ static uint32_t block_upload_crc_acknowledged(co_node_t *node, uint8_t ackseq)
         uint32_t abort = value_read(node, pos, segment, SEGMENT_BYTES);
         if (abort != CO_SDO_OK)
             return abort;
-        sdo->crc_sum = crc16_update(sdo->crc_sum, segment, SEGMENT_BYTES);
+        sdo->crc_sum = co_sdo_crc16_update(sdo->crc_sum, segment, SEGMENT_BYTES);
     }
     return CO_SDO_OK;
 }

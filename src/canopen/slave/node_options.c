@@ -2,8 +2,8 @@
  * co_node_config_t.options_code = &co_node_options: a firmware that names none of them links none
  * of this (docs/footprint.md). The rules that are a test of the flag alone (the DLC accepted by
  * NMT, guarding and RPDOs, NMT Disconnect, the expedited-only upload) stay in their services. */
+#include "../common/sdo_protocol.h"
 #include "co/co_node.h"
-#include "sdo_protocol.h"
 
 #include <string.h>
 

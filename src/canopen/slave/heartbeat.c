@@ -44,34 +44,6 @@ static void producer_restart(co_node_t *node, uint16_t ms)
     hb->next_beat = ms != 0 ? beat_after(node, node->now, hb->period) : CO_TIME_NEVER;
 }
 
-void co_hb_monitor_configure(co_hb_monitor_t *monitor, uint32_t time_us)
-{
-    monitor->time_us = time_us;
-    monitor->monitoring = false;
-    monitor->lost = false;
-    monitor->deadline = CO_TIME_NEVER;
-}
-
-bool co_hb_monitor_alive(co_hb_monitor_t *monitor, co_time_t now)
-{
-    if (monitor->time_us == 0)
-        return false;
-    monitor->monitoring = true;
-    monitor->deadline = now + monitor->time_us;
-    bool resumed = monitor->lost;
-    monitor->lost = false;
-    return resumed;
-}
-
-bool co_hb_monitor_expired(co_hb_monitor_t *monitor, co_time_t now)
-{
-    if (now < monitor->deadline)
-        return false;
-    monitor->lost = true;
-    monitor->deadline = CO_TIME_NEVER;
-    return true;
-}
-
 /* The earliest deadline of the consumers, kept exact after every change of one of them, so that a
  * process call with no consumer due looks at none of them. */
 static void consumers_schedule(co_heartbeat_t *hb)

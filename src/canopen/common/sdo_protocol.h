@@ -1,5 +1,5 @@
 /* The SDO protocol's frame layout (CiA 301 section 7.2.4.3), shared by the server and the client
- * of the core: command specifiers, command bits, sizes. Private to src/core. */
+ * of the core: command specifiers, command bits, sizes. Private to src/canopen. */
 #ifndef CO_SDO_PROTOCOL_H
 #define CO_SDO_PROTOCOL_H
 

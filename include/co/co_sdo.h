@@ -27,8 +27,8 @@ typedef enum co_sdo_state {
  * co_node_config_t.sdo_buffer), since a node needs it only during such a transfer: the transfer
  * holds it from its initiate until it ends (completed, aborted, timed out, replaced by a new
  * request or by a reset), and another node's transfer that needs it meanwhile is refused with
- * SDO_ABORT_NO_RESOURCE. Expedited transfers never use it. The nodes sharing a buffer must be run
- * from one thread, like the calls of one node. Set `data` and `size`, and `owner` to NULL. */
+ * CO_SDO_ABORT_NO_RESOURCE. Expedited transfers never use it. The nodes sharing a buffer must be
+ * run from one thread, like the calls of one node. Set `data` and `size`, and `owner` to NULL. */
 typedef struct co_sdo_buffer {
     uint8_t *data;
     uint32_t size;          /* largest segmented or block transfer, bytes */

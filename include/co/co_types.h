@@ -16,6 +16,12 @@ typedef uint64_t co_time_t;
 /* "No deadline": the runtime may sleep until the next frame arrives. */
 #define CO_TIME_NEVER UINT64_MAX
 
+/* Earlier of two deadlines. */
+static inline co_time_t co_time_min(co_time_t a, co_time_t b)
+{
+    return a < b ? a : b;
+}
+
 /* A classic CAN frame. Only 11-bit identifiers are used by the stack; 29-bit frames are ignored. */
 #define CO_FRAME_RTR 0x01u /* remote transmission request */
 #define CO_FRAME_EFF 0x02u /* 29-bit (extended) identifier */
@@ -28,6 +34,9 @@ typedef struct co_frame {
     uint8_t flags;
     uint8_t data[8];
 } co_frame_t;
+
+/* Transmits one frame. The core never waits for it: a runtime queues what it cannot send. */
+typedef void (*co_send_fn)(void *user, const co_frame_t *frame);
 
 /* CiA 301 7.3.5, table "restricted CAN-IDs": identifiers no configurable COB-ID (PDO, SYNC, EMCY)
  * may use, since NMT, the default SDO channels and NMT error control own them, or they are

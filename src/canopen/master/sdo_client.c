@@ -4,6 +4,8 @@
  * no buffer of its own; the block CRC is co_sdo_crc16, shared with the server. */
 #include "co/co_sdo_client.h"
 
+#include "co/co_node.h" /* co_sdo_client_config_from_od reads a node's 1280h */
+
 #include <string.h>
 
 #define US_PER_MS 1000u

@@ -680,9 +680,9 @@ bool co_sdo_receive(co_node_t *node, const co_frame_t *frame)
         return true;
     uint8_t command = frame->data[0];
     /* 0x80 means abort in every state, and nothing else: inside a block download sub-block it
-     * would be segment 0, which does not exist. An abort is unconfirmed, so whatever its DLC
-     * (SPEC: tolerant of short frames where the meaning is unambiguous) the transfer ends
-     * silently; the server has no use for the multiplexer or the code. */
+     * would be segment 0, which does not exist. An abort is unconfirmed, so whatever its DLC the
+     * transfer ends silently: the server takes a short frame whenever its meaning is unambiguous
+     * (docs/sdo.md, "Short frames"), and it has no use for the multiplexer or the code. */
     if (command == CO_SDO_COMMAND(CO_SDO_CS_ABORT)) {
         transfer_idle(node);
         return true;

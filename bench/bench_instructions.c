@@ -18,9 +18,6 @@
 
 #define NODE_ID 4
 /* CiA 301 SDO server command specifiers (bits 5-7 of byte 0). */
-#define SCS_UPLOAD_SEGMENT 0x00
-#define SCS_DOWNLOAD_INITIATE 0x60
-#define SCS_UPLOAD_INITIATE 0x40
 
 typedef struct bench {
     co_node_t node;
@@ -103,7 +100,7 @@ static void op_rpdo1(bench_t *b)
 
 static void op_sync_4_tpdos(bench_t *b)
 {
-    co_frame_t f = {.id = 0x080, .len = 0};
+    co_frame_t f = {.id = CO_CAN_ID_SYNC, .len = 0};
     handle(b, &f);
 }
 
@@ -128,11 +125,11 @@ int main(int argc, char **argv)
     }
     const operation_t ops[] = {
         {"SDO expedited upload request (1000h)", op_sdo_expedited_upload, &bench_od, false, 1, true,
-         SCS_UPLOAD_INITIATE},
+         CO_SDO_COMMAND(CO_SDO_SCS_UPLOAD_INITIATE)},
         {"SDO expedited download request (1017h)", op_sdo_expedited_download, &bench_od, false, 1,
-         true, SCS_DOWNLOAD_INITIATE},
+         true, CO_SDO_COMMAND(CO_SDO_SCS_DOWNLOAD_INITIATE)},
         {"SDO upload segment request (1008h)", op_sdo_upload_segment, &bench_od, false, 2, true,
-         SCS_UPLOAD_SEGMENT},
+         CO_SDO_COMMAND(CO_SDO_SCS_UPLOAD_SEGMENT)},
         {"RPDO1 received and applied (6040h)", op_rpdo1, &bench_od, true, 0, false, 0},
         {"SYNC with 4 synchronous TPDOs", op_sync_4_tpdos, &sync4_od, true, 4, false, 0},
     };

@@ -58,7 +58,7 @@ static uint32_t value_begin(co_node_t *node, const co_od_entry_t *entry, bool si
                             uint32_t size)
 {
     (void)node;
-    return size_indicated && size > value_of(entry)->capacity ? SDO_ABORT_LENGTH_HIGH : 0;
+    return size_indicated && size > value_of(entry)->capacity ? CO_SDO_ABORT_LENGTH_HIGH : 0;
 }
 
 static uint32_t value_write(co_node_t *node, const co_od_entry_t *entry, uint32_t offset,
@@ -67,7 +67,7 @@ static uint32_t value_write(co_node_t *node, const co_od_entry_t *entry, uint32_
     (void)node;
     stored_value_t *v = value_of(entry);
     if (offset + len > v->capacity)
-        return SDO_ABORT_LENGTH_HIGH;
+        return CO_SDO_ABORT_LENGTH_HIGH;
     memcpy(v->incoming + offset, data, len);
     return 0;
 }

@@ -3,9 +3,7 @@
 
 #include "co/co_emcy_consumer.h"
 
-#define SDO_REQUEST_COB_ID_BASE 0x600u
-#define SDO_RESPONSE_COB_ID_BASE 0x580u
-#define SDO_ABORT_COMMAND 0x80u /* byte 0 of an SDO "abort transfer" (CiA 301 7.2.4.3.17) */
+#define SDO_ABORT_COMMAND CO_SDO_COMMAND(CO_SDO_CS_ABORT) /* byte 0 of an SDO "abort transfer" */
 
 /* A data frame with an 11-bit COB-ID: remote requests and 29-bit frames carry no service here. */
 static bool is_data(const co_frame_t *frame, uint32_t cob_id)
@@ -15,12 +13,12 @@ static bool is_data(const co_frame_t *frame, uint32_t cob_id)
 
 bool atv312d_is_emcy(uint8_t node_id, const co_frame_t *frame)
 {
-    return is_data(frame, CO_EMCY_COB_ID_BASE + node_id);
+    return is_data(frame, CO_CAN_ID_EMCY + node_id);
 }
 
 void atv312d_count_received(atv312d_counters_t *counters, uint8_t node_id, const co_frame_t *frame)
 {
-    if (is_data(frame, SDO_REQUEST_COB_ID_BASE + node_id))
+    if (is_data(frame, CO_CAN_ID_SDO_RX + node_id))
         counters->sdo_requests++;
 }
 
@@ -28,7 +26,7 @@ void atv312d_count_sent(atv312d_counters_t *counters, uint8_t node_id, const co_
 {
     if (atv312d_is_emcy(node_id, frame))
         counters->emcy++;
-    else if (is_data(frame, SDO_RESPONSE_COB_ID_BASE + node_id) && frame->len > 0 &&
+    else if (is_data(frame, CO_CAN_ID_SDO_TX + node_id) && frame->len > 0 &&
              frame->data[0] == SDO_ABORT_COMMAND)
         counters->sdo_aborts++;
 }

@@ -219,7 +219,7 @@ int comaster_sdo_status(const comaster_options_t *opts, uint8_t node,
 {
     if (result->status == CO_SDO_CLIENT_OK)
         return COMASTER_EXIT_OK;
-    if (result->status == CO_SDO_CLIENT_CLIENT_ABORT && result->abort_code == SDO_ABORT_TIMEOUT)
+    if (result->status == CO_SDO_CLIENT_CLIENT_ABORT && result->abort_code == CO_SDO_ABORT_TIMEOUT)
         return comaster_fail(opts, COMASTER_EXIT_TIMEOUT,
                              "node %u, %04X:%02X: no answer within %u ms: is the node on %s and "
                              "its node-id %u? (--timeout MS waits longer)",

@@ -187,7 +187,7 @@ static int read_identity(comaster_bus_t *bus, const comaster_options_t *opts, ui
                                  opts->timeout_ms, &result);
     if (rc != 0)
         return rc;
-    if (result.status == CO_SDO_CLIENT_CLIENT_ABORT && result.abort_code == SDO_ABORT_TIMEOUT)
+    if (result.status == CO_SDO_CLIENT_CLIENT_ABORT && result.abort_code == CO_SDO_ABORT_TIMEOUT)
         return comaster_sdo_status(opts, node, &result);
     *size = result.status == CO_SDO_CLIENT_OK ? result.size : 0;
     return 0;

@@ -26,8 +26,6 @@
 
 /* The RPDOs looked at for --rpdo: the first eight (the ATV312 has RPDO1 and RPDO6). */
 #define RPDO_COUNT 8u
-#define RPDO_COMM 0x1400u
-#define RPDO_MAPPING 0x1600u
 #define PDO_COB_ID_INVALID 0x80000000u
 #define PDO_COB_ID_MASK 0x7FFu
 #define PDO_MAPPED_MAX 8u
@@ -239,7 +237,7 @@ static int read_value(drive_session_t *d, uint16_t index, uint8_t sub, uint8_t *
     int rc = comaster_sdo_upload(d->bus, d->node, index, sub, buf, cap, CO_SDO_CLIENT_AUTO,
                                  d->opts->timeout_ms, &result);
     if (rc == 0 && result.status == CO_SDO_CLIENT_CLIENT_ABORT &&
-        result.abort_code == SDO_ABORT_TIMEOUT)
+        result.abort_code == CO_SDO_ABORT_TIMEOUT)
         return comaster_sdo_status(d->opts, d->node, &result);
     if (rc == 0 && result.status == CO_SDO_CLIENT_OK)
         *size = result.size;
@@ -262,14 +260,14 @@ static int read_rpdo_mapping(drive_session_t *d, unsigned n, rpdo_t *candidate)
 {
     uint32_t count, entry;
     bool has;
-    int rc = read_u32(d, (uint16_t)(RPDO_MAPPING + n), 0, &count, &has);
+    int rc = read_u32(d, (uint16_t)(CO_PDO_RPDO_MAP + n), 0, &count, &has);
     if (rc != 0 || !has || count > PDO_MAPPED_MAX)
         return rc;
     candidate->control_at = 0xFF;
     candidate->speed_at = -1;
     unsigned offset = 0;
     for (uint8_t sub = 1; sub <= count; sub++) {
-        rc = read_u32(d, (uint16_t)(RPDO_MAPPING + n), sub, &entry, &has);
+        rc = read_u32(d, (uint16_t)(CO_PDO_RPDO_MAP + n), sub, &entry, &has);
         unsigned bytes = (entry & 0xFFu) / 8u;
         if (rc != 0 || !has || (entry & 7u) || bytes == 0 || offset + bytes > 8)
             return rc;
@@ -294,7 +292,7 @@ static int find_rpdo(drive_session_t *d)
     for (unsigned n = 0; n < RPDO_COUNT; n++) {
         uint32_t cob_id;
         bool has;
-        int rc = read_u32(d, (uint16_t)(RPDO_COMM + n), 1, &cob_id, &has);
+        int rc = read_u32(d, (uint16_t)(CO_PDO_RPDO_COMM + n), 1, &cob_id, &has);
         if (rc != 0)
             return rc;
         if (!has || (cob_id & PDO_COB_ID_INVALID))
@@ -312,7 +310,7 @@ static int find_rpdo(drive_session_t *d)
                          "node %u: --rpdo: no valid RPDO (1400h-1407h) maps the control word "
                          "6040h: make one valid (e.g. comaster write %u 0x1405:1 u32 0x%03X), or "
                          "drive by SDO without --rpdo",
-                         d->node, d->node, 0x300u + d->node);
+                         d->node, d->node, CO_CAN_ID_RPDO2 + d->node);
 }
 
 static bool parse_rpm(const comaster_options_t *opts, const char *text, int16_t *rpm)

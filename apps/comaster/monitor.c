@@ -32,12 +32,7 @@ static const char monitor_help[] =
 /* The PDOs of a node read over SDO: the first eight of each direction (the predefined set has
  * four; the ATV312 uses PDO1 and PDO6). */
 #define PDO_READ_COUNT 8u
-#define PDO_RPDO_COMM 0x1400u
-#define PDO_TPDO_COMM 0x1800u
-#define PDO_MAPPING_OFFSET 0x0200u
 #define PDO_MAPPED_MAX 64u
-#define COB_SYNC 0x080u
-#define COB_PDO_FIRST 0x180u
 #define COB_PDO_LAST 0x57Fu
 
 typedef struct watched {
@@ -170,9 +165,9 @@ static void monitor_receive(void *ctx, const co_frame_t *frame, co_time_t now)
         return;
     if (co_emcy_decode(frame, &msg) == CO_EMCY_DECODE_OK)
         print_emcy(m, &msg);
-    else if (frame->id == COB_SYNC && !(frame->flags & CO_FRAME_RTR))
+    else if (frame->id == CO_CAN_ID_SYNC && !(frame->flags & CO_FRAME_RTR))
         print_sync(m, frame);
-    else if (frame->id >= COB_PDO_FIRST && frame->id <= COB_PDO_LAST &&
+    else if (frame->id >= CO_CAN_ID_TPDO1 && frame->id <= COB_PDO_LAST &&
              !(frame->flags & CO_FRAME_RTR))
         print_pdo(m, frame);
 }
@@ -195,7 +190,7 @@ static bool read_into(monitor_t *m, watched_t *w, uint16_t index, uint8_t sub, i
     *rc = comaster_sdo_upload(m->bus, w->node, index, sub, buf, sizeof buf, CO_SDO_CLIENT_AUTO,
                               m->opts->timeout_ms, &result);
     if (*rc == 0 && result.status == CO_SDO_CLIENT_CLIENT_ABORT &&
-        result.abort_code == SDO_ABORT_TIMEOUT)
+        result.abort_code == CO_SDO_ABORT_TIMEOUT)
         *rc = comaster_sdo_status(m->opts, w->node, &result);
     if (*rc != 0 || result.status != CO_SDO_CLIENT_OK)
         return false;
@@ -211,7 +206,7 @@ static int read_pdo(monitor_t *m, watched_t *w, uint16_t comm)
     int rc;
     if (!read_into(m, w, comm, 1, &rc))
         return rc;
-    uint16_t mapping = (uint16_t)(comm + PDO_MAPPING_OFFSET);
+    uint16_t mapping = (uint16_t)(comm + CO_PDO_INDEX_SPAN);
     if (!read_into(m, w, mapping, 0, &rc))
         return rc;
     const eds_entry_t *count = eds_find(&w->eds, mapping, 0);
@@ -227,9 +222,9 @@ static int watch_node(monitor_t *m, watched_t *w)
         return rc;
     rc = 0; /* without an EDS (-1) the mapping comes without names */
     for (uint16_t i = 0; rc == 0 && i < PDO_READ_COUNT; i++) {
-        rc = read_pdo(m, w, (uint16_t)(PDO_TPDO_COMM + i));
+        rc = read_pdo(m, w, (uint16_t)(CO_PDO_TPDO_COMM + i));
         if (rc == 0)
-            rc = read_pdo(m, w, (uint16_t)(PDO_RPDO_COMM + i));
+            rc = read_pdo(m, w, (uint16_t)(CO_PDO_RPDO_COMM + i));
     }
     if (rc > 0)
         return rc;

@@ -19,10 +19,6 @@
 #define HEARTBEAT_PRODUCER_INDEX 0x1017u
 #define GUARD_TIME_INDEX 0x100Cu
 #define LIFE_TIME_FACTOR_INDEX 0x100Du
-#define RPDO_COMM 0x1400u
-#define RPDO_MAP 0x1600u
-#define TPDO_COMM 0x1800u
-#define TPDO_MAP 0x1A00u
 #define PDO_COUNT 512u
 #define COB_ID_INVALID 0x80000000u
 #define COB_ID_29BIT 0x20000000u
@@ -264,8 +260,8 @@ static int load_pdos(comaster_network_t *net, size_t si, bool output, char *err,
 {
     const comaster_slave_t *s = &net->slave[si];
     uint8_t node_id = net->slave_config[si].node_id;
-    uint16_t comm = output ? RPDO_COMM : TPDO_COMM;
-    uint16_t map = output ? RPDO_MAP : TPDO_MAP;
+    uint16_t comm = output ? CO_PDO_RPDO_COMM : CO_PDO_TPDO_COMM;
+    uint16_t map = output ? CO_PDO_RPDO_MAP : CO_PDO_TPDO_MAP;
     co_net_pdo_t *pdos = output ? net->output_pdo : net->input_pdo;
     size_t *count = output ? &net->config.output_count : &net->config.input_count;
     size_t *size = output ? &net->config.output_size : &net->config.input_size;

@@ -113,7 +113,7 @@ static void finish_boot(runner_t *r, const co_net_slave_t *s)
     } else if (s->step == CO_NET_STEP_FAILED) {
         int status = EX_DATAERR;
         if (s->failure == CO_NET_FAIL_SDO)
-            status = r->master.last_sdo_error.abort_code == SDO_ABORT_TIMEOUT
+            status = r->master.last_sdo_error.abort_code == CO_SDO_ABORT_TIMEOUT
                          ? COMASTER_EXIT_TIMEOUT
                          : COMASTER_EXIT_ABORT;
         comaster_bus_finish(&r->bus, status);

@@ -104,7 +104,6 @@ static int probe_all(scan_t *s, uint32_t timeout_ms)
 
 /* ---- phase 3: the NMT states not heard yet, by node guarding -------------------------------- */
 
-#define NMT_ERROR_CONTROL_BASE 0x700u
 #define GUARD_TOGGLE 0x80u
 
 static bool states_known(const scan_t *s)
@@ -123,7 +122,7 @@ static void guard_receive(void *ctx, const co_frame_t *frame, co_time_t now)
 {
     scan_t *s = ctx;
     (void)now;
-    uint32_t node = frame->id - NMT_ERROR_CONTROL_BASE;
+    uint32_t node = frame->id - CO_CAN_ID_ERROR_CONTROL;
     if ((frame->flags & (CO_FRAME_RTR | CO_FRAME_EFF)) || frame->len < 1 || node < 1 ||
         node > NODE_COUNT)
         return;
@@ -149,7 +148,7 @@ static int ask_states(scan_t *s, uint32_t timeout_ms)
         s->state[node - 1] = co_nmt_master_state(&s->master, node);
         if (s->probes[node - 1].present && s->state[node - 1] == CO_NMT_MASTER_STATE_UNKNOWN) {
             co_frame_t request = {
-                .id = NMT_ERROR_CONTROL_BASE + node, .len = 1, .flags = CO_FRAME_RTR};
+                .id = CO_CAN_ID_ERROR_CONTROL + node, .len = 1, .flags = CO_FRAME_RTR};
             comaster_bus_send(s->bus, &request);
         }
     }

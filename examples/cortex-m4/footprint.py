@@ -26,15 +26,15 @@ def linked_sizes(map_path):
 def main():
     map_path, elf = sys.argv[1:3]
     sizes = linked_sizes(map_path)
-    core = {re.sub(r".*/src/core/(\w+)\.c\.obj$", r"\1.c", o): s for o, s in sizes.items()
-            if "/src/core/" in o}
+    core = {re.sub(r".*/src/canopen/(\w+/\w+)\.c\.obj$", r"\1.c", o): s
+            for o, s in sizes.items() if "/src/canopen/" in o}
     print("flash of the core after --gc-sections (text + rodata, bytes):")
     for name in sorted(core):
-        print(f"  {name:16} {core[name]['flash']:6}")
+        print(f"  {name:24} {core[name]['flash']:6}")
     total = sum(s["flash"] for s in core.values())
-    print(f"  {'core total':16} {total:6}")
-    rest = sum(s["flash"] for o, s in sizes.items() if "/src/core/" not in o)
-    print(f"  {'everything else':16} {rest:6} (startup, board, storage, dictionary, newlib)")
+    print(f"  {'core total':24} {total:6}")
+    rest = sum(s["flash"] for o, s in sizes.items() if "/src/canopen/" not in o)
+    print(f"  {'everything else':24} {rest:6} (startup, board, storage, dictionary, newlib)")
     nm = subprocess.run(["arm-none-eabi-nm", "-S", "-t", "d", elf], check=True,
                         capture_output=True, text=True).stdout
     symbol = {f[3]: int(f[1]) for f in (l.split() for l in nm.splitlines()) if len(f) == 4}

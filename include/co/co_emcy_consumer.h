@@ -14,7 +14,8 @@
 /* CiA 301: an EMCY frame is exactly 8 bytes. */
 #define CO_EMCY_FRAME_LEN 8u
 #define CO_EMCY_MSEF_LEN 5u
-#define CO_EMCY_COB_ID_BASE 0x080u
+/* CO_CAN_ID_EMCY under its release 0.1 name, kept for one more release. */
+#define CO_EMCY_COB_ID_BASE CO_CAN_ID_EMCY
 
 typedef enum co_emcy_decode {
     CO_EMCY_DECODE_OK = 0,

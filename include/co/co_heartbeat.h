@@ -26,13 +26,39 @@ typedef struct co_hb_monitor {
     co_time_t deadline; /* CO_TIME_NEVER before the first frame and while lost */
 } co_hb_monitor_t;
 
-/* Sets the consumer time (0 = off); monitoring waits for the next frame. */
-void co_hb_monitor_configure(co_hb_monitor_t *monitor, uint32_t time_us);
+/* Sets the consumer time (0 = off); monitoring waits for the next frame. The three functions are
+ * inline: each has one caller in a node (heartbeat.c) and one in the NMT master, where GCC folds
+ * them into the caller. */
+static inline void co_hb_monitor_configure(co_hb_monitor_t *monitor, uint32_t time_us)
+{
+    monitor->time_us = time_us;
+    monitor->monitoring = false;
+    monitor->lost = false;
+    monitor->deadline = CO_TIME_NEVER;
+}
+
 /* A heartbeat or boot-up frame from the producer at `now`: restarts the timer of a configured
  * consumer. True when it ends a loss (to report the producer resumed). */
-bool co_hb_monitor_alive(co_hb_monitor_t *monitor, co_time_t now);
+static inline bool co_hb_monitor_alive(co_hb_monitor_t *monitor, co_time_t now)
+{
+    if (monitor->time_us == 0)
+        return false;
+    monitor->monitoring = true;
+    monitor->deadline = now + monitor->time_us;
+    bool resumed = monitor->lost;
+    monitor->lost = false;
+    return resumed;
+}
+
 /* True once, when the consumer time has passed at `now` (the loss to report). */
-bool co_hb_monitor_expired(co_hb_monitor_t *monitor, co_time_t now);
+static inline bool co_hb_monitor_expired(co_hb_monitor_t *monitor, co_time_t now)
+{
+    if (now < monitor->deadline)
+        return false;
+    monitor->lost = true;
+    monitor->deadline = CO_TIME_NEVER;
+    return true;
+}
 
 typedef struct co_hb_consumer {
     uint8_t node_id; /* 0: entry unused */

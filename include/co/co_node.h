@@ -17,9 +17,6 @@
 #include "co_sync.h"
 #include "co_types.h"
 
-/* Transmits one frame. The core never waits for it: a runtime queues what it cannot send. */
-typedef void (*co_send_fn)(void *user, const co_frame_t *frame);
-
 /* Application callbacks; any of them may be NULL. */
 typedef struct co_app_hooks {
     void (*nmt_state)(co_node_t *node, co_nmt_state_t state);
@@ -67,8 +64,8 @@ typedef struct co_app_hooks {
  * profile's: docs/error-control.md). */
 #define CO_NODE_HEARTBEAT_GRID 0x20u
 
-/* The code of the options (src/core/node_options.c), one function for each option that needs
- * more than a test of its flag. */
+/* The code of the options (src/canopen/slave/node_options.c), one function for each option that
+ * needs more than a test of its flag. */
 typedef struct co_node_options_code {
     /* CO_NODE_PAD_DLC8: sends a data frame padded to DLC 8 with zeros. */
     void (*send_padded)(co_node_t *node, const co_frame_t *frame);
@@ -165,11 +162,5 @@ void co_node_send(co_node_t *node, const co_frame_t *frame);
 /* Sends the one data byte of an error control frame (CiA 301 7.2.8.3): a boot-up, a heartbeat, a
  * node guarding reply. */
 void co_node_send_byte(co_node_t *node, uint32_t id, uint8_t byte);
-
-/* Earlier of two deadlines. */
-static inline co_time_t co_time_min(co_time_t a, co_time_t b)
-{
-    return a < b ? a : b;
-}
 
 #endif

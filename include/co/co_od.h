@@ -79,8 +79,8 @@ typedef struct co_od_stream {
     uint32_t (*read)(co_node_t *node, const co_od_entry_t *entry, uint32_t offset, uint8_t *buf,
                      size_t len);
     /* A download starts, announcing `size` bytes when size_indicated. Refuse a size the
-     * application cannot take: SDO_ABORT_LENGTH_HIGH (0x06070012) when the object can never hold
-     * it, SDO_ABORT_NO_MEMORY (0x05040005) when there is no room for it now. */
+     * application cannot take: CO_SDO_ABORT_LENGTH_HIGH (0x06070012) when the object can never hold
+     * it, CO_SDO_ABORT_NO_MEMORY (0x05040005) when there is no room for it now. */
     uint32_t (*begin)(co_node_t *node, const co_od_entry_t *entry, bool size_indicated,
                       uint32_t size);
     /* The next `len` bytes (1..7) of the download at `offset`: only data received in sequence,
@@ -105,8 +105,8 @@ struct co_od_entry {
     const co_od_hook_t *hook;     /* NULL: plain storage */
 };
 
-/* The code of streamed DOMAIN entries (src/core/od_stream.c): the dictionary's validation and
- * write, and the SDO server's transfers of a streamed entry, whose state is node->sdo. */
+/* The code of streamed DOMAIN entries (src/canopen/common/od_stream.c): the dictionary's validation
+ * and write, and the SDO server's transfers of a streamed entry, whose state is node->sdo. */
 typedef struct co_od_streaming {
     /* Whether a CO_OD_STREAM entry is a DOMAIN of size 0 with the functions of its access. */
     bool (*entry_valid)(const co_od_entry_t *entry);
@@ -177,8 +177,8 @@ const char *co_od_name(const co_od_t *od, uint16_t index, uint8_t subindex);
 /* Binary search. NULL when absent. */
 const co_od_entry_t *co_od_find(const co_od_t *od, uint16_t index, uint8_t subindex);
 
-/* Like co_od_find, with the most specific abort code: SDO_ABORT_NO_OBJECT when no entry has that
- * index, SDO_ABORT_NO_SUBINDEX when the index exists but not the sub-index. */
+/* Like co_od_find, with the most specific abort code: CO_SDO_ABORT_NO_OBJECT when no entry has that
+ * index, CO_SDO_ABORT_NO_SUBINDEX when the index exists but not the sub-index. */
 uint32_t co_od_lookup(const co_od_t *od, uint16_t index, uint8_t subindex,
                       const co_od_entry_t **entry);
 

@@ -10,14 +10,6 @@
 #include "co_config.h"
 #include "co_od.h"
 
-/* CiA 301 7.5.2: the RPDO communication (1400h) and mapping (1600h) parameters, then the TPDO
- * communication (1800h) and mapping (1A00h) parameters, each CO_PDO_INDEX_SPAN indexes; a PDO's
- * mapping follows its communication parameter by one span. */
-#define CO_PDO_RPDO_COMM 0x1400u
-#define CO_PDO_TPDO_COMM 0x1800u
-#define CO_PDO_TPDO_MAP 0x1A00u
-#define CO_PDO_INDEX_SPAN 0x200u
-
 /* COB-ID bits of the PDO communication parameter, sub 1 (CiA 301 table 72). */
 #define CO_PDO_COBID_INVALID 0x80000000u
 #define CO_PDO_COBID_NO_RTR 0x40000000u

@@ -27,8 +27,8 @@ typedef enum co_sdo_state {
  * co_node_config_t.sdo_buffer), since a node needs it only during such a transfer: the transfer
  * holds it from its initiate until it ends (completed, aborted, timed out, replaced by a new
  * request or by a reset), and another node's transfer that needs it meanwhile is refused with
- * SDO_ABORT_NO_RESOURCE. Expedited transfers never use it. The nodes sharing a buffer must be run
- * from one thread, like the calls of one node. Set `data` and `size`, and `owner` to NULL. */
+ * CO_SDO_ABORT_NO_RESOURCE. Expedited transfers never use it. The nodes sharing a buffer must be
+ * run from one thread, like the calls of one node. Set `data` and `size`, and `owner` to NULL. */
 typedef struct co_sdo_buffer {
     uint8_t *data;
     uint32_t size;          /* largest segmented or block transfer, bytes */
@@ -75,5 +75,7 @@ void co_sdo_set_timeout(co_node_t *node, co_time_t timeout_us);
 
 /* CRC-16-CCITT (polynomial 0x1021, initial value 0) of SDO block transfers (CiA 301). */
 uint16_t co_sdo_crc16(const uint8_t *data, size_t len);
+/* Continues a CRC over more bytes, so that a streamed value's CRC is built segment by segment. */
+uint16_t co_sdo_crc16_update(uint16_t crc, const uint8_t *data, size_t len);
 
 #endif

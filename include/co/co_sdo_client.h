@@ -6,7 +6,7 @@
 #ifndef CO_SDO_CLIENT_H
 #define CO_SDO_CLIENT_H
 
-#include "co_node.h"
+#include "co_od.h"
 
 /* How a transfer ends. */
 typedef enum co_sdo_client_status {

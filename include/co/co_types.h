@@ -1,5 +1,6 @@
-/* Basic types shared by every module of the portable core: CAN frames, time, CiA 301 data types
- * and the complete set of SDO abort codes. No OS headers, no globals. */
+/* Basic types shared by every module of the portable core: CAN frames, time, CiA 301 data types;
+ * the wire vocabulary (COB-IDs, indexes, SDO layout, abort codes) is in co_cia301.h, which this
+ * header includes. No OS headers, no globals. */
 #ifndef CO_TYPES_H
 #define CO_TYPES_H
 
@@ -7,11 +8,19 @@
 #include <stddef.h>
 #include <stdint.h>
 
+#include "co_cia301.h"
+
 /* Monotonic time in microseconds, supplied by the caller. */
 typedef uint64_t co_time_t;
 
 /* "No deadline": the runtime may sleep until the next frame arrives. */
 #define CO_TIME_NEVER UINT64_MAX
+
+/* Earlier of two deadlines. */
+static inline co_time_t co_time_min(co_time_t a, co_time_t b)
+{
+    return a < b ? a : b;
+}
 
 /* A classic CAN frame. Only 11-bit identifiers are used by the stack; 29-bit frames are ignored. */
 #define CO_FRAME_RTR 0x01u /* remote transmission request */
@@ -26,11 +35,14 @@ typedef struct co_frame {
     uint8_t data[8];
 } co_frame_t;
 
+/* Transmits one frame. The core never waits for it: a runtime queues what it cannot send. */
+typedef void (*co_send_fn)(void *user, const co_frame_t *frame);
+
 /* CiA 301 7.3.5, table "restricted CAN-IDs": identifiers no configurable COB-ID (PDO, SYNC, EMCY)
  * may use, since NMT, the default SDO channels and NMT error control own them, or they are
  * reserved: 000h, 001h-07Fh, 101h-180h, 581h-5FFh, 601h-67Fh, 6E0h-6FFh, 701h-77Fh, 780h-7FFh.
  * The defaults 080h (SYNC) and 081h-0FFh (EMCY) are allowed. `can_id` is the 11-bit CAN-ID
- * (src/core/cob_id.c). */
+ * (src/canopen/common/cob_id.c). */
 bool co_can_id_restricted(uint32_t can_id);
 
 /* The bits a configurable COB-ID (PDO 1400h/1800h:01, SYNC 1005h, EMCY 1014h) may have: bit 31,
@@ -41,7 +53,7 @@ bool co_can_id_restricted(uint32_t can_id);
 /* CiA 301's rules of a COB-ID write shared by PDO, SYNC and EMCY: only CO_COB_ID_ALLOWED bits, no
  * restricted CAN-ID, and no new CAN-ID while the old and the new value are both in use, which
  * (cob_id & in_use_mask) == in_use says (the PDO or EMCY valid, bit 31 clear; the SYNC produced,
- * bit 30 set). 0 or SDO_ABORT_VALUE_RANGE. */
+ * bit 30 set). 0 or CO_SDO_ABORT_VALUE_RANGE. */
 uint32_t co_cob_id_check(uint32_t old, uint32_t value, uint32_t in_use_mask, uint32_t in_use);
 
 /* CiA 301 table 44: static data types, by their object dictionary index. */
@@ -62,42 +74,6 @@ typedef enum co_dtype {
     CO_DT_INTEGER64 = 0x15,
     CO_DT_UNSIGNED64 = 0x1B
 } co_dtype_t;
-
-/* CiA 301 v4.2 section 7.2.4.3.17: SDO abort codes, the complete set. */
-enum co_sdo_abort {
-    CO_SDO_OK = 0,
-    SDO_ABORT_TOGGLE = 0x05030000,
-    SDO_ABORT_TIMEOUT = 0x05040000,
-    SDO_ABORT_COMMAND = 0x05040001,
-    SDO_ABORT_BLOCK_SIZE = 0x05040002,
-    SDO_ABORT_SEQUENCE = 0x05040003,
-    SDO_ABORT_CRC = 0x05040004,
-    SDO_ABORT_NO_MEMORY = 0x05040005,
-    SDO_ABORT_UNSUPPORTED_ACCESS = 0x06010000,
-    SDO_ABORT_WRITE_ONLY = 0x06010001,
-    SDO_ABORT_READ_ONLY = 0x06010002,
-    SDO_ABORT_NO_OBJECT = 0x06020000,
-    SDO_ABORT_NOT_MAPPABLE = 0x06040041,
-    SDO_ABORT_PDO_LENGTH = 0x06040042,
-    SDO_ABORT_PARAM_INCOMPATIBLE = 0x06040043,
-    SDO_ABORT_INTERNAL_INCOMPATIBLE = 0x06040047,
-    SDO_ABORT_HARDWARE = 0x06060000,
-    SDO_ABORT_TYPE_LENGTH = 0x06070010,
-    SDO_ABORT_LENGTH_HIGH = 0x06070012,
-    SDO_ABORT_LENGTH_LOW = 0x06070013,
-    SDO_ABORT_NO_SUBINDEX = 0x06090011,
-    SDO_ABORT_VALUE_RANGE = 0x06090030,
-    SDO_ABORT_VALUE_HIGH = 0x06090031,
-    SDO_ABORT_VALUE_LOW = 0x06090032,
-    SDO_ABORT_MAX_LESS_MIN = 0x06090036,
-    SDO_ABORT_NO_RESOURCE = 0x060A0023,
-    SDO_ABORT_GENERAL = 0x08000000,
-    SDO_ABORT_DATA_STORE = 0x08000020,
-    SDO_ABORT_DATA_LOCAL = 0x08000021,
-    SDO_ABORT_DATA_STATE = 0x08000022,
-    SDO_ABORT_OD_MISSING = 0x08000023,
-    SDO_ABORT_NO_DATA = 0x08000024
-};
 
 /* What an abort code means, after CiA 301 table 22, for logs and tools ("unknown abort code" for
  * a code outside the table). */

@@ -12,7 +12,7 @@ static uint32_t configuration_write(co_node_t *node, const co_od_entry_t *entry,
     drive_t *drive = drive_of(node);
     drive_motor_advance(&drive->motor, node->now);
     if (drive_motor_running(&drive->motor))
-        return SDO_ABORT_DATA_STATE;
+        return CO_SDO_ABORT_DATA_STATE;
     cia402_configuration_changed(&drive->cia402);
     return CO_SDO_OK;
 }
@@ -38,7 +38,7 @@ static uint32_t speed_limit_write(co_node_t *node, const co_od_entry_t *entry, c
     uint32_t other = drive_param_value(drive, is_high ? profile->low_speed : profile->high_speed);
     uint32_t low = is_high ? other : value;
     uint32_t high = is_high ? value : other;
-    return low > high ? SDO_ABORT_MAX_LESS_MIN : CO_SDO_OK;
+    return low > high ? CO_SDO_ABORT_MAX_LESS_MIN : CO_SDO_OK;
 }
 
 const co_od_hook_t drive_speed_limit = {speed_limit_write, NULL};
@@ -54,7 +54,7 @@ static uint32_t write_param(co_node_t *node, drive_param_t param, uint64_t value
     uint8_t bytes[8];
     if (entry->size > sizeof bytes ||
         (entry->size < sizeof bytes && value >> (8u * entry->size) != 0))
-        return SDO_ABORT_VALUE_HIGH;
+        return CO_SDO_ABORT_VALUE_HIGH;
     co_put_u32(bytes, (uint32_t)value);
     co_put_u32(bytes + 4, (uint32_t)(value >> 32));
     abort = co_od_write(node, param.index, param.subindex, bytes, entry->size, CO_OD_ORIGIN_APP);
@@ -143,7 +143,7 @@ static uint32_t ramp_rate_write(co_node_t *node, const co_od_entry_t *entry, con
         rate.delta_time = value;
     /* A zero delta speed would be an endless ramp; the dictionary's low limit should refuse it. */
     if (rate.delta_speed == 0)
-        return SDO_ABORT_VALUE_LOW;
+        return CO_SDO_ABORT_VALUE_LOW;
     uint64_t nominal = drive_param_value(drive, drive->profile->nominal_speed);
     /* ramp (0.1 s) = delta time x 10 x nominal speed / delta speed, rounded. */
     uint64_t time =
@@ -163,14 +163,14 @@ static uint32_t auto_tune_write(co_node_t *node, const co_od_entry_t *entry, con
     drive_t *drive = drive_of(node);
     uint32_t value = written_value(data, len);
     if (value == DRIVE_AUTO_TUNE_DONE)
-        return SDO_ABORT_VALUE_RANGE;
+        return CO_SDO_ABORT_VALUE_RANGE;
     if (value == DRIVE_AUTO_TUNE_NO) {
         drive->auto_tune_end = CO_TIME_NEVER;
         return CO_SDO_OK;
     }
     drive_motor_advance(&drive->motor, node->now);
     if (drive->cia402.state != CIA402_OPERATION_ENABLED || drive_motor_running(&drive->motor))
-        return SDO_ABORT_DATA_STATE;
+        return CO_SDO_ABORT_DATA_STATE;
     drive->auto_tune_end = node->now + DRIVE_AUTO_TUNE_TIME_US;
     return CO_SDO_OK;
 }
@@ -225,16 +225,16 @@ static uint32_t command_setting_check(const drive_t *drive, const co_od_entry_t 
     bool full = drive_access_full(drive);
     if (drive_is_param(entry, profile->access_level))
         return value < profile->access_level_full && full_access_settings(drive)
-                   ? SDO_ABORT_PARAM_INCOMPATIBLE
+                   ? CO_SDO_ABORT_PARAM_INCOMPATIBLE
                    : CO_SDO_OK;
     if (drive_is_param(entry, profile->channel_mode))
-        return drive_mode_separate(profile, value) && !full ? SDO_ABORT_PARAM_INCOMPATIBLE
+        return drive_mode_separate(profile, value) && !full ? CO_SDO_ABORT_PARAM_INCOMPATIBLE
                                                             : CO_SDO_OK;
     if (!is_switch(drive, entry) || value <= switch_fixed_max(drive, entry))
         return CO_SDO_OK;
     if (!drive_source_valid(drive, value))
-        return SDO_ABORT_VALUE_RANGE;
-    return drive_source_is_bit(value) && !full ? SDO_ABORT_PARAM_INCOMPATIBLE : CO_SDO_OK;
+        return CO_SDO_ABORT_VALUE_RANGE;
+    return drive_source_is_bit(value) && !full ? CO_SDO_ABORT_PARAM_INCOMPATIBLE : CO_SDO_OK;
 }
 
 static uint32_t command_setting_write(co_node_t *node, const co_od_entry_t *entry,

@@ -8,45 +8,9 @@
 #include <stdio.h>
 #include <string.h>
 
-/* CiA 301 predefined connection set: function codes (COB-ID bits 10..7) and fixed COB-IDs. */
-#define COB_NMT 0x000u
-#define COB_SYNC 0x080u
-#define COB_TIME 0x100u
-#define COB_SDO_TX 0x580u /* server -> client */
-#define COB_SDO_RX 0x600u /* client -> server */
-#define COB_NMT_ERROR_CONTROL 0x700u
+/* Layer setting services (CiA 305), beside CiA 301's predefined connection set (co_cia301.h). */
 #define COB_LSS_SLAVE 0x7E4u
 #define COB_LSS_MASTER 0x7E5u
-#define NODE_MASK 0x7Fu
-
-/* SDO command byte (CiA 301 7.2.4.3): the command specifier in bits 7..5. */
-#define SDO_CS(cmd) ((cmd) >> 5)
-#define SDO_CCS_DOWNLOAD_SEGMENT 0
-#define SDO_CCS_DOWNLOAD_INITIATE 1
-#define SDO_CCS_UPLOAD_INITIATE 2
-#define SDO_CCS_UPLOAD_SEGMENT 3
-#define SDO_CS_ABORT 4
-#define SDO_CCS_BLOCK_UPLOAD 5
-#define SDO_CCS_BLOCK_DOWNLOAD 6
-#define SDO_SCS_UPLOAD_SEGMENT 0
-#define SDO_SCS_DOWNLOAD_SEGMENT 1
-#define SDO_SCS_UPLOAD_INITIATE 2
-#define SDO_SCS_DOWNLOAD_INITIATE 3
-#define SDO_SCS_BLOCK_DOWNLOAD 5
-#define SDO_SCS_BLOCK_UPLOAD 6
-#define SDO_EXPEDITED 0x02u
-#define SDO_SIZE_INDICATED 0x01u
-#define SDO_TOGGLE 0x10u
-#define SDO_LAST_SEGMENT 0x01u
-#define SDO_BLOCK_CRC 0x04u
-#define SDO_BLOCK_SIZE_INDICATED 0x02u
-#define SDO_BLOCK_SUBCOMMAND 0x03u /* 0 initiate, 1 end, 2 ack, 3 start upload */
-#define SDO_BLOCK_LAST 0x80u       /* a block segment's sequence byte: no more segments */
-#define SDO_SEGMENT_DATA 7u
-
-/* Heartbeat and guarding (CiA 301 7.2.8.3): bit 7 of a guarding reply is the toggle bit. */
-#define GUARD_TOGGLE 0x80u
-#define NMT_STATE_MASK 0x7Fu
 
 /* CiA 301 7.2.6: the TIME object counts days from 1984-01-01. */
 #define TIME_EPOCH_DAYS_FROM_1970 5113u
@@ -232,7 +196,7 @@ static void decode_emcy(const cotrace_decoder_t *dec, const struct can_frame *f,
     memcpy(frame.data, f->data, sizeof frame.data);
     co_emcy_decode_t result = co_emcy_decode(&frame, &msg);
     if (result != CO_EMCY_DECODE_OK) {
-        say(t, "EMCY node %u malformed: %s (%u bytes)", frame.id - COB_SYNC,
+        say(t, "EMCY node %u malformed: %s (%u bytes)", frame.id - CO_CAN_ID_SYNC,
             co_emcy_decode_text(result), f->len);
         return;
     }
@@ -275,8 +239,8 @@ static void decode_error_control(cotrace_decoder_t *dec, uint8_t node, const str
     if (dec->guard_pending[node]) {
         dec->guard_pending[node] = false;
         say(t, "guarding reply, node %u: ", node);
-        say_state(t, byte & NMT_STATE_MASK);
-        say(t, ", toggle %u", byte & GUARD_TOGGLE ? 1 : 0);
+        say_state(t, byte & CO_NMT_STATE_MASK);
+        say(t, ", toggle %u", byte & CO_GUARD_TOGGLE ? 1 : 0);
     } else if (byte == 0) {
         say(t, "boot-up, node %u", node);
     } else {
@@ -336,11 +300,11 @@ static void say_abort(text_t *t, const cotrace_decoder_t *dec, uint8_t node,
 static void sdo_segment(text_t *t, cotrace_sdo_t *s, const uint8_t *data, const char *what)
 {
     uint8_t cmd = data[0];
-    size_t n = SDO_SEGMENT_DATA - (cmd >> 1 & 7u);
+    size_t n = CO_SDO_SEGMENT_BYTES - (cmd >> 1 & 7u);
     sdo_keep(s, &data[1], n);
-    say(t, "%s segment, toggle %u, %zu bytes: ", what, cmd & SDO_TOGGLE ? 1 : 0, n);
+    say(t, "%s segment, toggle %u, %zu bytes: ", what, cmd & CO_SDO_TOGGLE ? 1 : 0, n);
     say_value(t, &data[1], n, n);
-    if (cmd & SDO_LAST_SEGMENT)
+    if (cmd & CO_SDO_LAST_SEGMENT)
         say(t, ", last");
 }
 
@@ -350,15 +314,15 @@ static void sdo_block_segment(text_t *t, cotrace_sdo_t *s, const uint8_t *data, 
     uint8_t seq = data[0] & 0x7Fu;
     if (seq == 1)
         s->block_start = s->count;
-    s->count = s->block_start + (uint32_t)(seq - 1) * SDO_SEGMENT_DATA;
-    sdo_keep(s, &data[1], SDO_SEGMENT_DATA);
+    s->count = s->block_start + (uint32_t)(seq - 1) * CO_SDO_SEGMENT_BYTES;
+    sdo_keep(s, &data[1], CO_SDO_SEGMENT_BYTES);
     say(t, "%s segment %u: ", what, seq);
-    say_bytes(t, &data[1], SDO_SEGMENT_DATA);
-    if (data[0] & SDO_BLOCK_LAST) {
+    say_bytes(t, &data[1], CO_SDO_SEGMENT_BYTES);
+    if (data[0] & CO_SDO_BLOCK_LAST) {
         s->last_sent = true;
         say(t, ", last");
     }
-    if (data[0] & SDO_BLOCK_LAST || seq >= s->block_size)
+    if (data[0] & CO_SDO_BLOCK_LAST || seq >= s->block_size)
         s->in_subblock = false;
 }
 
@@ -372,7 +336,7 @@ static bool is_block_segment(const cotrace_sdo_t *s, const struct can_frame *f)
 /* A block acknowledgement: the segments up to ackseq arrived; what follows them is resent. */
 static void sdo_block_ack(text_t *t, cotrace_sdo_t *s, const uint8_t *data, const char *what)
 {
-    s->count = s->block_start + (uint32_t)data[1] * SDO_SEGMENT_DATA;
+    s->count = s->block_start + (uint32_t)data[1] * CO_SDO_SEGMENT_BYTES;
     s->block_start = s->count;
     s->block_size = data[2];
     s->in_subblock = !s->last_sent || data[1] == 0;
@@ -411,7 +375,7 @@ static bool sdo_common(cotrace_decoder_t *dec, uint8_t node, const struct can_fr
         sdo_block_segment(t, s, f->data, block_name);
         return true;
     }
-    if (SDO_CS(f->data[0]) == SDO_CS_ABORT) {
+    if (CO_SDO_CS(f->data[0]) == CO_SDO_CS_ABORT) {
         say_abort(t, dec, node, f);
         sdo_reset(s);
         return true;
@@ -429,54 +393,55 @@ static void sdo_request(cotrace_decoder_t *dec, uint8_t node, const struct can_f
         return;
     cotrace_sdo_t *s = &dec->sdo[node];
     const uint8_t *d = f->data;
-    uint8_t cs = SDO_CS(d[0]);
+    uint8_t cs = CO_SDO_CS(d[0]);
     switch (cs) {
-    case SDO_CCS_DOWNLOAD_INITIATE:
+    case CO_SDO_CCS_DOWNLOAD_INITIATE:
         sdo_start(s, COTRACE_SDO_DOWNLOAD, d);
         say(t, "download ");
         say_object(t, dec, node, s->index, s->sub);
-        if (d[0] & SDO_EXPEDITED) {
-            size_t n = d[0] & SDO_SIZE_INDICATED ? 4u - (d[0] >> 2 & 3u) : 4u;
+        if (d[0] & CO_SDO_EXPEDITED) {
+            size_t n = d[0] & CO_SDO_SIZE_INDICATED ? 4u - (d[0] >> 2 & 3u) : 4u;
             s->expedited = true;
             sdo_keep(s, &d[4], n);
             say(t, " = ");
             say_value(t, &d[4], n, n);
         } else {
-            sdo_initiate_size(t, s, d, SDO_SIZE_INDICATED);
+            sdo_initiate_size(t, s, d, CO_SDO_SIZE_INDICATED);
             say(t, ", segmented");
         }
         return;
-    case SDO_CCS_DOWNLOAD_SEGMENT:
+    case CO_SDO_CCS_DOWNLOAD_SEGMENT:
         sdo_segment(t, s, d, "download");
-        s->last_sent = d[0] & SDO_LAST_SEGMENT;
+        s->last_sent = d[0] & CO_SDO_LAST_SEGMENT;
         return;
-    case SDO_CCS_UPLOAD_INITIATE:
+    case CO_SDO_CCS_UPLOAD_INITIATE:
         sdo_start(s, COTRACE_SDO_UPLOAD, d);
         say(t, "upload ");
         say_object(t, dec, node, s->index, s->sub);
         return;
-    case SDO_CCS_UPLOAD_SEGMENT:
-        say(t, "upload segment, toggle %u", d[0] & SDO_TOGGLE ? 1 : 0);
+    case CO_SDO_CCS_UPLOAD_SEGMENT:
+        say(t, "upload segment, toggle %u", d[0] & CO_SDO_TOGGLE ? 1 : 0);
         return;
-    case SDO_CCS_BLOCK_DOWNLOAD:
+    case CO_SDO_CCS_BLOCK_DOWNLOAD:
         if ((d[0] & 1u) == 0) {
             sdo_start(s, COTRACE_SDO_BLOCK_DOWNLOAD, d);
             say(t, "block download ");
             say_object(t, dec, node, s->index, s->sub);
-            sdo_initiate_size(t, s, d, SDO_BLOCK_SIZE_INDICATED);
-            say(t, "%s", d[0] & SDO_BLOCK_CRC ? ", CRC" : ", no CRC");
+            sdo_initiate_size(t, s, d, CO_SDO_BLOCK_SIZE_INDICATED);
+            say(t, "%s", d[0] & CO_SDO_BLOCK_CRC ? ", CRC" : ", no CRC");
         } else {
             sdo_block_end(t, s, d, "block download");
         }
         return;
-    case SDO_CCS_BLOCK_UPLOAD:
-        switch (d[0] & SDO_BLOCK_SUBCOMMAND) {
+    case CO_SDO_CCS_BLOCK_UPLOAD:
+        switch (d[0] & CO_SDO_SUB_MASK) {
         case 0:
             sdo_start(s, COTRACE_SDO_BLOCK_UPLOAD, d);
             s->block_size = d[4];
             say(t, "block upload ");
             say_object(t, dec, node, s->index, s->sub);
-            say(t, ", blocks of %u segments%s", d[4], d[0] & SDO_BLOCK_CRC ? ", CRC" : ", no CRC");
+            say(t, ", blocks of %u segments%s", d[4],
+                d[0] & CO_SDO_BLOCK_CRC ? ", CRC" : ", no CRC");
             return;
         case 1:
             say(t, "block upload end confirmed: ");
@@ -503,32 +468,32 @@ static void sdo_reply(cotrace_decoder_t *dec, uint8_t node, const struct can_fra
         return;
     cotrace_sdo_t *s = &dec->sdo[node];
     const uint8_t *d = f->data;
-    uint8_t cs = SDO_CS(d[0]);
+    uint8_t cs = CO_SDO_CS(d[0]);
     switch (cs) {
-    case SDO_SCS_UPLOAD_INITIATE:
+    case CO_SDO_SCS_UPLOAD_INITIATE:
         s->index = co_get_u16(&d[1]);
         s->sub = d[3];
         say(t, "upload ");
         say_object(t, dec, node, s->index, s->sub);
-        if (d[0] & SDO_EXPEDITED) {
-            size_t n = d[0] & SDO_SIZE_INDICATED ? 4u - (d[0] >> 2 & 3u) : 4u;
+        if (d[0] & CO_SDO_EXPEDITED) {
+            size_t n = d[0] & CO_SDO_SIZE_INDICATED ? 4u - (d[0] >> 2 & 3u) : 4u;
             say(t, " = ");
             say_value(t, &d[4], n, n);
             sdo_reset(s);
         } else {
-            sdo_initiate_size(t, s, d, SDO_SIZE_INDICATED);
+            sdo_initiate_size(t, s, d, CO_SDO_SIZE_INDICATED);
             say(t, ", segmented");
         }
         return;
-    case SDO_SCS_UPLOAD_SEGMENT:
+    case CO_SDO_SCS_UPLOAD_SEGMENT:
         sdo_segment(t, s, d, "upload");
-        if (d[0] & SDO_LAST_SEGMENT) {
+        if (d[0] & CO_SDO_LAST_SEGMENT) {
             say(t, ": ");
             say_result(t, dec, node, s);
             sdo_reset(s);
         }
         return;
-    case SDO_SCS_DOWNLOAD_INITIATE:
+    case CO_SDO_SCS_DOWNLOAD_INITIATE:
         say(t, "download ");
         say_object(t, dec, node, co_get_u16(&d[1]), d[3]);
         if (s->expedited) {
@@ -538,16 +503,16 @@ static void sdo_reply(cotrace_decoder_t *dec, uint8_t node, const struct can_fra
             say(t, " accepted, send the segments");
         }
         return;
-    case SDO_SCS_DOWNLOAD_SEGMENT:
-        say(t, "download segment, toggle %u, received", d[0] & SDO_TOGGLE ? 1 : 0);
+    case CO_SDO_SCS_DOWNLOAD_SEGMENT:
+        say(t, "download segment, toggle %u, received", d[0] & CO_SDO_TOGGLE ? 1 : 0);
         if (s->kind == COTRACE_SDO_DOWNLOAD && s->last_sent) {
             say(t, ": done, ");
             say_result(t, dec, node, s);
             sdo_reset(s);
         }
         return;
-    case SDO_SCS_BLOCK_DOWNLOAD:
-        switch (d[0] & SDO_BLOCK_SUBCOMMAND) {
+    case CO_SDO_SCS_BLOCK_DOWNLOAD:
+        switch (d[0] & CO_SDO_SUB_MASK) {
         case 0:
             s->block_size = d[4];
             s->in_subblock = true;
@@ -567,12 +532,12 @@ static void sdo_reply(cotrace_decoder_t *dec, uint8_t node, const struct can_fra
             break;
         }
         break;
-    case SDO_SCS_BLOCK_UPLOAD:
+    case CO_SDO_SCS_BLOCK_UPLOAD:
         if ((d[0] & 1u) == 0) {
             say(t, "block upload ");
             say_object(t, dec, node, co_get_u16(&d[1]), d[3]);
-            sdo_initiate_size(t, s, d, SDO_BLOCK_SIZE_INDICATED);
-            say(t, "%s", d[0] & SDO_BLOCK_CRC ? ", CRC" : ", no CRC");
+            sdo_initiate_size(t, s, d, CO_SDO_BLOCK_SIZE_INDICATED);
+            say(t, "%s", d[0] & CO_SDO_BLOCK_CRC ? ", CRC" : ", no CRC");
         } else {
             sdo_block_end(t, s, d, "block upload");
         }
@@ -587,9 +552,6 @@ static void sdo_reply(cotrace_decoder_t *dec, uint8_t node, const struct can_fra
 
 /* CiA 301: PDO communication parameters 1400h (RPDO) / 1800h (TPDO), their mappings 200h above,
  * 512 of each. */
-#define PDO_RPDO_COMM 0x1400u
-#define PDO_TPDO_COMM 0x1800u
-#define PDO_MAPPING_OFFSET 0x0200u
 #define PDO_COUNT 512u
 #define PDO_COB_ID_SUB 1u
 #define PDO_COB_ID_EXTENDED 0x20000000u
@@ -616,7 +578,7 @@ static void pdos_of_eds(cotrace_decoder_t *dec)
 {
     for (unsigned i = 0; i < PDO_COUNT && dec->pdo_count < COTRACE_PDO_MAX; i++) {
         for (int transmit = 0; transmit <= 1; transmit++) {
-            uint16_t comm = (uint16_t)((transmit ? PDO_TPDO_COMM : PDO_RPDO_COMM) + i);
+            uint16_t comm = (uint16_t)((transmit ? CO_PDO_TPDO_COMM : CO_PDO_RPDO_COMM) + i);
             const eds_entry_t *e = eds_find(dec->eds, comm, PDO_COB_ID_SUB);
             if (e && e->has_value && !(e->value & PDO_COB_ID_EXTENDED) &&
                 dec->pdo_count < COTRACE_PDO_MAX) {
@@ -624,7 +586,7 @@ static void pdos_of_eds(cotrace_decoder_t *dec)
                 pdo->cob_id = (uint16_t)(e->value & CAN_SFF_MASK);
                 pdo->transmit = transmit;
                 pdo->number = (uint16_t)(i + 1);
-                pdo->mapping = (uint16_t)(comm + PDO_MAPPING_OFFSET);
+                pdo->mapping = (uint16_t)(comm + CO_PDO_INDEX_SPAN);
             }
         }
     }
@@ -634,7 +596,7 @@ static void pdos_of_eds(cotrace_decoder_t *dec)
 static bool pdo_predefined(uint16_t cob_id, cotrace_pdo_t *ref)
 {
     unsigned function = cob_id >> 7;
-    if ((cob_id & NODE_MASK) == 0 || function < 3 || function > 10)
+    if ((cob_id & CO_NODE_ID_MASK) == 0 || function < 3 || function > 10)
         return false;
     ref->cob_id = cob_id;
     ref->transmit = function % 2 == 1;
@@ -844,24 +806,24 @@ void cotrace_decode(cotrace_decoder_t *dec, const struct can_frame *f, char *out
         return;
     }
     uint16_t id = f->can_id & CAN_SFF_MASK;
-    uint8_t node = id & NODE_MASK;
+    uint8_t node = id & CO_NODE_ID_MASK;
     bool rtr = f->can_id & CAN_RTR_FLAG;
     cotrace_pdo_t pdo;
     if (pdo_from_eds(dec, id, &pdo)) {
         decode_pdo(dec, f, &pdo, dec->eds_node, &t);
-    } else if (id == COB_NMT) {
+    } else if (id == CO_CAN_ID_NMT) {
         decode_nmt(f, &t);
-    } else if (id == COB_SYNC) {
+    } else if (id == CO_CAN_ID_SYNC) {
         decode_sync(f, &t);
-    } else if (id > COB_SYNC && id < COB_TIME) {
+    } else if (id > CO_CAN_ID_SYNC && id < CO_CAN_ID_TIME) {
         decode_emcy(dec, f, &t);
-    } else if (id == COB_TIME) {
+    } else if (id == CO_CAN_ID_TIME) {
         decode_time(f, &t);
-    } else if (id > COB_SDO_TX && id < COB_SDO_TX + 0x80u && !rtr) {
+    } else if (id > CO_CAN_ID_SDO_TX && id < CO_CAN_ID_SDO_TX + CO_CAN_ID_NODE_SPAN && !rtr) {
         sdo_reply(dec, node, f, &t);
-    } else if (id > COB_SDO_RX && id < COB_SDO_RX + 0x80u && !rtr) {
+    } else if (id > CO_CAN_ID_SDO_RX && id < CO_CAN_ID_SDO_RX + CO_CAN_ID_NODE_SPAN && !rtr) {
         sdo_request(dec, node, f, &t);
-    } else if (id > COB_NMT_ERROR_CONTROL && id < COB_NMT_ERROR_CONTROL + 0x80u) {
+    } else if (id > CO_CAN_ID_ERROR_CONTROL && id < CO_CAN_ID_ERROR_CONTROL + CO_CAN_ID_NODE_SPAN) {
         decode_error_control(dec, node, f, &t);
     } else if (id == COB_LSS_MASTER || id == COB_LSS_SLAVE) {
         decode_lss(f, &t);

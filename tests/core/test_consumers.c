@@ -89,7 +89,7 @@ START_TEST(other_writes_and_refused_writes_keep_the_generation)
     ck_assert_uint_eq(test_write(&t, 0x1017, 0, 100, 2), 0);
     ck_assert_uint_eq(test_write(&t, 0x100C, 0, 100, 2), 0);
     /* Another CAN-ID for a valid RPDO is refused: nothing changed. */
-    ck_assert_uint_eq(test_write(&t, 0x1400, 1, 0x00000205u, 4), SDO_ABORT_VALUE_RANGE);
+    ck_assert_uint_eq(test_write(&t, 0x1400, 1, 0x00000205u, 4), CO_SDO_ABORT_VALUE_RANGE);
     ck_assert_uint_eq(co_node_consumer_generation(&t.node), generation);
 }
 END_TEST

@@ -79,9 +79,9 @@ START_TEST(history_order_cap_and_clear)
         ck_assert_uint_eq(test_sdo_read(&t, 0x1003, sub, &v), 0);
         ck_assert_uint_eq(v, codes[6 - sub]);
     }
-    ck_assert_uint_eq(test_sdo_write(&t, 0x1003, 0, 1, 1), SDO_ABORT_VALUE_RANGE);
+    ck_assert_uint_eq(test_sdo_write(&t, 0x1003, 0, 1, 1), CO_SDO_ABORT_VALUE_RANGE);
     ck_assert_int_eq(co_od_value(&t.node, 0x1003, 0), 5);
-    ck_assert_uint_eq(test_sdo_write(&t, 0x1003, 1, 0, 4), SDO_ABORT_READ_ONLY);
+    ck_assert_uint_eq(test_sdo_write(&t, 0x1003, 1, 0, 4), CO_SDO_ABORT_READ_ONLY);
     ck_assert_uint_eq(test_sdo_write(&t, 0x1003, 0, 0, 1), 0);
     ck_assert_int_eq(co_od_value(&t.node, 0x1003, 0), 0);
     for (uint8_t sub = 1; sub <= 5; sub++)
@@ -143,9 +143,9 @@ END_TEST
 
 START_TEST(invalid_cobid_silences_and_can_id_rules)
 {
-    ck_assert_uint_eq(test_write(&t, 0x1014, 0, 0x85, 4), SDO_ABORT_VALUE_RANGE);
-    ck_assert_uint_eq(test_write(&t, 0x1014, 0, 0x20000084, 4), SDO_ABORT_VALUE_RANGE);
-    ck_assert_uint_eq(test_write(&t, 0x1014, 0, 0x80000800, 4), SDO_ABORT_VALUE_RANGE);
+    ck_assert_uint_eq(test_write(&t, 0x1014, 0, 0x85, 4), CO_SDO_ABORT_VALUE_RANGE);
+    ck_assert_uint_eq(test_write(&t, 0x1014, 0, 0x20000084, 4), CO_SDO_ABORT_VALUE_RANGE);
+    ck_assert_uint_eq(test_write(&t, 0x1014, 0, 0x80000800, 4), CO_SDO_ABORT_VALUE_RANGE);
     ck_assert_uint_eq(test_write(&t, 0x1014, 0, 0x84, 4), 0); /* same value */
     ck_assert_uint_eq(test_write(&t, 0x1014, 0, 0x80000084, 4), 0);
     raise_error(0x1000, 0);
@@ -168,8 +168,8 @@ START_TEST(restricted_can_ids_refused_even_when_invalid)
     test_expect(&t, "584#8014100030000906");
     for (size_t i = 0; i < TEST_RESTRICTED_CAN_IDS; i++) {
         uint32_t id = test_restricted_can_id[i];
-        ck_assert_uint_eq(test_write(&t, 0x1014, 0, id, 4), SDO_ABORT_VALUE_RANGE);
-        ck_assert_uint_eq(test_write(&t, 0x1014, 0, 0x80000000u | id, 4), SDO_ABORT_VALUE_RANGE);
+        ck_assert_uint_eq(test_write(&t, 0x1014, 0, id, 4), CO_SDO_ABORT_VALUE_RANGE);
+        ck_assert_uint_eq(test_write(&t, 0x1014, 0, 0x80000000u | id, 4), CO_SDO_ABORT_VALUE_RANGE);
     }
     ck_assert_int_eq(co_od_value(&t.node, 0x1014, 0), 0x84);
     for (size_t i = 0; i < TEST_FREE_CAN_IDS; i++) {

@@ -234,7 +234,7 @@ START_TEST(cob_id_100e_write_rules)
     test_expect(&t, "584#800E100030000906");
     static const uint32_t refused[] = {0x00000800, 0x00010704, 0x20000704, 0x40000704, 0x80000704};
     for (size_t i = 0; i < sizeof(refused) / sizeof(refused[0]); i++)
-        ck_assert_uint_eq(test_write(&t, 0x100E, 0, refused[i], 4), SDO_ABORT_VALUE_RANGE);
+        ck_assert_uint_eq(test_write(&t, 0x100E, 0, refused[i], 4), CO_SDO_ABORT_VALUE_RANGE);
     ck_assert_int_eq(co_od_value(&t.node, 0x100E, 0), 0x704);
     ck_assert_uint_eq(test_write(&t, 0x100E, 0, 0x7FF, 4), 0);
     test_rx(&t, "7FF#R");
@@ -248,7 +248,7 @@ START_TEST(without_100e_guarding_on_700h_plus_node_id)
     test_node_start_od(&t, test_od_without(0x100E), 5, &hooks, NULL);
     test_rx(&t, "705#R");
     test_expect(&t, "705#7F");
-    ck_assert_uint_eq(test_write(&t, 0x100E, 0, 0x123, 4), SDO_ABORT_NO_OBJECT);
+    ck_assert_uint_eq(test_write(&t, 0x100E, 0, 0x123, 4), CO_SDO_ABORT_NO_OBJECT);
     test_rx(&t, "123#R");
     test_rx(&t, "704#R");
     test_expect_none(&t);

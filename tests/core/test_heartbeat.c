@@ -166,7 +166,8 @@ END_TEST
 START_TEST(duplicate_entries_abort)
 {
     ck_assert_uint_eq(test_write(&t, 0x1016, 1, 0x00050000 | 100, 4), 0);
-    ck_assert_uint_eq(test_write(&t, 0x1016, 2, 0x00050000 | 200, 4), SDO_ABORT_PARAM_INCOMPATIBLE);
+    ck_assert_uint_eq(test_write(&t, 0x1016, 2, 0x00050000 | 200, 4),
+                      CO_SDO_ABORT_PARAM_INCOMPATIBLE);
     ck_assert_int_eq(co_od_value(&t.node, 0x1016, 2), 0);
     /* Same node with time 0, or node-id 0, is an unused entry: accepted. */
     ck_assert_uint_eq(test_write(&t, 0x1016, 2, 0x00050000, 4), 0);
@@ -177,7 +178,7 @@ START_TEST(duplicate_entries_abort)
     ck_assert_uint_eq(test_write(&t, 0x1016, 1, 0, 4), 0);
     ck_assert_uint_eq(test_write(&t, 0x1016, 2, 0x00050000 | 200, 4), 0);
     /* Reserved bits 24..31 must be 0. */
-    ck_assert_uint_eq(test_write(&t, 0x1016, 1, 0x01060000 | 100, 4), SDO_ABORT_VALUE_RANGE);
+    ck_assert_uint_eq(test_write(&t, 0x1016, 1, 0x01060000 | 100, 4), CO_SDO_ABORT_VALUE_RANGE);
 }
 END_TEST
 

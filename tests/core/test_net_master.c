@@ -416,7 +416,7 @@ START_TEST(missing_optional_slave)
     ck_assert_uint_eq(master.last_sdo_error.index, 0x1000);
     ck_assert_uint_eq(master.last_sdo_error.subindex, 0);
     ck_assert_uint_eq(master.last_sdo_error.access, CO_NET_ACCESS_READ);
-    ck_assert_uint_eq(master.last_sdo_error.abort_code, SDO_ABORT_TIMEOUT);
+    ck_assert_uint_eq(master.last_sdo_error.abort_code, CO_SDO_ABORT_TIMEOUT);
     ck_assert_uint_eq(co_net_master_status(&master),
                       CO_NET_MASTER_INIT_FINISHED | CO_NET_MASTER_INIT_ERROR);
     ck_assert_uint_eq(co_net_master_slave_status(&master, 4), 0x0F);
@@ -505,7 +505,7 @@ START_TEST(sdo_abort_of_a_write_is_recorded)
     ck_assert_uint_eq(master.last_sdo_error.subindex, 0x10);
     ck_assert_uint_eq(master.last_sdo_error.access, CO_NET_ACCESS_WRITE);
     ck_assert_uint_eq(master.last_sdo_error.value, 1);
-    ck_assert_uint_eq(master.last_sdo_error.abort_code, SDO_ABORT_DATA_LOCAL);
+    ck_assert_uint_eq(master.last_sdo_error.abort_code, CO_SDO_ABORT_DATA_LOCAL);
 }
 END_TEST
 

@@ -23,9 +23,9 @@ END_TEST
 START_TEST(lookup_gives_most_specific_abort)
 {
     const co_od_entry_t *e;
-    ck_assert_uint_eq(co_od_lookup(&test_od, 0x1004, 0, &e), SDO_ABORT_NO_OBJECT);
-    ck_assert_uint_eq(co_od_lookup(&test_od, 0x1000, 1, &e), SDO_ABORT_NO_SUBINDEX);
-    ck_assert_uint_eq(co_od_lookup(&test_od, 0x1018, 5, &e), SDO_ABORT_NO_SUBINDEX);
+    ck_assert_uint_eq(co_od_lookup(&test_od, 0x1004, 0, &e), CO_SDO_ABORT_NO_OBJECT);
+    ck_assert_uint_eq(co_od_lookup(&test_od, 0x1000, 1, &e), CO_SDO_ABORT_NO_SUBINDEX);
+    ck_assert_uint_eq(co_od_lookup(&test_od, 0x1018, 5, &e), CO_SDO_ABORT_NO_SUBINDEX);
     ck_assert_uint_eq(co_od_lookup(&test_od, 0x1018, 4, &e), 0);
 }
 END_TEST
@@ -86,11 +86,11 @@ START_TEST(signed_values_and_limits)
     ck_assert_int_eq(co_od_value(&t.node, 0x2000, 0x0E), -100);
     v[0] = 0x9B; /* -101 */
     ck_assert_uint_eq(co_od_write(&t.node, 0x2000, 0x0E, v, 2, CO_OD_ORIGIN_SDO),
-                      SDO_ABORT_VALUE_LOW);
+                      CO_SDO_ABORT_VALUE_LOW);
     v[0] = 101;
     v[1] = 0;
     ck_assert_uint_eq(co_od_write(&t.node, 0x2000, 0x0E, v, 2, CO_OD_ORIGIN_SDO),
-                      SDO_ABORT_VALUE_HIGH);
+                      CO_SDO_ABORT_VALUE_HIGH);
     ck_assert_int_eq(co_od_value(&t.node, 0x2000, 0x0E), -100);
 }
 END_TEST
@@ -102,7 +102,7 @@ START_TEST(zero_allowed_below_low_limit)
     ck_assert_uint_eq(co_od_write(&t.node, 0x2000, 0x0F, ok, 2, CO_OD_ORIGIN_SDO), 0);
     ck_assert_uint_eq(co_od_write(&t.node, 0x2000, 0x0F, zero, 2, CO_OD_ORIGIN_SDO), 0);
     ck_assert_uint_eq(co_od_write(&t.node, 0x2000, 0x0F, low, 2, CO_OD_ORIGIN_SDO),
-                      SDO_ABORT_VALUE_LOW);
+                      CO_SDO_ABORT_VALUE_LOW);
 }
 END_TEST
 
@@ -111,15 +111,15 @@ START_TEST(length_and_access_checks)
     test_node_start(&t, 4, NULL, NULL);
     uint8_t b[8] = {1, 2, 3, 4, 5, 6, 7, 8};
     ck_assert_uint_eq(co_od_write(&t.node, 0x2000, 0x02, b, 4, CO_OD_ORIGIN_SDO),
-                      SDO_ABORT_LENGTH_HIGH);
+                      CO_SDO_ABORT_LENGTH_HIGH);
     ck_assert_uint_eq(co_od_write(&t.node, 0x2000, 0x03, b, 2, CO_OD_ORIGIN_SDO),
-                      SDO_ABORT_LENGTH_LOW);
+                      CO_SDO_ABORT_LENGTH_LOW);
     ck_assert_uint_eq(co_od_write(&t.node, 0x1000, 0x00, b, 4, CO_OD_ORIGIN_SDO),
-                      SDO_ABORT_READ_ONLY);
+                      CO_SDO_ABORT_READ_ONLY);
     ck_assert_uint_eq(co_od_write(&t.node, 0x2000, 0x0A, b + 1, 1, CO_OD_ORIGIN_SDO),
-                      SDO_ABORT_VALUE_RANGE);
+                      CO_SDO_ABORT_VALUE_RANGE);
     const co_od_entry_t *e;
-    ck_assert_uint_eq(co_od_read_check(&t.node, 0x2000, 0x0B, &e), SDO_ABORT_WRITE_ONLY);
+    ck_assert_uint_eq(co_od_read_check(&t.node, 0x2000, 0x0B, &e), CO_SDO_ABORT_WRITE_ONLY);
     ck_assert_uint_eq(co_od_write(&t.node, 0x2000, 0x08, b, 8, CO_OD_ORIGIN_SDO), 0);
     ck_assert_int_eq(co_od_value(&t.node, 0x2000, 0x08), 0x0807060504030201);
 }
@@ -143,7 +143,7 @@ START_TEST(hook_refuses_and_counts)
     test_node_start(&t, 4, NULL, NULL);
     uint8_t b[2] = {1, 0};
     ck_assert_uint_eq(co_od_write(&t.node, 0x2000, 0x10, b, 2, CO_OD_ORIGIN_SDO),
-                      SDO_ABORT_DATA_LOCAL);
+                      CO_SDO_ABORT_DATA_LOCAL);
     unsigned before = test_od_hook_reads;
     const co_od_entry_t *e;
     ck_assert_uint_eq(co_od_read_check(&t.node, 0x2000, 0x10, &e), 0);

@@ -437,12 +437,12 @@ START_TEST(rtr_types_252_and_253)
     test_rx(&t, "284#R");
     test_expect(&t, "284#27000000");
     /* Bit 30 set (no RTR) is refused while the type needs RTRs. */
-    ck_assert_uint_eq(write_param(0x1805, 1, 0x40000284, 4), SDO_ABORT_VALUE_RANGE);
+    ck_assert_uint_eq(write_param(0x1805, 1, 0x40000284, 4), CO_SDO_ABORT_VALUE_RANGE);
     ck_assert_uint_eq(write_param(0x1805, 2, 255, 1), 0);
     test_expect(&t, "284#40000000");
     ck_assert_uint_eq(write_param(0x1805, 1, 0x40000284, 4), 0);
     test_expect(&t, "284#40000000");
-    ck_assert_uint_eq(write_param(0x1805, 2, 253, 1), SDO_ABORT_VALUE_RANGE);
+    ck_assert_uint_eq(write_param(0x1805, 2, 253, 1), CO_SDO_ABORT_VALUE_RANGE);
     test_expect_none(&t);
 }
 END_TEST
@@ -631,16 +631,16 @@ END_TEST
 START_TEST(cob_id_rules)
 {
     start_quiet();
-    ck_assert_uint_eq(write_param(0x1800, 1, 0x185, 4), SDO_ABORT_VALUE_RANGE);
-    ck_assert_uint_eq(write_param(0x1800, 1, 0x20000184, 4), SDO_ABORT_VALUE_RANGE);
-    ck_assert_uint_eq(write_param(0x1800, 1, 0xA0000184, 4), SDO_ABORT_VALUE_RANGE);
-    ck_assert_uint_eq(write_param(0x1800, 1, 0x00001184, 4), SDO_ABORT_VALUE_RANGE);
-    ck_assert_uint_eq(write_param(0x1400, 1, 0x205, 4), SDO_ABORT_VALUE_RANGE);
+    ck_assert_uint_eq(write_param(0x1800, 1, 0x185, 4), CO_SDO_ABORT_VALUE_RANGE);
+    ck_assert_uint_eq(write_param(0x1800, 1, 0x20000184, 4), CO_SDO_ABORT_VALUE_RANGE);
+    ck_assert_uint_eq(write_param(0x1800, 1, 0xA0000184, 4), CO_SDO_ABORT_VALUE_RANGE);
+    ck_assert_uint_eq(write_param(0x1800, 1, 0x00001184, 4), CO_SDO_ABORT_VALUE_RANGE);
+    ck_assert_uint_eq(write_param(0x1400, 1, 0x205, 4), CO_SDO_ABORT_VALUE_RANGE);
     ck_assert_uint_eq(write_param(0x1800, 1, 0x184, 4), 0);
     ck_assert_uint_eq(write_param(0x1800, 1, 0x80000185, 4), 0);
     /* Restricted CAN-IDs (NMT error control, SDO) cannot be made valid. */
-    ck_assert_uint_eq(write_param(0x1800, 1, 0x704, 4), SDO_ABORT_VALUE_RANGE);
-    ck_assert_uint_eq(write_param(0x1800, 1, 0x584, 4), SDO_ABORT_VALUE_RANGE);
+    ck_assert_uint_eq(write_param(0x1800, 1, 0x704, 4), CO_SDO_ABORT_VALUE_RANGE);
+    ck_assert_uint_eq(write_param(0x1800, 1, 0x584, 4), CO_SDO_ABORT_VALUE_RANGE);
     ck_assert_uint_eq(write_param(0x1800, 1, 0x185, 4), 0);
     ck_assert_int_eq(co_od_value(&t.node, 0x1800, 1), 0x185);
     go_operational();
@@ -664,7 +664,7 @@ START_TEST(restricted_can_ids_at_every_edge)
         ck_assert_uint_eq(write_param(comm[c], 1, 0x80000000u, 4), 0);
         for (size_t i = 0; i < TEST_RESTRICTED_CAN_IDS; i++) {
             uint32_t id = test_restricted_can_id[i];
-            ck_assert_uint_eq(write_param(comm[c], 1, id, 4), SDO_ABORT_VALUE_RANGE);
+            ck_assert_uint_eq(write_param(comm[c], 1, id, 4), CO_SDO_ABORT_VALUE_RANGE);
             ck_assert_uint_eq(write_param(comm[c], 1, 0x80000000u | id, 4), 0);
         }
         for (size_t i = 0; i < TEST_FREE_CAN_IDS; i++) {
@@ -679,11 +679,11 @@ END_TEST
 START_TEST(transmission_type_rules)
 {
     start_quiet();
-    ck_assert_uint_eq(write_param(0x1805, 2, 241, 1), SDO_ABORT_VALUE_RANGE);
-    ck_assert_uint_eq(write_param(0x1805, 2, 251, 1), SDO_ABORT_VALUE_RANGE);
-    ck_assert_uint_eq(write_param(0x1405, 2, 252, 1), SDO_ABORT_VALUE_RANGE);
-    ck_assert_uint_eq(write_param(0x1405, 2, 253, 1), SDO_ABORT_VALUE_RANGE);
-    ck_assert_uint_eq(write_param(0x1405, 2, 241, 1), SDO_ABORT_VALUE_RANGE);
+    ck_assert_uint_eq(write_param(0x1805, 2, 241, 1), CO_SDO_ABORT_VALUE_RANGE);
+    ck_assert_uint_eq(write_param(0x1805, 2, 251, 1), CO_SDO_ABORT_VALUE_RANGE);
+    ck_assert_uint_eq(write_param(0x1405, 2, 252, 1), CO_SDO_ABORT_VALUE_RANGE);
+    ck_assert_uint_eq(write_param(0x1405, 2, 253, 1), CO_SDO_ABORT_VALUE_RANGE);
+    ck_assert_uint_eq(write_param(0x1405, 2, 241, 1), CO_SDO_ABORT_VALUE_RANGE);
     ck_assert_int_eq(co_od_value(&t.node, 0x1805, 2), 255);
     ck_assert_int_eq(co_od_value(&t.node, 0x1405, 2), 255);
     /* Allowed while valid, too. */
@@ -696,26 +696,26 @@ START_TEST(transmission_type_rules)
     ck_assert_uint_eq(write_param(0x1405, 2, 0, 1), 0);
     ck_assert_uint_eq(write_param(0x1405, 2, 254, 1), 0);
     /* TPDO1's type is read-only in the ATV312 dictionary. */
-    ck_assert_uint_eq(write_param(0x1800, 2, 1, 1), SDO_ABORT_READ_ONLY);
+    ck_assert_uint_eq(write_param(0x1800, 2, 1, 1), CO_SDO_ABORT_READ_ONLY);
 }
 END_TEST
 
 START_TEST(inhibit_and_start_value_only_while_invalid)
 {
     start_quiet();
-    ck_assert_uint_eq(write_param(0x1800, 3, 500, 2), SDO_ABORT_VALUE_RANGE);
+    ck_assert_uint_eq(write_param(0x1800, 3, 500, 2), CO_SDO_ABORT_VALUE_RANGE);
     ck_assert_int_eq(co_od_value(&t.node, 0x1800, 3), 300);
     ck_assert_uint_eq(write_param(0x1805, 3, 500, 2), 0);
-    ck_assert_uint_eq(write_param(0x1805, 6, 241, 1), SDO_ABORT_VALUE_RANGE);
+    ck_assert_uint_eq(write_param(0x1805, 6, 241, 1), CO_SDO_ABORT_VALUE_RANGE);
     ck_assert_uint_eq(write_param(0x1805, 6, 240, 1), 0);
     ck_assert_uint_eq(write_param(0x1805, 1, 0x284, 4), 0);
-    ck_assert_uint_eq(write_param(0x1805, 3, 300, 2), SDO_ABORT_VALUE_RANGE);
-    ck_assert_uint_eq(write_param(0x1805, 6, 1, 1), SDO_ABORT_VALUE_RANGE);
+    ck_assert_uint_eq(write_param(0x1805, 3, 300, 2), CO_SDO_ABORT_VALUE_RANGE);
+    ck_assert_uint_eq(write_param(0x1805, 6, 1, 1), CO_SDO_ABORT_VALUE_RANGE);
     ck_assert_int_eq(co_od_value(&t.node, 0x1805, 3), 500);
     ck_assert_int_eq(co_od_value(&t.node, 0x1805, 6), 240);
     /* The ATV312 minimum of 10 ms is the dictionary's limit. */
     ck_assert_uint_eq(write_param(0x1800, 1, 0x80000184, 4), 0);
-    ck_assert_uint_eq(write_param(0x1800, 3, 99, 2), SDO_ABORT_VALUE_LOW);
+    ck_assert_uint_eq(write_param(0x1800, 3, 99, 2), CO_SDO_ABORT_VALUE_LOW);
     ck_assert_uint_eq(write_param(0x1800, 3, 0, 2), 0);
     /* An RPDO's event timer may change while valid. */
     ck_assert_uint_eq(write_param(0x1405, 1, 0x304, 4), 0);
@@ -746,16 +746,16 @@ START_TEST(mapping_refused_while_valid_or_enabled)
 {
     start_quiet();
     ck_assert_uint_eq(write_param(0x1805, 1, 0x284, 4), 0);
-    ck_assert_uint_eq(write_param(0x1A05, 0, 0, 1), SDO_ABORT_UNSUPPORTED_ACCESS);
-    ck_assert_uint_eq(write_param(0x1A05, 1, 0x60440010, 4), SDO_ABORT_UNSUPPORTED_ACCESS);
+    ck_assert_uint_eq(write_param(0x1A05, 0, 0, 1), CO_SDO_ABORT_UNSUPPORTED_ACCESS);
+    ck_assert_uint_eq(write_param(0x1A05, 1, 0x60440010, 4), CO_SDO_ABORT_UNSUPPORTED_ACCESS);
     ck_assert_uint_eq(write_param(0x1805, 1, 0x80000284, 4), 0);
     /* Invalid, but sub 0 still 2: the entries stay locked. */
-    ck_assert_uint_eq(write_param(0x1A05, 1, 0x60440010, 4), SDO_ABORT_UNSUPPORTED_ACCESS);
+    ck_assert_uint_eq(write_param(0x1A05, 1, 0x60440010, 4), CO_SDO_ABORT_UNSUPPORTED_ACCESS);
     ck_assert_int_eq(co_od_value(&t.node, 0x1A05, 1), 0x60410010);
-    ck_assert_uint_eq(write_param(0x1605, 1, 0x60420010, 4), SDO_ABORT_UNSUPPORTED_ACCESS);
+    ck_assert_uint_eq(write_param(0x1605, 1, 0x60420010, 4), CO_SDO_ABORT_UNSUPPORTED_ACCESS);
     /* PDO1's mapping is static. */
-    ck_assert_uint_eq(write_param(0x1A00, 1, 0x60440010, 4), SDO_ABORT_READ_ONLY);
-    ck_assert_uint_eq(write_param(0x1600, 1, 0x60420010, 4), SDO_ABORT_READ_ONLY);
+    ck_assert_uint_eq(write_param(0x1A00, 1, 0x60440010, 4), CO_SDO_ABORT_READ_ONLY);
+    ck_assert_uint_eq(write_param(0x1600, 1, 0x60420010, 4), CO_SDO_ABORT_READ_ONLY);
 }
 END_TEST
 
@@ -765,22 +765,22 @@ START_TEST(mapping_entry_aborts)
     ck_assert_uint_eq(write_param(0x1A05, 0, 0, 1), 0);
     ck_assert_uint_eq(write_param(0x1605, 0, 0, 1), 0);
     /* Absent object, object not mappable at all. */
-    ck_assert_uint_eq(write_param(0x1A05, 1, 0x50000010, 4), SDO_ABORT_NOT_MAPPABLE);
-    ck_assert_uint_eq(write_param(0x1A05, 1, 0x20000440, 4), SDO_ABORT_NOT_MAPPABLE);
+    ck_assert_uint_eq(write_param(0x1A05, 1, 0x50000010, 4), CO_SDO_ABORT_NOT_MAPPABLE);
+    ck_assert_uint_eq(write_param(0x1A05, 1, 0x20000440, 4), CO_SDO_ABORT_NOT_MAPPABLE);
     /* Wrong direction: rww in a TPDO, ro/rwr in an RPDO. */
-    ck_assert_uint_eq(write_param(0x1A05, 1, 0x60400010, 4), SDO_ABORT_NOT_MAPPABLE);
-    ck_assert_uint_eq(write_param(0x1605, 1, 0x60410010, 4), SDO_ABORT_NOT_MAPPABLE);
-    ck_assert_uint_eq(write_param(0x1605, 1, 0x20000108, 4), SDO_ABORT_NOT_MAPPABLE);
+    ck_assert_uint_eq(write_param(0x1A05, 1, 0x60400010, 4), CO_SDO_ABORT_NOT_MAPPABLE);
+    ck_assert_uint_eq(write_param(0x1605, 1, 0x60410010, 4), CO_SDO_ABORT_NOT_MAPPABLE);
+    ck_assert_uint_eq(write_param(0x1605, 1, 0x20000108, 4), CO_SDO_ABORT_NOT_MAPPABLE);
     /* Bit length other than the object's. */
-    ck_assert_uint_eq(write_param(0x1A05, 1, 0x60410008, 4), SDO_ABORT_PARAM_INCOMPATIBLE);
-    ck_assert_uint_eq(write_param(0x1A05, 1, 0x60410020, 4), SDO_ABORT_PARAM_INCOMPATIBLE);
+    ck_assert_uint_eq(write_param(0x1A05, 1, 0x60410008, 4), CO_SDO_ABORT_PARAM_INCOMPATIBLE);
+    ck_assert_uint_eq(write_param(0x1A05, 1, 0x60410020, 4), CO_SDO_ABORT_PARAM_INCOMPATIBLE);
     /* Dummies only in RPDOs, with their type's length. */
-    ck_assert_uint_eq(write_param(0x1A05, 1, 0x00050008, 4), SDO_ABORT_NOT_MAPPABLE);
-    ck_assert_uint_eq(write_param(0x1605, 1, 0x00050010, 4), SDO_ABORT_PARAM_INCOMPATIBLE);
-    ck_assert_uint_eq(write_param(0x1605, 1, 0x00080020, 4), SDO_ABORT_NOT_MAPPABLE);
+    ck_assert_uint_eq(write_param(0x1A05, 1, 0x00050008, 4), CO_SDO_ABORT_NOT_MAPPABLE);
+    ck_assert_uint_eq(write_param(0x1605, 1, 0x00050010, 4), CO_SDO_ABORT_PARAM_INCOMPATIBLE);
+    ck_assert_uint_eq(write_param(0x1605, 1, 0x00080020, 4), CO_SDO_ABORT_NOT_MAPPABLE);
     ck_assert_uint_eq(write_param(0x1605, 1, 0x00050008, 4), 0);
     /* Sub 0 beyond the dictionary's 4 entries. */
-    ck_assert_uint_eq(write_param(0x1A05, 0, 5, 1), SDO_ABORT_VALUE_HIGH);
+    ck_assert_uint_eq(write_param(0x1A05, 0, 5, 1), CO_SDO_ABORT_VALUE_HIGH);
 }
 END_TEST
 
@@ -791,13 +791,13 @@ START_TEST(mapping_longer_than_64_bits)
     ck_assert_uint_eq(write_param(0x1A05, 1, 0x20000720, 4), 0);
     ck_assert_uint_eq(write_param(0x1A05, 2, 0x20000320, 4), 0);
     ck_assert_uint_eq(write_param(0x1A05, 3, 0x20000108, 4), 0);
-    ck_assert_uint_eq(write_param(0x1A05, 0, 3, 1), SDO_ABORT_PDO_LENGTH);
+    ck_assert_uint_eq(write_param(0x1A05, 0, 3, 1), CO_SDO_ABORT_PDO_LENGTH);
     ck_assert_int_eq(co_od_value(&t.node, 0x1A05, 0), 0);
     ck_assert_uint_eq(write_param(0x1A05, 0, 2, 1), 0);
     /* Sub 0 = n re-checks entries written while it was 0, e.g. an empty one. */
     ck_assert_uint_eq(write_param(0x1A05, 0, 0, 1), 0);
     ck_assert_uint_eq(write_param(0x1A05, 4, 0, 4), 0);
-    ck_assert_uint_eq(write_param(0x1A05, 0, 4, 1), SDO_ABORT_NOT_MAPPABLE);
+    ck_assert_uint_eq(write_param(0x1A05, 0, 4, 1), CO_SDO_ABORT_NOT_MAPPABLE);
     ck_assert_uint_eq(write_param(0x1A05, 0, 2, 1), 0);
     ck_assert_uint_eq(write_param(0x1805, 1, 0x284, 4), 0);
     co_od_set_value(&t.node, 0x2000, 7, 0x11223344);
@@ -834,13 +834,13 @@ START_TEST(dummy_mapping_only_for_declared_types)
     ck_assert_int_eq(co_od_value(&t.node, 0x1605, 1), 0x60400010);
     for (uint8_t type = CO_DT_INTEGER8; type <= CO_DT_UNSIGNED32; type++) {
         uint32_t entry = (uint32_t)type << 16 | (uint32_t)co_od_type_size(type) * 8u;
-        ck_assert_uint_eq(write_param(0x1605, 1, entry, 4), SDO_ABORT_NOT_MAPPABLE);
+        ck_assert_uint_eq(write_param(0x1605, 1, entry, 4), CO_SDO_ABORT_NOT_MAPPABLE);
     }
     /* A dictionary that declares UNSIGNED8 only. */
     od.dummy_types = CO_OD_DUMMY(CO_DT_UNSIGNED8);
     start_od(&od);
     ck_assert_uint_eq(write_param(0x1605, 0, 0, 1), 0);
-    ck_assert_uint_eq(write_param(0x1605, 1, 0x00070020, 4), SDO_ABORT_NOT_MAPPABLE);
+    ck_assert_uint_eq(write_param(0x1605, 1, 0x00070020, 4), CO_SDO_ABORT_NOT_MAPPABLE);
     static const uint32_t mapping[] = {0x00050008, 0x60420010};
     rpdo6_mapped(mapping, 2);
     test_rx(&t, "304#AA3412");

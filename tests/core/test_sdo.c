@@ -1145,7 +1145,7 @@ static void client_abort(uint16_t index, uint8_t sub, size_t len)
 {
     uint8_t p[8];
     char text[32];
-    initiate_frame(p, 0x80, index, sub, SDO_ABORT_GENERAL);
+    initiate_frame(p, 0x80, index, sub, CO_SDO_ABORT_GENERAL);
     frame_text(text, RX_ID, p, len);
     test_rx(&t, text);
 }

@@ -423,16 +423,16 @@ START_TEST(server_aborts)
         uint32_t code;
         const char *text;
     } cases[] = {
-        {0x3000, 0, false, 0, SDO_ABORT_NO_OBJECT,
+        {0x3000, 0, false, 0, CO_SDO_ABORT_NO_OBJECT,
          "object does not exist in the object dictionary"},
-        {0x2000, 9, false, 0, SDO_ABORT_NO_SUBINDEX, "sub-index does not exist"},
-        {0x2000, 4, false, 0, SDO_ABORT_WRITE_ONLY, "attempt to read a write only object"},
-        {0x2000, 3, true, 2, SDO_ABORT_READ_ONLY, "attempt to write a read only object"},
-        {0x2000, 1, true, 2, SDO_ABORT_LENGTH_LOW,
+        {0x2000, 9, false, 0, CO_SDO_ABORT_NO_SUBINDEX, "sub-index does not exist"},
+        {0x2000, 4, false, 0, CO_SDO_ABORT_WRITE_ONLY, "attempt to read a write only object"},
+        {0x2000, 3, true, 2, CO_SDO_ABORT_READ_ONLY, "attempt to write a read only object"},
+        {0x2000, 1, true, 2, CO_SDO_ABORT_LENGTH_LOW,
          "data type does not match, length of service parameter too low"},
-        {0x2000, 5, true, STRING_SIZE + 1, SDO_ABORT_LENGTH_HIGH,
+        {0x2000, 5, true, STRING_SIZE + 1, CO_SDO_ABORT_LENGTH_HIGH,
          "data type does not match, length of service parameter too high"},
-        {0x2000, 2, true, 1, SDO_ABORT_VALUE_HIGH, "value of parameter written too high"},
+        {0x2000, 2, true, 1, CO_SDO_ABORT_VALUE_HIGH, "value of parameter written too high"},
     };
     tx[0] = 250;
     for (size_t i = 0; i < sizeof(cases) / sizeof(cases[0]); i++) {
@@ -473,7 +473,7 @@ START_TEST(client_abort_toggle)
     inject("589#00414243444546 47"); /* toggle 0 again */
     expect("609#8000200500000305");
     expect_none();
-    expect_result(c, CO_SDO_CLIENT_CLIENT_ABORT, SDO_ABORT_TOGGLE, 0);
+    expect_result(c, CO_SDO_CLIENT_CLIENT_ABORT, CO_SDO_ABORT_TOGGLE, 0);
     ck_assert_str_eq(co_sdo_abort_text(c->result.abort_code), "toggle bit not alternated");
 
     download(c, 0x2000, 5, 10, CO_SDO_CLIENT_SEGMENTED);
@@ -482,7 +482,7 @@ START_TEST(client_abort_toggle)
     bus.next++;
     inject("589#3000000000000000"); /* confirms with toggle 1 */
     expect("609#8000200500000305");
-    expect_result(c, CO_SDO_CLIENT_CLIENT_ABORT, SDO_ABORT_TOGGLE, 0);
+    expect_result(c, CO_SDO_CLIENT_CLIENT_ABORT, CO_SDO_ABORT_TOGGLE, 0);
 }
 END_TEST
 
@@ -502,7 +502,7 @@ START_TEST(client_abort_crc)
     inject(end);
     expect("609#8000200504000405");
     expect_none();
-    expect_result(c, CO_SDO_CLIENT_CLIENT_ABORT, SDO_ABORT_CRC, 0);
+    expect_result(c, CO_SDO_CLIENT_CLIENT_ABORT, CO_SDO_ABORT_CRC, 0);
     ck_assert_str_eq(co_sdo_abort_text(c->result.abort_code), "CRC error");
 }
 END_TEST
@@ -517,7 +517,7 @@ START_TEST(client_abort_sequence)
     expect("609#A300000000000000");
     inject("589#05414243444546 47"); /* seqno 5 > blksize 4 */
     expect("609#8000200503000405");
-    expect_result(c, CO_SDO_CLIENT_CLIENT_ABORT, SDO_ABORT_SEQUENCE, 0);
+    expect_result(c, CO_SDO_CLIENT_CLIENT_ABORT, CO_SDO_ABORT_SEQUENCE, 0);
 
     download(c, 0x2000, 5, 9, CO_SDO_CLIENT_BLOCK);
     expect("609#C600200509000000");
@@ -526,7 +526,7 @@ START_TEST(client_abort_sequence)
     expect("609#8248490000000000");
     inject("589#A203050000000000"); /* ackseq 3: only 2 were sent */
     expect("609#8000200503000405");
-    expect_result(c, CO_SDO_CLIENT_CLIENT_ABORT, SDO_ABORT_SEQUENCE, 0);
+    expect_result(c, CO_SDO_CLIENT_CLIENT_ABORT, CO_SDO_ABORT_SEQUENCE, 0);
     ck_assert_str_eq(co_sdo_abort_text(c->result.abort_code), "invalid sequence number");
 }
 END_TEST
@@ -538,14 +538,14 @@ START_TEST(client_abort_block_size)
     expect("609#C600200509000000");
     inject("589#A400200500000000"); /* blksize 0 */
     expect("609#8000200502000405");
-    expect_result(c, CO_SDO_CLIENT_CLIENT_ABORT, SDO_ABORT_BLOCK_SIZE, 0);
+    expect_result(c, CO_SDO_CLIENT_CLIENT_ABORT, CO_SDO_ABORT_BLOCK_SIZE, 0);
     download(c, 0x2000, 5, 9, CO_SDO_CLIENT_BLOCK);
     expect("609#C600200509000000");
     inject("589#A400200501000000");
     expect("609#01414243444546 47");
     inject("589#A201800000000000"); /* blksize 128 */
     expect("609#8000200502000405");
-    expect_result(c, CO_SDO_CLIENT_CLIENT_ABORT, SDO_ABORT_BLOCK_SIZE, 0);
+    expect_result(c, CO_SDO_CLIENT_CLIENT_ABORT, CO_SDO_ABORT_BLOCK_SIZE, 0);
     ck_assert_str_eq(co_sdo_abort_text(c->result.abort_code), "invalid block size");
 }
 END_TEST
@@ -557,12 +557,12 @@ START_TEST(client_abort_command)
     expect("609#4000200100000000");
     inject("589#6000200100000000"); /* a download response to an upload */
     expect("609#8000200101000405");
-    expect_result(c, CO_SDO_CLIENT_CLIENT_ABORT, SDO_ABORT_COMMAND, 0);
+    expect_result(c, CO_SDO_CLIENT_CLIENT_ABORT, CO_SDO_ABORT_COMMAND, 0);
     upload(c, 0x2000, 1, 4, CO_SDO_CLIENT_AUTO);
     expect("609#4000200100000000");
     inject("589#4300200278563412"); /* another sub-index */
     expect("609#8000200101000405");
-    expect_result(c, CO_SDO_CLIENT_CLIENT_ABORT, SDO_ABORT_COMMAND, 0);
+    expect_result(c, CO_SDO_CLIENT_CLIENT_ABORT, CO_SDO_ABORT_COMMAND, 0);
 }
 END_TEST
 
@@ -574,7 +574,7 @@ START_TEST(client_abort_no_memory)
     expect("609#4000200500000000");
     inject("589#410020050B000000"); /* 11 bytes */
     expect("609#8000200505000405");
-    expect_result(c, CO_SDO_CLIENT_CLIENT_ABORT, SDO_ABORT_NO_MEMORY, 0);
+    expect_result(c, CO_SDO_CLIENT_CLIENT_ABORT, CO_SDO_ABORT_NO_MEMORY, 0);
     ck_assert_str_eq(co_sdo_abort_text(c->result.abort_code), "out of memory");
     upload(c, 0x2000, 5, 10, CO_SDO_CLIENT_SEGMENTED);
     expect("609#4000200500000000");
@@ -584,17 +584,17 @@ START_TEST(client_abort_no_memory)
     expect("609#7000000000000000");
     inject("589#10414243444546 47"); /* 14 bytes > 10 */
     expect("609#8000200505000405");
-    expect_result(c, CO_SDO_CLIENT_CLIENT_ABORT, SDO_ABORT_NO_MEMORY, 0);
+    expect_result(c, CO_SDO_CLIENT_CLIENT_ABORT, CO_SDO_ABORT_NO_MEMORY, 0);
     upload(c, 0x2000, 1, 2, CO_SDO_CLIENT_AUTO);
     expect("609#4000200100000000");
     inject("589#4300200178563412"); /* expedited, 4 bytes > 2 */
     expect("609#8000200105000405");
-    expect_result(c, CO_SDO_CLIENT_CLIENT_ABORT, SDO_ABORT_NO_MEMORY, 0);
+    expect_result(c, CO_SDO_CLIENT_CLIENT_ABORT, CO_SDO_ABORT_NO_MEMORY, 0);
     upload(c, 0x2000, 5, 10, CO_SDO_CLIENT_BLOCK);
     expect("609#A40020057F000000");
     inject("589#C60020050B000000");
     expect("609#8000200505000405");
-    expect_result(c, CO_SDO_CLIENT_CLIENT_ABORT, SDO_ABORT_NO_MEMORY, 0);
+    expect_result(c, CO_SDO_CLIENT_CLIENT_ABORT, CO_SDO_ABORT_NO_MEMORY, 0);
 }
 END_TEST
 
@@ -610,7 +610,7 @@ START_TEST(client_abort_length)
     expect("609#7000000000000000");
     inject("589#1D48000000000000");
     expect("609#8000200510000706");
-    expect_result(c, CO_SDO_CLIENT_CLIENT_ABORT, SDO_ABORT_TYPE_LENGTH, 0);
+    expect_result(c, CO_SDO_CLIENT_CLIENT_ABORT, CO_SDO_ABORT_TYPE_LENGTH, 0);
     ck_assert_str_eq(co_sdo_abort_text(c->result.abort_code),
                      "data type does not match, length of service parameter does not match");
     upload(c, 0x2000, 5, sizeof(rx), CO_SDO_CLIENT_BLOCK);
@@ -625,7 +625,7 @@ START_TEST(client_abort_length)
     snprintf(end, sizeof(end), "589#D5%02X%02X0000000000", crc & 0xFF, crc >> 8);
     inject(end);
     expect("609#8000200510000706");
-    expect_result(c, CO_SDO_CLIENT_CLIENT_ABORT, SDO_ABORT_TYPE_LENGTH, 0);
+    expect_result(c, CO_SDO_CLIENT_CLIENT_ABORT, CO_SDO_ABORT_TYPE_LENGTH, 0);
 }
 END_TEST
 
@@ -652,7 +652,7 @@ START_TEST(timeout)
     ck_assert_uint_eq(co_sdo_client_process(&c->sdo, 10000), CO_TIME_NEVER);
     expect("609#8000200500000405");
     expect_none();
-    expect_result(c, CO_SDO_CLIENT_CLIENT_ABORT, SDO_ABORT_TIMEOUT, 0);
+    expect_result(c, CO_SDO_CLIENT_CLIENT_ABORT, CO_SDO_ABORT_TIMEOUT, 0);
     ck_assert_str_eq(co_sdo_abort_text(c->result.abort_code), "SDO protocol timed out");
     ck_assert_uint_eq(co_sdo_client_process(&c->sdo, 20000), CO_TIME_NEVER);
     /* The PLC300's longest timeout, 5000 ms. */

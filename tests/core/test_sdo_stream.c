@@ -57,9 +57,9 @@ static uint32_t stream_begin(co_node_t *node, const co_od_entry_t *entry, bool s
     (void)entry;
     app.begins++;
     if (size_indicated && size > VALUE_MAX)
-        return SDO_ABORT_LENGTH_HIGH;
+        return CO_SDO_ABORT_LENGTH_HIGH;
     if (app.no_room)
-        return SDO_ABORT_NO_MEMORY;
+        return CO_SDO_ABORT_NO_MEMORY;
     app.written = 0;
     return 0;
 }
@@ -72,7 +72,7 @@ static uint32_t stream_write(co_node_t *node, const co_od_entry_t *entry, uint32
     ck_assert_msg(offset == app.written, "write at %u after %u bytes", offset, app.written);
     ck_assert_uint_ge(len, 1);
     if (offset + len > VALUE_MAX)
-        return SDO_ABORT_LENGTH_HIGH;
+        return CO_SDO_ABORT_LENGTH_HIGH;
     memcpy(&app.incoming[offset], data, len);
     app.written += (uint32_t)len;
     return 0;
@@ -577,16 +577,16 @@ START_TEST(size_too_big)
     download(VALUE_MAX + 1, CO_SDO_CLIENT_SEGMENTED);
     expect("604#2100210101900100");
     expect("584#8000210112000706");
-    expect_result(CO_SDO_CLIENT_SERVER_ABORT, SDO_ABORT_LENGTH_HIGH, 0);
+    expect_result(CO_SDO_CLIENT_SERVER_ABORT, CO_SDO_ABORT_LENGTH_HIGH, 0);
     download(VALUE_MAX + 1, CO_SDO_CLIENT_BLOCK);
     expect("604#C600210101900100");
     expect("584#8000210112000706");
-    expect_result(CO_SDO_CLIENT_SERVER_ABORT, SDO_ABORT_LENGTH_HIGH, 0);
+    expect_result(CO_SDO_CLIENT_SERVER_ABORT, CO_SDO_ABORT_LENGTH_HIGH, 0);
     app.no_room = true;
     download(100, CO_SDO_CLIENT_BLOCK);
     expect("604#C600210164000000");
     expect("584#8000210105000405");
-    expect_result(CO_SDO_CLIENT_SERVER_ABORT, SDO_ABORT_NO_MEMORY, 0);
+    expect_result(CO_SDO_CLIENT_SERVER_ABORT, CO_SDO_ABORT_NO_MEMORY, 0);
     download(2, CO_SDO_CLIENT_AUTO);
     expect("604#2B00210141420000");
     expect("584#8000210105000405");

@@ -130,11 +130,11 @@ START_TEST(wrong_signatures_abort)
 {
     change_values();
     ck_assert_uint_eq(test_sdo_write(&t, 0x1010, 1, 0x6E6F7277, 4),
-                      SDO_ABORT_DATA_STORE); /* wron */
+                      CO_SDO_ABORT_DATA_STORE); /* wron */
     ck_assert_uint_eq(test_sdo_write(&t, 0x1011, 1, 0x6C6F6164, 4),
-                      SDO_ABORT_DATA_STORE); /* daol */
-    ck_assert_uint_eq(test_sdo_write(&t, 0x1010, 1, LOAD, 4), SDO_ABORT_DATA_STORE);
-    ck_assert_uint_eq(test_sdo_write(&t, 0x1011, 1, SAVE, 4), SDO_ABORT_DATA_STORE);
+                      CO_SDO_ABORT_DATA_STORE); /* daol */
+    ck_assert_uint_eq(test_sdo_write(&t, 0x1010, 1, LOAD, 4), CO_SDO_ABORT_DATA_STORE);
+    ck_assert_uint_eq(test_sdo_write(&t, 0x1011, 1, SAVE, 4), CO_SDO_ABORT_DATA_STORE);
     ck_assert_uint_eq(mem.saves + mem.erases, 0);
     ck_assert_int_eq(co_od_value(&t.node, 0x1010, 1), 1);
     ck_assert_int_eq(co_od_value(&t.node, 0x1011, 1), 1);
@@ -144,8 +144,8 @@ END_TEST
 START_TEST(no_storage_aborts)
 {
     test_node_start(&t, 4, NULL, NULL);
-    ck_assert_uint_eq(test_sdo_write(&t, 0x1010, 1, SAVE, 4), SDO_ABORT_DATA_STORE);
-    ck_assert_uint_eq(test_sdo_write(&t, 0x1011, 1, LOAD, 4), SDO_ABORT_DATA_STORE);
+    ck_assert_uint_eq(test_sdo_write(&t, 0x1010, 1, SAVE, 4), CO_SDO_ABORT_DATA_STORE);
+    ck_assert_uint_eq(test_sdo_write(&t, 0x1011, 1, LOAD, 4), CO_SDO_ABORT_DATA_STORE);
 }
 END_TEST
 
@@ -153,12 +153,12 @@ START_TEST(storage_failures_abort_hardware)
 {
     change_values();
     mem.fail_write = true;
-    ck_assert_uint_eq(test_sdo_write(&t, 0x1010, 1, SAVE, 4), SDO_ABORT_HARDWARE);
+    ck_assert_uint_eq(test_sdo_write(&t, 0x1010, 1, SAVE, 4), CO_SDO_ABORT_HARDWARE);
     ck_assert_uint_eq(mem.saves, 0); /* nothing committed */
     mem.fail_write = false;
     ck_assert_uint_eq(test_sdo_write(&t, 0x1010, 1, SAVE, 4), 0);
     mem.fail_erase = true;
-    ck_assert_uint_eq(test_sdo_write(&t, 0x1011, 1, LOAD, 4), SDO_ABORT_HARDWARE);
+    ck_assert_uint_eq(test_sdo_write(&t, 0x1011, 1, LOAD, 4), CO_SDO_ABORT_HARDWARE);
 }
 END_TEST
 
@@ -200,7 +200,7 @@ START_TEST(read_failure_while_applying_skips_the_record)
     reset_node();
     ck_assert_int_eq(co_od_value(&t.node, 0x203C, 0x02), 30);
     ck_assert_int_eq(co_od_value(&t.node, 0x2000, 0x07), 0x12345678);
-    ck_assert_uint_eq(memory_storage_refusal(&mem, 0x203C, 0x02), SDO_ABORT_HARDWARE);
+    ck_assert_uint_eq(memory_storage_refusal(&mem, 0x203C, 0x02), CO_SDO_ABORT_HARDWARE);
     ck_assert_uint_eq(mem.refusals, 1);
 }
 END_TEST
@@ -244,8 +244,8 @@ START_TEST(version_1_image_loads_its_parameters_only)
     ck_assert_int_eq(co_od_value(&t.node, 0x6046, 2), 2000);
     ck_assert_int_eq(co_od_value(&t.node, 0x6040, 0), 0);
     ck_assert_int_eq(co_od_value(&t.node, 0x6042, 0), 0);
-    ck_assert_uint_eq(memory_storage_refusal(&mem, 0x6040, 0), SDO_ABORT_DATA_STORE);
-    ck_assert_uint_eq(memory_storage_refusal(&mem, 0x6042, 0), SDO_ABORT_DATA_STORE);
+    ck_assert_uint_eq(memory_storage_refusal(&mem, 0x6040, 0), CO_SDO_ABORT_DATA_STORE);
+    ck_assert_uint_eq(memory_storage_refusal(&mem, 0x6042, 0), CO_SDO_ABORT_DATA_STORE);
     ck_assert_uint_eq(mem.refusals, 2);
 }
 END_TEST
@@ -266,8 +266,8 @@ START_TEST(stored_values_checked_like_writes)
     ck_assert_int_eq(co_od_value(&t.node, 0x2000, 0x10), 0);
     ck_assert_int_eq(co_od_value(&t.node, 0x2000, 0x07), 0x12345678);
     ck_assert_int_eq(co_od_value(&t.node, 0x203C, 0x02), 1000);
-    ck_assert_uint_eq(memory_storage_refusal(&mem, 0x2000, 0x05), SDO_ABORT_VALUE_LOW);
-    ck_assert_uint_eq(memory_storage_refusal(&mem, 0x2000, 0x10), SDO_ABORT_DATA_LOCAL);
+    ck_assert_uint_eq(memory_storage_refusal(&mem, 0x2000, 0x05), CO_SDO_ABORT_VALUE_LOW);
+    ck_assert_uint_eq(memory_storage_refusal(&mem, 0x2000, 0x10), CO_SDO_ABORT_DATA_LOCAL);
     ck_assert_uint_eq(mem.refusals, 2);
     ck_assert_uint_eq(mem.refused[0].len, 1);
 }
@@ -360,7 +360,7 @@ START_TEST(refused_pdo_cob_id_leaves_the_pdo_invalid)
     uint8_t *img = mem.image[CO_STORE_AREA_COMMUNICATION];
     co_put_u32(img + memory_storage_record(&mem, CO_STORE_AREA_COMMUNICATION, 0x1805, 1), 0x701);
     reset_node();
-    ck_assert_uint_eq(memory_storage_refusal(&mem, 0x1805, 1), SDO_ABORT_VALUE_RANGE);
+    ck_assert_uint_eq(memory_storage_refusal(&mem, 0x1805, 1), CO_SDO_ABORT_VALUE_RANGE);
     ck_assert_int_eq(co_od_value(&t.node, 0x1805, 1), (int64_t)0x80000284);
 }
 END_TEST
@@ -386,8 +386,8 @@ START_TEST(dictionary_change_never_misloads)
     ck_assert_int_eq(co_od_value(&t.node, 0x2000, 0x07), 0);
     ck_assert_int_eq(co_od_value(&t.node, 0x203C, 0x02), 30);
     ck_assert_int_eq(co_od_value(&t.node, 0x203C, 0x03), 30);
-    ck_assert_uint_eq(memory_storage_refusal(&mem, 0x2000, 0x7F), SDO_ABORT_NO_SUBINDEX);
-    ck_assert_uint_eq(memory_storage_refusal(&mem, 0x2000, 0x07), SDO_ABORT_TYPE_LENGTH);
+    ck_assert_uint_eq(memory_storage_refusal(&mem, 0x2000, 0x7F), CO_SDO_ABORT_NO_SUBINDEX);
+    ck_assert_uint_eq(memory_storage_refusal(&mem, 0x2000, 0x07), CO_SDO_ABORT_TYPE_LENGTH);
     ck_assert_uint_eq(mem.refusals, 2);
 }
 END_TEST

@@ -124,14 +124,14 @@ END_TEST
 START_TEST(overflow_value_rules)
 {
     start();
-    ck_assert_uint_eq(write_param(0x1019, 0, 1, 1), SDO_ABORT_VALUE_RANGE);
-    ck_assert_uint_eq(write_param(0x1019, 0, 241, 1), SDO_ABORT_VALUE_RANGE);
-    ck_assert_uint_eq(write_param(0x1019, 0, 255, 1), SDO_ABORT_VALUE_RANGE);
+    ck_assert_uint_eq(write_param(0x1019, 0, 1, 1), CO_SDO_ABORT_VALUE_RANGE);
+    ck_assert_uint_eq(write_param(0x1019, 0, 241, 1), CO_SDO_ABORT_VALUE_RANGE);
+    ck_assert_uint_eq(write_param(0x1019, 0, 255, 1), CO_SDO_ABORT_VALUE_RANGE);
     ck_assert_uint_eq(write_param(0x1019, 0, 2, 1), 0);
     ck_assert_uint_eq(write_param(0x1019, 0, 240, 1), 0);
     ck_assert_uint_eq(write_param(0x1019, 0, 0, 1), 0);
     ck_assert_uint_eq(write_param(0x1006, 0, 1000, 4), 0);
-    ck_assert_uint_eq(write_param(0x1019, 0, 10, 1), SDO_ABORT_DATA_STATE);
+    ck_assert_uint_eq(write_param(0x1019, 0, 10, 1), CO_SDO_ABORT_DATA_STATE);
     ck_assert_int_eq(co_od_value(&t.node, 0x1019, 0), 0);
 }
 END_TEST
@@ -139,11 +139,11 @@ END_TEST
 START_TEST(cob_id_rules)
 {
     start();
-    ck_assert_uint_eq(write_param(0x1005, 0, 0x20000080, 4), SDO_ABORT_VALUE_RANGE);
-    ck_assert_uint_eq(write_param(0x1005, 0, 0x00000880, 4), SDO_ABORT_VALUE_RANGE);
+    ck_assert_uint_eq(write_param(0x1005, 0, 0x20000080, 4), CO_SDO_ABORT_VALUE_RANGE);
+    ck_assert_uint_eq(write_param(0x1005, 0, 0x00000880, 4), CO_SDO_ABORT_VALUE_RANGE);
     ck_assert_uint_eq(write_param(0x1005, 0, 0x81, 4), 0);
     ck_assert_uint_eq(write_param(0x1005, 0, 0x40000081, 4), 0);
-    ck_assert_uint_eq(write_param(0x1005, 0, 0x40000082, 4), SDO_ABORT_VALUE_RANGE);
+    ck_assert_uint_eq(write_param(0x1005, 0, 0x40000082, 4), CO_SDO_ABORT_VALUE_RANGE);
     ck_assert_int_eq(co_od_value(&t.node, 0x1005, 0), 0x40000081);
     /* Stopping production and changing the CAN-ID in one write is allowed. */
     ck_assert_uint_eq(write_param(0x1005, 0, 0x82, 4), 0);
@@ -165,9 +165,9 @@ START_TEST(restricted_can_ids_at_every_edge)
     test_expect(&t, "584#8005100030000906");
     for (size_t i = 0; i < TEST_RESTRICTED_CAN_IDS; i++) {
         uint32_t id = test_restricted_can_id[i];
-        ck_assert_uint_eq(write_param(0x1005, 0, id, 4), SDO_ABORT_VALUE_RANGE);
-        ck_assert_uint_eq(write_param(0x1005, 0, 0x40000000u | id, 4), SDO_ABORT_VALUE_RANGE);
-        ck_assert_uint_eq(write_param(0x1005, 0, 0x80000000u | id, 4), SDO_ABORT_VALUE_RANGE);
+        ck_assert_uint_eq(write_param(0x1005, 0, id, 4), CO_SDO_ABORT_VALUE_RANGE);
+        ck_assert_uint_eq(write_param(0x1005, 0, 0x40000000u | id, 4), CO_SDO_ABORT_VALUE_RANGE);
+        ck_assert_uint_eq(write_param(0x1005, 0, 0x80000000u | id, 4), CO_SDO_ABORT_VALUE_RANGE);
     }
     ck_assert_int_eq(co_od_value(&t.node, 0x1005, 0), 0x80);
     test_rx(&t, "080#");
@@ -206,10 +206,10 @@ START_TEST(producer_refused_without_1006)
     test_node_start_od(&t, test_od_without(0x1006), 4, &hooks, NULL);
     test_rx(&t, "604#2305100080000040"); /* 1005h = 40000080h */
     test_expect(&t, "584#8005100030000906");
-    ck_assert_uint_eq(write_param(0x1005, 0, 0x40000081, 4), SDO_ABORT_VALUE_RANGE);
-    ck_assert_uint_eq(write_param(0x1005, 0, 0xC0000080, 4), SDO_ABORT_VALUE_RANGE);
+    ck_assert_uint_eq(write_param(0x1005, 0, 0x40000081, 4), CO_SDO_ABORT_VALUE_RANGE);
+    ck_assert_uint_eq(write_param(0x1005, 0, 0xC0000080, 4), CO_SDO_ABORT_VALUE_RANGE);
     ck_assert_int_eq(co_od_value(&t.node, 0x1005, 0), 0x80);
-    ck_assert_uint_eq(write_param(0x1006, 0, 1000, 4), SDO_ABORT_NO_OBJECT);
+    ck_assert_uint_eq(write_param(0x1006, 0, 1000, 4), CO_SDO_ABORT_NO_OBJECT);
     ck_assert_uint_eq(write_param(0x1005, 0, 0x81, 4), 0);
     test_rx(&t, "081#");
     ck_assert_uint_eq(sync_calls, 1);

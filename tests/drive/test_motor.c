@@ -172,16 +172,16 @@ START_TEST(speed_limit_writes_are_checked)
     bench_t b;
     bench_start(&b);
     ck_assert_uint_eq(bench_sdo_write(&b, PARAMS, HSP, 400, 2), 0);
-    ck_assert_uint_eq(bench_sdo_write(&b, PARAMS, LSP, 500, 2), SDO_ABORT_MAX_LESS_MIN);
-    ck_assert_uint_eq(bench_sdo_write(&b, 0x6046, 1, 1500, 4), SDO_ABORT_MAX_LESS_MIN);
-    ck_assert_uint_eq(bench_sdo_write(&b, PARAMS, HSP, 5001, 2), SDO_ABORT_VALUE_HIGH);
-    ck_assert_uint_eq(bench_sdo_write(&b, 0x6046, 2, 16000, 4), SDO_ABORT_VALUE_HIGH);
+    ck_assert_uint_eq(bench_sdo_write(&b, PARAMS, LSP, 500, 2), CO_SDO_ABORT_MAX_LESS_MIN);
+    ck_assert_uint_eq(bench_sdo_write(&b, 0x6046, 1, 1500, 4), CO_SDO_ABORT_MAX_LESS_MIN);
+    ck_assert_uint_eq(bench_sdo_write(&b, PARAMS, HSP, 5001, 2), CO_SDO_ABORT_VALUE_HIGH);
+    ck_assert_uint_eq(bench_sdo_write(&b, 0x6046, 2, 16000, 4), CO_SDO_ABORT_VALUE_HIGH);
     ck_assert_uint_eq(bench_read(&b, PARAMS, HSP), 400);
     ck_assert_uint_eq(bench_sdo_write(&b, 0x6046, 2, 900, 4), 0);
     ck_assert_uint_eq(bench_read(&b, PARAMS, HSP), 300);
     ck_assert_uint_eq(bench_sdo_write(&b, 0x6046, 1, 600, 4), 0);
     ck_assert_uint_eq(bench_read(&b, PARAMS, LSP), 200);
-    ck_assert_uint_eq(bench_sdo_write(&b, PARAMS, HSP, 199, 2), SDO_ABORT_MAX_LESS_MIN);
+    ck_assert_uint_eq(bench_sdo_write(&b, PARAMS, HSP, 199, 2), CO_SDO_ABORT_MAX_LESS_MIN);
 }
 END_TEST
 
@@ -202,10 +202,10 @@ START_TEST(acceleration_objects_are_views_of_the_ramps)
     ck_assert_uint_eq(bench_sdo_write(&b, PARAMS, ACC, 25, 2), 0);
     ck_assert_uint_eq(bench_read(&b, 0x6048, 1), 600);
     ck_assert_uint_eq(bench_read(&b, 0x6048, 2), 1);
-    ck_assert_uint_eq(bench_sdo_write(&b, 0x6048, 2, 60000, 2), SDO_ABORT_VALUE_HIGH);
-    ck_assert_uint_eq(bench_sdo_write(&b, 0x6048, 2, 1000, 2), SDO_ABORT_VALUE_HIGH);
-    ck_assert_uint_eq(bench_sdo_write(&b, 0x6048, 1, 0, 4), SDO_ABORT_VALUE_LOW);
-    ck_assert_uint_eq(bench_sdo_write(&b, 0x6048, 1, 32767, 4), SDO_ABORT_VALUE_LOW);
+    ck_assert_uint_eq(bench_sdo_write(&b, 0x6048, 2, 60000, 2), CO_SDO_ABORT_VALUE_HIGH);
+    ck_assert_uint_eq(bench_sdo_write(&b, 0x6048, 2, 1000, 2), CO_SDO_ABORT_VALUE_HIGH);
+    ck_assert_uint_eq(bench_sdo_write(&b, 0x6048, 1, 0, 4), CO_SDO_ABORT_VALUE_LOW);
+    ck_assert_uint_eq(bench_sdo_write(&b, 0x6048, 1, 32767, 4), CO_SDO_ABORT_VALUE_LOW);
     ck_assert_uint_eq(bench_read(&b, PARAMS, ACC), 25);
 }
 END_TEST
@@ -218,14 +218,14 @@ START_TEST(configuration_refused_while_running)
     bench_start(&b);
     enable(&b, 1500);
     bench_advance(&b, 1000000);
-    ck_assert_uint_eq(bench_sdo_write(&b, PARAMS, NSP, 1450, 2), SDO_ABORT_DATA_STATE);
-    ck_assert_uint_eq(bench_sdo_write(&b, PARAMS, FRS, 600, 2), SDO_ABORT_DATA_STATE);
+    ck_assert_uint_eq(bench_sdo_write(&b, PARAMS, NSP, 1450, 2), CO_SDO_ABORT_DATA_STATE);
+    ck_assert_uint_eq(bench_sdo_write(&b, PARAMS, FRS, 600, 2), CO_SDO_ABORT_DATA_STATE);
     ck_assert_uint_eq(bench_read(&b, PARAMS, NSP), 1500);
     ck_assert_uint_eq(bench_sdo_write(&b, PARAMS, ACC, 40, 2), 0);
     ck_assert_uint_eq(bench_read(&b, 0x6041, 0), 0x0227);
     /* Halted: motor stopped, the change is accepted and locks the drive. */
     bench_command(&b, CW_RAMP_STOP | 0x000F);
-    ck_assert_uint_eq(bench_sdo_write(&b, PARAMS, NSP, 1450, 2), SDO_ABORT_DATA_STATE);
+    ck_assert_uint_eq(bench_sdo_write(&b, PARAMS, NSP, 1450, 2), CO_SDO_ABORT_DATA_STATE);
     bench_advance(&b, 3000000);
     ck_assert_int_eq(bench_speed(&b), 0);
     ck_assert_uint_eq(bench_sdo_write(&b, PARAMS, NSP, 1450, 2), 0);

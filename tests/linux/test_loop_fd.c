@@ -18,9 +18,9 @@
 #include <unistd.h>
 
 #define NODE_ID 4
-#define SDO_RX (0x600 + NODE_ID)
-#define SDO_TX (0x580 + NODE_ID)
-#define BOOTUP (0x700 + NODE_ID)
+#define SDO_RX (CO_CAN_ID_SDO_RX + NODE_ID)
+#define SDO_TX (CO_CAN_ID_SDO_TX + NODE_ID)
+#define BOOTUP (CO_CAN_ID_ERROR_CONTROL + NODE_ID)
 /* Longest a test may take: a loop that spins on a hung-up peer never returns. */
 #define TEST_ALARM_S 10
 

@@ -78,7 +78,7 @@ void bench_expect_none_at(bench_t *b, const char *file, int line)
 static co_frame_t sdo_answer(bench_t *b)
 {
     for (size_t i = b->next; i < b->count; i++) {
-        if (b->frame[i].id != 0x580 + BENCH_NODE_ID)
+        if (b->frame[i].id != CO_CAN_ID_SDO_TX + BENCH_NODE_ID)
             continue;
         co_frame_t answer = b->frame[i];
         memmove(&b->frame[i], &b->frame[i + 1], (b->count - i - 1) * sizeof(b->frame[0]));
@@ -92,7 +92,7 @@ static co_frame_t sdo_answer(bench_t *b)
 
 static void sdo_request(bench_t *b, uint8_t command, uint16_t index, uint8_t sub, uint32_t value)
 {
-    co_frame_t f = {.id = 0x600 + BENCH_NODE_ID, .len = 8};
+    co_frame_t f = {.id = CO_CAN_ID_SDO_RX + BENCH_NODE_ID, .len = 8};
     f.data[0] = command;
     co_put_u16(&f.data[1], index);
     f.data[3] = sub;

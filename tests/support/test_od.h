@@ -16,7 +16,7 @@ extern const co_od_t test_od;
  * lives in static storage that the next call overwrites. */
 const co_od_t *test_od_without(uint16_t index);
 
-/* A hook on 2000:10 that refuses every write with SDO_ABORT_DATA_LOCAL, and counts reads. */
+/* A hook on 2000:10 that refuses every write with CO_SDO_ABORT_DATA_LOCAL, and counts reads. */
 extern unsigned test_od_hook_reads;
 
 #endif

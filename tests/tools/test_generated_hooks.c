@@ -12,7 +12,7 @@ static uint32_t refuse_write(co_node_t *node, const co_od_entry_t *entry, const 
     (void)data;
     (void)len;
     (void)origin;
-    return SDO_ABORT_DATA_LOCAL;
+    return CO_SDO_ABORT_DATA_LOCAL;
 }
 
 static uint32_t count_read(co_node_t *node, const co_od_entry_t *entry)

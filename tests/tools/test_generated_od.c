@@ -38,7 +38,7 @@ static void start_node(void)
 
 static co_frame_t sdo_request(uint8_t command, uint16_t index, uint8_t sub)
 {
-    co_frame_t f = {.id = 0x600 + NODE_ID, .len = 8};
+    co_frame_t f = {.id = CO_CAN_ID_SDO_RX + NODE_ID, .len = 8};
     f.data[0] = command;
     co_put_u16(&f.data[1], index);
     f.data[3] = sub;
@@ -81,31 +81,35 @@ START_TEST(limits_zero_ok_and_hooks_apply)
     start_node();
     uint8_t v[2];
     co_put_u16(v, 9);
-    ck_assert_uint_eq(co_od_write(&node, 0x2001, 0, v, 2, CO_OD_ORIGIN_SDO), SDO_ABORT_VALUE_LOW);
+    ck_assert_uint_eq(co_od_write(&node, 0x2001, 0, v, 2, CO_OD_ORIGIN_SDO),
+                      CO_SDO_ABORT_VALUE_LOW);
     co_put_u16(v, 1001);
-    ck_assert_uint_eq(co_od_write(&node, 0x2001, 0, v, 2, CO_OD_ORIGIN_SDO), SDO_ABORT_VALUE_HIGH);
+    ck_assert_uint_eq(co_od_write(&node, 0x2001, 0, v, 2, CO_OD_ORIGIN_SDO),
+                      CO_SDO_ABORT_VALUE_HIGH);
     co_put_u16(v, 0);
     ck_assert_uint_eq(co_od_write(&node, 0x2001, 0, v, 2, CO_OD_ORIGIN_SDO), 0);
     ck_assert_int_eq(co_od_value(&node, 0x2001, 0), 0);
 
     co_put_u16(v, (uint16_t)-101);
-    ck_assert_uint_eq(co_od_write(&node, 0x2000, 2, v, 2, CO_OD_ORIGIN_SDO), SDO_ABORT_VALUE_LOW);
+    ck_assert_uint_eq(co_od_write(&node, 0x2000, 2, v, 2, CO_OD_ORIGIN_SDO),
+                      CO_SDO_ABORT_VALUE_LOW);
     co_put_u16(v, (uint16_t)-100);
-    ck_assert_uint_eq(co_od_write(&node, 0x2000, 2, v, 2, CO_OD_ORIGIN_SDO), SDO_ABORT_DATA_LOCAL);
+    ck_assert_uint_eq(co_od_write(&node, 0x2000, 2, v, 2, CO_OD_ORIGIN_SDO),
+                      CO_SDO_ABORT_DATA_LOCAL);
     ck_assert_int_eq(co_od_value(&node, 0x2000, 2), -10);
     /* hex limits 0xFF9C..0x0064 of an INTEGER16 are -100..100 */
     ck_assert_uint_eq(co_od_write(&node, 0x2000, 0x0C, v, 2, CO_OD_ORIGIN_APP), 0);
     co_put_u16(v, (uint16_t)-101);
     ck_assert_uint_eq(co_od_write(&node, 0x2000, 0x0C, v, 2, CO_OD_ORIGIN_APP),
-                      SDO_ABORT_VALUE_LOW);
+                      CO_SDO_ABORT_VALUE_LOW);
     ck_assert_uint_eq(co_od_write(&node, 0x2000, 0x0C, v, 2, CO_OD_ORIGIN_SDO),
-                      SDO_ABORT_READ_ONLY);
+                      CO_SDO_ABORT_READ_ONLY);
 
     const co_od_entry_t *e;
     unsigned reads = test_hook_serial_reads;
     ck_assert_uint_eq(co_od_read_check(&node, 0x1018, 4, &e), 0);
     ck_assert_uint_eq(test_hook_serial_reads, reads + 1);
-    ck_assert_uint_eq(co_od_read_check(&node, 0x2000, 5, &e), SDO_ABORT_WRITE_ONLY);
+    ck_assert_uint_eq(co_od_read_check(&node, 0x2000, 5, &e), CO_SDO_ABORT_WRITE_ONLY);
 }
 END_TEST
 
@@ -146,7 +150,7 @@ START_TEST(sdo_upload_of_string_gives_eds_default)
     size_t got = 0;
     for (uint8_t toggle = 0; got < 10; toggle ^= 0x10) {
         sent_count = 0;
-        co_frame_t segment = {.id = 0x600 + NODE_ID, .len = 8};
+        co_frame_t segment = {.id = CO_CAN_ID_SDO_RX + NODE_ID, .len = 8};
         segment.data[0] = (uint8_t)(0x60 | toggle);
         co_node_receive(&node, &segment, 3000);
         co_node_process(&node, 3000);
@@ -179,8 +183,8 @@ START_TEST(dummy_usage_reaches_the_pdo_engine)
     ck_assert_uint_eq(write_value(0x1600, 0, 0, 1), 0);
     ck_assert_uint_eq(write_value(0x1600, 1, 0x00050008, 4), 0);
     ck_assert_uint_eq(write_value(0x1600, 1, 0x00060010, 4), 0);
-    ck_assert_uint_eq(write_value(0x1600, 1, 0x00020008, 4), SDO_ABORT_NOT_MAPPABLE);
-    ck_assert_uint_eq(write_value(0x1600, 1, 0x00070020, 4), SDO_ABORT_NOT_MAPPABLE);
+    ck_assert_uint_eq(write_value(0x1600, 1, 0x00020008, 4), CO_SDO_ABORT_NOT_MAPPABLE);
+    ck_assert_uint_eq(write_value(0x1600, 1, 0x00070020, 4), CO_SDO_ABORT_NOT_MAPPABLE);
     ck_assert_int_eq(co_od_value(&node, 0x1600, 1), 0x00060010);
 }
 END_TEST

@@ -10,7 +10,7 @@ static uint32_t rpdo6_type_write(co_node_t *node, const co_od_entry_t *entry, co
 {
     (void)node, (void)entry, (void)len, (void)origin;
     uint8_t type = data[0];
-    return (type >= 1 && type <= 240) || type >= 254 ? CO_SDO_OK : SDO_ABORT_VALUE_RANGE;
+    return (type >= 1 && type <= 240) || type >= 254 ? CO_SDO_OK : CO_SDO_ABORT_VALUE_RANGE;
 }
 
 /* D-TRANSMISSION-TYPES: TPDO6 accepts 0 (synchronous acyclic), 1-240, 254 and 255. */
@@ -19,7 +19,7 @@ static uint32_t tpdo6_type_write(co_node_t *node, const co_od_entry_t *entry, co
 {
     (void)node, (void)entry, (void)len, (void)origin;
     uint8_t type = data[0];
-    return type <= 240 || type >= 254 ? CO_SDO_OK : SDO_ABORT_VALUE_RANGE;
+    return type <= 240 || type >= 254 ? CO_SDO_OK : CO_SDO_ABORT_VALUE_RANGE;
 }
 
 const co_od_hook_t atv312_rpdo6_type = {rpdo6_type_write, NULL};

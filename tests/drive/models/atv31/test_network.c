@@ -25,7 +25,7 @@ START_TEST(identity_is_the_atv31s)
     ck_assert_uint_eq(bench_read(&b, 0x1018, 0), 1);
     ck_assert_uint_eq(bench_read(&b, 0x1018, 1), 0x5F);
     uint32_t value;
-    ck_assert_uint_eq(bench_sdo_read(&b, 0x1018, 2, &value), SDO_ABORT_NO_SUBINDEX);
+    ck_assert_uint_eq(bench_sdo_read(&b, 0x1018, 2, &value), CO_SDO_ABORT_NO_SUBINDEX);
     static const bench_exchange_t name[] = {
         {"1008h", "604#4008100000000000", 0, {"584#4108100005000000"}},
         {"1008h", "604#6000000000000000", 0, {"584#0541545633310000"}}, /* "ATV31" */
@@ -131,10 +131,10 @@ START_TEST(heartbeat_only_from_v1_2)
 
     bench_start_model(&b, &atv31_v11_profile, NULL);
     uint32_t value;
-    ck_assert_uint_eq(bench_sdo_read(&b, 0x1016, 0, &value), SDO_ABORT_NO_OBJECT);
-    ck_assert_uint_eq(bench_sdo_read(&b, 0x1017, 0, &value), SDO_ABORT_NO_OBJECT);
-    ck_assert_uint_eq(bench_sdo_write(&b, 0x1017, 0, 100, 2), SDO_ABORT_NO_OBJECT);
-    ck_assert_uint_eq(bench_sdo_write(&b, 0x1016, 1, 0x00050064, 4), SDO_ABORT_NO_OBJECT);
+    ck_assert_uint_eq(bench_sdo_read(&b, 0x1016, 0, &value), CO_SDO_ABORT_NO_OBJECT);
+    ck_assert_uint_eq(bench_sdo_read(&b, 0x1017, 0, &value), CO_SDO_ABORT_NO_OBJECT);
+    ck_assert_uint_eq(bench_sdo_write(&b, 0x1017, 0, 100, 2), CO_SDO_ABORT_NO_OBJECT);
+    ck_assert_uint_eq(bench_sdo_write(&b, 0x1016, 1, 0x00050064, 4), CO_SDO_ABORT_NO_OBJECT);
     bench_advance(&b, 1000000);
     bench_expect_none(&b);
     ck_assert_uint_eq(bench_sdo_write(&b, 0x100C, 0, 100, 2), 0);

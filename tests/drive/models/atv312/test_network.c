@@ -37,10 +37,10 @@ START_TEST(dictionary_as_the_manual_tables_it)
     ck_assert_uint_eq(bench_read(&b, 0x1A05, 2), 0x60440010);
     ck_assert_uint_eq(bench_read(&b, 0x203C, 2), 30);
     uint32_t value;
-    ck_assert_uint_eq(bench_sdo_read(&b, 0x1003, 2, &value), SDO_ABORT_NO_SUBINDEX);
-    ck_assert_uint_eq(bench_sdo_read(&b, 0x1800, 4, &value), SDO_ABORT_NO_SUBINDEX);
-    ck_assert_uint_eq(bench_sdo_write(&b, 0x1A00, 1, 0x60440010, 4), SDO_ABORT_READ_ONLY);
-    ck_assert_uint_eq(bench_sdo_write(&b, 0x1800, 2, 1, 1), SDO_ABORT_READ_ONLY);
+    ck_assert_uint_eq(bench_sdo_read(&b, 0x1003, 2, &value), CO_SDO_ABORT_NO_SUBINDEX);
+    ck_assert_uint_eq(bench_sdo_read(&b, 0x1800, 4, &value), CO_SDO_ABORT_NO_SUBINDEX);
+    ck_assert_uint_eq(bench_sdo_write(&b, 0x1A00, 1, 0x60440010, 4), CO_SDO_ABORT_READ_ONLY);
+    ck_assert_uint_eq(bench_sdo_write(&b, 0x1800, 2, 1, 1), CO_SDO_ABORT_READ_ONLY);
     /* 1008h "ATV312" is the manual's one segmented upload. */
     bench_rx(&b, "604#4008100000000000");
     bench_expect(&b, "584#4108100006000000");
@@ -55,20 +55,20 @@ START_TEST(pdo6_parameter_rules)
 {
     bench_t b;
     bench_start(&b);
-    ck_assert_uint_eq(bench_sdo_write(&b, 0x1405, 2, 0, 1), SDO_ABORT_VALUE_RANGE);
-    ck_assert_uint_eq(bench_sdo_write(&b, 0x1405, 2, 241, 1), SDO_ABORT_VALUE_RANGE);
-    ck_assert_uint_eq(bench_sdo_write(&b, 0x1405, 2, 252, 1), SDO_ABORT_VALUE_RANGE);
+    ck_assert_uint_eq(bench_sdo_write(&b, 0x1405, 2, 0, 1), CO_SDO_ABORT_VALUE_RANGE);
+    ck_assert_uint_eq(bench_sdo_write(&b, 0x1405, 2, 241, 1), CO_SDO_ABORT_VALUE_RANGE);
+    ck_assert_uint_eq(bench_sdo_write(&b, 0x1405, 2, 252, 1), CO_SDO_ABORT_VALUE_RANGE);
     ck_assert_uint_eq(bench_sdo_write(&b, 0x1405, 2, 1, 1), 0);
     ck_assert_uint_eq(bench_sdo_write(&b, 0x1405, 2, 254, 1), 0);
     ck_assert_uint_eq(bench_sdo_write(&b, 0x1805, 2, 0, 1), 0);
     ck_assert_uint_eq(bench_sdo_write(&b, 0x1805, 2, 240, 1), 0);
-    ck_assert_uint_eq(bench_sdo_write(&b, 0x1805, 2, 253, 1), SDO_ABORT_VALUE_RANGE);
-    ck_assert_uint_eq(bench_sdo_write(&b, 0x1805, 3, 99, 2), SDO_ABORT_VALUE_LOW);
+    ck_assert_uint_eq(bench_sdo_write(&b, 0x1805, 2, 253, 1), CO_SDO_ABORT_VALUE_RANGE);
+    ck_assert_uint_eq(bench_sdo_write(&b, 0x1805, 3, 99, 2), CO_SDO_ABORT_VALUE_LOW);
     ck_assert_uint_eq(bench_sdo_write(&b, 0x1805, 3, 0, 2), 0);
     ck_assert_uint_eq(bench_sdo_write(&b, 0x1805, 3, 100, 2), 0);
-    ck_assert_uint_eq(bench_sdo_write(&b, 0x1805, 5, 9, 2), SDO_ABORT_VALUE_LOW);
+    ck_assert_uint_eq(bench_sdo_write(&b, 0x1805, 5, 9, 2), CO_SDO_ABORT_VALUE_LOW);
     ck_assert_uint_eq(bench_sdo_write(&b, 0x1805, 5, 0, 2), 0);
-    ck_assert_uint_eq(bench_sdo_write(&b, 0x1800, 5, 9, 2), SDO_ABORT_VALUE_LOW);
+    ck_assert_uint_eq(bench_sdo_write(&b, 0x1800, 5, 9, 2), CO_SDO_ABORT_VALUE_LOW);
     ck_assert_uint_eq(bench_sdo_write(&b, 0x1800, 5, 10, 2), 0);
 }
 END_TEST
@@ -79,12 +79,12 @@ START_TEST(dictionary_dependent_cia301_rules)
 {
     bench_t b;
     bench_start(&b);
-    ck_assert_uint_eq(bench_sdo_write(&b, 0x1005, 0, 0x40000080, 4), SDO_ABORT_VALUE_RANGE);
-    ck_assert_uint_eq(bench_sdo_write(&b, 0x1005, 0, 0x701, 4), SDO_ABORT_VALUE_RANGE);
+    ck_assert_uint_eq(bench_sdo_write(&b, 0x1005, 0, 0x40000080, 4), CO_SDO_ABORT_VALUE_RANGE);
+    ck_assert_uint_eq(bench_sdo_write(&b, 0x1005, 0, 0x701, 4), CO_SDO_ABORT_VALUE_RANGE);
     ck_assert_uint_eq(bench_read(&b, 0x1005, 0), 0x80);
     ck_assert_uint_eq(bench_sdo_write(&b, 0x1605, 0, 0, 1), 0);
-    ck_assert_uint_eq(bench_sdo_write(&b, 0x1605, 1, 0x00050008, 4), SDO_ABORT_NOT_MAPPABLE);
-    ck_assert_uint_eq(bench_sdo_write(&b, 0x100E, 0, 0x80000704, 4), SDO_ABORT_VALUE_RANGE);
+    ck_assert_uint_eq(bench_sdo_write(&b, 0x1605, 1, 0x00050008, 4), CO_SDO_ABORT_NOT_MAPPABLE);
+    ck_assert_uint_eq(bench_sdo_write(&b, 0x100E, 0, 0x80000704, 4), CO_SDO_ABORT_VALUE_RANGE);
     ck_assert_uint_eq(bench_sdo_write(&b, 0x100E, 0, 0x123, 4), 0);
     bench_rx(&b, "704#R");
     bench_expect_none(&b);

@@ -109,9 +109,9 @@ START_TEST(speed_limits_are_hsp_and_lsp)
     ck_assert_uint_eq(bench_read(&b, 0x6046, 2), 1200);
     ck_assert_uint_eq(bench_sdo_write(&b, 0x6046, 1, 600, 4), 0);
     ck_assert_uint_eq(bench_read(&b, 0x2001, 6), 200);
-    ck_assert_uint_eq(bench_sdo_write(&b, 0x2001, 6, 500, 2), SDO_ABORT_MAX_LESS_MIN);
-    ck_assert_uint_eq(bench_sdo_write(&b, 0x2001, 5, 5001, 2), SDO_ABORT_VALUE_HIGH);
-    ck_assert_uint_eq(bench_sdo_write(&b, 0x6046, 2, 16000, 4), SDO_ABORT_VALUE_HIGH);
+    ck_assert_uint_eq(bench_sdo_write(&b, 0x2001, 6, 500, 2), CO_SDO_ABORT_MAX_LESS_MIN);
+    ck_assert_uint_eq(bench_sdo_write(&b, 0x2001, 5, 5001, 2), CO_SDO_ABORT_VALUE_HIGH);
+    ck_assert_uint_eq(bench_sdo_write(&b, 0x6046, 2, 16000, 4), CO_SDO_ABORT_VALUE_HIGH);
     ck_assert_uint_eq(bench_sdo_write(&b, 0x2042, 3, 600, 2), 0); /* FRS 60.0 Hz */
     ck_assert_uint_eq(bench_read(&b, 0x6046, 2), 1000);
     run_at_nominal(&b, 0x000F);
@@ -131,9 +131,9 @@ START_TEST(ramps_are_acc_and_dec)
     ck_assert_uint_eq(bench_read(&b, 0x203C, 2), 90);
     ck_assert_uint_eq(bench_sdo_write(&b, 0x6049, 1, 3000, 4), 0);
     ck_assert_uint_eq(bench_read(&b, 0x203C, 3), 5);
-    ck_assert_uint_eq(bench_sdo_write(&b, 0x6048, 2, 60000, 2), SDO_ABORT_VALUE_HIGH);
-    ck_assert_uint_eq(bench_sdo_write(&b, 0x6048, 1, 0, 4), SDO_ABORT_VALUE_LOW);
-    ck_assert_uint_eq(bench_sdo_write(&b, 0x203C, 2, 10000, 2), SDO_ABORT_VALUE_HIGH);
+    ck_assert_uint_eq(bench_sdo_write(&b, 0x6048, 2, 60000, 2), CO_SDO_ABORT_VALUE_HIGH);
+    ck_assert_uint_eq(bench_sdo_write(&b, 0x6048, 1, 0, 4), CO_SDO_ABORT_VALUE_LOW);
+    ck_assert_uint_eq(bench_sdo_write(&b, 0x203C, 2, 10000, 2), CO_SDO_ABORT_VALUE_HIGH);
     ck_assert_uint_eq(bench_read(&b, 0x203C, 2), 90);
 }
 END_TEST
@@ -147,7 +147,8 @@ START_TEST(motor_data_are_configuration_parameters)
         bench_start(&b);
         run_at_nominal(&b, 0x000F);
         uint32_t value = bench_read(&b, 0x2042, subs[i]);
-        ck_assert_uint_eq(bench_sdo_write(&b, 0x2042, subs[i], value + 1, 2), SDO_ABORT_DATA_STATE);
+        ck_assert_uint_eq(bench_sdo_write(&b, 0x2042, subs[i], value + 1, 2),
+                          CO_SDO_ABORT_DATA_STATE);
         bench_command(&b, 0x0007);
         bench_advance(&b, 3000000);
         ck_assert_uint_eq(bench_sdo_write(&b, 0x2042, subs[i], value + 1, 2), 0);

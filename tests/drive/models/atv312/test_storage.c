@@ -117,7 +117,7 @@ START_TEST(stored_value_outside_its_limits_is_skipped)
     ck_assert_int_gt(nsp, 0);
     co_put_u16(mem.image[CO_STORE_AREA_MANUFACTURER] + nsp, 0);
     reset_node();
-    ck_assert_uint_eq(memory_storage_refusal(&mem, 0x2042, 5), SDO_ABORT_VALUE_LOW);
+    ck_assert_uint_eq(memory_storage_refusal(&mem, 0x2042, 5), CO_SDO_ABORT_VALUE_LOW);
     ck_assert_uint_eq(mem.refusals, 1);
     ck_assert_uint_eq(bench_read(&b, 0x2042, 5), 1500);
     ck_assert_uint_eq(bench_read(&b, 0x203C, 2), 50);

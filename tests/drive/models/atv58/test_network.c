@@ -62,7 +62,7 @@ START_TEST(dictionary_as_built)
                                       0x603F, 0x6046, 0x6048, 0x203C, 0x2042};
     for (size_t i = 0; i < sizeof absent / sizeof absent[0]; i++) {
         uint32_t value;
-        ck_assert_uint_eq(bench_sdo_read(&b, absent[i], 0, &value), SDO_ABORT_NO_OBJECT);
+        ck_assert_uint_eq(bench_sdo_read(&b, absent[i], 0, &value), CO_SDO_ABORT_NO_OBJECT);
     }
     uint32_t value;
     ck_assert_uint_eq(bench_sdo_read(&b, 0x1800, 3, &value), 0x06090000);

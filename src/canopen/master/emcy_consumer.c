@@ -3,7 +3,6 @@
 
 #include "co/co_emcy.h"
 
-#define CO_NODE_ID_MAX 127u
 #define EXACT 0xFFFFu
 #define SUBCLASS 0xFF00u /* codes xxyy: the subclass xx, any yy */
 #define CLASS 0xF000u    /* codes xyyy: the class x, any yyy */
@@ -203,10 +202,10 @@ const char *co_emcy_code_text(uint16_t code)
 
 co_emcy_decode_t co_emcy_decode(const co_frame_t *frame, co_emcy_message_t *out)
 {
-    if (frame->flags & (CO_FRAME_RTR | CO_FRAME_EFF) || frame->id <= CO_EMCY_COB_ID_BASE ||
-        frame->id > CO_EMCY_COB_ID_BASE + CO_NODE_ID_MAX)
+    if (frame->flags & (CO_FRAME_RTR | CO_FRAME_EFF) || frame->id <= CO_CAN_ID_EMCY ||
+        frame->id > CO_CAN_ID_EMCY + CO_NODE_ID_MAX)
         return CO_EMCY_DECODE_NOT_EMCY;
-    out->node_id = (uint8_t)(frame->id - CO_EMCY_COB_ID_BASE);
+    out->node_id = (uint8_t)(frame->id - CO_CAN_ID_EMCY);
     if (frame->len < CO_EMCY_FRAME_LEN)
         return CO_EMCY_DECODE_SHORT;
     out->code = co_get_u16(&frame->data[0]);

@@ -4,9 +4,6 @@
 
 #include <string.h>
 
-#define DEVICE_TYPE_INDEX 0x1000u
-#define IDENTITY_INDEX 0x1018u
-#define SYNC_CAN_ID 0x080u
 #define CAN_ID_MAX 0x7FFu
 #define US_PER_MS 1000u
 /* The bits of a slave's status word that one attempt at its initialisation builds up. */
@@ -214,7 +211,7 @@ static void begin_attempt(co_net_master_t *m, size_t i)
     s->failure = CO_NET_FAIL_NONE;
     clear_status(m, i, SLAVE_PROGRESS);
     set_step(m, i, CO_NET_STEP_DEVICE_TYPE);
-    begin_read(m, i, DEVICE_TYPE_INDEX, 0);
+    begin_read(m, i, CO_IDX_DEVICE_TYPE, 0);
 }
 
 static void begin_identity(co_net_master_t *m, size_t i)
@@ -230,7 +227,7 @@ static void begin_identity(co_net_master_t *m, size_t i)
         return;
     }
     set_step(m, i, CO_NET_STEP_IDENTITY);
-    begin_read(m, i, IDENTITY_INDEX, (uint8_t)(s->identity_sub + 1));
+    begin_read(m, i, CO_IDX_IDENTITY, (uint8_t)(s->identity_sub + 1));
 }
 
 static void start_error_control(co_net_master_t *m, size_t i)
@@ -484,7 +481,7 @@ bool co_net_master_init(co_net_master_t *master, const co_net_master_config_t *c
     }
     master->sync.next = CO_TIME_NEVER;
     if (config->sync_period_us != 0)
-        co_sync_producer_init(&master->sync, SYNC_CAN_ID, config->sync_period_us, 0);
+        co_sync_producer_init(&master->sync, CO_CAN_ID_SYNC, config->sync_period_us, 0);
     release(master);
     return true;
 }

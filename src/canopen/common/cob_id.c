@@ -23,8 +23,8 @@ bool co_can_id_restricted(uint32_t can_id)
 uint32_t co_cob_id_check(uint32_t old, uint32_t value, uint32_t in_use_mask, uint32_t in_use)
 {
     if ((value & ~CO_COB_ID_ALLOWED) || co_can_id_restricted(value & CO_COB_ID_CAN_ID))
-        return SDO_ABORT_VALUE_RANGE;
+        return CO_SDO_ABORT_VALUE_RANGE;
     bool both_in_use = (value & in_use_mask) == in_use && (old & in_use_mask) == in_use;
-    return both_in_use && ((old ^ value) & CO_COB_ID_CAN_ID) != 0 ? SDO_ABORT_VALUE_RANGE
+    return both_in_use && ((old ^ value) & CO_COB_ID_CAN_ID) != 0 ? CO_SDO_ABORT_VALUE_RANGE
                                                                   : CO_SDO_OK;
 }

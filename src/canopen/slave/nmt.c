@@ -3,10 +3,8 @@
 #include "co/co_consumers.h"
 #include "co/co_node.h"
 
-#define NMT_COB_ID 0x000u
 #define NMT_COMMAND_LEN 2u
 #define NMT_BROADCAST 0u
-#define BOOT_UP_COB_BASE 0x700u
 
 static void reset_services(co_node_t *node, co_nmt_reset_t scope)
 {
@@ -45,7 +43,7 @@ void co_nmt_reset(co_node_t *node, co_nmt_reset_t scope)
     co_store_apply(node, 0x1000, 0x1FFF);
     reset_services(node, scope);
     co_consumers_changed(node);
-    co_node_send_byte(node, BOOT_UP_COB_BASE + node->node_id, 0);
+    co_node_send_byte(node, CO_CAN_ID_ERROR_CONTROL + node->node_id, 0);
     co_nmt_enter(node, CO_NMT_PRE_OPERATIONAL);
 }
 
@@ -62,7 +60,7 @@ static bool nmt_command_shaped(const co_node_t *node, const co_frame_t *frame)
 
 bool co_nmt_receive(co_node_t *node, const co_frame_t *frame)
 {
-    if (frame->id != NMT_COB_ID)
+    if (frame->id != CO_CAN_ID_NMT)
         return false;
     if (!nmt_command_shaped(node, frame))
         return true;

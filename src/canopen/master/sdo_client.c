@@ -1,39 +1,38 @@
 /* SDO client (CiA 301 section 7.2.4, client side): expedited, segmented and block upload and
  * download between the application's buffer and one server. Uploads are written straight into
  * the application's buffer, downloads are sent from the application's data, so the client needs
- * no buffer of its own; the block CRC is the server's co_sdo_crc16. */
+ * no buffer of its own; the block CRC is co_sdo_crc16, shared with the server. */
 #include "co/co_sdo_client.h"
-#include "sdo_protocol.h"
+
+#include "co/co_node.h" /* co_sdo_client_config_from_od reads a node's 1280h */
 
 #include <string.h>
 
 #define US_PER_MS 1000u
-#define NODE_ID_MAX 127u
 #define CAN_ID_MAX 0x7FFu
 #define COB_ID_INVALID 0x80000000u /* 1280h sub 1/2 bit 31: the channel is not valid */
-#define SDO_CLIENT_PARAMETER 0x1280u
-#define SDO_CLIENT_CHANNELS 128u /* 1280h..12FFh */
+#define SDO_CLIENT_CHANNELS 128u   /* 1280h..12FFh */
 
 /* Client command bytes (ccs in bits 7..5). */
-#define CCS_BYTE(ccs) ((uint8_t)((ccs) << 5))
-#define SCS_MASK 0xE0u
 
 int co_sdo_client_init(co_sdo_client_t *client, const co_sdo_client_config_t *config)
 {
     bool default_ids = config->request_id == 0 || config->response_id == 0;
-    if (config->send == NULL || config->done == NULL || config->blksize > BLKSIZE_MAX ||
+    if (config->send == NULL || config->done == NULL || config->blksize > CO_SDO_BLKSIZE_MAX ||
         config->request_id > CAN_ID_MAX || config->response_id > CAN_ID_MAX ||
-        (default_ids && (config->server_node_id == 0 || config->server_node_id > NODE_ID_MAX)))
+        (default_ids && (config->server_node_id == 0 || config->server_node_id > CO_NODE_ID_MAX)))
         return CO_SDO_CLIENT_ERR_CONFIG;
     memset(client, 0, sizeof(*client));
-    client->request_id =
-        config->request_id != 0 ? config->request_id : (uint16_t)(0x600u + config->server_node_id);
-    client->response_id = config->response_id != 0 ? config->response_id
-                                                   : (uint16_t)(0x580u + config->server_node_id);
+    client->request_id = config->request_id != 0
+                             ? config->request_id
+                             : (uint16_t)(CO_CAN_ID_SDO_RX + config->server_node_id);
+    client->response_id = config->response_id != 0
+                              ? config->response_id
+                              : (uint16_t)(CO_CAN_ID_SDO_TX + config->server_node_id);
     client->send = config->send;
     client->user = config->user;
     client->done = config->done;
-    client->upload_blksize = config->blksize != 0 ? config->blksize : BLKSIZE_MAX;
+    client->upload_blksize = config->blksize != 0 ? config->blksize : CO_SDO_BLKSIZE_MAX;
     client->pst = config->pst;
     return 0;
 }
@@ -41,7 +40,7 @@ int co_sdo_client_init(co_sdo_client_t *client, const co_sdo_client_config_t *co
 int co_sdo_client_config_from_od(co_sdo_client_config_t *config, const co_node_t *node,
                                  uint8_t channel)
 {
-    uint16_t index = (uint16_t)(SDO_CLIENT_PARAMETER + channel);
+    uint16_t index = (uint16_t)(CO_IDX_SDO_CLIENT + channel);
     const co_od_entry_t *request = co_od_find(node->od, index, 1);
     const co_od_entry_t *response = co_od_find(node->od, index, 2);
     const co_od_entry_t *server = co_od_find(node->od, index, 3);
@@ -102,7 +101,7 @@ static void finish(co_sdo_client_t *client, co_sdo_client_status_t status, uint3
 /* The client's own abort: CiA 301 has the abort frame sent to the server in every case. */
 static void client_abort(co_sdo_client_t *client, uint32_t code)
 {
-    send_with_mux(client, CS_ABORT, code);
+    send_with_mux(client, CO_SDO_COMMAND(CO_SDO_CS_ABORT), code);
     finish(client, CO_SDO_CLIENT_CLIENT_ABORT, code);
 }
 
@@ -146,12 +145,14 @@ int co_sdo_client_upload(co_sdo_client_t *client, uint16_t index, uint8_t subind
                  (mode == CO_SDO_CLIENT_AUTO && client->pst != 0 && cap > client->pst);
     if (!block) {
         client->state = CO_SDO_CLIENT_UPLOAD_INITIATE;
-        send_with_mux(client, CCS_BYTE(CCS_UPLOAD_INITIATE), 0);
+        send_with_mux(client, CO_SDO_COMMAND(CO_SDO_CCS_UPLOAD_INITIATE), 0);
         return 0;
     }
     uint8_t pst = mode == CO_SDO_CLIENT_BLOCK ? 0 : client->pst;
     client->state = CO_SDO_CLIENT_BLOCK_UPLOAD_INITIATE;
-    send_with_mux(client, CCS_BYTE(CCS_BLOCK_UPLOAD) | BLOCK_CRC | BLOCK_UPLOAD_INITIATE,
+    send_with_mux(client,
+                  CO_SDO_COMMAND(CO_SDO_CCS_BLOCK_UPLOAD) | CO_SDO_BLOCK_CRC |
+                      CO_SDO_SUB_UPLOAD_INITIATE,
                   (uint32_t)client->upload_blksize | (uint32_t)pst << 8);
     return 0;
 }
@@ -167,12 +168,13 @@ int co_sdo_client_download(co_sdo_client_t *client, uint16_t index, uint8_t subi
         return err;
     client->tx_data = data;
     client->size = len;
-    bool expedited = mode == CO_SDO_CLIENT_AUTO && len >= 1 && len <= EXPEDITED_BYTES;
+    bool expedited = mode == CO_SDO_CLIENT_AUTO && len >= 1 && len <= CO_SDO_EXPEDITED_BYTES;
     bool block = mode == CO_SDO_CLIENT_BLOCK ||
                  (mode == CO_SDO_CLIENT_AUTO && client->pst != 0 && len > client->pst);
     if (expedited) {
-        uint8_t p[8] = {(uint8_t)(CCS_BYTE(CCS_DOWNLOAD_INITIATE) | (EXPEDITED_BYTES - len) << 2 |
-                                  SDO_EXPEDITED | SDO_SIZE_INDICATED)};
+        uint8_t p[8] = {(uint8_t)(CO_SDO_COMMAND(CO_SDO_CCS_DOWNLOAD_INITIATE) |
+                                  (CO_SDO_EXPEDITED_BYTES - len) << 2 | CO_SDO_EXPEDITED |
+                                  CO_SDO_SIZE_INDICATED)};
         co_put_u16(&p[1], index);
         p[3] = subindex;
         memcpy(&p[4], data, len);
@@ -181,12 +183,13 @@ int co_sdo_client_download(co_sdo_client_t *client, uint16_t index, uint8_t subi
     } else if (block) {
         client->state = CO_SDO_CLIENT_BLOCK_DOWNLOAD_INITIATE;
         send_with_mux(client,
-                      CCS_BYTE(CCS_BLOCK_DOWNLOAD) | BLOCK_CRC | BLOCK_SIZE_INDICATED |
-                          BLOCK_DOWNLOAD_INITIATE,
+                      CO_SDO_COMMAND(CO_SDO_CCS_BLOCK_DOWNLOAD) | CO_SDO_BLOCK_CRC |
+                          CO_SDO_BLOCK_SIZE_INDICATED | CO_SDO_SUB_DOWNLOAD_INITIATE,
                       len);
     } else {
         client->state = CO_SDO_CLIENT_DOWNLOAD_INITIATE;
-        send_with_mux(client, CCS_BYTE(CCS_DOWNLOAD_INITIATE) | SDO_SIZE_INDICATED, len);
+        send_with_mux(client, CO_SDO_COMMAND(CO_SDO_CCS_DOWNLOAD_INITIATE) | CO_SDO_SIZE_INDICATED,
+                      len);
     }
     return 0;
 }
@@ -194,7 +197,7 @@ int co_sdo_client_download(co_sdo_client_t *client, uint16_t index, uint8_t subi
 /* An initiate response must answer the request's index and sub-index. */
 static bool mux_matches(const co_sdo_client_t *client, const co_frame_t *frame)
 {
-    return frame->len >= INITIATE_LEN && co_get_u16(&frame->data[1]) == client->index &&
+    return frame->len >= CO_SDO_INITIATE_LEN && co_get_u16(&frame->data[1]) == client->index &&
            frame->data[3] == client->subindex;
 }
 
@@ -203,11 +206,12 @@ static bool mux_matches(const co_sdo_client_t *client, const co_frame_t *frame)
 static void download_send_segment(co_sdo_client_t *client)
 {
     uint32_t count = client->size - client->offset;
-    if (count > SEGMENT_BYTES)
-        count = SEGMENT_BYTES;
+    if (count > CO_SDO_SEGMENT_BYTES)
+        count = CO_SDO_SEGMENT_BYTES;
     bool last = client->offset + count == client->size;
-    uint8_t p[8] = {(uint8_t)(CCS_BYTE(CCS_DOWNLOAD_SEGMENT) | client->toggle |
-                              (SEGMENT_BYTES - count) << 1 | (last ? SDO_LAST : 0))};
+    uint8_t p[8] = {(uint8_t)(CO_SDO_COMMAND(CO_SDO_CCS_DOWNLOAD_SEGMENT) | client->toggle |
+                              (CO_SDO_SEGMENT_BYTES - count) << 1 |
+                              (last ? CO_SDO_LAST_SEGMENT : 0))};
     if (count > 0)
         memcpy(&p[1], &client->tx_data[client->offset], count);
     send_request(client, p);
@@ -216,8 +220,9 @@ static void download_send_segment(co_sdo_client_t *client)
 
 static void download_initiated(co_sdo_client_t *client, const co_frame_t *frame)
 {
-    if (frame->data[0] != SCS_DOWNLOAD_INITIATE || !mux_matches(client, frame)) {
-        client_abort(client, SDO_ABORT_COMMAND);
+    if (frame->data[0] != CO_SDO_COMMAND(CO_SDO_SCS_DOWNLOAD_INITIATE) ||
+        !mux_matches(client, frame)) {
+        client_abort(client, CO_SDO_ABORT_COMMAND);
         return;
     }
     if (client->state == CO_SDO_CLIENT_DOWNLOAD_EXPEDITED) {
@@ -232,12 +237,12 @@ static void download_initiated(co_sdo_client_t *client, const co_frame_t *frame)
  * answers; otherwise the client aborts with the code CiA 301 gives (false). */
 static bool segment_answer_valid(co_sdo_client_t *client, uint8_t command, uint8_t scs)
 {
-    if ((command & SCS_MASK) != scs) {
-        client_abort(client, SDO_ABORT_COMMAND);
+    if ((command & CO_SDO_CS_MASK) != scs) {
+        client_abort(client, CO_SDO_ABORT_COMMAND);
         return false;
     }
-    if ((command & SDO_TOGGLE) != client->toggle) {
-        client_abort(client, SDO_ABORT_TOGGLE);
+    if ((command & CO_SDO_TOGGLE) != client->toggle) {
+        client_abort(client, CO_SDO_ABORT_TOGGLE);
         return false;
     }
     return true;
@@ -246,15 +251,15 @@ static bool segment_answer_valid(co_sdo_client_t *client, uint8_t command, uint8
 static void download_segment_confirmed(co_sdo_client_t *client, const co_frame_t *frame)
 {
     uint8_t command = frame->data[0];
-    if (!segment_answer_valid(client, command, SCS_DOWNLOAD_SEGMENT))
+    if (!segment_answer_valid(client, command, CO_SDO_COMMAND(CO_SDO_SCS_DOWNLOAD_SEGMENT)))
         return;
     uint32_t count = client->size - client->offset;
-    client->offset += count > SEGMENT_BYTES ? SEGMENT_BYTES : count;
+    client->offset += count > CO_SDO_SEGMENT_BYTES ? CO_SDO_SEGMENT_BYTES : count;
     if (client->offset == client->size) {
         finish(client, CO_SDO_CLIENT_OK, 0);
         return;
     }
-    client->toggle ^= SDO_TOGGLE;
+    client->toggle ^= CO_SDO_TOGGLE;
     download_send_segment(client);
 }
 
@@ -263,7 +268,7 @@ static uint32_t upload_store(co_sdo_client_t *client, uint32_t pos, const uint8_
                              uint32_t count)
 {
     if (pos > client->capacity || count > client->capacity - pos)
-        return SDO_ABORT_NO_MEMORY;
+        return CO_SDO_ABORT_NO_MEMORY;
     if (count > 0)
         memcpy(&client->rx_data[pos], data, count);
     return CO_SDO_OK;
@@ -274,15 +279,17 @@ static uint32_t upload_store(co_sdo_client_t *client, uint32_t pos, const uint8_
 static void upload_initiated(co_sdo_client_t *client, const co_frame_t *frame)
 {
     uint8_t command = frame->data[0];
-    if ((command & SCS_MASK) != SCS_UPLOAD_INITIATE || !mux_matches(client, frame)) {
-        client_abort(client, SDO_ABORT_COMMAND);
+    if ((command & CO_SDO_CS_MASK) != CO_SDO_COMMAND(CO_SDO_SCS_UPLOAD_INITIATE) ||
+        !mux_matches(client, frame)) {
+        client_abort(client, CO_SDO_ABORT_COMMAND);
         return;
     }
-    bool size_indicated = (command & SDO_SIZE_INDICATED) != 0;
-    if (command & SDO_EXPEDITED) {
-        uint32_t count = size_indicated ? EXPEDITED_BYTES - ((command >> 2) & 3u) : EXPEDITED_BYTES;
-        uint32_t abort = frame->len < INITIATE_LEN + count
-                             ? SDO_ABORT_COMMAND
+    bool size_indicated = (command & CO_SDO_SIZE_INDICATED) != 0;
+    if (command & CO_SDO_EXPEDITED) {
+        uint32_t count = size_indicated ? CO_SDO_EXPEDITED_BYTES - ((command >> 2) & 3u)
+                                        : CO_SDO_EXPEDITED_BYTES;
+        uint32_t abort = frame->len < CO_SDO_INITIATE_LEN + count
+                             ? CO_SDO_ABORT_COMMAND
                              : upload_store(client, 0, &frame->data[4], count);
         if (abort != CO_SDO_OK) {
             client_abort(client, abort);
@@ -292,46 +299,46 @@ static void upload_initiated(co_sdo_client_t *client, const co_frame_t *frame)
         finish(client, CO_SDO_CLIENT_OK, 0);
         return;
     }
-    if (size_indicated && frame->len < INITIATE_SIZE_LEN) {
-        client_abort(client, SDO_ABORT_COMMAND);
+    if (size_indicated && frame->len < CO_SDO_INITIATE_SIZE_LEN) {
+        client_abort(client, CO_SDO_ABORT_COMMAND);
         return;
     }
     client->size_indicated = size_indicated;
     client->size = size_indicated ? co_get_u32(&frame->data[4]) : 0;
     if (size_indicated && client->size > client->capacity) {
-        client_abort(client, SDO_ABORT_NO_MEMORY);
+        client_abort(client, CO_SDO_ABORT_NO_MEMORY);
         return;
     }
     client->state = CO_SDO_CLIENT_UPLOAD_SEGMENT;
-    send_command(client, CCS_BYTE(CCS_UPLOAD_SEGMENT) | client->toggle);
+    send_command(client, CO_SDO_COMMAND(CO_SDO_CCS_UPLOAD_SEGMENT) | client->toggle);
 }
 
 static void upload_segment(co_sdo_client_t *client, const co_frame_t *frame)
 {
     uint8_t command = frame->data[0];
-    if (!segment_answer_valid(client, command, SCS_UPLOAD_SEGMENT))
+    if (!segment_answer_valid(client, command, CO_SDO_COMMAND(CO_SDO_SCS_UPLOAD_SEGMENT)))
         return;
-    uint32_t count = SEGMENT_BYTES - ((command >> 1) & 7u);
+    uint32_t count = CO_SDO_SEGMENT_BYTES - ((command >> 1) & 7u);
     uint32_t abort = frame->len < 1 + count
-                         ? SDO_ABORT_COMMAND
+                         ? CO_SDO_ABORT_COMMAND
                          : upload_store(client, client->offset, &frame->data[1], count);
     if (abort != CO_SDO_OK) {
         client_abort(client, abort);
         return;
     }
     client->offset += count;
-    bool last = (command & SDO_LAST) != 0;
+    bool last = (command & CO_SDO_LAST_SEGMENT) != 0;
     if (client->size_indicated &&
         (client->offset > client->size || (last && client->offset != client->size))) {
-        client_abort(client, SDO_ABORT_TYPE_LENGTH);
+        client_abort(client, CO_SDO_ABORT_TYPE_LENGTH);
         return;
     }
     if (last) {
         finish(client, CO_SDO_CLIENT_OK, 0);
         return;
     }
-    client->toggle ^= SDO_TOGGLE;
-    send_command(client, CCS_BYTE(CCS_UPLOAD_SEGMENT) | client->toggle);
+    client->toggle ^= CO_SDO_TOGGLE;
+    send_command(client, CO_SDO_COMMAND(CO_SDO_CCS_UPLOAD_SEGMENT) | client->toggle);
 }
 
 /* Sends up to blksize segments from client->offset, numbered from 1; the final segment of the
@@ -341,10 +348,11 @@ static void block_download_send_subblock(co_sdo_client_t *client)
     client->last_in_block = false;
     client->seqno = 0;
     for (uint8_t seqno = 1; seqno <= client->blksize && !client->last_in_block; seqno++) {
-        uint32_t pos = client->offset + (uint32_t)(seqno - 1) * SEGMENT_BYTES;
-        uint32_t count = client->size - pos < SEGMENT_BYTES ? client->size - pos : SEGMENT_BYTES;
+        uint32_t pos = client->offset + (uint32_t)(seqno - 1) * CO_SDO_SEGMENT_BYTES;
+        uint32_t count =
+            client->size - pos < CO_SDO_SEGMENT_BYTES ? client->size - pos : CO_SDO_SEGMENT_BYTES;
         client->last_in_block = pos + count == client->size;
-        uint8_t p[8] = {(uint8_t)(seqno | (client->last_in_block ? BLOCK_LAST : 0))};
+        uint8_t p[8] = {(uint8_t)(seqno | (client->last_in_block ? CO_SDO_BLOCK_LAST : 0))};
         if (count > 0)
             memcpy(&p[1], &client->tx_data[pos], count);
         send_request(client, p);
@@ -356,22 +364,22 @@ static void block_download_send_subblock(co_sdo_client_t *client)
 /* The server's block size (initiate response and every acknowledge): 1..127. */
 static bool blksize_valid(uint8_t blksize)
 {
-    return blksize >= 1 && blksize <= BLKSIZE_MAX;
+    return blksize >= 1 && blksize <= CO_SDO_BLKSIZE_MAX;
 }
 
 static void block_download_initiated(co_sdo_client_t *client, const co_frame_t *frame)
 {
     uint8_t command = frame->data[0];
-    if ((command & ~BLOCK_CRC) != SCS_BLOCK_DOWNLOAD || frame->len < 5 ||
-        !mux_matches(client, frame)) {
-        client_abort(client, SDO_ABORT_COMMAND);
+    if ((command & ~CO_SDO_BLOCK_CRC) != CO_SDO_COMMAND(CO_SDO_SCS_BLOCK_DOWNLOAD) ||
+        frame->len < 5 || !mux_matches(client, frame)) {
+        client_abort(client, CO_SDO_ABORT_COMMAND);
         return;
     }
     if (!blksize_valid(frame->data[4])) {
-        client_abort(client, SDO_ABORT_BLOCK_SIZE);
+        client_abort(client, CO_SDO_ABORT_BLOCK_SIZE);
         return;
     }
-    client->crc = (command & BLOCK_CRC) != 0;
+    client->crc = (command & CO_SDO_BLOCK_CRC) != 0;
     client->blksize = frame->data[4];
     block_download_send_subblock(client);
 }
@@ -379,9 +387,10 @@ static void block_download_initiated(co_sdo_client_t *client, const co_frame_t *
 /* CiA 301 download SDO block end: n is the number of bytes of the final segment without data. */
 static void block_download_send_end(co_sdo_client_t *client)
 {
-    uint32_t last_pos = client->offset - SEGMENT_BYTES;
-    uint32_t unused = SEGMENT_BYTES - (client->size - last_pos);
-    uint8_t p[8] = {(uint8_t)(CCS_BYTE(CCS_BLOCK_DOWNLOAD) | unused << 2 | BLOCK_DOWNLOAD_END)};
+    uint32_t last_pos = client->offset - CO_SDO_SEGMENT_BYTES;
+    uint32_t unused = CO_SDO_SEGMENT_BYTES - (client->size - last_pos);
+    uint8_t p[8] = {(uint8_t)(CO_SDO_COMMAND(CO_SDO_CCS_BLOCK_DOWNLOAD) | unused << 2 |
+                              CO_SDO_SUB_DOWNLOAD_END)};
     if (client->crc)
         co_put_u16(&p[1], co_sdo_crc16(client->tx_data, client->size));
     send_request(client, p);
@@ -393,21 +402,22 @@ static void block_download_send_end(co_sdo_client_t *client)
  * client goes on (or resends) from the segment after it with the server's new block size. */
 static void block_download_acknowledged(co_sdo_client_t *client, const co_frame_t *frame)
 {
-    if (frame->data[0] != (SCS_BLOCK_DOWNLOAD | BLOCK_DOWNLOAD_ACK) || frame->len < BLOCK_ACK_LEN) {
-        client_abort(client, SDO_ABORT_COMMAND);
+    if (frame->data[0] != (CO_SDO_COMMAND(CO_SDO_SCS_BLOCK_DOWNLOAD) | CO_SDO_SUB_DOWNLOAD_ACK) ||
+        frame->len < CO_SDO_BLOCK_ACK_LEN) {
+        client_abort(client, CO_SDO_ABORT_COMMAND);
         return;
     }
     uint8_t ackseq = frame->data[1];
     uint8_t blksize = frame->data[2];
     if (ackseq > client->seqno) {
-        client_abort(client, SDO_ABORT_SEQUENCE);
+        client_abort(client, CO_SDO_ABORT_SEQUENCE);
         return;
     }
     if (!blksize_valid(blksize)) {
-        client_abort(client, SDO_ABORT_BLOCK_SIZE);
+        client_abort(client, CO_SDO_ABORT_BLOCK_SIZE);
         return;
     }
-    client->offset += (uint32_t)ackseq * SEGMENT_BYTES;
+    client->offset += (uint32_t)ackseq * CO_SDO_SEGMENT_BYTES;
     client->blksize = blksize;
     if (ackseq == client->seqno && client->last_in_block)
         block_download_send_end(client);
@@ -417,8 +427,8 @@ static void block_download_acknowledged(co_sdo_client_t *client, const co_frame_
 
 static void block_download_ended(co_sdo_client_t *client, const co_frame_t *frame)
 {
-    if (frame->data[0] != (SCS_BLOCK_DOWNLOAD | BLOCK_DOWNLOAD_END)) {
-        client_abort(client, SDO_ABORT_COMMAND);
+    if (frame->data[0] != (CO_SDO_COMMAND(CO_SDO_SCS_BLOCK_DOWNLOAD) | CO_SDO_SUB_DOWNLOAD_END)) {
+        client_abort(client, CO_SDO_ABORT_COMMAND);
         return;
     }
     finish(client, CO_SDO_CLIENT_OK, 0);
@@ -427,40 +437,41 @@ static void block_download_ended(co_sdo_client_t *client, const co_frame_t *fram
 static void block_upload_initiated(co_sdo_client_t *client, const co_frame_t *frame)
 {
     uint8_t command = frame->data[0];
-    if ((command & SCS_MASK) == SCS_UPLOAD_INITIATE) {
+    if ((command & CO_SDO_CS_MASK) == CO_SDO_COMMAND(CO_SDO_SCS_UPLOAD_INITIATE)) {
         upload_initiated(client, frame);
         return;
     }
-    if ((command & ~(BLOCK_CRC | BLOCK_SIZE_INDICATED)) != SCS_BLOCK_UPLOAD ||
+    if ((command & ~(CO_SDO_BLOCK_CRC | CO_SDO_BLOCK_SIZE_INDICATED)) !=
+            CO_SDO_COMMAND(CO_SDO_SCS_BLOCK_UPLOAD) ||
         !mux_matches(client, frame)) {
-        client_abort(client, SDO_ABORT_COMMAND);
+        client_abort(client, CO_SDO_ABORT_COMMAND);
         return;
     }
-    bool size_indicated = (command & BLOCK_SIZE_INDICATED) != 0;
-    if (size_indicated && frame->len < INITIATE_SIZE_LEN) {
-        client_abort(client, SDO_ABORT_COMMAND);
+    bool size_indicated = (command & CO_SDO_BLOCK_SIZE_INDICATED) != 0;
+    if (size_indicated && frame->len < CO_SDO_INITIATE_SIZE_LEN) {
+        client_abort(client, CO_SDO_ABORT_COMMAND);
         return;
     }
     client->size_indicated = size_indicated;
     client->size = size_indicated ? co_get_u32(&frame->data[4]) : 0;
     if (size_indicated && client->size > client->capacity) {
-        client_abort(client, SDO_ABORT_NO_MEMORY);
+        client_abort(client, CO_SDO_ABORT_NO_MEMORY);
         return;
     }
-    client->crc = (command & BLOCK_CRC) != 0;
+    client->crc = (command & CO_SDO_BLOCK_CRC) != 0;
     client->blksize = client->upload_blksize;
     client->state = CO_SDO_CLIENT_BLOCK_UPLOAD_SUB;
-    send_command(client, CCS_BYTE(CCS_BLOCK_UPLOAD) | BLOCK_UPLOAD_START);
+    send_command(client, CO_SDO_COMMAND(CO_SDO_CCS_BLOCK_UPLOAD) | CO_SDO_SUB_UPLOAD_START);
 }
 
 /* Acknowledges the sub-block with the last segment received in sequence; the server resends
  * from the one after it. */
 static void block_upload_acknowledge(co_sdo_client_t *client)
 {
-    uint8_t p[8] = {CCS_BYTE(CCS_BLOCK_UPLOAD) | BLOCK_UPLOAD_ACK, client->seqno,
+    uint8_t p[8] = {CO_SDO_COMMAND(CO_SDO_CCS_BLOCK_UPLOAD) | CO_SDO_SUB_UPLOAD_ACK, client->seqno,
                     client->upload_blksize};
     send_request(client, p);
-    client->offset += (uint32_t)client->seqno * SEGMENT_BYTES;
+    client->offset += (uint32_t)client->seqno * CO_SDO_SEGMENT_BYTES;
     client->seqno = 0;
     client->blksize = client->upload_blksize;
     client->state =
@@ -473,21 +484,21 @@ static void block_upload_acknowledge(co_sdo_client_t *client)
  * from the segment after it. */
 static void block_upload_segment(co_sdo_client_t *client, const co_frame_t *frame)
 {
-    uint8_t seqno = frame->data[0] & BLOCK_SEQNO;
-    bool last = (frame->data[0] & BLOCK_LAST) != 0;
+    uint8_t seqno = frame->data[0] & CO_SDO_BLOCK_SEQNO;
+    bool last = (frame->data[0] & CO_SDO_BLOCK_LAST) != 0;
     if (seqno == 0 || seqno > client->blksize) {
-        client_abort(client, SDO_ABORT_SEQUENCE);
+        client_abort(client, CO_SDO_ABORT_SEQUENCE);
         return;
     }
     if (seqno == client->seqno + 1) {
-        uint32_t pos = client->offset + (uint32_t)(seqno - 1) * SEGMENT_BYTES;
+        uint32_t pos = client->offset + (uint32_t)(seqno - 1) * CO_SDO_SEGMENT_BYTES;
         /* Only the final segment may hold fewer than 7 data bytes, which the end frame's n tells:
          * until then its padding is stored only as far as the buffer goes. */
-        uint32_t count = SEGMENT_BYTES;
+        uint32_t count = CO_SDO_SEGMENT_BYTES;
         if (last && pos + count > client->capacity)
             count = pos < client->capacity ? client->capacity - pos : 0;
-        uint32_t abort = frame->len < 1 + SEGMENT_BYTES && !last
-                             ? SDO_ABORT_COMMAND
+        uint32_t abort = frame->len < 1 + CO_SDO_SEGMENT_BYTES && !last
+                             ? CO_SDO_ABORT_COMMAND
                              : upload_store(client, pos, &frame->data[1], count);
         if (abort != CO_SDO_OK) {
             client_abort(client, abort);
@@ -504,26 +515,27 @@ static void block_upload_segment(co_sdo_client_t *client, const co_frame_t *fram
 static void block_upload_ended(co_sdo_client_t *client, const co_frame_t *frame)
 {
     uint8_t command = frame->data[0];
-    if ((command & ~(7u << 2)) != (SCS_BLOCK_UPLOAD | BLOCK_UPLOAD_END) ||
-        (client->crc && frame->len < BLOCK_END_CRC_LEN)) {
-        client_abort(client, SDO_ABORT_COMMAND);
+    if ((command & ~(7u << 2)) !=
+            (CO_SDO_COMMAND(CO_SDO_SCS_BLOCK_UPLOAD) | CO_SDO_SUB_UPLOAD_END) ||
+        (client->crc && frame->len < CO_SDO_BLOCK_END_CRC_LEN)) {
+        client_abort(client, CO_SDO_ABORT_COMMAND);
         return;
     }
     uint32_t unused = (command >> 2) & 7u;
     client->offset -= unused;
     uint32_t abort = CO_SDO_OK;
     if (client->offset > client->capacity)
-        abort = SDO_ABORT_NO_MEMORY;
+        abort = CO_SDO_ABORT_NO_MEMORY;
     else if (client->size_indicated && client->offset != client->size)
-        abort = SDO_ABORT_TYPE_LENGTH;
+        abort = CO_SDO_ABORT_TYPE_LENGTH;
     else if (client->crc &&
              co_sdo_crc16(client->rx_data, client->offset) != co_get_u16(&frame->data[1]))
-        abort = SDO_ABORT_CRC;
+        abort = CO_SDO_ABORT_CRC;
     if (abort != CO_SDO_OK) {
         client_abort(client, abort);
         return;
     }
-    send_command(client, CCS_BYTE(CCS_BLOCK_UPLOAD) | BLOCK_UPLOAD_END);
+    send_command(client, CO_SDO_COMMAND(CO_SDO_CCS_BLOCK_UPLOAD) | CO_SDO_SUB_UPLOAD_END);
     finish(client, CO_SDO_CLIENT_OK, 0);
 }
 
@@ -568,7 +580,7 @@ static void dispatch(co_sdo_client_t *client, const co_frame_t *frame)
  * no code, and is reported as a general error. */
 static void server_abort(co_sdo_client_t *client, const co_frame_t *frame)
 {
-    uint32_t code = frame->len >= 8 ? co_get_u32(&frame->data[4]) : SDO_ABORT_GENERAL;
+    uint32_t code = frame->len >= 8 ? co_get_u32(&frame->data[4]) : CO_SDO_ABORT_GENERAL;
     finish(client, CO_SDO_CLIENT_SERVER_ABORT, code);
 }
 
@@ -579,7 +591,7 @@ bool co_sdo_client_receive(co_sdo_client_t *client, const co_frame_t *frame, co_
     if (client->state == CO_SDO_CLIENT_IDLE || frame->len == 0)
         return true;
     client->deadline = now + client->timeout_us;
-    if (frame->data[0] == CS_ABORT)
+    if (frame->data[0] == CO_SDO_COMMAND(CO_SDO_CS_ABORT))
         server_abort(client, frame);
     else
         dispatch(client, frame);
@@ -591,7 +603,7 @@ co_time_t co_sdo_client_process(co_sdo_client_t *client, co_time_t now)
     if (client->state == CO_SDO_CLIENT_IDLE)
         return CO_TIME_NEVER;
     if (now >= client->deadline) {
-        client_abort(client, SDO_ABORT_TIMEOUT);
+        client_abort(client, CO_SDO_ABORT_TIMEOUT);
         return client->state == CO_SDO_CLIENT_IDLE ? CO_TIME_NEVER : client->deadline;
     }
     return client->deadline;

@@ -3,14 +3,13 @@
  * of this (docs/footprint.md). The rules that are a test of the flag alone (the DLC accepted by
  * NMT, guarding and RPDOs, NMT Disconnect, the expedited-only upload) stay in their services. */
 #include "co/co_node.h"
-#include "sdo_protocol.h"
 
 #include <string.h>
 
 /* The DS301 V3 abort layout (CO_NODE_SDO_ERROR_CLASS): error class in the top byte, error code
  * below it, no additional code. Its codes for a missing sub-index and an unsupported request
  * (ATV58 CANopen card manual, "Invalid SDO transactions"); the other two are CiA 301's
- * SDO_ABORT_NO_OBJECT and SDO_ABORT_UNSUPPORTED_ACCESS. */
+ * CO_SDO_ABORT_NO_OBJECT and CO_SDO_ABORT_UNSUPPORTED_ACCESS. */
 #define SDO_ERROR_CLASS_NO_SUBINDEX 0x06090000u
 #define SDO_ERROR_CLASS_NOT_SUPPORTED 0x05030000u
 
@@ -27,9 +26,9 @@ static void send_padded(co_node_t *node, const co_frame_t *frame)
 static bool sdo_refused_initiate(uint8_t command)
 {
     uint8_t ccs = command >> 5;
-    if (ccs == CCS_UPLOAD_INITIATE)
+    if (ccs == CO_SDO_CCS_UPLOAD_INITIATE)
         return false;
-    return ccs != CCS_DOWNLOAD_INITIATE || !(command & SDO_EXPEDITED);
+    return ccs != CO_SDO_CCS_DOWNLOAD_INITIATE || !(command & CO_SDO_EXPEDITED);
 }
 
 /* CO_NODE_SDO_LONG_EXPEDITED: the length of the object itself when the write is longer and
@@ -51,13 +50,13 @@ static size_t sdo_expedited_length(const co_od_entry_t *entry, const uint8_t *va
  * supported). */
 static uint32_t sdo_abort_code(uint32_t code)
 {
-    if (code == SDO_ABORT_NO_OBJECT)
-        return SDO_ABORT_NO_OBJECT;
-    if (code == SDO_ABORT_NO_SUBINDEX)
+    if (code == CO_SDO_ABORT_NO_OBJECT)
+        return CO_SDO_ABORT_NO_OBJECT;
+    if (code == CO_SDO_ABORT_NO_SUBINDEX)
         return SDO_ERROR_CLASS_NO_SUBINDEX;
-    if ((code >> 16) == (SDO_ABORT_COMMAND >> 16) || (code >> 16) == (SDO_ABORT_TOGGLE >> 16))
+    if ((code >> 16) == (CO_SDO_ABORT_COMMAND >> 16) || (code >> 16) == (CO_SDO_ABORT_TOGGLE >> 16))
         return SDO_ERROR_CLASS_NOT_SUPPORTED;
-    return SDO_ABORT_UNSUPPORTED_ACCESS;
+    return CO_SDO_ABORT_UNSUPPORTED_ACCESS;
 }
 
 /* CO_NODE_HEARTBEAT_GRID: the first multiple of the period after `now` (a 64-bit division, which

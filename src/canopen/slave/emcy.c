@@ -168,7 +168,7 @@ static uint32_t write_history(co_node_t *node, const co_od_entry_t *entry, uint8
     if (entry->subindex != 0)
         return CO_SDO_OK;
     if (value != 0)
-        return SDO_ABORT_VALUE_RANGE;
+        return CO_SDO_ABORT_VALUE_RANGE;
     history_clear(node);
     return CO_SDO_OK;
 }

@@ -134,13 +134,14 @@ static int save_area(co_node_t *node, const store_area_t *a, uint32_t sequence, 
 /* The areas of one 1010h / 1011h write commit together when the backend can (group_begin). */
 static uint32_t group_begin(const co_storage_t *s)
 {
-    return s->group_begin != NULL && s->group_begin(s->ctx) != 0 ? SDO_ABORT_HARDWARE : CO_SDO_OK;
+    return s->group_begin != NULL && s->group_begin(s->ctx) != 0 ? CO_SDO_ABORT_HARDWARE
+                                                                 : CO_SDO_OK;
 }
 
 static uint32_t group_end(const co_storage_t *s, uint32_t abort)
 {
     if (s->group_end != NULL && s->group_end(s->ctx, abort == CO_SDO_OK) != 0 && abort == CO_SDO_OK)
-        return SDO_ABORT_HARDWARE;
+        return CO_SDO_ABORT_HARDWARE;
     return abort;
 }
 
@@ -153,7 +154,7 @@ static uint32_t save_group(co_node_t *node, uint8_t group)
     for (size_t i = 0; i < AREA_COUNT && abort == CO_SDO_OK; i++)
         if (group_has_area(group, &areas[i]) &&
             save_area(node, &areas[i], sequence++, CO_STORE_IMAGE_VALUES) != 0)
-            abort = SDO_ABORT_HARDWARE;
+            abort = CO_SDO_ABORT_HARDWARE;
     return group_end(node->storage, abort);
 }
 
@@ -174,7 +175,7 @@ static uint32_t restore_group(co_node_t *node, uint8_t group)
                      ? s->erase(s->ctx, areas[i].area)
                      : save_area(node, &areas[i], sequence, CO_STORE_IMAGE_DEFAULTS);
         if (rc != 0)
-            abort = SDO_ABORT_HARDWARE;
+            abort = CO_SDO_ABORT_HARDWARE;
     }
     return group_end(s, abort);
 }
@@ -191,7 +192,7 @@ uint32_t co_store_od_write(co_node_t *node, const co_od_entry_t *entry, const ui
     uint32_t signature = save ? CO_STORE_SIGNATURE_SAVE : CO_STORE_SIGNATURE_LOAD;
     if (co_get_u32(data) != signature || node->storage == NULL ||
         entry->subindex > STORE_GROUP_LAST)
-        return SDO_ABORT_DATA_STORE;
+        return CO_SDO_ABORT_DATA_STORE;
     uint32_t abort =
         save ? save_group(node, entry->subindex) : restore_group(node, entry->subindex);
     return abort != CO_SDO_OK ? abort : CO_OD_HANDLED;
@@ -301,13 +302,13 @@ static uint32_t record_entry(const co_node_t *node, const image_record_t *r,
     if (abort != CO_SDO_OK)
         return abort;
     if (!entry_is_stored(*entry))
-        return SDO_ABORT_DATA_STORE;
+        return CO_SDO_ABORT_DATA_STORE;
     if ((*entry)->size != r->len)
-        return SDO_ABORT_TYPE_LENGTH;
+        return CO_SDO_ABORT_TYPE_LENGTH;
     /* A value longer than the stack buffer (a string, a domain: no limits, no service rule) loads
      * in place; one with a hook cannot be checked. */
     if (r->len > CO_CONFIG_STORE_VALUE_MAX && (*entry)->hook != NULL)
-        return SDO_ABORT_NO_MEMORY;
+        return CO_SDO_ABORT_NO_MEMORY;
     return CO_SDO_OK;
 }
 
@@ -320,7 +321,7 @@ static uint32_t load_in_place(co_node_t *node, uint8_t area, const image_record_
     if (s->load_read(s->ctx, area, r->value_offset, co_od_bytes(node, e), r->len) == 0)
         return CO_SDO_OK;
     co_od_restore_defaults(node, e->index, e->index);
-    return SDO_ABORT_HARDWARE;
+    return CO_SDO_ABORT_HARDWARE;
 }
 
 typedef struct apply_pass {
@@ -354,7 +355,7 @@ static void apply_record(co_node_t *node, uint8_t area, const image_record_t *r,
     if (abort == CO_SDO_OK && r->len > sizeof(value))
         abort = load_in_place(node, area, r, e);
     else if (abort == CO_SDO_OK && s->load_read(s->ctx, area, r->value_offset, value, r->len) != 0)
-        abort = SDO_ABORT_HARDWARE;
+        abort = CO_SDO_ABORT_HARDWARE;
     else if (abort == CO_SDO_OK) {
         apply_value(node, e, value, r->len, pass);
         return;

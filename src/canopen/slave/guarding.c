@@ -2,16 +2,14 @@
  * guarding protocol" (toggle starts at 0, reset only by Reset_Communication). */
 #include "co/co_node.h"
 
-#define GUARD_COB_BASE 0x700u
 #define GUARD_COB_ID_11BIT 0x7FFu
-#define GUARD_TOGGLE 0x80u
 
 /* The CAN-ID of requests and replies: 100Eh (COB-ID node guarding, in the ATV312 manual's object
  * table) when the dictionary has it, else 700h + node-id (CiA 301 7.2.8.3.1). Heartbeat and
  * boot-up stay on 700h + node-id (nmt.c, heartbeat.c). */
 static uint32_t guarding_cob_id(const co_node_t *node)
 {
-    return co_od_param(node, 0x100E, 0, GUARD_COB_BASE + node->node_id);
+    return co_od_param(node, 0x100E, 0, CO_CAN_ID_ERROR_CONTROL + node->node_id);
 }
 
 /* The life time, guard time (100Ch, ms) times life time factor (100Dh), from now while guarding
@@ -60,7 +58,7 @@ bool co_guarding_receive(co_node_t *node, const co_frame_t *frame)
         return true;
     co_guarding_t *g = &node->guarding;
     uint8_t reply = (uint8_t)(g->toggle | (uint8_t)node->nmt_state);
-    g->toggle ^= GUARD_TOGGLE;
+    g->toggle ^= CO_GUARD_TOGGLE;
     co_node_send_byte(node, frame->id, reply);
     g->started = true;
     bool resumed = g->lost;
@@ -91,7 +89,7 @@ uint32_t co_guarding_od_write(co_node_t *node, const co_od_entry_t *entry, const
                               size_t len)
 {
     if (entry->index == 0x100E)
-        return co_get_u32(data) & ~GUARD_COB_ID_11BIT ? SDO_ABORT_VALUE_RANGE : CO_SDO_OK;
+        return co_get_u32(data) & ~GUARD_COB_ID_11BIT ? CO_SDO_ABORT_VALUE_RANGE : CO_SDO_OK;
     co_od_store(node, entry, data, len);
     restart_life_timer(node);
     return CO_OD_HANDLED;

@@ -32,7 +32,7 @@ static uint32_t write_whole(co_node_t *node, const co_od_entry_t *e, const uint8
                             size_t len)
 {
     if (len > UINT32_MAX)
-        return SDO_ABORT_LENGTH_HIGH;
+        return CO_SDO_ABORT_LENGTH_HIGH;
     const co_od_stream_t *s = co_od_stream(e);
     uint32_t abort = s->begin(node, e, true, (uint32_t)len);
     if (abort != CO_SDO_OK)
@@ -77,9 +77,9 @@ static uint32_t sdo_write(co_node_t *node, uint32_t offset, const uint8_t *data,
     co_sdo_server_t *sdo = &node->sdo;
     uint64_t end = (uint64_t)offset + len;
     if (sdo->size_indicated && end > sdo->size)
-        return SDO_ABORT_TYPE_LENGTH;
+        return CO_SDO_ABORT_TYPE_LENGTH;
     if (end > UINT32_MAX)
-        return SDO_ABORT_NO_MEMORY;
+        return CO_SDO_ABORT_NO_MEMORY;
     return co_od_stream(sdo->stream)->write(node, sdo->stream, offset, data, len);
 }
 

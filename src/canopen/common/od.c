@@ -112,13 +112,13 @@ uint32_t co_od_lookup(const co_od_t *od, uint16_t index, uint8_t subindex,
     *entry = NULL;
     if (e < od->entries + od->count && e->index == index) {
         if (e->subindex != subindex)
-            return SDO_ABORT_NO_SUBINDEX;
+            return CO_SDO_ABORT_NO_SUBINDEX;
         *entry = e;
         return CO_SDO_OK;
     }
     if (e > od->entries && e[-1].index == index)
-        return SDO_ABORT_NO_SUBINDEX;
-    return SDO_ABORT_NO_OBJECT;
+        return CO_SDO_ABORT_NO_SUBINDEX;
+    return CO_SDO_ABORT_NO_OBJECT;
 }
 
 uint8_t *co_od_bytes(const co_node_t *node, const co_od_entry_t *entry)
@@ -144,7 +144,7 @@ uint32_t co_od_read_check(co_node_t *node, uint16_t index, uint8_t subindex,
     if (abort != CO_SDO_OK)
         return abort;
     if (!((*entry)->flags & CO_OD_READ))
-        return SDO_ABORT_WRITE_ONLY;
+        return CO_SDO_ABORT_WRITE_ONLY;
     if ((*entry)->hook != NULL && (*entry)->hook->read != NULL)
         return (*entry)->hook->read(node, *entry);
     return CO_SDO_OK;
@@ -226,11 +226,11 @@ void co_od_store(co_node_t *node, const co_od_entry_t *entry, const uint8_t *dat
 static uint32_t check_length(const co_od_entry_t *e, size_t size, size_t len)
 {
     if (len > e->size)
-        return SDO_ABORT_LENGTH_HIGH;
+        return CO_SDO_ABORT_LENGTH_HIGH;
     if (size != 0 && len < e->size)
-        return SDO_ABORT_LENGTH_LOW;
+        return CO_SDO_ABORT_LENGTH_LOW;
     if (e->type == CO_DT_OCTET_STRING && len < e->size)
-        return SDO_ABORT_LENGTH_LOW;
+        return CO_SDO_ABORT_LENGTH_LOW;
     return CO_SDO_OK;
 }
 
@@ -239,7 +239,7 @@ static uint32_t check_limits(const co_od_entry_t *e, size_t size, const uint8_t 
     if (size == 0)
         return CO_SDO_OK;
     if (e->type == CO_DT_BOOLEAN && data[0] > 1)
-        return SDO_ABORT_VALUE_RANGE;
+        return CO_SDO_ABORT_VALUE_RANGE;
     if (e->limits == NULL || e->type == CO_DT_REAL32 || e->type == CO_DT_REAL64)
         return CO_SDO_OK;
     uint64_t value = (uint64_t)typed_value(data, size, e->type);
@@ -250,9 +250,9 @@ static uint32_t check_limits(const co_od_entry_t *e, size_t size, const uint8_t 
     uint64_t bias = type_is_signed(e->type) ? UINT64_C(1) << 63 : 0;
     uint64_t v = value ^ bias;
     if (v > (e->limits->high ^ bias))
-        return SDO_ABORT_VALUE_HIGH;
+        return CO_SDO_ABORT_VALUE_HIGH;
     if (v < (e->limits->low ^ bias))
-        return SDO_ABORT_VALUE_LOW;
+        return CO_SDO_ABORT_VALUE_LOW;
     return CO_SDO_OK;
 }
 
@@ -302,7 +302,7 @@ uint32_t co_od_write_entry(co_node_t *node, const co_od_entry_t *e, const uint8_
 {
     uint32_t abort;
     if (!(e->flags & CO_OD_WRITE) && origin != CO_OD_ORIGIN_APP)
-        return SDO_ABORT_READ_ONLY;
+        return CO_SDO_ABORT_READ_ONLY;
     if (e->flags & CO_OD_STREAM)
         return node->od->streaming->write(node, e, data, len);
     size_t size = co_od_type_size(e->type);

@@ -1,10 +1,8 @@
 /* Heartbeat producer (1017h) and consumers (1016h), CiA 301 section 7.2.8.3.2. */
 #include "co/co_node.h"
 
-#define HB_COB_BASE 0x700u
 #define HB_TIME_MASK 0xFFFFu
 #define HB_RESERVED_MASK 0xFF000000u /* CiA 301 1016h value definition: bits 24..31 are 0 */
-#define NODE_ID_MAX 127u
 
 static uint32_t consumer_node(uint32_t value)
 {
@@ -15,7 +13,7 @@ static uint32_t consumer_node(uint32_t value)
 static bool consumer_in_use(uint32_t value)
 {
     uint32_t id = consumer_node(value);
-    return (value & HB_TIME_MASK) != 0 && id >= 1 && id <= NODE_ID_MAX;
+    return (value & HB_TIME_MASK) != 0 && id >= 1 && id <= CO_NODE_ID_MAX;
 }
 
 static co_time_t producer_period_us(uint16_t ms)
@@ -42,34 +40,6 @@ static void producer_restart(co_node_t *node, uint16_t ms)
     co_heartbeat_t *hb = &node->heartbeat;
     hb->period = producer_period_us(ms);
     hb->next_beat = ms != 0 ? beat_after(node, node->now, hb->period) : CO_TIME_NEVER;
-}
-
-void co_hb_monitor_configure(co_hb_monitor_t *monitor, uint32_t time_us)
-{
-    monitor->time_us = time_us;
-    monitor->monitoring = false;
-    monitor->lost = false;
-    monitor->deadline = CO_TIME_NEVER;
-}
-
-bool co_hb_monitor_alive(co_hb_monitor_t *monitor, co_time_t now)
-{
-    if (monitor->time_us == 0)
-        return false;
-    monitor->monitoring = true;
-    monitor->deadline = now + monitor->time_us;
-    bool resumed = monitor->lost;
-    monitor->lost = false;
-    return resumed;
-}
-
-bool co_hb_monitor_expired(co_hb_monitor_t *monitor, co_time_t now)
-{
-    if (now < monitor->deadline)
-        return false;
-    monitor->lost = true;
-    monitor->deadline = CO_TIME_NEVER;
-    return true;
 }
 
 /* The earliest deadline of the consumers, kept exact after every change of one of them, so that a
@@ -115,10 +85,11 @@ static void report(co_node_t *node, uint8_t producer, bool lost)
 bool co_heartbeat_receive(co_node_t *node, const co_frame_t *frame)
 {
     /* A heartbeat (or boot-up) is exactly one data byte. */
-    if (frame->id <= HB_COB_BASE || frame->id > HB_COB_BASE + NODE_ID_MAX ||
-        (frame->flags & CO_FRAME_RTR) || frame->len != 1)
+    if (frame->id <= CO_CAN_ID_ERROR_CONTROL ||
+        frame->id > CO_CAN_ID_ERROR_CONTROL + CO_NODE_ID_MAX || (frame->flags & CO_FRAME_RTR) ||
+        frame->len != 1)
         return false;
-    uint8_t producer = (uint8_t)(frame->id - HB_COB_BASE);
+    uint8_t producer = (uint8_t)(frame->id - CO_CAN_ID_ERROR_CONTROL);
     bool consumed = false;
     for (uint8_t i = 0; i < CO_CONFIG_HB_CONSUMERS; i++) {
         co_hb_consumer_t *c = &node->heartbeat.consumer[i];
@@ -153,7 +124,7 @@ static co_time_t producer_process(co_node_t *node, co_time_t now)
     co_heartbeat_t *hb = &node->heartbeat;
     if (now < hb->next_beat)
         return hb->next_beat;
-    co_node_send_byte(node, HB_COB_BASE + node->node_id, (uint8_t)node->nmt_state);
+    co_node_send_byte(node, CO_CAN_ID_ERROR_CONTROL + node->node_id, (uint8_t)node->nmt_state);
     /* One period after the beat that was due, so the period stays exact; a late call skips the
      * beats it missed. */
     hb->next_beat += hb->period;
@@ -179,7 +150,7 @@ static uint32_t check_duplicate_consumer(co_node_t *node, uint8_t subindex, uint
             continue;
         uint32_t v = (uint32_t)co_od_get(node, other);
         if (consumer_in_use(v) && consumer_node(v) == consumer_node(value))
-            return SDO_ABORT_PARAM_INCOMPATIBLE;
+            return CO_SDO_ABORT_PARAM_INCOMPATIBLE;
     }
     return CO_SDO_OK;
 }
@@ -187,13 +158,13 @@ static uint32_t check_duplicate_consumer(co_node_t *node, uint8_t subindex, uint
 static uint32_t write_consumer(co_node_t *node, uint8_t subindex, uint32_t value)
 {
     if (value & HB_RESERVED_MASK)
-        return SDO_ABORT_VALUE_RANGE;
+        return CO_SDO_ABORT_VALUE_RANGE;
     uint32_t abort = check_duplicate_consumer(node, subindex, value);
     if (abort != CO_SDO_OK)
         return abort;
     if (subindex > CO_CONFIG_HB_CONSUMERS) {
         /* The dictionary has more entries than the node can monitor: refuse to enable one. */
-        return consumer_in_use(value) ? SDO_ABORT_INTERNAL_INCOMPATIBLE : CO_SDO_OK;
+        return consumer_in_use(value) ? CO_SDO_ABORT_INTERNAL_INCOMPATIBLE : CO_SDO_OK;
     }
     consumer_configure(&node->heartbeat, (uint8_t)(subindex - 1), value);
     return CO_SDO_OK;

@@ -2,10 +2,6 @@
  * sections 7.2.8.2.1 and 7.2.8.3). */
 #include "co/co_nmt_master.h"
 
-#define NMT_COB_ID 0x000u
-#define ERROR_CONTROL_COB_BASE 0x700u
-#define GUARD_TOGGLE 0x80u
-#define GUARD_STATE_MASK 0x7Fu
 #define BOOT_UP_STATE 0x00u
 /* A guarding request asks for the 1-byte reply: classic CAN remote frames carry the length of the
  * data they request, and two masters requesting with different DLCs would collide on the bus. */
@@ -71,7 +67,7 @@ bool co_nmt_master_command(co_nmt_master_t *master, uint8_t command, uint8_t nod
 {
     if (!command_valid(command) || node_id > CO_NMT_MASTER_NODE_ID_MAX)
         return false;
-    co_frame_t frame = {.id = NMT_COB_ID, .len = 2, .data = {command, node_id}};
+    co_frame_t frame = {.id = CO_CAN_ID_NMT, .len = 2, .data = {command, node_id}};
     master->send(master->user, &frame);
     /* A reset communication (also part of a reset node) sets the slave's toggle back to 0
      * (CiA 301 7.2.8.3.1). */
@@ -155,9 +151,9 @@ static void receive_boot_up(co_nmt_master_t *master, uint8_t node_id, co_time_t 
 static void receive_guarding_reply(co_nmt_master_t *master, uint8_t node_id, uint8_t data)
 {
     co_nmt_master_slave_t *slave = slave_of(master, node_id);
-    uint8_t toggle = data & GUARD_TOGGLE;
+    uint8_t toggle = data & CO_GUARD_TOGGLE;
     bool valid = toggle == slave->expected_toggle;
-    slave->expected_toggle = toggle ^ GUARD_TOGGLE;
+    slave->expected_toggle = toggle ^ CO_GUARD_TOGGLE;
     if (!valid)
         return;
     slave->answered = true;
@@ -166,7 +162,7 @@ static void receive_guarding_reply(co_nmt_master_t *master, uint8_t node_id, uin
         slave->guarding_lost = false;
         report(master, CO_NMT_MASTER_RESUMED, node_id, slave->state);
     }
-    set_state(master, node_id, data & GUARD_STATE_MASK);
+    set_state(master, node_id, data & CO_NMT_STATE_MASK);
 }
 
 static void receive_heartbeat(co_nmt_master_t *master, uint8_t node_id, uint8_t state,
@@ -178,22 +174,22 @@ static void receive_heartbeat(co_nmt_master_t *master, uint8_t node_id, uint8_t 
 
 bool co_nmt_master_receive(co_nmt_master_t *master, const co_frame_t *frame, co_time_t now)
 {
-    if (frame->id <= ERROR_CONTROL_COB_BASE ||
-        frame->id > ERROR_CONTROL_COB_BASE + CO_NMT_MASTER_NODE_ID_MAX ||
+    if (frame->id <= CO_CAN_ID_ERROR_CONTROL ||
+        frame->id > CO_CAN_ID_ERROR_CONTROL + CO_NMT_MASTER_NODE_ID_MAX ||
         (frame->flags & (CO_FRAME_RTR | CO_FRAME_EFF)) || frame->len != 1)
         return false;
-    uint8_t node_id = (uint8_t)(frame->id - ERROR_CONTROL_COB_BASE);
+    uint8_t node_id = (uint8_t)(frame->id - CO_CAN_ID_ERROR_CONTROL);
     uint8_t data = frame->data[0];
     if (data == BOOT_UP_STATE) {
         receive_boot_up(master, node_id, now);
         return true;
     }
-    if (!state_valid(data & GUARD_STATE_MASK))
+    if (!state_valid(data & CO_NMT_STATE_MASK))
         return false;
     if (guarded(slave_of(master, node_id)))
         receive_guarding_reply(master, node_id, data);
     else
-        receive_heartbeat(master, node_id, data & GUARD_STATE_MASK, now);
+        receive_heartbeat(master, node_id, data & CO_NMT_STATE_MASK, now);
     return true;
 }
 
@@ -221,7 +217,7 @@ static void guarding_tick(co_nmt_master_t *master, uint8_t node_id)
     slave->requested = true;
     slave->answered = false;
     co_frame_t request = {
-        .id = ERROR_CONTROL_COB_BASE + node_id, .len = GUARD_REQUEST_DLC, .flags = CO_FRAME_RTR};
+        .id = CO_CAN_ID_ERROR_CONTROL + node_id, .len = GUARD_REQUEST_DLC, .flags = CO_FRAME_RTR};
     master->send(master->user, &request);
 }
 

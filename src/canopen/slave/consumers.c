@@ -3,19 +3,10 @@
  * to read them again. */
 #include "co/co_consumers.h"
 
-#define NMT_COB_ID 0x000u
-#define GUARD_COB_BASE 0x700u
-#define HB_COB_BASE 0x700u
 #define CAN_ID_11BIT 0x7FFu
 
 /* Object indexes whose values decide the consumed set (CiA 301 7.5.2). */
-#define IDX_SYNC_COB_ID 0x1005u
-#define IDX_GUARD_COB_ID 0x100Eu
-#define IDX_HB_CONSUMER 0x1016u
-#define IDX_SDO_SERVER_FIRST 0x1200u
 #define IDX_SDO_SERVER_LAST 0x12FFu
-#define IDX_PDO_FIRST 0x1400u
-#define IDX_PDO_LAST 0x1BFFu
 
 typedef struct cob_set {
     co_cob_t *cobs;
@@ -36,15 +27,16 @@ static void add(cob_set_t *set, uint32_t can_id, bool rtr)
 
 static void add_sync(const co_node_t *node, cob_set_t *set)
 {
-    const co_od_entry_t *e = co_od_find(node->od, IDX_SYNC_COB_ID, 0);
+    const co_od_entry_t *e = co_od_find(node->od, CO_IDX_SYNC_COB_ID, 0);
     if (e != NULL)
         add(set, (uint32_t)co_od_get(node, e) & CO_SYNC_COBID_CAN_ID, false);
 }
 
 static void add_guarding(const co_node_t *node, cob_set_t *set)
 {
-    const co_od_entry_t *e = co_od_find(node->od, IDX_GUARD_COB_ID, 0);
-    add(set, e != NULL ? (uint32_t)co_od_get(node, e) : GUARD_COB_BASE + node->node_id, true);
+    const co_od_entry_t *e = co_od_find(node->od, CO_IDX_GUARD_COB_ID, 0);
+    add(set, e != NULL ? (uint32_t)co_od_get(node, e) : CO_CAN_ID_ERROR_CONTROL + node->node_id,
+        true);
 }
 
 static void add_pdos(const co_node_t *node, cob_set_t *set)
@@ -66,7 +58,7 @@ static void add_heartbeats(const co_node_t *node, cob_set_t *set)
     for (size_t i = 0; i < CO_CONFIG_HB_CONSUMERS; i++) {
         uint8_t producer = node->heartbeat.consumer[i].node_id;
         if (producer != 0)
-            add(set, HB_COB_BASE + producer, false);
+            add(set, CO_CAN_ID_ERROR_CONTROL + producer, false);
     }
 }
 
@@ -75,7 +67,7 @@ size_t co_node_consumers(const co_node_t *node, co_cob_t *cobs)
     cob_set_t set = {.cobs = cobs, .count = 0};
     if (node->nmt_state == CO_NMT_INITIALISING)
         return 0;
-    add(&set, NMT_COB_ID, false);
+    add(&set, CO_CAN_ID_NMT, false);
     add_sync(node, &set);
     add(&set, node->sdo.rx_id, false);
     add_guarding(node, &set);
@@ -102,8 +94,9 @@ void co_consumers_changed(co_node_t *node)
 
 void co_consumers_written(co_node_t *node, uint16_t index)
 {
-    if (index == IDX_SYNC_COB_ID || index == IDX_GUARD_COB_ID || index == IDX_HB_CONSUMER ||
-        (index >= IDX_SDO_SERVER_FIRST && index <= IDX_SDO_SERVER_LAST) ||
-        (index >= IDX_PDO_FIRST && index <= IDX_PDO_LAST))
+    if (index == CO_IDX_SYNC_COB_ID || index == CO_IDX_GUARD_COB_ID ||
+        index == CO_IDX_HB_CONSUMER ||
+        (index >= CO_IDX_SDO_SERVER && index <= IDX_SDO_SERVER_LAST) ||
+        (index >= CO_PDO_RPDO_COMM && index <= CO_PDO_LAST_INDEX))
         co_consumers_changed(node);
 }

@@ -70,15 +70,15 @@ static uint32_t map_entry_decode(const co_node_t *node, uint32_t value, pdo_dir_
     *entry = NULL;
     if (dir == PDO_RX && map_entry_is_dummy(node->od, index, subindex)) {
         if (bits != co_od_type_size((uint8_t)index) * 8u)
-            return SDO_ABORT_PARAM_INCOMPATIBLE;
+            return CO_SDO_ABORT_PARAM_INCOMPATIBLE;
         *size = (uint8_t)(bits / 8u);
         return CO_SDO_OK;
     }
     const co_od_entry_t *e = co_od_find(node->od, index, subindex);
     if (e == NULL || !(e->flags & (dir == PDO_RX ? CO_OD_RPDO : CO_OD_TPDO)))
-        return SDO_ABORT_NOT_MAPPABLE;
+        return CO_SDO_ABORT_NOT_MAPPABLE;
     if (bits != (uint32_t)e->size * 8u)
-        return SDO_ABORT_PARAM_INCOMPATIBLE;
+        return CO_SDO_ABORT_PARAM_INCOMPATIBLE;
     *entry = e;
     *size = (uint8_t)e->size;
     return CO_SDO_OK;
@@ -90,12 +90,12 @@ static uint32_t map_load(const co_node_t *node, uint16_t map_index, uint8_t coun
 {
     memset(map, 0, sizeof(*map));
     if (count > CO_CONFIG_PDO_MAP_MAX)
-        return SDO_ABORT_PDO_LENGTH;
+        return CO_SDO_ABORT_PDO_LENGTH;
     uint32_t bits = 0;
     for (uint8_t i = 0; i < count; i++) {
         const co_od_entry_t *slot = co_od_find(node->od, map_index, (uint8_t)(i + 1));
         if (slot == NULL)
-            return SDO_ABORT_PDO_LENGTH;
+            return CO_SDO_ABORT_PDO_LENGTH;
         uint32_t abort = map_entry_decode(node, (uint32_t)co_od_get(node, slot), dir,
                                           &map->entry[i], &map->size[i]);
         if (abort != CO_SDO_OK)
@@ -103,7 +103,7 @@ static uint32_t map_load(const co_node_t *node, uint16_t map_index, uint8_t coun
         bits += map->size[i] * 8u;
     }
     if (bits > PDO_MAX_BITS)
-        return SDO_ABORT_PDO_LENGTH;
+        return CO_SDO_ABORT_PDO_LENGTH;
     map->count = count;
     map->length = (uint8_t)(bits / 8u);
     return CO_SDO_OK;
@@ -510,13 +510,13 @@ static uint32_t pdo_write_cob_id(const co_node_t *node, uint16_t comm, uint32_t 
                                  uint32_t value, pdo_dir_t dir)
 {
     if (!pdo_cob_id_valid(value))
-        return value & ~CO_COB_ID_ALLOWED ? SDO_ABORT_VALUE_RANGE : CO_SDO_OK;
+        return value & ~CO_COB_ID_ALLOWED ? CO_SDO_ABORT_VALUE_RANGE : CO_SDO_OK;
     uint32_t abort = co_cob_id_check(cob_id, value, CO_PDO_COBID_INVALID, 0);
     if (abort != CO_SDO_OK)
         return abort;
     uint8_t type = (uint8_t)co_od_param(node, comm, PDO_SUB_TYPE, CO_PDO_TYPE_EVENT_PROFILE);
     if (dir == PDO_TX && (value & CO_PDO_COBID_NO_RTR) && tpdo_type_is_rtr(type))
-        return SDO_ABORT_VALUE_RANGE;
+        return CO_SDO_ABORT_VALUE_RANGE;
     return CO_SDO_OK;
 }
 
@@ -524,9 +524,9 @@ static uint32_t pdo_write_cob_id(const co_node_t *node, uint16_t comm, uint32_t 
 static uint32_t pdo_write_type(uint32_t cob_id, uint8_t type, pdo_dir_t dir)
 {
     if (type > CO_PDO_TYPE_SYNC_MAX && type < CO_PDO_TYPE_RTR_SYNC)
-        return SDO_ABORT_VALUE_RANGE;
+        return CO_SDO_ABORT_VALUE_RANGE;
     if (tpdo_type_is_rtr(type) && (dir == PDO_RX || (cob_id & CO_PDO_COBID_NO_RTR)))
-        return SDO_ABORT_VALUE_RANGE;
+        return CO_SDO_ABORT_VALUE_RANGE;
     return CO_SDO_OK;
 }
 
@@ -552,12 +552,12 @@ static uint32_t pdo_write_comm(co_node_t *node, const co_od_entry_t *entry, cons
         return pdo_write_type(cob_id, (uint8_t)value, dir);
     case PDO_SUB_INHIBIT:
         /* CiA 301 table 72: the inhibit time may only change while the PDO is invalid. */
-        return dir == PDO_TX && valid ? SDO_ABORT_VALUE_RANGE : CO_SDO_OK;
+        return dir == PDO_TX && valid ? CO_SDO_ABORT_VALUE_RANGE : CO_SDO_OK;
     case PDO_SUB_SYNC_START:
         /* CiA 301 7.5.2.37: 0..240, only while the PDO is invalid. */
         if (dir == PDO_TX && valid)
-            return SDO_ABORT_VALUE_RANGE;
-        return value > CO_PDO_TYPE_SYNC_MAX ? SDO_ABORT_VALUE_RANGE : CO_SDO_OK;
+            return CO_SDO_ABORT_VALUE_RANGE;
+        return value > CO_PDO_TYPE_SYNC_MAX ? CO_SDO_ABORT_VALUE_RANGE : CO_SDO_OK;
     default:
         return CO_SDO_OK;
     }
@@ -571,13 +571,13 @@ static uint32_t pdo_write_map(co_node_t *node, const co_od_entry_t *entry, const
 {
     uint32_t value = entry_value(entry, data);
     if (pdo_cob_id_valid(pdo_cob_id(node, comm)))
-        return SDO_ABORT_UNSUPPORTED_ACCESS;
+        return CO_SDO_ABORT_UNSUPPORTED_ACCESS;
     if (entry->subindex == 0) {
         co_pdo_map_t map;
         return map_load(node, entry->index, (uint8_t)value, dir, &map);
     }
     if (co_od_param(node, entry->index, 0, 0) != 0)
-        return SDO_ABORT_UNSUPPORTED_ACCESS;
+        return CO_SDO_ABORT_UNSUPPORTED_ACCESS;
     if (value == 0)
         return CO_SDO_OK;
     const co_od_entry_t *mapped;

@@ -7,25 +7,8 @@
  * application as they go, and its download's end is reported to the application however the
  * transfer ends. */
 #include "co/co_node.h"
-#include "sdo_protocol.h"
 
 #include <string.h>
-
-/* Continues a CRC over more bytes, so that a streamed value's CRC is built segment by segment. */
-static uint16_t crc16_update(uint16_t crc, const uint8_t *data, size_t len)
-{
-    for (size_t i = 0; i < len; i++) {
-        crc ^= (uint16_t)(data[i] << 8);
-        for (int bit = 0; bit < 8; bit++)
-            crc = (crc & 0x8000u) ? (uint16_t)((crc << 1) ^ 0x1021u) : (uint16_t)(crc << 1);
-    }
-    return crc;
-}
-
-uint16_t co_sdo_crc16(const uint8_t *data, size_t len)
-{
-    return crc16_update(0, data, len);
-}
 
 static bool in_download(const co_sdo_server_t *sdo)
 {
@@ -72,7 +55,7 @@ static uint32_t value_write(co_node_t *node, uint32_t offset, const uint8_t *dat
     if (sdo->stream != NULL)
         return node->od->streaming->sdo_write(node, offset, data, len);
     if (len > sdo->buffer->size || offset > sdo->buffer->size - len)
-        return SDO_ABORT_NO_MEMORY;
+        return CO_SDO_ABORT_NO_MEMORY;
     memcpy(&sdo->buffer->data[offset], data, len);
     return CO_SDO_OK;
 }
@@ -82,9 +65,9 @@ static uint32_t buffer_take(co_node_t *node, uint32_t size)
 {
     co_sdo_buffer_t *buffer = node->sdo.buffer;
     if (buffer->owner != NULL && buffer->owner != node)
-        return SDO_ABORT_NO_RESOURCE;
+        return CO_SDO_ABORT_NO_RESOURCE;
     if (size > buffer->size)
-        return SDO_ABORT_NO_MEMORY;
+        return CO_SDO_ABORT_NO_MEMORY;
     buffer->owner = node;
     return CO_SDO_OK;
 }
@@ -99,8 +82,8 @@ void co_sdo_reset(co_node_t *node)
 {
     co_sdo_server_t *sdo = &node->sdo;
     transfer_idle(node);
-    sdo->rx_id = channel_cob_id(node, 1, (uint16_t)(0x600u + node->node_id));
-    sdo->tx_id = channel_cob_id(node, 2, (uint16_t)(0x580u + node->node_id));
+    sdo->rx_id = channel_cob_id(node, 1, (uint16_t)(CO_CAN_ID_SDO_RX + node->node_id));
+    sdo->tx_id = channel_cob_id(node, 2, (uint16_t)(CO_CAN_ID_SDO_TX + node->node_id));
 }
 
 void co_sdo_set_timeout(co_node_t *node, co_time_t timeout_us)
@@ -129,7 +112,7 @@ static void transfer_abort(co_node_t *node, uint32_t code)
 {
     if (node->options & CO_NODE_SDO_ERROR_CLASS)
         code = node->options_code->sdo_abort_code(code);
-    send_with_mux(node, CS_ABORT, code);
+    send_with_mux(node, CO_SDO_COMMAND(CO_SDO_CS_ABORT), code);
     transfer_idle(node);
 }
 
@@ -156,15 +139,15 @@ static uint32_t finish(co_node_t *node, uint32_t abort, uint8_t command, bool wi
 static uint32_t download_prepare(co_node_t *node, const co_frame_t *frame, bool size_indicated)
 {
     co_sdo_server_t *sdo = &node->sdo;
-    if (size_indicated && frame->len < INITIATE_SIZE_LEN)
-        return SDO_ABORT_COMMAND;
+    if (size_indicated && frame->len < CO_SDO_INITIATE_SIZE_LEN)
+        return CO_SDO_ABORT_COMMAND;
     sdo->size_indicated = size_indicated;
     sdo->size = size_indicated ? co_get_u32(&frame->data[4]) : 0;
     sdo->offset = 0;
     const co_od_entry_t *e;
     uint32_t abort = co_od_lookup(node->od, sdo->index, sdo->subindex, &e);
     if (abort == CO_SDO_OK && !(e->flags & CO_OD_WRITE))
-        abort = SDO_ABORT_READ_ONLY;
+        abort = CO_SDO_ABORT_READ_ONLY;
     if (abort != CO_SDO_OK)
         return abort;
     if (!(e->flags & CO_OD_STREAM))
@@ -179,7 +162,7 @@ static uint32_t unindicated_length(co_node_t *node, size_t *len)
     const co_od_entry_t *e;
     uint32_t abort = co_od_lookup(node->od, node->sdo.index, node->sdo.subindex, &e);
     size_t fixed = abort == CO_SDO_OK ? co_od_type_size(e->type) : 0;
-    *len = fixed != 0 && fixed <= EXPEDITED_BYTES ? fixed : EXPEDITED_BYTES;
+    *len = fixed != 0 && fixed <= CO_SDO_EXPEDITED_BYTES ? fixed : CO_SDO_EXPEDITED_BYTES;
     return abort;
 }
 
@@ -196,26 +179,26 @@ static uint32_t download_initiate(co_node_t *node, const co_frame_t *frame)
 {
     co_sdo_server_t *sdo = &node->sdo;
     uint8_t command = frame->data[0];
-    if (command & SDO_EXPEDITED) {
-        size_t len = EXPEDITED_BYTES - ((command >> 2) & 3u);
+    if (command & CO_SDO_EXPEDITED) {
+        size_t len = CO_SDO_EXPEDITED_BYTES - ((command >> 2) & 3u);
         uint32_t abort = CO_SDO_OK;
-        if (!(command & SDO_SIZE_INDICATED))
+        if (!(command & CO_SDO_SIZE_INDICATED))
             abort = unindicated_length(node, &len);
-        if (abort == CO_SDO_OK && frame->len < INITIATE_LEN + len)
-            abort = SDO_ABORT_COMMAND;
+        if (abort == CO_SDO_OK && frame->len < CO_SDO_INITIATE_LEN + len)
+            abort = CO_SDO_ABORT_COMMAND;
         if (abort == CO_SDO_OK)
             len = without_zero_extension(node, &frame->data[4], len);
         if (abort == CO_SDO_OK)
             abort = co_od_write(node, sdo->index, sdo->subindex, &frame->data[4], len,
                                 CO_OD_ORIGIN_SDO);
-        return finish(node, abort, SCS_DOWNLOAD_INITIATE, true);
+        return finish(node, abort, CO_SDO_COMMAND(CO_SDO_SCS_DOWNLOAD_INITIATE), true);
     }
-    uint32_t abort = download_prepare(node, frame, (command & SDO_SIZE_INDICATED) != 0);
+    uint32_t abort = download_prepare(node, frame, (command & CO_SDO_SIZE_INDICATED) != 0);
     if (abort != CO_SDO_OK)
         return abort;
     sdo->toggle = 0;
     sdo->state = CO_SDO_DOWNLOAD_SEGMENT;
-    send_with_mux(node, SCS_DOWNLOAD_INITIATE, 0);
+    send_with_mux(node, CO_SDO_COMMAND(CO_SDO_SCS_DOWNLOAD_INITIATE), 0);
     return CO_SDO_OK;
 }
 
@@ -226,7 +209,7 @@ static uint32_t download_complete(co_node_t *node)
 {
     co_sdo_server_t *sdo = &node->sdo;
     if (sdo->size_indicated && sdo->offset != sdo->size)
-        return SDO_ABORT_TYPE_LENGTH;
+        return CO_SDO_ABORT_TYPE_LENGTH;
     if (sdo->stream != NULL)
         return node->od->streaming->sdo_commit(node);
     return co_od_write(node, sdo->index, sdo->subindex, sdo->buffer->data, sdo->offset,
@@ -248,11 +231,12 @@ static uint32_t upload_snapshot(co_node_t *node, const co_od_entry_t *entry)
 
 static void upload_expedited(co_node_t *node, const uint8_t *value, size_t len)
 {
-    uint8_t data[EXPEDITED_BYTES] = {0}; /* the bytes after the value are 0 */
+    uint8_t data[CO_SDO_EXPEDITED_BYTES] = {0}; /* the bytes after the value are 0 */
     memcpy(data, value, len);
     send_with_mux(node,
-                  (uint8_t)(SCS_UPLOAD_INITIATE | ((EXPEDITED_BYTES - len) << 2) | SDO_EXPEDITED |
-                            SDO_SIZE_INDICATED),
+                  (uint8_t)(CO_SDO_COMMAND(CO_SDO_SCS_UPLOAD_INITIATE) |
+                            ((CO_SDO_EXPEDITED_BYTES - len) << 2) | CO_SDO_EXPEDITED |
+                            CO_SDO_SIZE_INDICATED),
                   co_get_u32(data));
     transfer_idle(node);
 }
@@ -268,7 +252,7 @@ static uint32_t upload_open(co_node_t *node, const co_od_entry_t *entry)
 
 static bool fits_expedited(uint32_t size)
 {
-    return size >= 1 && size <= EXPEDITED_BYTES;
+    return size >= 1 && size <= CO_SDO_EXPEDITED_BYTES;
 }
 
 /* Expedited when 1..4 bytes, else segmented with the size indicated (an empty string too): a
@@ -277,7 +261,7 @@ static uint32_t upload_response(co_node_t *node)
 {
     co_sdo_server_t *sdo = &node->sdo;
     if (fits_expedited(sdo->size)) {
-        uint8_t value[EXPEDITED_BYTES];
+        uint8_t value[CO_SDO_EXPEDITED_BYTES];
         uint32_t abort = value_read(node, 0, value, sdo->size);
         if (abort == CO_SDO_OK)
             upload_expedited(node, value, sdo->size);
@@ -286,7 +270,8 @@ static uint32_t upload_response(co_node_t *node)
     sdo->offset = 0;
     sdo->toggle = 0;
     sdo->state = CO_SDO_UPLOAD_SEGMENT;
-    send_with_mux(node, SCS_UPLOAD_INITIATE | SDO_SIZE_INDICATED, sdo->size);
+    send_with_mux(node, CO_SDO_COMMAND(CO_SDO_SCS_UPLOAD_INITIATE) | CO_SDO_SIZE_INDICATED,
+                  sdo->size);
     return CO_SDO_OK;
 }
 
@@ -303,17 +288,17 @@ static uint32_t upload_initiate(co_node_t *node)
     bool expedited_only = (node->options & CO_NODE_SDO_EXPEDITED_ONLY) != 0;
     if (!(e->flags & CO_OD_STREAM)) {
         size_t len = co_od_length(node, e);
-        if (len >= 1 && len <= EXPEDITED_BYTES) {
+        if (len >= 1 && len <= CO_SDO_EXPEDITED_BYTES) {
             upload_expedited(node, co_od_bytes(node, e), len);
             return CO_SDO_OK;
         }
         /* Refused before the snapshot would take the buffer. */
         if (expedited_only)
-            return SDO_ABORT_UNSUPPORTED_ACCESS;
+            return CO_SDO_ABORT_UNSUPPORTED_ACCESS;
     }
     abort = upload_open(node, e);
     if (abort == CO_SDO_OK && expedited_only && !fits_expedited(sdo->size))
-        abort = SDO_ABORT_UNSUPPORTED_ACCESS;
+        abort = CO_SDO_ABORT_UNSUPPORTED_ACCESS;
     if (abort != CO_SDO_OK)
         return abort;
     return upload_response(node);
@@ -326,32 +311,33 @@ static uint32_t transfer_segment(co_node_t *node, const co_frame_t *frame)
 {
     co_sdo_server_t *sdo = &node->sdo;
     uint8_t command = frame->data[0];
-    uint8_t toggle = command & SDO_TOGGLE;
+    uint8_t toggle = command & CO_SDO_TOGGLE;
     if (toggle != sdo->toggle)
-        return SDO_ABORT_TOGGLE;
+        return CO_SDO_ABORT_TOGGLE;
     bool upload = sdo->state == CO_SDO_UPLOAD_SEGMENT;
     uint8_t p[8] = {0};
     uint32_t count;
     bool last;
     uint32_t abort;
     if (upload) {
-        count = sdo->size - sdo->offset < SEGMENT_BYTES ? sdo->size - sdo->offset : SEGMENT_BYTES;
+        count = sdo->size - sdo->offset < CO_SDO_SEGMENT_BYTES ? sdo->size - sdo->offset
+                                                               : CO_SDO_SEGMENT_BYTES;
         last = sdo->offset + count == sdo->size;
-        p[0] = (uint8_t)(SCS_UPLOAD_SEGMENT | toggle | ((SEGMENT_BYTES - count) << 1) |
-                         (last ? SDO_LAST : 0));
+        p[0] = (uint8_t)(CO_SDO_COMMAND(CO_SDO_SCS_UPLOAD_SEGMENT) | toggle |
+                         ((CO_SDO_SEGMENT_BYTES - count) << 1) | (last ? CO_SDO_LAST_SEGMENT : 0));
         abort = value_read(node, sdo->offset, &p[1], count);
     } else {
-        count = SEGMENT_BYTES - ((command >> 1) & 7u);
-        last = (command & SDO_LAST) != 0;
+        count = CO_SDO_SEGMENT_BYTES - ((command >> 1) & 7u);
+        last = (command & CO_SDO_LAST_SEGMENT) != 0;
         if (frame->len < 1 + count)
-            return SDO_ABORT_COMMAND;
-        p[0] = (uint8_t)(SCS_DOWNLOAD_SEGMENT | toggle);
+            return CO_SDO_ABORT_COMMAND;
+        p[0] = (uint8_t)(CO_SDO_COMMAND(CO_SDO_SCS_DOWNLOAD_SEGMENT) | toggle);
         abort = value_write(node, sdo->offset, &frame->data[1], count);
     }
     if (abort != CO_SDO_OK)
         return abort;
     sdo->offset += count;
-    sdo->toggle ^= SDO_TOGGLE;
+    sdo->toggle ^= CO_SDO_TOGGLE;
     if (last && !upload)
         return finish(node, download_complete(node), p[0], false);
     send_response(node, p);
@@ -365,7 +351,7 @@ static uint32_t transfer_segment(co_node_t *node, const co_frame_t *frame)
  * client's cc. */
 static uint8_t crc_bit(const co_sdo_server_t *sdo)
 {
-    return sdo->crc ? BLOCK_CRC : 0;
+    return sdo->crc ? CO_SDO_BLOCK_CRC : 0;
 }
 
 /* The server's block size: up to 127 segments, no more than the buffer can still take (a stream
@@ -373,12 +359,12 @@ static uint8_t crc_bit(const co_sdo_server_t *sdo)
 static uint8_t download_blksize(const co_sdo_server_t *sdo)
 {
     if (sdo->stream != NULL)
-        return BLKSIZE_MAX;
+        return CO_SDO_BLKSIZE_MAX;
     uint32_t capacity = sdo->buffer->size;
     uint32_t room = sdo->offset < capacity ? capacity - sdo->offset : 0;
-    uint32_t segments = (room + SEGMENT_BYTES - 1) / SEGMENT_BYTES;
-    if (segments > BLKSIZE_MAX)
-        segments = BLKSIZE_MAX;
+    uint32_t segments = (room + CO_SDO_SEGMENT_BYTES - 1) / CO_SDO_SEGMENT_BYTES;
+    if (segments > CO_SDO_BLKSIZE_MAX)
+        segments = CO_SDO_BLKSIZE_MAX;
     return (uint8_t)(segments == 0 ? 1 : segments);
 }
 
@@ -386,17 +372,18 @@ static uint32_t block_download_initiate(co_node_t *node, const co_frame_t *frame
 {
     co_sdo_server_t *sdo = &node->sdo;
     uint8_t command = frame->data[0];
-    uint32_t abort = download_prepare(node, frame, (command & BLOCK_SIZE_INDICATED) != 0);
+    uint32_t abort = download_prepare(node, frame, (command & CO_SDO_BLOCK_SIZE_INDICATED) != 0);
     if (abort != CO_SDO_OK)
         return abort;
-    sdo->crc = (command & BLOCK_CRC) != 0;
+    sdo->crc = (command & CO_SDO_BLOCK_CRC) != 0;
     sdo->crc_sum = 0;
     sdo->seqno = 0;
     sdo->block_broken = false;
     sdo->last_in_block = false;
     sdo->blksize = download_blksize(sdo);
     sdo->state = CO_SDO_BLOCK_DOWNLOAD_SUB;
-    send_with_mux(node, (uint8_t)(SCS_BLOCK_DOWNLOAD | crc_bit(sdo)), sdo->blksize);
+    send_with_mux(node, (uint8_t)(CO_SDO_COMMAND(CO_SDO_SCS_BLOCK_DOWNLOAD) | crc_bit(sdo)),
+                  sdo->blksize);
     return CO_SDO_OK;
 }
 
@@ -408,19 +395,19 @@ static uint32_t block_download_store(co_node_t *node, const co_frame_t *frame, b
     co_sdo_server_t *sdo = &node->sdo;
     uint32_t count = (uint32_t)frame->len - 1;
     /* The segment's end, offset + (seqno + 1) * 7 bytes, must be a 32-bit position. */
-    if (sdo->offset > UINT32_MAX - (sdo->seqno + 1u) * SEGMENT_BYTES)
-        return SDO_ABORT_NO_MEMORY;
-    uint32_t pos = sdo->offset + sdo->seqno * SEGMENT_BYTES;
+    if (sdo->offset > UINT32_MAX - (sdo->seqno + 1u) * CO_SDO_SEGMENT_BYTES)
+        return CO_SDO_ABORT_NO_MEMORY;
+    uint32_t pos = sdo->offset + sdo->seqno * CO_SDO_SEGMENT_BYTES;
     if (last) {
         memcpy(sdo->last_segment, &frame->data[1], count);
         sdo->last_len = (uint8_t)count;
         return CO_SDO_OK;
     }
-    if (count < SEGMENT_BYTES)
-        return SDO_ABORT_COMMAND;
-    uint32_t abort = value_write(node, pos, &frame->data[1], SEGMENT_BYTES);
+    if (count < CO_SDO_SEGMENT_BYTES)
+        return CO_SDO_ABORT_COMMAND;
+    uint32_t abort = value_write(node, pos, &frame->data[1], CO_SDO_SEGMENT_BYTES);
     if (abort == CO_SDO_OK && sdo->crc)
-        sdo->crc_sum = crc16_update(sdo->crc_sum, &frame->data[1], SEGMENT_BYTES);
+        sdo->crc_sum = co_sdo_crc16_update(sdo->crc_sum, &frame->data[1], CO_SDO_SEGMENT_BYTES);
     return abort;
 }
 
@@ -430,23 +417,24 @@ static void block_download_acknowledge(co_node_t *node)
 {
     co_sdo_server_t *sdo = &node->sdo;
     uint8_t ackseq = sdo->seqno;
-    sdo->offset += (uint32_t)ackseq * SEGMENT_BYTES;
+    sdo->offset += (uint32_t)ackseq * CO_SDO_SEGMENT_BYTES;
     sdo->blksize = download_blksize(sdo);
     sdo->seqno = 0;
     sdo->block_broken = false;
     if (sdo->last_in_block)
         sdo->state = CO_SDO_BLOCK_DOWNLOAD_END;
-    uint8_t p[8] = {SCS_BLOCK_DOWNLOAD | BLOCK_DOWNLOAD_ACK, ackseq, sdo->blksize};
+    uint8_t p[8] = {CO_SDO_COMMAND(CO_SDO_SCS_BLOCK_DOWNLOAD) | CO_SDO_SUB_DOWNLOAD_ACK, ackseq,
+                    sdo->blksize};
     send_response(node, p);
 }
 
 static uint32_t block_download_segment(co_node_t *node, const co_frame_t *frame)
 {
     co_sdo_server_t *sdo = &node->sdo;
-    uint8_t seqno = frame->data[0] & BLOCK_SEQNO;
-    bool last = (frame->data[0] & BLOCK_LAST) != 0;
+    uint8_t seqno = frame->data[0] & CO_SDO_BLOCK_SEQNO;
+    bool last = (frame->data[0] & CO_SDO_BLOCK_LAST) != 0;
     if (seqno == 0 || seqno > sdo->blksize)
-        return SDO_ABORT_SEQUENCE;
+        return CO_SDO_ABORT_SEQUENCE;
     if (sdo->block_broken || seqno != sdo->seqno + 1) {
         sdo->block_broken = true;
     } else {
@@ -465,45 +453,49 @@ static uint32_t block_download_end(co_node_t *node, const co_frame_t *frame)
 {
     co_sdo_server_t *sdo = &node->sdo;
     uint8_t unused = (frame->data[0] >> 2) & 7u;
-    if ((sdo->crc && frame->len < BLOCK_END_CRC_LEN) || SEGMENT_BYTES - unused > sdo->last_len)
-        return SDO_ABORT_COMMAND;
-    uint32_t final_len = SEGMENT_BYTES - unused;
-    uint32_t final_pos = sdo->offset - SEGMENT_BYTES;
+    if ((sdo->crc && frame->len < CO_SDO_BLOCK_END_CRC_LEN) ||
+        CO_SDO_SEGMENT_BYTES - unused > sdo->last_len)
+        return CO_SDO_ABORT_COMMAND;
+    uint32_t final_len = CO_SDO_SEGMENT_BYTES - unused;
+    uint32_t final_pos = sdo->offset - CO_SDO_SEGMENT_BYTES;
     uint32_t abort = value_write(node, final_pos, sdo->last_segment, final_len);
     if (abort != CO_SDO_OK)
         return abort;
     sdo->offset = final_pos + final_len;
-    uint16_t crc = crc16_update(sdo->crc_sum, sdo->last_segment, final_len);
+    uint16_t crc = co_sdo_crc16_update(sdo->crc_sum, sdo->last_segment, final_len);
     if (sdo->crc && crc != co_get_u16(&frame->data[1]))
-        return SDO_ABORT_CRC;
-    return finish(node, download_complete(node), SCS_BLOCK_DOWNLOAD | BLOCK_DOWNLOAD_END, false);
+        return CO_SDO_ABORT_CRC;
+    return finish(node, download_complete(node),
+                  CO_SDO_COMMAND(CO_SDO_SCS_BLOCK_DOWNLOAD) | CO_SDO_SUB_DOWNLOAD_END, false);
 }
 
 static uint32_t block_upload_initiate(co_node_t *node, const co_frame_t *frame)
 {
     co_sdo_server_t *sdo = &node->sdo;
-    if (frame->len < BLOCK_UPLOAD_INITIATE_LEN)
-        return SDO_ABORT_COMMAND;
+    if (frame->len < CO_SDO_BLOCK_UPLOAD_INITIATE_LEN)
+        return CO_SDO_ABORT_COMMAND;
     uint8_t blksize = frame->data[4];
-    uint8_t pst = frame->len > BLOCK_UPLOAD_INITIATE_LEN ? frame->data[5] : 0;
+    uint8_t pst = frame->len > CO_SDO_BLOCK_UPLOAD_INITIATE_LEN ? frame->data[5] : 0;
     const co_od_entry_t *e;
     uint32_t abort = co_od_read_check(node, sdo->index, sdo->subindex, &e);
     if (abort == CO_SDO_OK)
         abort = upload_open(node, e);
-    if (abort == CO_SDO_OK && (blksize == 0 || blksize > BLKSIZE_MAX))
-        abort = SDO_ABORT_BLOCK_SIZE;
+    if (abort == CO_SDO_OK && (blksize == 0 || blksize > CO_SDO_BLKSIZE_MAX))
+        abort = CO_SDO_ABORT_BLOCK_SIZE;
     if (abort != CO_SDO_OK)
         return abort;
     /* CiA 301, initiate SDO block upload protocol: at or below the client's protocol switch
      * threshold the server may answer with the plain upload protocol. */
     if (pst != 0 && sdo->size <= pst)
         return upload_response(node);
-    sdo->crc = (frame->data[0] & BLOCK_CRC) != 0;
+    sdo->crc = (frame->data[0] & CO_SDO_BLOCK_CRC) != 0;
     sdo->crc_sum = 0;
     sdo->blksize = blksize;
     sdo->offset = 0;
     sdo->state = CO_SDO_BLOCK_UPLOAD_START;
-    send_with_mux(node, (uint8_t)(SCS_BLOCK_UPLOAD | crc_bit(sdo) | BLOCK_SIZE_INDICATED),
+    send_with_mux(node,
+                  (uint8_t)(CO_SDO_COMMAND(CO_SDO_SCS_BLOCK_UPLOAD) | crc_bit(sdo) |
+                            CO_SDO_BLOCK_SIZE_INDICATED),
                   sdo->size);
     return CO_SDO_OK;
 }
@@ -516,15 +508,16 @@ static uint32_t block_upload_send_subblock(co_node_t *node)
     sdo->last_in_block = false;
     sdo->crc_sent = sdo->crc_sum;
     for (uint8_t seqno = 1; seqno <= sdo->blksize && !sdo->last_in_block; seqno++) {
-        uint32_t pos = sdo->offset + (uint32_t)(seqno - 1) * SEGMENT_BYTES;
-        uint32_t count = sdo->size - pos < SEGMENT_BYTES ? sdo->size - pos : SEGMENT_BYTES;
+        uint32_t pos = sdo->offset + (uint32_t)(seqno - 1) * CO_SDO_SEGMENT_BYTES;
+        uint32_t count =
+            sdo->size - pos < CO_SDO_SEGMENT_BYTES ? sdo->size - pos : CO_SDO_SEGMENT_BYTES;
         sdo->last_in_block = pos + count == sdo->size;
-        uint8_t p[8] = {(uint8_t)(seqno | (sdo->last_in_block ? BLOCK_LAST : 0))};
+        uint8_t p[8] = {(uint8_t)(seqno | (sdo->last_in_block ? CO_SDO_BLOCK_LAST : 0))};
         uint32_t abort = value_read(node, pos, &p[1], count);
         if (abort != CO_SDO_OK)
             return abort;
         if (sdo->crc)
-            sdo->crc_sent = crc16_update(sdo->crc_sent, &p[1], count);
+            sdo->crc_sent = co_sdo_crc16_update(sdo->crc_sent, &p[1], count);
         send_response(node, p);
         sdo->seqno = seqno;
     }
@@ -544,12 +537,12 @@ static uint32_t block_upload_crc_acknowledged(co_node_t *node, uint8_t ackseq)
         return CO_SDO_OK;
     }
     for (uint8_t seqno = 1; seqno <= ackseq; seqno++) {
-        uint8_t segment[SEGMENT_BYTES];
-        uint32_t pos = sdo->offset + (uint32_t)(seqno - 1) * SEGMENT_BYTES;
-        uint32_t abort = value_read(node, pos, segment, SEGMENT_BYTES);
+        uint8_t segment[CO_SDO_SEGMENT_BYTES];
+        uint32_t pos = sdo->offset + (uint32_t)(seqno - 1) * CO_SDO_SEGMENT_BYTES;
+        uint32_t abort = value_read(node, pos, segment, CO_SDO_SEGMENT_BYTES);
         if (abort != CO_SDO_OK)
             return abort;
-        sdo->crc_sum = crc16_update(sdo->crc_sum, segment, SEGMENT_BYTES);
+        sdo->crc_sum = co_sdo_crc16_update(sdo->crc_sum, segment, CO_SDO_SEGMENT_BYTES);
     }
     return CO_SDO_OK;
 }
@@ -557,9 +550,10 @@ static uint32_t block_upload_crc_acknowledged(co_node_t *node, uint8_t ackseq)
 static void block_upload_end(co_node_t *node)
 {
     co_sdo_server_t *sdo = &node->sdo;
-    uint32_t last_pos = sdo->offset + (uint32_t)(sdo->seqno - 1) * SEGMENT_BYTES;
-    uint32_t unused = SEGMENT_BYTES - (sdo->size - last_pos);
-    uint8_t p[8] = {(uint8_t)(SCS_BLOCK_UPLOAD | (unused << 2) | BLOCK_UPLOAD_END)};
+    uint32_t last_pos = sdo->offset + (uint32_t)(sdo->seqno - 1) * CO_SDO_SEGMENT_BYTES;
+    uint32_t unused = CO_SDO_SEGMENT_BYTES - (sdo->size - last_pos);
+    uint8_t p[8] = {
+        (uint8_t)(CO_SDO_COMMAND(CO_SDO_SCS_BLOCK_UPLOAD) | (unused << 2) | CO_SDO_SUB_UPLOAD_END)};
     if (sdo->crc)
         co_put_u16(&p[1], sdo->crc_sum);
     send_response(node, p);
@@ -569,14 +563,14 @@ static void block_upload_end(co_node_t *node)
 static uint32_t block_upload_acknowledged(co_node_t *node, const co_frame_t *frame)
 {
     co_sdo_server_t *sdo = &node->sdo;
-    if (frame->len < BLOCK_ACK_LEN)
-        return SDO_ABORT_COMMAND;
+    if (frame->len < CO_SDO_BLOCK_ACK_LEN)
+        return CO_SDO_ABORT_COMMAND;
     uint8_t ackseq = frame->data[1];
     uint8_t blksize = frame->data[2];
     if (ackseq > sdo->seqno)
-        return SDO_ABORT_SEQUENCE;
-    if (blksize == 0 || blksize > BLKSIZE_MAX)
-        return SDO_ABORT_BLOCK_SIZE;
+        return CO_SDO_ABORT_SEQUENCE;
+    if (blksize == 0 || blksize > CO_SDO_BLKSIZE_MAX)
+        return CO_SDO_ABORT_BLOCK_SIZE;
     uint32_t abort = block_upload_crc_acknowledged(node, ackseq);
     if (abort != CO_SDO_OK)
         return abort;
@@ -584,7 +578,7 @@ static uint32_t block_upload_acknowledged(co_node_t *node, const co_frame_t *fra
         block_upload_end(node);
         return CO_SDO_OK;
     }
-    sdo->offset += (uint32_t)ackseq * SEGMENT_BYTES;
+    sdo->offset += (uint32_t)ackseq * CO_SDO_SEGMENT_BYTES;
     sdo->blksize = blksize;
     return block_upload_send_subblock(node);
 }
@@ -593,12 +587,12 @@ static uint32_t block_upload_command(co_node_t *node, const co_frame_t *frame)
 {
     co_sdo_server_t *sdo = &node->sdo;
     uint8_t cs = frame->data[0] & 3u;
-    if (sdo->state == CO_SDO_BLOCK_UPLOAD_START && cs == BLOCK_UPLOAD_START)
+    if (sdo->state == CO_SDO_BLOCK_UPLOAD_START && cs == CO_SDO_SUB_UPLOAD_START)
         return block_upload_send_subblock(node);
-    if (sdo->state == CO_SDO_BLOCK_UPLOAD_ACK && cs == BLOCK_UPLOAD_ACK)
+    if (sdo->state == CO_SDO_BLOCK_UPLOAD_ACK && cs == CO_SDO_SUB_UPLOAD_ACK)
         return block_upload_acknowledged(node, frame);
-    if (sdo->state != CO_SDO_BLOCK_UPLOAD_END || cs != BLOCK_UPLOAD_END)
-        return SDO_ABORT_COMMAND;
+    if (sdo->state != CO_SDO_BLOCK_UPLOAD_END || cs != CO_SDO_SUB_UPLOAD_END)
+        return CO_SDO_ABORT_COMMAND;
     transfer_idle(node);
     return CO_SDO_OK;
 }
@@ -606,13 +600,13 @@ static uint32_t block_upload_command(co_node_t *node, const co_frame_t *frame)
 static bool is_initiate(uint8_t command)
 {
     switch (command >> 5) {
-    case CCS_DOWNLOAD_INITIATE:
-    case CCS_UPLOAD_INITIATE:
+    case CO_SDO_CCS_DOWNLOAD_INITIATE:
+    case CO_SDO_CCS_UPLOAD_INITIATE:
         return true;
-    case CCS_BLOCK_UPLOAD:
-        return (command & 3u) == BLOCK_UPLOAD_INITIATE;
-    case CCS_BLOCK_DOWNLOAD:
-        return (command & 1u) == BLOCK_DOWNLOAD_INITIATE;
+    case CO_SDO_CCS_BLOCK_UPLOAD:
+        return (command & 3u) == CO_SDO_SUB_UPLOAD_INITIATE;
+    case CO_SDO_CCS_BLOCK_DOWNLOAD:
+        return (command & 1u) == CO_SDO_SUB_DOWNLOAD_INITIATE;
     default:
         return false;
     }
@@ -630,12 +624,12 @@ static uint32_t initiate(co_node_t *node, const co_frame_t *frame)
     sdo->subindex = frame->data[3];
     if ((node->options & CO_NODE_SDO_EXPEDITED_ONLY) &&
         node->options_code->sdo_refused_initiate(frame->data[0]))
-        return SDO_ABORT_COMMAND;
-    if (ccs == CCS_DOWNLOAD_INITIATE)
+        return CO_SDO_ABORT_COMMAND;
+    if (ccs == CO_SDO_CCS_DOWNLOAD_INITIATE)
         return download_initiate(node, frame);
-    if (ccs == CCS_UPLOAD_INITIATE)
+    if (ccs == CO_SDO_CCS_UPLOAD_INITIATE)
         return upload_initiate(node);
-    if (ccs == CCS_BLOCK_DOWNLOAD)
+    if (ccs == CO_SDO_CCS_BLOCK_DOWNLOAD)
         return block_download_initiate(node, frame);
     return block_upload_initiate(node, frame);
 }
@@ -646,11 +640,11 @@ static uint32_t unexpected_command(co_node_t *node, const co_frame_t *frame)
 {
     co_sdo_server_t *sdo = &node->sdo;
     if (sdo->state == CO_SDO_IDLE) {
-        bool has_mux = frame->len >= INITIATE_LEN && (frame->data[0] >> 5) == 7u;
+        bool has_mux = frame->len >= CO_SDO_INITIATE_LEN && (frame->data[0] >> 5) == 7u;
         sdo->index = has_mux ? co_get_u16(&frame->data[1]) : 0;
         sdo->subindex = has_mux ? frame->data[3] : 0;
     }
-    return SDO_ABORT_COMMAND;
+    return CO_SDO_ABORT_COMMAND;
 }
 
 static bool in_block_upload(const co_sdo_server_t *sdo)
@@ -667,12 +661,12 @@ static uint32_t dispatch(co_node_t *node, const co_frame_t *frame)
         return block_download_segment(node, frame);
     if (is_initiate(frame->data[0]))
         return initiate(node, frame);
-    if ((sdo->state == CO_SDO_DOWNLOAD_SEGMENT && ccs == CCS_DOWNLOAD_SEGMENT) ||
-        (sdo->state == CO_SDO_UPLOAD_SEGMENT && ccs == CCS_UPLOAD_SEGMENT))
+    if ((sdo->state == CO_SDO_DOWNLOAD_SEGMENT && ccs == CO_SDO_CCS_DOWNLOAD_SEGMENT) ||
+        (sdo->state == CO_SDO_UPLOAD_SEGMENT && ccs == CO_SDO_CCS_UPLOAD_SEGMENT))
         return transfer_segment(node, frame);
-    if (sdo->state == CO_SDO_BLOCK_DOWNLOAD_END && ccs == CCS_BLOCK_DOWNLOAD)
+    if (sdo->state == CO_SDO_BLOCK_DOWNLOAD_END && ccs == CO_SDO_CCS_BLOCK_DOWNLOAD)
         return block_download_end(node, frame);
-    if (in_block_upload(sdo) && ccs == CCS_BLOCK_UPLOAD)
+    if (in_block_upload(sdo) && ccs == CO_SDO_CCS_BLOCK_UPLOAD)
         return block_upload_command(node, frame);
     return unexpected_command(node, frame);
 }
@@ -686,16 +680,16 @@ bool co_sdo_receive(co_node_t *node, const co_frame_t *frame)
         return true;
     uint8_t command = frame->data[0];
     /* 0x80 means abort in every state, and nothing else: inside a block download sub-block it
-     * would be segment 0, which does not exist. An abort is unconfirmed, so whatever its DLC
-     * (SPEC: tolerant of short frames where the meaning is unambiguous) the transfer ends
-     * silently; the server has no use for the multiplexer or the code. */
-    if (command == CS_ABORT) {
+     * would be segment 0, which does not exist. An abort is unconfirmed, so whatever its DLC the
+     * transfer ends silently: the server takes a short frame whenever its meaning is unambiguous
+     * (docs/sdo.md, "Short frames"), and it has no use for the multiplexer or the code. */
+    if (command == CO_SDO_COMMAND(CO_SDO_CS_ABORT)) {
         transfer_idle(node);
         return true;
     }
     /* Without index and sub-index there is nobody to answer an initiate. */
     if (sdo->state != CO_SDO_BLOCK_DOWNLOAD_SUB && is_initiate(command) &&
-        frame->len < INITIATE_LEN)
+        frame->len < CO_SDO_INITIATE_LEN)
         return true;
     /* Every refusal of every state ends here: one abort path. */
     uint32_t abort = dispatch(node, frame);
@@ -711,7 +705,7 @@ co_time_t co_sdo_process(co_node_t *node, co_time_t now)
     if (sdo->state == CO_SDO_IDLE)
         return CO_TIME_NEVER;
     if (now >= sdo->deadline) {
-        transfer_abort(node, SDO_ABORT_TIMEOUT);
+        transfer_abort(node, CO_SDO_ABORT_TIMEOUT);
         return CO_TIME_NEVER;
     }
     return sdo->deadline;

@@ -110,7 +110,7 @@ bool co_sync_receive(co_node_t *node, const co_frame_t *frame)
 static uint32_t sync_write_cob_id(co_node_t *node, uint32_t value)
 {
     if ((value & CO_SYNC_COBID_PRODUCER) && node->od->sync_producer == NULL)
-        return SDO_ABORT_VALUE_RANGE;
+        return CO_SDO_ABORT_VALUE_RANGE;
     return co_cob_id_check(sync_cob_id(node), value, CO_SYNC_COBID_PRODUCER,
                            CO_SYNC_COBID_PRODUCER);
 }
@@ -119,9 +119,9 @@ static uint32_t sync_write_cob_id(co_node_t *node, uint32_t value)
 static uint32_t sync_write_overflow(co_node_t *node, uint8_t value)
 {
     if (sync_period_us(node) != 0)
-        return SDO_ABORT_DATA_STATE;
+        return CO_SDO_ABORT_DATA_STATE;
     if (value != 0 && (value < CO_SYNC_OVERFLOW_MIN || value > CO_SYNC_OVERFLOW_MAX))
-        return SDO_ABORT_VALUE_RANGE;
+        return CO_SDO_ABORT_VALUE_RANGE;
     return CO_SDO_OK;
 }
 

@@ -4,68 +4,68 @@
 const char *co_sdo_abort_text(uint32_t code)
 {
     switch (code) {
-    case SDO_ABORT_TOGGLE:
+    case CO_SDO_ABORT_TOGGLE:
         return "toggle bit not alternated";
-    case SDO_ABORT_TIMEOUT:
+    case CO_SDO_ABORT_TIMEOUT:
         return "SDO protocol timed out";
-    case SDO_ABORT_COMMAND:
+    case CO_SDO_ABORT_COMMAND:
         return "client/server command specifier not valid or unknown";
-    case SDO_ABORT_BLOCK_SIZE:
+    case CO_SDO_ABORT_BLOCK_SIZE:
         return "invalid block size";
-    case SDO_ABORT_SEQUENCE:
+    case CO_SDO_ABORT_SEQUENCE:
         return "invalid sequence number";
-    case SDO_ABORT_CRC:
+    case CO_SDO_ABORT_CRC:
         return "CRC error";
-    case SDO_ABORT_NO_MEMORY:
+    case CO_SDO_ABORT_NO_MEMORY:
         return "out of memory";
-    case SDO_ABORT_UNSUPPORTED_ACCESS:
+    case CO_SDO_ABORT_UNSUPPORTED_ACCESS:
         return "unsupported access to an object";
-    case SDO_ABORT_WRITE_ONLY:
+    case CO_SDO_ABORT_WRITE_ONLY:
         return "attempt to read a write only object";
-    case SDO_ABORT_READ_ONLY:
+    case CO_SDO_ABORT_READ_ONLY:
         return "attempt to write a read only object";
-    case SDO_ABORT_NO_OBJECT:
+    case CO_SDO_ABORT_NO_OBJECT:
         return "object does not exist in the object dictionary";
-    case SDO_ABORT_NOT_MAPPABLE:
+    case CO_SDO_ABORT_NOT_MAPPABLE:
         return "object cannot be mapped to the PDO";
-    case SDO_ABORT_PDO_LENGTH:
+    case CO_SDO_ABORT_PDO_LENGTH:
         return "number and length of the objects to be mapped would exceed the PDO length";
-    case SDO_ABORT_PARAM_INCOMPATIBLE:
+    case CO_SDO_ABORT_PARAM_INCOMPATIBLE:
         return "general parameter incompatibility";
-    case SDO_ABORT_INTERNAL_INCOMPATIBLE:
+    case CO_SDO_ABORT_INTERNAL_INCOMPATIBLE:
         return "general internal incompatibility in the device";
-    case SDO_ABORT_HARDWARE:
+    case CO_SDO_ABORT_HARDWARE:
         return "access failed due to a hardware error";
-    case SDO_ABORT_TYPE_LENGTH:
+    case CO_SDO_ABORT_TYPE_LENGTH:
         return "data type does not match, length of service parameter does not match";
-    case SDO_ABORT_LENGTH_HIGH:
+    case CO_SDO_ABORT_LENGTH_HIGH:
         return "data type does not match, length of service parameter too high";
-    case SDO_ABORT_LENGTH_LOW:
+    case CO_SDO_ABORT_LENGTH_LOW:
         return "data type does not match, length of service parameter too low";
-    case SDO_ABORT_NO_SUBINDEX:
+    case CO_SDO_ABORT_NO_SUBINDEX:
         return "sub-index does not exist";
-    case SDO_ABORT_VALUE_RANGE:
+    case CO_SDO_ABORT_VALUE_RANGE:
         return "invalid value for parameter";
-    case SDO_ABORT_VALUE_HIGH:
+    case CO_SDO_ABORT_VALUE_HIGH:
         return "value of parameter written too high";
-    case SDO_ABORT_VALUE_LOW:
+    case CO_SDO_ABORT_VALUE_LOW:
         return "value of parameter written too low";
-    case SDO_ABORT_MAX_LESS_MIN:
+    case CO_SDO_ABORT_MAX_LESS_MIN:
         return "maximum value is less than minimum value";
-    case SDO_ABORT_NO_RESOURCE:
+    case CO_SDO_ABORT_NO_RESOURCE:
         return "resource not available: SDO connection";
-    case SDO_ABORT_GENERAL:
+    case CO_SDO_ABORT_GENERAL:
         return "general error";
-    case SDO_ABORT_DATA_STORE:
+    case CO_SDO_ABORT_DATA_STORE:
         return "data cannot be transferred or stored to the application";
-    case SDO_ABORT_DATA_LOCAL:
+    case CO_SDO_ABORT_DATA_LOCAL:
         return "data cannot be transferred or stored to the application because of local control";
-    case SDO_ABORT_DATA_STATE:
+    case CO_SDO_ABORT_DATA_STATE:
         return "data cannot be transferred or stored to the application because of the present "
                "device state";
-    case SDO_ABORT_OD_MISSING:
+    case CO_SDO_ABORT_OD_MISSING:
         return "object dictionary dynamic generation fails or no object dictionary is present";
-    case SDO_ABORT_NO_DATA:
+    case CO_SDO_ABORT_NO_DATA:
         return "no data available";
     default:
         return "unknown abort code";

@@ -17,8 +17,6 @@
 #include <sysexits.h>
 #include <unistd.h>
 
-#define BOOTUP_COB_ID_BASE 0x700u
-
 /* One drive and what the runtime and the logs need around it. */
 typedef struct drive_slot {
     drive_t drive;
@@ -78,7 +76,7 @@ static void slot_send(void *user, const co_frame_t *frame)
     drive_slot_t *slot = user;
     uint8_t node_id = slot_node_id(slot);
     atv312d_count_sent(&slot->counters, node_id, frame);
-    if (frame->id == BOOTUP_COB_ID_BASE + node_id && frame->len == 1 && frame->data[0] == 0)
+    if (frame->id == CO_CAN_ID_ERROR_CONTROL + node_id && frame->len == 1 && frame->data[0] == 0)
         co_log(CO_LOG_INFO, "node %u: boot-up", node_id);
     else if (frame->len == 8 && atv312d_is_emcy(node_id, frame))
         log_emcy(slot, frame);

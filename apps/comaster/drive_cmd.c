@@ -1,6 +1,7 @@
 /* comaster drive: runs the CiA 402 power state machine of a drive by SDO writes of the control
  * word 6040h, or with --rpdo through the drive's RPDO that maps it, and waits (deadline) for the
  * status word 6041h to show each state on the way, printing every state it sees. */
+#include "co/co_pdo.h"
 #include "comaster.h"
 #include "decoder.h"
 
@@ -26,8 +27,6 @@
 
 /* The RPDOs looked at for --rpdo: the first eight (the ATV312 has RPDO1 and RPDO6). */
 #define RPDO_COUNT 8u
-#define PDO_COB_ID_INVALID 0x80000000u
-#define PDO_COB_ID_MASK 0x7FFu
 #define PDO_MAPPED_MAX 8u
 /* A mapping entry: index << 16 | sub-index << 8 | length in bits. */
 #define MAP_CONTROL_WORD 0x60400010u
@@ -295,9 +294,9 @@ static int find_rpdo(drive_session_t *d)
         int rc = read_u32(d, (uint16_t)(CO_PDO_RPDO_COMM + n), 1, &cob_id, &has);
         if (rc != 0)
             return rc;
-        if (!has || (cob_id & PDO_COB_ID_INVALID))
+        if (!has || (cob_id & CO_PDO_COBID_INVALID))
             continue;
-        rpdo_t candidate = {.cob_id = (uint16_t)(cob_id & PDO_COB_ID_MASK)};
+        rpdo_t candidate = {.cob_id = (uint16_t)(cob_id & CO_PDO_COBID_CAN_ID)};
         rc = read_rpdo_mapping(d, n, &candidate);
         if (rc != 0)
             return rc;

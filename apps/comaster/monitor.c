@@ -33,7 +33,6 @@ static const char monitor_help[] =
  * four; the ATV312 uses PDO1 and PDO6). */
 #define PDO_READ_COUNT 8u
 #define PDO_MAPPED_MAX 64u
-#define COB_PDO_LAST 0x57Fu
 
 typedef struct watched {
     uint8_t node;
@@ -167,7 +166,7 @@ static void monitor_receive(void *ctx, const co_frame_t *frame, co_time_t now)
         print_emcy(m, &msg);
     else if (frame->id == CO_CAN_ID_SYNC && !(frame->flags & CO_FRAME_RTR))
         print_sync(m, frame);
-    else if (frame->id >= CO_CAN_ID_TPDO1 && frame->id <= COB_PDO_LAST &&
+    else if (frame->id >= CO_CAN_ID_TPDO1 && frame->id < CO_CAN_ID_SDO_TX &&
              !(frame->flags & CO_FRAME_RTR))
         print_pdo(m, frame);
 }

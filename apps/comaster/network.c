@@ -2,6 +2,7 @@
  * nodelist, the DCFs (docs/comaster.md "Network description"). */
 #include "network.h"
 
+#include "co/co_pdo.h"
 #include "ini_reader.h"
 #include "value.h"
 
@@ -14,15 +15,6 @@
 #include <strings.h>
 #include <sysexits.h>
 
-#define DEVICE_TYPE_INDEX 0x1000u
-#define IDENTITY_INDEX 0x1018u
-#define HEARTBEAT_PRODUCER_INDEX 0x1017u
-#define GUARD_TIME_INDEX 0x100Cu
-#define LIFE_TIME_FACTOR_INDEX 0x100Du
-#define PDO_COUNT 512u
-#define COB_ID_INVALID 0x80000000u
-#define COB_ID_29BIT 0x20000000u
-#define COB_ID_CAN_ID 0x7FFu
 /* The defaults of the master's options (docs/comaster.md). */
 #define DEFAULT_SDO_TIMEOUT_MS 500u
 #define DEFAULT_BOOT_TIME_MS 1000u
@@ -229,13 +221,13 @@ static int load_writes(comaster_slave_t *s, co_net_slave_config_t *c, char *err,
 static void slave_defaults(const comaster_slave_t *s, co_net_slave_config_t *c)
 {
     bool found;
-    c->device_type = dcf_u32(&s->dcf, DEVICE_TYPE_INDEX, 0, &found);
+    c->device_type = dcf_u32(&s->dcf, CO_IDX_DEVICE_TYPE, 0, &found);
     if (found)
         c->check |= CO_NET_CHECK_DEVICE_TYPE;
     /* Vendor and product are checked when the DCF gives them; revision and serial, which a
      * device's EDS gives only as an example, when the DCF configures them or [NodeN] asks. */
     for (uint8_t sub = 1; sub <= CO_NET_IDENTITY_SUBS; sub++) {
-        const eds_entry_t *e = eds_find(&s->dcf, IDENTITY_INDEX, sub);
+        const eds_entry_t *e = eds_find(&s->dcf, CO_IDX_IDENTITY, sub);
         if (!e || !e->has_value)
             continue;
         c->identity[sub - 1] = (uint32_t)e->value;
@@ -243,11 +235,11 @@ static void slave_defaults(const comaster_slave_t *s, co_net_slave_config_t *c)
             c->check |= (uint8_t)(CO_NET_CHECK_VENDOR << (sub - 1));
     }
     /* A heartbeat producer configured: consumed with half its time again as margin. */
-    uint32_t producer = dcf_u32(&s->dcf, HEARTBEAT_PRODUCER_INDEX, 0, &found);
+    uint32_t producer = dcf_u32(&s->dcf, CO_IDX_HB_PRODUCER, 0, &found);
     if (producer != 0 && producer <= UINT16_MAX * 2u / 3u)
         c->heartbeat_ms = (uint16_t)(producer + (producer + 1) / 2);
-    uint32_t guard = dcf_u32(&s->dcf, GUARD_TIME_INDEX, 0, &found);
-    uint32_t factor = dcf_u32(&s->dcf, LIFE_TIME_FACTOR_INDEX, 0, &found);
+    uint32_t guard = dcf_u32(&s->dcf, CO_IDX_GUARD_TIME, 0, &found);
+    uint32_t factor = dcf_u32(&s->dcf, CO_IDX_LIFE_TIME_FACTOR, 0, &found);
     if (c->heartbeat_ms == 0 && guard != 0 && guard <= UINT16_MAX && factor != 0 &&
         factor <= UINT8_MAX) {
         c->guard_ms = (uint16_t)guard;
@@ -265,14 +257,14 @@ static int load_pdos(comaster_network_t *net, size_t si, bool output, char *err,
     co_net_pdo_t *pdos = output ? net->output_pdo : net->input_pdo;
     size_t *count = output ? &net->config.output_count : &net->config.input_count;
     size_t *size = output ? &net->config.output_size : &net->config.input_size;
-    for (uint16_t n = 0; n < PDO_COUNT; n++) {
+    for (uint16_t n = 0; n < CO_PDO_INDEX_SPAN; n++) {
         bool found, mapped;
         uint32_t cob = dcf_u32(&s->dcf, (uint16_t)(comm + n), 1, &found);
         uint32_t objects = dcf_u32(&s->dcf, (uint16_t)(map + n), 0, &mapped);
-        if (!found || (cob & COB_ID_INVALID) != 0 || !mapped || objects == 0)
+        if (!found || (cob & CO_PDO_COBID_INVALID) != 0 || !mapped || objects == 0)
             continue;
-        if ((cob & COB_ID_29BIT) != 0 || objects > 64 ||
-            co_can_id_restricted(cob & COB_ID_CAN_ID)) {
+        if ((cob & CO_PDO_COBID_FRAME) != 0 || objects > 64 ||
+            co_can_id_restricted(cob & CO_PDO_COBID_CAN_ID)) {
             snprintf(err, err_len,
                      "%s: [%04Xsub1] COB-ID 0x%X: a 29-bit or restricted CAN-ID (CiA 301 7.3.5), "
                      "or more than 64 objects mapped: not a PDO comaster can exchange",
@@ -300,7 +292,7 @@ static int load_pdos(comaster_network_t *net, size_t si, bool output, char *err,
             uint8_t sub = (uint8_t)(m >> 8);
             const char *name = variable_name(&s->dcf, index, sub);
             /* Dummy entries (index below 1000h) only hold their place in the frame. */
-            if (index >= DEVICE_TYPE_INDEX && name) {
+            if (index >= CO_IDX_DEVICE_TYPE && name) {
                 const eds_entry_t *e = eds_find(&s->dcf, index, sub);
                 net->variable[net->variable_count++] = (comaster_variable_t){
                     .name = name,
@@ -321,7 +313,7 @@ static int load_pdos(comaster_network_t *net, size_t si, bool output, char *err,
             return EX_DATAERR;
         }
         pdos[(*count)++] = (co_net_pdo_t){.node_id = node_id,
-                                          .can_id = (uint16_t)(cob & COB_ID_CAN_ID),
+                                          .can_id = (uint16_t)(cob & CO_PDO_COBID_CAN_ID),
                                           .len = (uint8_t)(*size - start),
                                           .offset = start};
     }

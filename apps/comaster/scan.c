@@ -104,8 +104,6 @@ static int probe_all(scan_t *s, uint32_t timeout_ms)
 
 /* ---- phase 3: the NMT states not heard yet, by node guarding -------------------------------- */
 
-#define GUARD_TOGGLE 0x80u
-
 static bool states_known(const scan_t *s)
 {
     for (size_t i = 0; i < NODE_COUNT; i++) {
@@ -126,7 +124,7 @@ static void guard_receive(void *ctx, const co_frame_t *frame, co_time_t now)
     if ((frame->flags & (CO_FRAME_RTR | CO_FRAME_EFF)) || frame->len < 1 || node < 1 ||
         node > NODE_COUNT)
         return;
-    uint8_t state = frame->data[0] & (uint8_t)~GUARD_TOGGLE;
+    uint8_t state = frame->data[0] & (uint8_t)~CO_GUARD_TOGGLE;
     s->state[node - 1] = state == CO_NMT_INITIALISING ? CO_NMT_PRE_OPERATIONAL : state;
     if (states_known(s))
         comaster_bus_finish(s->bus, 0);

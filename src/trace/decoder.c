@@ -2,6 +2,7 @@
 
 #include "co/co_emcy.h"
 #include "co/co_nmt.h"
+#include "co/co_pdo.h"
 
 #include <linux/can/error.h>
 #include <stdarg.h>
@@ -550,11 +551,8 @@ static void sdo_reply(cotrace_decoder_t *dec, uint8_t node, const struct can_fra
 
 /* ---- PDO ---------------------------------------------------------------------------------- */
 
-/* CiA 301: PDO communication parameters 1400h (RPDO) / 1800h (TPDO), their mappings 200h above,
- * 512 of each. */
-#define PDO_COUNT 512u
+/* The sub-index of a PDO's COB-ID in its communication parameter (1400h + n, 1800h + n). */
 #define PDO_COB_ID_SUB 1u
-#define PDO_COB_ID_EXTENDED 0x20000000u
 /* Mapping entries below 0x0020 are data type indices: "dummy" entries that fill a gap. */
 #define PDO_DUMMY_LIMIT 0x0020u
 #define CIA402_CONTROL_WORD 0x6040u
@@ -576,11 +574,11 @@ static bool pdo_from_eds(const cotrace_decoder_t *dec, uint16_t cob_id, cotrace_
  * ignored: a PDO the EDS leaves invalid (ATV312 PDO6) is enabled by a master at run time. */
 static void pdos_of_eds(cotrace_decoder_t *dec)
 {
-    for (unsigned i = 0; i < PDO_COUNT && dec->pdo_count < COTRACE_PDO_MAX; i++) {
+    for (unsigned i = 0; i < CO_PDO_INDEX_SPAN && dec->pdo_count < COTRACE_PDO_MAX; i++) {
         for (int transmit = 0; transmit <= 1; transmit++) {
             uint16_t comm = (uint16_t)((transmit ? CO_PDO_TPDO_COMM : CO_PDO_RPDO_COMM) + i);
             const eds_entry_t *e = eds_find(dec->eds, comm, PDO_COB_ID_SUB);
-            if (e && e->has_value && !(e->value & PDO_COB_ID_EXTENDED) &&
+            if (e && e->has_value && !(e->value & CO_PDO_COBID_FRAME) &&
                 dec->pdo_count < COTRACE_PDO_MAX) {
                 cotrace_pdo_t *pdo = &dec->pdos[dec->pdo_count++];
                 pdo->cob_id = (uint16_t)(e->value & CAN_SFF_MASK);

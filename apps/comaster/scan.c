@@ -181,16 +181,16 @@ static int read_identity(comaster_bus_t *bus, const comaster_options_t *opts, ui
 {
     memset(id, 0, sizeof *id);
     uint32_t size;
-    for (uint8_t sub = 1; sub <= 3; sub++) {
+    for (uint8_t sub = CO_IDENTITY_VENDOR; sub <= CO_IDENTITY_REVISION; sub++) {
         uint8_t buf[4];
-        int rc = read_optional(bus, opts, node, 0x1018, sub, buf, sizeof buf, &size);
+        int rc = read_optional(bus, opts, node, CO_IDX_IDENTITY, sub, buf, sizeof buf, &size);
         if (rc != 0)
             return rc;
         id->has[sub - 1] = size == 4;
         id->value[sub - 1] = size == 4 ? co_get_u32(buf) : 0;
     }
-    int rc =
-        read_optional(bus, opts, node, 0x1008, 0, (uint8_t *)id->name, sizeof id->name - 1, &size);
+    int rc = read_optional(bus, opts, node, CO_IDX_DEVICE_NAME, 0, (uint8_t *)id->name,
+                           sizeof id->name - 1, &size);
     id->name[size] = '\0';
     return rc;
 }

@@ -37,11 +37,21 @@ static inline uint32_t co_node_consumer_generation(const co_node_t *node)
 }
 
 /* Moves the generation on (NMT after a reset, which reloads every COB-ID). */
-void co_consumers_changed(co_node_t *node);
+static inline void co_consumers_changed(co_node_t *node)
+{
+    node->consumer_generation++;
+}
 
-/* Called by the object dictionary after a stored write of an entry of `index`: moves the
- * generation on when that object holds a consumed COB-ID or decides whether one is used (1005h,
- * 100Eh, 1016h, 1200h..12FFh, the PDO parameters 1400h..1BFFh, whose mapping decides validity). */
-void co_consumers_written(co_node_t *node, uint16_t index);
+/* Called by the node after a stored write of an entry of `index`: moves the generation on when
+ * that object holds a consumed COB-ID or decides whether one is used (1005h, 100Eh, 1016h,
+ * 1200h..12FFh, the PDO parameters 1400h..1BFFh, whose mapping decides validity). Inline, as
+ * co_consumers_changed: a few comparisons that its one caller folds in. */
+static inline void co_consumers_written(co_node_t *node, uint16_t index)
+{
+    if (index == CO_IDX_SYNC_COB_ID || index == CO_IDX_GUARD_COB_ID ||
+        index == CO_IDX_HB_CONSUMER || (index >= CO_IDX_SDO_SERVER && index <= 0x12FFu) ||
+        (index >= CO_PDO_RPDO_COMM && index <= CO_PDO_LAST_INDEX))
+        co_consumers_changed(node);
+}
 
 #endif

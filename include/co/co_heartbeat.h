@@ -27,8 +27,8 @@ typedef struct co_hb_monitor {
 } co_hb_monitor_t;
 
 /* Sets the consumer time (0 = off); monitoring waits for the next frame. The three functions are
- * inline: each has one caller in a node (heartbeat.c) and one in the NMT master, where GCC folds
- * them into the caller. */
+ * inline: each has one caller in a node (error_control.c) and one in the NMT master, where GCC
+ * folds them into the caller. */
 static inline void co_hb_monitor_configure(co_hb_monitor_t *monitor, uint32_t time_us)
 {
     monitor->time_us = time_us;
@@ -81,7 +81,11 @@ co_time_t co_heartbeat_process(co_node_t *node, co_time_t now);
 uint32_t co_heartbeat_od_write(co_node_t *node, const co_od_entry_t *entry, const uint8_t *data,
                                size_t len);
 
-/* True while the heartbeat producer runs (1017h != 0): node guarding is then off. */
-bool co_heartbeat_producing(const co_node_t *node);
+/* True while the heartbeat producer runs (1017h != 0): node guarding is then off. Inline: its
+ * one caller, the guarding half of error control, folds it in. */
+static inline bool co_heartbeat_producing(const co_node_t *node)
+{
+    return co_od_value(node, CO_IDX_HB_PRODUCER, 0) != 0;
+}
 
 #endif

@@ -115,9 +115,15 @@ struct co_node {
     /* The options' code, beside a 32-bit member so that a 32-bit processor pads nothing. */
     const co_node_options_code_t *options_code;
     /* co_node_process: the earliest deadline of the services other than the PDOs, valid while
-     * schedule_changed is false (co_node_changed). */
+     * schedule_changed is false (co_node_reschedule). */
     co_time_t services_due;
     bool schedule_changed;
+    /* The services' rules for the communication parameters 1000h..1FFFh (node.c), which
+     * co_od_write applies after its generic checks: 0 to store the value, CO_OD_HANDLED when the
+     * service stored it, or an abort code. A pointer, so that the dictionary calls no service;
+     * after schedule_changed, in what was padding before the 8-byte aligned service states. */
+    uint32_t (*parameter_write)(co_node_t *node, const co_od_entry_t *entry, const uint8_t *data,
+                                size_t len);
 
     co_sdo_server_t sdo;
     co_pdo_t pdo;
@@ -153,10 +159,17 @@ co_time_t co_node_process(co_node_t *node, co_time_t now);
 
 /* A service's schedule may have changed outside co_node_process() (a frame it consumed, a
  * parameter written, an NMT state change, an EMCY queued): the next process call runs every
- * service instead of returning the kept deadline (used by the services). */
-void co_node_changed(co_node_t *node);
+ * service instead of returning the kept deadline (used by the services). Inline: it sets one
+ * flag, and a service that calls it then calls no function of the node. */
+static inline void co_node_reschedule(co_node_t *node)
+{
+    node->schedule_changed = true;
+}
+/* The name of release 0.1, which stays for one more release: use co_node_reschedule. */
+#define co_node_changed co_node_reschedule
 
-/* Sends a frame through the node's callback (used by the services). */
+/* Sends a frame through the node's callback, padded to DLC 8 under CO_NODE_PAD_DLC8 (used by the
+ * services; src/canopen/common/frame_output.c). */
 void co_node_send(co_node_t *node, const co_frame_t *frame);
 
 /* Sends the one data byte of an error control frame (CiA 301 7.2.8.3): a boot-up, a heartbeat, a

@@ -90,7 +90,7 @@ co_time_t co_pdo_process(co_node_t *node, co_time_t now);
 /* CiA 301 parameter rules of 1400h..1BFFh; stores the value and reconfigures the PDO. */
 uint32_t co_pdo_od_write(co_node_t *node, const co_od_entry_t *entry, const uint8_t *data,
                          size_t len);
-/* Called by the SYNC consumer for every SYNC received or produced (counter 0 when none). */
+/* Called by the node for every SYNC received or produced (counter 0 when none). */
 void co_pdo_sync(co_node_t *node, uint8_t counter);
 /* Application request to transmit TPDO `pdo_number` (1..): an event-driven TPDO is sent as soon
  * as its inhibit time allows, an acyclic synchronous one at the next SYNC. */

@@ -34,7 +34,12 @@ bool co_sync_producer_init(co_sync_producer_t *producer, uint32_t can_id, uint32
 /* Starts (or restarts) production: the counter restarts at 1, the first SYNC is due one period
  * after `start`. */
 void co_sync_producer_start(co_sync_producer_t *producer, co_time_t start);
-void co_sync_producer_stop(co_sync_producer_t *producer);
+/* Inline: a node's SYNC consumer stops its producer on every write of 1005h or 1006h, and a
+ * firmware without the producer (sync_producer.c) must not link that file for it. */
+static inline void co_sync_producer_stop(co_sync_producer_t *producer)
+{
+    producer->next = CO_TIME_NEVER;
+}
 /* When a SYNC is due at `now`: fills `frame` with it, advances the counter and the schedule and
  * returns true. The next one is due at producer->next. */
 bool co_sync_producer_take(co_sync_producer_t *producer, co_time_t now, co_frame_t *frame);
@@ -42,6 +47,11 @@ bool co_sync_producer_take(co_sync_producer_t *producer, co_time_t now, co_frame
 typedef struct co_sync {
     co_sync_producer_t producer; /* fed from 1005h, 1006h, 1019h */
     bool length_error;           /* EMCY 0x8240 raised */
+    /* A SYNC received or produced, and its counter (0 when none), which the node hands to the
+     * PDO engine and the application right after co_sync_receive or co_sync_process returns:
+     * the service calls neither. Beside length_error, in what was padding. */
+    bool event;
+    uint8_t event_counter;
     /* 1005h, 1006h, 1007h and 1019h as the dictionary holds them (0 when absent), reloaded by
      * co_sync_init, co_sync_reset and every write of one of them through co_od_write. */
     uint32_t cob_id;
@@ -68,8 +78,6 @@ co_time_t co_sync_process(co_node_t *node, co_time_t now);
 /* The node's producer (sync_producer.c), for co_od_t.sync_producer: produces the SYNC when
  * 1005h bit 30 and 1006h say so, in Pre-operational and Operational. */
 co_time_t co_sync_produce(co_node_t *node, co_time_t now);
-/* A SYNC received or produced: to the PDO engine and the application (used by the producer). */
-void co_sync_event(co_node_t *node, uint8_t counter);
 uint32_t co_sync_od_write(co_node_t *node, const co_od_entry_t *entry, const uint8_t *data,
                           size_t len);
 

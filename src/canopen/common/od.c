@@ -1,7 +1,6 @@
-/* Object dictionary access: binary search over the const table, the generic SDO read and write
- * checks of CiA 301, and the dispatch of communication-area writes to the service that owns the
- * parameter. */
-#include "co/co_consumers.h"
+/* Object dictionary access: binary search over the const table and the generic SDO read and write
+ * checks of CiA 301. The rules of the communication parameters are the services', which the node
+ * hands in (co_node_t.parameter_write): the dictionary is the ground floor and calls no service. */
 #include "co/co_node.h"
 
 #include <string.h>
@@ -256,37 +255,6 @@ static uint32_t check_limits(const co_od_entry_t *e, size_t size, const uint8_t 
     return CO_SDO_OK;
 }
 
-/* The service that owns each communication parameter and enforces its CiA 301 rules, by index
- * range. 1200h, the default SDO server channel, has none: CiA 301 makes its COB-IDs read-only,
- * which the dictionary's access type enforces; a dictionary that makes them writable gets the
- * new values at the next reset (co_sdo_reset). */
-typedef struct service_range {
-    uint16_t first;
-    uint16_t last;
-    uint32_t (*write)(co_node_t *node, const co_od_entry_t *entry, const uint8_t *data, size_t len);
-} service_range_t;
-
-static const service_range_t service_ranges[] = {
-    {0x1003, 0x1003, co_emcy_od_write},     {0x1005, 0x1007, co_sync_od_write},
-    {0x100C, 0x100E, co_guarding_od_write}, {0x1010, 0x1011, co_store_od_write},
-    {0x1014, 0x1015, co_emcy_od_write},     {0x1016, 0x1017, co_heartbeat_od_write},
-    {0x1019, 0x1019, co_sync_od_write},     {0x1400, 0x1BFF, co_pdo_od_write},
-};
-
-static uint32_t service_write(co_node_t *node, const co_od_entry_t *e, const uint8_t *data,
-                              size_t len)
-{
-    uint16_t i = e->index;
-    if (i < 0x1000 || i > 0x1FFF)
-        return CO_SDO_OK;
-    /* A communication parameter may move a service's deadline. */
-    co_node_changed(node);
-    for (size_t r = 0; r < sizeof(service_ranges) / sizeof(service_ranges[0]); r++)
-        if (i >= service_ranges[r].first && i <= service_ranges[r].last)
-            return service_ranges[r].write(node, e, data, len);
-    return CO_SDO_OK;
-}
-
 uint32_t co_od_write(co_node_t *node, uint16_t index, uint8_t subindex, const uint8_t *data,
                      size_t len, co_od_origin_t origin)
 {
@@ -312,12 +280,11 @@ uint32_t co_od_write_entry(co_node_t *node, const co_od_entry_t *e, const uint8_
     if (abort == CO_SDO_OK && e->hook != NULL && e->hook->write != NULL)
         abort = e->hook->write(node, e, data, len, origin);
     if (abort == CO_SDO_OK)
-        abort = service_write(node, e, data, len);
+        abort = node->parameter_write(node, e, data, len);
     if (abort == CO_SDO_OK)
         co_od_store(node, e, data, len);
     else if (abort != CO_OD_HANDLED)
         return abort;
-    co_consumers_written(node, e->index);
     if (node->hooks != NULL && node->hooks->od_written != NULL)
         node->hooks->od_written(node, e, origin);
     return CO_SDO_OK;

@@ -77,7 +77,8 @@ co_time_t co_sync_produce(co_node_t *node, co_time_t now)
     co_frame_t frame;
     if (co_sync_producer_take(producer, now, &frame)) {
         co_node_send(node, &frame);
-        co_sync_event(node, frame.data[0]);
+        node->sync.event = true;
+        node->sync.event_counter = frame.data[0];
     }
     return producer->next;
 }

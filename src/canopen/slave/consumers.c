@@ -5,9 +5,6 @@
 
 #define CAN_ID_11BIT 0x7FFu
 
-/* Object indexes whose values decide the consumed set (CiA 301 7.5.2). */
-#define IDX_SDO_SERVER_LAST 0x12FFu
-
 typedef struct cob_set {
     co_cob_t *cobs;
     size_t count;
@@ -85,18 +82,4 @@ bool co_node_consumes(const co_node_t *node, uint32_t can_id, bool rtr)
             return true;
     }
     return false;
-}
-
-void co_consumers_changed(co_node_t *node)
-{
-    node->consumer_generation++;
-}
-
-void co_consumers_written(co_node_t *node, uint16_t index)
-{
-    if (index == CO_IDX_SYNC_COB_ID || index == CO_IDX_GUARD_COB_ID ||
-        index == CO_IDX_HB_CONSUMER ||
-        (index >= CO_IDX_SDO_SERVER && index <= IDX_SDO_SERVER_LAST) ||
-        (index >= CO_PDO_RPDO_COMM && index <= CO_PDO_LAST_INDEX))
-        co_consumers_changed(node);
 }

@@ -60,7 +60,7 @@ static void emit(co_node_t *node, uint16_t code, const uint8_t msef[5])
     uint8_t tail = (uint8_t)((emcy->queue_head + emcy->queue_count) % CO_CONFIG_EMCY_QUEUE);
     emcy->queue[tail] = frame;
     emcy->queue_count++;
-    co_node_changed(node);
+    co_node_reschedule(node);
 }
 
 co_time_t co_emcy_process(co_node_t *node, co_time_t now)

@@ -21,7 +21,7 @@ void co_nmt_enter(co_node_t *node, co_nmt_state_t state)
     if (node->nmt_state == state)
         return;
     node->nmt_state = state;
-    co_node_changed(node);
+    co_node_reschedule(node);
     co_sdo_reset(node); /* a transfer does not survive a state change (none in Stopped) */
     co_pdo_restart(node);
     if (node->hooks != NULL && node->hooks->nmt_state != NULL)

@@ -1,5 +1,9 @@
-/* The node: initialisation, the routing of received frames to the services that the current NMT
- * state allows (ATV312 manual, "NMT state" table; CiA 301 table 74), and the earliest deadline. */
+/* The node, the composition root of the slave services: initialisation, the routing of received
+ * frames to the services that the current NMT state allows (ATV312 manual, "NMT state" table;
+ * CiA 301 table 74), the owner of each communication parameter, the SYNC handed from its service
+ * to the PDOs and the application, and the earliest deadline. The services call one another only
+ * downwards; what crosses between them goes through here. */
+#include "co/co_consumers.h"
 #include "co/co_node.h"
 
 #include <string.h>
@@ -20,6 +24,48 @@ static bool tables_fit(const co_od_t *od)
             return false;
     }
     return true;
+}
+
+/* The service that owns each communication parameter and enforces its CiA 301 rules, by index
+ * range. 1200h, the default SDO server channel, has none: CiA 301 makes its COB-IDs read-only,
+ * which the dictionary's access type enforces; a dictionary that makes them writable gets the
+ * new values at the next reset (co_sdo_reset). */
+typedef struct service_range {
+    uint16_t first;
+    uint16_t last;
+    uint32_t (*write)(co_node_t *node, const co_od_entry_t *entry, const uint8_t *data, size_t len);
+} service_range_t;
+
+static const service_range_t service_ranges[] = {
+    {0x1003, 0x1003, co_emcy_od_write},     {0x1005, 0x1007, co_sync_od_write},
+    {0x100C, 0x100E, co_guarding_od_write}, {0x1010, 0x1011, co_store_od_write},
+    {0x1014, 0x1015, co_emcy_od_write},     {0x1016, 0x1017, co_heartbeat_od_write},
+    {0x1019, 0x1019, co_sync_od_write},     {0x1400, 0x1BFF, co_pdo_od_write},
+};
+
+static uint32_t service_write(co_node_t *node, const co_od_entry_t *e, const uint8_t *data,
+                              size_t len)
+{
+    uint16_t i = e->index;
+    if (i < 0x1000 || i > 0x1FFF)
+        return CO_SDO_OK;
+    /* A communication parameter may move a service's deadline. */
+    co_node_reschedule(node);
+    for (size_t r = 0; r < sizeof(service_ranges) / sizeof(service_ranges[0]); r++)
+        if (i >= service_ranges[r].first && i <= service_ranges[r].last)
+            return service_ranges[r].write(node, e, data, len);
+    return CO_SDO_OK;
+}
+
+/* co_node_t.parameter_write: the owning service's rules, then, once the value is taken, the
+ * consumed COB-IDs that it may have changed. */
+static uint32_t parameter_write(co_node_t *node, const co_od_entry_t *entry, const uint8_t *data,
+                                size_t len)
+{
+    uint32_t abort = service_write(node, entry, data, len);
+    if (abort == CO_SDO_OK || abort == CO_OD_HANDLED)
+        co_consumers_written(node, entry->index);
+    return abort;
 }
 
 int co_node_init(co_node_t *node, const co_node_config_t *config)
@@ -49,6 +95,7 @@ int co_node_init(co_node_t *node, const co_node_config_t *config)
     node->storage = config->storage;
     node->options = config->options;
     node->options_code = config->options_code;
+    node->parameter_write = parameter_write;
     node->sdo.timeout_us = CO_CONFIG_SDO_TIMEOUT_US;
     node->sdo.buffer = config->sdo_buffer;
 #if CO_CONFIG_SDO_BUFFER > 0
@@ -68,18 +115,19 @@ void co_node_start(co_node_t *node, co_time_t now)
     co_nmt_reset(node, CO_NMT_RESET_NODE);
 }
 
-void co_node_send(co_node_t *node, const co_frame_t *frame)
+/* A SYNC that its service took, received or produced (co_sync_t.event), goes to the PDO engine,
+ * then to the application, before any other service runs: the frames it causes keep their place.
+ * True when there was one. */
+static bool sync_deliver(co_node_t *node)
 {
-    if ((node->options & CO_NODE_PAD_DLC8) && !(frame->flags & CO_FRAME_RTR))
-        node->options_code->send_padded(node, frame);
-    else
-        node->send(node->user, frame);
-}
-
-void co_node_send_byte(co_node_t *node, uint32_t id, uint8_t byte)
-{
-    co_frame_t frame = {.id = id, .len = 1, .data = {byte}};
-    co_node_send(node, &frame);
+    if (!node->sync.event)
+        return false;
+    node->sync.event = false;
+    uint8_t counter = node->sync.event_counter;
+    co_pdo_sync(node, counter);
+    if (node->hooks != NULL && node->hooks->sync != NULL)
+        node->hooks->sync(node, counter);
+    return true;
 }
 
 void co_node_receive(co_node_t *node, const co_frame_t *frame, co_time_t now)
@@ -92,35 +140,41 @@ void co_node_receive(co_node_t *node, const co_frame_t *frame, co_time_t now)
         return;
     /* Node guarding and heartbeat consumption work in every state. */
     if (co_guarding_receive(node, frame) || co_heartbeat_receive(node, frame)) {
-        co_node_changed(node);
+        co_node_reschedule(node);
         return;
     }
     if (node->nmt_state == CO_NMT_STOPPED)
         return;
-    if (co_sync_receive(node, frame))
+    if (co_sync_receive(node, frame)) {
+        sync_deliver(node);
         return;
+    }
     bool sdo_was_busy = node->sdo.state != CO_SDO_IDLE;
     if (co_sdo_receive(node, frame)) {
         /* A transfer under way has a timeout, which each of its frames moves; an expedited
          * transfer leaves the server idle, with none. */
         if (sdo_was_busy || node->sdo.state != CO_SDO_IDLE)
-            co_node_changed(node);
+            co_node_reschedule(node);
         return;
     }
     if (node->nmt_state == CO_NMT_OPERATIONAL)
         co_pdo_receive(node, frame);
 }
 
-void co_node_changed(co_node_t *node)
+/* The SYNC service, then the SYNC it produced. The producer's next SYNC is read again after the
+ * delivery: a parameter written while the PDOs or the application handled it may have stopped the
+ * producer. */
+static co_time_t sync_process(co_node_t *node, co_time_t now)
 {
-    node->schedule_changed = true;
+    co_time_t next = co_sync_process(node, now);
+    return sync_deliver(node) ? node->sync.producer.next : next;
 }
 
 /* Heartbeat, guarding, SDO, SYNC and EMCY: what they do and their next deadline change only with
- * time, frames and the calls that mark the node changed (co_node_changed), so while neither
+ * time, frames and the calls that mark the node changed (co_node_reschedule), so while neither
  * happened a process call looks at none of them. */
 static co_time_t (*const services[])(co_node_t *node, co_time_t now) = {
-    co_heartbeat_process, co_guarding_process, co_sdo_process, co_sync_process, co_emcy_process,
+    co_heartbeat_process, co_guarding_process, co_sdo_process, sync_process, co_emcy_process,
 };
 
 static co_time_t services_process(co_node_t *node, co_time_t now)

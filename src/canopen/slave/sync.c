@@ -1,6 +1,7 @@
 /* SYNC consumer and the producer's parameters (CiA 301 section 7.2.5; parameters 7.5.2.5-7.5.2.7
  * and 7.5.2.41); the producer itself is in sync_producer.c. Every SYNC, received or produced, is
- * handed to the PDO engine and to the application. */
+ * left in co_sync_t.event for the node, which hands it to the PDO engine and to the
+ * application. */
 #include "co/co_node.h"
 
 /* The SYNC parameters are read from the dictionary at init, at each reset (after the defaults and
@@ -40,13 +41,6 @@ uint32_t co_sync_window_us(const co_node_t *node)
     return node->sync.window_us;
 }
 
-void co_sync_event(co_node_t *node, uint8_t counter)
-{
-    co_pdo_sync(node, counter);
-    if (node->hooks != NULL && node->hooks->sync != NULL)
-        node->hooks->sync(node, counter);
-}
-
 /* The length error and its EMCY end together: a flag left without its EMCY would swallow the
  * next wrong SYNC's EMCY, an EMCY left without its flag would never be cleared. */
 static void sync_length_error_end(co_node_t *node)
@@ -66,11 +60,6 @@ void co_sync_reset(co_node_t *node)
     co_sync_producer_stop(&node->sync.producer);
     node->sync.producer.counter = 0;
     sync_length_error_end(node);
-}
-
-void co_sync_producer_stop(co_sync_producer_t *producer)
-{
-    producer->next = CO_TIME_NEVER;
 }
 
 /* The producer's code is linked only by a dictionary that has it (co_od_t.sync_producer,
@@ -98,7 +87,8 @@ bool co_sync_receive(co_node_t *node, const co_frame_t *frame)
         return true;
     }
     sync_length_error_end(node);
-    co_sync_event(node, overflow != 0 ? frame->data[0] : 0);
+    node->sync.event = true;
+    node->sync.event_counter = overflow != 0 ? frame->data[0] : 0;
     return true;
 }
 

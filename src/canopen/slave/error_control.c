@@ -1,5 +1,106 @@
-/* Heartbeat producer (1017h) and consumers (1016h), CiA 301 section 7.2.8.3.2. */
+/* Error control, the two protocols of CiA 301 section 7.2.8.3 that a node answers or produces:
+ * node guarding and life guarding (7.2.8.3.1; 100Ch, 100Dh, 100Eh; the ATV312 manual's "Node
+ * guarding protocol": toggle starts at 0, reset only by Reset_Communication), and the heartbeat
+ * producer (1017h) and consumers (1016h) (7.2.8.3.2). They are one file because they exclude
+ * each other: heartbeat production silences guarding, and writing 1017h stops life guarding. */
 #include "co/co_node.h"
+
+/* ---- Node guarding and life guarding ---------------------------------------------------- */
+
+#define GUARD_COB_ID_11BIT 0x7FFu
+
+/* The CAN-ID of requests and replies: 100Eh (COB-ID node guarding, in the ATV312 manual's object
+ * table) when the dictionary has it, else 700h + node-id (CiA 301 7.2.8.3.1). Heartbeat and
+ * boot-up stay on 700h + node-id (nmt.c and the heartbeat below). */
+static uint32_t guarding_cob_id(const co_node_t *node)
+{
+    return co_od_param(node, 0x100E, 0, CO_CAN_ID_ERROR_CONTROL + node->node_id);
+}
+
+/* The life time, guard time (100Ch, ms) times life time factor (100Dh), from now while guarding
+ * has started and is not lost; off when either is 0. */
+static void restart_life_timer(co_node_t *node)
+{
+    co_guarding_t *g = &node->guarding;
+    uint16_t guard_time_ms = (uint16_t)co_od_value(node, 0x100C, 0);
+    uint8_t life_time_factor = (uint8_t)co_od_value(node, 0x100D, 0);
+    co_time_t life_us = (co_time_t)guard_time_ms * life_time_factor * 1000u;
+    bool armed = g->started && !g->lost && life_us != 0;
+    g->deadline = armed ? node->now + life_us : CO_TIME_NEVER;
+}
+
+static void guarding_report(co_node_t *node, bool lost)
+{
+    if (node->hooks != NULL && node->hooks->guarding != NULL)
+        node->hooks->guarding(node, lost);
+}
+
+void co_guarding_reset(co_node_t *node)
+{
+    co_guarding_t *g = &node->guarding;
+    g->toggle = 0;
+    g->started = false;
+    g->lost = false;
+    g->deadline = CO_TIME_NEVER;
+}
+
+void co_guarding_stop(co_node_t *node)
+{
+    node->guarding.started = false;
+    node->guarding.deadline = CO_TIME_NEVER;
+}
+
+bool co_guarding_receive(co_node_t *node, const co_frame_t *frame)
+{
+    /* The RTR flag first: the COB-ID lookup is a dictionary search, and data frames are most. */
+    if (!(frame->flags & CO_FRAME_RTR) || frame->id != guarding_cob_id(node))
+        return false;
+    /* A guarding request is a remote frame of DLC 0 or 1 (masters differ), of any DLC on a node of
+     * 8-byte frames; the ATV312 runs only one error control protocol, so heartbeat production
+     * silences guarding. */
+    bool any_dlc = (node->options & CO_NODE_PAD_DLC8) != 0;
+    if ((frame->len > 1 && !any_dlc) || co_heartbeat_producing(node))
+        return true;
+    co_guarding_t *g = &node->guarding;
+    uint8_t reply = (uint8_t)(g->toggle | (uint8_t)node->nmt_state);
+    g->toggle ^= CO_GUARD_TOGGLE;
+    co_node_send_byte(node, frame->id, reply);
+    g->started = true;
+    bool resumed = g->lost;
+    g->lost = false;
+    restart_life_timer(node);
+    if (resumed)
+        guarding_report(node, false);
+    return true;
+}
+
+co_time_t co_guarding_process(co_node_t *node, co_time_t now)
+{
+    co_guarding_t *g = &node->guarding;
+    if (now < g->deadline)
+        return g->deadline;
+    g->lost = true;
+    g->deadline = CO_TIME_NEVER;
+    guarding_report(node, true);
+    return CO_TIME_NEVER;
+}
+
+/* 100Eh (ATV312 manual, COB-ID node guarding): an 11-bit CAN-ID, bits 11-31 clear, else
+ * 0x06090030; it applies from the next request. Its default 700h + node-id lies in the CiA 301
+ * restricted range, which binds the configurable PDO/SYNC/EMCY COB-IDs only, so it is not checked.
+ * 100Ch/100Dh: the new guard time or life time factor is stored, then a running life timer restarts
+ * with both. */
+uint32_t co_guarding_od_write(co_node_t *node, const co_od_entry_t *entry, const uint8_t *data,
+                              size_t len)
+{
+    if (entry->index == 0x100E)
+        return co_get_u32(data) & ~GUARD_COB_ID_11BIT ? CO_SDO_ABORT_VALUE_RANGE : CO_SDO_OK;
+    co_od_store(node, entry, data, len);
+    restart_life_timer(node);
+    return CO_OD_HANDLED;
+}
+
+/* ---- Heartbeat -------------------------------------------------------------------------- */
 
 #define HB_TIME_MASK 0xFFFFu
 #define HB_RESERVED_MASK 0xFF000000u /* CiA 301 1016h value definition: bits 24..31 are 0 */
@@ -63,11 +164,6 @@ static void consumer_configure(co_heartbeat_t *hb, uint8_t i, uint32_t value)
     consumers_schedule(hb);
 }
 
-bool co_heartbeat_producing(const co_node_t *node)
-{
-    return co_od_value(node, 0x1017, 0) != 0;
-}
-
 void co_heartbeat_reset(co_node_t *node)
 {
     co_heartbeat_t *hb = &node->heartbeat;
@@ -76,7 +172,7 @@ void co_heartbeat_reset(co_node_t *node)
         consumer_configure(hb, i, (uint32_t)co_od_value(node, 0x1016, (uint8_t)(i + 1)));
 }
 
-static void report(co_node_t *node, uint8_t producer, bool lost)
+static void heartbeat_report(co_node_t *node, uint8_t producer, bool lost)
 {
     if (node->hooks != NULL && node->hooks->heartbeat != NULL)
         node->hooks->heartbeat(node, producer, lost);
@@ -98,7 +194,7 @@ bool co_heartbeat_receive(co_node_t *node, const co_frame_t *frame)
         consumed = true;
         c->state = frame->data[0];
         if (co_hb_monitor_alive(&c->monitor, node->now))
-            report(node, producer, false);
+            heartbeat_report(node, producer, false);
     }
     if (consumed)
         consumers_schedule(&node->heartbeat);
@@ -112,7 +208,7 @@ static co_time_t consumers_process(co_node_t *node, co_time_t now)
     for (uint8_t i = 0; i < CO_CONFIG_HB_CONSUMERS; i++) {
         co_hb_consumer_t *c = &node->heartbeat.consumer[i];
         if (co_hb_monitor_expired(&c->monitor, now))
-            report(node, c->node_id, true);
+            heartbeat_report(node, c->node_id, true);
     }
     /* After the reports: their hooks may have reconfigured a consumer. */
     consumers_schedule(&node->heartbeat);

@@ -1,5 +1,6 @@
 /* cotrace: says what every frame of a candump -L log or a live SocketCAN interface means in
  * CANopen terms, one line per frame (docs/cotrace.md). */
+#include "atv58/emcy.h"
 #include "co_linux/can_frame.h"
 #include "co_linux/candump.h"
 #include "co_linux/log.h"
@@ -342,7 +343,7 @@ int main(int argc, char **argv)
         return loaded == EDS_CANNOT_READ ? EX_NOINPUT : EX_DATAERR;
     }
     cotrace_decoder_init(&dec, opts.eds_path ? &eds : NULL, (uint8_t)opts.node,
-                         opts.emcy_table ? co_emcy_table_atv58() : NULL);
+                         opts.emcy_table ? &atv58_emcy_table : NULL);
     rc = opts.iface ? decode_live(&dec, opts.iface) : decode_files(&dec, &opts);
     if (fflush(stdout) != 0 && rc == 0)
         rc = EX_IOERR;

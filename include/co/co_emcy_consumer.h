@@ -2,7 +2,7 @@
  * 080h + node-id, node-id 1..127) into node-id, error code, error register and the five
  * manufacturer-specific bytes, hands those of the watched nodes to a callback, and says what an
  * error code means: the CiA 301 and CiA 402 tables, optionally preceded by a vendor's own table
- * (the ATV58 manual's is provided).
+ * (a device model supplies its manual's: co_emcy_code_table_t).
  *
  * The consumer listens on the default COB-IDs only; a node whose 1014h was moved elsewhere is not
  * recognised. Several consumers may coexist: each is a plain struct the caller owns. */
@@ -36,6 +36,11 @@ co_emcy_decode_t co_emcy_decode(const co_frame_t *frame, co_emcy_message_t *out)
 /* "EMCY frame", "not an EMCY frame", "EMCY frame shorter than 8 bytes". */
 const char *co_emcy_decode_text(co_emcy_decode_t result);
 
+/* The masks of a meaning: one code, a subclass xxyy (any yy) or a class xyyy (any yyy). */
+#define CO_EMCY_MASK_EXACT 0xFFFFu
+#define CO_EMCY_MASK_SUBCLASS 0xFF00u
+#define CO_EMCY_MASK_CLASS 0xF000u
+
 /* One meaning: codes c with (c & mask) == code. A wider mask is more specific. */
 typedef struct co_emcy_meaning {
     uint16_t code;
@@ -47,10 +52,6 @@ typedef struct co_emcy_code_table {
     const co_emcy_meaning_t *meanings;
     size_t count;
 } co_emcy_code_table_t;
-
-/* The Altivar 58 CANopen card manual's table (VW3-A58308, section "Emergency Error Codes"),
- * mnemonic and meaning. */
-const co_emcy_code_table_t *co_emcy_table_atv58(void);
 
 /* The meaning of an error code after CiA 301 (table 21) and CiA 402: the most specific match
  * (0x8130 "life guard or heartbeat error" before 0x81xx "communication", before 0x8xxx

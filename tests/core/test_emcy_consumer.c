@@ -165,18 +165,26 @@ START_TEST(most_specific_match_first)
 }
 END_TEST
 
+/* A vendor's table (here the test's own) is consulted first: its match wins over a standard one
+ * that is no more specific, a code it does not list or lists less precisely keeps its standard
+ * meaning. The models' own tables are tested with the models (tests/drive/models/atv58). */
 START_TEST(vendor_table_first)
 {
-    const co_emcy_code_table_t *atv58 = co_emcy_table_atv58();
-    ck_assert_str_eq(co_emcy_code_text_in(atv58, 0x2310), "OCF: overcurrent fault (ATV58)");
-    ck_assert_str_eq(co_emcy_code_text_in(atv58, 0x8130),
-                     "communication error (life guard time out) (ATV58)");
-    ck_assert_str_eq(co_emcy_code_text_in(atv58, 0x7520),
-                     "ILF/CNF: fast communication link or network fault (ATV58)");
-    ck_assert_str_eq(co_emcy_code_text_in(atv58, 0x0000), "NOF: no fault");
+    static const co_emcy_meaning_t meanings[] = {
+        {0x0000, CO_EMCY_MASK_SUBCLASS, "vendor: no fault"},
+        {0x2310, CO_EMCY_MASK_EXACT, "vendor: overcurrent"},
+        {0x8130, CO_EMCY_MASK_EXACT, "vendor: life guard time out"},
+        {0x3200, CO_EMCY_MASK_SUBCLASS, "vendor: DC link"},
+    };
+    static const co_emcy_code_table_t vendor = {meanings, sizeof meanings / sizeof meanings[0]};
+    ck_assert_str_eq(co_emcy_code_text_in(&vendor, 0x2310), "vendor: overcurrent");
+    ck_assert_str_eq(co_emcy_code_text_in(&vendor, 0x8130), "vendor: life guard time out");
+    ck_assert_str_eq(co_emcy_code_text_in(&vendor, 0x0000), "vendor: no fault");
     /* Codes the vendor does not list, or lists less precisely, keep their standard meaning. */
-    ck_assert_str_eq(co_emcy_code_text_in(atv58, 0x8110), "CAN overrun (objects lost)");
-    ck_assert_str_eq(co_emcy_code_text_in(atv58, 0x3220), "DC link under-voltage");
+    ck_assert_str_eq(co_emcy_code_text_in(&vendor, 0x8110), "CAN overrun (objects lost)");
+    ck_assert_str_eq(co_emcy_code_text_in(&vendor, 0x3220), "DC link under-voltage");
+    /* A tie in specificity: the vendor's wins. */
+    ck_assert_str_eq(co_emcy_code_text_in(&vendor, 0x3201), "vendor: DC link");
     ck_assert_str_eq(co_emcy_code_text_in(NULL, 0x2310), "continuous over current");
 }
 END_TEST

@@ -1,5 +1,6 @@
 /* cotrace's decoder on lists of frames, each with the exact line it must give: every service,
  * SDO transfers followed across frames, PDOs decoded through an EDS, malformed frames. */
+#include "atv58/emcy.h"
 #include "check_main.h"
 #include "co_linux/candump.h"
 #include "decoder.h"
@@ -87,7 +88,7 @@ START_TEST(emcy)
         {"084#1023A1", "EMCY node 4 malformed: EMCY frame shorter than 8 bytes (3 bytes)"},
     };
     PLAY(&dec, steps);
-    cotrace_decoder_init(&dec, NULL, 0, co_emcy_table_atv58());
+    cotrace_decoder_init(&dec, NULL, 0, &atv58_emcy_table);
     static const step_t atv58[] = {
         {"085#1023010000000000", "EMCY node 5: 0x2310 OCF: overcurrent fault (ATV58), error "
                                  "register 0x01 (generic), manufacturer bytes 00 00 00 00 00"},

@@ -3,9 +3,9 @@
 
 #include "co/co_emcy.h"
 
-#define EXACT 0xFFFFu
-#define SUBCLASS 0xFF00u /* codes xxyy: the subclass xx, any yy */
-#define CLASS 0xF000u    /* codes xyyy: the class x, any yyy */
+#define EXACT CO_EMCY_MASK_EXACT
+#define SUBCLASS CO_EMCY_MASK_SUBCLASS
+#define CLASS CO_EMCY_MASK_CLASS
 
 #define TABLE(meanings)                                                                            \
     {                                                                                              \
@@ -128,40 +128,8 @@ static const co_emcy_meaning_t cia402_meanings[] = {
     {0xF004, EXACT, "control"},
 };
 
-/* The ATV58 card manual lists several faults under one code where its table had merged cells;
- * they share one text here. */
-static const co_emcy_meaning_t atv58_meanings[] = {
-    {0x0000, SUBCLASS, "NOF: no fault"},
-    {0x1000, SUBCLASS,
-     "CRF: load relay fault, OLF: motor overload fault, SOF: overspeed fault (ATV58)"},
-    {0x2310, EXACT, "OCF: overcurrent fault (ATV58)"},
-    {0x2320, EXACT, "SCF: motor short-circuit fault (phase, earth) (ATV58)"},
-    {0x3110, EXACT, "OSF: line supply overvoltage fault (ATV58)"},
-    {0x3120, EXACT, "USF: line supply undervoltage fault (ATV58)"},
-    {0x3130, EXACT, "PHF: line supply phase loss fault (ATV58)"},
-    {0x3310, EXACT, "OBF: DC bus overvoltage fault, OPF: motor phase loss fault (ATV58)"},
-    {0x4210, EXACT, "OHF: drive overheating fault (ATV58)"},
-    {0x4310, EXACT, "OTF: motor overheating fault (ATV58)"},
-    {0x5520, EXACT, "EEF: EEPROM memory fault (ATV58)"},
-    {0x5530, EXACT, "EEF: EEPROM memory fault (ATV58)"},
-    {0x6100, EXACT, "INF: internal fault (ATV58)"},
-    {0x6300, EXACT, "CFF/CFI: configuration (parameters) incorrect or invalid (ATV58)"},
-    {0x7300, EXACT, "ANF: load veering fault, LFF: loss of 4-20 mA, TSF: PTC probe fault (ATV58)"},
-    {0x7310, EXACT, "SPF: speed feedback cut-off fault (ATV58)"},
-    {0x7510, EXACT, "SLF: standard communication link fault (ATV58)"},
-    {0x7520, EXACT, "ILF/CNF: fast communication link or network fault (ATV58)"},
-    {0x8130, EXACT, "communication error (life guard time out) (ATV58)"},
-    {0x9000, EXACT, "EPF: external fault (ATV58)"},
-};
-
 static const co_emcy_code_table_t cia301_table = TABLE(cia301_meanings);
 static const co_emcy_code_table_t cia402_table = TABLE(cia402_meanings);
-static const co_emcy_code_table_t atv58_table = TABLE(atv58_meanings);
-
-const co_emcy_code_table_t *co_emcy_table_atv58(void)
-{
-    return &atv58_table;
-}
 
 static unsigned mask_bits(uint16_t mask)
 {

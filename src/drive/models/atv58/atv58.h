@@ -9,6 +9,7 @@
 #ifndef ATV58_H
 #define ATV58_H
 
+#include "atv58/emcy.h"
 #include "atv58_od.h" /* generated */
 #include "drive/drive.h"
 

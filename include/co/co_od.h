@@ -212,16 +212,28 @@ uint32_t co_od_write_entry(co_node_t *node, const co_od_entry_t *entry, const ui
 /* Stores bytes without any check (used by hooks and services after their own checks). */
 void co_od_store(co_node_t *node, const co_od_entry_t *entry, const uint8_t *data, size_t len);
 
-/* Numeric value of an entry of up to 8 bytes, sign-extended for signed types. */
+/* The numeric readers: which one depends on what the caller holds and on what an absent entry
+ * must read as. None checks access rights or calls a hook (co_od_read_check does, for the SDO).
+ *
+ *   co_od_get(node, entry)                An entry already found (co_od_find, a PDO mapping, a
+ *                                         walk over the table): its value. No search.
+ *   co_od_value(node, index, sub)         By index, for the application and for a parameter
+ *                                         whose absence means 0 (1005h..1007h, 100Ch, 1017h):
+ *                                         an absent entry reads as 0.
+ *   co_od_param(node, index, sub, absent) By index, for an optional parameter of up to 32 bits
+ *                                         to which CiA 301 gives a default when the dictionary
+ *                                         lacks it (100Eh: 700h + node-id, a PDO's COB-ID and
+ *                                         type, 1200h): `absent` is that default.
+ *
+ * co_od_get and co_od_value give up to 8 bytes, sign-extended for signed types; co_od_param the
+ * low 32 bits. Each reader by index is one binary search: a caller that reads one entry several
+ * times finds it once and uses co_od_get. The writers without checks pair with them: co_od_set
+ * (an entry), co_od_set_value (by index; false, nothing written, when absent). */
 int64_t co_od_get(const co_node_t *node, const co_od_entry_t *entry);
-/* Application access by index; absent entries read as 0 and ignore writes (return false). */
 int64_t co_od_value(const co_node_t *node, uint16_t index, uint8_t subindex);
-bool co_od_set_value(co_node_t *node, uint16_t index, uint8_t subindex, int64_t value);
-/* A parameter of up to 32 bits, `absent` when the dictionary does not have it: the services read
- * an optional parameter (a PDO's, 100Eh, 1200h) as CiA 301's default for it. */
 uint32_t co_od_param(const co_node_t *node, uint16_t index, uint8_t subindex, uint32_t absent);
-/* Stores a numeric value into an entry without checks. */
 void co_od_set(co_node_t *node, const co_od_entry_t *entry, int64_t value);
+bool co_od_set_value(co_node_t *node, uint16_t index, uint8_t subindex, int64_t value);
 
 /* Restores defaults of the entries with index in [first, last], node-id terms added. */
 void co_od_restore_defaults(co_node_t *node, uint16_t first, uint16_t last);

@@ -46,18 +46,17 @@ bool co_sync_producer_take(co_sync_producer_t *producer, co_time_t now, co_frame
 
 typedef struct co_sync {
     co_sync_producer_t producer; /* fed from 1005h, 1006h, 1019h */
-    bool length_error;           /* EMCY 0x8240 raised */
-    /* A SYNC received or produced, and its counter (0 when none), which the node hands to the
-     * PDO engine and the application right after co_sync_receive or co_sync_process returns:
-     * the service calls neither. Beside length_error, in what was padding. */
-    bool event;
-    uint8_t event_counter;
+    /* Where the consumer and the producer hand each SYNC, with its counter (0 when none):
+     * co_sync_event, which co_node_init sets. A pointer, so that the SYNC service calls no PDO
+     * function: the node, which owns both, connects them. */
+    void (*deliver)(co_node_t *node, uint8_t counter);
     /* 1005h, 1006h, 1007h and 1019h as the dictionary holds them (0 when absent), reloaded by
      * co_sync_init, co_sync_reset and every write of one of them through co_od_write. */
     uint32_t cob_id;
     uint32_t period_us;
     uint32_t window_us;
     uint8_t overflow;
+    bool length_error; /* EMCY 0x8240 raised */
 } co_sync_t;
 
 /* Loads the node's SYNC parameters from its dictionary (co_node_init). */
@@ -78,6 +77,9 @@ co_time_t co_sync_process(co_node_t *node, co_time_t now);
 /* The node's producer (sync_producer.c), for co_od_t.sync_producer: produces the SYNC when
  * 1005h bit 30 and 1006h say so, in Pre-operational and Operational. */
 co_time_t co_sync_produce(co_node_t *node, co_time_t now);
+/* A SYNC received or produced: to the PDO engine, then to the application's sync hook. The node's
+ * (node.c), which the consumer and the producer reach through co_sync_t.deliver. */
+void co_sync_event(co_node_t *node, uint8_t counter);
 uint32_t co_sync_od_write(co_node_t *node, const co_od_entry_t *entry, const uint8_t *data,
                           size_t len);
 

@@ -77,8 +77,9 @@ co_time_t co_sync_produce(co_node_t *node, co_time_t now)
     co_frame_t frame;
     if (co_sync_producer_take(producer, now, &frame)) {
         co_node_send(node, &frame);
-        node->sync.event = true;
-        node->sync.event_counter = frame.data[0];
+        node->sync.deliver(node, frame.data[0]);
     }
+    /* Read after the delivery: a 1005h or 1006h write by the PDOs or the application's sync hook
+     * stops the producer. */
     return producer->next;
 }

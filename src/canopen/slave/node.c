@@ -1,8 +1,8 @@
 /* The node, the composition root of the slave services: initialisation, the routing of received
  * frames to the services that the current NMT state allows (ATV312 manual, "NMT state" table;
  * CiA 301 table 74), the owner of each communication parameter, the SYNC handed from its service
- * to the PDOs and the application, and the earliest deadline. The services call one another only
- * downwards; what crosses between them goes through here. */
+ * to the PDOs and the application (co_sync_event), and the earliest deadline. The services call one
+ * another only downwards; what crosses between them goes through here. */
 #include "co/co_consumers.h"
 #include "co/co_node.h"
 
@@ -96,6 +96,7 @@ int co_node_init(co_node_t *node, const co_node_config_t *config)
     node->options = config->options;
     node->options_code = config->options_code;
     node->parameter_write = parameter_write;
+    node->sync.deliver = co_sync_event;
     node->sdo.timeout_us = CO_CONFIG_SDO_TIMEOUT_US;
     node->sdo.buffer = config->sdo_buffer;
 #if CO_CONFIG_SDO_BUFFER > 0
@@ -115,19 +116,11 @@ void co_node_start(co_node_t *node, co_time_t now)
     co_nmt_reset(node, CO_NMT_RESET_NODE);
 }
 
-/* A SYNC that its service took, received or produced (co_sync_t.event), goes to the PDO engine,
- * then to the application, before any other service runs: the frames it causes keep their place.
- * True when there was one. */
-static bool sync_deliver(co_node_t *node)
+void co_sync_event(co_node_t *node, uint8_t counter)
 {
-    if (!node->sync.event)
-        return false;
-    node->sync.event = false;
-    uint8_t counter = node->sync.event_counter;
     co_pdo_sync(node, counter);
     if (node->hooks != NULL && node->hooks->sync != NULL)
         node->hooks->sync(node, counter);
-    return true;
 }
 
 void co_node_receive(co_node_t *node, const co_frame_t *frame, co_time_t now)
@@ -145,10 +138,8 @@ void co_node_receive(co_node_t *node, const co_frame_t *frame, co_time_t now)
     }
     if (node->nmt_state == CO_NMT_STOPPED)
         return;
-    if (co_sync_receive(node, frame)) {
-        sync_deliver(node);
+    if (co_sync_receive(node, frame))
         return;
-    }
     bool sdo_was_busy = node->sdo.state != CO_SDO_IDLE;
     if (co_sdo_receive(node, frame)) {
         /* A transfer under way has a timeout, which each of its frames moves; an expedited
@@ -161,20 +152,11 @@ void co_node_receive(co_node_t *node, const co_frame_t *frame, co_time_t now)
         co_pdo_receive(node, frame);
 }
 
-/* The SYNC service, then the SYNC it produced. The producer's next SYNC is read again after the
- * delivery: a parameter written while the PDOs or the application handled it may have stopped the
- * producer. */
-static co_time_t sync_process(co_node_t *node, co_time_t now)
-{
-    co_time_t next = co_sync_process(node, now);
-    return sync_deliver(node) ? node->sync.producer.next : next;
-}
-
 /* Heartbeat, guarding, SDO, SYNC and EMCY: what they do and their next deadline change only with
  * time, frames and the calls that mark the node changed (co_node_reschedule), so while neither
  * happened a process call looks at none of them. */
 static co_time_t (*const services[])(co_node_t *node, co_time_t now) = {
-    co_heartbeat_process, co_guarding_process, co_sdo_process, sync_process, co_emcy_process,
+    co_heartbeat_process, co_guarding_process, co_sdo_process, co_sync_process, co_emcy_process,
 };
 
 static co_time_t services_process(co_node_t *node, co_time_t now)

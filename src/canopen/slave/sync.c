@@ -1,6 +1,6 @@
 /* SYNC consumer and the producer's parameters (CiA 301 section 7.2.5; parameters 7.5.2.5-7.5.2.7
- * and 7.5.2.41); the producer itself is in sync_producer.c. Every SYNC, received or produced, is
- * left in co_sync_t.event for the node, which hands it to the PDO engine and to the
+ * and 7.5.2.41); the producer itself is in sync_producer.c. Every SYNC, received or produced, goes
+ * through co_sync_t.deliver to the node, which hands it to the PDO engine and to the
  * application. */
 #include "co/co_node.h"
 
@@ -87,8 +87,7 @@ bool co_sync_receive(co_node_t *node, const co_frame_t *frame)
         return true;
     }
     sync_length_error_end(node);
-    node->sync.event = true;
-    node->sync.event_counter = overflow != 0 ? frame->data[0] : 0;
+    node->sync.deliver(node, overflow != 0 ? frame->data[0] : 0);
     return true;
 }
 

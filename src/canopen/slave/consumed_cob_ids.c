@@ -1,6 +1,8 @@
 /* The COB-IDs a node consumes, read from the services' decoded state (the same fields their
  * receive functions compare a frame with), and the generation number that tells a runtime when
- * to read them again. */
+ * to read them again. Named for what it lists, not "consumers": it is none of CiA 301's consumer
+ * roles (the SYNC, heartbeat and EMCY consumers); its header keeps the installed name
+ * co/co_consumers.h. */
 #include "co/co_consumers.h"
 
 #define CAN_ID_11BIT 0x7FFu

@@ -2,7 +2,7 @@
  * 1003h pre-defined error field (history), and the application API to raise and clear errors.
  *
  * Frames: [code LSB, code MSB, 1001h, msef[0..4]] on the CAN-ID of 1014h, none while 1014h bit 31
- * (invalid) is set. EMCY is a Pre-operational and Operational service (ATV312 manual, NMT table):
+ * (invalid) is set. EMCY is a Pre-operational and Operational service (CiA 301 table 74):
  * an error raised or cleared in Stopped updates 1001h and 1003h but sends no frame, and frames
  * still waiting for their inhibit time are dropped when the node stops. Successive frames are at
  * least 1015h x 100 us apart; the ones that must wait are queued (CO_CONFIG_EMCY_QUEUE frames; a

@@ -8,7 +8,8 @@
  * 100Dh life time factor, ms; 0 = off), hooks->guarding(lost = true) is called once, and
  * hooks->guarding(lost = false) when requests come again. Writing 100Ch or 100Dh restarts the
  * life timer. While the heartbeat producer runs (1017h != 0) requests are ignored: no reply, no
- * life guarding (ATV312 manual: only one of the two protocols is active). */
+ * life guarding: only one of the two protocols is active (docs/decisions.md,
+ * D-HEARTBEAT-GUARDING). */
 #ifndef CO_GUARDING_H
 #define CO_GUARDING_H
 

@@ -38,7 +38,7 @@ typedef struct co_app_hooks {
 } co_app_hooks_t;
 
 /* Behaviour options of one node (co_node_config_t.options), most for a device of an older profile
- * than CiA 301 v4.2 (the Altivar 58's CANopen card, DS301 V4.0 with pre-V4 habits); 0 is plain
+ * than CiA 301 v4.2 (DS301 V4.0 devices with pre-V4 habits); 0 is plain
  * CiA 301. A model chooses those, an application the heartbeat grid; each service consults its
  * own (docs/architecture.md, "Node options"). Their code is in co_node_options, which a node
  * with any option must be given (co_node_config_t.options_code), so that a firmware without

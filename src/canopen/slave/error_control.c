@@ -1,6 +1,6 @@
 /* Error control, the two protocols of CiA 301 section 7.2.8.3 that a node answers or produces:
- * node guarding and life guarding (7.2.8.3.1; 100Ch, 100Dh, 100Eh; the ATV312 manual's "Node
- * guarding protocol": toggle starts at 0, reset only by Reset_Communication), and the heartbeat
+ * node guarding and life guarding (7.2.8.3.1; 100Ch, 100Dh, 100Eh: the toggle starts at 0 and
+ * only Reset_Communication resets it), and the heartbeat
  * producer (1017h) and consumers (1016h) (7.2.8.3.2). They are one file because they exclude
  * each other: heartbeat production silences guarding, and writing 1017h stops life guarding. */
 #include "co/co_node.h"
@@ -9,9 +9,9 @@
 
 #define GUARD_COB_ID_11BIT 0x7FFu
 
-/* The CAN-ID of requests and replies: 100Eh (COB-ID node guarding, in the ATV312 manual's object
- * table) when the dictionary has it, else 700h + node-id (CiA 301 7.2.8.3.1). Heartbeat and
- * boot-up stay on 700h + node-id (nmt.c and the heartbeat below). */
+/* The CAN-ID of requests and replies: 100Eh (COB-ID node guarding, a device-specific object some
+ * dictionaries have) when the dictionary has it, else 700h + node-id (CiA 301 7.2.8.3.1). Heartbeat
+ * and boot-up stay on 700h + node-id (nmt.c and the heartbeat below). */
 static uint32_t guarding_cob_id(const co_node_t *node)
 {
     return co_od_param(node, 0x100E, 0, CO_CAN_ID_ERROR_CONTROL + node->node_id);
@@ -56,8 +56,8 @@ bool co_guarding_receive(co_node_t *node, const co_frame_t *frame)
     if (!(frame->flags & CO_FRAME_RTR) || frame->id != guarding_cob_id(node))
         return false;
     /* A guarding request is a remote frame of DLC 0 or 1 (masters differ), of any DLC on a node of
-     * 8-byte frames; the ATV312 runs only one error control protocol, so heartbeat production
-     * silences guarding. */
+     * 8-byte frames; a node runs only one error control protocol, so heartbeat production
+     * silences guarding (docs/decisions.md, D-HEARTBEAT-GUARDING). */
     bool any_dlc = (node->options & CO_NODE_PAD_DLC8) != 0;
     if ((frame->len > 1 && !any_dlc) || co_heartbeat_producing(node))
         return true;
@@ -85,7 +85,7 @@ co_time_t co_guarding_process(co_node_t *node, co_time_t now)
     return CO_TIME_NEVER;
 }
 
-/* 100Eh (ATV312 manual, COB-ID node guarding): an 11-bit CAN-ID, bits 11-31 clear, else
+/* 100Eh (COB-ID node guarding): an 11-bit CAN-ID, bits 11-31 clear, else
  * 0x06090030; it applies from the next request. Its default 700h + node-id lies in the CiA 301
  * restricted range, which binds the configurable PDO/SYNC/EMCY COB-IDs only, so it is not checked.
  * 100Ch/100Dh: the new guard time or life time factor is stored, then a running life timer restarts

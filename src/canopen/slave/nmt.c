@@ -1,5 +1,4 @@
-/* NMT slave state machine (CiA 301 section 7.3.2.2, figure 48; ATV312 manual, "Network
- * management state chart"). */
+/* NMT slave state machine (CiA 301 section 7.3.2.2, figure 48). */
 #include "co/co_consumers.h"
 #include "co/co_node.h"
 

@@ -1,8 +1,8 @@
 /* The node, the composition root of the slave services: initialisation, the routing of received
- * frames to the services that the current NMT state allows (ATV312 manual, "NMT state" table;
- * CiA 301 table 74), the owner of each communication parameter, the SYNC handed from its service
- * to the PDOs and the application (co_sync_event), and the earliest deadline. The services call one
- * another only downwards; what crosses between them goes through here. */
+ * frames to the services that the current NMT state allows (CiA 301 table 74), the owner of each
+ * communication parameter, the SYNC handed from its service to the PDOs and the application
+ * (co_sync_event), and the earliest deadline. The services call one another only downwards; what
+ * crosses between them goes through here. */
 #include "co/co_consumers.h"
 #include "co/co_node.h"
 

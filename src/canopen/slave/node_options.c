@@ -7,8 +7,8 @@
 #include <string.h>
 
 /* The DS301 V3 abort layout (CO_NODE_SDO_ERROR_CLASS): error class in the top byte, error code
- * below it, no additional code. Its codes for a missing sub-index and an unsupported request
- * (ATV58 CANopen card manual, "Invalid SDO transactions"); the other two are CiA 301's
+ * below it, no additional code. Its codes for a missing sub-index and an unsupported request, as
+ * such a device documents them (docs/architecture.md, "Node options"); the other two are CiA 301's
  * CO_SDO_ABORT_NO_OBJECT and CO_SDO_ABORT_UNSUPPORTED_ACCESS. */
 #define SDO_ERROR_CLASS_NO_SUBINDEX 0x06090000u
 #define SDO_ERROR_CLASS_NOT_SUPPORTED 0x05030000u
@@ -32,7 +32,8 @@ static bool sdo_refused_initiate(uint8_t command)
 }
 
 /* CO_NODE_SDO_LONG_EXPEDITED: the length of the object itself when the write is longer and
- * every extra byte is 0 (the ATV58 manual writes its 16-bit guard time with 0x23, 4 bytes). */
+ * every extra byte is 0 (a device of the older profile documents 4-byte writes, command 0x23, of
+ * its 16-bit objects). */
 static size_t sdo_expedited_length(const co_od_entry_t *entry, const uint8_t *value, size_t len)
 {
     size_t fixed = entry != NULL ? co_od_type_size(entry->type) : 0;

@@ -1,9 +1,5 @@
 /* Internal interface of the drive layer, for its own files and never a model's: the CiA 402
- * indexes every model has; from drive.c the drive of a node, its settling, its output, its
- * parameters and unit conversions; the faults (faults.c); the command and reference channels and
- * switching sources (channels.c); forced local control (local_control.c). Included by drive.c,
- * parameters.c, faults.c, channels.c, local_control.c and panel.c; cia402.c and motor.c need none
- * of it. */
+ * indexes every model has, and a section per file. cia402.c and motor.c need none of it. */
 #ifndef DRIVE_INTERNAL_H
 #define DRIVE_INTERNAL_H
 
@@ -18,15 +14,20 @@
 #define CIA402_IDX_VELOCITY_ACTUAL 0x6044u
 #define CIA402_IDX_VELOCITY_ACCELERATION 0x6048u
 
+/* The profile's parameters and their units (profile.c). The drive of a node, for the core's
+ * hooks. */
 drive_t *drive_of(co_node_t *node);
-/* Recomputes the motor's target from the state and the dictionary, and publishes the status
- * word, speeds, current and torque. */
-void drive_settle(drive_t *drive);
-/* The drive's output is on: it drives the motor (current and torque), and a fault reaction can
- * stop it on a ramp. */
-bool drive_output_on(const drive_t *drive);
-/* A parameter of the profile, unsigned. */
+/* A parameter of the profile, unsigned, found by its index. */
 uint32_t drive_param_value(const drive_t *drive, drive_param_t param);
+/* Whether `entry` is the parameter `param` of the model's dictionary. */
+bool drive_is_param(const co_od_entry_t *entry, drive_param_t param);
+/* Once at init: the entries the drive reads and writes whenever it settles (drive_entries_t). */
+void drive_entries_find(drive_t *drive);
+/* An entry found at init (NULL: reads as 0, a write does nothing). */
+int64_t drive_entry_value(const drive_t *drive, const co_od_entry_t *entry);
+void drive_entry_set(drive_t *drive, const co_od_entry_t *entry, int64_t value);
+/* Parameter `param` of the profile through its entry found at init, with no search. */
+uint32_t drive_entry_param(const drive_t *drive, const co_od_entry_t *entry, drive_param_t param);
 /* Conversions between 0.1 Hz and rpm through the motor's nominal frequency and speed. */
 uint32_t drive_frequency_to_rpm(const drive_t *drive, uint32_t decihertz);
 uint32_t drive_rpm_to_frequency(const drive_t *drive, uint32_t rpm);
@@ -34,6 +35,19 @@ uint32_t drive_rpm_to_frequency(const drive_t *drive, uint32_t rpm);
 int32_t drive_signed_rpm_to_frequency(const drive_t *drive, int32_t rpm);
 int32_t drive_signed_frequency_to_rpm(const drive_t *drive, int32_t decihertz);
 int16_t drive_clamp_int16(int32_t value);
+
+/* The output (output.c). Steers the motor to the target and ramp of the state, the control word
+ * and the channels. */
+void drive_output_steer(drive_t *drive);
+/* The drive's output is on: it drives the motor (current and torque), and a fault reaction can
+ * stop it on a ramp. */
+bool drive_output_on(const drive_t *drive);
+/* Publishes the status word, speeds, current and torque. */
+void drive_output_publish(drive_t *drive);
+
+/* The composition (drive.c). Recomputes the motor's target from the state and the dictionary, and
+ * publishes the status word, speeds, current and torque. */
+void drive_settle(drive_t *drive);
 
 /* Faults (faults.c). The profile has a usable fault table. */
 bool drive_faults_valid(const drive_profile_t *profile);
@@ -48,9 +62,6 @@ void drive_faults_acknowledge(drive_t *drive);
 void drive_faults_restart(drive_t *drive);
 /* Raises again every fault whose cause is present (after a reset node). */
 void drive_faults_raise_present(drive_t *drive);
-
-/* Whether `entry` is the parameter `param` of the model's dictionary. */
-bool drive_is_param(const co_od_entry_t *entry, drive_param_t param);
 
 /* Channels (channels.c): the network gives the reference, the network commands. Kept in the
  * drive, recomputed by drive_channels_update when a channel parameter is written, at a reset and

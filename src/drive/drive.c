@@ -1,6 +1,8 @@
 /* The drive: a CANopen node on a model's dictionary whose control word drives the CiA 402 state
  * machine and whose motor model publishes status, speed, current and torque. Communication loss
- * (heartbeat consumer or life guarding) is the network fault. */
+ * (heartbeat consumer or life guarding) is the network fault. The composition root of the layer:
+ * the core's application hooks and every public entry point that changes the drive's state end
+ * by settling it; the files below change the state and say what changed, and call none of this. */
 #include "drive_internal.h"
 
 /* The EMCY error register of a CAN bus condition where the profile gives none: 1001h bit 0
@@ -13,7 +15,9 @@ static uint8_t bus_error_register(const drive_t *drive)
     return bits ? bits : COMMUNICATION_ERROR_REGISTER;
 }
 
-void drive_settle(drive_t *drive)
+/* Recomputes the motor's target from the state and the dictionary, and publishes the status
+ * word, speeds, current and torque. */
+static void settle(drive_t *drive)
 {
     if (drive_motor_stands(&drive->motor)) {
         cia402_motor_stopped(&drive->cia402);
@@ -21,6 +25,22 @@ void drive_settle(drive_t *drive)
     }
     drive_output_steer(drive);
     drive_output_publish(drive);
+}
+
+/* A change of command channel is a freewheel stop to Switch on disabled, as forced local
+ * control's. */
+static void update_channels(drive_t *drive)
+{
+    if (drive_channels_update(drive))
+        drive_local_channel_changed(drive);
+}
+
+/* Each fault raised settles the drive before the next: a later fault's reaction reads the ramp the
+ * motor is on (faults.c, react). */
+static void raise_fault(drive_t *drive, uint8_t index)
+{
+    if (drive_fault_raise(drive, index))
+        settle(drive);
 }
 
 /* A communication loss latches the network fault code and, unless the model's mode parameter
@@ -34,7 +54,7 @@ static void communication_fault(drive_t *drive)
                     profile->network_fault_code.subindex, DRIVE_NETWORK_FAULT_TIME_OUT);
     if (mode.index != 0 && drive_param_value(drive, mode) == DRIVE_COMMUNICATION_LOSS_IGNORE)
         return;
-    drive_fault_raise(drive, profile->faults->communication_loss);
+    raise_fault(drive, profile->faults->communication_loss);
 }
 
 static bool is_control_word(const drive_t *drive, const co_od_entry_t *entry)
@@ -81,7 +101,7 @@ static void apply_control_word(drive_t *drive, uint16_t control)
     drive_entry_set(drive, drive->entries.control_word, control);
     drive_entry_set(drive, drive->entries.control_word_copy, control);
     if (drive->assigned_bits != 0)
-        drive_channels_update(drive);
+        update_channels(drive);
     if (drive_local_control(drive))
         return;
     if (drive->cia402.state == CIA402_FAULT && !drive_faults_resettable(drive)) {
@@ -138,8 +158,8 @@ static void on_written(co_node_t *node, const co_od_entry_t *entry, co_od_origin
         apply_control_word(drive, (uint16_t)co_od_get(node, entry));
     mirror_reference(drive, entry);
     if (drive_channel_parameter(drive, entry))
-        drive_channels_update(drive);
-    drive_settle(drive);
+        update_channels(drive);
+    settle(drive);
     advance_auto_tune(drive, node->now);
 }
 
@@ -191,7 +211,10 @@ static void on_nmt_state(co_node_t *node, co_nmt_state_t state)
     drive_t *drive = drive_of(node);
     for (uint8_t i = 0; i < drive->bus_event_count; i++)
         co_emcy_raise(node, drive->bus_events[i], bus_error_register(drive), NULL);
-    drive_faults_raise_present(drive);
+    for (uint8_t i = 0; i < drive->profile->faults->count; i++) {
+        if (drive_fault_cause_present(drive, i))
+            raise_fault(drive, i);
+    }
 }
 
 static const co_app_hooks_t drive_hooks = {
@@ -236,8 +259,8 @@ int drive_init(drive_t *drive, const drive_config_t *config)
 void drive_start(drive_t *drive, co_time_t now)
 {
     co_node_start(&drive->node, now);
-    drive_channels_update(drive);
-    drive_settle(drive);
+    update_channels(drive);
+    settle(drive);
 }
 
 void drive_receive(drive_t *drive, const co_frame_t *frame, co_time_t now)
@@ -252,10 +275,10 @@ co_time_t drive_process(drive_t *drive, co_time_t now)
 {
     if (drive->dirty || !drive_motor_at_target(&drive->motor)) {
         if (drive->dirty)
-            drive_channels_update(drive); /* a reset restored them without writes */
+            update_channels(drive); /* a reset restored them without writes */
         drive->dirty = false;
         drive_motor_advance(&drive->motor, now);
-        drive_settle(drive);
+        settle(drive);
     }
     advance_auto_tune(drive, now);
     co_time_t next = co_node_process(&drive->node, now);
@@ -288,4 +311,52 @@ void drive_bus_event(drive_t *drive, uint16_t emcy_code, bool active)
 const char *drive_state_name(const drive_t *drive)
 {
     return cia402_state_name(drive->cia402.state);
+}
+
+void drive_set_local(drive_t *drive, bool local, co_time_t now)
+{
+    drive_local_force(drive, local, now);
+    settle(drive);
+}
+
+void drive_stop_key(drive_t *drive, co_time_t now)
+{
+    drive_local_stop_key(drive, now);
+    settle(drive);
+}
+
+bool drive_run_key(drive_t *drive, co_time_t now)
+{
+    if (!drive_local_run_key(drive, now))
+        return false;
+    settle(drive);
+    return true;
+}
+
+void drive_set_load(drive_t *drive, uint8_t percent, co_time_t now)
+{
+    drive_local_load(drive, percent, now);
+    settle(drive);
+}
+
+/* An input may be a switching source: the channels follow it before the drive settles. */
+bool drive_set_input(drive_t *drive, uint8_t input, bool on, co_time_t now)
+{
+    if (!drive_local_input(drive, input, on, now))
+        return false;
+    update_channels(drive);
+    settle(drive);
+    return true;
+}
+
+void drive_fault_inject(drive_t *drive, uint8_t index, co_time_t now)
+{
+    if (drive_fault_cause_appears(drive, index, now))
+        settle(drive);
+}
+
+void drive_fault_remove_cause(drive_t *drive, uint8_t index, co_time_t now)
+{
+    if (drive_fault_cause_ends(drive, index, now))
+        settle(drive);
 }

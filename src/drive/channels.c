@@ -1,6 +1,7 @@
 /* Where the commands and the reference come from (include/drive/drive.h, the profile's channel
  * fields), and which ramp pair runs: the network, or a channel at the drive, chosen by switches
- * whose sources are logic inputs or control word bits. */
+ * whose sources are logic inputs or control word bits. An update says whether the command channel
+ * changed; the composition root (drive.c) has local control react to it. */
 #include "drive_internal.h"
 
 static bool network_bit(const drive_t *drive, uint32_t bit)
@@ -74,9 +75,8 @@ static bool from_network(const drive_t *drive, const drive_channels_t *channels)
 
 /* In "not separate" mode the command comes from the reference's channel. Below the full access
  * level the channels are managed by priority: the network, the highest channel the emulation
- * has after forced local control, commands and gives the reference. A change of command channel
- * is a freewheel stop to Switch on disabled, as forced local control's. */
-void drive_channels_update(drive_t *drive)
+ * has after forced local control, commands and gives the reference. */
+bool drive_channels_update(drive_t *drive)
 {
     const drive_profile_t *profile = drive->profile;
     bool was_from_network = drive->command_from_network;
@@ -98,8 +98,7 @@ void drive_channels_update(drive_t *drive)
         drive->command_from_network =
             separate ? from_network(drive, &profile->command_channels) : reference;
     }
-    if (drive->command_from_network != was_from_network)
-        drive_local_channel_changed(drive);
+    return drive->command_from_network != was_from_network;
 }
 
 static bool channels_parameter(const drive_channels_t *channels, const co_od_entry_t *entry)
@@ -121,9 +120,4 @@ bool drive_channel_parameter(const drive_t *drive, const co_od_entry_t *entry)
 bool drive_reference_from_network(const drive_t *drive)
 {
     return drive->reference_from_network;
-}
-
-bool drive_local_control(const drive_t *drive)
-{
-    return drive->local || !drive->command_from_network;
 }

@@ -1,6 +1,7 @@
 /* The drive's faults: injection and removal of a cause, the latch in state Fault, the EMCY,
  * 603Fh and the reset rules of each fault's class (include/drive/faults.h). The model supplies
- * the table; nothing here knows a fault by name. */
+ * the table; nothing here knows a fault by name. A raise or an end says whether it changed the
+ * state; the composition root (drive.c) settles the drive on it. */
 #include "drive_internal.h"
 
 static const drive_fault_def_t *fault_def(const drive_t *drive, uint8_t index)
@@ -86,10 +87,10 @@ static void react(drive_t *drive, drive_fault_reaction_t reaction)
     cia402_fault(&drive->cia402, stopping);
 }
 
-void drive_fault_raise(drive_t *drive, uint8_t index)
+bool drive_fault_raise(drive_t *drive, uint8_t index)
 {
     if (drive->faults_active & fault_bit(index))
-        return;
+        return false;
     co_node_t *node = &drive->node;
     const drive_fault_def_t *def = fault_def(drive, index);
     drive_motor_advance(&drive->motor, node->now);
@@ -100,7 +101,7 @@ void drive_fault_raise(drive_t *drive, uint8_t index)
     drive->faults_active |= fault_bit(index);
     react(drive, reaction_of(drive, index));
     co_emcy_raise(node, def->emcy_code, CO_ERR_REG_GENERIC | def->error_register, NULL);
-    drive_settle(drive);
+    return true;
 }
 
 /* A fault reset is accepted when every active fault is of the command class and its cause is
@@ -139,20 +140,11 @@ void drive_faults_restart(drive_t *drive)
     drive->faults_active = 0;
 }
 
-void drive_faults_raise_present(drive_t *drive)
-{
-    const drive_fault_table_t *table = drive->profile->faults;
-    for (uint8_t i = 0; i < table->count; i++) {
-        if (drive_fault_cause_present(drive, i))
-            drive_fault_raise(drive, i);
-    }
-}
-
-void drive_fault_inject(drive_t *drive, uint8_t index, co_time_t now)
+bool drive_fault_cause_appears(drive_t *drive, uint8_t index, co_time_t now)
 {
     drive->node.now = now;
     drive->fault_causes |= fault_bit(index);
-    drive_fault_raise(drive, index);
+    return drive_fault_raise(drive, index);
 }
 
 /* An automatic fault that ends leaves the state Fault when it was the last one: the drive is in
@@ -172,14 +164,14 @@ static void end_automatic_fault(drive_t *drive, uint8_t index)
     }
 }
 
-void drive_fault_remove_cause(drive_t *drive, uint8_t index, co_time_t now)
+bool drive_fault_cause_ends(drive_t *drive, uint8_t index, co_time_t now)
 {
     drive->node.now = now;
     drive->fault_causes &= ~fault_bit(index);
-    if ((drive->faults_active & fault_bit(index)) &&
-        fault_def(drive, index)->reset == DRIVE_FAULT_RESET_AUTOMATIC) {
-        drive_motor_advance(&drive->motor, now);
-        end_automatic_fault(drive, index);
-        drive_settle(drive);
-    }
+    if (!(drive->faults_active & fault_bit(index)) ||
+        fault_def(drive, index)->reset != DRIVE_FAULT_RESET_AUTOMATIC)
+        return false;
+    drive_motor_advance(&drive->motor, now);
+    end_automatic_fault(drive, index);
+    return true;
 }

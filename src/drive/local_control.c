@@ -1,6 +1,13 @@
 /* What happens at the drive rather than on the network (include/drive/drive.h, "At the drive"):
- * the keypad's STOP and RUN keys, forced local control, the load on the motor, the logic inputs. */
+ * the keypad's STOP and RUN keys, forced local control, the load on the motor, the logic inputs,
+ * and whether local control holds. Each event brings the motor to its time and changes the state;
+ * the composition root (drive.c) settles the drive on it. */
 #include "drive_internal.h"
+
+bool drive_local_control(const drive_t *drive)
+{
+    return drive->local || !drive->command_from_network;
+}
 
 /* A change of command channel (forced local on or off, a switch) is a freewheel stop to Switch
  * on disabled, as the drive's power-up under bus control: the new channel starts from there. A
@@ -12,15 +19,14 @@ void drive_local_channel_changed(drive_t *drive)
     drive->local_run = false;
 }
 
-void drive_set_local(drive_t *drive, bool local, co_time_t now)
+void drive_local_force(drive_t *drive, bool local, co_time_t now)
 {
     drive_motor_advance(&drive->motor, now);
     drive->local = local;
     drive_local_channel_changed(drive);
-    drive_settle(drive);
 }
 
-void drive_stop_key(drive_t *drive, co_time_t now)
+void drive_local_stop_key(drive_t *drive, co_time_t now)
 {
     drive_motor_advance(&drive->motor, now);
     drive->stop_key = true;
@@ -28,10 +34,9 @@ void drive_stop_key(drive_t *drive, co_time_t now)
         drive->local_run = false;
     else
         cia402_configuration_changed(&drive->cia402);
-    drive_settle(drive);
 }
 
-bool drive_run_key(drive_t *drive, co_time_t now)
+bool drive_local_run_key(drive_t *drive, co_time_t now)
 {
     if (!drive_local_control(drive) || cia402_faulted(&drive->cia402))
         return false;
@@ -39,27 +44,23 @@ bool drive_run_key(drive_t *drive, co_time_t now)
     drive->stop_key = false;
     drive->local_run = true;
     drive->cia402.state = CIA402_OPERATION_ENABLED;
-    drive_settle(drive);
     return true;
 }
 
-void drive_set_load(drive_t *drive, uint8_t percent, co_time_t now)
+void drive_local_load(drive_t *drive, uint8_t percent, co_time_t now)
 {
     drive_motor_advance(&drive->motor, now);
     drive->load = percent;
     drive_motor_load(&drive->motor, percent);
-    drive_settle(drive);
 }
 
-bool drive_set_input(drive_t *drive, uint8_t input, bool on, co_time_t now)
+bool drive_local_input(drive_t *drive, uint8_t input, bool on, co_time_t now)
 {
     if (input == 0 || input > drive->profile->logic_inputs)
         return false;
     drive_motor_advance(&drive->motor, now);
     uint8_t bit = (uint8_t)(1u << (input - 1u));
     drive->inputs = (uint8_t)(on ? drive->inputs | bit : drive->inputs & ~bit);
-    drive_channels_update(drive);
-    drive_settle(drive);
     return true;
 }
 

@@ -11,7 +11,7 @@
 #include "co_od.h"
 
 /* COB-ID bits of the PDO communication parameter, sub 1 (CiA 301 table 72). */
-#define CO_PDO_COBID_INVALID 0x80000000u
+#define CO_PDO_COBID_INVALID CO_COB_ID_INVALID
 #define CO_PDO_COBID_NO_RTR 0x40000000u
 #define CO_PDO_COBID_FRAME 0x20000000u /* 29-bit CAN-ID */
 #define CO_PDO_COBID_CAN_ID 0x000007FFu

@@ -49,6 +49,8 @@ bool co_can_id_restricted(uint32_t can_id);
  * bit 30 and an 11-bit CAN-ID; bit 29 (29-bit CAN-ID) and bits 28..11 are refused. */
 #define CO_COB_ID_ALLOWED 0xC00007FFu
 #define CO_COB_ID_CAN_ID 0x7FFu
+/* Bit 31 of a COB-ID parameter (PDO, EMCY, SDO channel): the object is not valid (disabled). */
+#define CO_COB_ID_INVALID 0x80000000u
 
 /* CiA 301's rules of a COB-ID write shared by PDO, SYNC and EMCY: only CO_COB_ID_ALLOWED bits, no
  * restricted CAN-ID, and no new CAN-ID while the old and the new value are both in use, which

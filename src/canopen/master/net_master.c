@@ -4,7 +4,6 @@
 
 #include <string.h>
 
-#define CAN_ID_MAX 0x7FFu
 #define US_PER_MS 1000u
 /* The bits of a slave's status word that one attempt at its initialisation builds up. */
 #define SLAVE_PROGRESS                                                                             \
@@ -86,7 +85,7 @@ static bool pdo_valid(const co_net_master_config_t *config, const co_net_pdo_t *
                       size_t image_size)
 {
     return pdo->len >= 1 && pdo->len <= CO_FRAME_DLC_MAX &&
-           (size_t)pdo->offset + pdo->len <= image_size && pdo->can_id <= CAN_ID_MAX &&
+           (size_t)pdo->offset + pdo->len <= image_size && pdo->can_id <= CO_COB_ID_CAN_ID &&
            !co_can_id_restricted(pdo->can_id) &&
            config_index(config, pdo->node_id) < config->slave_count;
 }

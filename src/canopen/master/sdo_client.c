@@ -9,9 +9,7 @@
 #include <string.h>
 
 #define US_PER_MS 1000u
-#define CAN_ID_MAX 0x7FFu
-#define COB_ID_INVALID 0x80000000u /* 1280h sub 1/2 bit 31: the channel is not valid */
-#define SDO_CLIENT_CHANNELS 128u   /* 1280h..12FFh */
+#define SDO_CLIENT_CHANNELS 128u /* 1280h..12FFh */
 
 /* Client command bytes (ccs in bits 7..5). */
 
@@ -19,7 +17,7 @@ int co_sdo_client_init(co_sdo_client_t *client, const co_sdo_client_config_t *co
 {
     bool default_ids = config->request_id == 0 || config->response_id == 0;
     if (config->send == NULL || config->done == NULL || config->blksize > CO_SDO_BLKSIZE_MAX ||
-        config->request_id > CAN_ID_MAX || config->response_id > CAN_ID_MAX ||
+        config->request_id > CO_COB_ID_CAN_ID || config->response_id > CO_COB_ID_CAN_ID ||
         (default_ids && (config->server_node_id == 0 || config->server_node_id > CO_NODE_ID_MAX)))
         return CO_SDO_CLIENT_ERR_CONFIG;
     memset(client, 0, sizeof(*client));
@@ -48,10 +46,10 @@ int co_sdo_client_config_from_od(co_sdo_client_config_t *config, const co_node_t
         return CO_SDO_CLIENT_ERR_NO_OBJECT;
     uint32_t request_cob = (uint32_t)co_od_get(node, request);
     uint32_t response_cob = (uint32_t)co_od_get(node, response);
-    if ((request_cob | response_cob) & COB_ID_INVALID)
+    if ((request_cob | response_cob) & CO_COB_ID_INVALID)
         return CO_SDO_CLIENT_ERR_INVALID;
-    config->request_id = (uint16_t)(request_cob & CAN_ID_MAX);
-    config->response_id = (uint16_t)(response_cob & CAN_ID_MAX);
+    config->request_id = (uint16_t)(request_cob & CO_COB_ID_CAN_ID);
+    config->response_id = (uint16_t)(response_cob & CO_COB_ID_CAN_ID);
     config->server_node_id = (uint8_t)co_od_get(node, server);
     return 0;
 }

@@ -5,8 +5,6 @@
  * co/co_consumers.h. */
 #include "co/co_consumers.h"
 
-#define CAN_ID_11BIT 0x7FFu
-
 typedef struct cob_set {
     co_cob_t *cobs;
     size_t count;
@@ -16,7 +14,7 @@ typedef struct cob_set {
  * still one route. */
 static void add(cob_set_t *set, uint32_t can_id, bool rtr)
 {
-    can_id &= CAN_ID_11BIT;
+    can_id &= CO_COB_ID_CAN_ID;
     for (size_t i = 0; i < set->count; i++) {
         if (set->cobs[i].can_id == can_id && set->cobs[i].rtr == rtr)
             return;

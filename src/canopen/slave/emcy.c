@@ -3,8 +3,6 @@
 
 #include <string.h>
 
-#define COBID_INVALID 0x80000000u /* bit 31: the EMCY does not exist */
-#define CAN_ID_11BIT 0x7FFu
 #define INHIBIT_UNIT_US 100u
 #define MSEF_LEN 5u
 
@@ -23,7 +21,7 @@ static uint8_t active_register(const co_emcy_t *emcy)
 
 static void update_register(co_node_t *node)
 {
-    co_od_set_value(node, 0x1001, 0, active_register(&node->emcy));
+    co_od_set_value(node, CO_IDX_ERROR_REGISTER, 0, active_register(&node->emcy));
 }
 
 static void queue_drop(co_emcy_t *emcy)
@@ -35,20 +33,20 @@ static void queue_drop(co_emcy_t *emcy)
 static void send_now(co_node_t *node, const co_frame_t *frame)
 {
     co_node_send(node, frame);
-    uint16_t inhibit = (uint16_t)co_od_value(node, 0x1015, 0);
+    uint16_t inhibit = (uint16_t)co_od_value(node, CO_IDX_EMCY_INHIBIT, 0);
     node->emcy.inhibit_end = node->now + (co_time_t)inhibit * INHIBIT_UNIT_US;
 }
 
 /* Sends at once when the inhibit time allows and nothing waits, else queues behind the others. */
 static void emit(co_node_t *node, uint16_t code, const uint8_t msef[5])
 {
-    uint32_t cobid = (uint32_t)co_od_value(node, 0x1014, 0);
-    if ((cobid & COBID_INVALID) || !service_allowed(node))
+    uint32_t cobid = (uint32_t)co_od_value(node, CO_IDX_EMCY_COB_ID, 0);
+    if ((cobid & CO_COB_ID_INVALID) || !service_allowed(node))
         return;
     co_emcy_t *emcy = &node->emcy;
-    co_frame_t frame = {.id = cobid & CAN_ID_11BIT, .len = 8};
+    co_frame_t frame = {.id = cobid & CO_COB_ID_CAN_ID, .len = 8};
     co_put_u16(frame.data, code);
-    frame.data[2] = (uint8_t)co_od_value(node, 0x1001, 0);
+    frame.data[2] = (uint8_t)co_od_value(node, CO_IDX_ERROR_REGISTER, 0);
     if (msef != NULL)
         memcpy(&frame.data[3], msef, MSEF_LEN);
     if (emcy->queue_count == 0 && node->now >= emcy->inhibit_end) {
@@ -80,7 +78,7 @@ co_time_t co_emcy_process(co_node_t *node, co_time_t now)
 static uint8_t history_depth(const co_node_t *node)
 {
     uint8_t n = 0;
-    while (n < 0xFE && co_od_find(node->od, 0x1003, (uint8_t)(n + 1)) != NULL)
+    while (n < 0xFE && co_od_find(node->od, CO_IDX_ERROR_HISTORY, (uint8_t)(n + 1)) != NULL)
         n++;
     return n;
 }
@@ -92,17 +90,18 @@ static void history_push(co_node_t *node, uint16_t code)
     if (depth == 0)
         return;
     for (uint8_t sub = depth; sub > 1; sub--)
-        co_od_set_value(node, 0x1003, sub, co_od_value(node, 0x1003, (uint8_t)(sub - 1)));
-    co_od_set_value(node, 0x1003, 1, code);
-    uint8_t count = (uint8_t)co_od_value(node, 0x1003, 0);
-    co_od_set_value(node, 0x1003, 0, count < depth ? count + 1 : depth);
+        co_od_set_value(node, CO_IDX_ERROR_HISTORY, sub,
+                        co_od_value(node, CO_IDX_ERROR_HISTORY, (uint8_t)(sub - 1)));
+    co_od_set_value(node, CO_IDX_ERROR_HISTORY, 1, code);
+    uint8_t count = (uint8_t)co_od_value(node, CO_IDX_ERROR_HISTORY, 0);
+    co_od_set_value(node, CO_IDX_ERROR_HISTORY, 0, count < depth ? count + 1 : depth);
 }
 
 static void history_clear(co_node_t *node)
 {
     uint8_t depth = history_depth(node);
     for (uint8_t sub = 1; sub <= depth; sub++)
-        co_od_set_value(node, 0x1003, sub, 0);
+        co_od_set_value(node, CO_IDX_ERROR_HISTORY, sub, 0);
 }
 
 static int active_position(const co_emcy_t *emcy, uint16_t code)
@@ -159,7 +158,8 @@ void co_emcy_reset(co_node_t *node, co_nmt_reset_t scope)
  * one; the default 080h + node-id (081h-0FFh) is allowed. */
 static uint32_t write_cobid(co_node_t *node, uint32_t cobid)
 {
-    return co_cob_id_check((uint32_t)co_od_value(node, 0x1014, 0), cobid, COBID_INVALID, 0);
+    return co_cob_id_check((uint32_t)co_od_value(node, CO_IDX_EMCY_COB_ID, 0), cobid,
+                           CO_COB_ID_INVALID, 0);
 }
 
 /* CiA 301 1003h: only 0 may be written to sub-index 0, and it clears the history. */
@@ -177,9 +177,9 @@ uint32_t co_emcy_od_write(co_node_t *node, const co_od_entry_t *entry, const uin
                           size_t len)
 {
     (void)len;
-    if (entry->index == 0x1003)
+    if (entry->index == CO_IDX_ERROR_HISTORY)
         return write_history(node, entry, data[0]);
-    if (entry->index == 0x1014)
+    if (entry->index == CO_IDX_EMCY_COB_ID)
         return write_cobid(node, co_get_u32(data));
     /* 1015h: CiA 301 sets no condition; the new inhibit time applies from the next EMCY. */
     return CO_SDO_OK;

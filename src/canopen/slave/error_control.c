@@ -7,14 +7,12 @@
 
 /* ---- Node guarding and life guarding ---------------------------------------------------- */
 
-#define GUARD_COB_ID_11BIT 0x7FFu
-
-/* The CAN-ID of requests and replies: 100Eh (COB-ID node guarding, a device-specific object some
- * dictionaries have) when the dictionary has it, else 700h + node-id (CiA 301 7.2.8.3.1). Heartbeat
+/* The CAN-ID of requests and replies: 100Eh (COB-ID node guarding, which some dictionaries
+ * have) when the dictionary has it, else 700h + node-id (CiA 301 7.2.8.3.1). Heartbeat
  * and boot-up stay on 700h + node-id (nmt.c and the heartbeat below). */
 static uint32_t guarding_cob_id(const co_node_t *node)
 {
-    return co_od_param(node, 0x100E, 0, CO_CAN_ID_ERROR_CONTROL + node->node_id);
+    return co_od_param(node, CO_IDX_GUARD_COB_ID, 0, CO_CAN_ID_ERROR_CONTROL + node->node_id);
 }
 
 /* The life time, guard time (100Ch, ms) times life time factor (100Dh), from now while guarding
@@ -22,8 +20,8 @@ static uint32_t guarding_cob_id(const co_node_t *node)
 static void restart_life_timer(co_node_t *node)
 {
     co_guarding_t *g = &node->guarding;
-    uint16_t guard_time_ms = (uint16_t)co_od_value(node, 0x100C, 0);
-    uint8_t life_time_factor = (uint8_t)co_od_value(node, 0x100D, 0);
+    uint16_t guard_time_ms = (uint16_t)co_od_value(node, CO_IDX_GUARD_TIME, 0);
+    uint8_t life_time_factor = (uint8_t)co_od_value(node, CO_IDX_LIFE_TIME_FACTOR, 0);
     co_time_t life_us = (co_time_t)guard_time_ms * life_time_factor * 1000u;
     bool armed = g->started && !g->lost && life_us != 0;
     g->deadline = armed ? node->now + life_us : CO_TIME_NEVER;
@@ -93,8 +91,8 @@ co_time_t co_guarding_process(co_node_t *node, co_time_t now)
 uint32_t co_guarding_od_write(co_node_t *node, const co_od_entry_t *entry, const uint8_t *data,
                               size_t len)
 {
-    if (entry->index == 0x100E)
-        return co_get_u32(data) & ~GUARD_COB_ID_11BIT ? CO_SDO_ABORT_VALUE_RANGE : CO_SDO_OK;
+    if (entry->index == CO_IDX_GUARD_COB_ID)
+        return co_get_u32(data) & ~CO_COB_ID_CAN_ID ? CO_SDO_ABORT_VALUE_RANGE : CO_SDO_OK;
     co_od_store(node, entry, data, len);
     restart_life_timer(node);
     return CO_OD_HANDLED;
@@ -167,9 +165,10 @@ static void consumer_configure(co_heartbeat_t *hb, uint8_t i, uint32_t value)
 void co_heartbeat_reset(co_node_t *node)
 {
     co_heartbeat_t *hb = &node->heartbeat;
-    producer_restart(node, (uint16_t)co_od_value(node, 0x1017, 0));
+    producer_restart(node, (uint16_t)co_od_value(node, CO_IDX_HB_PRODUCER, 0));
     for (uint8_t i = 0; i < CO_CONFIG_HB_CONSUMERS; i++)
-        consumer_configure(hb, i, (uint32_t)co_od_value(node, 0x1016, (uint8_t)(i + 1)));
+        consumer_configure(hb, i,
+                           (uint32_t)co_od_value(node, CO_IDX_HB_CONSUMER, (uint8_t)(i + 1)));
 }
 
 static void heartbeat_report(co_node_t *node, uint8_t producer, bool lost)
@@ -242,7 +241,8 @@ static uint32_t check_duplicate_consumer(co_node_t *node, uint8_t subindex, uint
         return CO_SDO_OK;
     for (uint16_t i = 0; i < node->od->count; i++) {
         const co_od_entry_t *other = &node->od->entries[i];
-        if (other->index != 0x1016 || other->subindex == 0 || other->subindex == subindex)
+        if (other->index != CO_IDX_HB_CONSUMER || other->subindex == 0 ||
+            other->subindex == subindex)
             continue;
         uint32_t v = (uint32_t)co_od_get(node, other);
         if (consumer_in_use(v) && consumer_node(v) == consumer_node(value))
@@ -270,7 +270,7 @@ uint32_t co_heartbeat_od_write(co_node_t *node, const co_od_entry_t *entry, cons
                                size_t len)
 {
     (void)len;
-    if (entry->index == 0x1017) {
+    if (entry->index == CO_IDX_HB_PRODUCER) {
         uint16_t ms = co_get_u16(data);
         producer_restart(node, ms);
         if (ms != 0)

@@ -38,8 +38,8 @@ void co_nmt_reset(co_node_t *node, co_nmt_reset_t scope)
         co_od_restore_defaults(node, 0x2000, 0xFFFF);
         co_store_apply(node, 0x2000, 0xFFFF);
     }
-    co_od_restore_defaults(node, 0x1000, 0x1FFF);
-    co_store_apply(node, 0x1000, 0x1FFF);
+    co_od_restore_defaults(node, CO_IDX_COMM_FIRST, CO_IDX_COMM_LAST);
+    co_store_apply(node, CO_IDX_COMM_FIRST, CO_IDX_COMM_LAST);
     reset_services(node, scope);
     co_consumers_changed(node);
     co_node_send_byte(node, CO_CAN_ID_ERROR_CONTROL + node->node_id, 0);

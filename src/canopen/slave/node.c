@@ -37,17 +37,21 @@ typedef struct service_range {
 } service_range_t;
 
 static const service_range_t service_ranges[] = {
-    {0x1003, 0x1003, co_emcy_od_write},     {0x1005, 0x1007, co_sync_od_write},
-    {0x100C, 0x100E, co_guarding_od_write}, {0x1010, 0x1011, co_store_od_write},
-    {0x1014, 0x1015, co_emcy_od_write},     {0x1016, 0x1017, co_heartbeat_od_write},
-    {0x1019, 0x1019, co_sync_od_write},     {0x1400, 0x1BFF, co_pdo_od_write},
+    {CO_IDX_ERROR_HISTORY, CO_IDX_ERROR_HISTORY, co_emcy_od_write},
+    {CO_IDX_SYNC_COB_ID, CO_IDX_SYNC_WINDOW, co_sync_od_write},
+    {CO_IDX_GUARD_TIME, CO_IDX_GUARD_COB_ID, co_guarding_od_write},
+    {CO_IDX_STORE, CO_IDX_RESTORE, co_store_od_write},
+    {CO_IDX_EMCY_COB_ID, CO_IDX_EMCY_INHIBIT, co_emcy_od_write},
+    {CO_IDX_HB_CONSUMER, CO_IDX_HB_PRODUCER, co_heartbeat_od_write},
+    {CO_IDX_SYNC_OVERFLOW, CO_IDX_SYNC_OVERFLOW, co_sync_od_write},
+    {CO_PDO_RPDO_COMM, CO_PDO_LAST_INDEX, co_pdo_od_write},
 };
 
 static uint32_t service_write(co_node_t *node, const co_od_entry_t *e, const uint8_t *data,
                               size_t len)
 {
     uint16_t i = e->index;
-    if (i < 0x1000 || i > 0x1FFF)
+    if (i < CO_IDX_COMM_FIRST || i > CO_IDX_COMM_LAST)
         return CO_SDO_OK;
     /* A communication parameter may move a service's deadline. */
     co_node_reschedule(node);
@@ -70,7 +74,7 @@ static uint32_t parameter_write(co_node_t *node, const co_od_entry_t *entry, con
 
 int co_node_init(co_node_t *node, const co_node_config_t *config)
 {
-    if (config->node_id < 1 || config->node_id > 127)
+    if (config->node_id < 1 || config->node_id > CO_NODE_ID_MAX)
         return CO_NODE_ERR_NODE_ID;
     if (config->od == NULL || config->od_data == NULL || config->send == NULL)
         return CO_NODE_ERR_CONFIG;

@@ -75,7 +75,7 @@ static uint32_t buffer_take(co_node_t *node, uint32_t size)
 /* The default channel's COB-IDs (1200h), CiA 301's 600h / 580h + node-id without it. */
 static uint16_t channel_cob_id(co_node_t *node, uint8_t subindex, uint16_t fallback)
 {
-    return (uint16_t)(co_od_param(node, 0x1200, subindex, fallback) & 0x7FF);
+    return (uint16_t)(co_od_param(node, CO_IDX_SDO_SERVER, subindex, fallback) & CO_COB_ID_CAN_ID);
 }
 
 void co_sdo_reset(co_node_t *node)

@@ -21,7 +21,7 @@ typedef struct store_area {
 } store_area_t;
 
 static const store_area_t areas[] = {
-    {CO_STORE_AREA_COMMUNICATION, 0x1000, 0x1FFF},
+    {CO_STORE_AREA_COMMUNICATION, CO_IDX_COMM_FIRST, CO_IDX_COMM_LAST},
     {CO_STORE_AREA_MANUFACTURER, 0x2000, 0x5FFF},
     {CO_STORE_AREA_PROFILE, 0x6000, 0x9FFF},
 };
@@ -42,7 +42,8 @@ static bool group_has_area(uint8_t group, const store_area_t *a)
 static bool entry_is_stored(const co_od_entry_t *e)
 {
     return (e->flags & CO_OD_WRITE) && !(e->flags & CO_OD_PROCESS) && !(e->flags & CO_OD_STREAM) &&
-           e->index != 0x1003 && e->index != 0x1010 && e->index != 0x1011;
+           e->index != CO_IDX_ERROR_HISTORY && e->index != CO_IDX_STORE &&
+           e->index != CO_IDX_RESTORE;
 }
 
 /* An entry whose read hook computes its value from other entries (6046h of LSP/HSP): its stored
@@ -188,7 +189,7 @@ uint32_t co_store_od_write(co_node_t *node, const co_od_entry_t *entry, const ui
     (void)len;
     if (entry->subindex == 0)
         return CO_SDO_OK;
-    bool save = entry->index == 0x1010;
+    bool save = entry->index == CO_IDX_STORE;
     uint32_t signature = save ? CO_STORE_SIGNATURE_SAVE : CO_STORE_SIGNATURE_LOAD;
     if (co_get_u32(data) != signature || node->storage == NULL ||
         entry->subindex > STORE_GROUP_LAST)
@@ -249,25 +250,22 @@ static void report_refused(co_node_t *node, uint16_t index, uint8_t subindex, co
  * the enabling parameters (COB-IDs, the SYNC period). */
 enum record_phase { PHASE_VALUES, PHASE_MAP_COUNT, PHASE_ENABLE, PHASE_COUNT };
 
-/* Bit 31 of the PDO and EMCY COB-IDs: the object is invalid (disabled). */
-#define COBID_INVALID 0x80000000u
-
 static bool is_cob_id_with_valid_bit(uint16_t index, uint8_t subindex)
 {
-    bool pdo = subindex == 1 &&
-               ((index >= 0x1400 && index <= 0x15FF) || (index >= 0x1800 && index <= 0x19FF));
-    return pdo || (index == 0x1014 && subindex == 0);
+    bool pdo = subindex == 1 && ((index >= CO_PDO_RPDO_COMM && index < CO_PDO_RPDO_MAP) ||
+                                 (index >= CO_PDO_TPDO_COMM && index < CO_PDO_TPDO_MAP));
+    return pdo || (index == CO_IDX_EMCY_COB_ID && subindex == 0);
 }
 
 static bool is_pdo_map_count(uint16_t index, uint8_t subindex)
 {
-    return subindex == 0 &&
-           ((index >= 0x1600 && index <= 0x17FF) || (index >= 0x1A00 && index <= 0x1BFF));
+    return subindex == 0 && ((index >= CO_PDO_RPDO_MAP && index < CO_PDO_TPDO_COMM) ||
+                             (index >= CO_PDO_TPDO_MAP && index <= CO_PDO_LAST_INDEX));
 }
 
 static enum record_phase record_phase(uint16_t index, uint8_t subindex)
 {
-    if (is_cob_id_with_valid_bit(index, subindex) || (index == 0x1006 && subindex == 0))
+    if (is_cob_id_with_valid_bit(index, subindex) || (index == CO_IDX_SYNC_PERIOD && subindex == 0))
         return PHASE_ENABLE;
     if (is_pdo_map_count(index, subindex))
         return PHASE_MAP_COUNT;
@@ -287,7 +285,7 @@ static void open_procedures(co_node_t *node, uint8_t area, const image_info_t *i
             continue;
         uint32_t disabled = 0;
         if (is_cob_id_with_valid_bit(r.index, r.subindex))
-            disabled = (uint32_t)co_od_get(node, e) | COBID_INVALID;
+            disabled = (uint32_t)co_od_get(node, e) | CO_COB_ID_INVALID;
         uint8_t data[sizeof(uint32_t)];
         co_put_u32(data, disabled);
         co_od_write(node, r.index, r.subindex, data, e->size, CO_OD_ORIGIN_STORE);

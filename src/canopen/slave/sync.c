@@ -10,10 +10,10 @@
 static void sync_load(co_node_t *node)
 {
     co_sync_t *sync = &node->sync;
-    sync->cob_id = (uint32_t)co_od_value(node, 0x1005, 0);
-    sync->period_us = (uint32_t)co_od_value(node, 0x1006, 0);
-    sync->window_us = (uint32_t)co_od_value(node, 0x1007, 0);
-    sync->overflow = (uint8_t)co_od_value(node, 0x1019, 0);
+    sync->cob_id = (uint32_t)co_od_value(node, CO_IDX_SYNC_COB_ID, 0);
+    sync->period_us = (uint32_t)co_od_value(node, CO_IDX_SYNC_PERIOD, 0);
+    sync->window_us = (uint32_t)co_od_value(node, CO_IDX_SYNC_WINDOW, 0);
+    sync->overflow = (uint8_t)co_od_value(node, CO_IDX_SYNC_OVERFLOW, 0);
 }
 
 void co_sync_init(co_node_t *node)
@@ -118,14 +118,14 @@ uint32_t co_sync_od_write(co_node_t *node, const co_od_entry_t *entry, const uin
                           size_t len)
 {
     uint32_t abort = CO_SDO_OK;
-    if (entry->index == 0x1005)
+    if (entry->index == CO_IDX_SYNC_COB_ID)
         abort = sync_write_cob_id(node, co_get_u32(data));
-    else if (entry->index == 0x1019)
+    else if (entry->index == CO_IDX_SYNC_OVERFLOW)
         abort = sync_write_overflow(node, data[0]);
     if (abort != CO_SDO_OK)
         return abort;
     /* A new producer configuration starts a fresh period at the next co_sync_process(). */
-    if (entry->index == 0x1005 || entry->index == 0x1006)
+    if (entry->index == CO_IDX_SYNC_COB_ID || entry->index == CO_IDX_SYNC_PERIOD)
         co_sync_producer_stop(&node->sync.producer);
     co_od_store(node, entry, data, len);
     sync_load(node);

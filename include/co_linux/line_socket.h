@@ -14,7 +14,8 @@
 
 /* Longest request line with its terminating NUL; a longer line is cut (co_line_answer_fn). */
 #define CO_LINE_MAX 256
-/* Connections served at once; more wait in the listen backlog. */
+/* Connections served at once; one more is accepted, told "error: too many control connections"
+ * and closed. */
 #define CO_LINE_CLIENTS 8
 /* How long a client waits for a reply. */
 #define CO_LINE_REPLY_TIMEOUT_S 5

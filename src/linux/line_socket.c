@@ -137,8 +137,9 @@ static co_line_result_t listen_on(co_line_server_t *server, const struct sockadd
         *call = "socket";
         return CO_LINE_FAILED;
     }
-    /* The file's mode comes from the umask at bind. */
-    mode_t old_mask = server->config.owner_only ? umask(0077) : 0;
+    /* The file's mode comes from the umask at bind: 0777 less 0177 is 0600, read and write (the
+     * right to connect) for the owner alone. */
+    mode_t old_mask = server->config.owner_only ? umask(0177) : 0;
     int bound = bind(server->listen_fd, (const struct sockaddr *)addr, sizeof *addr);
     if (server->config.owner_only)
         umask(old_mask);

@@ -1,8 +1,9 @@
 /* The line socket of the programs' control sockets (co_linux/line_socket.h): a session answers
  * each line on one connection, one request is answered (also without its newline) and closed, an
  * overlong line reaches the program cut and flagged, a stale socket file is replaced while a
- * socket a server answers on and a file of another kind are not, and the client tells a missing
- * server and a path too long. The server runs in a loop on a socketpair that carries no frame. */
+ * socket a server answers on and a file of another kind are not, silent clients hold up no one
+ * and the one too many is told so, and the client tells a missing server and a path too long. The
+ * server runs in a loop on a socketpair that carries no frame. */
 #include "check_main.h"
 #include "co_linux/line_socket.h"
 
@@ -176,6 +177,49 @@ START_TEST(a_stale_socket_is_replaced_a_live_one_and_a_file_are_not)
 }
 END_TEST
 
+/* Clients that connect and say nothing hold a connection each but hold up no one: a request on
+ * another connection is answered meanwhile. The one beyond CO_LINE_CLIENTS is told so and closed.
+ * An owner-only socket file has mode 0600. */
+START_TEST(silent_clients_block_no_one_and_the_one_too_many_is_told)
+{
+    co_line_server_t server;
+    co_line_server_config_t config = {.mode = CO_LINE_SESSION,
+                                      .owner_only = true,
+                                      .answer = echo,
+                                      .reply = reply_buf,
+                                      .reply_cap = sizeof reply_buf};
+    const char *call = NULL;
+    ck_assert_int_eq(co_line_server_open(&server, &loop, path, &config, &call), CO_LINE_OK);
+    struct stat st;
+    ck_assert_int_eq(stat(path, &st), 0);
+    ck_assert_uint_eq(st.st_mode & 0777u, 0600u);
+    int silent[CO_LINE_CLIENTS - 1];
+    for (size_t i = 0; i < CO_LINE_CLIENTS - 1; i++)
+        silent[i] = connect_client();
+    int talker = connect_client();
+    ck_assert_int_eq(send(talker, "one\n", 4, 0), 4);
+    seen.stop_after = 1;
+    ck_assert_int_eq(co_linux_loop_run(&loop), 0);
+    char buf[128];
+    read_all(talker, buf, sizeof buf);
+    ck_assert_str_eq(buf, "got one\n");
+    int extra = connect_client();
+    ck_assert_int_eq(send(talker, "two\n", 4, 0), 4);
+    seen.stop_after = 2;
+    ck_assert_int_eq(co_linux_loop_run(&loop), 0);
+    read_all(talker, buf, sizeof buf);
+    ck_assert_str_eq(buf, "got two\n");
+    read_all(extra, buf, sizeof buf);
+    ck_assert_str_eq(buf, "error: too many control connections\n");
+    ck_assert_int_eq(recv(extra, buf, sizeof buf, MSG_DONTWAIT), 0);
+    close(extra);
+    close(talker);
+    for (size_t i = 0; i < CO_LINE_CLIENTS - 1; i++)
+        close(silent[i]);
+    co_line_server_close(&server);
+}
+END_TEST
+
 START_TEST(the_client_tells_no_server_and_a_path_too_long)
 {
     char reply[64];
@@ -199,6 +243,7 @@ int main(void)
     tcase_add_test(tc, one_request_without_newline_is_answered_and_closed);
     tcase_add_test(tc, an_overlong_line_is_cut_and_flagged);
     tcase_add_test(tc, a_stale_socket_is_replaced_a_live_one_and_a_file_are_not);
+    tcase_add_test(tc, silent_clients_block_no_one_and_the_one_too_many_is_told);
     tcase_add_test(tc, the_client_tells_no_server_and_a_path_too_long);
     suite_add_tcase(s, tc);
     return check_run_suite(s);

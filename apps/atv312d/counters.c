@@ -3,8 +3,6 @@
 
 #include "co/co_emcy_consumer.h"
 
-#define SDO_ABORT_COMMAND CO_SDO_COMMAND(CO_SDO_CS_ABORT) /* byte 0 of an SDO "abort transfer" */
-
 /* A data frame with an 11-bit COB-ID: remote requests and 29-bit frames carry no service here. */
 static bool is_data(const co_frame_t *frame, uint32_t cob_id)
 {
@@ -27,6 +25,6 @@ void atv312d_count_sent(atv312d_counters_t *counters, uint8_t node_id, const co_
     if (atv312d_is_emcy(node_id, frame))
         counters->emcy++;
     else if (is_data(frame, CO_CAN_ID_SDO_TX + node_id) && frame->len > 0 &&
-             frame->data[0] == SDO_ABORT_COMMAND)
+             frame->data[0] == CO_SDO_COMMAND(CO_SDO_CS_ABORT))
         counters->sdo_aborts++;
 }

@@ -12,7 +12,7 @@
 #include <stdio.h>
 
 #define ATV312D_NODE_ID_MIN 1
-#define ATV312D_NODE_ID_MAX DRIVE_MODEL_NODE_ID_MAX
+#define ATV312D_NODE_ID_MAX ((int)CO_NODE_ID_MAX) /* an int, as the parser counts */
 
 typedef struct atv312d_options {
     const char *iface;

@@ -10,7 +10,7 @@
 
 #include "co_node.h"
 
-#define CO_NMT_MASTER_NODE_ID_MAX 127u
+#define CO_NMT_MASTER_NODE_ID_MAX CO_NODE_ID_MAX /* the nodes an NMT master tracks, 1..127 */
 /* NMT command to all nodes (CiA 301 7.2.8.3.1: node-ID 0 in the command frame). */
 #define CO_NMT_MASTER_ALL_NODES 0u
 /* The state of a node no frame has come from yet (not a CiA 301 state value). */

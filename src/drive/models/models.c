@@ -7,11 +7,11 @@
 #include <string.h>
 
 const drive_model_t drive_models[] = {
-    {"atv312", "Schneider Altivar 312 (eds/ATV312.eds)", &atv312_profile, DRIVE_MODEL_NODE_ID_MAX},
+    {"atv312", "Schneider Altivar 312 (eds/ATV312.eds)", &atv312_profile, CO_NODE_ID_MAX},
     {"atv31", "Schneider Altivar 31, firmware V1.2 and later (eds/ATV31.eds)", &atv31_profile,
-     DRIVE_MODEL_NODE_ID_MAX},
+     CO_NODE_ID_MAX},
     {"atv31-v1.1", "Schneider Altivar 31 before V1.2: no heartbeat, 1016h/1017h absent",
-     &atv31_v11_profile, DRIVE_MODEL_NODE_ID_MAX},
+     &atv31_v11_profile, CO_NODE_ID_MAX},
     {"atv58", "Schneider Altivar 58 + VW3-A58308 card, node-ids 1..63 (eds/ATV58.eds)",
      &atv58_profile, ATV58_NODE_ID_MAX},
 };

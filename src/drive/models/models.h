@@ -8,9 +8,6 @@
 
 #include <stddef.h>
 
-/* The highest node-id of CiA 301 (1..127), which every model but the ATV58 takes. */
-#define DRIVE_MODEL_NODE_ID_MAX 127
-
 typedef struct drive_model {
     const char *name;        /* as --model takes it */
     const char *description; /* for --help */

@@ -195,9 +195,13 @@ def parse_eds(path):
             name = stripped[1:-1].strip()
             if name.lower() in eds.sections:
                 raise EdsError(path, name, None, "line %d: duplicate section" % number)
+            m = SUB_SECTION.match(name)
+            if not (m or OBJECT_SECTION.match(name)) and OBJECT_LIKE_SECTION.match(name):
+                raise EdsError(path, name, None, "line %d: not an object's section: write its "
+                               "index in four hex digits ([1018]), a sub-index's with sub and "
+                               "one or two ([1018sub1])" % number)
             current = Section(name, number)
             eds.sections[name.lower()] = current
-            m = SUB_SECTION.match(name)
             if m:
                 eds.subs.setdefault(int(m.group(1), 16), {})[int(m.group(2), 16)] = current
             continue
@@ -294,8 +298,16 @@ def parse_index(text):
     return int(t, 16)
 
 
-SUB_SECTION = re.compile(r"^([0-9a-fA-F]{4})sub([0-9a-fA-F]{1,2})$", re.IGNORECASE)
-OBJECT_SECTION = re.compile(r"^[0-9a-fA-F]{4}$")
+# CiA 306 names an object's section by its index in four hex digits ([1018]) and a sub-index's by
+# the index, "sub" and the sub-index in one or two ([1018sub1]), in any case; ASCII only, for 'ſ'
+# is 's' to a case-insensitive Unicode match.
+SUB_SECTION = re.compile(r"^([0-9a-f]{4})sub([0-9a-f]{1,2})$", re.IGNORECASE | re.ASCII)
+OBJECT_SECTION = re.compile(r"^[0-9a-f]{4}$", re.IGNORECASE | re.ASCII)
+# A name that starts as a number would (a sign, 0x, hex digits) and stops there or goes on with
+# "sub" or a blank is meant as an object's ([0x12], [12], [1018sub], [1018 sub1]); one that goes on
+# with a word is a section of another kind ([1F22Value]). The C reader (src/eds/eds_reader.c)
+# draws the same line.
+OBJECT_LIKE_SECTION = re.compile(r"[+-]?(?:0x)?[0-9a-f]+(?:sub|\s|\Z)", re.IGNORECASE | re.ASCII)
 
 
 def read_dummy_usage(eds):
@@ -600,6 +612,9 @@ def build_entries(eds):
 
 
 HOOK_WORD = re.compile(r"^[A-Za-z_][A-Za-z0-9_]*$")
+# A sub-index in a hooks file: 0x hex or decimal, ASCII digits only (int() also takes a sign,
+# '_' between digits and other scripts' digits).
+HOOK_SUB_INDEX = re.compile(r"(?:0x[0-9a-f]+|[0-9]+)\Z", re.IGNORECASE | re.ASCII)
 STREAM_WORD = re.compile(r"^stream=([A-Za-z_][A-Za-z0-9_]*)$")
 
 
@@ -646,10 +661,9 @@ def apply_hooks(entries, path):
             raise fail(number, "'%s' is not a hex index like 0x203C" % index_text)
         sub = None
         if sub_text:
-            try:
-                sub = int(sub_text, 16) if sub_text.lower().startswith("0x") else int(sub_text, 10)
-            except ValueError:
+            if not HOOK_SUB_INDEX.match(sub_text):
                 raise fail(number, "'%s' is not a sub-index (0x02 or 2)" % sub_text)
+            sub = int(sub_text, 16) if sub_text.lower().startswith("0x") else int(sub_text, 10)
         targets = [e for e in entries if e.index == index and (sub is None or e.sub == sub)]
         if not targets:
             what = "0x%04X" % index if sub is None else "0x%04X:0x%02X" % (index, sub)
@@ -975,7 +989,7 @@ class Checker:
             if value is not None and not 0 <= value <= 255:
                 self.error("FileInfo", sec.label(key), "must be an UNSIGNED8")
         version = sec.get("EDSVersion")
-        if version is not None and not re.match(r"^\d+\.\d+$", version):
+        if version is not None and not re.match(r"^[0-9]+\.[0-9]+$", version):
             self.error("FileInfo", sec.label("EDSVersion"), "must read like 4.0")
 
     def check_device_info(self):

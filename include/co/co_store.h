@@ -25,16 +25,18 @@
  *
  * At a reset (nmt.c) the defaults of the areas in scope are restored first; then their images
  * apply, oldest first, so that when two areas cover one value (a view and what it stands for) the
- * later save or restore wins. An image is first checked whole (header, every record inside it,
- * the last one ending exactly at its end) and ignored entirely if it fails or the backend reports
- * it damaged. Its records then go through the same checks, hooks and service rules as an SDO
- * write (co_od_write, origin CO_OD_ORIGIN_STORE), in the order of the CiA 301 mapping procedure:
- * every PDO the image configures is made invalid with an empty mapping, then the values are
- * written, then the numbers of mapped objects, then the COB-IDs. A record refused because of
- * another not yet applied is tried again after the others; a record still refused (unknown
- * entry, size changed, process data, out of its limits, refused by a hook) is reported through
- * `refused` and skipped, the entry keeping its value; a PDO whose COB-ID is refused stays
- * invalid. A defaults image writes the default of each view of its area through its hook.
+ * later save or restore wins. An image is first checked whole (co_store_image_check: its header;
+ * every record inside it, of an object of its area, after the one before it in table order; the
+ * last one ending exactly at its end) and ignored entirely if it fails, reported through
+ * `image_refused`, or if the backend reports it damaged. Its records then go through the same
+ * checks, hooks and service rules as an SDO write (co_od_write, origin CO_OD_ORIGIN_STORE), in the
+ * order of the CiA 301 mapping procedure: every PDO the image configures is made invalid with an
+ * empty mapping, then the values are written, then the numbers of mapped objects, then the COB-IDs.
+ * A record refused because of another not yet applied is tried again after the others; a record
+ * still refused (unknown entry, size changed, process data, out of its limits, refused by a hook)
+ * is reported through `refused` and skipped, the entry keeping its value; a PDO whose COB-ID is
+ * refused stays invalid. A defaults image writes the default of each view of its area through its
+ * hook.
  *
  * Images are streamed from and to the dictionary's own bytes; a value is staged in a buffer of
  * CO_CONFIG_STORE_VALUE_MAX bytes on the stack while it is checked. */
@@ -57,6 +59,27 @@
 #define CO_STORE_RECORD_HEADER_SIZE 5u
 #define CO_STORE_IMAGE_VALUES 0u   /* the records hold the area's saved values */
 #define CO_STORE_IMAGE_DEFAULTS 1u /* the area was restored: its defaults apply */
+
+/* Why a stored image is refused whole, before any of it applies. */
+typedef enum co_store_fault {
+    CO_STORE_FAULT_NONE,         /* well formed, or no image to apply */
+    CO_STORE_FAULT_AREA,         /* not a storage area: 2, 3 or 4 */
+    CO_STORE_FAULT_UNREADABLE,   /* load_read failed */
+    CO_STORE_FAULT_HEADER,       /* not "COS" version 1, or version 2 with a known kind */
+    CO_STORE_FAULT_CUT_SHORT,    /* a record runs past the end of the image */
+    CO_STORE_FAULT_OUTSIDE_AREA, /* a record of an object outside the image's area */
+    CO_STORE_FAULT_ORDER         /* a record not after the one before it: a duplicate, or out of
+                                    table order */
+} co_store_fault_t;
+
+typedef struct co_store_image_fault {
+    co_store_fault_t reason;
+    uint8_t area;
+    uint16_t area_first, area_last; /* the indexes of the area (0 for CO_STORE_FAULT_AREA) */
+    uint32_t offset;                /* byte of the image where the record at fault starts */
+    uint16_t index;                 /* that record's object, when its header could be read */
+    uint8_t subindex;
+} co_store_image_fault_t;
 
 /* Implemented by the runtime; every callback gets `ctx`. Calls never nest and never interleave:
  * a save is save_begin, save_write..., save_end; a load is load_size then load_read... of the
@@ -92,11 +115,20 @@ typedef struct co_storage {
      * between two areas of one write leaves a mixture of the old and the new parameters. */
     int (*group_begin)(void *ctx);
     int (*group_end)(void *ctx, bool commit);
+    /* Optional (may be NULL): an image was refused whole while the stored images were applied
+     * (co_store_image_check says why); nothing of it applied. */
+    void (*image_refused)(void *ctx, const co_node_t *node, const co_store_image_fault_t *fault);
 } co_storage_t;
 
 /* Write handler of 1010h / 1011h. */
 uint32_t co_store_od_write(co_node_t *node, const co_od_entry_t *entry, const uint8_t *data,
                            size_t len);
+/* Checks the stored image of an area as co_store_apply does before applying any of it: a
+ * backend may run it on images it did not write (a file read at start). CO_STORE_FAULT_NONE
+ * when it is well formed, when there is none (load_size 0) and when the backend reports it
+ * damaged (-1); *fault is filled in every case. */
+co_store_fault_t co_store_image_check(const co_storage_t *s, uint8_t area,
+                                      co_store_image_fault_t *fault);
 /* Applies the stored images of the areas that lie in [first, last], after their defaults were
  * restored. Without storage, or without a usable image, the defaults stay. */
 void co_store_apply(co_node_t *node, uint16_t first, uint16_t last);

@@ -1,7 +1,8 @@
 /* The storage file behind `--store FILE`: the stored images of every node of the process, one
  * record per (node-id, area), in one file that is replaced atomically (temporary file in the same
  * directory, fsync, rename, fsync of the directory) and verified completely (magic, version,
- * length, CRC-32, every record) before anything in it is used. A file that fails a check is
+ * length, CRC-32, every record, every image as the core checks it: co_store_image_check) before
+ * anything in it is used. A file that fails a check is
  * reported with the reason and ignored as a whole; at the next save it is kept as FILE.bad and
  * replaced. Format: docs/atv312d.md, "Storage file". */
 #ifndef CO_LINUX_FILE_STORE_H

@@ -10,31 +10,87 @@
 #include <string.h>
 #include <strings.h>
 
-/* "1A05" -> index, "1A05sub1" -> index and sub-index; false for other sections ([FileInfo]). */
-static bool parse_section(const char *name, uint16_t *index, uint16_t *sub)
+/* CiA 306: an object's section is named by its index in four hexadecimal digits, a sub-index's
+ * adds "sub" and the sub-index (00h..FFh) in one or two. */
+#define EDS_INDEX_DIGITS 4u
+#define EDS_SUB_WORD "sub"
+#define EDS_SUB_WORD_LEN 3u
+#define EDS_SUB_DIGITS_MAX 2u
+
+/* The value of an ASCII hexadecimal digit, or -1. */
+static int hex_digit(char c)
 {
-    char *end;
-    if (strlen(name) < 4 || !isxdigit((unsigned char)name[0]))
-        return false;
-    unsigned long idx = strtoul(name, &end, 16);
-    if (end != name + 4 || idx > 0xFFFF)
-        return false;
-    *index = (uint16_t)idx;
-    if (*end == '\0') {
-        *sub = EDS_OBJECT;
-        return true;
-    }
-    if (strncasecmp(end, "sub", 3) != 0 || !isxdigit((unsigned char)end[3]))
-        return false;
-    unsigned long s = strtoul(end + 3, &end, 16);
-    if (*end != '\0' || s > 0xFF)
-        return false;
-    *sub = (uint16_t)s;
-    return true;
+    if (c >= '0' && c <= '9')
+        return c - '0';
+    if (c >= 'a' && c <= 'f')
+        return c - 'a' + 10;
+    if (c >= 'A' && c <= 'F')
+        return c - 'A' + 10;
+    return -1;
 }
 
-/* CiA 306 values: decimal, 0x hexadecimal, octal with a leading 0, and "$NODEID+x" / "x+$NODEID".
- */
+/* The number of hexadecimal digits `s` starts with. */
+static size_t hex_run(const char *s)
+{
+    size_t n = 0;
+    while (hex_digit(s[n]) >= 0)
+        n++;
+    return n;
+}
+
+static unsigned hex_value(const char *s, size_t digits)
+{
+    unsigned value = 0;
+    for (size_t i = 0; i < digits; i++)
+        value = value << 4 | (unsigned)hex_digit(s[i]);
+    return value;
+}
+
+typedef enum section_kind {
+    SECTION_OTHER,    /* [FileInfo], [DeviceInfo], [1F22Value]...: not an object's */
+    SECTION_OBJECT,   /* [1A05], [1A05sub1] */
+    SECTION_MALFORMED /* meant as an object's, in a notation CiA 306 does not have */
+} section_kind_t;
+
+/* A name that starts as a number would (a sign, 0x, hex digits) and stops there or goes on with
+ * "sub" or a blank is meant as an object's section ([0x12], [12], [1018sub], [1018 sub1]); one
+ * that goes on with a word is a section of another kind ([1F22Value], [DeviceInfo]). */
+static bool looks_like_an_object(const char *name)
+{
+    const char *p = name;
+    if (*p == '+' || *p == '-')
+        p++;
+    if (p[0] == '0' && (p[1] == 'x' || p[1] == 'X'))
+        p += 2;
+    size_t digits = hex_run(p);
+    const char *rest = p + digits;
+    return digits > 0 && (*rest == '\0' || isspace((unsigned char)*rest) ||
+                          strncasecmp(rest, EDS_SUB_WORD, EDS_SUB_WORD_LEN) == 0);
+}
+
+/* CiA 306 names an object's section by its index in four hexadecimal digits ([1A05]) and a
+ * sub-index's by the index, "sub" and the sub-index in one or two ([1A05sub1]), in any case. */
+static section_kind_t parse_section(const char *name, uint16_t *index, uint16_t *sub)
+{
+    if (hex_run(name) == EDS_INDEX_DIGITS) {
+        const char *rest = name + EDS_INDEX_DIGITS;
+        *index = (uint16_t)hex_value(name, EDS_INDEX_DIGITS);
+        *sub = EDS_OBJECT;
+        if (*rest == '\0')
+            return SECTION_OBJECT;
+        bool has_sub = strncasecmp(rest, EDS_SUB_WORD, EDS_SUB_WORD_LEN) == 0;
+        const char *sub_digits = has_sub ? rest + EDS_SUB_WORD_LEN : rest;
+        size_t digits = has_sub ? hex_run(sub_digits) : 0;
+        if (digits >= 1 && digits <= EDS_SUB_DIGITS_MAX && sub_digits[digits] == '\0') {
+            *sub = (uint16_t)hex_value(sub_digits, digits);
+            return SECTION_OBJECT;
+        }
+    }
+    return looks_like_an_object(name) ? SECTION_MALFORMED : SECTION_OTHER;
+}
+
+/* CiA 306 values: decimal, 0x hexadecimal, octal with a leading 0, and "$NODEID+x" / "x+$NODEID";
+ * blanks around the terms. A term starts with a digit (no sign), and the sum fits 64 bits. */
 static bool parse_value(const char *text, uint8_t node_id, uint64_t *value)
 {
     *value = 0;
@@ -44,18 +100,23 @@ static bool parse_value(const char *text, uint8_t node_id, uint64_t *value)
     for (;;) {
         while (isspace((unsigned char)*p))
             p++;
+        uint64_t term;
         if (strncasecmp(p, "$NODEID", 7) == 0) {
-            *value += node_id;
+            term = node_id;
             p += 7;
-        } else {
+        } else if (isdigit((unsigned char)*p)) {
             char *end;
             errno = 0;
-            unsigned long long term = strtoull(p, &end, 0);
-            if (end == p || errno != 0 || *p == '-')
+            term = strtoull(p, &end, 0);
+            if (errno != 0)
                 return false;
-            *value += term;
             p = end;
+        } else {
+            return false;
         }
+        if (term > UINT64_MAX - *value)
+            return false;
+        *value += term;
         while (isspace((unsigned char)*p))
             p++;
         if (*p == '\0')
@@ -147,7 +208,8 @@ static void set_device_info(eds_t *eds, const char *key, const char *value)
         eds->product_number = (uint32_t)number;
 }
 
-/* Every header starts a section: an object's ([1A05], [1A05sub1]) is a new entry. */
+/* Every header starts a section: an object's ([1A05], [1A05sub1]) is a new entry; one meant as an
+ * object's in another notation stops the reading, rather than be read as another object. */
 static bool on_section(void *ctx, const ini_line_t *line, char *err, size_t err_len)
 {
     parse_state_t *st = ctx;
@@ -155,8 +217,18 @@ static bool on_section(void *ctx, const ini_line_t *line, char *err, size_t err_
     st->entry = NULL;
     st->value_is_parameter = false;
     st->in_device_info = strcasecmp(line->section, "DeviceInfo") == 0;
-    if (!parse_section(line->section, &index, &sub))
+    switch (parse_section(line->section, &index, &sub)) {
+    case SECTION_OTHER:
         return true;
+    case SECTION_MALFORMED:
+        snprintf(err, err_len,
+                 "%s:%u: section [%s] is not an object's: write its index in four hex digits "
+                 "([1018]), a sub-index's with sub and one or two ([1018sub1])",
+                 line->path, line->number, line->section);
+        return false;
+    case SECTION_OBJECT:
+        break;
+    }
     st->entry = add_entry(st->eds, index, sub);
     return st->entry || out_of_memory(line, err, err_len);
 }

@@ -45,7 +45,11 @@ typedef enum eds_result {
 } eds_result_t;
 
 /* Reads `path` for a node (its node-id resolves $NODEID). On failure err gets a one-line message
- * (file, line, what is wrong) and eds is empty. */
+ * (file, line, what is wrong) and eds is empty. An object's section is named by four hex digits
+ * ([1018]), a sub-index's by those, "sub" and one or two ([1018sub1]), in any case; a name that
+ * starts as a number in another notation ([0x12], [12], [1018sub]) is such a failure, one that
+ * goes on with a word ([FileInfo], [1F22Value]) a section of another kind, whose keys are
+ * ignored. */
 eds_result_t eds_load(eds_t *eds, const char *path, uint8_t node_id, char *err, size_t err_len);
 void eds_free(eds_t *eds);
 

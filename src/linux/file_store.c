@@ -114,6 +114,61 @@ static bool check_records(const uint8_t *p, uint32_t len, uint16_t count, co_fil
     return true;
 }
 
+/* What co_store_image_check found, in words. */
+static void describe_image_fault(const co_store_image_fault_t *f, char *text, size_t len)
+{
+    switch (f->reason) {
+    case CO_STORE_FAULT_NONE:
+        snprintf(text, len, "no fault");
+        break;
+    case CO_STORE_FAULT_AREA:
+        snprintf(text, len, "not a storage area (2, 3 or 4)");
+        break;
+    case CO_STORE_FAULT_UNREADABLE:
+        snprintf(text, len, "unreadable at byte %u", (unsigned)f->offset);
+        break;
+    case CO_STORE_FAULT_HEADER:
+        snprintf(text, len, "not an image of parameters (header \"COS\" version 1 or 2)");
+        break;
+    case CO_STORE_FAULT_CUT_SHORT:
+        snprintf(text, len, "the record at byte %u runs past the end of the image",
+                 (unsigned)f->offset);
+        break;
+    case CO_STORE_FAULT_OUTSIDE_AREA:
+        snprintf(text, len, "record %04Xh:%02X at byte %u lies outside the area (%04Xh..%04Xh)",
+                 f->index, f->subindex, (unsigned)f->offset, f->area_first, f->area_last);
+        break;
+    case CO_STORE_FAULT_ORDER:
+        snprintf(text, len,
+                 "record %04Xh:%02X at byte %u does not follow the one before it (a duplicate, "
+                 "or out of order)",
+                 f->index, f->subindex, (unsigned)f->offset);
+        break;
+    }
+}
+
+/* Every image as the core checks it before applying it: a file that holds one the core would
+ * refuse is ignored whole, as for a bad CRC, rather than applied in part. */
+static bool check_images(co_file_record_t *records, size_t count, char *reason, size_t reason_len)
+{
+    co_file_store_t parsed = {.records = records, .count = count};
+    for (size_t i = 0; i < count; i++) {
+        co_file_store_node_t node;
+        co_storage_t storage;
+        co_store_image_fault_t fault;
+        co_file_store_bind(&parsed, records[i].node_id, &node, &storage);
+        co_store_fault_t found = co_store_image_check(&storage, records[i].area, &fault);
+        co_file_store_unbind(&node);
+        if (found != CO_STORE_FAULT_NONE) {
+            char text[128];
+            describe_image_fault(&fault, text, sizeof text);
+            return fail(reason, reason_len, "node %u area %u: %s", records[i].node_id,
+                        records[i].area, text);
+        }
+    }
+    return true;
+}
+
 bool co_file_store_parse(const uint8_t *file, size_t size, co_file_record_t **records,
                          size_t *count, char *reason, size_t reason_len)
 {
@@ -125,7 +180,8 @@ bool co_file_store_parse(const uint8_t *file, size_t size, co_file_record_t **re
     if (!parsed)
         return fail(reason, reason_len, "out of memory");
     if (!check_records(file + CO_FILE_STORE_HEADER_SIZE, records_len, n, parsed, reason,
-                       reason_len)) {
+                       reason_len) ||
+        !check_images(parsed, n, reason, reason_len)) {
         free(parsed);
         return false;
     }

@@ -48,6 +48,28 @@ static void expect_changed(bool comm, bool manufacturer, bool profile)
     ck_assert_int_eq(co_od_value(&t.node, 0x6046, 0x02), profile ? 2000 : 1500);
 }
 
+/* Writes a version 2 image of saved values of one area, written by save 1. */
+static void put_image(uint8_t area, const uint8_t *records, size_t len)
+{
+    memcpy(mem.image[area], "COS\x02\x01\x00\x00\x00\x00", CO_STORE_IMAGE_HEADER_SIZE);
+    memcpy(mem.image[area] + CO_STORE_IMAGE_HEADER_SIZE, records, len);
+    mem.size[area] = (long)(CO_STORE_IMAGE_HEADER_SIZE + len);
+}
+
+/* The last image refused whole was of `area`, for `reason`, at the record of index:sub that
+ * starts at byte `offset`. */
+static void expect_image_refused(uint8_t area, co_store_fault_t reason, uint32_t offset,
+                                 uint16_t index, uint8_t subindex)
+{
+    const co_store_image_fault_t *f = &mem.image_fault;
+    ck_assert_uint_gt(mem.images_refused, 0);
+    ck_assert_int_eq(f->reason, reason);
+    ck_assert_uint_eq(f->area, area);
+    ck_assert_uint_eq(f->offset, offset);
+    ck_assert_uint_eq(f->index, index);
+    ck_assert_uint_eq(f->subindex, subindex);
+}
+
 START_TEST(save_all_then_reset_restores)
 {
     change_values();
@@ -176,16 +198,20 @@ START_TEST(malformed_image_ignored_entirely)
 {
     change_values();
     ck_assert_uint_eq(test_sdo_write(&t, 0x1010, 4, SAVE, 4), 0);
-    /* Truncated in the middle of the last record: nothing of it applies. */
-    mem.size[CO_STORE_AREA_MANUFACTURER] -= 1;
+    /* Truncated in the middle of the last record (203C:03, 2 bytes): nothing of it applies. */
+    long size = mem.size[CO_STORE_AREA_MANUFACTURER] -= 1;
     reset_node();
     expect_changed(false, false, false);
+    expect_image_refused(CO_STORE_AREA_MANUFACTURER, CO_STORE_FAULT_CUT_SHORT, (uint32_t)size - 6,
+                         0x203C, 0x03);
     /* Wrong header. */
     change_values();
     ck_assert_uint_eq(test_sdo_write(&t, 0x1010, 4, SAVE, 4), 0);
     mem.image[CO_STORE_AREA_MANUFACTURER][3] = 9; /* an unknown version */
     reset_node();
     expect_changed(false, false, false);
+    expect_image_refused(CO_STORE_AREA_MANUFACTURER, CO_STORE_FAULT_HEADER, 0, 0, 0);
+    ck_assert_uint_eq(mem.images_refused, 2);
 }
 END_TEST
 
@@ -365,30 +391,104 @@ START_TEST(refused_pdo_cob_id_leaves_the_pdo_invalid)
 }
 END_TEST
 
-/* An image from another dictionary version: unknown entries and changed sizes are skipped. */
+/* An image from another dictionary version, where 2000:07 was 2 bytes long and 2000:13 and 2001h
+ * existed: the records of entries that are gone or changed size are skipped, the others apply. */
 START_TEST(dictionary_change_never_misloads)
 {
-    change_values();
-    ck_assert_uint_eq(test_sdo_write(&t, 0x1010, 4, SAVE, 4), 0);
-    uint8_t *img = mem.image[CO_STORE_AREA_MANUFACTURER];
-    long size = mem.size[CO_STORE_AREA_MANUFACTURER];
-    for (long i = CO_STORE_IMAGE_HEADER_SIZE; i < size; i += 5 + co_get_u16(img + i + 3)) {
-        uint16_t index = co_get_u16(img + i);
-        uint8_t sub = img[i + 2];
-        if (index == 0x2000 && sub == 0x07)
-            img[i + 2] = 0x7F;                /* entry that no longer exists */
-        if (index == 0x203C && sub == 0x02) { /* now a 2-byte value for the u32 2000:07 */
-            co_put_u16(img + i, 0x2000);
-            img[i + 2] = 0x07;
-        }
-    }
+    static const uint8_t records[] = {
+        0x00, 0x20, 0x07, 0x02, 0x00, 0x34, 0x12, /* 2000:07 = 0x1234, now 4 bytes long */
+        0x00, 0x20, 0x13, 0x01, 0x00, 0x05,       /* 2000:13, no longer exists */
+        0x01, 0x20, 0x00, 0x01, 0x00, 0x05,       /* 2001h, no longer exists */
+        0x3C, 0x20, 0x02, 0x02, 0x00, 0xE8, 0x03, /* 203C:02 = 1000 */
+    };
+    put_image(CO_STORE_AREA_MANUFACTURER, records, sizeof(records));
     reset_node();
     ck_assert_int_eq(co_od_value(&t.node, 0x2000, 0x07), 0);
-    ck_assert_int_eq(co_od_value(&t.node, 0x203C, 0x02), 30);
-    ck_assert_int_eq(co_od_value(&t.node, 0x203C, 0x03), 30);
-    ck_assert_uint_eq(memory_storage_refusal(&mem, 0x2000, 0x7F), CO_SDO_ABORT_NO_SUBINDEX);
+    ck_assert_int_eq(co_od_value(&t.node, 0x203C, 0x02), 1000);
     ck_assert_uint_eq(memory_storage_refusal(&mem, 0x2000, 0x07), CO_SDO_ABORT_TYPE_LENGTH);
-    ck_assert_uint_eq(mem.refusals, 2);
+    ck_assert_uint_eq(memory_storage_refusal(&mem, 0x2000, 0x13), CO_SDO_ABORT_NO_SUBINDEX);
+    ck_assert_uint_eq(memory_storage_refusal(&mem, 0x2001, 0x00), CO_SDO_ABORT_NO_OBJECT);
+    ck_assert_uint_eq(mem.refusals, 3);
+}
+END_TEST
+
+/* The records of a communication image that are not parameters: the device type (read-only) and
+ * the "save" and "load" commands, which would save or erase the storage while it is applied.
+ * Each is refused like any value a write would refuse; 1017h applies, nothing is saved or erased.
+ */
+START_TEST(stored_commands_and_read_only_values_never_apply)
+{
+    static const uint8_t records[] = {
+        0x00, 0x10, 0x00, 0x04, 0x00, 0x34, 0x12, 0x00, 0x00, /* 1000h = 0x1234 */
+        0x10, 0x10, 0x01, 0x04, 0x00, 's',  'a',  'v',  'e',  /* 1010h:01 = "save" */
+        0x11, 0x10, 0x01, 0x04, 0x00, 'l',  'o',  'a',  'd',  /* 1011h:01 = "load" */
+        0x17, 0x10, 0x00, 0x02, 0x00, 0xF4, 0x01,             /* 1017h = 500 */
+    };
+    put_image(CO_STORE_AREA_COMMUNICATION, records, sizeof(records));
+    reset_node();
+    ck_assert_int_eq(co_od_value(&t.node, 0x1017, 0), 500);
+    ck_assert_int_eq(co_od_value(&t.node, 0x1010, 1), 1);
+    ck_assert_int_eq(co_od_value(&t.node, 0x1011, 1), 1);
+    ck_assert_uint_eq(mem.saves + mem.erases, 0);
+    ck_assert_uint_eq(memory_storage_refusal(&mem, 0x1000, 0), CO_SDO_ABORT_DATA_STORE);
+    ck_assert_uint_eq(memory_storage_refusal(&mem, 0x1010, 1), CO_SDO_ABORT_DATA_STORE);
+    ck_assert_uint_eq(memory_storage_refusal(&mem, 0x1011, 1), CO_SDO_ABORT_DATA_STORE);
+    ck_assert_uint_eq(mem.refusals, 3);
+}
+END_TEST
+
+/* Issue 22 item 9: a communication image holding a record of the manufacturer area (2000:05).
+ * Applied, every reset communication would write that parameter back, though a reset
+ * communication reloads the communication area only. The image is refused whole, before any of
+ * it applies: 1017h keeps its default too, and no record is reported one by one. */
+START_TEST(record_outside_its_area_refuses_the_image)
+{
+    static const uint8_t records[] = {
+        0x17, 0x10, 0x00, 0x02, 0x00, 0xF4, 0x01, /* 1017h = 500 */
+        0x00, 0x20, 0x05, 0x01, 0x00, 0x64,       /* 2000:05 = 100 */
+    };
+    put_image(CO_STORE_AREA_COMMUNICATION, records, sizeof(records));
+    ck_assert_uint_eq(test_sdo_write(&t, 0x2000, 0x05, 120, 1), 0);
+    test_rx(&t, "000#8204");
+    test_expect(&t, "704#00");
+    ck_assert_int_eq(co_od_value(&t.node, 0x2000, 0x05), 120);
+    ck_assert_int_eq(co_od_value(&t.node, 0x1017, 0), 0);
+    ck_assert_uint_eq(mem.images_refused, 1);
+    expect_image_refused(CO_STORE_AREA_COMMUNICATION, CO_STORE_FAULT_OUTSIDE_AREA, 16, 0x2000,
+                         0x05);
+    ck_assert_uint_eq(mem.image_fault.area_first, 0x1000);
+    ck_assert_uint_eq(mem.image_fault.area_last, 0x1FFF);
+    reset_node();
+    ck_assert_int_eq(co_od_value(&t.node, 0x2000, 0x05), 50);
+    ck_assert_int_eq(co_od_value(&t.node, 0x1017, 0), 0);
+    ck_assert_uint_eq(mem.images_refused, 2);
+    ck_assert_uint_eq(mem.refusals, 0);
+}
+END_TEST
+
+/* The core writes one record per entry, in table order: an image with a record twice, or with
+ * records out of that order, was not written by it and is refused whole. */
+START_TEST(duplicate_or_unordered_records_refuse_the_image)
+{
+    static const uint8_t duplicate[] = {
+        0x17, 0x10, 0x00, 0x02, 0x00, 0xF4, 0x01, /* 1017h = 500 */
+        0x17, 0x10, 0x00, 0x02, 0x00, 0x58, 0x02, /* 1017h = 600 */
+    };
+    put_image(CO_STORE_AREA_COMMUNICATION, duplicate, sizeof(duplicate));
+    reset_node();
+    ck_assert_int_eq(co_od_value(&t.node, 0x1017, 0), 0);
+    expect_image_refused(CO_STORE_AREA_COMMUNICATION, CO_STORE_FAULT_ORDER, 16, 0x1017, 0);
+    static const uint8_t unordered[] = {
+        0x17, 0x10, 0x00, 0x02, 0x00, 0xF4, 0x01, /* 1017h = 500 */
+        0x0C, 0x10, 0x00, 0x02, 0x00, 0xFA, 0x00, /* 100Ch = 250 */
+    };
+    put_image(CO_STORE_AREA_COMMUNICATION, unordered, sizeof(unordered));
+    reset_node();
+    ck_assert_int_eq(co_od_value(&t.node, 0x1017, 0), 0);
+    ck_assert_int_eq(co_od_value(&t.node, 0x100C, 0), 0);
+    expect_image_refused(CO_STORE_AREA_COMMUNICATION, CO_STORE_FAULT_ORDER, 16, 0x100C, 0);
+    ck_assert_uint_eq(mem.images_refused, 2);
+    ck_assert_uint_eq(mem.refusals, 0);
 }
 END_TEST
 
@@ -430,6 +530,36 @@ START_TEST(guarding_cob_id_stored_with_the_communication_parameters)
 }
 END_TEST
 
+/* The check a backend runs on images it did not write: the same as before an image applies. */
+START_TEST(image_check_without_a_node)
+{
+    co_store_image_fault_t fault;
+    ck_assert_int_eq(co_store_image_check(&storage, CO_STORE_AREA_PROFILE, &fault),
+                     CO_STORE_FAULT_NONE); /* no image */
+    ck_assert_uint_eq(test_sdo_write(&t, 0x1010, 1, SAVE, 4), 0);
+    for (uint8_t area = CO_STORE_AREA_COMMUNICATION; area <= CO_STORE_AREA_MANUFACTURER; area++)
+        ck_assert_int_eq(co_store_image_check(&storage, area, &fault), CO_STORE_FAULT_NONE);
+    ck_assert_int_eq(co_store_image_check(&storage, 5, &fault), CO_STORE_FAULT_AREA);
+    ck_assert_uint_eq(fault.area, 5);
+    static const uint8_t records[] = {
+        0x46, 0x60, 0x02, 0x04, 0x00, 0xD0, 0x07, 0x00, 0x00, /* 6046h:02 = 2000 */
+        0x17, 0x10, 0x00, 0x02, 0x00, 0xF4, 0x01,             /* 1017h = 500 */
+    };
+    put_image(CO_STORE_AREA_PROFILE, records, sizeof(records));
+    ck_assert_int_eq(co_store_image_check(&storage, CO_STORE_AREA_PROFILE, &fault),
+                     CO_STORE_FAULT_OUTSIDE_AREA);
+    ck_assert_uint_eq(fault.area_first, 0x6000);
+    ck_assert_uint_eq(fault.area_last, 0x9FFF);
+    ck_assert_uint_eq(fault.offset, 18);
+    ck_assert_uint_eq(fault.index, 0x1017);
+    mem.fail_offset = CO_STORE_IMAGE_HEADER_SIZE;
+    ck_assert_int_eq(co_store_image_check(&storage, CO_STORE_AREA_PROFILE, &fault),
+                     CO_STORE_FAULT_UNREADABLE);
+    ck_assert_uint_eq(fault.offset, CO_STORE_IMAGE_HEADER_SIZE);
+    ck_assert_uint_eq(mem.images_refused, 0);
+}
+END_TEST
+
 START_TEST(no_image_keeps_defaults)
 {
     change_values();
@@ -454,9 +584,13 @@ int main(void)
     tcase_add_test(tc, malformed_image_ignored_entirely);
     tcase_add_test(tc, read_failure_while_applying_skips_the_record);
     tcase_add_test(tc, dictionary_change_never_misloads);
+    tcase_add_test(tc, stored_commands_and_read_only_values_never_apply);
+    tcase_add_test(tc, record_outside_its_area_refuses_the_image);
+    tcase_add_test(tc, duplicate_or_unordered_records_refuse_the_image);
     tcase_add_test(tc, sync_parameters_survive_reset_node);
     tcase_add_test(tc, guarding_cob_id_stored_with_the_communication_parameters);
     tcase_add_test(tc, no_image_keeps_defaults);
+    tcase_add_test(tc, image_check_without_a_node);
     tcase_add_test(tc, process_data_never_stored);
     tcase_add_test(tc, version_1_image_loads_its_parameters_only);
     tcase_add_test(tc, stored_values_checked_like_writes);

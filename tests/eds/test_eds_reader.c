@@ -1,8 +1,9 @@
 /* The EDS/DCF reader's CiA 306 syntax, file by file through eds_load: comments only on lines of
  * their own, blanks and carriage returns around everything, keys and sections of any case, keys
  * outside object sections ignored, a repeated key's last value (but a ParameterValue wins over a
- * later DefaultValue), a repeated section read as a second entry, [DeviceInfo], and each syntax
- * error with the file and the line (counting comments and blank lines). */
+ * later DefaultValue), a repeated section read as a second entry, [DeviceInfo], object sections
+ * named exactly as CiA 306 writes them, numbers as it writes them, and each syntax error with the
+ * file and the line (counting comments and blank lines). */
 #include "check_main.h"
 #include "eds_reader.h"
 
@@ -99,7 +100,7 @@ START_TEST(keys_outside_object_sections_ignored)
                           "[FileInfo]\n"
                           "FileName=x.eds\n"
                           "DataType=not a number\n"
-                          "[1000sub]\n"
+                          "[1F22Value]\n"
                           "DataType=not a number\n"
                           "[1000]\n"
                           "ParameterName=Device type\n"
@@ -166,6 +167,71 @@ START_TEST(syntax_errors_name_the_line)
 }
 END_TEST
 
+/* Issue 22 item 10: an object's section is four hex digits, a sub-index's adds "sub" and one or
+ * two, in any case. A name that starts as a number in another notation is refused with its line,
+ * never read as some other object ([0x12] was 0012h); a name that goes on with a word ([1F22Value],
+ * [DeviceInfo]) is a section of another kind, ignored. */
+START_TEST(object_sections_named_as_cia306_writes_them)
+{
+    ck_assert_int_eq(load("[0012]\n"
+                          "ParameterName=Type 12h\n"
+                          "[1a00SUB0A]\n"
+                          "ParameterName=Tenth\n"
+                          "[1A00sub1]\n"
+                          "ParameterName=First\n"
+                          "[Bad1Name]\n"
+                          "ParameterName=not an object's\n"),
+                     EDS_OK);
+    ck_assert_uint_eq(eds.count, 3);
+    ck_assert_str_eq(eds_name(&eds, 0x0012, 0), "Type 12h");
+    ck_assert_str_eq(eds_name(&eds, 0x1A00, 0x0A), "Tenth");
+    ck_assert_str_eq(eds_name(&eds, 0x1A00, 0x01), "First");
+    static const char *const refused[] = {
+        "0x12",       "0X1018",    "12",        "01018",      "+1018",
+        "-1018",      "1018sub",   "1018SUB",   "1018sub100", "1018sub 1",
+        "1018sub0x1", "1018sub+1", "1018 sub1", "1018subG",   "BAD",
+    };
+    for (size_t i = 0; i < sizeof refused / sizeof refused[0]; i++) {
+        char text[128], want[160];
+        snprintf(text, sizeof text, "; comment\n[1000]\nParameterName=x\n[%s]\n", refused[i]);
+        snprintf(want, sizeof want,
+                 ":4: section [%s] is not an object's: write its index in four hex digits "
+                 "([1018]), a sub-index's with sub and one or two ([1018sub1])",
+                 refused[i]);
+        ck_assert_str_eq(error_of(text), want);
+    }
+}
+END_TEST
+
+/* CiA 306 numbers: decimal, 0x hex or octal, "+" only between the terms of a sum, no sign before a
+ * number, and no sum beyond 64 bits. */
+START_TEST(numbers_as_cia306_writes_them)
+{
+    ck_assert_int_eq(load("[1000]\n"
+                          "DefaultValue=+5\n"
+                          "[1001]\n"
+                          "DefaultValue=$NODEID++5\n"
+                          "[1002]\n"
+                          "DefaultValue=0xFFFFFFFFFFFFFFFF+1\n"
+                          "[1003]\n"
+                          "DefaultValue=$NODEID+0xFFFFFFFFFFFFFFFF\n"
+                          "[1004]\n"
+                          "DefaultValue=0x\n"
+                          "[1005]\n"
+                          "DefaultValue=0xFFFFFFFFFFFFFFFE+1\n"
+                          "[1006]\n"
+                          "DefaultValue=010 + $NODEID\n"),
+                     EDS_OK);
+    for (uint16_t index = 0x1000; index <= 0x1004; index++)
+        ck_assert_msg(!eds_find(&eds, index, 0)->has_value, "%04X has a value", index);
+    ck_assert(eds_find(&eds, 0x1005, 0)->has_value);
+    ck_assert_uint_eq(eds_find(&eds, 0x1005, 0)->value, UINT64_MAX);
+    ck_assert_uint_eq(eds_find(&eds, 0x1006, 0)->value, 8 + 4);
+    ck_assert_str_eq(error_of("[1000]\nDataType=+7\n"),
+                     ":2: DataType '+7' is not a number such as 0x0006");
+}
+END_TEST
+
 int main(void)
 {
     Suite *s = suite_create("eds_reader");
@@ -177,6 +243,8 @@ int main(void)
     tcase_add_test(tc, repeated_keys_and_sections);
     tcase_add_test(tc, device_info_of_any_case);
     tcase_add_test(tc, syntax_errors_name_the_line);
+    tcase_add_test(tc, object_sections_named_as_cia306_writes_them);
+    tcase_add_test(tc, numbers_as_cia306_writes_them);
     suite_add_tcase(s, tc);
     return check_run_suite(s);
 }

@@ -1,8 +1,10 @@
 /* The storage file: save/load round trip through the co_storage_t callbacks, several nodes in
  * one file, atomic replacement, and files that fail a check (truncated, bad CRC, wrong magic,
- * unknown version, bad record) ignored as a whole with the reason. */
+ * unknown version, bad record, an image the core would refuse) ignored as a whole with the
+ * reason. */
 #include "check_main.h"
 #include "co_linux/file_store.h"
+#include "test_bus.h"
 
 #include <check.h>
 #include <dirent.h>
@@ -49,6 +51,10 @@ static size_t files_in_dir(void)
     return n;
 }
 
+/* An image the core accepts and no string ends early: a restored area's image (co_store.h,
+ * kind 1, no records) whose save number is four characters, which tell the images apart. */
+#define IMAGE(tag) "COS\x02" tag "\x01"
+
 static void save(const co_storage_t *s, uint8_t area, const char *image)
 {
     ck_assert_int_eq(s->save_begin(s->ctx, area), 0);
@@ -84,7 +90,7 @@ static void write_file(const uint8_t *buf, size_t len)
     fclose(f);
 }
 
-/* A file holding node 4 area 2 = "COMM", node 5 area 4 = "MANUF". */
+/* A file holding node 4 area 2 = IMAGE("COMM"), node 5 area 4 = IMAGE("MANU"). */
 static size_t make_valid_file(uint8_t *buf, size_t cap)
 {
     co_file_store_t store;
@@ -94,8 +100,8 @@ static size_t make_valid_file(uint8_t *buf, size_t cap)
     ck_assert_int_eq(co_file_store_open(&store, path), CO_FILE_STORE_MISSING);
     co_file_store_bind(&store, 4, &n4, &s4);
     co_file_store_bind(&store, 5, &n5, &s5);
-    save(&s5, 4, "MANUF");
-    save(&s4, 2, "COMM");
+    save(&s5, 4, IMAGE("MANU"));
+    save(&s4, 2, IMAGE("COMM"));
     co_file_store_unbind(&n4);
     co_file_store_unbind(&n5);
     co_file_store_close(&store);
@@ -129,13 +135,13 @@ START_TEST(round_trip_several_nodes)
     co_file_store_bind(&store, 4, &n4, &s4);
     co_file_store_bind(&store, 5, &n5, &s5);
     co_file_store_bind(&store, 6, &n6, &s6);
-    assert_loads(&s4, 2, "COMM");
-    assert_loads(&s5, 4, "MANUF");
+    assert_loads(&s4, 2, IMAGE("COMM"));
+    assert_loads(&s5, 4, IMAGE("MANU"));
     ck_assert_int_eq(s4.load_size(s4.ctx, 4), 0);
     ck_assert_int_eq(s6.load_size(s6.ctx, 2), 0);
     uint8_t out[8];
-    ck_assert_int_eq(s4.load_read(s4.ctx, 2, 2, out, 3), -1); /* beyond the image */
-    ck_assert_int_eq(s4.load_read(s4.ctx, 2, 2, out, 2), 0);
+    ck_assert_int_eq(s4.load_read(s4.ctx, 2, 7, out, 3), -1); /* beyond the image */
+    ck_assert_int_eq(s4.load_read(s4.ctx, 2, 6, out, 2), 0);
     ck_assert_mem_eq(out, "MM", 2);
     co_file_store_close(&store);
 }
@@ -174,7 +180,7 @@ START_TEST(save_replaces_atomically)
     co_storage_t s4;
     ck_assert_int_eq(co_file_store_open(&store, path), CO_FILE_STORE_LOADED);
     co_file_store_bind(&store, 4, &n4, &s4);
-    save(&s4, 2, "NEWCOMM");
+    save(&s4, 2, IMAGE("NEWC"));
     ck_assert_int_eq(stat(path, &after), 0);
     /* A new file was renamed over the old one: never rewritten in place. */
     ck_assert_uint_ne(before.st_ino, after.st_ino);
@@ -184,11 +190,11 @@ START_TEST(save_replaces_atomically)
 
     ck_assert_int_eq(co_file_store_open(&store, path), CO_FILE_STORE_LOADED);
     co_file_store_bind(&store, 4, &n4, &s4);
-    assert_loads(&s4, 2, "NEWCOMM");
+    assert_loads(&s4, 2, IMAGE("NEWC"));
     co_file_store_node_t n5;
     co_storage_t s5;
     co_file_store_bind(&store, 5, &n5, &s5);
-    assert_loads(&s5, 4, "MANUF"); /* the other node's record survives */
+    assert_loads(&s5, 4, IMAGE("MANU")); /* the other node's record survives */
     co_file_store_close(&store);
 }
 END_TEST
@@ -208,8 +214,8 @@ START_TEST(grouped_saves_replace_the_file_once)
     ck_assert_int_eq(co_file_store_open(&store, path), CO_FILE_STORE_LOADED);
     co_file_store_bind(&store, 4, &n4, &s4);
     ck_assert_int_eq(s4.group_begin(s4.ctx), 0);
-    save(&s4, 2, "GROUPCOMM");
-    save(&s4, 4, "GROUPMANUF");
+    save(&s4, 2, IMAGE("GRPC"));
+    save(&s4, 4, IMAGE("GRPM"));
     ck_assert_int_eq(stat(path, &during), 0);
     ck_assert_uint_eq(before.st_ino, during.st_ino); /* nothing written yet */
     ck_assert_int_eq(s4.group_end(s4.ctx, true), 0);
@@ -224,8 +230,8 @@ START_TEST(grouped_saves_replace_the_file_once)
 
     ck_assert_int_eq(co_file_store_open(&store, path), CO_FILE_STORE_LOADED);
     co_file_store_bind(&store, 4, &n4, &s4);
-    assert_loads(&s4, 2, "GROUPCOMM");
-    assert_loads(&s4, 4, "GROUPMANUF");
+    assert_loads(&s4, 2, IMAGE("GRPC"));
+    assert_loads(&s4, 4, IMAGE("GRPM"));
     co_file_store_unbind(&n4);
     co_file_store_close(&store);
 }
@@ -262,7 +268,7 @@ START_TEST(discarded_save_and_erase)
     ck_assert_int_eq(s4.save_begin(s4.ctx, 2), 0);
     ck_assert_int_eq(s4.save_write(s4.ctx, (const uint8_t *)"LOST", 4), 0);
     ck_assert_int_eq(s4.save_end(s4.ctx, false), 0);
-    assert_loads(&s4, 2, "COMM");
+    assert_loads(&s4, 2, IMAGE("COMM"));
     ck_assert_int_eq(s4.erase(s4.ctx, 2), 0);
     ck_assert_int_eq(s4.load_size(s4.ctx, 2), 0);
     ck_assert_int_eq(s4.erase(s4.ctx, 3), 0); /* nothing stored: succeeds */
@@ -332,6 +338,81 @@ START_TEST(bad_record_with_good_crc_is_ignored)
 }
 END_TEST
 
+/* Writes a file of node 4's images, unchecked, as another program could. */
+static void write_images(const co_file_record_t *images, size_t n)
+{
+    co_file_store_t store;
+    unlink(path);
+    ck_assert_int_eq(co_file_store_open(&store, path), CO_FILE_STORE_MISSING);
+    co_file_record_t copies[3];
+    for (size_t i = 0; i < n; i++) {
+        copies[i] = images[i];
+        copies[i].data = malloc(images[i].len);
+        memcpy(copies[i].data, images[i].data, images[i].len);
+    }
+    ck_assert_int_eq(co_file_store_update_many(&store, copies, n), 0);
+    co_file_store_close(&store);
+}
+
+/* Issue 22 item 9 through the file: node 4's communication image holds a record of 2000:05, a
+ * manufacturer parameter that every reset communication would write back. The file is ignored
+ * whole, as for a bad CRC, with the reason the daemon prints ("store FILE: ignored, defaults
+ * apply: <reason>"), and the node starts with every default: 1017h, 2000:05, and 203C:02 of its
+ * sound manufacturer image alike. */
+START_TEST(image_with_a_record_outside_its_area_is_ignored)
+{
+    static uint8_t comm[] = {
+        'C',  'O',  'S',  2,    1,    0,    0,    0, 0, /* save 1, values */
+        0x17, 0x10, 0x00, 0x02, 0x00, 0xF4, 0x01,       /* 1017h = 500 */
+        0x00, 0x20, 0x05, 0x01, 0x00, 0x64,             /* 2000:05 = 100 */
+    };
+    static uint8_t manuf[] = {
+        'C',  'O',  'S',  2,    2,    0,    0,    0, 0, /* save 2, values */
+        0x3C, 0x20, 0x02, 0x02, 0x00, 0xE8, 0x03,       /* 203C:02 = 1000 */
+    };
+    const co_file_record_t images[] = {{4, CO_STORE_AREA_COMMUNICATION, sizeof comm, comm},
+                                       {4, CO_STORE_AREA_MANUFACTURER, sizeof manuf, manuf}};
+    write_images(images, 2);
+    co_file_store_t store;
+    ck_assert_int_eq(co_file_store_open(&store, path), CO_FILE_STORE_IGNORED);
+    ck_assert_str_eq(store.reason,
+                     "node 4 area 2: record 2000h:05 at byte 16 lies outside the area "
+                     "(1000h..1FFFh)");
+    co_file_store_node_t n4;
+    co_storage_t s4;
+    co_file_store_bind(&store, 4, &n4, &s4);
+    test_node_t t;
+    test_node_start(&t, 4, NULL, &s4);
+    ck_assert_int_eq(co_od_value(&t.node, 0x1017, 0), 0);
+    ck_assert_int_eq(co_od_value(&t.node, 0x2000, 0x05), 50);
+    ck_assert_int_eq(co_od_value(&t.node, 0x203C, 0x02), 30);
+    co_file_store_unbind(&n4);
+    co_file_store_close(&store);
+}
+END_TEST
+
+/* The other images the core would refuse: a record twice, and bytes that are no image at all. */
+START_TEST(duplicate_record_or_foreign_image_is_ignored)
+{
+    static uint8_t duplicate[] = {
+        'C',  'O',  'S',  2,    1,    0,    0,    0, 0, /* save 1, values */
+        0x17, 0x10, 0x00, 0x02, 0x00, 0xF4, 0x01,       /* 1017h = 500 */
+        0x17, 0x10, 0x00, 0x02, 0x00, 0x58, 0x02,       /* 1017h = 600 */
+    };
+    co_file_record_t image = {4, CO_STORE_AREA_COMMUNICATION, sizeof duplicate, duplicate};
+    write_images(&image, 1);
+    assert_ignored("node 4 area 2: record 1017h:00 at byte 16 does not follow the one before it "
+                   "(a duplicate, or out of order)");
+    static uint8_t foreign[] = "COMM";
+    image = (co_file_record_t){4, CO_STORE_AREA_MANUFACTURER, 4, foreign};
+    write_images(&image, 1);
+    assert_ignored("node 4 area 4: not an image of parameters (header \"COS\" version 1 or 2)");
+    image = (co_file_record_t){4, 5, 4, foreign};
+    write_images(&image, 1);
+    assert_ignored("node 4 area 5: not a storage area (2, 3 or 4)");
+}
+END_TEST
+
 START_TEST(damaged_file_is_kept_aside_at_next_save)
 {
     uint8_t buf[256];
@@ -343,7 +424,7 @@ START_TEST(damaged_file_is_kept_aside_at_next_save)
     co_storage_t s4;
     ck_assert_int_eq(co_file_store_open(&store, path), CO_FILE_STORE_IGNORED);
     co_file_store_bind(&store, 4, &n4, &s4);
-    save(&s4, 3, "PROF");
+    save(&s4, 3, IMAGE("PROF"));
     ck_assert_int_eq(s4.load_size(s4.ctx, 2), 0); /* the file is sound again */
     co_file_store_unbind(&n4);
     co_file_store_close(&store);
@@ -373,6 +454,8 @@ int main(void)
     tcase_add_test(tc, bad_crc_is_ignored);
     tcase_add_test(tc, wrong_magic_or_version_is_ignored);
     tcase_add_test(tc, bad_record_with_good_crc_is_ignored);
+    tcase_add_test(tc, image_with_a_record_outside_its_area_is_ignored);
+    tcase_add_test(tc, duplicate_record_or_foreign_image_is_ignored);
     tcase_add_test(tc, damaged_file_is_kept_aside_at_next_save);
     suite_add_tcase(s, tc);
     return check_run_suite(s);

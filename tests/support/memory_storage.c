@@ -84,11 +84,27 @@ static void refused(void *ctx, const co_node_t *node, uint16_t index, uint8_t su
     m->refusals++;
 }
 
+static void image_refused(void *ctx, const co_node_t *node, const co_store_image_fault_t *fault)
+{
+    memory_storage_t *m = ctx;
+    REQUIRE(node != NULL);
+    REQUIRE(fault->reason != CO_STORE_FAULT_NONE);
+    m->image_fault = *fault;
+    m->images_refused++;
+}
+
 void memory_storage_init(memory_storage_t *m, co_storage_t *storage)
 {
     memset(m, 0, sizeof(*m));
-    *storage = (co_storage_t){m,         save_begin, save_write, save_end, load_size,
-                              load_read, erase,      refused,    NULL,     NULL};
+    *storage = (co_storage_t){.ctx = m,
+                              .save_begin = save_begin,
+                              .save_write = save_write,
+                              .save_end = save_end,
+                              .load_size = load_size,
+                              .load_read = load_read,
+                              .erase = erase,
+                              .refused = refused,
+                              .image_refused = image_refused};
 }
 
 long memory_storage_record(const memory_storage_t *m, uint8_t area, uint16_t index,

@@ -1,5 +1,5 @@
 /* An in-memory co_storage_t for tests: one committed image per area, a staging image for the
- * save in progress, failures on demand, and the stored values the node refused. */
+ * save in progress, failures on demand, the stored values and the images the node refused. */
 #ifndef MEMORY_STORAGE_H
 #define MEMORY_STORAGE_H
 
@@ -29,6 +29,8 @@ typedef struct memory_storage {
     unsigned saves, erases;
     memory_refusal_t refused[MEMORY_STORAGE_REFUSALS]; /* the first ones */
     unsigned refusals;                                 /* every one reported */
+    co_store_image_fault_t image_fault;                /* the last image refused whole */
+    unsigned images_refused;                           /* every one reported */
 } memory_storage_t;
 
 /* Empties the storage and fills *storage with callbacks on it. */

@@ -468,6 +468,17 @@ class Hooks(ToolCase):
     def test_two_hooks_refused(self):
         self.check_refused("0x2001 a\n0x2001 b\n", "line 2: 0x2001:0x00 already has hook a")
 
+    def test_sub_index_as_the_hooks_file_writes_it(self):
+        """0x hex or decimal digits: no sign, no '_' between digits, no other script's digits,
+        which int() takes ('2_0' was 20)."""
+        for text in ("+2", "2_0", "0x_2", "0x+2", "\u0662", "-1", "0x"):
+            with self.subTest(sub=text):
+                self.check_refused("0x2000:%s h\n" % text,
+                                   "line 1: '%s' is not a sub-index (0x02 or 2)" % text)
+        hooks = self.write("t.hooks", "0x2000:0X02 h\n0x2000:01 g\n")
+        entries = self.entries(self.eds(), hooks)
+        self.assertEqual((entries[(0x2000, 2)].hook, entries[(0x2000, 1)].hook), ("h", "g"))
+
 
 class GeneratorRefusals(ToolCase):
     def refused(self, edit, message):
@@ -559,6 +570,28 @@ class GeneratorRefusals(ToolCase):
         code, _, err = self.generate(path)
         self.assertEqual(code, 1)
         self.assertRegex(err, r"\[1000\] line \d+: duplicate section")
+
+    def test_object_section_names(self):
+        """Issue 22 item 10: an object's section is four hex digits, a sub-index's adds sub and
+        one or two (ASCII, any case). A name that starts as a number in another notation is
+        refused with its line; one that goes on with a word is a section of another kind."""
+        text = render(BASE)
+        line = text.count("\n") + 1
+        for name in ("0x2002", "0X1018", "12", "02002", "+2002", "-2002", "2000sub", "2000sub100",
+                     "2000sub 1", "2000sub0x1", "2000subG", "2000 sub1", "BAD"):
+            with self.subTest(name=name):
+                path = self.write("t.eds", text + "[%s]\nParameterName=x\n" % name)
+                code, _, err = self.generate(path)
+                self.assertEqual(code, 1)
+                self.assertEqual(err, "%s: [%s] line %d: not an object's section: write its index "
+                                      "in four hex digits ([1018]), a sub-index's with sub and "
+                                      "one or two ([1018sub1])\n" % (path, name, line))
+        # 'ſ' is 's' to a case-insensitive Unicode match, not to CiA 306: a section of another
+        # kind, as [2001Value] is.
+        path = self.write("t.eds", text + "[2000\u017fub3]\nParameterName=x\nDataType=0x0005\n"
+                                          "AccessType=ro\n[2001Value]\nParameterName=y\n")
+        self.assertEqual(self.generate(path)[0], 0)
+        self.assertNotIn((0x2000, 3), self.entries(path))
 
     def test_missing_file(self):
         code, _, err = self.generate(os.path.join(self.dir, "none.eds"))
@@ -823,6 +856,11 @@ class Checker(ToolCase):
         for name in ("FileInfo", "DeviceInfo", "MandatoryObjects"):
             with self.subTest(section=name):
                 self.finds(lambda s: s.pop(name), "[%s] required section missing" % name)
+
+    def test_eds_version_in_ascii_digits(self):
+        """'\\d' also takes other scripts' digits."""
+        self.finds(lambda s: s["FileInfo"].update(EDSVersion="\u0664.\u0660"),
+                   "[FileInfo] EDSVersion=\u0664.\u0660: must read like 4.0")
 
     def test_mandatory_object_missing(self):
         def edit(s):

@@ -61,25 +61,30 @@ typedef struct image_info {
     uint32_t records;  /* offset of the first record */
 } image_info_t;
 
-static bool read_header(const co_storage_t *s, uint8_t area, image_info_t *info)
+/* Reads the header of an area's image into *info. No image, or one the backend reports damaged
+ * (it reports that itself), is no fault: info->size is then 0, as it is after a fault. */
+static co_store_fault_t read_header(const co_storage_t *s, uint8_t area, image_info_t *info)
 {
     long size = s->load_size(s->ctx, area);
     *info = (image_info_t){0};
-    if (size <= 0 || (unsigned long)size > UINT32_MAX)
-        return false;
+    if (size <= 0)
+        return CO_STORE_FAULT_NONE;
     uint8_t h[CO_STORE_IMAGE_HEADER_SIZE];
-    uint32_t want = (uint32_t)size < sizeof(h) ? (uint32_t)size : (uint32_t)sizeof(h);
-    if (want < IMAGE_V1_HEADER_SIZE || s->load_read(s->ctx, area, 0, h, want) != 0 ||
-        h[0] != image_magic[0] || h[1] != image_magic[1] || h[2] != image_magic[2])
-        return false;
+    uint32_t want = (unsigned long)size < sizeof(h) ? (uint32_t)size : (uint32_t)sizeof(h);
+    if ((unsigned long)size > UINT32_MAX || want < IMAGE_V1_HEADER_SIZE)
+        return CO_STORE_FAULT_HEADER;
+    if (s->load_read(s->ctx, area, 0, h, want) != 0)
+        return CO_STORE_FAULT_UNREADABLE;
+    if (h[0] != image_magic[0] || h[1] != image_magic[1] || h[2] != image_magic[2])
+        return CO_STORE_FAULT_HEADER;
     if (h[3] == IMAGE_VERSION_1) {
         *info = (image_info_t){(uint32_t)size, 0, CO_STORE_IMAGE_VALUES, IMAGE_V1_HEADER_SIZE};
-        return true;
+        return CO_STORE_FAULT_NONE;
     }
     if (h[3] != IMAGE_VERSION || want < sizeof(h) || h[8] > CO_STORE_IMAGE_DEFAULTS)
-        return false;
+        return CO_STORE_FAULT_HEADER;
     *info = (image_info_t){(uint32_t)size, co_get_u32(&h[4]), h[8], CO_STORE_IMAGE_HEADER_SIZE};
-    return true;
+    return CO_STORE_FAULT_NONE;
 }
 
 /* The sequence number of the next save or restore: after every image stored. */
@@ -88,7 +93,8 @@ static uint32_t next_sequence(const co_node_t *node)
     uint32_t next = 1;
     for (size_t i = 0; i < AREA_COUNT; i++) {
         image_info_t info;
-        if (read_header(node->storage, areas[i].area, &info) && info.sequence >= next)
+        if (read_header(node->storage, areas[i].area, &info) == CO_STORE_FAULT_NONE &&
+            info.sequence >= next)
             next = info.sequence + 1;
     }
     return next;
@@ -206,32 +212,80 @@ typedef struct image_record {
     uint32_t value_offset;
 } image_record_t;
 
-/* Reads the record header at *offset; false when it does not lie inside the image. */
-static bool read_record(const co_storage_t *s, uint8_t area, uint32_t size, uint32_t *offset,
-                        image_record_t *r)
+/* Reads the record header at *offset and moves *offset past the record; a fault when the header
+ * cannot be read or the record does not lie inside the image. */
+static co_store_fault_t read_record(const co_storage_t *s, uint8_t area, uint32_t size,
+                                    uint32_t *offset, image_record_t *r)
 {
     uint8_t h[CO_STORE_RECORD_HEADER_SIZE];
-    if (size - *offset < sizeof(h) || s->load_read(s->ctx, area, *offset, h, sizeof(h)) != 0)
-        return false;
+    if (size - *offset < sizeof(h))
+        return CO_STORE_FAULT_CUT_SHORT;
+    if (s->load_read(s->ctx, area, *offset, h, sizeof(h)) != 0)
+        return CO_STORE_FAULT_UNREADABLE;
     r->index = co_get_u16(&h[0]);
     r->subindex = h[2];
     r->len = co_get_u16(&h[3]);
     r->value_offset = *offset + (uint32_t)sizeof(h);
     if (size - r->value_offset < r->len)
-        return false;
+        return CO_STORE_FAULT_CUT_SHORT;
     *offset = r->value_offset + r->len;
-    return true;
+    return CO_STORE_FAULT_NONE;
 }
 
-/* The whole image must be well formed before any of it is applied. */
-static bool image_is_valid(const co_storage_t *s, uint8_t area, const image_info_t *info)
+/* A record's place in the table order: index, then sub-index. */
+static uint32_t record_key(const image_record_t *r)
 {
+    return (uint32_t)r->index << 8 | r->subindex;
+}
+
+/* The whole image must be as the core writes it before any of it is applied: a header, then one
+ * record per entry of the area, in table order, the last one ending at the image's end. A record
+ * of another area would be applied by the resets of this one (a reset communication writing a
+ * manufacturer parameter); a record twice, or out of order, was not written by the core. Fills
+ * *info on success; *fault says where it failed otherwise. */
+static co_store_fault_t check_image(const co_storage_t *s, const store_area_t *a,
+                                    image_info_t *info, co_store_image_fault_t *fault)
+{
+    *fault =
+        (co_store_image_fault_t){.area = a->area, .area_first = a->first, .area_last = a->last};
+    fault->reason = read_header(s, a->area, info);
     uint32_t offset = info->records;
-    image_record_t r;
-    while (offset < info->size)
-        if (!read_record(s, area, info->size, &offset, &r))
-            return false;
-    return true;
+    uint32_t previous = 0; /* below the key of any record of an area: none read yet */
+    while (fault->reason == CO_STORE_FAULT_NONE && offset < info->size) {
+        image_record_t r = {0};
+        fault->offset = offset;
+        fault->reason = read_record(s, a->area, info->size, &offset, &r);
+        fault->index = r.index;
+        fault->subindex = r.subindex;
+        if (fault->reason == CO_STORE_FAULT_NONE && (r.index < a->first || r.index > a->last))
+            fault->reason = CO_STORE_FAULT_OUTSIDE_AREA;
+        else if (fault->reason == CO_STORE_FAULT_NONE && record_key(&r) <= previous)
+            fault->reason = CO_STORE_FAULT_ORDER;
+        previous = record_key(&r);
+    }
+    if (fault->reason != CO_STORE_FAULT_NONE)
+        info->size = 0;
+    return fault->reason;
+}
+
+static const store_area_t *find_area(uint8_t area)
+{
+    for (size_t i = 0; i < AREA_COUNT; i++)
+        if (areas[i].area == area)
+            return &areas[i];
+    return NULL;
+}
+
+co_store_fault_t co_store_image_check(const co_storage_t *s, uint8_t area,
+                                      co_store_image_fault_t *fault)
+{
+    const store_area_t *a = find_area(area);
+    if (a == NULL) {
+        *fault = (co_store_image_fault_t){.reason = CO_STORE_FAULT_AREA, .area = area};
+        return fault->reason;
+    }
+    image_info_t info;
+    return check_image(s, a, &info, fault);
 }
 
 static void report_refused(co_node_t *node, uint16_t index, uint8_t subindex, const uint8_t *data,
@@ -278,7 +332,8 @@ static void open_procedures(co_node_t *node, uint8_t area, const image_info_t *i
 {
     uint32_t offset = info->records;
     image_record_t r;
-    while (offset < info->size && read_record(node->storage, area, info->size, &offset, &r)) {
+    while (offset < info->size &&
+           read_record(node->storage, area, info->size, &offset, &r) == CO_STORE_FAULT_NONE) {
         const co_od_entry_t *e = co_od_find(node->od, r.index, r.subindex);
         if (e == NULL || !entry_is_stored(e) || record_phase(r.index, r.subindex) == PHASE_VALUES ||
             e->size > sizeof(uint32_t))
@@ -370,7 +425,8 @@ static void apply_phase(co_node_t *node, uint8_t area, const image_info_t *info,
 {
     uint32_t offset = info->records;
     image_record_t r;
-    while (offset < info->size && read_record(node->storage, area, info->size, &offset, &r))
+    while (offset < info->size &&
+           read_record(node->storage, area, info->size, &offset, &r) == CO_STORE_FAULT_NONE)
         if (record_phase(r.index, r.subindex) == phase)
             apply_record(node, area, &r, pass);
 }
@@ -419,13 +475,16 @@ void co_store_apply(co_node_t *node, uint16_t first, uint16_t last)
 {
     if (node->storage == NULL)
         return;
-    image_info_t info[AREA_COUNT];
+    const co_storage_t *s = node->storage;
+    image_info_t info[AREA_COUNT] = {0};
     for (size_t i = 0; i < AREA_COUNT; i++) {
         const store_area_t *a = &areas[i];
-        bool in_scope = a->first >= first && a->last <= last;
-        if (!in_scope || !read_header(node->storage, a->area, &info[i]) ||
-            !image_is_valid(node->storage, a->area, &info[i]))
-            info[i].size = 0;
+        co_store_image_fault_t fault;
+        if (a->first < first || a->last > last ||
+            check_image(s, a, &info[i], &fault) == CO_STORE_FAULT_NONE)
+            continue;
+        if (s->image_refused != NULL)
+            s->image_refused(s->ctx, node, &fault);
     }
     /* Oldest first, so that of two areas covering one value (a view and what it stands for)
      * the later save or restore wins. */

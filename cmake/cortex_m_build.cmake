@@ -1,6 +1,6 @@
-# ctest script: configures and builds the portable core with arm-none-eabi-gcc for one Cortex-M
-# (-Os, -Wall -Wextra -pedantic and, whatever the calling build's CO_WERROR, -Werror) and prints
-# its size: text / data / bss of each module, then the RAM of one node in the default
+# ctest script: configures and builds the portable core and the DeviceNet slave library with
+# arm-none-eabi-gcc for one Cortex-M (-Os, -Wall -Wextra -pedantic and, whatever the calling
+# build's CO_WERROR, -Werror) and prints their size: text / data / bss of each module, then the RAM of one node in the default
 # configuration (include/co/co_config.h) as the target's compiler lays it out. Fails when the
 # toolchain is missing.
 #   cmake -DSOURCE_DIR=<repo> -DBINARY_DIR=<dir> -DCPU=cortex-m0 -P cmake/cortex_m_build.cmake
@@ -25,6 +25,8 @@ if(NOT built EQUAL 0)
   message(FATAL_ERROR "the core does not build for ${CPU}")
 endif()
 execute_process(COMMAND arm-none-eabi-size -t ${BINARY_DIR}/libcanopen.a)
+# The DeviceNet slave library, built by the same configuration (docs/footprint.md).
+execute_process(COMMAND arm-none-eabi-size -t ${BINARY_DIR}/libdevicenet.a)
 
 # sizeof(co_node_t) for this CPU, without running anything on it: the size of a variable of that
 # type in an object file.

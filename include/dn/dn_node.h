@@ -262,7 +262,7 @@ struct dn_node {
 int dn_node_init(dn_node_t *node, const dn_config_t *config);
 /* Goes on the bus: the duplicate MAC ID check's first request. */
 void dn_node_start(dn_node_t *node, co_time_t now);
-/* Every received frame; 29-bit and remote frames are ignored. */
+/* Every received frame; 29-bit and remote frames, and a length over 8, are ignored. */
 void dn_node_receive(dn_node_t *node, const co_frame_t *frame, co_time_t now);
 /* Runs what is due; returns the next deadline or CO_TIME_NEVER. Call it after every frame. */
 co_time_t dn_node_process(dn_node_t *node, co_time_t now);

@@ -124,7 +124,8 @@ static void duplicate_mac_receive(dn_node_t *node, const co_frame_t *frame)
 void dn_node_receive(dn_node_t *node, const co_frame_t *frame, co_time_t now)
 {
     node->now = now;
-    if (frame->flags & (CO_FRAME_RTR | CO_FRAME_EFF) || node->link == DN_LINK_OFF)
+    if (frame->flags & (CO_FRAME_RTR | CO_FRAME_EFF) || frame->len > CO_FRAME_DLC_MAX ||
+        node->link == DN_LINK_OFF)
         return;
     dn_can_id_t id = dn_can_id_decode(frame->id);
     /* The predefined set's frames to this slave are all group 2 with its MAC ID. */

@@ -400,6 +400,10 @@ START_TEST(frames_not_for_the_slave)
     co_frame_t extended = {0x5FC, 5, CO_FRAME_EFF, {1, 0x0E, 1, 1, 1}};
     dn_node_receive(&b.node, &extended, b.now);
     bench_expect_none(&b);
+    /* A length over 8 from a faulty driver: not read past the frame's 8 bytes. */
+    co_frame_t too_long = {0x5FC, 9, 0, {1, 0x0E, 1, 1, 1, 0, 0, 0}};
+    dn_node_receive(&b.node, &too_long, b.now);
+    bench_expect_none(&b);
 }
 END_TEST
 

@@ -258,7 +258,8 @@ struct dn_node {
 #define DN_INIT_BAD_CONFIG -3   /* no send callback or assembly callbacks, objects unsorted */
 
 /* Validates the configuration, loads the stored selection (an unknown stored assembly falls back
- * to the default) and leaves the node offline. */
+ * to the default) and leaves the node offline. The node keeps `config` (and what it points at):
+ * it must outlive the node. An Identity Reset is the application's init and start again. */
 int dn_node_init(dn_node_t *node, const dn_config_t *config);
 /* Goes on the bus: the duplicate MAC ID check's first request. */
 void dn_node_start(dn_node_t *node, co_time_t now);

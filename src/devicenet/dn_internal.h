@@ -1,0 +1,43 @@
+/* What the files of the DeviceNet slave library call in one another; not installed. */
+#ifndef DN_INTERNAL_H
+#define DN_INTERNAL_H
+
+#include "dn/dn_node.h"
+
+#define DN_US_PER_MS 1000u
+
+/* conn[] positions of the predefined set's instances 1, 2 and 4. */
+#define DN_EXPLICIT 0u
+#define DN_IO_CONSUMER 1u /* instance 2: polled, or the master's COS/cyclic data */
+#define DN_IO_PRODUCER 2u /* instance 4: the slave's COS/cyclic data */
+
+/* node.c */
+void dn_send(dn_node_t *node, uint16_t can_id, const uint8_t *data, uint8_t len);
+void dn_io_event(dn_node_t *node, dn_io_event_t event);
+
+/* router.c: the message router, the library's classes and then the application's. */
+dn_status_t dn_route(dn_node_t *node, const dn_request_t *request, dn_reply_t *reply);
+
+/* objects.c: Identity, Message router, DeviceNet, Assembly, Acknowledge handler; connection.c
+ * adds the Connection object. */
+const dn_object_t *dn_standard_object(uint8_t class_id);
+/* Keeps new stored values through the application, or refuses them (0x19). */
+dn_status_t dn_store(dn_node_t *node, const dn_stored_t *stored);
+dn_status_t dn_connection_handler(dn_node_t *node, const dn_object_t *object,
+                                  const dn_request_t *request, dn_reply_t *reply);
+
+/* explicit.c */
+void dn_explicit_receive(dn_node_t *node, const co_frame_t *frame, bool unconnected);
+co_time_t dn_explicit_process(dn_node_t *node);
+
+/* connection.c */
+void dn_connections_reset(dn_node_t *node);
+dn_status_t dn_allocate(dn_node_t *node, const dn_request_t *request, dn_reply_t *reply);
+dn_status_t dn_release(dn_node_t *node, const dn_request_t *request);
+void dn_explicit_activity(dn_node_t *node);
+void dn_io_receive(dn_node_t *node, const co_frame_t *frame);
+void dn_cos_ack_receive(dn_node_t *node);
+co_time_t dn_connections_process(dn_node_t *node);
+bool dn_io_consuming(const dn_node_t *node);
+
+#endif

@@ -1,0 +1,256 @@
+/* The composition root of a DeviceNet slave: configuration, the duplicate MAC ID check, frame
+ * routing by identifier, the earliest deadline, the Identity status and the LEDs. */
+#include <string.h>
+
+#include "dn_internal.h"
+
+void dn_send(dn_node_t *node, uint16_t can_id, const uint8_t *data, uint8_t len)
+{
+    co_frame_t frame;
+    memset(&frame, 0, sizeof(frame));
+    frame.id = can_id;
+    frame.len = len;
+    if (len)
+        memcpy(frame.data, data, len);
+    node->config->app->send(node->config->app->user, &frame);
+}
+
+void dn_io_event(dn_node_t *node, dn_io_event_t event)
+{
+    const dn_app_t *app = node->config->app;
+    if (app->io_event)
+        app->io_event(app->user, event);
+}
+
+const dn_assembly_t *dn_node_assembly(const dn_node_t *node, uint16_t instance)
+{
+    for (uint8_t i = 0; i < node->config->assembly_count; i++)
+        if (node->config->assemblies[i].instance == instance)
+            return &node->config->assemblies[i];
+    return NULL;
+}
+
+/* The stored selection if the table has it in that direction, else the default. */
+static const dn_assembly_t *select_assembly(const dn_node_t *node, uint16_t stored,
+                                            uint16_t fallback, bool produced)
+{
+    const dn_assembly_t *a = dn_node_assembly(node, stored);
+    if (a == NULL || a->produced != produced)
+        a = dn_node_assembly(node, fallback);
+    return a != NULL && a->produced == produced ? a : NULL;
+}
+
+static bool objects_sorted(const dn_config_t *config)
+{
+    for (uint8_t i = 0; i < config->object_count; i++) {
+        const dn_object_t *o = &config->objects[i];
+        if (o->class_last < o->class_first || o->handler == NULL)
+            return false;
+        if (i > 0 && o->class_first <= config->objects[i - 1].class_last)
+            return false;
+    }
+    return true;
+}
+
+int dn_node_init(dn_node_t *node, const dn_config_t *config)
+{
+    memset(node, 0, sizeof(*node));
+    node->config = config;
+    if (config->mac_id > DN_MAC_ID_MAX)
+        return DN_INIT_BAD_MAC_ID;
+    const dn_app_t *app = config->app;
+    if (app == NULL || app->send == NULL || app->read_assembly == NULL ||
+        app->write_assembly == NULL || !objects_sorted(config))
+        return DN_INIT_BAD_CONFIG;
+    for (uint8_t i = 0; i < config->assembly_count; i++)
+        if (config->assemblies[i].size == 0 || config->assemblies[i].size > DN_IO_MAX)
+            return DN_INIT_BAD_ASSEMBLY;
+    const dn_assembly_t *consumed = select_assembly(node, config->stored.consumed_assembly,
+                                                    config->default_consumed_assembly, false);
+    const dn_assembly_t *produced = select_assembly(node, config->stored.produced_assembly,
+                                                    config->default_produced_assembly, true);
+    if (consumed == NULL || produced == NULL)
+        return DN_INIT_BAD_ASSEMBLY;
+    node->consumed_assembly = consumed->instance;
+    node->consumed_size = consumed->size;
+    node->produced_assembly = produced->instance;
+    node->produced_size = produced->size;
+    node->stored = config->stored;
+    node->stored.consumed_assembly = consumed->instance;
+    node->stored.produced_assembly = produced->instance;
+    node->ids = dn_predefined_ids(config->mac_id);
+    node->link = DN_LINK_OFF;
+    node->link_deadline = CO_TIME_NEVER;
+    node->pending_reset = -1;
+    dn_connections_reset(node);
+    return DN_INIT_OK;
+}
+
+/* The duplicate MAC ID check message: request or response, port 0, vendor ID, serial number. */
+static void send_duplicate_mac(dn_node_t *node, uint8_t flags)
+{
+    uint8_t data[DN_DUP_MAC_LEN];
+    data[0] = flags;
+    co_put_u16(&data[1], node->config->vendor_id);
+    co_put_u32(&data[3], node->config->serial_number);
+    dn_send(node, node->ids.duplicate_mac, data, DN_DUP_MAC_LEN);
+}
+
+void dn_node_start(dn_node_t *node, co_time_t now)
+{
+    node->now = now;
+    node->duplicate_mac = false;
+    dn_connections_reset(node);
+    node->link = DN_LINK_DUP_CHECK_1;
+    node->link_deadline = now + DN_DUP_MAC_WAIT_US;
+    send_duplicate_mac(node, 0);
+}
+
+/* A check message with this node's MAC ID: while checking, another node has it (a request of a
+ * node checking the same MAC ID, or a response of one online); online, a request is answered. */
+static void duplicate_mac_receive(dn_node_t *node, const co_frame_t *frame)
+{
+    if (frame->len != DN_DUP_MAC_LEN)
+        return;
+    if (node->link == DN_LINK_DUP_CHECK_1 || node->link == DN_LINK_DUP_CHECK_2) {
+        node->duplicate_mac = true;
+        node->link = DN_LINK_FAULTED;
+        node->link_deadline = CO_TIME_NEVER;
+    } else if (node->link == DN_LINK_ONLINE && !(frame->data[0] & DN_DUP_MAC_RESPONSE)) {
+        send_duplicate_mac(node, DN_DUP_MAC_RESPONSE);
+    }
+}
+
+void dn_node_receive(dn_node_t *node, const co_frame_t *frame, co_time_t now)
+{
+    node->now = now;
+    if (frame->flags & (CO_FRAME_RTR | CO_FRAME_EFF) || frame->len > CO_FRAME_DLC_MAX ||
+        node->link == DN_LINK_OFF)
+        return;
+    dn_can_id_t id = dn_can_id_decode(frame->id);
+    /* The predefined set's frames to this slave are all group 2 with its MAC ID. */
+    if (id.group != 2 || id.mac_id != node->config->mac_id)
+        return;
+    if (id.message_id == DN_G2_DUPLICATE_MAC_CHECK) {
+        duplicate_mac_receive(node, frame);
+        return;
+    }
+    if (node->link != DN_LINK_ONLINE)
+        return;
+    switch (id.message_id) {
+    case DN_G2_UNCONNECTED_REQUEST:
+        dn_explicit_receive(node, frame, true);
+        break;
+    case DN_G2_MASTER_EXPLICIT_REQUEST:
+        dn_explicit_receive(node, frame, false);
+        break;
+    case DN_G2_MASTER_POLL_COS_CYCLIC:
+        dn_io_receive(node, frame);
+        break;
+    case DN_G2_MASTER_COS_CYCLIC_ACK:
+        dn_cos_ack_receive(node);
+        break;
+    default: /* bit-strobe and multicast poll are not served */
+        break;
+    }
+}
+
+static void link_process(dn_node_t *node)
+{
+    if (node->now < node->link_deadline)
+        return;
+    if (node->link == DN_LINK_DUP_CHECK_1) {
+        node->link = DN_LINK_DUP_CHECK_2;
+        node->link_deadline = node->now + DN_DUP_MAC_WAIT_US;
+        send_duplicate_mac(node, 0);
+    } else if (node->link == DN_LINK_DUP_CHECK_2) {
+        node->link = DN_LINK_ONLINE;
+        node->link_deadline = CO_TIME_NEVER;
+    }
+}
+
+co_time_t dn_node_process(dn_node_t *node, co_time_t now)
+{
+    node->now = now;
+    link_process(node);
+    if (node->link != DN_LINK_ONLINE)
+        return node->link_deadline;
+    co_time_t next = dn_explicit_process(node);
+    return co_time_min(next, dn_connections_process(node));
+}
+
+void dn_node_bus_off(dn_node_t *node, co_time_t now)
+{
+    if (node->bus_off_counter < UINT8_MAX)
+        node->bus_off_counter++;
+    if (node->bus_off_interrupt) {
+        dn_node_start(node, now);
+        return;
+    }
+    node->now = now;
+    dn_connections_reset(node);
+    node->link = DN_LINK_FAULTED;
+    node->link_deadline = CO_TIME_NEVER;
+}
+
+void dn_node_set_faults(dn_node_t *node, uint16_t faults)
+{
+    node->faults = faults & (DN_STATUS_MINOR_RECOVERABLE | DN_STATUS_MINOR_UNRECOVERABLE |
+                             DN_STATUS_MAJOR_RECOVERABLE | DN_STATUS_MAJOR_UNRECOVERABLE);
+}
+
+static bool io_in_state(const dn_node_t *node, uint8_t state)
+{
+    return node->conn[DN_IO_CONSUMER].state == state || node->conn[DN_IO_PRODUCER].state == state;
+}
+
+static uint16_t extended_status(const dn_node_t *node)
+{
+    if (io_in_state(node, DN_CONN_TIMED_OUT))
+        return DN_EXT_FAULTED_IO;
+    if (io_in_state(node, DN_CONN_ESTABLISHED))
+        return node->idle ? DN_EXT_IDLE : DN_EXT_RUN;
+    return DN_EXT_NO_IO;
+}
+
+uint16_t dn_node_identity_status(const dn_node_t *node)
+{
+    const dn_config_t *config = node->config;
+    uint16_t status = node->faults;
+    if (node->allocation)
+        status |= DN_STATUS_OWNED;
+    if (config->configured || node->stored.quick_connect ||
+        node->stored.consumed_assembly != config->default_consumed_assembly ||
+        node->stored.produced_assembly != config->default_produced_assembly)
+        status |= DN_STATUS_CONFIGURED;
+    status |= (uint16_t)(extended_status(node) << DN_STATUS_EXTENDED_SHIFT);
+    if (node->duplicate_mac || config->mac_switch_changed || config->baud_switch_changed)
+        status |= DN_STATUS_MINOR_RECOVERABLE;
+    return status;
+}
+
+dn_led_t dn_node_ms_led(const dn_node_t *node)
+{
+    if (node->link == DN_LINK_OFF)
+        return DN_LED_OFF;
+    if (node->faults & (DN_STATUS_MINOR_UNRECOVERABLE | DN_STATUS_MAJOR_UNRECOVERABLE))
+        return DN_LED_RED;
+    return DN_LED_GREEN;
+}
+
+dn_led_t dn_node_ns_led(const dn_node_t *node)
+{
+    switch (node->link) {
+    case DN_LINK_FAULTED:
+        return DN_LED_RED;
+    case DN_LINK_ONLINE:
+        if (io_in_state(node, DN_CONN_TIMED_OUT))
+            return DN_LED_FLASHING_RED;
+        if (io_in_state(node, DN_CONN_ESTABLISHED) ||
+            node->conn[DN_EXPLICIT].state == DN_CONN_ESTABLISHED)
+            return DN_LED_GREEN;
+        return DN_LED_FLASHING_GREEN;
+    default: /* off, or checking its MAC ID: not online yet */
+        return DN_LED_OFF;
+    }
+}

@@ -199,7 +199,7 @@ typedef struct co_net_master {
  * outlive the master); every slave idle. False, and nothing sent, for: no send callback, no slave
  * or more than 127, a node-id outside 1..127 or twice, a write without data, an SDO timeout
  * outside 5..5000 ms, a PDO of length 0 or above 8, outside its image or for a node not in the
- * table, a restricted CAN-ID. Sends nothing. */
+ * table, a restricted CAN-ID, an image size or a PDO without an image. Sends nothing. */
 bool co_net_master_init(co_net_master_t *master, const co_net_master_config_t *config);
 
 /* Starts the boot of the whole network at `now`: NMT reset communication to all (or to each
@@ -215,7 +215,8 @@ bool co_net_master_receive(co_net_master_t *master, const co_frame_t *frame, co_
 co_time_t co_net_master_process(co_net_master_t *master, co_time_t now);
 
 /* Writes `len` bytes of the output image at `offset` and sends at once every output PDO whose
- * bytes changed and whose slave is operational. False (nothing changed) outside the image. */
+ * bytes changed and whose slave is operational. False (nothing changed) outside the image, and
+ * always for a master without an output image. */
 bool co_net_master_write_output(co_net_master_t *master, size_t offset, const uint8_t *data,
                                 size_t len);
 

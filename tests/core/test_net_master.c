@@ -5,9 +5,9 @@
  * that appears late and is retried after the others, heartbeat loss and the re-boot that
  * reconfigures the slave, the report-only reaction and the slave's return (also before its first
  * heartbeat, and while the start of all waits for it), no past deadline while a slave waits for
- * the SDO client, the last SDO error and EMCY, the process image in and out, and the
- * configuration checks. Every event in every step, frame by frame without slave nodes:
- * test_net_master_states.c. Time is injected; no sleeps. */
+ * the SDO client, the last SDO error and EMCY, the process image in and out (also without
+ * outputs), and the configuration checks. Every event in every step, frame by frame without
+ * slave nodes: test_net_master_states.c. Time is injected; no sleeps. */
 #include "check_main.h"
 #include "co/co_net_master.h"
 #include "test_bus.h"
@@ -787,6 +787,29 @@ START_TEST(process_image_out_not_to_a_failed_slave)
 }
 END_TEST
 
+/* Issue 22, item 5: a master without outputs has no image to write to; the write is refused, not
+ * a copy to a null pointer. An image size without an image is refused at init. */
+START_TEST(process_image_out_without_outputs)
+{
+    config.outputs = NULL;
+    config.output_count = 0;
+    config.output_image = NULL;
+    config.output_size = 0;
+    start_master();
+    bus.next = bus.count;
+    ck_assert(!co_net_master_write_output(&master, 0, (const uint8_t *)"\x01", 0));
+    ck_assert(!co_net_master_write_output(&master, 0, (const uint8_t *)"\x01", 1));
+    ck_assert(!sent_later("204#01"));
+    config.output_size = 8;
+    ck_assert(!co_net_master_init(&master, &config));
+    config.output_size = 0;
+    config.input_count = 0;
+    config.input_image = NULL;
+    config.input_size = 2;
+    ck_assert(!co_net_master_init(&master, &config));
+}
+END_TEST
+
 START_TEST(process_image_out_on_sync)
 {
     config.sync_period_us = 10 * MS;
@@ -880,6 +903,7 @@ static Suite *net_master_suite(void)
     tcase_add_test(tc, process_image_in);
     tcase_add_test(tc, process_image_out_on_change);
     tcase_add_test(tc, process_image_out_not_to_a_failed_slave);
+    tcase_add_test(tc, process_image_out_without_outputs);
     tcase_add_test(tc, process_image_out_on_sync);
     tcase_add_test(tc, configuration_is_checked);
     tcase_add_test(tc, texts);

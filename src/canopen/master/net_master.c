@@ -93,7 +93,7 @@ static bool pdo_valid(const co_net_master_config_t *config, const co_net_pdo_t *
 static bool pdos_valid(const co_net_master_config_t *config, const co_net_pdo_t *pdos, size_t count,
                        const uint8_t *image, size_t image_size)
 {
-    if (count > 0 && (pdos == NULL || image == NULL))
+    if ((count > 0 && pdos == NULL) || (image == NULL && (count > 0 || image_size > 0)))
         return false;
     for (size_t i = 0; i < count; i++) {
         if (!pdo_valid(config, &pdos[i], image_size))
@@ -699,8 +699,8 @@ static void send_changed_output(co_net_master_t *m, size_t p, size_t offset, con
 bool co_net_master_write_output(co_net_master_t *master, size_t offset, const uint8_t *data,
                                 size_t len)
 {
-    if (data == NULL || offset > master->config.output_size ||
-        len > master->config.output_size - offset)
+    if (data == NULL || master->config.output_image == NULL ||
+        offset > master->config.output_size || len > master->config.output_size - offset)
         return false;
     for (size_t p = 0; p < master->config.output_count; p++) {
         if (output_live(master, p))

@@ -51,10 +51,12 @@ typedef struct co_net_write {
     uint32_t len;
 } co_net_write_t;
 
-/* What to do when error control of a running slave fails. */
+/* What to do when error control of a configured slave fails (a boot-up, whatever this says, boots
+ * the slave again: docs/net-master.md). */
 typedef enum co_net_on_error {
     CO_NET_ON_ERROR_REBOOT = 0, /* reset node, then boot it again from the start */
-    CO_NET_ON_ERROR_REPORT      /* only set bit 5 (cleared when the slave is heard again) */
+    CO_NET_ON_ERROR_REPORT      /* only set bit 5 and step LOST; heard again, the slave returns to
+                                 * the step it was lost from and bit 5 is cleared */
 } co_net_on_error_t;
 
 typedef struct co_net_slave_config {
@@ -107,7 +109,8 @@ typedef enum co_net_step {
     CO_NET_STEP_WAIT_START,  /* configured, waiting for NMT start all */
     CO_NET_STEP_OPERATIONAL, /* initialised (and started, unless CO_NET_START_NONE) */
     CO_NET_STEP_FAILED,      /* init error: retried after the retry delay, after the others */
-    CO_NET_STEP_LOST         /* error control failed, CO_NET_ON_ERROR_REPORT */
+    CO_NET_STEP_LOST         /* error control failed, CO_NET_ON_ERROR_REPORT: from WAIT_START
+                              * (bit 3 clear) or OPERATIONAL (bit 3 set) */
 } co_net_step_t;
 
 /* Why the last initialisation of a slave failed. */
@@ -144,12 +147,11 @@ typedef struct co_net_slave {
     uint16_t status;     /* CO_NET_SLAVE_* */
     uint8_t failure;     /* co_net_failure_t of the last failed attempt */
     uint32_t read_value; /* the value of the failed identity check (or the last one read) */
-    bool booted;         /* its boot-up came in the current WAIT_BOOT */
+    bool booted;         /* the boot-up awaited since its last reset came */
     bool tried;          /* an attempt at its initialisation ended (successfully or not) */
     size_t write_pos;
     uint8_t identity_sub;
-    co_time_t deadline;        /* WAIT_BOOT: the end of the boot time; FAILED: the retry */
-    co_time_t first_heartbeat; /* when the first heartbeat is due, CO_TIME_NEVER when not waited */
+    co_time_t deadline; /* WAIT_BOOT: the end of the boot time; FAILED: the retry */
 } co_net_slave_t;
 
 typedef struct co_net_master_config {
@@ -197,7 +199,7 @@ typedef struct co_net_master {
  * outlive the master); every slave idle. False, and nothing sent, for: no send callback, no slave
  * or more than 127, a node-id outside 1..127 or twice, a write without data, an SDO timeout
  * outside 5..5000 ms, a PDO of length 0 or above 8, outside its image or for a node not in the
- * table, a restricted CAN-ID. Sends nothing. */
+ * table, a restricted CAN-ID, an image size or a PDO without an image. Sends nothing. */
 bool co_net_master_init(co_net_master_t *master, const co_net_master_config_t *config);
 
 /* Starts the boot of the whole network at `now`: NMT reset communication to all (or to each
@@ -209,11 +211,12 @@ void co_net_master_start(co_net_master_t *master, co_time_t now);
 bool co_net_master_receive(co_net_master_t *master, const co_frame_t *frame, co_time_t now);
 
 /* Runs what is due (timeouts, boot steps, retries, guarding, SYNC and the output PDOs it
- * triggers) and returns the next deadline. */
+ * triggers) and returns the next deadline: always later than `now`, or CO_TIME_NEVER. */
 co_time_t co_net_master_process(co_net_master_t *master, co_time_t now);
 
 /* Writes `len` bytes of the output image at `offset` and sends at once every output PDO whose
- * bytes changed and whose slave is operational. False (nothing changed) outside the image. */
+ * bytes changed and whose slave is operational. False (nothing changed) outside the image, and
+ * always for a master without an output image. */
 bool co_net_master_write_output(co_net_master_t *master, size_t offset, const uint8_t *data,
                                 size_t len);
 

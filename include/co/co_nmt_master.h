@@ -82,6 +82,13 @@ bool co_nmt_master_command(co_nmt_master_t *master, uint8_t command, uint8_t nod
  * 1..127 or a node that is guarded (CiA 301: one error control protocol per node). */
 bool co_nmt_master_heartbeat(co_nmt_master_t *master, uint8_t node_id, uint16_t ms);
 
+/* The same, but the consumer time runs from `now` as if a heartbeat had come then: a node that
+ * sends none at all is lost at now + ms (CO_NMT_MASTER_HEARTBEAT_LOST), and its first heartbeat
+ * after that resumes it (CO_NMT_MASTER_RESUMED). For a master that has just set the node's
+ * producer time, where CiA 301's consumer would wait for the first heartbeat forever. */
+bool co_nmt_master_await_heartbeat(co_nmt_master_t *master, uint8_t node_id, uint16_t ms,
+                                   co_time_t now);
+
 /* Guards node `node_id`: a request every `guard_ms` from `now` (the first one at `now`), lost when
  * `life_time_factor` guard times in a row pass without a valid reply. 0 in either stops guarding.
  * The toggle bit expected first is 0. False for a node-id outside 1..127 or a node whose heartbeat

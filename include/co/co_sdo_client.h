@@ -134,4 +134,9 @@ co_time_t co_sdo_client_process(co_sdo_client_t *client, co_time_t now);
 /* Whether a transfer is under way. */
 bool co_sdo_client_busy(const co_sdo_client_t *client);
 
+/* Forgets the transfer under way: no frame, no `done` call, idle at once. For a server known to
+ * have forgotten it too (it was reset, or its boot-up came), to which an abort would say nothing;
+ * any other end of a transfer is an abort (CiA 301). */
+void co_sdo_client_cancel(co_sdo_client_t *client);
+
 #endif

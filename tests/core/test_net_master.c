@@ -3,8 +3,11 @@
  * disconnect a slave: the full boot of the PLC300's section 7.3 frame by frame, the status words
  * of its 5.6.3, an identity mismatch, a missing optional and a missing mandatory slave, a slave
  * that appears late and is retried after the others, heartbeat loss and the re-boot that
- * reconfigures the slave, the last SDO error and EMCY, the process image in and out, and the
- * configuration checks. Time is injected; no sleeps. */
+ * reconfigures the slave, the report-only reaction and the slave's return (also before its first
+ * heartbeat, and while the start of all waits for it), no past deadline while a slave waits for
+ * the SDO client, the last SDO error and EMCY, the process image in and out (also without
+ * outputs), and the configuration checks. Every event in every step, frame by frame without
+ * slave nodes: test_net_master_states.c. Time is injected; no sleeps. */
 #include "check_main.h"
 #include "co/co_net_master.h"
 #include "test_bus.h"
@@ -577,6 +580,88 @@ START_TEST(restart_during_a_transfer)
 }
 END_TEST
 
+/* Issue 22, item 1: nodes 4 and 6 are absent; when the boot time ends, node 6 (next after node 5)
+ * takes the SDO client and waits for an answer that does not come, and node 4 waits for the
+ * client, which no time brings: the deadline is node 6's SDO timeout, not node 4's boot time
+ * again and again. */
+START_TEST(slave_waiting_for_the_client_asks_for_no_past_deadline)
+{
+    slaves[0].present = false;
+    slaves[2].present = false;
+    start_master();
+    advance((BOOT_TIME_MS - 1) * MS);
+    bus.next = bus.count;
+    bus.now = BOOT_TIME_MS * MS;
+    ck_assert_uint_eq(co_net_master_process(&master, bus.now),
+                      (BOOT_TIME_MS + SDO_TIMEOUT_MS) * MS);
+    expect("606#4000100000000000");
+    ck_assert_uint_eq(co_net_master_slave(&master, 4)->step, CO_NET_STEP_WAIT_BOOT);
+    bus.now += 1 * MS;
+    ck_assert_uint_eq(co_net_master_process(&master, bus.now),
+                      (BOOT_TIME_MS + SDO_TIMEOUT_MS) * MS);
+    /* Node 6's timeout hands the client to node 4. */
+    bus.now = (BOOT_TIME_MS + SDO_TIMEOUT_MS) * MS;
+    ck_assert_uint_eq(co_net_master_process(&master, bus.now),
+                      (BOOT_TIME_MS + 2 * SDO_TIMEOUT_MS) * MS);
+    expect("606#8000100000000405");
+    expect("604#4000100000000000");
+}
+END_TEST
+
+/* Issue 22, item 3: the report reaction, no start by the master; node 4 goes away right after its
+ * configuration, is lost for lack of its first heartbeat, comes back and beats in Pre-operational,
+ * the state the master knew from its boot-up: it is running again. */
+START_TEST(lost_without_a_first_heartbeat_resumes)
+{
+    config.start = CO_NET_START_NONE;
+    table[0].heartbeat_ms = 150;
+    table[0].on_error = CO_NET_ON_ERROR_REPORT;
+    start_master();
+    slaves[0].present = false;
+    advance(150 * MS);
+    ck_assert_uint_eq(co_net_master_slave_status(&master, 4), 0x2F);
+    ck_assert_uint_eq(co_net_master_slave(&master, 4)->step, CO_NET_STEP_LOST);
+    slaves[0].present = true;
+    advance(50 * MS); /* its next heartbeat, 704#7F, at 200 ms */
+    ck_assert_uint_eq(slaves[0].node.nmt_state, CO_NMT_PRE_OPERATIONAL);
+    ck_assert_uint_eq(co_net_master_slave_status(&master, 4), 0x0F);
+    ck_assert_uint_eq(co_net_master_slave(&master, 4)->step, CO_NET_STEP_OPERATIONAL);
+    ck_assert_uint_eq(co_net_master_status(&master), 0x0F);
+}
+END_TEST
+
+/* Issue 22, item 4: start all, the report reaction; mandatory node 4, heard once, is silent while
+ * it waits for the start: lost at 220 ms (0x27). It beats again at once, and waits for the start
+ * again (0x07, not running without bit 3); the start of all goes out when node 6, absent, has had
+ * its attempt. */
+START_TEST(late_heartbeat_of_a_mandatory_slave_before_start_all)
+{
+    config.start = CO_NET_START_ALL;
+    table[0].mandatory = true;
+    table[0].heartbeat_ms = 120;
+    table[0].on_error = CO_NET_ON_ERROR_REPORT;
+    slaves[2].present = false;
+    start_master();
+    advance(100 * MS); /* node 4's first heartbeat */
+    slaves[0].present = false;
+    advance(120 * MS);
+    ck_assert_uint_eq(co_net_master_slave_status(&master, 4), 0x27);
+    ck_assert_uint_eq(co_net_master_slave(&master, 4)->step, CO_NET_STEP_LOST);
+    slaves[0].present = true;
+    advance(0); /* the heartbeat it owes */
+    ck_assert_uint_eq(co_net_master_slave_status(&master, 4), 0x07);
+    ck_assert_uint_eq(co_net_master_slave(&master, 4)->step, CO_NET_STEP_WAIT_START);
+    ck_assert(!sent_later("000#0100"));
+    advance(30 * MS);
+    skip_to("606#8000100000000405");
+    expect("000#0100");
+    ck_assert_uint_eq(bus.at[bus.next - 1], (BOOT_TIME_MS + SDO_TIMEOUT_MS) * MS);
+    ck_assert_uint_eq(co_net_master_slave_status(&master, 4), 0x0F);
+    ck_assert_uint_eq(co_net_master_slave_status(&master, 5), 0x0F);
+    ck_assert_uint_eq(slaves[0].node.nmt_state, CO_NMT_OPERATIONAL);
+}
+END_TEST
+
 START_TEST(unexpected_boot_up_reboots)
 {
     start_master();
@@ -702,6 +787,29 @@ START_TEST(process_image_out_not_to_a_failed_slave)
 }
 END_TEST
 
+/* Issue 22, item 5: a master without outputs has no image to write to; the write is refused, not
+ * a copy to a null pointer. An image size without an image is refused at init. */
+START_TEST(process_image_out_without_outputs)
+{
+    config.outputs = NULL;
+    config.output_count = 0;
+    config.output_image = NULL;
+    config.output_size = 0;
+    start_master();
+    bus.next = bus.count;
+    ck_assert(!co_net_master_write_output(&master, 0, (const uint8_t *)"\x01", 0));
+    ck_assert(!co_net_master_write_output(&master, 0, (const uint8_t *)"\x01", 1));
+    ck_assert(!sent_later("204#01"));
+    config.output_size = 8;
+    ck_assert(!co_net_master_init(&master, &config));
+    config.output_size = 0;
+    config.input_count = 0;
+    config.input_image = NULL;
+    config.input_size = 2;
+    ck_assert(!co_net_master_init(&master, &config));
+}
+END_TEST
+
 START_TEST(process_image_out_on_sync)
 {
     config.sync_period_us = 10 * MS;
@@ -785,6 +893,9 @@ static Suite *net_master_suite(void)
     tcase_add_test(tc, heartbeat_loss_reboots_and_reconfigures);
     tcase_add_test(tc, no_first_heartbeat_is_a_loss);
     tcase_add_test(tc, restart_during_a_transfer);
+    tcase_add_test(tc, slave_waiting_for_the_client_asks_for_no_past_deadline);
+    tcase_add_test(tc, lost_without_a_first_heartbeat_resumes);
+    tcase_add_test(tc, late_heartbeat_of_a_mandatory_slave_before_start_all);
     tcase_add_test(tc, unexpected_boot_up_reboots);
     tcase_add_test(tc, heartbeat_loss_only_reported);
     tcase_add_test(tc, guarding_loss_reboots);
@@ -792,6 +903,7 @@ static Suite *net_master_suite(void)
     tcase_add_test(tc, process_image_in);
     tcase_add_test(tc, process_image_out_on_change);
     tcase_add_test(tc, process_image_out_not_to_a_failed_slave);
+    tcase_add_test(tc, process_image_out_without_outputs);
     tcase_add_test(tc, process_image_out_on_sync);
     tcase_add_test(tc, configuration_is_checked);
     tcase_add_test(tc, texts);

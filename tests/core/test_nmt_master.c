@@ -1,5 +1,6 @@
 /* NMT master: exact command frames, node states from boot-up, heartbeat and guarding frames, the
- * heartbeat consumer of 127 nodes (lost exactly at the consumer time, resumed), node guarding
+ * heartbeat consumer of 127 nodes (lost exactly at the consumer time, resumed; the first heartbeat
+ * awaited from the consumer's start), node guarding
  * (requests on the guard time grid, toggle check, loss after the life time, reset of the toggle),
  * random frames that must leave every state valid, the standalone SYNC producer (counter wrap,
  * exact times, no drift), and the master against the project's own slave node on the in-process
@@ -268,6 +269,44 @@ START_TEST(heartbeat_lost_exactly_at_consumer_time)
     expect_event(CO_NMT_MASTER_STATE_CHANGED, 5, CO_NMT_PRE_OPERATIONAL, CO_NMT_OPERATIONAL);
     ck_assert(!co_nmt_master_lost(&master, 5));
     ck_assert_uint_eq(master_deadline, now + 150 * MS);
+    expect_sent_none();
+}
+END_TEST
+
+/* A master that has just set a node's producer time awaits its first heartbeat from then: none
+ * is a loss exactly one consumer time later, and the late first heartbeat resumes the node. */
+START_TEST(awaited_heartbeat_lost_without_a_first_one)
+{
+    now = 1000 * MS;
+    ck_assert(co_nmt_master_await_heartbeat(&master, 5, 150, now));
+    master_deadline = co_nmt_master_process(&master, now);
+    ck_assert_uint_eq(master_deadline, now + 150 * MS);
+    advance(150 * MS - 1);
+    ck_assert_uint_eq(event_count, 0);
+    ck_assert(!co_nmt_master_lost(&master, 5));
+    advance(1);
+    ck_assert_uint_eq(expect_event(CO_NMT_MASTER_HEARTBEAT_LOST, 5, CO_NMT_MASTER_STATE_UNKNOWN,
+                                   CO_NMT_MASTER_STATE_UNKNOWN),
+                      1150 * MS);
+    ck_assert(co_nmt_master_lost(&master, 5));
+    ck_assert_uint_eq(master_deadline, CO_TIME_NEVER);
+    advance(1000 * MS);
+    ck_assert(rx("705#7F"));
+    expect_event(CO_NMT_MASTER_RESUMED, 5, CO_NMT_MASTER_STATE_UNKNOWN,
+                 CO_NMT_MASTER_STATE_UNKNOWN);
+    expect_event(CO_NMT_MASTER_STATE_CHANGED, 5, CO_NMT_MASTER_STATE_UNKNOWN,
+                 CO_NMT_PRE_OPERATIONAL);
+    ck_assert(!co_nmt_master_lost(&master, 5));
+    ck_assert_uint_eq(master_deadline, now + 150 * MS);
+    /* Refused where co_nmt_master_heartbeat is; time 0 stops the consumer. */
+    ck_assert(!co_nmt_master_await_heartbeat(&master, 0, 150, now));
+    ck_assert(!co_nmt_master_await_heartbeat(&master, 128, 150, now));
+    ck_assert(co_nmt_master_guard(&master, 6, 100, 3, now));
+    ck_assert(!co_nmt_master_await_heartbeat(&master, 6, 150, now));
+    ck_assert(co_nmt_master_guard(&master, 6, 0, 0, now));
+    ck_assert(co_nmt_master_await_heartbeat(&master, 5, 0, now));
+    ck_assert_uint_eq(co_nmt_master_process(&master, now), CO_TIME_NEVER);
+    ck_assert_uint_eq(event_count, events_checked);
     expect_sent_none();
 }
 END_TEST
@@ -761,6 +800,7 @@ int main(void)
     tcase_add_test(tc, state_from_boot_up_then_heartbeats);
     tcase_add_test(tc, foreign_and_malformed_frames_ignored);
     tcase_add_test(tc, heartbeat_lost_exactly_at_consumer_time);
+    tcase_add_test(tc, awaited_heartbeat_lost_without_a_first_one);
     tcase_add_test(tc, heartbeat_rearmed_by_each_frame_and_boot_up);
     tcase_add_test(tc, heartbeat_of_127_producers_one_lost);
     tcase_add_test(tc, one_error_control_protocol_per_node);

@@ -3,7 +3,8 @@
  * bus that delivers every frame to every party in order and can drop or repeat chosen frames.
  * Every transfer type in both directions at the size boundaries, the largest object the server
  * can hold, server aborts with their text, the client's own aborts with their exact frames (a
- * scripted server on node-id 9), timeouts, lost and repeated block segments, several clients. */
+ * scripted server on node-id 9), timeouts, a cancelled transfer, lost and repeated block segments,
+ * several clients. */
 #include "check_main.h"
 #include "co/co_sdo_client.h"
 #include "test_bus.h"
@@ -662,6 +663,35 @@ START_TEST(timeout)
 }
 END_TEST
 
+/* A cancelled transfer ends without a frame or a result, its late answer is not taken, and the
+ * idle client serves the next request. */
+START_TEST(cancel)
+{
+    client_t *c = &clients[1];
+    bus.now = 1000;
+    ck_assert_int_eq(
+        co_sdo_client_upload(&c->sdo, 0x2000, 5, rx, sizeof(rx), CO_SDO_CLIENT_AUTO, 5, bus.now),
+        0);
+    pump();
+    expect("609#4000200500000000");
+    co_sdo_client_cancel(&c->sdo);
+    ck_assert(!co_sdo_client_busy(&c->sdo));
+    ck_assert_uint_eq(co_sdo_client_process(&c->sdo, 6000), CO_TIME_NEVER);
+    inject("589#4F00200541000000");
+    expect_none();
+    ck_assert_uint_eq(c->results, 0);
+    ck_assert_uint_eq(rx[0], 0);
+    ck_assert_int_eq(
+        co_sdo_client_upload(&c->sdo, 0x2000, 1, rx, sizeof(rx), CO_SDO_CLIENT_AUTO, 5, bus.now),
+        0);
+    pump();
+    expect("609#4000200100000000");
+    inject("589#4300200178563412");
+    expect_result(c, CO_SDO_CLIENT_OK, 0, 4);
+    ck_assert_mem_eq(rx, "\x78\x56\x34\x12", 4);
+}
+END_TEST
+
 /* Block download, segment 2 of 4 lost: the server acknowledges segment 1, the client resends
  * from segment 2, numbered from 1. */
 START_TEST(block_download_lost_segment)
@@ -1053,6 +1083,7 @@ int main(void)
     tcase_add_test(tc, client_abort_no_memory);
     tcase_add_test(tc, client_abort_length);
     tcase_add_test(tc, timeout);
+    tcase_add_test(tc, cancel);
     tcase_add_test(tc, block_download_lost_segment);
     tcase_add_test(tc, block_upload_repeated_segment);
     tcase_add_test(tc, block_upload_lost_segment);

@@ -93,7 +93,7 @@ static bool pdo_valid(const co_net_master_config_t *config, const co_net_pdo_t *
 static bool pdos_valid(const co_net_master_config_t *config, const co_net_pdo_t *pdos, size_t count,
                        const uint8_t *image, size_t image_size)
 {
-    if (count > 0 && (pdos == NULL || image == NULL))
+    if ((count > 0 && pdos == NULL) || (image == NULL && (count > 0 || image_size > 0)))
         return false;
     for (size_t i = 0; i < count; i++) {
         if (!pdo_valid(config, &pdos[i], image_size))
@@ -195,6 +195,16 @@ static void fail(co_net_master_t *m, size_t i, co_net_failure_t failure)
         release(m);
 }
 
+/* The slave's transfer under way, if any, is dropped without a frame: the slave restarted (its
+ * boot-up came, or the master reset it), so its server holds no transfer an abort could end. */
+static void abandon_transfer(co_net_master_t *m, size_t i)
+{
+    if (m->current != i)
+        return;
+    co_sdo_client_cancel(&m->sdo);
+    release(m);
+}
+
 static void begin_attempt(co_net_master_t *m, size_t i)
 {
     co_net_slave_t *s = slave_at(m, i);
@@ -229,13 +239,15 @@ static void begin_identity(co_net_master_t *m, size_t i)
     begin_read(m, i, CO_IDX_IDENTITY, (uint8_t)(s->identity_sub + 1));
 }
 
+/* CiA 301's heartbeat consumer waits for the first heartbeat forever, so a slave that dies right
+ * after its configuration would never be seen lost: the master expects that first heartbeat within
+ * one consumer time of starting error control (the download has just set the slave's 1017h). */
 static void start_error_control(co_net_master_t *m, size_t i)
 {
     const co_net_slave_config_t *c = slave_config(m, i);
-    if (c->heartbeat_ms != 0) {
-        co_nmt_master_heartbeat(&m->nmt, c->node_id, c->heartbeat_ms);
-        slave_at(m, i)->first_heartbeat = after_ms(m->now, c->heartbeat_ms);
-    } else if (c->guard_ms != 0 && c->life_time_factor != 0)
+    if (c->heartbeat_ms != 0)
+        co_nmt_master_await_heartbeat(&m->nmt, c->node_id, c->heartbeat_ms, m->now);
+    else if (c->guard_ms != 0 && c->life_time_factor != 0)
         co_nmt_master_guard(&m->nmt, c->node_id, c->guard_ms, c->life_time_factor, m->now);
     add_status(m, i, CO_NET_SLAVE_EC_STARTED);
 }
@@ -243,7 +255,6 @@ static void start_error_control(co_net_master_t *m, size_t i)
 static void stop_error_control(co_net_master_t *m, size_t i)
 {
     uint8_t node_id = slave_config(m, i)->node_id;
-    slave_at(m, i)->first_heartbeat = CO_TIME_NEVER;
     co_nmt_master_heartbeat(&m->nmt, node_id, 0);
     co_nmt_master_guard(&m->nmt, node_id, 0, 0, m->now);
 }
@@ -257,11 +268,10 @@ static void become_operational(co_net_master_t *m, size_t i)
     set_step(m, i, CO_NET_STEP_OPERATIONAL);
 }
 
-static void finish_boot(co_net_master_t *m, size_t i)
+/* The last step of a configured slave's boot: it waits for the start of all until that is sent;
+ * afterwards it is started alone (CO_NET_START_EACH, or CO_NET_START_ALL once it went out). */
+static void start_slave(co_net_master_t *m, size_t i)
 {
-    add_status(m, i, CO_NET_SLAVE_CONFIGURED);
-    start_error_control(m, i);
-    release(m);
     if (m->config.start == CO_NET_START_ALL && !m->started_all) {
         slave_at(m, i)->tried = true;
         set_step(m, i, CO_NET_STEP_WAIT_START);
@@ -270,6 +280,14 @@ static void finish_boot(co_net_master_t *m, size_t i)
     if (m->config.start != CO_NET_START_NONE)
         co_nmt_master_command(&m->nmt, CO_NMT_CS_START, slave_config(m, i)->node_id);
     become_operational(m, i);
+}
+
+static void finish_boot(co_net_master_t *m, size_t i)
+{
+    add_status(m, i, CO_NET_SLAVE_CONFIGURED);
+    start_error_control(m, i);
+    release(m);
+    start_slave(m, i);
 }
 
 static void download_next(co_net_master_t *m, size_t i)
@@ -351,16 +369,24 @@ static void sdo_done(void *user, const co_sdo_client_result_t *result)
     }
 }
 
+/* A slave that was reset or restarted: nothing of its boot so far holds, and its boot-up is
+ * awaited (or `booted`: it came). */
+static void await_boot(co_net_master_t *m, size_t i, bool booted)
+{
+    co_net_slave_t *s = slave_at(m, i);
+    abandon_transfer(m, i);
+    stop_error_control(m, i);
+    s->booted = booted;
+    s->deadline = after_ms(m->now, m->config.boot_time_ms);
+    set_step(m, i, CO_NET_STEP_WAIT_BOOT);
+}
+
 /* Resets one slave (its communication for a boot, the whole node after an error-control loss,
  * so that it also forgets a half-applied configuration) and waits for its boot-up. */
 static void reset_slave(co_net_master_t *m, size_t i, uint8_t command)
 {
-    co_net_slave_t *s = slave_at(m, i);
-    stop_error_control(m, i);
     co_nmt_master_command(&m->nmt, command, slave_config(m, i)->node_id);
-    s->booted = false;
-    s->deadline = after_ms(m->now, m->config.boot_time_ms);
-    set_step(m, i, CO_NET_STEP_WAIT_BOOT);
+    await_boot(m, i, false);
 }
 
 static void error_control_lost(co_net_master_t *m, size_t i)
@@ -377,29 +403,44 @@ static void error_control_lost(co_net_master_t *m, size_t i)
     reset_slave(m, i, CO_NMT_CS_RESET_NODE);
 }
 
-/* A boot-up from a slave that was configured means it lost its configuration (a reset or a power
- * cycle faster than error control could tell): it is booted again, as after a loss. */
+/* The boot-up the master awaits after its reset: in WAIT_BOOT, or late, once the boot time ended,
+ * while the slave has not answered the read of 1000h yet (a node sends its boot-up before it
+ * serves any SDO, so a slave that answered has booted already). */
+static bool awaited_boot_up(const co_net_slave_t *s)
+{
+    return s->step == CO_NET_STEP_WAIT_BOOT || (s->step == CO_NET_STEP_DEVICE_TYPE && !s->booted);
+}
+
+/* Any other boot-up says that the slave restarted (a reset, a power cycle) and lost what the
+ * master gave it so far: identity checked, writes, error control. Its boot then starts again
+ * from the beginning, at once, whatever its step and its on_error (CiA 302-2 boots a slave on its
+ * boot-up; on_error is the reaction to a silence). A boot-up before co_net_master_start is nothing
+ * to the master, whose start resets every slave. */
 static void booted_up(co_net_master_t *m, size_t i)
 {
     co_net_slave_t *s = slave_at(m, i);
-    switch (s->step) {
-    case CO_NET_STEP_WAIT_BOOT:
+    if (s->step == CO_NET_STEP_IDLE)
+        return;
+    if (awaited_boot_up(s)) {
         s->booted = true;
-        break;
-    case CO_NET_STEP_OPERATIONAL:
-    case CO_NET_STEP_WAIT_START:
-    case CO_NET_STEP_LOST:
-        if (slave_config(m, i)->on_error == CO_NET_ON_ERROR_REBOOT) {
-            stop_error_control(m, i);
-            clear_status(m, i, SLAVE_PROGRESS);
-            s->booted = true;
-            s->deadline = m->now;
-            set_step(m, i, CO_NET_STEP_WAIT_BOOT);
-        }
-        break;
-    default:
-        break;
+        return;
     }
+    clear_status(m, i, SLAVE_PROGRESS);
+    await_boot(m, i, true);
+}
+
+/* A slave lost under CO_NET_ON_ERROR_REPORT is heard again (any heartbeat, or a valid guarding
+ * reply): it returns to where it was lost, running (bit 3 set) or waiting for the start of all,
+ * which may have been sent meanwhile. */
+static void resumed(co_net_master_t *m, size_t i)
+{
+    if (slave_at(m, i)->step != CO_NET_STEP_LOST)
+        return;
+    clear_status(m, i, CO_NET_SLAVE_EC_ERROR);
+    if ((slave_at(m, i)->status & CO_NET_SLAVE_INIT_DONE) != 0)
+        set_step(m, i, CO_NET_STEP_OPERATIONAL);
+    else
+        start_slave(m, i);
 }
 
 static void nmt_event(void *user, const co_nmt_master_event_t *event)
@@ -417,13 +458,9 @@ static void nmt_event(void *user, const co_nmt_master_event_t *event)
         error_control_lost(m, i);
         break;
     case CO_NMT_MASTER_RESUMED:
-    case CO_NMT_MASTER_STATE_CHANGED: /* also the first heartbeat of one lost for lack of it */
-        if (slave_at(m, i)->step == CO_NET_STEP_LOST) {
-            clear_status(m, i, CO_NET_SLAVE_EC_ERROR);
-            set_step(m, i, CO_NET_STEP_OPERATIONAL);
-        }
+        resumed(m, i);
         break;
-    default:
+    default: /* a state change: the state of a slave is not checked (docs/net-master.md) */
         break;
     }
 }
@@ -474,8 +511,7 @@ bool co_net_master_init(co_net_master_t *master, const co_net_master_config_t *c
                                          .send = forward_send, .user = master, .event = nmt_event});
     co_emcy_consumer_init(&master->emcy, emcy_received, master);
     for (size_t i = 0; i < config->slave_count; i++) {
-        config->slave_state[i] =
-            (co_net_slave_t){.step = CO_NET_STEP_IDLE, .first_heartbeat = CO_TIME_NEVER};
+        config->slave_state[i] = (co_net_slave_t){.step = CO_NET_STEP_IDLE};
         co_emcy_consumer_watch(&master->emcy, config->slaves[i].node_id, true);
     }
     master->sync.next = CO_TIME_NEVER;
@@ -490,22 +526,15 @@ void co_net_master_start(co_net_master_t *master, co_time_t now)
     master->now = now;
     master->started = true;
     master->started_all = false;
-    /* A transfer under way belongs to the boot that ends here: its answer is ignored, and the
-     * next attempt prepares the client afresh. */
-    release(master);
     if (master->config.reset_all)
         co_nmt_master_command(&master->nmt, CO_NMT_CS_RESET_COMMUNICATION, CO_NMT_MASTER_ALL_NODES);
     for (size_t i = 0; i < master->config.slave_count; i++) {
-        co_net_slave_t *s = slave_at(master, i);
-        s->tried = false;
+        slave_at(master, i)->tried = false;
         set_status(master, i, 0);
-        if (master->config.reset_all) {
-            s->booted = false;
-            s->deadline = after_ms(now, master->config.boot_time_ms);
-            set_step(master, i, CO_NET_STEP_WAIT_BOOT);
-        } else {
+        if (master->config.reset_all)
+            await_boot(master, i, false);
+        else
             reset_slave(master, i, CO_NMT_CS_RESET_COMMUNICATION);
-        }
     }
 }
 
@@ -540,6 +569,14 @@ bool co_net_master_receive(co_net_master_t *master, const co_frame_t *frame, co_
     return receive_input(master, frame);
 }
 
+/* A slave waiting for its boot-up is ready for its identification when the boot-up came or the
+ * boot time ended; it then waits only for the SDO client, which a frame or a timeout of the slave
+ * holding it frees, never a time of its own. */
+static bool ready(const co_net_master_t *m, const co_net_slave_t *s)
+{
+    return s->step == CO_NET_STEP_WAIT_BOOT && (s->booted || m->now >= s->deadline);
+}
+
 /* The next slave whose turn has come, searched from next_pick so that a slave that just failed is
  * tried again only after the others. */
 static size_t next_ready(co_net_master_t *m)
@@ -547,8 +584,7 @@ static size_t next_ready(co_net_master_t *m)
     size_t n = m->config.slave_count;
     for (size_t k = 0; k < n; k++) {
         size_t i = (m->next_pick + k) % n;
-        const co_net_slave_t *s = slave_at(m, i);
-        if (s->step == CO_NET_STEP_WAIT_BOOT && (s->booted || m->now >= s->deadline))
+        if (ready(m, slave_at(m, i)))
             return i;
     }
     return n;
@@ -600,29 +636,15 @@ static void produce_sync(co_net_master_t *m)
     }
 }
 
-/* CiA 301's heartbeat consumer waits for the first heartbeat forever, so a slave that dies right
- * after its configuration would never be seen lost: the master expects that first heartbeat within
- * one consumer time of starting error control (the download has just set the slave's 1017h). */
-static void check_first_heartbeats(co_net_master_t *m)
-{
-    for (size_t i = 0; i < m->config.slave_count; i++) {
-        co_net_slave_t *s = slave_at(m, i);
-        if (s->first_heartbeat > m->now)
-            continue;
-        s->first_heartbeat = CO_TIME_NEVER;
-        if (!m->nmt.slave[slave_config(m, i)->node_id - 1].heartbeat.monitoring)
-            error_control_lost(m, i);
-    }
-}
-
+/* The end of a boot time not yet reached, or of a retry delay (retry_failed has just run the
+ * ones that ended). */
 static co_time_t slave_deadline(const co_net_master_t *m)
 {
     co_time_t next = CO_TIME_NEVER;
     for (size_t i = 0; i < m->config.slave_count; i++) {
         const co_net_slave_t *s = &m->config.slave_state[i];
-        if ((s->step == CO_NET_STEP_WAIT_BOOT && !s->booted) || s->step == CO_NET_STEP_FAILED)
+        if ((s->step == CO_NET_STEP_WAIT_BOOT && !ready(m, s)) || s->step == CO_NET_STEP_FAILED)
             next = co_time_min(next, s->deadline);
-        next = co_time_min(next, s->first_heartbeat);
     }
     return next;
 }
@@ -634,7 +656,6 @@ co_time_t co_net_master_process(co_net_master_t *master, co_time_t now)
     next = co_time_min(next, co_sdo_client_process(&master->sdo, now));
     if (!master->started)
         return next;
-    check_first_heartbeats(master);
     retry_failed(master);
     while (master->current == master->config.slave_count) {
         size_t i = next_ready(master);
@@ -678,8 +699,8 @@ static void send_changed_output(co_net_master_t *m, size_t p, size_t offset, con
 bool co_net_master_write_output(co_net_master_t *master, size_t offset, const uint8_t *data,
                                 size_t len)
 {
-    if (data == NULL || offset > master->config.output_size ||
-        len > master->config.output_size - offset)
+    if (data == NULL || master->config.output_image == NULL ||
+        offset > master->config.output_size || len > master->config.output_size - offset)
         return false;
     for (size_t p = 0; p < master->config.output_count; p++) {
         if (output_live(master, p))

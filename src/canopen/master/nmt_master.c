@@ -98,6 +98,16 @@ bool co_nmt_master_heartbeat(co_nmt_master_t *master, uint8_t node_id, uint16_t 
     return true;
 }
 
+bool co_nmt_master_await_heartbeat(co_nmt_master_t *master, uint8_t node_id, uint16_t ms,
+                                   co_time_t now)
+{
+    if (!co_nmt_master_heartbeat(master, node_id, ms))
+        return false;
+    /* Just configured, the consumer has no loss to end: only its timer starts. */
+    co_hb_monitor_alive(&slave_of(master, node_id)->heartbeat, now);
+    return true;
+}
+
 bool co_nmt_master_guard(co_nmt_master_t *master, uint8_t node_id, uint16_t guard_ms,
                          uint8_t life_time_factor, co_time_t now)
 {

@@ -596,6 +596,11 @@ bool co_sdo_client_receive(co_sdo_client_t *client, const co_frame_t *frame, co_
     return true;
 }
 
+void co_sdo_client_cancel(co_sdo_client_t *client)
+{
+    client->state = CO_SDO_CLIENT_IDLE;
+}
+
 co_time_t co_sdo_client_process(co_sdo_client_t *client, co_time_t now)
 {
     if (client->state == CO_SDO_CLIENT_IDLE)

@@ -304,7 +304,7 @@ void drive_bus_event(drive_t *drive, uint16_t emcy_code, bool active)
     remember_bus_event(drive, emcy_code, active);
     if (active)
         co_emcy_raise(&drive->node, emcy_code, bus_error_register(drive), NULL);
-    else
+    else if (!drive_emcy_code_in_use(drive, emcy_code))
         co_emcy_clear(&drive->node, emcy_code);
 }
 

@@ -97,6 +97,10 @@ bool drive_fault_cause_ends(drive_t *drive, uint8_t index, co_time_t now);
 bool drive_faults_resettable(const drive_t *drive);
 /* A fault reset was accepted: every active fault ends (its EMCY cleared), 603Fh = 0. */
 void drive_faults_acknowledge(drive_t *drive);
+/* An active fault or a bus condition still present reports EMCY `code`. The EMCY producer keeps
+ * one active error per code (CiA 301), however many causes share it: the code is cleared only
+ * when none does. */
+bool drive_emcy_code_in_use(const drive_t *drive, uint16_t code);
 /* Reset node: the drive forgets its faults (the EMCY producer forgets their errors), not the
  * causes still present. */
 void drive_faults_restart(drive_t *drive);

@@ -230,7 +230,9 @@ typedef struct drive_config {
     const co_node_options_code_t *node_options_code;
 } drive_config_t;
 
-/* 0, the co_node_init error, or DRIVE_INIT_BAD_FAULTS. Sends nothing; call drive_start next. */
+/* 0, the co_node_init error, or DRIVE_INIT_BAD_FAULTS. Sets every field of *drive (the caller's
+ * memory need not be zeroed): the channels are those of the dictionary's defaults. Sends nothing;
+ * call drive_start next. */
 int drive_init(drive_t *drive, const drive_config_t *config);
 /* Boot-up: Pre-operational, the power state machine in Switch on disabled. */
 void drive_start(drive_t *drive, co_time_t now);

@@ -5,6 +5,8 @@
  * by settling it; the files below change the state and say what changed, and call none of this. */
 #include "drive_internal.h"
 
+#include <string.h>
+
 /* The EMCY error register of a CAN bus condition where the profile gives none: 1001h bit 0
  * (generic, "error (1)" in the ATV312 table) and bit 4 (communication), CiA 301 table 48. */
 #define COMMUNICATION_ERROR_REGISTER (CO_ERR_REG_GENERIC | CO_ERR_REG_COMMUNICATION)
@@ -241,18 +243,18 @@ int drive_init(drive_t *drive, const drive_config_t *config)
     };
     if (!drive_faults_valid(config->profile))
         return DRIVE_INIT_BAD_FAULTS;
+    /* Every field from a known value, whatever the caller's memory held: no bus condition, fault
+     * cause, input or load, not forced local. */
+    memset(drive, 0, sizeof *drive);
     drive->profile = config->profile;
     int err = co_node_init(&drive->node, &node_config);
     if (err != 0)
         return err;
-    drive->local = false;
-    drive->load = 0;
-    drive->inputs = 0;
-    drive->command_from_network = true;
     drive_entries_find(drive);
     restart_drive(drive, 0);
-    drive->bus_event_count = 0;
-    drive->fault_causes = 0;
+    /* The channels of the dictionary's defaults, computed against the network commanding. */
+    drive->command_from_network = true;
+    drive_channels_update(drive);
     return 0;
 }
 

@@ -4,6 +4,7 @@
 #include "atv312_bench.h"
 #include "check_main.h"
 #include "memory_storage.h"
+#include "test_bus.h"
 
 static memory_storage_t mem;
 static co_storage_t storage;
@@ -126,6 +127,39 @@ START_TEST(stored_value_outside_its_limits_is_skipped)
 }
 END_TEST
 
+/* Every byte of a drive_t not zeroed by its caller, before drive_init. */
+#define PATTERN 0xA5u
+
+/* Booted on stored values that settle the drive as they are applied, over memory that is not
+ * zeroed (drive_init sets every field: issue 22), the drive sends what it sends over zeroes. */
+START_TEST(stored_values_boot_a_drive_over_any_memory)
+{
+    ck_assert_uint_eq(bench_sdo_write(&b, 0x203C, 2, 50, 2), 0);   /* ACC 5.0 s */
+    ck_assert_uint_eq(bench_sdo_write(&b, 0x203C, 11, 101, 2), 0); /* rPS: LI1 */
+    ck_assert_uint_eq(bench_sdo_write(&b, 0x1010, 1, CO_STORE_SIGNATURE_SAVE, 4), 0);
+    static bench_t zeroed, patterned;
+    bench_t *benches[] = {&zeroed, &patterned};
+    for (size_t i = 0; i < 2; i++) {
+        bench_t *run = benches[i];
+        bench_start_model_over(run, &atv312_profile, &storage, i == 0 ? 0 : PATTERN);
+        ck_assert_uint_eq(bench_read(run, 0x203C, 2), 50);
+        ck_assert_uint_eq(bench_sdo_write(run, 0x6042, 0, 1500, 2), 0);
+        bench_command(run, 0x0006);
+        bench_command(run, 0x000F);
+        bench_advance(run, 5000000);
+        ck_assert_int_eq(bench_speed(run), 1500);
+    }
+    ck_assert_uint_eq(mem.refusals, 0);
+    ck_assert_uint_eq(patterned.count, zeroed.count);
+    for (size_t i = 0; i < zeroed.count; i++) {
+        char want[32], got[32];
+        ck_assert_str_eq(test_format(&patterned.frame[i], got),
+                         test_format(&zeroed.frame[i], want));
+        ck_assert_uint_eq(patterned.at[i], zeroed.at[i]);
+    }
+}
+END_TEST
+
 int main(void)
 {
     Suite *s = suite_create("atv312_storage");
@@ -137,6 +171,7 @@ int main(void)
     tcase_add_test(tc, profile_restore_restores_what_the_views_stand_for);
     tcase_add_test(tc, values_valid_together_load_whatever_their_order);
     tcase_add_test(tc, stored_value_outside_its_limits_is_skipped);
+    tcase_add_test(tc, stored_values_boot_a_drive_over_any_memory);
     suite_add_tcase(s, tc);
     return check_run_suite(s);
 }

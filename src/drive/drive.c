@@ -134,20 +134,19 @@ static void advance_auto_tune(drive_t *drive, co_time_t now)
 }
 
 /* 6042h (rpm) and the model's frequency reference (0.1 Hz) are one reference: a write to either
- * sets the other, converted through the nominal frequency and speed (clamped to 16 bits). */
+ * sets the other, converted through the nominal frequency and speed and held within the other's
+ * limits (6042h = 20000 rpm is LFR = 500.0 Hz, its HighLimit, on a 1500 rpm 50 Hz motor). */
 static void mirror_reference(drive_t *drive, const co_od_entry_t *entry)
 {
     const drive_entries_t *e = &drive->entries;
     if (e->frequency_reference == NULL)
         return;
     if (entry == e->frequency_reference) {
-        int32_t decihertz = (int16_t)drive_entry_value(drive, entry);
-        int32_t rpm = drive_signed_frequency_to_rpm(drive, decihertz);
-        drive_entry_set(drive, e->target_velocity, drive_clamp_int16(rpm));
+        int32_t decihertz = (int32_t)drive_entry_value(drive, entry);
+        drive_entry_set(drive, e->target_velocity, drive_signed_frequency_to_rpm(drive, decihertz));
     } else if (entry == e->target_velocity) {
-        int32_t rpm = (int16_t)drive_entry_value(drive, entry);
-        drive_entry_set(drive, e->frequency_reference,
-                        drive_clamp_int16(drive_signed_rpm_to_frequency(drive, rpm)));
+        int32_t rpm = (int32_t)drive_entry_value(drive, entry);
+        drive_entry_set(drive, e->frequency_reference, drive_signed_rpm_to_frequency(drive, rpm));
     }
 }
 

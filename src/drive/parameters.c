@@ -67,11 +67,13 @@ static drive_param_t limit_of(const drive_t *drive, const co_od_entry_t *entry)
     return entry->subindex == 1 ? drive->profile->low_speed : drive->profile->high_speed;
 }
 
+/* Held within 6046h's limits: a speed beyond its HighLimit (500.0 Hz at 32767 rpm per 10.0 Hz,
+ * motor data no motor has) reads as the HighLimit. */
 static uint32_t velocity_limits_read(co_node_t *node, const co_od_entry_t *entry)
 {
     drive_t *drive = drive_of(node);
     uint32_t decihertz = drive_param_value(drive, limit_of(drive, entry));
-    co_od_set(node, entry, drive_frequency_to_rpm(drive, decihertz));
+    co_od_set(node, entry, co_od_saturate(entry, drive_frequency_to_rpm(drive, decihertz)));
     return CO_SDO_OK;
 }
 
@@ -89,21 +91,14 @@ const co_od_hook_t drive_velocity_limits = {.write = velocity_limits_write,
 
 /* 6048h is the acceleration and 6049h the deceleration: delta speed / delta time = nominal speed /
  * ramp time, kept as the reduced fraction (nominal speed x 10) / ramp so that any ramp time is
- * represented exactly. */
+ * represented exactly, or, when its terms exceed the objects' HighLimits (NSP 4131 rpm, ACC 7.7 s:
+ * 41310 / 77, delta speed at most 32767), as the fraction within them nearest to it, which writes
+ * back to the same ramp time while the rate is at most the HighLimit of delta speed per second
+ * (32726 / 61; docs/decisions.md, D-VIEW-LIMITS). */
 static drive_param_t ramp_of(const drive_t *drive, const co_od_entry_t *entry)
 {
     return entry->index == CIA402_IDX_VELOCITY_ACCELERATION ? drive->profile->acceleration
                                                             : drive->profile->deceleration;
-}
-
-static uint32_t greatest_common_divisor(uint32_t a, uint32_t b)
-{
-    while (b != 0) {
-        uint32_t r = a % b;
-        a = b;
-        b = r;
-    }
-    return a;
 }
 
 typedef struct ramp_rate {
@@ -111,20 +106,71 @@ typedef struct ramp_rate {
     uint32_t delta_time;  /* s */
 } ramp_rate_t;
 
-static ramp_rate_t ramp_rate_of(const drive_t *drive, drive_param_t ramp)
+/* The distance of speed / time from the rate, times the rate's time (the same factor for every
+ * fraction compared with it). */
+static uint64_t rate_error(ramp_rate_t rate, uint64_t speed, uint64_t time)
 {
-    uint32_t speed = 10u * drive_param_value(drive, drive->profile->nominal_speed);
-    uint32_t time = drive_param_value(drive, ramp);
-    uint32_t divisor = greatest_common_divisor(speed, time);
-    if (divisor == 0)
-        divisor = 1;
-    return (ramp_rate_t){speed / divisor, time / divisor};
+    uint64_t a = speed * rate.delta_time, b = time * rate.delta_speed;
+    return a > b ? a - b : b - a;
+}
+
+/* The fraction of positive terms of at most `max` nearest rate.delta_speed / rate.delta_time:
+ * the fraction itself in lowest terms when they fit, else its best rational approximation. The
+ * convergents h/k of its continued fraction, each in lowest terms and nearer than any fraction of
+ * smaller terms, are followed while they fit; past the last one, the semiconvergent
+ * (h0 + m h1) / (k0 + m k1) with the largest m that fits may be nearer. A zero time (too steep
+ * for any delta time) gives max.delta_speed / 1, a rate below 1 / max.delta_time that rate. */
+static ramp_rate_t nearest_rate(ramp_rate_t rate, ramp_rate_t max)
+{
+    uint64_t h0 = 0, k0 = 1, h1 = 1, k1 = 0; /* the convergents before the first: 0/1, 1/0 */
+    uint64_t n = rate.delta_speed, d = rate.delta_time;
+    while (d != 0) {
+        uint64_t a = n / d;
+        if (a * h1 + h0 > max.delta_speed || a * k1 + k0 > max.delta_time) {
+            uint64_t m = h1 != 0 ? (max.delta_speed - h0) / h1 : UINT64_MAX;
+            if (k1 != 0 && (max.delta_time - k0) / k1 < m)
+                m = (max.delta_time - k0) / k1;
+            uint64_t hm = m * h1 + h0, km = m * k1 + k0;
+            if (k1 == 0 ||
+                (m != 0 && rate_error(rate, hm, km) * k1 < rate_error(rate, h1, k1) * km))
+                h1 = hm, k1 = km;
+            break;
+        }
+        uint64_t h2 = a * h1 + h0, k2 = a * k1 + k0;
+        h0 = h1, k0 = k1, h1 = h2, k1 = k2;
+        uint64_t r = n % d;
+        n = d, d = r;
+    }
+    if (k1 == 0)
+        return (ramp_rate_t){max.delta_speed, 1};
+    if (h1 == 0)
+        return (ramp_rate_t){1, max.delta_time};
+    return (ramp_rate_t){(uint32_t)h1, (uint32_t)k1};
+}
+
+/* The highest value sub-index `subindex` of the view takes (its HighLimit, else its type's). */
+static uint32_t rate_term_max(const drive_t *drive, uint16_t index, uint8_t subindex)
+{
+    const co_od_entry_t *term = co_od_find(drive->profile->od, index, subindex);
+    return term != NULL ? (uint32_t)co_od_saturate(term, UINT32_MAX) : UINT32_MAX;
+}
+
+/* The highest delta speed (sub-index 1) and delta time (sub-index 2) of the view. */
+static ramp_rate_t rate_limits(const drive_t *drive, uint16_t index)
+{
+    return (ramp_rate_t){rate_term_max(drive, index, 1), rate_term_max(drive, index, 2)};
+}
+
+static ramp_rate_t ramp_rate_of(const drive_t *drive, const co_od_entry_t *entry)
+{
+    ramp_rate_t rate = {10u * drive_param_value(drive, drive->profile->nominal_speed),
+                        drive_param_value(drive, ramp_of(drive, entry))};
+    return nearest_rate(rate, rate_limits(drive, entry->index));
 }
 
 static uint32_t ramp_rate_read(co_node_t *node, const co_od_entry_t *entry)
 {
-    drive_t *drive = drive_of(node);
-    ramp_rate_t rate = ramp_rate_of(drive, ramp_of(drive, entry));
+    ramp_rate_t rate = ramp_rate_of(drive_of(node), entry);
     co_od_set(node, entry, entry->subindex == 1 ? rate.delta_speed : rate.delta_time);
     return CO_SDO_OK;
 }
@@ -135,7 +181,7 @@ static uint32_t ramp_rate_write(co_node_t *node, const co_od_entry_t *entry, con
     (void)origin;
     drive_t *drive = drive_of(node);
     drive_param_t ramp = ramp_of(drive, entry);
-    ramp_rate_t rate = ramp_rate_of(drive, ramp);
+    ramp_rate_t rate = ramp_rate_of(drive, entry);
     uint32_t value = written_value(data, len);
     if (entry->subindex == 1)
         rate.delta_speed = value;

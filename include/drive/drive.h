@@ -296,8 +296,9 @@ const char *drive_state_name(const drive_t *drive);
  *   control word bits only at the full level, nor a lower level while they are set: 0x06040043); a
  *   switch holds a fixed value or a switching source of the model (else 0x06090030).
  * A view is written through its parameter's own checks and read from it, within its own limits
- * (a ramp whose reduced fraction does not fit: the nearest fraction that does; docs/decisions.md,
- * D-VIEW-LIMITS). */
+ * (a ramp whose reduced fraction does not fit: the nearest fraction that does); what it reads,
+ * written back, keeps its parameter, and a ramp's terms written one after the other compose
+ * (docs/decisions.md, D-VIEW-LIMITS). */
 extern const co_od_hook_t drive_configuration_parameter;
 extern const co_od_hook_t drive_speed_limit;
 extern const co_od_hook_t drive_velocity_limits;

@@ -4,7 +4,7 @@
  * are computed from (nominal speed and frequency, nominal current, the ramps, the speed limits),
  * with the motor run towards the highest reference in either direction: every readable numeric
  * object reads within its limits (its LowLimit..HighLimit, else its type's range), and every view
- * takes back the value it reads. */
+ * takes back the value it reads, leaving the parameters as they were. */
 #include "check_main.h"
 #include "minimal_model.h"
 #include "models.h"
@@ -130,6 +130,20 @@ static void check_reports(const drive_profile_t *profile, unsigned bits)
     }
 }
 
+/* The parameters as configured, after the views took back what they read. */
+static void check_parameters_kept(const drive_profile_t *profile, unsigned bits,
+                                  const int64_t configured[VARIED_COUNT])
+{
+    for (size_t i = 0; i < VARIED_COUNT; i++) {
+        drive_param_t param = varied_parameter(profile, i).param;
+        int64_t value = co_od_value(&b.drive.node, param.index, param.subindex);
+        ck_assert_msg(value == configured[i],
+                      "%s, combination %#x: %04Xh:%02X %lld, was %lld before the write-backs",
+                      profile->od->name, bits, param.index, param.subindex, (long long)value,
+                      (long long)configured[i]);
+    }
+}
+
 static void check_model(const drive_profile_t *profile)
 {
     unsigned varies = varied_bits(profile);
@@ -138,7 +152,13 @@ static void check_model(const drive_profile_t *profile)
             continue;
         bench_start_model(&b, profile, NULL);
         configure(profile, bits);
+        int64_t configured[VARIED_COUNT];
+        for (size_t i = 0; i < VARIED_COUNT; i++) {
+            drive_param_t param = varied_parameter(profile, i).param;
+            configured[i] = co_od_value(&b.drive.node, param.index, param.subindex);
+        }
         check_reports(profile, bits);
+        check_parameters_kept(profile, bits, configured);
     }
 }
 

@@ -158,11 +158,21 @@ START_TEST(ramp_views_stay_within_their_limits)
     }
     ck_assert_uint_eq(bench_read(&b, 0x203C, 2), 77);
     ck_assert_uint_eq(bench_read(&b, 0x203C, 3), 77);
+    /* 0.1 s to 32767 rpm is steeper than any pair of terms: read as 32767 / 1, the steepest,
+     * which written back leaves ACC at 0.1 s (as a ramp, 32767 / 1 is 1.0 s). */
+    ck_assert_uint_eq(bench_sdo_write(&b, 0x2042, 5, 32767, 2), 0);
+    ck_assert_uint_eq(bench_sdo_write(&b, 0x203C, 2, 1, 2), 0);
+    ck_assert_uint_eq(bench_read(&b, 0x6048, 1), 32767);
+    ck_assert_uint_eq(bench_read(&b, 0x6048, 2), 1);
+    ck_assert_uint_eq(bench_sdo_write(&b, 0x6048, 1, 32767, 4), 0);
+    ck_assert_uint_eq(bench_sdo_write(&b, 0x6048, 2, 1, 2), 0);
+    ck_assert_uint_eq(bench_read(&b, 0x203C, 2), 1);
 }
 END_TEST
 
 /* Motor data no motor has (32767 rpm at 10.0 Hz) put HSP 500.0 Hz at 1638350 rpm: 6046h:02
- * reads its HighLimit, 32767, and takes it back. */
+ * reads its HighLimit, 32767, and takes it back leaving HSP as it is (32767 rpm converted back
+ * would be 10.0 Hz). */
 START_TEST(speed_limit_view_stays_within_its_limits)
 {
     bench_t b;
@@ -172,6 +182,7 @@ START_TEST(speed_limit_view_stays_within_its_limits)
     ck_assert_uint_eq(bench_sdo_write(&b, 0x2001, 5, 5000, 2), 0);
     ck_assert_uint_eq(bench_read(&b, 0x6046, 2), 32767);
     ck_assert_uint_eq(bench_sdo_write(&b, 0x6046, 2, 32767, 4), 0);
+    ck_assert_uint_eq(bench_read(&b, 0x2001, 5), 5000);
 }
 END_TEST
 

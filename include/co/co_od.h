@@ -235,6 +235,12 @@ uint32_t co_od_param(const co_node_t *node, uint16_t index, uint8_t subindex, ui
 void co_od_set(co_node_t *node, const co_od_entry_t *entry, int64_t value);
 bool co_od_set_value(co_node_t *node, uint16_t index, uint8_t subindex, int64_t value);
 
+/* The value nearest `value` that the entry's limit check accepts: its LowLimit..HighLimit, else
+ * its type's range (0 too where the entry takes it below its LowLimit, CO_OD_ZERO_OK). What an
+ * application publishes or a view reports through it is always a value a client could write
+ * back. For the numeric types of 1..8 bytes; a REAL, a string or a domain is returned as is. */
+int64_t co_od_saturate(const co_od_entry_t *entry, int64_t value);
+
 /* Restores defaults of the entries with index in [first, last], node-id terms added. */
 void co_od_restore_defaults(co_node_t *node, uint16_t first, uint16_t last);
 

@@ -230,7 +230,9 @@ typedef struct drive_config {
     const co_node_options_code_t *node_options_code;
 } drive_config_t;
 
-/* 0, the co_node_init error, or DRIVE_INIT_BAD_FAULTS. Sends nothing; call drive_start next. */
+/* 0, the co_node_init error, or DRIVE_INIT_BAD_FAULTS. Sets every field of *drive (the caller's
+ * memory need not be zeroed): the channels are those of the dictionary's defaults. Sends nothing;
+ * call drive_start next. */
 int drive_init(drive_t *drive, const drive_config_t *config);
 /* Boot-up: Pre-operational, the power state machine in Switch on disabled. */
 void drive_start(drive_t *drive, co_time_t now);
@@ -293,7 +295,10 @@ const char *drive_state_name(const drive_t *drive);
  *   configuration parameter whose value the access level must allow (separate and I/O modes and
  *   control word bits only at the full level, nor a lower level while they are set: 0x06040043); a
  *   switch holds a fixed value or a switching source of the model (else 0x06090030).
- * A view is written through its parameter's own checks and read from it. */
+ * A view is written through its parameter's own checks and read from it, within its own limits
+ * (a ramp whose reduced fraction does not fit: the nearest fraction that does); what it reads,
+ * written back, keeps its parameter, and a ramp's terms written one after the other compose
+ * (docs/decisions.md, D-VIEW-LIMITS). */
 extern const co_od_hook_t drive_configuration_parameter;
 extern const co_od_hook_t drive_speed_limit;
 extern const co_od_hook_t drive_velocity_limits;

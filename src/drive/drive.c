@@ -5,6 +5,8 @@
  * by settling it; the files below change the state and say what changed, and call none of this. */
 #include "drive_internal.h"
 
+#include <string.h>
+
 /* The EMCY error register of a CAN bus condition where the profile gives none: 1001h bit 0
  * (generic, "error (1)" in the ATV312 table) and bit 4 (communication), CiA 301 table 48. */
 #define COMMUNICATION_ERROR_REGISTER (CO_ERR_REG_GENERIC | CO_ERR_REG_COMMUNICATION)
@@ -132,20 +134,19 @@ static void advance_auto_tune(drive_t *drive, co_time_t now)
 }
 
 /* 6042h (rpm) and the model's frequency reference (0.1 Hz) are one reference: a write to either
- * sets the other, converted through the nominal frequency and speed (clamped to 16 bits). */
+ * sets the other, converted through the nominal frequency and speed and held within the other's
+ * limits (6042h = 20000 rpm is LFR = 500.0 Hz, its HighLimit, on a 1500 rpm 50 Hz motor). */
 static void mirror_reference(drive_t *drive, const co_od_entry_t *entry)
 {
     const drive_entries_t *e = &drive->entries;
     if (e->frequency_reference == NULL)
         return;
     if (entry == e->frequency_reference) {
-        int32_t decihertz = (int16_t)drive_entry_value(drive, entry);
-        int32_t rpm = drive_signed_frequency_to_rpm(drive, decihertz);
-        drive_entry_set(drive, e->target_velocity, drive_clamp_int16(rpm));
+        int32_t decihertz = (int32_t)drive_entry_value(drive, entry);
+        drive_entry_set(drive, e->target_velocity, drive_signed_frequency_to_rpm(drive, decihertz));
     } else if (entry == e->target_velocity) {
-        int32_t rpm = (int16_t)drive_entry_value(drive, entry);
-        drive_entry_set(drive, e->frequency_reference,
-                        drive_clamp_int16(drive_signed_rpm_to_frequency(drive, rpm)));
+        int32_t rpm = (int32_t)drive_entry_value(drive, entry);
+        drive_entry_set(drive, e->frequency_reference, drive_signed_rpm_to_frequency(drive, rpm));
     }
 }
 
@@ -241,18 +242,18 @@ int drive_init(drive_t *drive, const drive_config_t *config)
     };
     if (!drive_faults_valid(config->profile))
         return DRIVE_INIT_BAD_FAULTS;
+    /* Every field from a known value, whatever the caller's memory held: no bus condition, fault
+     * cause, input or load, not forced local. */
+    memset(drive, 0, sizeof *drive);
     drive->profile = config->profile;
     int err = co_node_init(&drive->node, &node_config);
     if (err != 0)
         return err;
-    drive->local = false;
-    drive->load = 0;
-    drive->inputs = 0;
-    drive->command_from_network = true;
     drive_entries_find(drive);
     restart_drive(drive, 0);
-    drive->bus_event_count = 0;
-    drive->fault_causes = 0;
+    /* The channels of the dictionary's defaults, computed against the network commanding. */
+    drive->command_from_network = true;
+    drive_channels_update(drive);
     return 0;
 }
 
@@ -304,7 +305,7 @@ void drive_bus_event(drive_t *drive, uint16_t emcy_code, bool active)
     remember_bus_event(drive, emcy_code, active);
     if (active)
         co_emcy_raise(&drive->node, emcy_code, bus_error_register(drive), NULL);
-    else
+    else if (!drive_emcy_code_in_use(drive, emcy_code))
         co_emcy_clear(&drive->node, emcy_code);
 }
 

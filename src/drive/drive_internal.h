@@ -25,7 +25,8 @@ uint32_t drive_param_value(const drive_t *drive, drive_param_t param);
 bool drive_is_param(const co_od_entry_t *entry, drive_param_t param);
 /* Once at init: the entries the drive reads and writes whenever it settles (drive_entries_t). */
 void drive_entries_find(drive_t *drive);
-/* An entry found at init (NULL: reads as 0, a write does nothing). */
+/* An entry found at init (NULL: reads as 0, a write does nothing). A value set is held within
+ * the entry's limits. */
 int64_t drive_entry_value(const drive_t *drive, const co_od_entry_t *entry);
 void drive_entry_set(drive_t *drive, const co_od_entry_t *entry, int64_t value);
 /* Parameter `param` of the profile through its entry found at init, with no search. */
@@ -36,7 +37,6 @@ uint32_t drive_rpm_to_frequency(const drive_t *drive, uint32_t rpm);
 /* The same with a sign (the direction of rotation). */
 int32_t drive_signed_rpm_to_frequency(const drive_t *drive, int32_t rpm);
 int32_t drive_signed_frequency_to_rpm(const drive_t *drive, int32_t decihertz);
-int16_t drive_clamp_int16(int32_t value);
 
 /* At the drive (local_control.c). Local control: forced, or a command channel other than the
  * network (drive.h). Each event below brings the motor to `now` and changes the state; the caller
@@ -97,6 +97,10 @@ bool drive_fault_cause_ends(drive_t *drive, uint8_t index, co_time_t now);
 bool drive_faults_resettable(const drive_t *drive);
 /* A fault reset was accepted: every active fault ends (its EMCY cleared), 603Fh = 0. */
 void drive_faults_acknowledge(drive_t *drive);
+/* An active fault or a bus condition still present reports EMCY `code`. The EMCY producer keeps
+ * one active error per code (CiA 301), however many causes share it: the code is cleared only
+ * when none does. */
+bool drive_emcy_code_in_use(const drive_t *drive, uint16_t code);
 /* Reset node: the drive forgets its faults (the EMCY producer forgets their errors), not the
  * causes still present. */
 void drive_faults_restart(drive_t *drive);

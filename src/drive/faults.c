@@ -119,10 +119,28 @@ bool drive_faults_resettable(const drive_t *drive)
     return true;
 }
 
+bool drive_emcy_code_in_use(const drive_t *drive, uint16_t code)
+{
+    const drive_fault_table_t *table = drive->profile->faults;
+    for (uint8_t i = 0; i < table->count; i++) {
+        if ((drive->faults_active & fault_bit(i)) && table->faults[i].emcy_code == code)
+            return true;
+    }
+    for (uint8_t i = 0; i < drive->bus_event_count; i++) {
+        if (drive->bus_events[i] == code)
+            return true;
+    }
+    return false;
+}
+
+/* The fault's EMCY code stays an active error while another fault or a bus condition reports it
+ * (the Altivars' CFF and CFI are both 6300h). */
 static void forget_fault(drive_t *drive, uint8_t index)
 {
+    uint16_t code = fault_def(drive, index)->emcy_code;
     drive->faults_active &= ~fault_bit(index);
-    co_emcy_clear(&drive->node, fault_def(drive, index)->emcy_code);
+    if (!drive_emcy_code_in_use(drive, code))
+        co_emcy_clear(&drive->node, code);
 }
 
 void drive_faults_acknowledge(drive_t *drive)

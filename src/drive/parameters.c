@@ -67,43 +67,48 @@ static drive_param_t limit_of(const drive_t *drive, const co_od_entry_t *entry)
     return entry->subindex == 1 ? drive->profile->low_speed : drive->profile->high_speed;
 }
 
+/* Held within 6046h's limits: a speed beyond its HighLimit (500.0 Hz at 32767 rpm per 10.0 Hz,
+ * motor data no motor has) reads as the HighLimit. */
+static int64_t velocity_limit_reported(const drive_t *drive, const co_od_entry_t *entry)
+{
+    uint32_t decihertz = drive_param_value(drive, limit_of(drive, entry));
+    return co_od_saturate(entry, drive_frequency_to_rpm(drive, decihertz));
+}
+
 static uint32_t velocity_limits_read(co_node_t *node, const co_od_entry_t *entry)
 {
-    drive_t *drive = drive_of(node);
-    uint32_t decihertz = drive_param_value(drive, limit_of(drive, entry));
-    co_od_set(node, entry, drive_frequency_to_rpm(drive, decihertz));
+    co_od_set(node, entry, velocity_limit_reported(drive_of(node), entry));
     return CO_SDO_OK;
 }
 
+/* The speed the view reads, written back, leaves its parameter as it is: rpm converted back may
+ * land on another 0.1 Hz (a motor of less than 1 rpm per 0.1 Hz), and a speed read as the
+ * HighLimit stands for any beyond it. */
 static uint32_t velocity_limits_write(co_node_t *node, const co_od_entry_t *entry,
                                       const uint8_t *data, size_t len, co_od_origin_t origin)
 {
     (void)origin;
     drive_t *drive = drive_of(node);
-    uint32_t decihertz = drive_rpm_to_frequency(drive, written_value(data, len));
-    return write_param(node, limit_of(drive, entry), decihertz);
+    uint32_t rpm = written_value(data, len);
+    if (rpm == velocity_limit_reported(drive, entry))
+        return CO_OD_HANDLED;
+    return write_param(node, limit_of(drive, entry), drive_rpm_to_frequency(drive, rpm));
 }
 
 const co_od_hook_t drive_velocity_limits = {.write = velocity_limits_write,
                                             .read = velocity_limits_read};
 
 /* 6048h is the acceleration and 6049h the deceleration: delta speed / delta time = nominal speed /
- * ramp time, kept as the reduced fraction (nominal speed x 10) / ramp so that any ramp time is
- * represented exactly. */
+ * ramp time. The view reads the pair last written or read while it still stands for the ramp,
+ * else the reduced fraction (nominal speed x 10) / ramp, which represents any ramp time exactly,
+ * or, when its terms exceed the objects' HighLimits (NSP 4131 rpm, ACC 7.7 s: 41310 / 77, delta
+ * speed at most 32767), the fraction within them nearest to it, which writes back to the same
+ * ramp time while the rate is at most the HighLimit of delta speed per second (32726 / 61;
+ * docs/decisions.md, D-VIEW-LIMITS). */
 static drive_param_t ramp_of(const drive_t *drive, const co_od_entry_t *entry)
 {
     return entry->index == CIA402_IDX_VELOCITY_ACCELERATION ? drive->profile->acceleration
                                                             : drive->profile->deceleration;
-}
-
-static uint32_t greatest_common_divisor(uint32_t a, uint32_t b)
-{
-    while (b != 0) {
-        uint32_t r = a % b;
-        a = b;
-        b = r;
-    }
-    return a;
 }
 
 typedef struct ramp_rate {
@@ -111,44 +116,137 @@ typedef struct ramp_rate {
     uint32_t delta_time;  /* s */
 } ramp_rate_t;
 
-static ramp_rate_t ramp_rate_of(const drive_t *drive, drive_param_t ramp)
+/* The distance of speed / time from the rate, times the rate's time (the same factor for every
+ * fraction compared with it). */
+static uint64_t rate_error(ramp_rate_t rate, uint64_t speed, uint64_t time)
 {
-    uint32_t speed = 10u * drive_param_value(drive, drive->profile->nominal_speed);
-    uint32_t time = drive_param_value(drive, ramp);
-    uint32_t divisor = greatest_common_divisor(speed, time);
-    if (divisor == 0)
-        divisor = 1;
-    return (ramp_rate_t){speed / divisor, time / divisor};
+    uint64_t a = speed * rate.delta_time, b = time * rate.delta_speed;
+    return a > b ? a - b : b - a;
+}
+
+/* The fraction of positive terms of at most `max` nearest rate.delta_speed / rate.delta_time:
+ * the fraction itself in lowest terms when they fit, else its best rational approximation. The
+ * convergents h/k of its continued fraction, each in lowest terms and nearer than any fraction of
+ * smaller terms, are followed while they fit; past the last one, the semiconvergent
+ * (h0 + m h1) / (k0 + m k1) with the largest m that fits may be nearer. A zero time (too steep
+ * for any delta time) gives max.delta_speed / 1, a rate below 1 / max.delta_time that rate. */
+static ramp_rate_t nearest_rate(ramp_rate_t rate, ramp_rate_t max)
+{
+    uint64_t h0 = 0, k0 = 1, h1 = 1, k1 = 0; /* the convergents before the first: 0/1, 1/0 */
+    uint64_t n = rate.delta_speed, d = rate.delta_time;
+    while (d != 0) {
+        uint64_t a = n / d;
+        if (a * h1 + h0 > max.delta_speed || a * k1 + k0 > max.delta_time) {
+            uint64_t m = h1 != 0 ? (max.delta_speed - h0) / h1 : UINT64_MAX;
+            if (k1 != 0 && (max.delta_time - k0) / k1 < m)
+                m = (max.delta_time - k0) / k1;
+            uint64_t hm = m * h1 + h0, km = m * k1 + k0;
+            if (k1 == 0 ||
+                (m != 0 && rate_error(rate, hm, km) * k1 < rate_error(rate, h1, k1) * km))
+                h1 = hm, k1 = km;
+            break;
+        }
+        uint64_t h2 = a * h1 + h0, k2 = a * k1 + k0;
+        h0 = h1, k0 = k1, h1 = h2, k1 = k2;
+        uint64_t r = n % d;
+        n = d, d = r;
+    }
+    if (k1 == 0)
+        return (ramp_rate_t){max.delta_speed, 1};
+    if (h1 == 0)
+        return (ramp_rate_t){1, max.delta_time};
+    return (ramp_rate_t){(uint32_t)h1, (uint32_t)k1};
+}
+
+/* The view's two entries: delta speed (sub-index 1) and delta time (sub-index 2). */
+typedef struct rate_view {
+    const co_od_entry_t *speed, *time;
+} rate_view_t;
+
+static rate_view_t rate_view(const drive_t *drive, uint16_t index)
+{
+    return (rate_view_t){co_od_find(drive->profile->od, index, 1),
+                         co_od_find(drive->profile->od, index, 2)};
+}
+
+/* The highest value of a term (its HighLimit, else its type's). */
+static uint32_t term_max(const co_od_entry_t *term)
+{
+    return term != NULL ? (uint32_t)co_od_saturate(term, UINT32_MAX) : UINT32_MAX;
+}
+
+static bool term_within(const co_od_entry_t *term, uint32_t value)
+{
+    return value != 0 && (term == NULL || co_od_saturate(term, value) == value);
+}
+
+/* The pair the view's entries hold: the last one read or written. */
+static ramp_rate_t kept_rate(const drive_t *drive, rate_view_t view)
+{
+    return (ramp_rate_t){(uint32_t)drive_entry_value(drive, view.speed),
+                         (uint32_t)drive_entry_value(drive, view.time)};
+}
+
+static void keep_rate(drive_t *drive, rate_view_t view, ramp_rate_t rate)
+{
+    drive_entry_set(drive, view.speed, rate.delta_speed);
+    drive_entry_set(drive, view.time, rate.delta_time);
+}
+
+/* The ramp time (0.1 s) a rate stands for: delta time x 10 x nominal speed / delta speed,
+ * rounded. */
+static uint64_t ramp_time_of(const drive_t *drive, ramp_rate_t rate)
+{
+    uint64_t nominal = drive_param_value(drive, drive->profile->nominal_speed);
+    return ((uint64_t)rate.delta_time * 10u * nominal + rate.delta_speed / 2) / rate.delta_speed;
+}
+
+/* What the view reads: the pair it holds while that pair still stands for the ramp (written
+ * back, it gives the ramp time the drive has), else the nearest fraction to the ramp's rate. So a
+ * pair written term by term composes, whatever ramp the first term gave on the way (a master's
+ * 700, then 3, from a ramp of 500 / 1: 700 / 3; an image restored record by record), and a
+ * master reads back the pair it wrote. */
+static ramp_rate_t ramp_rate_of(const drive_t *drive, const co_od_entry_t *entry)
+{
+    uint32_t ramp = drive_param_value(drive, ramp_of(drive, entry));
+    rate_view_t view = rate_view(drive, entry->index);
+    ramp_rate_t kept = kept_rate(drive, view);
+    if (term_within(view.speed, kept.delta_speed) && term_within(view.time, kept.delta_time) &&
+        ramp_time_of(drive, kept) == ramp)
+        return kept;
+    ramp_rate_t rate = {10u * drive_param_value(drive, drive->profile->nominal_speed), ramp};
+    return nearest_rate(rate, (ramp_rate_t){term_max(view.speed), term_max(view.time)});
 }
 
 static uint32_t ramp_rate_read(co_node_t *node, const co_od_entry_t *entry)
 {
     drive_t *drive = drive_of(node);
-    ramp_rate_t rate = ramp_rate_of(drive, ramp_of(drive, entry));
-    co_od_set(node, entry, entry->subindex == 1 ? rate.delta_speed : rate.delta_time);
+    keep_rate(drive, rate_view(drive, entry->index), ramp_rate_of(drive, entry));
     return CO_SDO_OK;
 }
 
+/* A term the view reads, written back, leaves the ramp as it is (a rate too steep for the
+ * view's terms reads as their limits, which stand for any steeper one). */
 static uint32_t ramp_rate_write(co_node_t *node, const co_od_entry_t *entry, const uint8_t *data,
                                 size_t len, co_od_origin_t origin)
 {
     (void)origin;
     drive_t *drive = drive_of(node);
-    drive_param_t ramp = ramp_of(drive, entry);
-    ramp_rate_t rate = ramp_rate_of(drive, ramp);
+    rate_view_t view = rate_view(drive, entry->index);
+    ramp_rate_t rate = ramp_rate_of(drive, entry);
+    uint32_t *term = entry->subindex == 1 ? &rate.delta_speed : &rate.delta_time;
     uint32_t value = written_value(data, len);
-    if (entry->subindex == 1)
-        rate.delta_speed = value;
-    else
-        rate.delta_time = value;
+    uint32_t abort = CO_OD_HANDLED;
     /* A zero delta speed would be an endless ramp; the dictionary's low limit should refuse it. */
-    if (rate.delta_speed == 0)
+    if (entry->subindex == 1 && value == 0)
         return CO_SDO_ABORT_VALUE_LOW;
-    uint64_t nominal = drive_param_value(drive, drive->profile->nominal_speed);
-    /* ramp (0.1 s) = delta time x 10 x nominal speed / delta speed, rounded. */
-    uint64_t time =
-        ((uint64_t)rate.delta_time * 10u * nominal + rate.delta_speed / 2) / rate.delta_speed;
-    return write_param(node, ramp, time);
+    if (value != *term) {
+        *term = value;
+        abort = write_param(node, ramp_of(drive, entry), ramp_time_of(drive, rate));
+    }
+    if (abort == CO_OD_HANDLED)
+        keep_rate(drive, view, rate);
+    return abort;
 }
 
 const co_od_hook_t drive_ramp_rate = {.write = ramp_rate_write, .read = ramp_rate_read};

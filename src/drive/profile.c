@@ -28,10 +28,12 @@ int64_t drive_entry_value(const drive_t *drive, const co_od_entry_t *entry)
     return entry != NULL ? co_od_get(&drive->node, entry) : 0;
 }
 
+/* Held within the entry's limits (co_od_saturate), so that whatever the drive publishes a client
+ * can write back: 6044h stays at 32767 rpm above it, rather than wrapping round. */
 void drive_entry_set(drive_t *drive, const co_od_entry_t *entry, int64_t value)
 {
     if (entry != NULL)
-        co_od_set(&drive->node, entry, value);
+        co_od_set(&drive->node, entry, co_od_saturate(entry, value));
 }
 
 static const co_od_entry_t *param_entry(const drive_t *drive, drive_param_t param)
@@ -107,9 +109,4 @@ int32_t drive_signed_frequency_to_rpm(const drive_t *drive, int32_t decihertz)
     uint32_t magnitude = (uint32_t)(decihertz < 0 ? -decihertz : decihertz);
     int32_t rpm = (int32_t)drive_frequency_to_rpm(drive, magnitude);
     return decihertz < 0 ? -rpm : rpm;
-}
-
-int16_t drive_clamp_int16(int32_t value)
-{
-    return (int16_t)(value > INT16_MAX ? INT16_MAX : (value < INT16_MIN ? INT16_MIN : value));
 }

@@ -106,6 +106,42 @@ START_TEST(zero_allowed_below_low_limit)
 }
 END_TEST
 
+/* co_od_saturate: the nearest value the write checks take, by limits or by type. */
+START_TEST(saturate_to_limits_or_type_range)
+{
+    static const co_od_limits_t i16_limits = {(uint64_t)-100, 100}, u16_limits = {100, 5000};
+    co_od_entry_t e = {.type = CO_DT_INTEGER16, .size = 2, .limits = &i16_limits};
+    ck_assert_int_eq(co_od_saturate(&e, -101), -100);
+    ck_assert_int_eq(co_od_saturate(&e, 42), 42);
+    ck_assert_int_eq(co_od_saturate(&e, 1000), 100);
+    e = (co_od_entry_t){.type = CO_DT_UNSIGNED16, .size = 2, .limits = &u16_limits};
+    ck_assert_int_eq(co_od_saturate(&e, -1), 100);
+    ck_assert_int_eq(co_od_saturate(&e, 0), 100);
+    ck_assert_int_eq(co_od_saturate(&e, 41310), 5000);
+    e.flags = CO_OD_ZERO_OK;
+    ck_assert_int_eq(co_od_saturate(&e, 0), 0);
+    ck_assert_int_eq(co_od_saturate(&e, 1), 100);
+    e = (co_od_entry_t){.type = CO_DT_INTEGER8, .size = 1};
+    ck_assert_int_eq(co_od_saturate(&e, -129), -128);
+    ck_assert_int_eq(co_od_saturate(&e, 128), 127);
+    e = (co_od_entry_t){.type = CO_DT_INTEGER16, .size = 2};
+    ck_assert_int_eq(co_od_saturate(&e, 1638350), 32767);
+    ck_assert_int_eq(co_od_saturate(&e, -1638350), -32768);
+    e = (co_od_entry_t){.type = CO_DT_UNSIGNED32, .size = 4};
+    ck_assert_int_eq(co_od_saturate(&e, -5), 0);
+    ck_assert_int_eq(co_od_saturate(&e, INT64_C(0x100000000)), 0xFFFFFFFF);
+    e = (co_od_entry_t){.type = CO_DT_INTEGER64, .size = 8};
+    ck_assert_int_eq(co_od_saturate(&e, INT64_MIN), INT64_MIN);
+    e = (co_od_entry_t){.type = CO_DT_UNSIGNED64, .size = 8};
+    ck_assert_int_eq(co_od_saturate(&e, INT64_MAX), INT64_MAX);
+    ck_assert_int_eq(co_od_saturate(&e, -1), 0);
+    e = (co_od_entry_t){.type = CO_DT_BOOLEAN, .size = 1};
+    ck_assert_int_eq(co_od_saturate(&e, 2), 1);
+    e = (co_od_entry_t){.type = CO_DT_VISIBLE_STRING, .size = 8};
+    ck_assert_int_eq(co_od_saturate(&e, -7), -7);
+}
+END_TEST
+
 START_TEST(length_and_access_checks)
 {
     test_node_start(&t, 4, NULL, NULL);
@@ -162,6 +198,7 @@ int main(void)
     tcase_add_test(tc, param_reads_value_or_absent_default);
     tcase_add_test(tc, signed_values_and_limits);
     tcase_add_test(tc, zero_allowed_below_low_limit);
+    tcase_add_test(tc, saturate_to_limits_or_type_range);
     tcase_add_test(tc, length_and_access_checks);
     tcase_add_test(tc, strings_store_their_length);
     tcase_add_test(tc, hook_refuses_and_counts);

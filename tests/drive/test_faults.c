@@ -164,6 +164,31 @@ START_TEST(latched_code_follows_remaining_fault)
 }
 END_TEST
 
+/* A bus condition and a fault may report one EMCY code (the runtime reports any code it is given):
+ * the code is one active error for both, cleared when the last of them ends, whichever it is. */
+START_TEST(bus_condition_and_fault_share_a_code)
+{
+    bench_t b;
+    bench_start(&b);
+    drive_bus_event(&b.drive, 0x8130, true);
+    bench_expect(&b, "084#3081110000000000");
+    inject(&b, FAULT_NET);
+    bench_expect_none(&b);
+    drive_bus_event(&b.drive, 0x8130, false);
+    bench_expect_none(&b);
+    ck_assert_uint_eq(bench_read(&b, 0x1001, 0), 0x11);
+    drive_bus_event(&b.drive, 0x8130, true);
+    remove_cause(&b, FAULT_NET);
+    ck_assert_uint_eq(bench_command(&b, 0x0080), 0x0640);
+    bench_expect_none(&b);
+    ck_assert_uint_eq(bench_read(&b, 0x1001, 0), 0x11);
+    drive_bus_event(&b.drive, 0x8130, false);
+    bench_expect(&b, "084#0000000000000000");
+    bench_expect_none(&b);
+    ck_assert_uint_eq(bench_read(&b, 0x1001, 0), 0);
+}
+END_TEST
+
 /* The communication loss is the table's entry, wherever it is. */
 START_TEST(communication_loss_is_the_tables_entry)
 {
@@ -352,6 +377,7 @@ int main(void)
     tcase_add_test(tc, power_cycle_fault_ends_with_reset_node_only);
     tcase_add_test(tc, second_fault_while_in_fault);
     tcase_add_test(tc, latched_code_follows_remaining_fault);
+    tcase_add_test(tc, bus_condition_and_fault_share_a_code);
     tcase_add_test(tc, communication_loss_is_the_tables_entry);
     tcase_add_test(tc, ramp_reaction_stops_on_the_deceleration_ramp_then_faults);
     tcase_add_test(tc, fast_reaction_stops_on_the_fast_ramp_then_faults);

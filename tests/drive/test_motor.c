@@ -210,6 +210,26 @@ START_TEST(acceleration_objects_are_views_of_the_ramps)
 }
 END_TEST
 
+/* A pair written term by term is the ramp the master meant, whatever ramp the first term gave on
+ * the way: 700, then 3, from 500 / 1 is 700 rpm in 3 s, 6.4 s to the nominal speed (not 5000 / 7,
+ * the fraction of the 2.1 s the first term gave, then 3: 0.9 s). The view reads back the pair
+ * written while it stands for the ramp, the ramp's own fraction once the ramp is written. */
+START_TEST(acceleration_pair_written_term_by_term)
+{
+    bench_t b;
+    bench_start(&b);
+    ck_assert_uint_eq(bench_sdo_write(&b, 0x6048, 1, 700, 4), 0);
+    ck_assert_uint_eq(bench_read(&b, PARAMS, ACC), 21);
+    ck_assert_uint_eq(bench_sdo_write(&b, 0x6048, 2, 3, 2), 0);
+    ck_assert_uint_eq(bench_read(&b, PARAMS, ACC), 64);
+    ck_assert_uint_eq(bench_read(&b, 0x6048, 1), 700);
+    ck_assert_uint_eq(bench_read(&b, 0x6048, 2), 3);
+    ck_assert_uint_eq(bench_sdo_write(&b, PARAMS, ACC, 30, 2), 0);
+    ck_assert_uint_eq(bench_read(&b, 0x6048, 1), 500);
+    ck_assert_uint_eq(bench_read(&b, 0x6048, 2), 1);
+}
+END_TEST
+
 /* Motor data (nominal speed, frequency, current) change only with the motor stopped, and send the
  * drive back to Switch on disabled; adjustment parameters (ACC) change any time. */
 START_TEST(configuration_refused_while_running)
@@ -273,6 +293,7 @@ int main(void)
     tcase_add_test(tc, speed_limits);
     tcase_add_test(tc, speed_limit_writes_are_checked);
     tcase_add_test(tc, acceleration_objects_are_views_of_the_ramps);
+    tcase_add_test(tc, acceleration_pair_written_term_by_term);
     tcase_add_test(tc, configuration_refused_while_running);
     tcase_add_test(tc, current_and_torque_are_plausible);
     suite_add_tcase(s, tc);

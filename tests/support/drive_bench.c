@@ -16,7 +16,14 @@ static void bench_send(void *user, const co_frame_t *frame)
 
 void bench_start_model(bench_t *b, const drive_profile_t *profile, const co_storage_t *storage)
 {
+    bench_start_model_over(b, profile, storage, 0);
+}
+
+void bench_start_model_over(bench_t *b, const drive_profile_t *profile, const co_storage_t *storage,
+                            uint8_t fill)
+{
     memset(b, 0, sizeof(*b));
+    memset(&b->drive, fill, sizeof b->drive);
     ck_assert_uint_le(profile->od->data_size, sizeof b->od_data);
     drive_config_t config = {
         .profile = profile,

@@ -27,6 +27,10 @@ typedef struct bench {
 /* Boots node 4 of the model at time 0, with a storage backend (1010h / 1011h) or NULL, and
  * consumes its boot-up frame (8 bytes for a model of CO_NODE_PAD_DLC8). */
 void bench_start_model(bench_t *b, const drive_profile_t *profile, const co_storage_t *storage);
+/* The same with every byte of the drive_t `fill` before drive_init (bench_start_model: 0), as the
+ * memory of a caller that does not zero it. */
+void bench_start_model_over(bench_t *b, const drive_profile_t *profile, const co_storage_t *storage,
+                            uint8_t fill);
 /* Delivers a frame now, then runs drive_process. */
 void bench_rx(bench_t *b, const char *text);
 /* Advances time by `us`, processing at every deadline on the way and at the end. */

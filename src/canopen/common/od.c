@@ -255,6 +255,36 @@ static uint32_t check_limits(const co_od_entry_t *e, size_t size, const uint8_t 
     return CO_SDO_OK;
 }
 
+/* The values of the entry's type of `size` bytes (1..8), as co_od_limits_t holds them. */
+static co_od_limits_t type_range(uint8_t type, size_t size)
+{
+    if (type == CO_DT_BOOLEAN)
+        return (co_od_limits_t){0, 1};
+    unsigned bits = (unsigned)size * 8u;
+    if (type_is_signed(type)) {
+        uint64_t high = (UINT64_C(1) << (bits - 1u)) - 1u;
+        return (co_od_limits_t){~high, high};
+    }
+    return (co_od_limits_t){0, bits == 64u ? UINT64_MAX : (UINT64_C(1) << bits) - 1u};
+}
+
+int64_t co_od_saturate(const co_od_entry_t *entry, int64_t value)
+{
+    size_t size = co_od_type_size(entry->type);
+    if (size == 0 || entry->type == CO_DT_REAL32 || entry->type == CO_DT_REAL64)
+        return value;
+    if (value == 0 && (entry->flags & CO_OD_ZERO_OK))
+        return 0;
+    co_od_limits_t range = entry->limits != NULL ? *entry->limits : type_range(entry->type, size);
+    if (type_is_signed(entry->type)) {
+        int64_t low = (int64_t)range.low, high = (int64_t)range.high;
+        return value < low ? low : (value > high ? high : value);
+    }
+    if (value < 0 || (uint64_t)value < range.low)
+        return (int64_t)range.low;
+    return (uint64_t)value > range.high ? (int64_t)range.high : value;
+}
+
 uint32_t co_od_write(co_node_t *node, uint16_t index, uint8_t subindex, const uint8_t *data,
                      size_t len, co_od_origin_t origin)
 {

@@ -140,6 +140,53 @@ START_TEST(overcurrent_needs_power_cycle)
 }
 END_TEST
 
+/* CFF and CFI share EMCY 6300h: one active error for both (CiA 301 keeps one per code), so CFI
+ * sends no EMCY of its own, and the code stays active until the last of them ends. */
+START_TEST(shared_emcy_code_ends_with_its_last_fault)
+{
+    bench_t b;
+    bench_start(&b);
+    inject(&b, "CFF");
+    bench_expect(&b, "084#0063010000000000");
+    inject(&b, "CFI");
+    bench_expect_none(&b);
+    remove_cause(&b, "CFF");
+    bench_expect_none(&b);
+    ck_assert_uint_eq(bench_read(&b, 0x6041, 0), 0x0608);
+    ck_assert_uint_eq(bench_read(&b, 0x603F, 0), 0x6300);
+    ck_assert_uint_eq(bench_read(&b, 0x1001, 0), 0x01);
+    ck_assert_str_eq(drive_fault_latched(&b.drive)->code, "CFI");
+    remove_cause(&b, "CFI");
+    bench_expect(&b, "084#0000000000000000");
+    bench_expect_none(&b);
+    ck_assert_uint_eq(bench_read(&b, 0x6041, 0), 0x0640);
+    ck_assert_uint_eq(bench_read(&b, 0x603F, 0), 0);
+    ck_assert_uint_eq(bench_read(&b, 0x1001, 0), 0);
+}
+END_TEST
+
+/* ObF and OPF share 3310h, reset by command: one reset ends both, with one error reset EMCY. */
+START_TEST(shared_emcy_code_reset_together)
+{
+    bench_t b;
+    bench_start(&b);
+    inject(&b, "ObF");
+    inject(&b, "OPF");
+    bench_expect(&b, "084#1033050000000000");
+    bench_expect_none(&b);
+    remove_cause(&b, "ObF");
+    ck_assert_uint_eq(bench_command(&b, 0x0080), 0x0608);
+    bench_expect_none(&b);
+    ck_assert_uint_eq(bench_read(&b, 0x1001, 0), 0x05);
+    remove_cause(&b, "OPF");
+    ck_assert_uint_eq(bench_command(&b, 0x0000), 0x0608);
+    ck_assert_uint_eq(bench_command(&b, 0x0080), 0x0640);
+    bench_expect(&b, "084#0000000000000000");
+    bench_expect_none(&b);
+    ck_assert_uint_eq(bench_read(&b, 0x1001, 0), 0);
+}
+END_TEST
+
 /* Heartbeat consumer 100 ms on node 1, running at 1500 rpm, then the producer stops: the loss
  * comes 100 ms after its last heartbeat. */
 static void lose_heartbeat(bench_t *b)
@@ -294,6 +341,8 @@ int main(void)
     tcase_add_test(tc, undervoltage_resets_itself);
     tcase_add_test(tc, overheating_needs_cause_gone_then_reset);
     tcase_add_test(tc, overcurrent_needs_power_cycle);
+    tcase_add_test(tc, shared_emcy_code_ends_with_its_last_fault);
+    tcase_add_test(tc, shared_emcy_code_reset_together);
     tcase_add_test(tc, communication_loss_faults_by_default);
     tcase_add_test(tc, communication_loss_ignored_with_col_0);
     tcase_add_test(tc, communication_loss_ramp_stop_with_col_2);

@@ -187,6 +187,20 @@ START_TEST(rfr_and_lfr_in_decihertz)
 }
 END_TEST
 
+/* 6042h beyond LFR's limits (-5000..5000): LFR reads its limit and takes it back (issue 22). */
+START_TEST(lfr_stays_within_its_limits)
+{
+    bench_t b;
+    bench_start(&b);
+    ck_assert_uint_eq(bench_sdo_write(&b, 0x6042, 0, 20000, 2), 0);
+    ck_assert_uint_eq(read_adl(&b, LFR), 5000);
+    ck_assert_uint_eq(bench_sdo_write(&b, 0x6042, 0, (uint16_t)-20000, 2), 0);
+    ck_assert_int_eq((int16_t)read_adl(&b, LFR), -5000);
+    ck_assert_uint_eq(write_adl(&b, LFR, (uint16_t)-5000), 0);
+    ck_assert_int_eq((int16_t)bench_read(&b, 0x6042, 0), -15000);
+}
+END_TEST
+
 /* tUn (2042:09): "requires an injection of current. The drive must therefore be in this state"
  * (Operation enabled); YES (1) reads DONE (2) after the simulated tune. */
 START_TEST(tun_in_operation_enabled)
@@ -216,6 +230,7 @@ int main(void)
     tcase_add_test(tc, reference_channel_ai1_runs_at_low_speed);
     tcase_add_test(tc, stop_type_of_cmd_bit_12);
     tcase_add_test(tc, rfr_and_lfr_in_decihertz);
+    tcase_add_test(tc, lfr_stays_within_its_limits);
     tcase_add_test(tc, tun_in_operation_enabled);
     suite_add_tcase(s, tc);
     return check_run_suite(s);

@@ -138,6 +138,76 @@ START_TEST(ramps_are_acc_and_dec)
 }
 END_TEST
 
+/* NSP 4131 rpm, ACC and DEC 7.7 s: the rate 41310 / 77 rpm/s has no terms within delta speed's
+ * HighLimit 32767; 6048h and 6049h read as the nearest fraction whose terms are, 32726 / 61
+ * (536.4918 rpm/s for 536.4935), and take it back with the ramp unchanged (issue 22;
+ * docs/decisions.md, D-VIEW-LIMITS). */
+START_TEST(ramp_views_stay_within_their_limits)
+{
+    bench_t b;
+    bench_start(&b);
+    ck_assert_uint_eq(bench_sdo_write(&b, 0x2042, 5, 4131, 2), 0);
+    ck_assert_uint_eq(bench_sdo_write(&b, 0x203C, 2, 77, 2), 0);
+    ck_assert_uint_eq(bench_sdo_write(&b, 0x203C, 3, 77, 2), 0);
+    for (uint16_t index = 0x6048; index <= 0x6049; index++) {
+        uint32_t speed = bench_read(&b, index, 1), time = bench_read(&b, index, 2);
+        ck_assert_uint_eq(speed, 32726);
+        ck_assert_uint_eq(time, 61);
+        ck_assert_uint_eq(bench_sdo_write(&b, index, 1, speed, 4), 0);
+        ck_assert_uint_eq(bench_sdo_write(&b, index, 2, time, 2), 0);
+    }
+    ck_assert_uint_eq(bench_read(&b, 0x203C, 2), 77);
+    ck_assert_uint_eq(bench_read(&b, 0x203C, 3), 77);
+    /* 0.1 s to 32767 rpm is steeper than any pair of terms: read as 32767 / 1, the steepest,
+     * which written back leaves ACC at 0.1 s (as a ramp, 32767 / 1 is 1.0 s). */
+    ck_assert_uint_eq(bench_sdo_write(&b, 0x2042, 5, 32767, 2), 0);
+    ck_assert_uint_eq(bench_sdo_write(&b, 0x203C, 2, 1, 2), 0);
+    ck_assert_uint_eq(bench_read(&b, 0x6048, 1), 32767);
+    ck_assert_uint_eq(bench_read(&b, 0x6048, 2), 1);
+    ck_assert_uint_eq(bench_sdo_write(&b, 0x6048, 1, 32767, 4), 0);
+    ck_assert_uint_eq(bench_sdo_write(&b, 0x6048, 2, 1, 2), 0);
+    ck_assert_uint_eq(bench_read(&b, 0x203C, 2), 1);
+}
+END_TEST
+
+/* Motor data no motor has (32767 rpm at 10.0 Hz) put HSP 500.0 Hz at 1638350 rpm: 6046h:02
+ * reads its HighLimit, 32767, and takes it back leaving HSP as it is (32767 rpm converted back
+ * would be 10.0 Hz). */
+START_TEST(speed_limit_view_stays_within_its_limits)
+{
+    bench_t b;
+    bench_start(&b);
+    ck_assert_uint_eq(bench_sdo_write(&b, 0x2042, 5, 32767, 2), 0);
+    ck_assert_uint_eq(bench_sdo_write(&b, 0x2042, 3, 100, 2), 0);
+    ck_assert_uint_eq(bench_sdo_write(&b, 0x2001, 5, 5000, 2), 0);
+    ck_assert_uint_eq(bench_read(&b, 0x6046, 2), 32767);
+    ck_assert_uint_eq(bench_sdo_write(&b, 0x6046, 2, 32767, 4), 0);
+    ck_assert_uint_eq(bench_read(&b, 0x2001, 5), 5000);
+}
+END_TEST
+
+/* The same motor data with LSP = HSP = 500.0 Hz: the motor turns at 1638350 rpm, beyond what
+ * 6043h and 6044h (INTEGER16) hold; they read 32767, not the low 16 bits (-50), and RFR the
+ * output frequency, 5000. */
+START_TEST(speeds_beyond_16_bits_read_their_limit)
+{
+    bench_t b;
+    bench_start(&b);
+    ck_assert_uint_eq(bench_sdo_write(&b, 0x2042, 5, 32767, 2), 0);
+    ck_assert_uint_eq(bench_sdo_write(&b, 0x2042, 3, 100, 2), 0);
+    ck_assert_uint_eq(bench_sdo_write(&b, 0x2001, 5, 5000, 2), 0);
+    ck_assert_uint_eq(bench_sdo_write(&b, 0x2001, 6, 5000, 2), 0);
+    ck_assert_uint_eq(bench_sdo_write(&b, 0x203C, 2, 1, 2), 0);
+    bench_command(&b, 0x0006);
+    bench_command(&b, 0x000F);
+    bench_advance(&b, 5000000);
+    ck_assert_int_eq(drive_motor_rpm(&b.drive.motor), 1638350);
+    ck_assert_int_eq(bench_speed(&b), 32767);
+    ck_assert_int_eq((int16_t)bench_read(&b, 0x6043, 0), 32767);
+    ck_assert_uint_eq(bench_read(&b, 0x2002, 3), 5000);
+}
+END_TEST
+
 /* FRS, NCR and NSP (2042h:03-05) are the configuration parameters: refused while running. */
 START_TEST(motor_data_are_configuration_parameters)
 {
@@ -180,6 +250,9 @@ int main(void)
     tcase_add_test(tc, quick_stop_ramp_is_dec_over_4);
     tcase_add_test(tc, speed_limits_are_hsp_and_lsp);
     tcase_add_test(tc, ramps_are_acc_and_dec);
+    tcase_add_test(tc, ramp_views_stay_within_their_limits);
+    tcase_add_test(tc, speed_limit_view_stays_within_its_limits);
+    tcase_add_test(tc, speeds_beyond_16_bits_read_their_limit);
     tcase_add_test(tc, motor_data_are_configuration_parameters);
     tcase_add_test(tc, current_and_torque_are_lcr_and_otr);
     suite_add_tcase(s, tc);

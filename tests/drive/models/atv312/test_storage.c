@@ -4,6 +4,7 @@
 #include "atv312_bench.h"
 #include "check_main.h"
 #include "memory_storage.h"
+#include "test_bus.h"
 
 static memory_storage_t mem;
 static co_storage_t storage;
@@ -126,6 +127,79 @@ START_TEST(stored_value_outside_its_limits_is_skipped)
 }
 END_TEST
 
+/* Issue 22's image: NSP 4131 rpm and ACC 7.7 s, whose ramp 6048h reads, and 1010h:03 saves, as
+ * 32726 / 61 (D-VIEW-LIMITS; 41310 / 77 before, over delta speed's HighLimit and refused at the
+ * reset). NSP is not in that image: after the reset it is 1500 rpm again, and the image gives the
+ * rate it holds, 536.5 rpm/s, ACC 2.8 s, its two terms applied one after the other. */
+START_TEST(profile_image_of_a_ramp_beyond_its_limits)
+{
+    ck_assert_uint_eq(bench_sdo_write(&b, 0x2042, 5, 4131, 2), 0);
+    ck_assert_uint_eq(bench_sdo_write(&b, 0x203C, 2, 77, 2), 0);
+    ck_assert_uint_eq(bench_sdo_write(&b, 0x1010, 3, CO_STORE_SIGNATURE_SAVE, 4), 0);
+    long speed = memory_storage_record(&mem, CO_STORE_AREA_PROFILE, 0x6048, 1);
+    ck_assert_int_gt(speed, 0);
+    ck_assert_uint_eq(co_get_u32(mem.image[CO_STORE_AREA_PROFILE] + speed), 32726);
+    reset_node();
+    ck_assert_uint_eq(mem.refusals, 0);
+    ck_assert_uint_eq(bench_read(&b, 0x2042, 5), 1500);
+    ck_assert_uint_eq(bench_read(&b, 0x203C, 2), 28);
+    ck_assert_uint_eq(bench_read(&b, 0x6048, 1), 32726);
+    ck_assert_uint_eq(bench_read(&b, 0x6048, 2), 61);
+}
+END_TEST
+
+/* Two images that disagree on ACC: 1010h:01 saves NSP 4131 rpm with ACC 5.0 s, then 1010h:03 the
+ * ramp of ACC 7.7 s. The later save wins: its pair, applied term by term over the ramp of 5.0 s
+ * (the first term alone is 0.6 s), gives 7.7 s again. */
+START_TEST(ramp_image_applied_term_by_term_over_another_ramp)
+{
+    ck_assert_uint_eq(bench_sdo_write(&b, 0x2042, 5, 4131, 2), 0);
+    ck_assert_uint_eq(bench_sdo_write(&b, 0x203C, 2, 50, 2), 0);
+    ck_assert_uint_eq(bench_sdo_write(&b, 0x1010, 1, CO_STORE_SIGNATURE_SAVE, 4), 0);
+    ck_assert_uint_eq(bench_sdo_write(&b, 0x203C, 2, 77, 2), 0);
+    ck_assert_uint_eq(bench_sdo_write(&b, 0x1010, 3, CO_STORE_SIGNATURE_SAVE, 4), 0);
+    reset_node();
+    ck_assert_uint_eq(mem.refusals, 0);
+    ck_assert_uint_eq(bench_read(&b, 0x2042, 5), 4131);
+    ck_assert_uint_eq(bench_read(&b, 0x203C, 2), 77);
+    ck_assert_uint_eq(bench_read(&b, 0x6048, 1), 32726);
+    ck_assert_uint_eq(bench_read(&b, 0x6048, 2), 61);
+}
+END_TEST
+
+/* Every byte of a drive_t not zeroed by its caller, before drive_init. */
+#define PATTERN 0xA5u
+
+/* Booted on stored values that settle the drive as they are applied, over memory that is not
+ * zeroed (drive_init sets every field: issue 22), the drive sends what it sends over zeroes. */
+START_TEST(stored_values_boot_a_drive_over_any_memory)
+{
+    ck_assert_uint_eq(bench_sdo_write(&b, 0x203C, 2, 50, 2), 0);   /* ACC 5.0 s */
+    ck_assert_uint_eq(bench_sdo_write(&b, 0x203C, 11, 101, 2), 0); /* rPS: LI1 */
+    ck_assert_uint_eq(bench_sdo_write(&b, 0x1010, 1, CO_STORE_SIGNATURE_SAVE, 4), 0);
+    static bench_t zeroed, patterned;
+    bench_t *benches[] = {&zeroed, &patterned};
+    for (size_t i = 0; i < 2; i++) {
+        bench_t *run = benches[i];
+        bench_start_model_over(run, &atv312_profile, &storage, i == 0 ? 0 : PATTERN);
+        ck_assert_uint_eq(bench_read(run, 0x203C, 2), 50);
+        ck_assert_uint_eq(bench_sdo_write(run, 0x6042, 0, 1500, 2), 0);
+        bench_command(run, 0x0006);
+        bench_command(run, 0x000F);
+        bench_advance(run, 5000000);
+        ck_assert_int_eq(bench_speed(run), 1500);
+    }
+    ck_assert_uint_eq(mem.refusals, 0);
+    ck_assert_uint_eq(patterned.count, zeroed.count);
+    for (size_t i = 0; i < zeroed.count; i++) {
+        char want[32], got[32];
+        ck_assert_str_eq(test_format(&patterned.frame[i], got),
+                         test_format(&zeroed.frame[i], want));
+        ck_assert_uint_eq(patterned.at[i], zeroed.at[i]);
+    }
+}
+END_TEST
+
 int main(void)
 {
     Suite *s = suite_create("atv312_storage");
@@ -137,6 +211,9 @@ int main(void)
     tcase_add_test(tc, profile_restore_restores_what_the_views_stand_for);
     tcase_add_test(tc, values_valid_together_load_whatever_their_order);
     tcase_add_test(tc, stored_value_outside_its_limits_is_skipped);
+    tcase_add_test(tc, stored_values_boot_a_drive_over_any_memory);
+    tcase_add_test(tc, profile_image_of_a_ramp_beyond_its_limits);
+    tcase_add_test(tc, ramp_image_applied_term_by_term_over_another_ramp);
     suite_add_tcase(s, tc);
     return check_run_suite(s);
 }

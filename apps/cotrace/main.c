@@ -1,11 +1,12 @@
 /* cotrace: says what every frame of a candump -L log or a live SocketCAN interface means in
- * CANopen terms, one line per frame (docs/cotrace.md). */
+ * CANopen terms, or with --devicenet in DeviceNet terms, one line per frame (docs/cotrace.md). */
 #include "atv58/emcy.h"
 #include "co_linux/can_frame.h"
 #include "co_linux/candump.h"
 #include "co_linux/log.h"
 #include "co_linux/loop.h"
 #include "decoder.h"
+#include "devicenet_decoder.h"
 
 #include <errno.h>
 #include <stdio.h>
@@ -20,9 +21,10 @@
 #define MEANING_MAX 1024
 
 static const char usage_text[] =
-    "usage: cotrace [FILE... | -i IFACE] [--eds FILE --node N] [options]\n"
+    "usage: cotrace [FILE... | -i IFACE] [--eds FILE --node N | --devicenet] [options]\n"
     "\n"
-    "Says what every CANopen frame means, one line per frame: NMT, SYNC, TIME, EMCY,\n"
+    "Says what every CANopen frame means (or DeviceNet frame: --devicenet), one line\n"
+    "per frame: NMT, SYNC, TIME, EMCY,\n"
     "SDO (segmented and block transfers followed across frames), PDO, heartbeat,\n"
     "node guarding. Reads candump -L logs (atv312d --trace, candump -L) or a live\n"
     "SocketCAN interface.\n"
@@ -37,6 +39,12 @@ static const char usage_text[] =
     "  --node N            node-id 1..127 of the --eds file (resolves $NODEID)\n"
     "  --emcy-table T      consult a vendor's EMCY code table before CiA 301/402:\n"
     "                      atv58 (Altivar 58 CANopen card manual)\n"
+    "  --devicenet         the bus is a DeviceNet bus: each frame by message group,\n"
+    "                      message ID and MAC ID, explicit messages (fragments\n"
+    "                      reassembled), I/O data by the assemblies selected\n"
+    "  --assemblies OUT,IN with --devicenet: the assemblies in use until the trace\n"
+    "                      selects others, OUT 20, 21 or 100, IN 70, 71 or 101\n"
+    "                      (default 21,71)\n"
     "  --strict            stop at the first line that is not a candump -L line\n"
     "  -h, --help          show this help\n"
     "  -V, --version       show the version\n"
@@ -56,6 +64,9 @@ typedef struct options {
     const char *eds_path;
     unsigned long node;
     const char *emcy_table;
+    bool devicenet;
+    unsigned consumed_assembly; /* --assemblies, 0: the default */
+    unsigned produced_assembly;
     bool strict;
     char **files;
     int file_count;
@@ -67,6 +78,22 @@ static int usage_error(const char *format, const char *arg)
     fprintf(stderr, format, arg);
     fprintf(stderr, " (see cotrace --help)\n");
     return EX_USAGE;
+}
+
+/* --assemblies OUT,IN: an output (consumed) and an input (produced) assembly of the card. */
+static bool parse_assemblies(const char *value, options_t *opts)
+{
+    unsigned out, in;
+    int end = 0;
+    if (sscanf(value, "%u,%u%n", &out, &in, &end) != 2 || value[end] != '\0')
+        return false;
+    if (out != 20 && out != 21 && out != 100)
+        return false;
+    if (in != 70 && in != 71 && in != 101)
+        return false;
+    opts->consumed_assembly = out;
+    opts->produced_assembly = in;
+    return true;
 }
 
 /* Returns -1 to go on, else the exit status (help, version, usage error). */
@@ -87,9 +114,11 @@ static int parse_args(int argc, char **argv, options_t *opts)
             return 0;
         } else if (strcmp(arg, "--strict") == 0) {
             opts->strict = true;
+        } else if (strcmp(arg, "--devicenet") == 0) {
+            opts->devicenet = true;
         } else if (strcmp(arg, "-i") == 0 || strcmp(arg, "--interface") == 0 ||
                    strcmp(arg, "--eds") == 0 || strcmp(arg, "--node") == 0 ||
-                   strcmp(arg, "--emcy-table") == 0) {
+                   strcmp(arg, "--emcy-table") == 0 || strcmp(arg, "--assemblies") == 0) {
             if (!has_value || argv[i + 1][0] == '\0')
                 return usage_error("option %s needs a value", arg);
             const char *value = argv[++i];
@@ -99,7 +128,12 @@ static int parse_args(int argc, char **argv, options_t *opts)
                 opts->eds_path = value;
             else if (strcmp(arg, "--emcy-table") == 0)
                 opts->emcy_table = value;
-            else {
+            else if (strcmp(arg, "--assemblies") == 0) {
+                if (!parse_assemblies(value, opts))
+                    return usage_error("--assemblies: '%s' is not OUT,IN: OUT 20, 21 or 100, IN "
+                                       "70, 71 or 101, e.g. 100,101",
+                                       value);
+            } else {
                 char *end;
                 errno = 0;
                 opts->node = strtoul(value, &end, 0);
@@ -121,14 +155,33 @@ static int parse_args(int argc, char **argv, options_t *opts)
         return usage_error("--node %s needs --eds FILE: without an EDS there is nothing to "
                            "apply it to",
                            argv[argc - 1]);
+    if (opts->devicenet && (opts->eds_path || opts->emcy_table))
+        return usage_error("%s: an EDS and an EMCY table are CANopen's, not DeviceNet's",
+                           "--devicenet");
+    if (opts->consumed_assembly && !opts->devicenet)
+        return usage_error("%s needs --devicenet: assemblies are DeviceNet's", "--assemblies");
     if (opts->emcy_table && strcmp(opts->emcy_table, "atv58") != 0)
         return usage_error("--emcy-table: unknown table '%s': the tables are atv58",
                            opts->emcy_table);
     return -1;
 }
 
+/* The decoder of the bus's protocol. */
+typedef struct decoder {
+    cotrace_decoder_t *canopen; /* NULL: DeviceNet */
+    cotrace_dn_decoder_t *devicenet;
+} decoder_t;
+
+static void decode(decoder_t *dec, const struct can_frame *frame, char *out, size_t cap)
+{
+    if (dec->canopen)
+        cotrace_decode(dec->canopen, frame, out, cap);
+    else
+        cotrace_dn_decode(dec->devicenet, frame, out, cap);
+}
+
 /* One output line: the frame as candump -L prints it, its field padded, then the meaning. */
-static void print_frame(cotrace_decoder_t *dec, const struct timespec *wall, const char *iface,
+static void print_frame(decoder_t *dec, const struct timespec *wall, const char *iface,
                         const struct can_frame *frame)
 {
     char line[CO_CANDUMP_LINE_MAX];
@@ -138,12 +191,12 @@ static void print_frame(cotrace_decoder_t *dec, const struct timespec *wall, con
         return;
     line[len - 1] = '\0';
     const char *field = strrchr(line, ' ') + 1;
-    cotrace_decode(dec, frame, meaning, sizeof meaning);
+    decode(dec, frame, meaning, sizeof meaning);
     printf("%s%*s  %s\n", line, FRAME_FIELD_WIDTH - (int)strlen(field), "", meaning);
 }
 
 /* Returns 0, or EX_DATAERR when a line was malformed (after the first with --strict). */
-static int decode_stream(cotrace_decoder_t *dec, FILE *in, const char *name, bool strict)
+static int decode_stream(decoder_t *dec, FILE *in, const char *name, bool strict)
 {
     char *line = NULL;
     size_t cap = 0;
@@ -184,7 +237,7 @@ static void buffer_output_for(FILE *in)
         setvbuf(stdout, NULL, _IOLBF, 0);
 }
 
-static int decode_files(cotrace_decoder_t *dec, const options_t *opts)
+static int decode_files(decoder_t *dec, const options_t *opts)
 {
     if (opts->file_count == 0) {
         buffer_output_for(stdin);
@@ -220,7 +273,7 @@ static int decode_files(cotrace_decoder_t *dec, const options_t *opts)
 typedef struct monitor {
     co_linux_device_t device;
     co_linux_loop_t *loop;
-    cotrace_decoder_t *dec;
+    decoder_t *dec;
 } monitor_t;
 
 static void monitor_start(void *ctx, co_time_t now)
@@ -305,7 +358,7 @@ static int report_open_error(const co_linux_loop_t *loop, co_linux_open_result_t
     return EX_OSERR;
 }
 
-static int decode_live(cotrace_decoder_t *dec, const char *iface)
+static int decode_live(decoder_t *dec, const char *iface)
 {
     static co_linux_loop_t loop;
     static monitor_t monitor;
@@ -332,7 +385,9 @@ int main(int argc, char **argv)
         return rc;
     }
     static eds_t eds;
-    static cotrace_decoder_t dec;
+    static cotrace_decoder_t canopen;
+    static cotrace_dn_decoder_t devicenet;
+    decoder_t dec = {NULL, &devicenet};
     char err[512];
     eds_result_t loaded = EDS_OK;
     if (opts.eds_path)
@@ -342,8 +397,14 @@ int main(int argc, char **argv)
         free(opts.files);
         return loaded == EDS_CANNOT_READ ? EX_NOINPUT : EX_DATAERR;
     }
-    cotrace_decoder_init(&dec, opts.eds_path ? &eds : NULL, (uint8_t)opts.node,
-                         opts.emcy_table ? &atv58_emcy_table : NULL);
+    if (opts.devicenet) {
+        cotrace_dn_decoder_init(&devicenet, (uint16_t)opts.consumed_assembly,
+                                (uint16_t)opts.produced_assembly);
+    } else {
+        cotrace_decoder_init(&canopen, opts.eds_path ? &eds : NULL, (uint8_t)opts.node,
+                             opts.emcy_table ? &atv58_emcy_table : NULL);
+        dec.canopen = &canopen;
+    }
     rc = opts.iface ? decode_live(&dec, opts.iface) : decode_files(&dec, &opts);
     if (fflush(stdout) != 0 && rc == 0)
         rc = EX_IOERR;

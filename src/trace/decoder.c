@@ -1,11 +1,10 @@
 #include "decoder.h"
+#include "text.h"
 
 #include "co/co_emcy.h"
 #include "co/co_nmt.h"
 #include "co/co_pdo.h"
 
-#include <linux/can/error.h>
-#include <stdarg.h>
 #include <stdio.h>
 #include <string.h>
 
@@ -16,60 +15,6 @@
 /* CiA 301 7.2.6: the TIME object counts days from 1984-01-01. */
 #define TIME_EPOCH_DAYS_FROM_1970 5113u
 #define TIME_MS_MASK 0x0FFFFFFFu
-
-typedef struct text {
-    char *buf;
-    size_t cap, len;
-} text_t;
-
-static void say(text_t *t, const char *format, ...) __attribute__((format(printf, 2, 3)));
-
-static void say(text_t *t, const char *format, ...)
-{
-    if (t->len + 1 >= t->cap)
-        return;
-    va_list args;
-    va_start(args, format);
-    int n = vsnprintf(t->buf + t->len, t->cap - t->len, format, args);
-    va_end(args);
-    if (n > 0)
-        t->len = t->len + (size_t)n < t->cap ? t->len + (size_t)n : t->cap - 1;
-}
-
-static void say_bytes(text_t *t, const uint8_t *data, size_t len)
-{
-    for (size_t i = 0; i < len; i++)
-        say(t, i ? " %02X" : "%02X", data[i]);
-}
-
-static bool printable(const uint8_t *data, size_t len)
-{
-    if (len == 0)
-        return false;
-    for (size_t i = 0; i < len; i++) {
-        if (data[i] < 0x20 || data[i] > 0x7E)
-            return false;
-    }
-    return true;
-}
-
-/* A value as bytes, and as the string or little-endian number they are most likely to be. */
-static void say_value(text_t *t, const uint8_t *data, size_t len, size_t total)
-{
-    if (printable(data, len)) {
-        say(t, "\"%.*s\"", (int)len, (const char *)data);
-    } else {
-        say_bytes(t, data, len);
-        if (len >= 1 && len <= 4 && len == total) {
-            uint32_t v = 0;
-            for (size_t i = len; i-- > 0;)
-                v = v << 8 | data[i];
-            say(t, " (%lu)", (unsigned long)v);
-        }
-    }
-    if (total > len)
-        say(t, " ...");
-}
 
 static const eds_t *eds_of(const cotrace_decoder_t *dec, uint8_t node)
 {
@@ -614,7 +559,7 @@ static uint64_t extract_bits(const uint8_t *data, unsigned offset, unsigned bits
     return v;
 }
 
-static const char *control_word_text(uint64_t word)
+const char *cotrace_control_word_command(uint16_t word)
 {
     static const struct {
         uint16_t mask, value;
@@ -649,8 +594,9 @@ const char *cotrace_status_word_state(uint16_t word)
 static void say_mapped_value(text_t *t, uint16_t index, uint16_t type, uint64_t v, unsigned bits)
 {
     if (index == CIA402_CONTROL_WORD || index == CIA402_STATUS_WORD) {
-        const char *meaning = index == CIA402_CONTROL_WORD ? control_word_text(v)
-                                                           : cotrace_status_word_state((uint16_t)v);
+        const char *meaning = index == CIA402_CONTROL_WORD
+                                  ? cotrace_control_word_command((uint16_t)v)
+                                  : cotrace_status_word_state((uint16_t)v);
         say(t, "0x%04llX%s%s", (unsigned long long)v, meaning ? " " : "", meaning ? meaning : "");
         return;
     }
@@ -736,51 +682,6 @@ static void decode_pdo(const cotrace_decoder_t *dec, const struct can_frame *f,
 
 /* ---- everything else ---------------------------------------------------------------------- */
 
-static void decode_error_frame(const struct can_frame *f, text_t *t)
-{
-    static const struct {
-        canid_t flag;
-        const char *name;
-    } classes[] = {{CAN_ERR_TX_TIMEOUT, "TX timeout"},
-                   {CAN_ERR_LOSTARB, "arbitration lost"},
-                   {CAN_ERR_CRTL, "controller problem"},
-                   {CAN_ERR_PROT, "protocol violation"},
-                   {CAN_ERR_TRX, "transceiver status"},
-                   {CAN_ERR_ACK, "no ACK on transmission"},
-                   {CAN_ERR_BUSOFF, "bus off"},
-                   {CAN_ERR_BUSERROR, "bus error"},
-                   {CAN_ERR_RESTARTED, "controller restarted"}};
-    static const struct {
-        uint8_t flag;
-        const char *name;
-    } controller[] = {{CAN_ERR_CRTL_RX_OVERFLOW, "RX overflow"},
-                      {CAN_ERR_CRTL_TX_OVERFLOW, "TX overflow"},
-                      {CAN_ERR_CRTL_RX_WARNING, "RX warning"},
-                      {CAN_ERR_CRTL_TX_WARNING, "TX warning"},
-                      {CAN_ERR_CRTL_RX_PASSIVE, "RX error passive"},
-                      {CAN_ERR_CRTL_TX_PASSIVE, "TX error passive"},
-                      {CAN_ERR_CRTL_ACTIVE, "back to error active"}};
-    say(t, "CAN error frame");
-    const char *sep = ": ";
-    for (size_t i = 0; i < sizeof classes / sizeof classes[0]; i++) {
-        if (!(f->can_id & classes[i].flag))
-            continue;
-        say(t, "%s%s", sep, classes[i].name);
-        sep = ", ";
-        if (classes[i].flag == CAN_ERR_CRTL && f->len > 1) {
-            const char *inner = " (";
-            for (size_t j = 0; j < sizeof controller / sizeof controller[0]; j++) {
-                if (f->data[1] & controller[j].flag) {
-                    say(t, "%s%s", inner, controller[j].name);
-                    inner = ", ";
-                }
-            }
-            if (inner[0] == ',')
-                say(t, ")");
-        }
-    }
-}
-
 static void decode_lss(const struct can_frame *f, text_t *t)
 {
     say(t, "LSS %s",
@@ -796,7 +697,7 @@ void cotrace_decode(cotrace_decoder_t *dec, const struct can_frame *f, char *out
         return;
     out[0] = '\0';
     if (f->can_id & CAN_ERR_FLAG) {
-        decode_error_frame(f, &t);
+        say_error_frame(&t, f);
         return;
     }
     if (f->can_id & CAN_EFF_FLAG) {

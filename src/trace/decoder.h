@@ -68,6 +68,10 @@ void cotrace_decoder_init(cotrace_decoder_t *dec, const eds_t *eds, uint8_t eds_
  * enabled", ...; NULL for a combination CiA 402 does not define. Also comaster's. */
 const char *cotrace_status_word_state(uint16_t word);
 
+/* The CiA 402 command a control word 6040h gives: "Shutdown", "Enable operation", ...; NULL for
+ * one CiA 402 does not define. */
+const char *cotrace_control_word_command(uint16_t word);
+
 /* Writes the meaning of `frame` into out (always NUL-terminated, truncated to cap). */
 void cotrace_decode(cotrace_decoder_t *dec, const struct can_frame *frame, char *out, size_t cap);
 

@@ -10,7 +10,7 @@
 #   lib/pkgconfig/canopen.pc               pkg-config: the core (variables edstool and edsdir)
 #   lib/pkgconfig/canopen-linux.pc         pkg-config: the Linux runtime (requires canopen)
 #   lib/pkgconfig/canopen-drive.pc         pkg-config: the drive (requires canopen)
-#   bin/atv312d, bin/cotrace, bin/comaster, bin/co-edstool, bin/vcan-run
+#   bin/atv312d, bin/cotrace, bin/comaster, bin/dnscan, bin/co-edstool, bin/vcan-run
 #                                          the daemon, the trace decoder, the master tool,
 #                                          tools/edstool.py, tools/vcan-run
 #   share/man/man1/<program>.1             their man pages, written from their --help text
@@ -59,7 +59,7 @@ install(FILES ${PROJECT_BINARY_DIR}/canopenConfig.cmake
         DESTINATION ${CO_INSTALL_CMAKEDIR})
 
 # The daemon and the tools.
-install(TARGETS atv312d cotrace comaster RUNTIME DESTINATION ${CMAKE_INSTALL_BINDIR})
+install(TARGETS atv312d cotrace comaster dnscan RUNTIME DESTINATION ${CMAKE_INSTALL_BINDIR})
 install(PROGRAMS ${CO_EDSTOOL} DESTINATION ${CMAKE_INSTALL_BINDIR} RENAME co-edstool)
 install(PROGRAMS ${PROJECT_SOURCE_DIR}/tools/vcan-run DESTINATION ${CMAKE_INSTALL_BINDIR})
 
@@ -156,6 +156,12 @@ node's identity or given with --eds, are in ${CO_INSTALL_EDSDIR} under the insta
   SUBCOMMANDS ${COMASTER_COMMANDS}
   COMMAND $<TARGET_FILE:comaster>
   DEPENDS comaster)
+co_man_page(dnscan
+  SUMMARY "a DeviceNet scanner on SocketCAN: scan, allocate, get and set attributes, poll I/O"
+  SEE_ALSO "cotrace(1), comaster(1), candump(1). Every command with examples, the JSON fields and \
+the exit codes: dnscan.md in ${CO_DOCS_INSTALLED}."
+  COMMAND $<TARGET_FILE:dnscan>
+  DEPENDS dnscan)
 co_man_page(co-edstool
   SUMMARY "generate the CANopen core's object dictionary from an EDS, check EDS files"
   SEE_ALSO "atv312d(1). eds-generator.md in ${CO_DOCS_INSTALLED}. The CMake package canopen runs \

@@ -122,6 +122,10 @@
 #define DN_CONN_POLL 2u
 #define DN_CONN_BIT_STROBE 3u
 #define DN_CONN_COS_CYCLIC 4u
+#define DN_CONN_ATTR_STATE 1u
+#define DN_CONN_ATTR_EXPECTED_PACKET_RATE 9u
+#define DN_CONN_ATTR_PRODUCED_PATH 14u
+#define DN_CONN_ATTR_CONSUMED_PATH 16u
 
 typedef enum dn_conn_state {
     DN_CONN_NON_EXISTENT = 0,

@@ -19,6 +19,7 @@
 
 #include "co/co_types.h" /* co_frame_t, co_time_t, co_send_fn: header only, no CANopen service */
 #include "dn_cip.h"
+#include "dn_fragment.h" /* dn_fragments_t, DN_MESSAGE_MAX */
 #include "dn_link.h"
 
 /* A CIP status: the general status in the low byte, the additional code in the high byte
@@ -28,9 +29,6 @@ typedef uint16_t dn_status_t;
 #define DN_STATUS(general, additional) ((dn_status_t)((general) | (unsigned)(additional) << 8))
 #define DN_ERROR(general) DN_STATUS(general, DN_AC_NONE)
 
-/* Produced and consumed connection size of the explicit connection (Connection attributes 7 and
- * 8): a request or response body of up to 64 bytes, fragmented above 7. */
-#define DN_MESSAGE_MAX 64u
 /* The largest I/O assembly: one frame, no I/O fragmentation (docs/devicenet.md). */
 #define DN_IO_MAX 8u
 
@@ -200,18 +198,6 @@ typedef struct dn_connection {
     uint16_t inhibit_time;         /* attribute 17, ms */
     co_time_t watchdog;            /* inactivity deadline, CO_TIME_NEVER when not running */
 } dn_connection_t;
-
-/* An explicit message received or sent in fragments. */
-typedef struct dn_fragments {
-    bool active;
-    uint8_t header;  /* byte 0 of every fragment: frag bit, XID, the master's MAC ID */
-    uint8_t count;   /* received: the last fragment's count; sent: the fragment awaiting ack */
-    uint8_t len;     /* received: bytes so far; sent: the whole body */
-    uint8_t offset;  /* sent: the first byte of the fragment awaiting its acknowledgement */
-    uint8_t retries; /* sent: retransmissions of that fragment */
-    co_time_t deadline;
-    uint8_t body[DN_MESSAGE_MAX];
-} dn_fragments_t;
 
 #define DN_CONN_COUNT 3u /* explicit, poll, COS/cyclic: conn[0..2] */
 

@@ -1,6 +1,7 @@
 /* Explicit messaging: the requests of the explicit connection (instance 1, group 2 message 4)
  * and of the group 2 only unconnected port (message 6), their responses (message 3), and the
- * fragmentation protocol both ways with its acknowledgements. */
+ * fragmentation protocol both ways with its acknowledgements (fragment.c, shared with the scanner).
+ */
 #include <string.h>
 
 #include "dn_internal.h"
@@ -10,21 +11,12 @@
 #define DN_FRAG_ACK_WAIT_US 1000000u
 #define DN_FRAG_RETRIES 1u
 
-/* Bytes of an unfragmented frame's message body: the frame less the header byte. */
-#define DN_FRAME_BODY 7u
-
 static void send_fragment(dn_node_t *node)
 {
-    dn_fragments_t *tx = &node->tx;
-    uint8_t left = (uint8_t)(tx->len - tx->offset);
-    uint8_t chunk = left > DN_FRAG_BODY ? DN_FRAG_BODY : left;
-    uint8_t type = tx->offset == 0 ? DN_FRAG_FIRST : chunk == left ? DN_FRAG_LAST : DN_FRAG_MIDDLE;
     uint8_t frame[8];
-    frame[0] = tx->header;
-    frame[1] = (uint8_t)(type | tx->count);
-    memcpy(&frame[2], &tx->body[tx->offset], chunk);
-    dn_send(node, node->ids.explicit_response, frame, (uint8_t)(2 + chunk));
-    tx->deadline = node->now + DN_FRAG_ACK_WAIT_US;
+    uint8_t len = dn_fragment_frame(&node->tx, frame);
+    dn_send(node, node->ids.explicit_response, frame, len);
+    node->tx.deadline = node->now + DN_FRAG_ACK_WAIT_US;
 }
 
 /* A response body (service byte first) in one frame, or in fragments above 7 bytes. */
@@ -37,38 +29,15 @@ static void send_response(dn_node_t *node, uint8_t header, const uint8_t *body, 
         dn_send(node, node->ids.explicit_response, frame, (uint8_t)(1 + len));
         return;
     }
-    dn_fragments_t *tx = &node->tx;
-    tx->active = true;
-    tx->header = (uint8_t)(header | DN_HDR_FRAG);
-    tx->count = 0;
-    tx->offset = 0;
-    tx->retries = 0;
-    tx->len = len;
-    memcpy(tx->body, body, len);
-    send_fragment(node);
-}
-
-/* The master's acknowledgement of the fragment in flight: the next one, or the end. */
-static void fragment_acknowledged(dn_node_t *node, uint8_t count, uint8_t status)
-{
-    dn_fragments_t *tx = &node->tx;
-    if (!tx->active || count != tx->count)
-        return;
-    uint8_t left = (uint8_t)(tx->len - tx->offset);
-    if (status != DN_FRAG_ACK_SUCCESS || left <= DN_FRAG_BODY) {
-        tx->active = false;
-        return;
-    }
-    tx->offset = (uint8_t)(tx->offset + DN_FRAG_BODY);
-    tx->count = (uint8_t)((tx->count + 1) & DN_FRAG_COUNT);
-    tx->retries = 0;
+    dn_fragment_start(&node->tx, header, body, len);
     send_fragment(node);
 }
 
 static void send_ack(dn_node_t *node, uint8_t header, uint8_t count, uint8_t status)
 {
-    uint8_t frame[3] = {(uint8_t)(header | DN_HDR_FRAG), (uint8_t)(DN_FRAG_ACK | count), status};
-    dn_send(node, node->ids.explicit_response, frame, sizeof(frame));
+    uint8_t frame[8];
+    uint8_t len = dn_fragment_ack_frame(header, count, status, frame);
+    dn_send(node, node->ids.explicit_response, frame, len);
 }
 
 /* Parses a request body (service, class, instance, attribute for Get/Set), routes it and
@@ -123,44 +92,32 @@ static void execute(dn_node_t *node, uint8_t header, const uint8_t *body, uint8_
     }
 }
 
-/* A fragment of a request: first, middle or last, each acknowledged; a repeated fragment is
- * acknowledged again and dropped, a lost one (a count out of sequence) drops the message. */
+/* A fragment of a request, or the master's acknowledgement of a fragment of a response. */
 static void fragment_receive(dn_node_t *node, const co_frame_t *frame)
 {
-    uint8_t type = frame->data[1] & DN_FRAG_TYPE;
     uint8_t count = frame->data[1] & DN_FRAG_COUNT;
+    if ((frame->data[1] & DN_FRAG_TYPE) == DN_FRAG_ACK) {
+        uint8_t status = frame->len > 2 ? frame->data[2] : (uint8_t)DN_FRAG_ACK_SUCCESS;
+        if (dn_fragment_acknowledged(&node->tx, count, status) == DN_FRAGMENT_ACK_NEXT)
+            send_fragment(node);
+        return;
+    }
     dn_fragments_t *rx = &node->rx;
-    if (type == DN_FRAG_ACK) {
-        fragment_acknowledged(node, count,
-                              frame->len > 2 ? frame->data[2] : (uint8_t)DN_FRAG_ACK_SUCCESS);
-        return;
-    }
-    uint8_t chunk = (uint8_t)(frame->len - 2);
-    if (type == DN_FRAG_FIRST) {
-        rx->active = true;
-        rx->len = 0;
-        rx->header = frame->data[0];
-    } else if (!rx->active) {
-        return;
-    } else if (count == rx->count) {
+    switch (dn_fragment_receive(rx, frame->data, frame->len)) {
+    case DN_FRAGMENT_RX_TAKEN:
+    case DN_FRAGMENT_RX_REPEATED:
         send_ack(node, rx->header, count, DN_FRAG_ACK_SUCCESS);
-        return;
-    } else if (count != ((rx->count + 1u) & DN_FRAG_COUNT)) {
-        rx->active = false;
-        return;
-    }
-    rx->count = count;
-    if (chunk > DN_MESSAGE_MAX - rx->len) {
-        rx->active = false;
+        break;
+    case DN_FRAGMENT_RX_TOO_MUCH:
         send_ack(node, frame->data[0], count, DN_FRAG_ACK_TOO_MUCH_DATA);
-        return;
-    }
-    memcpy(&rx->body[rx->len], &frame->data[2], chunk);
-    rx->len = (uint8_t)(rx->len + chunk);
-    send_ack(node, rx->header, count, DN_FRAG_ACK_SUCCESS);
-    if (type == DN_FRAG_LAST) {
-        rx->active = false;
+        break;
+    case DN_FRAGMENT_RX_COMPLETE:
+        send_ack(node, rx->header, count, DN_FRAG_ACK_SUCCESS);
         execute(node, (uint8_t)(rx->header & ~DN_HDR_FRAG), rx->body, rx->len, false);
+        break;
+    case DN_FRAGMENT_RX_IGNORED:
+    case DN_FRAGMENT_RX_LOST:
+        break;
     }
 }
 

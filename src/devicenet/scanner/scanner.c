@@ -1,0 +1,477 @@
+/* The DeviceNet scanner (include/dn/dn_scanner.h): its duplicate MAC ID check, the slaves'
+ * requests on the unconnected port and the explicit connection with fragmentation both ways,
+ * the polled connection and the slaves' COS/cyclic data. */
+#include "dn/dn_scanner.h"
+
+#include <string.h>
+
+#define NO_SLAVE 0xFFu
+/* A fragment of a request waits `timeout` for its acknowledgement, and is sent once more
+ * before the request is given up (as the slave does with its responses). */
+#define FRAGMENT_RETRIES 1u
+/* Get/Set_Attribute_Single carry the attribute after the class and instance. */
+#define PATH_LEN 2u /* class, instance: 8/8 body format */
+
+static void send_frame(dn_scanner_t *scanner, uint16_t can_id, const uint8_t *data, uint8_t len)
+{
+    co_frame_t frame;
+    memset(&frame, 0, sizeof(frame));
+    frame.id = can_id;
+    frame.len = len;
+    if (len)
+        memcpy(frame.data, data, len);
+    const dn_scanner_app_t *app = scanner->config->app;
+    app->send(app->user, &frame);
+}
+
+int dn_scanner_init(dn_scanner_t *scanner, const dn_scanner_config_t *config)
+{
+    memset(scanner, 0, sizeof(*scanner));
+    scanner->config = config;
+    scanner->link = DN_SCANNER_OFF;
+    scanner->link_deadline = CO_TIME_NEVER;
+    scanner->timeout = config->timeout ? config->timeout : DN_SCANNER_TIMEOUT_DEFAULT_US;
+    memset(scanner->slave_index, NO_SLAVE, sizeof(scanner->slave_index));
+    if (config->app == NULL || config->app->send == NULL || config->app->done == NULL ||
+        (config->slave_count && config->slaves == NULL))
+        return DN_SCANNER_INIT_BAD_CONFIG;
+    if (config->mac_id > DN_MAC_ID_MAX || config->slave_count > DN_MAC_ID_MAX + 1u)
+        return DN_SCANNER_INIT_BAD_MAC_ID;
+    for (uint8_t i = 0; i < config->slave_count; i++) {
+        dn_slave_t *slave = &config->slaves[i];
+        uint8_t mac_id = slave->mac_id;
+        if (mac_id > DN_MAC_ID_MAX || scanner->slave_index[mac_id] != NO_SLAVE)
+            return DN_SCANNER_INIT_BAD_MAC_ID;
+        memset(slave, 0, sizeof(*slave));
+        slave->mac_id = mac_id;
+        slave->ids = dn_predefined_ids(mac_id);
+        slave->deadline = CO_TIME_NEVER;
+        slave->next_poll = CO_TIME_NEVER;
+        slave->poll_deadline = CO_TIME_NEVER;
+        slave->xid = DN_HDR_XID; /* toggled before each request: the first has XID 0 */
+        scanner->slave_index[mac_id] = i;
+    }
+    return DN_SCANNER_INIT_OK;
+}
+
+dn_slave_t *dn_scanner_slave(dn_scanner_t *scanner, uint8_t mac_id)
+{
+    if (mac_id > DN_MAC_ID_MAX || scanner->slave_index[mac_id] == NO_SLAVE)
+        return NULL;
+    return &scanner->config->slaves[scanner->slave_index[mac_id]];
+}
+
+/* ---- the duplicate MAC ID check ----------------------------------------------------------- */
+
+static void send_duplicate_mac(dn_scanner_t *scanner, uint8_t flags)
+{
+    const dn_scanner_config_t *config = scanner->config;
+    uint8_t data[DN_DUP_MAC_LEN];
+    data[0] = flags;
+    co_put_u16(&data[1], config->vendor_id);
+    co_put_u32(&data[3], config->serial_number);
+    send_frame(scanner, dn_group2_id(config->mac_id, DN_G2_DUPLICATE_MAC_CHECK), data,
+               DN_DUP_MAC_LEN);
+}
+
+void dn_scanner_start(dn_scanner_t *scanner, co_time_t now)
+{
+    scanner->now = now;
+    scanner->link = DN_SCANNER_CHECKING;
+    scanner->checks_sent = 1;
+    scanner->link_deadline = now + DN_DUP_MAC_WAIT_US;
+    send_duplicate_mac(scanner, 0);
+}
+
+void dn_scanner_start_online(dn_scanner_t *scanner, co_time_t now)
+{
+    scanner->now = now;
+    scanner->link = DN_SCANNER_ONLINE;
+    scanner->link_deadline = CO_TIME_NEVER;
+}
+
+/* A check message with the scanner's MAC ID: while checking, another node has it; online, a
+ * request is answered. */
+static void duplicate_mac_receive(dn_scanner_t *scanner, const co_frame_t *frame)
+{
+    if (frame->len != DN_DUP_MAC_LEN)
+        return;
+    if (scanner->link == DN_SCANNER_CHECKING) {
+        scanner->link = DN_SCANNER_DUPLICATE;
+        scanner->link_deadline = CO_TIME_NEVER;
+    } else if (scanner->link == DN_SCANNER_ONLINE && !(frame->data[0] & DN_DUP_MAC_RESPONSE)) {
+        send_duplicate_mac(scanner, DN_DUP_MAC_RESPONSE);
+    }
+}
+
+static void link_process(dn_scanner_t *scanner)
+{
+    if (scanner->link != DN_SCANNER_CHECKING || scanner->now < scanner->link_deadline)
+        return;
+    if (scanner->checks_sent == 1) {
+        scanner->checks_sent = 2;
+        scanner->link_deadline = scanner->now + DN_DUP_MAC_WAIT_US;
+        send_duplicate_mac(scanner, 0);
+    } else {
+        scanner->link = DN_SCANNER_ONLINE;
+        scanner->link_deadline = CO_TIME_NEVER;
+    }
+}
+
+/* ---- requests --------------------------------------------------------------------------- */
+
+static void finish(dn_scanner_t *scanner, dn_slave_t *slave, dn_result_status_t status,
+                   uint8_t general, uint8_t additional, const uint8_t *data, uint8_t len)
+{
+    slave->busy = false;
+    slave->tx.active = false;
+    slave->rx.active = false;
+    slave->deadline = CO_TIME_NEVER;
+    dn_result_t result = {slave->mac_id, slave->service, status, general, additional, len, data};
+    const dn_scanner_app_t *app = scanner->config->app;
+    app->done(app->user, &result);
+}
+
+static void send_fragment(dn_scanner_t *scanner, dn_slave_t *slave)
+{
+    uint8_t frame[8];
+    uint8_t len = dn_fragment_frame(&slave->tx, frame);
+    send_frame(scanner, slave->ids.explicit_request, frame, len);
+    slave->deadline = scanner->now + scanner->timeout;
+}
+
+static dn_slave_t *idle_slave(dn_scanner_t *scanner, uint8_t mac_id)
+{
+    dn_slave_t *slave = dn_scanner_slave(scanner, mac_id);
+    if (scanner->link != DN_SCANNER_ONLINE || slave == NULL || slave->busy)
+        return NULL;
+    return slave;
+}
+
+/* Sends a request body (service first) on the unconnected port or the explicit connection, in
+ * fragments above 7 bytes on the explicit connection. */
+static bool start_request(dn_scanner_t *scanner, uint8_t mac_id, const uint8_t *body, uint8_t len,
+                          bool unconnected, co_time_t now)
+{
+    scanner->now = now;
+    dn_slave_t *slave = idle_slave(scanner, mac_id);
+    if (slave == NULL || len > DN_MESSAGE_MAX || (unconnected && len > DN_FRAME_BODY))
+        return false;
+    slave->busy = true;
+    slave->service = body[0];
+    slave->xid ^= DN_HDR_XID;
+    slave->rx.active = false;
+    uint8_t header = (uint8_t)(slave->xid | scanner->config->mac_id);
+    if (len > DN_FRAME_BODY) {
+        dn_fragment_start(&slave->tx, header, body, len);
+        send_fragment(scanner, slave);
+        return true;
+    }
+    uint8_t frame[8];
+    frame[0] = header;
+    memcpy(&frame[1], body, len);
+    send_frame(scanner, unconnected ? slave->ids.unconnected : slave->ids.explicit_request, frame,
+               (uint8_t)(1 + len));
+    slave->deadline = now + scanner->timeout;
+    return true;
+}
+
+/* Allocate and Release: [service][class 3][instance 1][choice] (+ the allocator's MAC ID). */
+bool dn_scanner_allocate(dn_scanner_t *scanner, uint8_t mac_id, uint8_t choice, co_time_t now)
+{
+    uint8_t body[] = {DN_SVC_ALLOCATE, DN_CLASS_DEVICENET, 1, choice, scanner->config->mac_id};
+    if (!start_request(scanner, mac_id, body, sizeof(body), true, now))
+        return false;
+    dn_scanner_slave(scanner, mac_id)->choice = choice;
+    return true;
+}
+
+bool dn_scanner_release(dn_scanner_t *scanner, uint8_t mac_id, uint8_t choice, co_time_t now)
+{
+    uint8_t body[] = {DN_SVC_RELEASE, DN_CLASS_DEVICENET, 1, choice};
+    if (!start_request(scanner, mac_id, body, sizeof(body), true, now))
+        return false;
+    dn_scanner_slave(scanner, mac_id)->choice = choice;
+    return true;
+}
+
+bool dn_scanner_request(dn_scanner_t *scanner, uint8_t mac_id, uint8_t service, uint8_t class_id,
+                        uint8_t instance, const uint8_t *data, uint8_t len, co_time_t now)
+{
+    if (len > DN_MESSAGE_MAX - 1u - PATH_LEN)
+        return false;
+    uint8_t body[DN_MESSAGE_MAX];
+    body[0] = service;
+    body[1] = class_id;
+    body[2] = instance;
+    if (len)
+        memcpy(&body[3], data, len);
+    return start_request(scanner, mac_id, body, (uint8_t)(3 + len), false, now);
+}
+
+bool dn_scanner_get(dn_scanner_t *scanner, uint8_t mac_id, uint8_t class_id, uint8_t instance,
+                    uint8_t attribute, co_time_t now)
+{
+    return dn_scanner_request(scanner, mac_id, DN_SVC_GET_ATTRIBUTE_SINGLE, class_id, instance,
+                              &attribute, 1, now);
+}
+
+bool dn_scanner_set(dn_scanner_t *scanner, uint8_t mac_id, uint8_t class_id, uint8_t instance,
+                    uint8_t attribute, const uint8_t *value, uint8_t len, co_time_t now)
+{
+    uint8_t data[DN_MESSAGE_MAX];
+    if (len > DN_MESSAGE_MAX - 1u)
+        return false;
+    data[0] = attribute;
+    if (len)
+        memcpy(&data[1], value, len);
+    return dn_scanner_request(scanner, mac_id, DN_SVC_SET_ATTRIBUTE_SINGLE, class_id, instance,
+                              data, (uint8_t)(1 + len), now);
+}
+
+bool dn_scanner_set_expected_packet_rate(dn_scanner_t *scanner, uint8_t mac_id, uint8_t connection,
+                                         uint16_t ms, co_time_t now)
+{
+    uint8_t value[2];
+    co_put_u16(value, ms);
+    return dn_scanner_set(scanner, mac_id, DN_CLASS_CONNECTION, connection,
+                          DN_CONN_ATTR_EXPECTED_PACKET_RATE, value, sizeof(value), now);
+}
+
+/* A whole response body: success (the service with the response bit), the error response, or
+ * something else. Allocate and Release keep what the slave granted. */
+static void response_complete(dn_scanner_t *scanner, dn_slave_t *slave, const uint8_t *body,
+                              uint8_t len)
+{
+    if (len >= 1 && body[0] == (DN_SVC_ERROR_RESPONSE | DN_SERVICE_RESPONSE)) {
+        uint8_t general = len >= 2 ? body[1] : 0;
+        uint8_t additional = len >= 3 ? body[2] : (uint8_t)DN_AC_NONE;
+        finish(scanner, slave, DN_RESULT_CIP_ERROR, general, additional, NULL, 0);
+        return;
+    }
+    if (len == 0 || body[0] != (slave->service | DN_SERVICE_RESPONSE)) {
+        finish(scanner, slave, DN_RESULT_BAD_RESPONSE, 0, DN_AC_NONE, NULL, 0);
+        return;
+    }
+    if (slave->service == DN_SVC_ALLOCATE)
+        slave->allocated |= slave->choice;
+    else if (slave->service == DN_SVC_RELEASE)
+        slave->allocated &= (uint8_t)~slave->choice;
+    finish(scanner, slave, DN_RESULT_OK, 0, 0, &body[1], (uint8_t)(len - 1));
+}
+
+static void send_ack(dn_scanner_t *scanner, dn_slave_t *slave, uint8_t header, uint8_t count,
+                     uint8_t status)
+{
+    uint8_t frame[8];
+    uint8_t len = dn_fragment_ack_frame(header, count, status, frame);
+    send_frame(scanner, slave->ids.explicit_request, frame, len);
+}
+
+/* A fragment of the response, or the slave's acknowledgement of a fragment of the request. */
+static void fragment_receive(dn_scanner_t *scanner, dn_slave_t *slave, const co_frame_t *frame)
+{
+    uint8_t count = frame->data[1] & DN_FRAG_COUNT;
+    if ((frame->data[1] & DN_FRAG_TYPE) == DN_FRAG_ACK) {
+        uint8_t status = frame->len > 2 ? frame->data[2] : (uint8_t)DN_FRAG_ACK_SUCCESS;
+        switch (dn_fragment_acknowledged(&slave->tx, count, status)) {
+        case DN_FRAGMENT_ACK_NEXT:
+            send_fragment(scanner, slave);
+            break;
+        case DN_FRAGMENT_ACK_DONE:
+            slave->deadline = scanner->now + scanner->timeout; /* now the response */
+            break;
+        case DN_FRAGMENT_ACK_REFUSED:
+            finish(scanner, slave, DN_RESULT_FRAGMENT_ERROR, 0, status, NULL, 0);
+            break;
+        case DN_FRAGMENT_ACK_IGNORED:
+            break;
+        }
+        return;
+    }
+    if (slave->tx.active)
+        return; /* no response before the request went through */
+    dn_fragments_t *rx = &slave->rx;
+    switch (dn_fragment_receive(rx, frame->data, frame->len)) {
+    case DN_FRAGMENT_RX_TAKEN:
+        send_ack(scanner, slave, rx->header, count, DN_FRAG_ACK_SUCCESS);
+        slave->deadline = scanner->now + scanner->timeout;
+        break;
+    case DN_FRAGMENT_RX_REPEATED:
+        send_ack(scanner, slave, rx->header, count, DN_FRAG_ACK_SUCCESS);
+        break;
+    case DN_FRAGMENT_RX_TOO_MUCH:
+        send_ack(scanner, slave, frame->data[0], count, DN_FRAG_ACK_TOO_MUCH_DATA);
+        finish(scanner, slave, DN_RESULT_BAD_RESPONSE, 0, DN_AC_NONE, NULL, 0);
+        break;
+    case DN_FRAGMENT_RX_COMPLETE:
+        send_ack(scanner, slave, rx->header, count, DN_FRAG_ACK_SUCCESS);
+        response_complete(scanner, slave, rx->body, rx->len);
+        break;
+    case DN_FRAGMENT_RX_LOST:
+        finish(scanner, slave, DN_RESULT_FRAGMENT_LOST, 0, DN_AC_NONE, NULL, 0);
+        break;
+    case DN_FRAGMENT_RX_IGNORED:
+        break;
+    }
+}
+
+/* The slave's explicit or unconnected response (group 2 message 3): only one addressed to
+ * this scanner (the header's MAC ID is the other end's: the master's) with the XID of the
+ * request in progress. */
+static void response_receive(dn_scanner_t *scanner, dn_slave_t *slave, const co_frame_t *frame)
+{
+    if (!slave->busy || frame->len < 2 ||
+        (frame->data[0] & (DN_HDR_XID | DN_HDR_MAC)) != (slave->xid | scanner->config->mac_id))
+        return;
+    if (frame->data[0] & DN_HDR_FRAG)
+        fragment_receive(scanner, slave, frame);
+    else if (!slave->tx.active)
+        response_complete(scanner, slave, &frame->data[1], (uint8_t)(frame->len - 1));
+}
+
+static co_time_t request_process(dn_scanner_t *scanner, dn_slave_t *slave)
+{
+    if (!slave->busy || scanner->now < slave->deadline)
+        return slave->deadline;
+    if (slave->tx.active && slave->tx.retries < FRAGMENT_RETRIES) {
+        slave->tx.retries++;
+        send_fragment(scanner, slave);
+        return slave->deadline;
+    }
+    finish(scanner, slave, DN_RESULT_TIMEOUT, 0, DN_AC_NONE, NULL, 0);
+    return slave->deadline; /* the callback may have started the next request */
+}
+
+/* ---- I/O ------------------------------------------------------------------------------- */
+
+static void io_report(dn_scanner_t *scanner, const dn_slave_t *slave, dn_io_kind_t kind,
+                      const uint8_t *data, uint8_t len)
+{
+    const dn_scanner_app_t *app = scanner->config->app;
+    if (app->io)
+        app->io(app->user, slave->mac_id, kind, data, len);
+}
+
+bool dn_scanner_set_output(dn_scanner_t *scanner, uint8_t mac_id, const uint8_t *data, uint8_t len)
+{
+    dn_slave_t *slave = dn_scanner_slave(scanner, mac_id);
+    if (slave == NULL || len > sizeof(slave->output))
+        return false;
+    if (len)
+        memcpy(slave->output, data, len);
+    slave->output_len = len;
+    return true;
+}
+
+static void missed(dn_scanner_t *scanner, dn_slave_t *slave)
+{
+    slave->poll_deadline = CO_TIME_NEVER;
+    slave->missed++;
+    io_report(scanner, slave, DN_IO_POLL_MISSED, NULL, 0);
+}
+
+static void send_poll(dn_scanner_t *scanner, dn_slave_t *slave)
+{
+    if (slave->poll_deadline != CO_TIME_NEVER)
+        missed(scanner, slave); /* the previous poll is still unanswered */
+    send_frame(scanner, slave->ids.poll_command, slave->output, slave->output_len);
+    slave->polls++;
+    slave->poll_deadline = scanner->now + scanner->timeout;
+}
+
+bool dn_scanner_poll(dn_scanner_t *scanner, uint8_t mac_id, co_time_t now)
+{
+    scanner->now = now;
+    dn_slave_t *slave = dn_scanner_slave(scanner, mac_id);
+    if (scanner->link != DN_SCANNER_ONLINE || slave == NULL ||
+        !(slave->allocated & DN_ALLOC_POLLED))
+        return false;
+    send_poll(scanner, slave);
+    return true;
+}
+
+bool dn_scanner_poll_every(dn_scanner_t *scanner, uint8_t mac_id, co_time_t period_us,
+                           co_time_t now)
+{
+    scanner->now = now;
+    dn_slave_t *slave = dn_scanner_slave(scanner, mac_id);
+    if (slave == NULL || (period_us && !(slave->allocated & DN_ALLOC_POLLED)))
+        return false;
+    slave->poll_period = period_us;
+    slave->next_poll = period_us ? now : CO_TIME_NEVER;
+    return true;
+}
+
+static co_time_t poll_process(dn_scanner_t *scanner, dn_slave_t *slave)
+{
+    if (scanner->now >= slave->poll_deadline)
+        missed(scanner, slave);
+    if (slave->poll_period && scanner->now >= slave->next_poll) {
+        if (slave->allocated & DN_ALLOC_POLLED)
+            send_poll(scanner, slave);
+        /* the next period from the one due, so that a late call does not shift the schedule */
+        slave->next_poll += slave->poll_period;
+        if (slave->next_poll <= scanner->now)
+            slave->next_poll = scanner->now + slave->poll_period;
+    }
+    return co_time_min(slave->poll_deadline, slave->poll_period ? slave->next_poll : CO_TIME_NEVER);
+}
+
+/* Group 1 from a slave: its poll response (message 0xF) or its COS/cyclic data (0xD), which
+ * is acknowledged unless the allocation suppressed acknowledgements. */
+static void io_receive(dn_scanner_t *scanner, dn_slave_t *slave, uint8_t message_id,
+                       const co_frame_t *frame)
+{
+    if (message_id == DN_G1_SLAVE_POLL_RESPONSE && (slave->allocated & DN_ALLOC_POLLED)) {
+        slave->poll_deadline = CO_TIME_NEVER;
+        slave->responses++;
+        io_report(scanner, slave, DN_IO_POLL_RESPONSE, frame->data, frame->len);
+    } else if (message_id == DN_G1_SLAVE_COS_CYCLIC &&
+               (slave->allocated & (DN_ALLOC_COS | DN_ALLOC_CYCLIC))) {
+        if (!(slave->allocated & DN_ALLOC_ACK_SUPPRESSION))
+            send_frame(scanner, slave->ids.cos_ack, NULL, 0);
+        io_report(scanner, slave, DN_IO_COS_DATA, frame->data, frame->len);
+    }
+}
+
+/* ---- frames and time ------------------------------------------------------------------- */
+
+void dn_scanner_receive(dn_scanner_t *scanner, const co_frame_t *frame, co_time_t now)
+{
+    scanner->now = now;
+    if (frame->flags & (CO_FRAME_RTR | CO_FRAME_EFF) || frame->len > CO_FRAME_DLC_MAX ||
+        scanner->link == DN_SCANNER_OFF)
+        return;
+    dn_can_id_t id = dn_can_id_decode(frame->id);
+    if (id.group == 2 && id.message_id == DN_G2_DUPLICATE_MAC_CHECK &&
+        id.mac_id == scanner->config->mac_id) {
+        duplicate_mac_receive(scanner, frame);
+        return;
+    }
+    if (scanner->link != DN_SCANNER_ONLINE)
+        return;
+    dn_slave_t *slave = dn_scanner_slave(scanner, id.mac_id);
+    if (slave == NULL)
+        return;
+    if (id.group == 2 && id.message_id == DN_G2_SLAVE_EXPLICIT_RESPONSE)
+        response_receive(scanner, slave, frame);
+    else if (id.group == 1)
+        io_receive(scanner, slave, id.message_id, frame);
+}
+
+co_time_t dn_scanner_process(dn_scanner_t *scanner, co_time_t now)
+{
+    scanner->now = now;
+    link_process(scanner);
+    if (scanner->link != DN_SCANNER_ONLINE)
+        return scanner->link_deadline;
+    co_time_t next = CO_TIME_NEVER;
+    const dn_scanner_config_t *config = scanner->config;
+    for (uint8_t i = 0; i < config->slave_count; i++) {
+        dn_slave_t *slave = &config->slaves[i];
+        next = co_time_min(next, request_process(scanner, slave));
+        next = co_time_min(next, poll_process(scanner, slave));
+    }
+    return next;
+}

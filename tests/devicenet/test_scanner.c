@@ -1,0 +1,620 @@
+/* The scanner (src/devicenet/scanner): its duplicate MAC ID check; wired to a slave of the
+ * bench (MAC ID 63), allocation, Get and Set with fragmentation both ways, the expected packet
+ * rate, polls once and at a period, COS data acknowledged; with scripted frames instead of the
+ * slave, the error paths: a CIP error, another master owning the set, timeouts, a lost and a
+ * repeated response fragment, a request fragment unacknowledged or refused, missed polls, and
+ * 63 slaves polled every 25 ms. Frames in candump text, time injected. */
+#include "check_main.h"
+#include "dn/dn_scanner.h"
+#include "dn_bench.h"
+#include "test_bus.h"
+
+#include <stdio.h>
+#include <string.h>
+
+#define SLAVE 63u
+#define FRAMES 512
+#define RESULTS 16
+#define IOS 16
+#define MS 1000u
+
+typedef struct wire {
+    dn_bench_t bench; /* the slave, first: its send callback finds the wire from it */
+    bool connected;   /* the scanner's frames reach the slave; else they are only logged */
+    dn_scanner_t scanner;
+    dn_scanner_config_t config;
+    dn_scanner_app_t app;
+    dn_slave_t slaves[DN_MAC_ID_MAX + 1];
+    co_time_t now;
+    /* Every frame of both sides in order, and those not delivered yet. */
+    co_frame_t log[FRAMES];
+    co_time_t at[FRAMES];
+    bool from_scanner[FRAMES];
+    size_t logged;
+    size_t delivered;
+    size_t checked;
+    dn_result_t results[RESULTS];
+    uint8_t result_data[RESULTS][DN_MESSAGE_MAX];
+    co_time_t result_at[RESULTS];
+    size_t result_count;
+    dn_io_kind_t io_kind[IOS];
+    uint8_t io_data[IOS][8];
+    uint8_t io_len[IOS];
+    size_t io_count;
+} wire_t;
+
+static wire_t w;
+
+static void record(wire_t *wire, const co_frame_t *frame, bool from_scanner)
+{
+    ck_assert_uint_lt(wire->logged, FRAMES);
+    wire->log[wire->logged] = *frame;
+    wire->at[wire->logged] = wire->now;
+    wire->from_scanner[wire->logged++] = from_scanner;
+}
+
+static void slave_send(void *user, const co_frame_t *frame)
+{
+    record(user, frame, false); /* user is the bench, the wire's first member */
+}
+
+static void scanner_send(void *user, const co_frame_t *frame)
+{
+    record(user, frame, true);
+}
+
+static void scanner_done(void *user, const dn_result_t *result)
+{
+    wire_t *wire = user;
+    ck_assert_uint_lt(wire->result_count, RESULTS);
+    size_t i = wire->result_count++;
+    wire->results[i] = *result;
+    if (result->len)
+        memcpy(wire->result_data[i], result->data, result->len);
+    wire->results[i].data = wire->result_data[i];
+    wire->result_at[i] = wire->now;
+}
+
+static void scanner_io(void *user, uint8_t mac_id, dn_io_kind_t kind, const uint8_t *data,
+                       uint8_t len)
+{
+    wire_t *wire = user;
+    (void)mac_id;
+    if (wire->io_count == IOS)
+        return; /* sixty_three_slaves counts them per slave */
+    size_t i = wire->io_count++;
+    wire->io_kind[i] = kind;
+    wire->io_len[i] = len;
+    if (len)
+        memcpy(wire->io_data[i], data, len);
+}
+
+/* Hands every frame not yet delivered to the other side, then runs both. */
+static void pump(wire_t *wire)
+{
+    while (wire->delivered < wire->logged) {
+        size_t i = wire->delivered++;
+        if (wire->from_scanner[i]) {
+            if (wire->connected)
+                dn_node_receive(&wire->bench.node, &wire->log[i], wire->now);
+        } else {
+            dn_scanner_receive(&wire->scanner, &wire->log[i], wire->now);
+        }
+        dn_node_process(&wire->bench.node, wire->now);
+        dn_scanner_process(&wire->scanner, wire->now);
+    }
+}
+
+static co_time_t next_deadline(wire_t *wire)
+{
+    co_time_t scanner = dn_scanner_process(&wire->scanner, wire->now);
+    if (!wire->connected)
+        return scanner;
+    return co_time_min(scanner, dn_node_process(&wire->bench.node, wire->now));
+}
+
+static void advance(wire_t *wire, co_time_t us)
+{
+    co_time_t target = wire->now + us;
+    for (;;) {
+        pump(wire);
+        co_time_t next = next_deadline(wire);
+        if (wire->delivered < wire->logged)
+            continue; /* what was due sent frames: deliver them first */
+        if (next > target)
+            break;
+        if (next > wire->now)
+            wire->now = next;
+    }
+    wire->now = target;
+}
+
+/* A frame of the slave's side, scripted. */
+static void rx(wire_t *wire, const char *text)
+{
+    co_frame_t frame = test_frame(text);
+    record(wire, &frame, false);
+    pump(wire);
+}
+
+static co_time_t expect_at(wire_t *wire, const char *text, const char *file, int line)
+{
+    char want[32], got[32];
+    co_frame_t f = test_frame(text);
+    test_format(&f, want);
+    /* scripted frames are the test's own: skip them */
+    while (wire->checked < wire->logged && !wire->from_scanner[wire->checked] && !wire->connected)
+        wire->checked++;
+    ck_assert_msg(wire->checked < wire->logged, "%s:%d: expected %s, bus is quiet", file, line,
+                  want);
+    test_format(&wire->log[wire->checked], got);
+    ck_assert_msg(strcmp(want, got) == 0, "%s:%d: expected %s, got %s", file, line, want, got);
+    return wire->at[wire->checked++];
+}
+
+static void expect_none_at(wire_t *wire, const char *file, int line)
+{
+    char got[32];
+    while (wire->checked < wire->logged && !wire->from_scanner[wire->checked] && !wire->connected)
+        wire->checked++;
+    if (wire->checked < wire->logged)
+        ck_abort_msg("%s:%d: expected silence, got %s", file, line,
+                     test_format(&wire->log[wire->checked], got));
+}
+
+#define expect(text) expect_at(&w, (text), __FILE__, __LINE__)
+#define expect_none() expect_none_at(&w, __FILE__, __LINE__)
+
+static const dn_result_t *result(size_t i)
+{
+    ck_assert_uint_gt(w.result_count, i);
+    return &w.results[i];
+}
+
+static void expect_result(size_t i, dn_result_status_t status, uint8_t general, uint8_t additional,
+                          const char *hex)
+{
+    const dn_result_t *r = result(i);
+    ck_assert_int_eq(r->status, status);
+    ck_assert_uint_eq(r->mac_id, SLAVE);
+    ck_assert_uint_eq(r->general, general);
+    ck_assert_uint_eq(r->additional, additional);
+    char text[2 * DN_MESSAGE_MAX + 1] = "";
+    for (uint8_t k = 0; k < r->len; k++)
+        snprintf(&text[2 * k], 3, "%02X", r->data[k]);
+    ck_assert_str_eq(text, hex);
+}
+
+/* The scanner at MAC ID 0 with slaves `macs`, not started; the bench's slave 63 online. */
+static void wire_setup(const uint8_t *macs, uint8_t count, bool connected)
+{
+    memset(&w, 0, sizeof(w));
+    bench_online(&w.bench, SLAVE);
+    w.bench.app.send = slave_send;
+    w.now = w.bench.now;
+    w.connected = connected;
+    w.app = (dn_scanner_app_t){&w, scanner_send, scanner_done, scanner_io};
+    for (uint8_t i = 0; i < count; i++)
+        w.slaves[i].mac_id = macs[i];
+    w.config = (dn_scanner_config_t){
+        DN_SCANNER_MAC_DEFAULT, 0x00F3, 0x00C0FFEE, 0, w.slaves, count, &w.app};
+    ck_assert_int_eq(dn_scanner_init(&w.scanner, &w.config), DN_SCANNER_INIT_OK);
+}
+
+static void setup_wired(void)
+{
+    static const uint8_t macs[] = {SLAVE};
+    wire_setup(macs, 1, true);
+    dn_scanner_start_online(&w.scanner, w.now);
+}
+
+static void setup_scripted(void)
+{
+    static const uint8_t macs[] = {SLAVE};
+    wire_setup(macs, 1, false);
+    dn_scanner_start_online(&w.scanner, w.now);
+}
+
+static void allocate(uint8_t choice)
+{
+    ck_assert(dn_scanner_allocate(&w.scanner, SLAVE, choice, w.now));
+    advance(&w, 0);
+}
+
+/* ---- the duplicate MAC ID check ------------------------------------------------------------ */
+
+START_TEST(duplicate_mac_check_then_online)
+{
+    setup_scripted();
+    dn_scanner_start(&w.scanner, w.now);
+    co_time_t t0 = w.now;
+    ck_assert(!dn_scanner_allocate(&w.scanner, SLAVE, DN_ALLOC_EXPLICIT, w.now)); /* not yet */
+    ck_assert_uint_eq(expect("407#00F300EEFFC000"), t0);
+    advance(&w, DN_DUP_MAC_WAIT_US);
+    ck_assert_uint_eq(expect("407#00F300EEFFC000"), t0 + DN_DUP_MAC_WAIT_US);
+    advance(&w, DN_DUP_MAC_WAIT_US - 1);
+    ck_assert_int_eq(w.scanner.link, DN_SCANNER_CHECKING);
+    advance(&w, 1);
+    ck_assert_int_eq(w.scanner.link, DN_SCANNER_ONLINE);
+    expect_none();
+    /* another node's check of MAC ID 0 is answered; a response is not */
+    rx(&w, "407#000100FFFFFFFF");
+    expect("407#80F300EEFFC000");
+    rx(&w, "407#800100FFFFFFFF");
+    expect_none();
+}
+END_TEST
+
+START_TEST(duplicate_mac_answered_stays_off)
+{
+    setup_scripted();
+    dn_scanner_start(&w.scanner, w.now);
+    expect("407#00F300EEFFC000");
+    rx(&w, "407#800100FFFFFFFF"); /* a node online with MAC ID 0 */
+    ck_assert_int_eq(w.scanner.link, DN_SCANNER_DUPLICATE);
+    advance(&w, 3 * DN_DUP_MAC_WAIT_US);
+    expect_none();
+    ck_assert(!dn_scanner_allocate(&w.scanner, SLAVE, DN_ALLOC_EXPLICIT, w.now));
+    expect_none();
+}
+END_TEST
+
+START_TEST(init_refusals)
+{
+    setup_scripted();
+    dn_scanner_t s;
+    dn_scanner_config_t c = w.config;
+    c.mac_id = 64;
+    ck_assert_int_eq(dn_scanner_init(&s, &c), DN_SCANNER_INIT_BAD_MAC_ID);
+    c = w.config;
+    w.slaves[1].mac_id = SLAVE;
+    c.slave_count = 2;
+    ck_assert_int_eq(dn_scanner_init(&s, &c), DN_SCANNER_INIT_BAD_MAC_ID);
+    c = w.config;
+    dn_scanner_app_t app = w.app;
+    app.done = NULL;
+    c.app = &app;
+    ck_assert_int_eq(dn_scanner_init(&s, &c), DN_SCANNER_INIT_BAD_CONFIG);
+    ck_assert_ptr_null(dn_scanner_slave(&w.scanner, 25));
+}
+END_TEST
+
+/* ---- against the slave ------------------------------------------------------------------- */
+
+START_TEST(allocate_get_release)
+{
+    setup_wired();
+    allocate(DN_ALLOC_EXPLICIT);
+    expect("5FE#004B03010100");
+    expect("5FB#00CB00");
+    expect_result(0, DN_RESULT_OK, 0, 0, "00");
+    ck_assert_uint_eq(w.slaves[0].allocated, DN_ALLOC_EXPLICIT);
+    ck_assert(dn_scanner_get(&w.scanner, SLAVE, DN_CLASS_IDENTITY, 1, 1, w.now));
+    ck_assert(!dn_scanner_get(&w.scanner, SLAVE, DN_CLASS_IDENTITY, 1, 2, w.now)); /* busy */
+    advance(&w, 0);
+    expect("5FC#400E010101");
+    expect("5FB#408EF300");
+    expect_result(1, DN_RESULT_OK, 0, 0, "F300");
+    ck_assert_uint_eq(result(1)->service, DN_SVC_GET_ATTRIBUTE_SINGLE);
+    ck_assert(dn_scanner_release(&w.scanner, SLAVE, DN_ALLOC_EXPLICIT, w.now));
+    advance(&w, 0);
+    expect("5FE#004C030101");
+    expect("5FB#00CC");
+    expect_result(2, DN_RESULT_OK, 0, 0, "");
+    ck_assert_uint_eq(w.slaves[0].allocated, 0);
+    expect_none();
+}
+END_TEST
+
+/* The product name "ATV312" is 8 bytes with the service: two fragments, each acknowledged. */
+START_TEST(response_in_fragments)
+{
+    setup_wired();
+    allocate(DN_ALLOC_EXPLICIT);
+    ck_assert(dn_scanner_get(&w.scanner, SLAVE, DN_CLASS_IDENTITY, 1, 7, w.now));
+    advance(&w, 0);
+    expect("5FE#004B03010100");
+    expect("5FB#00CB00");
+    expect("5FC#400E010107");
+    expect("5FB#C0008E0641545633");
+    expect("5FC#C0C000");
+    expect("5FB#C0813132");
+    expect("5FC#C0C100");
+    expect_none();
+    expect_result(1, DN_RESULT_OK, 0, 0, "06415456333132");
+}
+END_TEST
+
+/* Set of class 0x70 attribute 1 with 10 bytes: 14 bytes in three fragments, each waiting for
+ * the slave's acknowledgement; the slave refuses the length (0x15). */
+START_TEST(request_in_fragments)
+{
+    setup_wired();
+    allocate(DN_ALLOC_EXPLICIT);
+    static const uint8_t value[10] = {1, 2, 3, 4, 5, 6, 7, 8, 9, 10};
+    ck_assert(dn_scanner_set(&w.scanner, SLAVE, 0x70, 1, 1, value, sizeof(value), w.now));
+    advance(&w, 0);
+    expect("5FE#004B03010100");
+    expect("5FB#00CB00");
+    expect("5FC#C000107001010102");
+    expect("5FB#C0C000");
+    expect("5FC#C041030405060708");
+    expect("5FB#C0C100");
+    expect("5FC#C082090A");
+    expect("5FB#C0C200");
+    expect("5FB#409415FF");
+    expect_none();
+    expect_result(1, DN_RESULT_CIP_ERROR, DN_GS_TOO_MUCH_DATA, DN_AC_NONE, "");
+}
+END_TEST
+
+START_TEST(cip_error_and_another_master)
+{
+    setup_wired();
+    /* another master (MAC ID 2) owns the set: the scanner's Allocate is refused */
+    dn_node_receive(&w.bench.node,
+                    &(co_frame_t){.id = 0x5FE, .len = 6, .data = {2, 0x4B, 3, 1, 1, 2}}, w.now);
+    allocate(DN_ALLOC_EXPLICIT);
+    expect("5FB#02CB00"); /* the other master's answer: ignored */
+    expect("5FE#004B03010100");
+    expect("5FB#00940C01");
+    expect_result(0, DN_RESULT_CIP_ERROR, DN_GS_OBJECT_STATE_CONFLICT, DN_AC_ALLOCATION_CONFLICT,
+                  "");
+    ck_assert_uint_eq(w.slaves[0].allocated, 0);
+    /* released by its master, the set is the scanner's; an attribute that does not exist */
+    dn_node_receive(&w.bench.node, &(co_frame_t){.id = 0x5FE, .len = 5, .data = {2, 0x4C, 3, 1, 1}},
+                    w.now);
+    allocate(DN_ALLOC_EXPLICIT);
+    ck_assert(dn_scanner_get(&w.scanner, SLAVE, DN_CLASS_IDENTITY, 1, 99, w.now));
+    advance(&w, 0);
+    expect("5FB#02CC");
+    expect("5FE#404B03010100");
+    expect("5FB#40CB00");
+    expect("5FC#000E010163");
+    expect("5FB#009414FF");
+    expect_result(2, DN_RESULT_CIP_ERROR, DN_GS_ATTRIBUTE_NOT_SUPPORTED, DN_AC_NONE, "");
+}
+END_TEST
+
+/* Allocate explicit and polled, the expected packet rate (100 ms, 104 in use), then polls once
+ * and every 25 ms with assembly 21's data; the answers carry assembly 71. */
+START_TEST(poll_once_and_periodically)
+{
+    setup_wired();
+    allocate(DN_ALLOC_EXPLICIT | DN_ALLOC_POLLED);
+    ck_assert(dn_scanner_set_expected_packet_rate(&w.scanner, SLAVE, DN_CONN_POLL, 100, w.now));
+    advance(&w, 0);
+    expect("5FE#004B03010300");
+    expect("5FB#00CB00");
+    expect("5FC#4010050209 6400");
+    expect("5FB#40906800");
+    expect_result(1, DN_RESULT_OK, 0, 0, "6800");
+    memcpy(bench_assembly(&w.bench, 71), (uint8_t[]){0x27, 0x04, 0xB0, 0x04}, 4);
+    static const uint8_t run[4] = {0x61, 0x00, 0xB0, 0x04};
+    ck_assert(dn_scanner_set_output(&w.scanner, SLAVE, run, sizeof(run)));
+    ck_assert(dn_scanner_poll(&w.scanner, SLAVE, w.now));
+    advance(&w, 0);
+    expect("5FD#6100B004");
+    expect("3FF#2704B004");
+    ck_assert_uint_eq(w.io_count, 1);
+    ck_assert_int_eq(w.io_kind[0], DN_IO_POLL_RESPONSE);
+    ck_assert_uint_eq(w.io_len[0], 4);
+    ck_assert_mem_eq(bench_assembly(&w.bench, 21), run, 4);
+    co_time_t t0 = w.now;
+    ck_assert(dn_scanner_poll_every(&w.scanner, SLAVE, 25 * MS, w.now));
+    advance(&w, 50 * MS);
+    ck_assert_uint_eq(expect("5FD#6100B004"), t0);
+    expect("3FF#2704B004");
+    ck_assert_uint_eq(expect("5FD#6100B004"), t0 + 25 * MS);
+    expect("3FF#2704B004");
+    ck_assert_uint_eq(expect("5FD#6100B004"), t0 + 50 * MS);
+    expect("3FF#2704B004");
+    expect_none();
+    ck_assert_uint_eq(w.slaves[0].polls, 4);
+    ck_assert_uint_eq(w.slaves[0].responses, 4);
+    ck_assert_uint_eq(w.slaves[0].missed, 0);
+    ck_assert(dn_scanner_poll_every(&w.scanner, SLAVE, 0, w.now));
+    advance(&w, 50 * MS);
+    expect_none();
+}
+END_TEST
+
+/* COS with acknowledgement: the slave produces at Established and the scanner acknowledges it
+ * with an empty frame on group 2 message 2. */
+START_TEST(cos_data_acknowledged)
+{
+    setup_wired();
+    allocate(DN_ALLOC_EXPLICIT | DN_ALLOC_COS);
+    memcpy(bench_assembly(&w.bench, 71), (uint8_t[]){0x40, 0x03, 0x00, 0x00}, 4);
+    ck_assert(
+        dn_scanner_set_expected_packet_rate(&w.scanner, SLAVE, DN_CONN_COS_CYCLIC, 1000, w.now));
+    advance(&w, 0);
+    expect("5FE#004B03011100");
+    expect("5FB#00CB00");
+    expect("5FC#4010050409E803");
+    expect("5FB#4090E803");
+    expect("37F#40030000");
+    expect("5FA#");
+    expect_none();
+    ck_assert_uint_eq(w.io_count, 1);
+    ck_assert_int_eq(w.io_kind[0], DN_IO_COS_DATA);
+    ck_assert_int_eq(w.bench.node.awaiting_ack, false);
+}
+END_TEST
+
+/* ---- scripted error paths ----------------------------------------------------------------- */
+
+START_TEST(no_answer_is_a_timeout)
+{
+    setup_scripted();
+    co_time_t t0 = w.now;
+    allocate(DN_ALLOC_EXPLICIT);
+    expect("5FE#004B03010100");
+    advance(&w, DN_SCANNER_TIMEOUT_DEFAULT_US - 1);
+    ck_assert_uint_eq(w.result_count, 0);
+    advance(&w, 1);
+    expect_result(0, DN_RESULT_TIMEOUT, 0, DN_AC_NONE, "");
+    ck_assert_uint_eq(w.result_at[0], t0 + DN_SCANNER_TIMEOUT_DEFAULT_US);
+    /* a late answer is not taken for the next request (its XID differs) */
+    ck_assert(dn_scanner_allocate(&w.scanner, SLAVE, DN_ALLOC_EXPLICIT, w.now));
+    rx(&w, "5FB#00CB00");
+    ck_assert_uint_eq(w.result_count, 1);
+    rx(&w, "5FB#40CB00");
+    expect_result(1, DN_RESULT_OK, 0, 0, "00");
+    expect("5FE#404B03010100");
+    expect_none();
+}
+END_TEST
+
+START_TEST(lost_response_fragment)
+{
+    setup_scripted();
+    w.slaves[0].allocated = DN_ALLOC_EXPLICIT;
+    ck_assert(dn_scanner_get(&w.scanner, SLAVE, DN_CLASS_IDENTITY, 1, 7, w.now));
+    advance(&w, 0);
+    expect("5FC#000E010107");
+    rx(&w, "5FB#80008E0641545633");
+    expect("5FC#80C000");
+    rx(&w, "5FB#80823132"); /* count 2: fragment 1 was lost */
+    expect_none();
+    expect_result(0, DN_RESULT_FRAGMENT_LOST, 0, DN_AC_NONE, "");
+}
+END_TEST
+
+START_TEST(repeated_response_fragment)
+{
+    setup_scripted();
+    w.slaves[0].allocated = DN_ALLOC_EXPLICIT;
+    ck_assert(dn_scanner_get(&w.scanner, SLAVE, DN_CLASS_IDENTITY, 1, 7, w.now));
+    advance(&w, 0);
+    expect("5FC#000E010107");
+    rx(&w, "5FB#80008E0641");
+    expect("5FC#80C000");
+    rx(&w, "5FB#8041545633313233");
+    expect("5FC#80C100");
+    rx(&w, "5FB#8041545633313233"); /* the acknowledgement was lost: again, dropped */
+    expect("5FC#80C100");
+    rx(&w, "5FB#8082");
+    expect("5FC#80C200");
+    expect_none();
+    expect_result(0, DN_RESULT_OK, 0, 0, "0641545633313233");
+}
+END_TEST
+
+/* A request fragment unacknowledged is sent once more after the timeout, then given up. */
+START_TEST(request_fragment_unacknowledged)
+{
+    setup_scripted();
+    w.slaves[0].allocated = DN_ALLOC_EXPLICIT;
+    static const uint8_t value[10] = {1, 2, 3, 4, 5, 6, 7, 8, 9, 10};
+    co_time_t t0 = w.now;
+    ck_assert(dn_scanner_set(&w.scanner, SLAVE, 0x70, 1, 1, value, sizeof(value), w.now));
+    advance(&w, 3 * DN_SCANNER_TIMEOUT_DEFAULT_US);
+    ck_assert_uint_eq(expect("5FC#8000107001010102"), t0);
+    ck_assert_uint_eq(expect("5FC#8000107001010102"), t0 + DN_SCANNER_TIMEOUT_DEFAULT_US);
+    expect_none();
+    expect_result(0, DN_RESULT_TIMEOUT, 0, DN_AC_NONE, "");
+    ck_assert_uint_eq(w.result_at[0], t0 + 2 * DN_SCANNER_TIMEOUT_DEFAULT_US);
+}
+END_TEST
+
+START_TEST(request_fragment_refused)
+{
+    setup_scripted();
+    w.slaves[0].allocated = DN_ALLOC_EXPLICIT;
+    static const uint8_t value[10] = {0};
+    ck_assert(dn_scanner_set(&w.scanner, SLAVE, 0x70, 1, 1, value, sizeof(value), w.now));
+    advance(&w, 0);
+    expect("5FC#8000107001010000");
+    rx(&w, "5FB#80C000");
+    expect("5FC#8041000000000000");
+    rx(&w, "5FB#80C101"); /* too much data */
+    expect_none();
+    expect_result(0, DN_RESULT_FRAGMENT_ERROR, 0, DN_FRAG_ACK_TOO_MUCH_DATA, "");
+}
+END_TEST
+
+START_TEST(missed_polls)
+{
+    setup_scripted();
+    w.slaves[0].allocated = DN_ALLOC_EXPLICIT | DN_ALLOC_POLLED;
+    ck_assert(dn_scanner_poll_every(&w.scanner, SLAVE, 25 * MS, w.now));
+    advance(&w, 25 * MS);
+    expect("5FD#");
+    expect("5FD#");
+    ck_assert_uint_eq(w.io_count, 1); /* the first poll's answer is missing at the second */
+    ck_assert_int_eq(w.io_kind[0], DN_IO_POLL_MISSED);
+    rx(&w, "3FF#01020304");
+    ck_assert_uint_eq(w.io_count, 2);
+    ck_assert_int_eq(w.io_kind[1], DN_IO_POLL_RESPONSE);
+    ck_assert_uint_eq(w.slaves[0].missed, 1);
+    ck_assert_uint_eq(w.slaves[0].responses, 1);
+}
+END_TEST
+
+/* 63 slaves polled every 25 ms: 63 poll commands at each period, one deadline for all. */
+START_TEST(sixty_three_slaves)
+{
+    uint8_t macs[63];
+    for (uint8_t i = 0; i < 63; i++)
+        macs[i] = (uint8_t)(i + 1);
+    wire_setup(macs, 63, false);
+    dn_scanner_start_online(&w.scanner, w.now);
+    for (uint8_t i = 0; i < 63; i++) {
+        w.slaves[i].allocated = DN_ALLOC_EXPLICIT | DN_ALLOC_POLLED;
+        ck_assert(dn_scanner_poll_every(&w.scanner, macs[i], 25 * MS, w.now));
+    }
+    co_time_t t0 = w.now;
+    ck_assert_uint_eq(dn_scanner_process(&w.scanner, w.now), t0 + 25 * MS);
+    ck_assert_uint_eq(w.logged, 63);
+    char text[32];
+    for (uint8_t i = 0; i < 63; i++) {
+        snprintf(text, sizeof(text), "%03X#",
+                 0x400u | (i + 1u) << 3 | DN_G2_MASTER_POLL_COS_CYCLIC);
+        ck_assert_uint_eq(expect(text), t0);
+    }
+    for (uint8_t i = 0; i < 63; i++) {
+        snprintf(text, sizeof(text), "%03X#00000000", DN_G1_SLAVE_POLL_RESPONSE << 6 | (i + 1u));
+        rx(&w, text);
+    }
+    advance(&w, 25 * MS);
+    for (uint8_t i = 0; i < 63; i++) {
+        snprintf(text, sizeof(text), "%03X#",
+                 0x400u | (i + 1u) << 3 | DN_G2_MASTER_POLL_COS_CYCLIC);
+        ck_assert_uint_eq(expect(text), t0 + 25 * MS);
+        ck_assert_uint_eq(w.slaves[i].polls, 2);
+        ck_assert_uint_eq(w.slaves[i].responses, 1);
+        ck_assert_uint_eq(w.slaves[i].missed, 0);
+    }
+    expect_none();
+}
+END_TEST
+
+static Suite *suite(void)
+{
+    Suite *s = suite_create("devicenet scanner");
+    TCase *tc = tcase_create("scanner");
+    tcase_add_test(tc, duplicate_mac_check_then_online);
+    tcase_add_test(tc, duplicate_mac_answered_stays_off);
+    tcase_add_test(tc, init_refusals);
+    tcase_add_test(tc, allocate_get_release);
+    tcase_add_test(tc, response_in_fragments);
+    tcase_add_test(tc, request_in_fragments);
+    tcase_add_test(tc, cip_error_and_another_master);
+    tcase_add_test(tc, poll_once_and_periodically);
+    tcase_add_test(tc, cos_data_acknowledged);
+    tcase_add_test(tc, no_answer_is_a_timeout);
+    tcase_add_test(tc, lost_response_fragment);
+    tcase_add_test(tc, repeated_response_fragment);
+    tcase_add_test(tc, request_fragment_unacknowledged);
+    tcase_add_test(tc, request_fragment_refused);
+    tcase_add_test(tc, missed_polls);
+    tcase_add_test(tc, sixty_three_slaves);
+    suite_add_tcase(s, tc);
+    return s;
+}
+
+int main(void)
+{
+    return check_run_suite(suite());
+}

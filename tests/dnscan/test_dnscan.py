@@ -1,0 +1,128 @@
+"""dnscan's command line without a bus: every argument error is one line on stderr with its
+exit status (64 usage, 65 data), --json adds {"error", "exit"} on stdout, and a missing
+interface or CAN support is 69 (docs/dnscan.md)."""
+
+import json
+import os
+import subprocess
+import unittest
+
+DNSCAN = os.environ["DNSCAN"]
+
+
+def run(*args):
+    return subprocess.run([DNSCAN, *args], capture_output=True, text=True, check=False)
+
+
+class ArgumentErrors(unittest.TestCase):
+    def check(self, args, status, message):
+        result = run(*args)
+        self.assertEqual(result.returncode, status, result.stderr)
+        self.assertEqual(result.stderr, "dnscan: " + message + "\n")
+        self.assertEqual(result.stdout, "")
+
+    def test_no_command(self):
+        self.check([], 64, "no command: give one of scan, get, set, allocate, release, poll, "
+                   "monitor (see dnscan --help)")
+
+    def test_unknown_command(self):
+        self.check(["frob"], 64, "unknown command 'frob': give one of scan, get, set, allocate, "
+                   "release, poll, monitor (see dnscan --help)")
+
+    def test_unknown_option(self):
+        self.check(["--frob", "scan"], 64, "unknown option '--frob' (see dnscan --help)")
+
+    def test_option_without_value(self):
+        self.check(["scan", "--timeout"], 64, "option --timeout needs a value")
+
+    def test_bad_timeout(self):
+        self.check(["--timeout", "0", "scan"], 64,
+                   "--timeout: '0' is not a time: give milliseconds 1..600000")
+
+    def test_bad_own_mac_id(self):
+        self.check(["--mac-id", "64", "scan"], 64, "--mac-id: '64' is not a MAC ID: give 0..63")
+
+    def test_missing_arguments(self):
+        self.check(["get", "63", "1", "1"], 64,
+                   "get: missing arguments: usage: dnscan get MAC CLASS INST ATTR [--type T]")
+
+    def test_too_many_arguments(self):
+        self.check(["release", "63", "3", "4"], 64,
+                   "release: too many arguments from '4': usage: dnscan release MAC [CHOICE]")
+
+    def test_bad_mac_id(self):
+        self.check(["get", "64", "1", "1", "1"], 64, "'64' is not a MAC ID: give a number 0..63")
+
+    def test_own_mac_id(self):
+        self.check(["--mac-id", "5", "get", "5", "1", "1", "1"], 64,
+                   "MAC ID 5 is the scanner's own: give the scanner another with --mac-id N")
+
+    def test_bad_class(self):
+        self.check(["get", "63", "0", "1", "1"], 64, "'0' is not a class: give 1..255")
+
+    def test_bad_attribute(self):
+        self.check(["get", "63", "1", "1", "256"], 64, "'256' is not an attribute: give 1..255")
+
+    def test_bad_type(self):
+        self.check(["get", "63", "1", "1", "7", "--type", "f32"], 64,
+                   "--type: 'f32' is not a type: give u8, u16, u32, i8, i16, i32 or string")
+
+    def test_bad_value(self):
+        message = ("'%s' is not a value: give hexadecimal bytes (B0 04) or TYPE:NUMBER in the "
+                   "type's range (u16:1200)")
+        self.check(["set", "63", "0x70", "1", "4", "zz"], 65, message % "zz")
+        self.check(["set", "63", "0x70", "1", "4", "u8:256"], 65, message % "u8:256")
+
+    def test_poll_set_needs_assembly(self):
+        self.check(["poll", "63", "--set", "Run_fwd=1"], 64,
+                   "--set needs the output assembly: give --assembly OUT/IN (21/71)")
+
+    def test_poll_bad_assembly(self):
+        self.check(["poll", "63", "--assembly", "71/21"], 64,
+                   "--assembly: '71/21' is not OUT/IN: give 20/70, 21/71 or 100/101 (or a mix)")
+
+    def test_poll_unknown_field(self):
+        self.check(["poll", "63", "--assembly", "21/71", "--set", "Speed=5"], 64,
+                   "--set: 'Speed=5' is not NAME=VALUE with a field of assembly 21 (see "
+                   "docs/dnscan.md)")
+
+    def test_poll_field_out_of_range(self):
+        self.check(["poll", "63", "--assembly", "21/71", "--set", "Run_fwd=2"], 65,
+                   "--set: '2' does not fit Run fwd")
+
+    def test_poll_bad_output(self):
+        self.check(["poll", "63", "--output", "6x"], 65,
+                   "--output: '6x' is not data: give hexadecimal bytes (61 00 B0 04)")
+
+
+class Json(unittest.TestCase):
+    def test_error_object(self):
+        result = run("--json", "get", "64", "1", "1", "1")
+        self.assertEqual(result.returncode, 64)
+        self.assertEqual(json.loads(result.stdout),
+                         {"error": "'64' is not a MAC ID: give a number 0..63", "exit": 64})
+
+
+class Interface(unittest.TestCase):
+    def test_missing_interface_is_69(self):
+        result = run("-i", "nosuch0", "--no-check", "get", "63", "1", "1", "1")
+        self.assertEqual(result.returncode, 69, result.stderr)
+        self.assertEqual(len(result.stderr.splitlines()), 1)
+
+
+class Help(unittest.TestCase):
+    def test_help_names_every_command_and_exit_code(self):
+        result = run("--help")
+        self.assertEqual(result.returncode, 0)
+        for word in ("scan", "get MAC", "set MAC", "allocate MAC", "release MAC", "poll MAC",
+                     "monitor", "64\nusage error"):
+            self.assertIn(word, result.stdout)
+
+    def test_version(self):
+        result = run("--version")
+        self.assertEqual(result.returncode, 0)
+        self.assertRegex(result.stdout, r"^dnscan \d+\.\d+\.\d+\n$")
+
+
+if __name__ == "__main__":
+    unittest.main()

@@ -244,6 +244,10 @@ co_time_t drive_process(drive_t *drive, co_time_t now);
  * (active) or clears the EMCY, and raises it again after a reset node while it lasts. They do not
  * fault the drive. */
 void drive_bus_event(drive_t *drive, uint16_t emcy_code, bool active);
+/* The network the drive is on stopped sending what it must (a fieldbus front-end's timeout, as
+ * the heartbeat consumer's or life guarding's on CANopen): the communication-loss fault at `now`,
+ * with the reaction and network fault code of the model's parameters. */
+void drive_communication_loss(drive_t *drive, co_time_t now);
 /* Faults (faults.h). The index of the model's fault whose code is `code`, compared without
  * case ("ohf" finds OHF), or -1. */
 int drive_fault_find(const drive_t *drive, const char *code);

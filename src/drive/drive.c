@@ -309,6 +309,12 @@ void drive_bus_event(drive_t *drive, uint16_t emcy_code, bool active)
         co_emcy_clear(&drive->node, emcy_code);
 }
 
+void drive_communication_loss(drive_t *drive, co_time_t now)
+{
+    drive_motor_advance(&drive->motor, now);
+    communication_fault(drive);
+}
+
 const char *drive_state_name(const drive_t *drive)
 {
     return cia402_state_name(drive->cia402.state);

@@ -1,0 +1,184 @@
+/* The drive's CIP classes on the ATV312: Motor data 0x28, Control supervisor 0x29, AC/DC drive
+ * 0x2A attribute by attribute with their refusals; the application objects by the manual's
+ * address formula (read, write, refusals with their CIP codes); the assemblies 20/70 and 100/101
+ * byte for byte after a stored selection and a restart; the I/O timeout as CnF and its reset;
+ * the LEDs. */
+#include "check_main.h"
+#include "dn_drive_bench.h"
+
+static dn_drive_bench_t b;
+
+static void setup(void)
+{
+    memset(&b, 0, sizeof b);
+    db_connected(&b);
+}
+
+START_TEST(motor_data)
+{
+    db_exchange(&b, "4CC#010E280001", "4CB#018E0100");
+    db_exchange(&b, "4CC#010E280103", "4CB#018E07");   /* squirrel cage induction motor */
+    db_exchange(&b, "4CC#010E280106", "4CB#018E2800"); /* NCR 4.0 A in 100 mA */
+    db_exchange(&b, "4CC#010E280107", "4CB#018E9001"); /* 400 V */
+    db_exchange(&b, "4CC#0110280106 2D00", "4CB#0190");
+    ck_assert_int_eq(db_value(&b, 0x2042, 4), 45);
+    db_exchange(&b, "4CC#011028010300", "4CB#019409FF");    /* another motor type */
+    db_exchange(&b, "4CC#0110280107E600", "4CB#01940EFF");  /* fixed */
+    db_exchange(&b, "4CC#0110280106 0000", "4CB#019409FF"); /* below NCR's limit */
+    db_exchange(&b, "4CC#010E280102", "4CB#019414FF");
+    db_exchange(&b, "4CC#0110280106 2D", "4CB#019413FF");
+}
+END_TEST
+
+START_TEST(control_supervisor)
+{
+    db_exchange(&b, "4CC#010E290001", "4CB#018E0100");
+    db_exchange(&b, "4CC#010E290106", "4CB#018E02"); /* Not_Ready: Switch on disabled */
+    db_exchange(&b, "4CC#011029010501", "4CB#0190");
+    db_exchange(&b, "4CC#011029010301", "4CB#0190"); /* Run1 */
+    ck_assert_int_eq(db_value(&b, 0x6040, 0), 0x000F);
+    static const char *const gets[][2] = {
+        {"4CC#010E290103", "4CB#018E01"}, {"4CC#010E290104", "4CB#018E00"},
+        {"4CC#010E290105", "4CB#018E01"}, {"4CC#010E290106", "4CB#018E04"},
+        {"4CC#010E290107", "4CB#018E01"}, {"4CC#010E290108", "4CB#018E00"},
+        {"4CC#010E290109", "4CB#018E01"}, {"4CC#010E29010A", "4CB#018E00"},
+        {"4CC#010E29010B", "4CB#018E00"}, {"4CC#010E29010C", "4CB#018E00"},
+        {"4CC#010E29010F", "4CB#018E01"},
+    };
+    for (size_t i = 0; i < sizeof gets / sizeof gets[0]; i++)
+        db_exchange(&b, gets[i][0], gets[i][1]);
+    db_exchange(&b, "4CC#011029010302", "4CB#019409FF"); /* a BOOL of 2 */
+    db_exchange(&b, "4CC#011029010601", "4CB#01940EFF");
+    db_exchange(&b, "4CC#010E29010D", "4CB#019414FF");
+    db_exchange(&b, "4CC#01052901", "4CB#0185"); /* Reset: stopped, the motor stood */
+    ck_assert_int_eq(db_value(&b, 0x6040, 0), 0x0006);
+    ck_assert_int_eq(drive_dn_state(&b.dn), DRIVE_DN_READY);
+    db_exchange(&b, "4CC#01052900", "4CB#019408FF");
+}
+END_TEST
+
+START_TEST(ac_dc_drive)
+{
+    db_exchange(&b, "4CC#010E2A0001", "4CB#019408FF"); /* no class attribute */
+    db_exchange(&b, "4CC#01102A0108B004", "4CB#0190");
+    ck_assert_int_eq(db_value(&b, 0x6042, 0), 1200);
+    db_exchange(&b, "4CC#010E2A0103", "4CB#018E01"); /* standing at 0 until a run */
+    db_exchange(&b, "4CC#010E2A0104", "4CB#018E01");
+    db_exchange(&b, "4CC#010E2A0106", "4CB#018E00");
+    db_exchange(&b, "4CC#010E2A0107", "4CB#018E0000");
+    db_exchange(&b, "4CC#010E2A0108", "4CB#018EB004");
+    db_exchange(&b, "4CC#010E2A011D", "4CB#018E01");
+    db_exchange(&b, "4CC#011029010301", "4CB#0190");
+    db_advance(&b, 2400000);
+    db_exchange(&b, "4CC#010E2A0107", "4CB#018EB004");
+    db_exchange(&b, "4CC#01102A0107B004", "4CB#01940EFF");
+    db_exchange(&b, "4CC#01102A0108B0", "4CB#019413FF");
+    db_exchange(&b, "4CC#010E2A0105", "4CB#019414FF");
+}
+END_TEST
+
+/* Class ((ADL - 3000) / 200) + 70h, attribute ADL mod 200 + 1, instance 1. */
+START_TEST(application_objects_by_address)
+{
+    db_exchange(&b, "4CC#010E700001", "4CB#018E0100");
+    db_exchange(&b, "4CC#010E700169", "4CB#018EF401"); /* HSP 3104: 50.0 Hz */
+    db_exchange(&b, "4CC#010E8E0102", "4CB#018E1E00"); /* ACC 9001: 3.0 s */
+    db_exchange(&b, "4CC#01108E01023200", "4CB#0190"); /* ACC = 5.0 s */
+    ck_assert_int_eq(db_value(&b, 0x203C, 2), 50);
+    db_exchange(&b, "4CC#01108E01030A00", "4CB#0190"); /* DEC 9002 = 1.0 s */
+    ck_assert_int_eq(db_value(&b, 0x203C, 3), 10);
+    db_exchange(&b, "4CC#010E8B0102", "4CB#018E0100");      /* CHCF 8401 */
+    db_exchange(&b, "4CC#01108E01020000", "4CB#019409FF");  /* ACC 0: below its limit */
+    db_exchange(&b, "4CC#01107001698913", "4CB#019409FF");  /* HSP 500.1 Hz */
+    db_exchange(&b, "4CC#010E700102", "4CB#019414FF");      /* 3001: no parameter */
+    db_exchange(&b, "4CC#010E7001C9", "4CB#019414FF");      /* attribute 201 */
+    db_exchange(&b, "4CC#011071010200 00", "4CB#01940EFF"); /* ETA 3201 is read-only */
+    db_exchange(&b, "4CC#01108E010232", "4CB#019413FF");
+    db_exchange(&b, "4CC#010E700201", "4CB#019416FF");
+}
+END_TEST
+
+START_TEST(io_timeout_is_cnf_and_the_scanner_resets_it)
+{
+    db_exchange(&b, "4CC#01100502096000", "4CB#01906000"); /* 96 ms: a watchdog of 384 ms */
+    db_exchange(&b, "4CD#0100B004", "3D9#74040000");
+    ck_assert_int_eq(dn_node_ns_led(&b.dn.node), DN_LED_GREEN);
+    ck_assert_int_eq(dn_node_ms_led(&b.dn.node), DN_LED_GREEN);
+    db_advance(&b, 384000);
+    ck_assert_int_eq(dn_node_ns_led(&b.dn.node), DN_LED_FLASHING_RED);
+    ck_assert_int_eq(drive_dn_state(&b.dn), DRIVE_DN_FAULTED);
+    ck_assert_int_eq(db_value(&b, 0x2022, 3), 1); /* CnF: time out */
+    ck_assert_str_eq(drive_fault_latched(&b.drive)->code, "CnF");
+    ck_assert_uint_eq(dn_node_identity_status(&b.dn.node),
+                      0x0421);                             /* owned, faulted I/O, major rec. */
+    db_exchange(&b, "4CC#01100502096000", "4CB#01906000"); /* established again */
+    db_exchange(&b, "4CD#0400B004", "3D9#F0030000");       /* FaultRst, then Stop: Ready */
+    ck_assert_ptr_null(drive_fault_latched(&b.drive));
+}
+END_TEST
+
+START_TEST(leds_before_and_after_the_check)
+{
+    memset(&b, 0, sizeof b);
+    db_start(&b);
+    ck_assert_int_eq(dn_node_ms_led(&b.dn.node), DN_LED_GREEN);
+    ck_assert_int_eq(dn_node_ns_led(&b.dn.node), DN_LED_OFF);
+    db_advance(&b, 2000000);
+    ck_assert_int_eq(dn_node_ns_led(&b.dn.node), DN_LED_FLASHING_GREEN);
+}
+END_TEST
+
+/* Connection class attributes 100 and 101: stored, used after the restart an Identity Reset is. */
+START_TEST(stored_selection_after_a_reset)
+{
+    db_exchange(&b, "4CC#01100500641400", "4CB#0190"); /* consumed 20 */
+    db_exchange(&b, "4CC#01100500654600", "4CB#0190"); /* produced 70 */
+    ck_assert_uint_eq(b.stored.consumed_assembly, 20);
+    ck_assert_uint_eq(b.stored.produced_assembly, 70);
+    db_exchange(&b, "4CD#0100B004", "3D9#74040000"); /* still 21/71 until the restart */
+    db_rx(&b, "4CC#01050101");
+    db_expect(&b, "4CB#0185");
+    db_expect(&b, "4CF#00F30078563412");
+    db_advance(&b, 2000000);
+    db_expect(&b, "4CF#00F30078563412");
+    db_expect_none(&b);
+    db_exchange(&b, "4CE#014B03010301", "4CB#01CB00");
+    db_exchange(&b, "4CC#01100502091027", "4CB#01901027");
+    db_exchange(&b, "4CD#0100B004", "3D9#04000000");   /* 70: Running1 */
+    db_exchange(&b, "4CC#01100500646400", "4CB#0190"); /* consumed 100 */
+    db_exchange(&b, "4CC#01100500656500", "4CB#0190"); /* produced 101 */
+    db_rx(&b, "4CC#01050101");
+    b.next = b.count;
+    db_advance(&b, 2000000);
+    b.next = b.count;
+    db_exchange(&b, "4CE#014B03010301", "4CB#01CB00");
+    db_exchange(&b, "4CC#01100502091027", "4CB#01901027");
+    /* 6040h and 6042h as they are: Shutdown, Switch on, Enable operation at 1200 rpm. */
+    db_exchange(&b, "4CD#0600B004", "3D9#21060000");
+    db_exchange(&b, "4CD#0700B004", "3D9#23060000");
+    db_exchange(&b, "4CD#0F00B004", "3D9#27020000");
+    db_advance(&b, 2400000);
+    db_exchange(&b, "4CD#0F00B004", "3D9#2706B004"); /* 0627h, 1200 rpm */
+}
+END_TEST
+
+static Suite *suite(void)
+{
+    Suite *s = suite_create("drive_devicenet_objects");
+    TCase *tc = tcase_create("objects");
+    tcase_add_checked_fixture(tc, setup, NULL);
+    tcase_add_test(tc, motor_data);
+    tcase_add_test(tc, control_supervisor);
+    tcase_add_test(tc, ac_dc_drive);
+    tcase_add_test(tc, application_objects_by_address);
+    tcase_add_test(tc, io_timeout_is_cnf_and_the_scanner_resets_it);
+    tcase_add_test(tc, leds_before_and_after_the_check);
+    tcase_add_test(tc, stored_selection_after_a_reset);
+    suite_add_tcase(s, tc);
+    return s;
+}
+
+int main(void)
+{
+    return check_run_suite(suite());
+}

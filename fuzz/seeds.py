@@ -1,8 +1,10 @@
 #!/usr/bin/env python3
-"""Writes the seed corpus of the harnesses, fuzz/corpus/<harness>/<name>, from readable frames
-(the encoding is in fuzz_frames.c) and storage files (docs/atv312d.md, "Storage file"). The
-committed corpus is these seeds plus what a fuzzing run added, minimised (docs/fuzzing.md): run
-this again only to change the seeds."""
+"""Writes the seed corpus of the harnesses, fuzz/corpus/<harness>/<name>, from readable frames,
+time steps and commands (the encoding is in fuzz/steps.h, the commands in each harness), storage
+files (docs/atv312d.md, "Storage file") and EDS/DCF text. The committed corpus is these seeds
+plus what a fuzzing run added, minimised (docs/fuzzing.md): run this again only to change the
+seeds."""
+import binascii
 import pathlib
 import struct
 import zlib
@@ -39,10 +41,15 @@ FRAMES = {
 
 
 def frames_input(steps):
+    """Frames ("604#2B17100064000000", "704#R"), time steps ("+100ms") and commands already
+    encoded (bytes) in a row."""
     out = bytearray()
     for step in steps:
+        if isinstance(step, bytes):
+            out += step
+            continue
         if step.startswith("+"):
-            us = int(step[1:-2]) * 1000
+            us = int(step[1:-2]) * 1000 if step.endswith("ms") else int(step[1:-1]) * 1000000
             shift = 0
             while us >> shift > 0xFFFF:
                 shift += 1
@@ -52,9 +59,299 @@ def frames_input(steps):
         can_id = int(can_id, 16)
         rtr = data == "R"
         payload = b"" if rtr else bytes.fromhex(data)
+        assert len(payload) <= 8, step
         out += bytes([len(payload) << 4 | (0x08 if rtr else 0) | can_id >> 8, can_id & 0xFF])
         out += payload
     return bytes(out)
+
+
+# The SDO client's seeds: the client talks to server 5 (requests on 605h, answers on 585h); a
+# header (its blksize, its pst, flags: 1 = the done callback starts the transfer again), then its
+# requests and the server's answers. Downloads send the bytes (31 i + 7) mod 256.
+MODES = {"auto": 0, "segmented": 1, "block": 2, "none": 3}
+
+
+def sdo_header(blksize=0, pst=0, chain=False):
+    return bytes([blksize, pst, 1 if chain else 0])
+
+
+def sdo_request(upload, mux, size, mode="auto", timeout_ms=100, null=False):
+    index, sub = (int(x, 16) for x in mux.split(":"))
+    tag = 0xE0 | (1 if upload else 0) | MODES[mode] << 1 | (0x08 if null else 0)
+    return bytes([tag]) + struct.pack("<HBHB", index, sub, size, timeout_ms)
+
+
+def upload(mux, size, mode="auto", timeout_ms=100, null=False):
+    return sdo_request(True, mux, size, mode, timeout_ms, null)
+
+
+def download(mux, size, mode="auto", timeout_ms=100, null=False):
+    return sdo_request(False, mux, size, mode, timeout_ms, null)
+
+
+def block_end(data, unused):
+    """The block upload's end from the server, n and the CRC of the value."""
+    crc = binascii.crc_hqx(data, 0)
+    return "585#%02X%04X0000000000" % (0xC1 | unused << 2, crc >> 8 | (crc & 0xFF) << 8)
+
+
+VALUE20 = bytes(range(0x41, 0x41 + 20))
+SDO_CLIENT = {
+    "upload-expedited": (sdo_header(), [upload("1000:00", 4), "585#4300100092010100"]),
+    "upload-segmented": (sdo_header(), [
+        upload("1008:00", 20), "+60ms", "585#4108100009000000", "+60ms",
+        "585#0041545633313244", "+60ms", "585#1B41420000000000"]),
+    "upload-segmented-no-size": (sdo_header(), [
+        upload("1008:00", 20, "segmented"), "585#4008100000000000", "585#0141545633313244"]),
+    "upload-too-large": (sdo_header(), [upload("1008:00", 4), "585#4108100009000000"]),
+    "upload-wrong-toggle": (sdo_header(), [
+        upload("1008:00", 20), "585#4108100009000000", "585#1041545633313244"]),
+    "upload-server-abort": (sdo_header(), [upload("6000:00", 4), "585#8000600000000206"]),
+    "upload-short-abort": (sdo_header(), [upload("6000:00", 4), "585#8000600000"]),
+    "upload-past-buffer": (sdo_header(), [
+        upload("2003:00", 8, "segmented"), "585#4003200000000000", "585#00" + VALUE20[0:7].hex(),
+        "585#1B" + VALUE20[7:9].hex() + "0000000000"]),
+    "upload-timeout": (sdo_header(), [upload("1000:00", 4, timeout_ms=50), "+30ms",
+                                      "585#", "+30ms", "+30ms"]),
+    "download-expedited": (sdo_header(), [download("2000:01", 2), "585#6000200100000000"]),
+    "download-segmented": (sdo_header(), [
+        download("2001:00", 10, "segmented"), "585#6001200000000000", "585#2000000000000000",
+        "585#3000000000000000"]),
+    "download-wrong-mux": (sdo_header(), [download("2001:00", 10), "585#6002200000000000"]),
+    "download-block": (sdo_header(), [
+        download("2002:00", 20, "block"), "585#A402200004000000", "585#A203040000000000",
+        "585#A100000000000000"]),
+    "download-block-resend": (sdo_header(pst=4), [
+        download("2002:00", 20), "585#A002200002000000", "585#A201020000000000",
+        "585#A202020000000000", "585#A100000000000000"]),
+    "download-block-empty": (sdo_header(), [
+        download("2002:00", 0, "block"), "585#A402200001000000", "585#A201010000000000",
+        "585#A100000000000000"]),
+    "upload-block": (sdo_header(blksize=4), [
+        upload("2003:00", 20, "block"), "585#C603200014000000",
+        "585#01" + VALUE20[0:7].hex(), "585#02" + VALUE20[7:14].hex(),
+        "585#83" + VALUE20[14:20].hex() + "00", block_end(VALUE20, 1)]),
+    "upload-block-lost-segment": (sdo_header(blksize=2), [
+        upload("2003:00", 20, "block"), "585#C003200000000000",
+        "585#02" + VALUE20[7:14].hex(), "585#01" + VALUE20[0:7].hex(),
+        "585#02" + VALUE20[7:14].hex(), "585#81" + VALUE20[14:20].hex() + "00",
+        block_end(VALUE20, 1)]),
+    "upload-block-pst-fallback": (sdo_header(pst=8), [
+        upload("2003:00", 20), "585#4B03200034120000"]),
+    "requests-refused": (sdo_header(blksize=200), [
+        upload("1000:00", 4), upload("1000:00", 4), download("2000:01", 2, "none"),
+        download("2000:01", 2, null=True), "585#4300100092010100",
+        upload("1000:00", 4, timeout_ms=0), "595#4300100092010100", "585#R"]),
+    "chained": (sdo_header(chain=True), [
+        upload("1000:00", 4), "585#4300100092010100", "585#4300100092010100", "+100ms",
+        "+100ms"]),
+}
+
+
+# The network master's seeds: a header (fuzz_net_master.c: the start, reset all, SYNC, a process
+# image, the boot time and retry delay, then each slave's flags and error control time), then the
+# slaves' frames. Slave k is node k (1..3); its identity is the harness's: device type 00020192h,
+# 1018h 5Fh, 312h, 00010001h, 12345678h; its writes 1017h (2 bytes), 6060h (1 byte) and 2001h
+# (11 bytes, segmented).
+STARTS = {"each": 0, "all": 1, "none": 2}
+CONTROLS = {"none": 0, "heartbeat": 1, "guarding": 2}
+IDENTITY = [0x5F, 0x312, 0x00010001, 0x12345678]
+
+
+def slave(mandatory=False, report=False, control="heartbeat", time_ms=100, writes=1, check=1):
+    flags = (1 if mandatory else 0) | (2 if report else 0) | CONTROLS[control] << 2 \
+        | writes << 4 | check << 6
+    return bytes([flags, time_ms // 10])
+
+
+def net_header(slaves, start="each", reset_all=True, sync=False, image=False, boot_ms=200,
+               retry_ms=500):
+    flags = STARTS[start] | (4 if reset_all else 0) | (8 if sync else 0) | (0x10 if image else 0) \
+        | (len(slaves) - 1) << 5
+    body = b"".join(slaves) + slave() * (3 - len(slaves))
+    return bytes([flags, boot_ms // 50, retry_ms // 50]) + body
+
+
+def configured(node, writes=1, check=1, device_type=0x00020192):
+    """The slave's answers to a whole configuration: 1000h, the checked 1018h subs, the writes."""
+    tx = "%03X#" % (0x580 + node)
+    answers = [tx + "43001000" + struct.pack("<I", device_type).hex()]
+    for sub in range({0: 0, 1: 0, 2: 2, 3: 4}[check]):
+        answers.append(tx + "431810%02X" % (sub + 1) + struct.pack("<I", IDENTITY[sub]).hex())
+    confirm = ["6017100000000000", "6060600000000000",
+               "6001200000000000", "2000000000000000", "3000000000000000"]
+    answers += [tx + c for c in confirm[:[0, 1, 2, 5][writes]]]
+    return answers
+
+
+def write_output(offset, data):
+    payload = bytes.fromhex(data)
+    return bytes([0xE0 | len(payload), offset]) + payload
+
+
+def heartbeats(node, count, period_ms=50, state="05"):
+    return ["%03X#%s" % (0x700 + node, state), "+%dms" % period_ms] * count
+
+
+NET_MASTER = {
+    "boot-one": (net_header([slave()]), ["701#00"] + configured(1) + heartbeats(1, 4)),
+    "boot-three-start-all": (
+        net_header([slave(mandatory=True, writes=3, check=3), slave(check=2), slave(writes=0)],
+                   start="all"),
+        ["701#00", "702#00", "703#00"] + configured(1, writes=3, check=3)
+        + configured(2, check=2) + configured(3, writes=0)
+        + ["701#05", "702#05", "703#05", "+50ms"] * 3),
+    "boot-each-reset-each": (
+        net_header([slave(check=0), slave(control="none")], reset_all=False),
+        ["701#00", "702#00"] + configured(1, check=0) + configured(2) + heartbeats(1, 3)),
+    "start-none": (net_header([slave(writes=2)], start="none"),
+                   ["701#00"] + configured(1, writes=2) + ["701#7F", "+50ms", "701#7F"]),
+    "device-type-mismatch-retry": (
+        net_header([slave()], retry_ms=100),
+        ["701#00", "581#4300100091010200", "+100ms", "701#00"] + configured(1)
+        + heartbeats(1, 2)),
+    "identity-mismatch": (net_header([slave(check=2)]),
+                          ["701#00", "581#4300100092010200", "581#431810015E000000", "+1s"]),
+    "sdo-timeout": (net_header([slave()], boot_ms=100), ["+100ms", "+50ms", "+50ms"]),
+    "sdo-abort": (net_header([slave(writes=3)]),
+                  ["701#00", "581#4300100092010200", "581#8017100000000206", "+1s"]),
+    "heartbeat-loss-reboot": (
+        net_header([slave()]),
+        ["701#00"] + configured(1) + heartbeats(1, 2) + ["+200ms", "701#00"] + configured(1)
+        + heartbeats(1, 2)),
+    "first-heartbeat-missing": (
+        net_header([slave(), slave(check=0)]),
+        ["701#00", "702#00"] + configured(1) + configured(2, check=0) + ["702#05", "+50ms"]
+        + ["702#05", "+50ms"] * 3 + ["701#00"] + configured(1) + heartbeats(1, 2)),
+    "heartbeat-loss-report": (
+        net_header([slave(report=True)]),
+        ["701#00"] + configured(1) + heartbeats(1, 2) + ["+200ms"] + heartbeats(1, 2)),
+    "boot-up-while-operational": (
+        net_header([slave()]),
+        ["701#00"] + configured(1) + heartbeats(1, 2) + ["701#00"] + configured(1)
+        + heartbeats(1, 2)),
+    "guarding": (
+        net_header([slave(control="guarding", time_ms=50)]),
+        ["701#00"] + configured(1) + ["701#05", "+50ms", "701#85", "+50ms", "701#05", "+50ms",
+                                      "+200ms", "701#85"]),
+    "process-image": (
+        net_header([slave(), slave(writes=0, check=0)], sync=True, image=True),
+        ["701#00", "702#00"] + configured(1) + configured(2, writes=0, check=0)
+        + ["181#3412", "182#78563412", write_output(0, "ABCD"), write_output(1, "CD01"),
+           write_output(2, "01020304"),
+           "+10ms", write_output(6, "99"), write_output(7, "0102"), "701#05", "702#05",
+           "+10ms"]),
+    "emcy": (net_header([slave()]), ["701#00"] + configured(1)
+             + ["081#1000010000000000", "085#1000010000000000", "081#00"] + heartbeats(1, 1)),
+    # Issue 22's items 1-5, which these inputs broke before they were fixed.
+    "item1-ready-while-client-busy": (net_header([slave(), slave()]), ["+200ms", "+50ms"]),
+    "item2-boot-up-during-download": (
+        net_header([slave(writes=3)]),
+        ["701#00", "581#4300100092010200", "581#6017100000000000", "701#00",
+         "581#6060600000000000", "581#6001200000000000", "581#2000000000000000",
+         "581#3000000000000000"]),
+    "boot-up-during-download-reconfigured": (
+        net_header([slave(writes=3)]),
+        ["701#00", "581#4300100092010200", "581#6017100000000000", "701#00"]
+        + configured(1, writes=3) + heartbeats(1, 2)),
+    "item3-report-no-first-heartbeat": (
+        net_header([slave(report=True)]),
+        ["701#00"] + configured(1) + ["+150ms", "701#7F", "+50ms"]),
+    "item4-report-lost-before-start-all": (
+        net_header([slave(mandatory=True, report=True), slave()], start="all", boot_ms=1000),
+        ["701#00"] + configured(1) + ["+150ms", "701#05", "+50ms", "702#00"] + configured(2)
+        + ["701#05", "702#05", "+50ms"]),
+    "item5-write-without-image": (net_header([slave()]), [write_output(0, ""),
+                                                          write_output(0, "01")]),
+    "optional-slave-missing": (
+        net_header([slave(mandatory=True), slave()], start="all", boot_ms=100),
+        ["701#00"] + configured(1) + ["701#05", "+50ms", "701#05", "+50ms", "701#05", "+50ms",
+                                      "701#05", "+50ms"]),
+}
+
+
+# The EDS/DCF reader's seeds: files as comaster and cotrace meet them (read for node 5).
+EDS_READER = {
+    "example": (pathlib.Path(__file__).resolve().parent.parent / "tests" / "tools" / "fixtures"
+                / "example.eds").read_bytes(),
+    "dcf": b"""[DeviceInfo]
+VendorNumber=0x0000005F
+ProductNumber=0x00000312
+
+[1000]
+ParameterName=Device type
+DataType=0x0007
+AccessType=ro
+DefaultValue=0x00020192
+
+[1018]
+ParameterName=Identity
+ObjectType=0x9
+SubNumber=2
+
+[1018sub0]
+ParameterName=Highest sub-index supported
+DataType=0x0005
+AccessType=ro
+DefaultValue=1
+
+[1018sub1]
+ParameterName=Vendor-ID
+DataType=0x0007
+AccessType=ro
+DefaultValue=0x5F
+
+[1800sub1]
+ParameterName=COB-ID used by TPDO 1
+DataType=0x0007
+AccessType=rw
+DefaultValue=$NODEID+0x180
+ParameterValue=0x40000185
+
+[2001sub5]
+ParameterName=HSP high speed (0.1 Hz)
+DataType=0x0006
+AccessType=rww
+DefaultValue=500
+Denotation=speed limit
+ParameterValue=400
+
+[1008]
+ParameterName=Manufacturer device name
+DataType=0x0009
+AccessType=const
+DefaultValue=ATV312
+""",
+    "syntax": b"""; comment [1000]
+# another comment
+  [ 1000 ]  
+  parametername = Device type 
+DATATYPE=7
+
+[1A00SUB0A]
+ParameterName=a sub-index in capitals
+DataType=5+$nodeid
+[DummyUsage]
+Dummy0005=1
+[1400sub01]
+DefaultValue=010
+ParameterName=a name
+ParameterName=its second name
+[1003subFE]
+ParameterValue=1
+DefaultValue=2
+AccessType=RW
+[1003subff]
+DefaultValue=3
+""",
+    "error-open-header": b"[1000]\nParameterName=x\n[1001\nDataType=5\n",
+    "error-no-key": b"[1000]\nParameterName=x\nDataType\n",
+    "error-data-type": b"[1000]\n\n; the next line\nDataType=0x1FFFF\n",
+    "no-object": b"[FileInfo]\nFileName=x.eds\n[DeviceInfo]\nVendorNumber=1\n",
+    # Issue 22's item 10: names an object's section would have in another notation.
+    "item10-section-0x": b"[1000]\nDataType=7\n[0x12]\nParameterName=x\n",
+    "item10-sub-0x": b"[1018sub0x1]\nParameterName=x\n",
+}
 
 
 def image(sequence, kind, records):
@@ -87,8 +384,12 @@ STORES = {
 
 
 def main():
-    for harness, seeds in (("frames", {k: frames_input(v) for k, v in FRAMES.items()}),
-                           ("store", STORES)):
+    for harness, seeds in (
+            ("frames", {k: frames_input(v) for k, v in FRAMES.items()}),
+            ("store", STORES),
+            ("sdo_client", {k: h + frames_input(v) for k, (h, v) in SDO_CLIENT.items()}),
+            ("net_master", {k: h + frames_input(v) for k, (h, v) in NET_MASTER.items()}),
+            ("eds_reader", EDS_READER)):
         folder = CORPUS / harness
         folder.mkdir(parents=True, exist_ok=True)
         for name, data in seeds.items():

@@ -348,6 +348,9 @@ DefaultValue=3
     "error-no-key": b"[1000]\nParameterName=x\nDataType\n",
     "error-data-type": b"[1000]\n\n; the next line\nDataType=0x1FFFF\n",
     "no-object": b"[FileInfo]\nFileName=x.eds\n[DeviceInfo]\nVendorNumber=1\n",
+    # A line one character longer than the INI reader reads: refused with its number, its tail
+    # "[1001]" never taken for a section.
+    "error-line-too-long": b"[1000]\nParameterName=" + b"x" * 1003 + b"[1001]\n",
     # Issue 22's item 10: names an object's section would have in another notation.
     "item10-section-0x": b"[1000]\nDataType=7\n[0x12]\nParameterName=x\n",
     "item10-sub-0x": b"[1018sub0x1]\nParameterName=x\n",

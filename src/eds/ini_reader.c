@@ -65,6 +65,21 @@ static bool read_line(const ini_reader_t *reader, ini_line_t *line, char *sectio
     return reader->on_key(ctx, line, err, err_len);
 }
 
+/* Whether `buf`, as fgets filled it, holds a whole line: a longer one comes in pieces, and each
+ * piece read as a line would make a "[1001]" at the end of a long name a section of the file. A
+ * full buffer without its newline is whole only at the end of the file. */
+static bool whole_line(FILE *file, const char *buf)
+{
+    size_t len = strlen(buf);
+    if (len < INI_LINE_MAX - 1 || buf[len - 1] == '\n')
+        return true;
+    int next = getc(file);
+    if (next == EOF)
+        return true;
+    ungetc(next, file);
+    return false;
+}
+
 bool ini_read(FILE *file, const char *path, const ini_reader_t *reader, void *ctx, char *err,
               size_t err_len)
 {
@@ -74,6 +89,11 @@ bool ini_read(FILE *file, const char *path, const ini_reader_t *reader, void *ct
     bool ok = true;
     while (ok && fgets(buf, sizeof buf, file)) {
         line.number++;
+        if (!whole_line(file, buf)) {
+            snprintf(err, err_len, "%s:%u: line longer than %d characters", path, line.number,
+                     INI_LINE_MAX - 2);
+            return false;
+        }
         ok = read_line(reader, &line, section, buf, ctx, err, err_len);
     }
     return ok;

@@ -76,6 +76,51 @@ START_TEST(a_refusing_callback_stops_the_reading)
 }
 END_TEST
 
+/* A file of a section [1000] and a line of `length` characters: "ParameterName=", x's and
+ * "[1001]" at its end. */
+static void long_line_file(char *text, size_t length)
+{
+    const char *head = "[1000]\nParameterName=";
+    size_t name = strlen("ParameterName=");
+    strcpy(text, head);
+    memset(text + strlen(head), 'x', length - name - strlen("[1001]"));
+    strcpy(text + strlen(head) + length - name - strlen("[1001]"), "[1001]\n");
+}
+
+/* A line longer than the reader's buffer was read in pieces, each taken for a line of its own:
+ * "[1001]" at the end of a long name became a section of the file. */
+START_TEST(a_line_too_long_is_refused_with_its_number)
+{
+    const ini_reader_t reader = {.key_line = "key=value", .on_section = record, .on_key = record};
+    static char text[2 * INI_LINE_MAX];
+    seen_t seen = {0};
+    char err[128] = "";
+    long_line_file(text, INI_LINE_MAX - 2); /* with its newline, the buffer full */
+    ck_assert_msg(read_text(text, &reader, &seen, err, sizeof err), "%s", err);
+    ck_assert_uint_eq(seen.count, 2);
+
+    /* One character more: refused at line 2, nothing of it read. */
+    long_line_file(text, INI_LINE_MAX - 1);
+    seen = (seen_t){0};
+    ck_assert(!read_text(text, &reader, &seen, err, sizeof err));
+    ck_assert_uint_eq(seen.count, 1);
+    ck_assert_str_eq(err, "test.ini:2: line longer than 1022 characters");
+}
+END_TEST
+
+START_TEST(a_last_line_filling_the_buffer_without_newline_is_read)
+{
+    const ini_reader_t reader = {.key_line = "key=value", .on_section = record, .on_key = record};
+    static char text[2 * INI_LINE_MAX];
+    strcpy(text, "[A]\nk=");
+    memset(text + strlen(text), 'v', INI_LINE_MAX - 1 - strlen("k=")); /* no newline at the end */
+    seen_t seen = {0};
+    char err[128] = "";
+    ck_assert_msg(read_text(text, &reader, &seen, err, sizeof err), "%s", err);
+    ck_assert_uint_eq(seen.count, 2);
+}
+END_TEST
+
 int main(void)
 {
     Suite *s = suite_create("ini_reader");
@@ -83,6 +128,8 @@ int main(void)
     tcase_add_test(tc, callbacks_get_section_key_value_and_line);
     tcase_add_test(tc, headers_without_callback_only_name_the_section);
     tcase_add_test(tc, a_refusing_callback_stops_the_reading);
+    tcase_add_test(tc, a_line_too_long_is_refused_with_its_number);
+    tcase_add_test(tc, a_last_line_filling_the_buffer_without_newline_is_read);
     suite_add_tcase(s, tc);
     return check_run_suite(s);
 }

@@ -339,7 +339,9 @@ static void check_abort(const co_sdo_client_result_t *result)
     if (result->status == CO_SDO_CLIENT_SERVER_ABORT) {
         rig_check(answer != NULL && answer->data[0] == CO_SDO_COMMAND(CO_SDO_CS_ABORT),
                   "a server abort without the server's abort frame");
-        uint32_t code = answer->len >= 8 ? co_get_u32(&answer->data[4]) : CO_SDO_ABORT_GENERAL;
+        uint32_t code = answer->len >= 8 ? co_get_u32(&answer->data[4]) : CO_SDO_OK;
+        if (code == CO_SDO_OK)
+            code = CO_SDO_ABORT_GENERAL; /* no code, or 0: the server's general error */
         rig_check(result->abort_code == code, "a server abort with another code than the server's");
         return;
     }

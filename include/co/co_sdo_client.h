@@ -11,7 +11,8 @@
 /* How a transfer ends. */
 typedef enum co_sdo_client_status {
     CO_SDO_CLIENT_OK = 0,
-    CO_SDO_CLIENT_SERVER_ABORT, /* the server sent an abort frame: abort_code is its code */
+    CO_SDO_CLIENT_SERVER_ABORT, /* the server sent an abort frame: abort_code is its code, or
+                                 * 08000000h when it carries none (short, or 0) */
     CO_SDO_CLIENT_CLIENT_ABORT  /* the client aborted (and told the server): abort_code says why */
 } co_sdo_client_status_t;
 

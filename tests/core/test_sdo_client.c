@@ -461,6 +461,23 @@ START_TEST(server_aborts)
 }
 END_TEST
 
+/* An abort frame without a code CiA 301 defines, too short to carry one or carrying 0 (which
+ * the result keeps for success), is the server's general error: a failed transfer never reports
+ * abort code 0. */
+START_TEST(server_abort_without_code)
+{
+    client_t *c = &clients[1];
+    static const char *const aborts[] = {"589#80002005", "589#8000200500000000"};
+    for (size_t i = 0; i < sizeof aborts / sizeof aborts[0]; i++) {
+        upload(c, 0x2000, 5, sizeof(rx), CO_SDO_CLIENT_SEGMENTED);
+        expect("609#4000200500000000");
+        inject(aborts[i]);
+        expect_result(c, CO_SDO_CLIENT_SERVER_ABORT, CO_SDO_ABORT_GENERAL, 0);
+        ck_assert(!co_sdo_client_busy(&c->sdo));
+    }
+}
+END_TEST
+
 /* The client's own aborts, against the scripted server: the exact abort frame, the result. */
 START_TEST(client_abort_toggle)
 {
@@ -1075,6 +1092,7 @@ int main(void)
     tcase_add_test(tc, auto_mode);
     tcase_add_test(tc, large_domain);
     tcase_add_test(tc, server_aborts);
+    tcase_add_test(tc, server_abort_without_code);
     tcase_add_test(tc, client_abort_toggle);
     tcase_add_test(tc, client_abort_crc);
     tcase_add_test(tc, client_abort_sequence);

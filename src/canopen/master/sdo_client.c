@@ -574,12 +574,13 @@ static void dispatch(co_sdo_client_t *client, const co_frame_t *frame)
     }
 }
 
-/* The server's abort ends the transfer whatever its state; an abort shorter than 8 bytes carries
- * no code, and is reported as a general error. */
+/* The server's abort ends the transfer whatever its state. One shorter than 8 bytes carries no
+ * code, and one carrying 0 none that CiA 301 (table 22) defines, 0 being the result's "OK": both
+ * are reported as a general error. */
 static void server_abort(co_sdo_client_t *client, const co_frame_t *frame)
 {
-    uint32_t code = frame->len >= 8 ? co_get_u32(&frame->data[4]) : CO_SDO_ABORT_GENERAL;
-    finish(client, CO_SDO_CLIENT_SERVER_ABORT, code);
+    uint32_t code = frame->len >= 8 ? co_get_u32(&frame->data[4]) : CO_SDO_OK;
+    finish(client, CO_SDO_CLIENT_SERVER_ABORT, code != CO_SDO_OK ? code : CO_SDO_ABORT_GENERAL);
 }
 
 bool co_sdo_client_receive(co_sdo_client_t *client, const co_frame_t *frame, co_time_t now)

@@ -305,7 +305,7 @@ static bool connection_result(dnscan_run_t *run, dnscan_sequence_t *seq, const d
 
 static int run_connections(dnscan_options_t *opts, dnscan_step_kind_t kind, uint8_t fallback)
 {
-    uint8_t mac_id, choice = fallback;
+    uint8_t mac_id = 0, choice = fallback; /* set when parse_mac goes on (-1) */
     int rc = parse_mac(opts, opts->args[1], &mac_id);
     if (rc < 0 && opts->arg_count == 3)
         rc = parse_byte(opts, "choice", opts->args[2], 1, &choice);
@@ -579,7 +579,7 @@ static int poll_output(dnscan_options_t *opts, dnscan_run_t *run)
 
 int dnscan_poll(dnscan_options_t *opts)
 {
-    uint8_t mac_id;
+    uint8_t mac_id = 0; /* set when parse_mac goes on (-1) */
     int rc = parse_mac(opts, opts->args[1], &mac_id);
     if (rc >= 0)
         return rc;

@@ -168,8 +168,8 @@ static const co_linux_device_ops_t slot_ops = {
 };
 
 /* The same drive slot behind its DeviceNet card (drive_devicenet.h): the card's frames go to the
- * bus, the drive's own are its internal link. No `node`: the card has no CANopen consumer set,
- * so every frame reaches every card, which keeps what is addressed to its MAC ID
+ * bus, the drive's own are its internal link. No core node: the card names the CAN-IDs it acts
+ * on (its MAC ID's), so a frame reaches one card and the socket's filter keeps the others out
  * (docs/runtime.md, "Routing and the receive filter"). */
 static void dn_slot_send(void *user, const co_frame_t *frame)
 {
@@ -221,6 +221,18 @@ static void dn_slot_bus_event(void *ctx, uint16_t emcy_code, bool active)
     }
 }
 
+_Static_assert(DN_NODE_CONSUMED_IDS <= CO_CONSUMERS_MAX, "a card's CAN-IDs fit a device's");
+
+static size_t dn_slot_consumers(void *ctx, co_cob_t *cobs)
+{
+    const drive_slot_t *slot = ctx;
+    uint16_t ids[DN_NODE_CONSUMED_IDS];
+    size_t count = dn_node_consumed_ids(&slot->dn->node, ids);
+    for (size_t i = 0; i < count; i++)
+        cobs[i] = (co_cob_t){.can_id = ids[i], .rtr = false};
+    return count;
+}
+
 static const co_linux_device_ops_t dn_slot_ops = {
     .start = dn_slot_start,
     .restart = dn_slot_restart,
@@ -228,6 +240,7 @@ static const co_linux_device_ops_t dn_slot_ops = {
     .process = dn_slot_process,
     .bus_event = dn_slot_bus_event,
     .node = NULL,
+    .consumers = dn_slot_consumers,
 };
 
 /* The card's stored values (Connection class attributes 100/101, Quick Connect) in the --store

@@ -17,6 +17,7 @@ import subprocess
 import threading
 import time
 
+import can
 import pytest
 
 from conftest import ROOT, daemon_path
@@ -131,6 +132,29 @@ def test_two_drives_check_their_mac_ids_and_answer_a_scan(start_dn, dump):
     state = ctl_state(sock, 63)
     assert (state["node"], state["ms"], state["ns"], state["supervisor"], state["cia402"]) == (
         63, "green", "flashing-green", "not-ready", "Switch on disabled")
+
+
+# Frames for nobody on a bench of MAC IDs 25 and 63: other MAC IDs' group 2 messages, the group 2
+# messages a slave does not take (bit-strobe, multicast poll, its own explicit response), group 1
+# and group 3 frames, a CANopen heartbeat, a 29-bit frame.
+FOR_NOBODY = ["4D6#004B03010100", "4D7#00F30078563412", "4C8#00", "4C9#00", "4CB#00CB00", "3D9#00000000",
+              "359#00000000", "619#00", "719#05"]
+
+
+def test_frames_for_other_mac_ids_do_not_wake_the_daemon(start_dn, bus):
+    d, sock = start_dn([25, 63])
+    before = d.proc_status("voluntary_ctxt_switches")
+    for _ in range(40):
+        for text in FOR_NOBODY:
+            bus.send(text)
+        bus.bus.send(can.Message(arbitration_id=0x1234567, is_extended_id=True, data=b"\x01"), timeout=1.0)
+    bus.collect(0.3)
+    woke = d.proc_status("voluntary_ctxt_switches") - before
+    assert woke == 0, f"{woke} wake-ups for {40 * (len(FOR_NOBODY) + 1)} frames addressed to nobody"
+    # What a card consumes reaches it, and only it: MAC ID 63 counts no frame of MAC ID 25's.
+    assert dnscan("get", 25, 1, 1, 1, "--type", "u16") == (0, "243\n", "")
+    assert ctl_state(sock, 25)["frames"]["received"] == 3  # Allocate, Get, Release
+    assert ctl_state(sock, 63)["frames"]["received"] == 0
 
 
 def test_explicit_get_and_set_with_a_fragmented_response(start_dn, dump):

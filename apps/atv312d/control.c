@@ -405,6 +405,16 @@ static void put_bus_state(const atv312d_control_node_t *node, reply_t *r)
         node->id, ms, ns, supervisor);
 }
 
+/* The CANopen card's RUN and ERR LEDs (CiA 303-3); a DeviceNet card has MS and NS instead. */
+static void put_canopen_leds(const atv312d_control_node_t *node, reply_t *r)
+{
+    if (node->devicenet)
+        return;
+    const char *run = drive_led_name(drive_panel_run_led(node->drive));
+    const char *err = drive_led_name(drive_panel_err_led(node->drive));
+    put(r, r->json ? "\"run_led\":\"%s\",\"err_led\":\"%s\"," : "RUN %s, ERR %s, ", run, err);
+}
+
 static void put_state(const atv312d_control_node_t *node, reply_t *r)
 {
     const drive_t *drive = node->drive;
@@ -422,22 +432,22 @@ static void put_state(const atv312d_control_node_t *node, reply_t *r)
     else
         snprintf(shows, sizeof shows, "%u.%u", display.decihertz / 10, display.decihertz % 10);
     const drive_fault_def_t *fault = drive_fault_latched(drive);
-    const char *run = drive_led_name(drive_panel_run_led(drive));
-    const char *err = drive_led_name(drive_panel_err_led(drive));
     put_bus_state(node, r);
     if (r->json)
         put(r,
-            "\"cia402\":\"%s\",\"statusword\":%u,\"speed_rpm\":%d,"
-            "\"current_a\":%u.%u,\"torque_percent\":%d,\"display\":\"%s\",\"run_led\":\"%s\","
-            "\"err_led\":\"%s\",\"fault\":%s%s%s,",
-            drive_state_name(drive), status, speed, current / 10, current % 10, torque, shows, run,
-            err, fault ? "\"" : "", fault ? fault->code : "null", fault ? "\"" : "");
+            "\"cia402\":\"%s\",\"statusword\":%u,\"speed_rpm\":%d,\"current_a\":%u.%u,"
+            "\"torque_percent\":%d,\"display\":\"%s\",",
+            drive_state_name(drive), status, speed, current / 10, current % 10, torque, shows);
     else
         put(r,
-            "cia402 %s, statusword %04X, speed %d rpm, current %u.%u A, torque "
-            "%d %%, display %s, RUN %s, ERR %s, fault %s, ",
-            drive_state_name(drive), status, speed, current / 10, current % 10, torque, shows, run,
-            err, fault ? fault->code : "none");
+            "cia402 %s, statusword %04X, speed %d rpm, current %u.%u A, torque %d %%, display %s, ",
+            drive_state_name(drive), status, speed, current / 10, current % 10, torque, shows);
+    put_canopen_leds(node, r);
+    if (r->json)
+        put(r, "\"fault\":%s%s%s,", fault ? "\"" : "", fault ? fault->code : "null",
+            fault ? "\"" : "");
+    else
+        put(r, "fault %s, ", fault ? fault->code : "none");
     put_counters(node, r);
     put_inputs(drive, r);
     put(r, "%s", r->json ? "}" : "");

@@ -132,6 +132,8 @@ def test_two_drives_check_their_mac_ids_and_answer_a_scan(start_dn, dump):
     state = ctl_state(sock, 63)
     assert (state["node"], state["ms"], state["ns"], state["supervisor"], state["cia402"]) == (
         63, "green", "flashing-green", "not-ready", "Switch on disabled")
+    # MS and NS are the card's LEDs; the CANopen card's RUN and ERR do not exist on DeviceNet.
+    assert "run_led" not in state and "err_led" not in state and "sdo_requests" not in state["frames"]
 
 
 # Frames for nobody on a bench of MAC IDs 25 and 63: other MAC IDs' group 2 messages, the group 2

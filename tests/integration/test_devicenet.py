@@ -274,3 +274,24 @@ def test_mixing_canopen_and_devicenet_is_refused(args, message, dump):
     p = subprocess.run([daemon_path(), IFACE, *args], capture_output=True, text=True, timeout=10)
     assert (p.returncode, p.stdout, p.stderr) == (EX_USAGE, "", f"atv312d: error: {message}\n")
     dump.expect_none(0x4CF, 0.2)
+
+
+def send_bus_off():
+    """A bus-off error frame, as a controller driver reports it (linux/can/error.h CAN_ERR_BUSOFF)."""
+    subprocess.run(["cansend", IFACE, "20000040#0000000000000000"], check=True, timeout=5)
+
+
+def test_bus_off_goes_to_the_card_with_and_without_boi(start_dn, dump):
+    _, sock = start_dn([25, 63])
+    # MAC ID 25 with BOI (DeviceNet attribute 3) set starts over: a new check, online again.
+    assert dnscan("set", 25, 3, 1, 3, "u8:1") == (0, "", "")
+    mark = dump.mark()
+    send_bus_off()
+    dump.expect(*CHECK_25, timeout=1.0, since=mark)
+    dump.expect(*CHECK_25, timeout=1.5)
+    wait_state(sock, 25, timeout=ONLINE_TIMEOUT, ns="flashing-green")
+    assert dnscan("get", 25, 3, 1, 4, "--type", "u8") == (0, "1\n", "")  # the bus-off counter
+    # MAC ID 63, without BOI, stays off the bus: NS solid red, no answer.
+    state = wait_state(sock, 63, ns="red")
+    assert state["ms"] == "green"
+    assert dnscan("--timeout", 300, "get", 63, 1, 1, 1)[0] == 2

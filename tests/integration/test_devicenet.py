@@ -295,3 +295,26 @@ def test_bus_off_goes_to_the_card_with_and_without_boi(start_dn, dump):
     state = wait_state(sock, 63, ns="red")
     assert state["ms"] == "green"
     assert dnscan("--timeout", 300, "get", 63, 1, 1, 1)[0] == 2
+
+
+def ctl(sock, *words):
+    done = subprocess.run([daemon_path(), "ctl", str(sock), *map(str, words)], capture_output=True, text=True,
+                          timeout=10)
+    return done.returncode, (done.stdout + done.stderr).strip()
+
+
+def test_control_surface_faults_and_keys_by_mac_id(start_dn):
+    _, sock = start_dn([25])
+    assert ctl(sock, "fault", 25, "OHF") == (0, "ok node 25: OHF (drive overheating), EMCY 4210")
+    state = wait_state(sock, 25, fault="OHF", cia402="Fault", supervisor="faulted")
+    assert (state["display"], state["ms"], state["ns"]) == ("OHF", "green", "flashing-green")
+    # The scanner sees it: Faulted in assembly 71, refused fault reset while the cause is present.
+    assert dnscan("poll", 25, "--assembly", "21/71", "--count", 1) == (
+        0, "MAC ID 25: Faulted=1 Warning=0 Running1=0 Running2=0 Ready=0 Ctrl from net=1 Ref from net=1 "
+        "At reference=1 Drive state=7 Speed actual=0\n", "")
+    assert ctl(sock, "clear", 25, "OHF") == (0, "ok node 25: cause of OHF removed")
+    assert dnscan("poll", 25, "--assembly", "21/71", "--set", "Fault_reset=1", "--count", 1)[0] == 0
+    # The card's Stop after the reset is a Shutdown: Ready to switch on.
+    wait_state(sock, 25, fault=None, supervisor="ready", cia402="Ready to switch on")
+    assert ctl(sock, "load", 25, 50) == (0, "ok node 25: load 50 %")
+    assert ctl(sock, "fault", 4, "OHF") == (65, "error: node 4 is not present: this daemon runs MAC ID 25")

@@ -35,57 +35,76 @@ static bool parse_number(const char *text, size_t len, unsigned long *value)
     return errno == 0 && *end == '\0' && end != buf + (base == 16 ? 2 : 0);
 }
 
-static int parse_node_id(const char *text, size_t len, unsigned long *id, char *err, size_t err_len)
+/* What a drive's address is on each bus: CANopen node-ids (--node-id) or DeviceNet MAC IDs
+ * (--mac-id), written the same ways. */
+typedef struct id_kind {
+    const char *option; /* "--node-id" */
+    const char *noun;   /* "node-id" */
+    int min, max;
+} id_kind_t;
+
+static const id_kind_t node_id_kind = {"--node-id", "node-id", ATV312D_NODE_ID_MIN,
+                                       ATV312D_NODE_ID_MAX};
+static const id_kind_t mac_id_kind = {"--mac-id", "MAC ID", ATV312D_MAC_ID_MIN, ATV312D_MAC_ID_MAX};
+
+static int parse_id(const id_kind_t *kind, const char *text, size_t len, unsigned long *id,
+                    char *err, size_t err_len)
 {
     if (!parse_number(text, len, id))
         return usage_error(err, err_len,
-                           "--node-id: '%.*s' is not a node-id: use a number %d..%d, a range "
-                           "like 4-9 or a list like 4,6",
-                           (int)len, text, ATV312D_NODE_ID_MIN, ATV312D_NODE_ID_MAX);
-    if (*id < ATV312D_NODE_ID_MIN || *id > ATV312D_NODE_ID_MAX)
-        return usage_error(err, err_len, "--node-id: %.*s is out of range: node-ids are %d..%d",
-                           (int)len, text, ATV312D_NODE_ID_MIN, ATV312D_NODE_ID_MAX);
+                           "%s: '%.*s' is not a %s: use a number %d..%d, a range like 4-9 or a "
+                           "list like 4,6",
+                           kind->option, (int)len, text, kind->noun, kind->min, kind->max);
+    if (*id < (unsigned long)kind->min || *id > (unsigned long)kind->max)
+        return usage_error(err, err_len, "%s: %.*s is out of range: %ss are %d..%d", kind->option,
+                           (int)len, text, kind->noun, kind->min, kind->max);
     return 0;
 }
 
-/* The drives given so far: each --node-id option is a group, and a --model after it names the
- * model of that group. Every group adds at least one node-id, so there are at most 127. */
+/* The drives given so far: each --node-id (or --mac-id) option is a group, and a --model after it
+ * names the model of that group. Every group adds at least one id, so there are at most 127. */
 typedef struct node_groups {
-    uint8_t group_of[ATV312D_NODE_ID_MAX + 1]; /* 0: not given; n: given by the n-th --node-id */
+    uint8_t group_of[ATV312D_NODE_ID_MAX + 1]; /* 0: not given; n: given by the n-th group */
     const drive_model_t *model_of[ATV312D_NODE_ID_MAX + 1]; /* per group; NULL: default */
-    uint8_t count;                                          /* --node-id options so far */
+    uint8_t count;                                          /* groups so far */
+    const char *first_node_id; /* the first --node-id's value, NULL: none */
+    const char *first_mac_id;  /* the first --mac-id's value, NULL: none */
 } node_groups_t;
 
-/* One --node-id value: "N", "A-B" or a comma-separated list of those, a new group. */
-static int parse_node_ids(const char *value, node_groups_t *groups, char *err, size_t err_len)
+/* One --node-id or --mac-id value: "N", "A-B" or a comma-separated list of those, a new group. */
+static int parse_ids(const id_kind_t *kind, const char *value, node_groups_t *groups, char *err,
+                     size_t err_len)
 {
+    const char **first = kind == &mac_id_kind ? &groups->first_mac_id : &groups->first_node_id;
+    if (!*first)
+        *first = value;
     groups->count++;
     const char *item = value;
     for (;;) {
         size_t len = strcspn(item, ",");
         const char *dash = memchr(item, '-', len);
-        unsigned long first = 0, last = 0;
+        unsigned long first_id = 0, last_id = 0;
         int rc;
         if (dash) {
-            rc = parse_node_id(item, (size_t)(dash - item), &first, err, err_len);
+            rc = parse_id(kind, item, (size_t)(dash - item), &first_id, err, err_len);
             if (rc == 0)
-                rc = parse_node_id(dash + 1, len - (size_t)(dash - item) - 1, &last, err, err_len);
-            if (rc == 0 && first > last)
-                rc = usage_error(err, err_len,
-                                 "--node-id: range %.*s is backwards: write it as %lu-%lu",
-                                 (int)len, item, last, first);
+                rc = parse_id(kind, dash + 1, len - (size_t)(dash - item) - 1, &last_id, err,
+                              err_len);
+            if (rc == 0 && first_id > last_id)
+                rc = usage_error(err, err_len, "%s: range %.*s is backwards: write it as %lu-%lu",
+                                 kind->option, (int)len, item, last_id, first_id);
         } else {
-            rc = parse_node_id(item, len, &first, err, err_len);
-            last = first;
+            rc = parse_id(kind, item, len, &first_id, err, err_len);
+            last_id = first_id;
         }
         if (rc)
             return rc;
-        for (unsigned long id = first; id <= last; id++) {
+        for (unsigned long id = first_id; id <= last_id; id++) {
             if (groups->group_of[id])
                 return usage_error(err, err_len,
-                                   "--node-id: node-id %lu is given twice: each drive needs "
-                                   "its own node-id in %d..%d",
-                                   id, ATV312D_NODE_ID_MIN, ATV312D_NODE_ID_MAX);
+                                   "%s: %s %lu is given twice: each drive needs its own %s in "
+                                   "%d..%d",
+                                   kind->option, kind->noun, id, kind->noun, kind->min, kind->max);
             groups->group_of[id] = groups->count;
         }
         if (item[len] == '\0')
@@ -117,8 +136,9 @@ static int parse_model(const char *name, node_groups_t *groups, char *err, size_
     if (groups->count == 0)
         return usage_error(err, err_len,
                            "--model %s: no --node-id before it: a model follows the node-ids of "
-                           "its drives, e.g. --node-id 4 --model %s",
-                           name, name);
+                           "its drives, e.g. --node-id 4 --model %s (--mac-id 25 --model %s on "
+                           "DeviceNet)",
+                           name, name, name);
     if (groups->model_of[groups->count])
         return usage_error(err, err_len,
                            "--model %s: the drives of the --node-id before it are already %s: "
@@ -130,6 +150,9 @@ static int parse_model(const char *name, node_groups_t *groups, char *err, size_
 
 typedef enum {
     OPT_NODE_ID,
+    OPT_MAC_ID,
+    OPT_DEVICENET,
+    OPT_BAUD,
     OPT_MODEL,
     OPT_STORE,
     OPT_TRACE,
@@ -145,17 +168,13 @@ static const struct {
     opt_t opt;
     bool has_value;
 } options[] = {
-    {"--node-id", OPT_NODE_ID, true},
-    {"--model", OPT_MODEL, true},
-    {"--store", OPT_STORE, true},
-    {"--trace", OPT_TRACE, true},
-    {"--control", OPT_CONTROL, true},
-    {"--status", OPT_STATUS, true},
-    {"--log-level", OPT_LOG_LEVEL, true},
-    {"--help", OPT_HELP, false},
-    {"-h", OPT_HELP, false},
-    {"--version", OPT_VERSION, false},
-    {"-V", OPT_VERSION, false},
+    {"--node-id", OPT_NODE_ID, true},      {"--mac-id", OPT_MAC_ID, true},
+    {"--devicenet", OPT_DEVICENET, false}, {"--baud", OPT_BAUD, true},
+    {"--model", OPT_MODEL, true},          {"--store", OPT_STORE, true},
+    {"--trace", OPT_TRACE, true},          {"--control", OPT_CONTROL, true},
+    {"--status", OPT_STATUS, true},        {"--log-level", OPT_LOG_LEVEL, true},
+    {"--help", OPT_HELP, false},           {"-h", OPT_HELP, false},
+    {"--version", OPT_VERSION, false},     {"-V", OPT_VERSION, false},
 };
 
 /* Finds the option of "--name" or "--name=value"; *inline_value points after '='. */
@@ -177,12 +196,43 @@ static int find_option(const char *arg, const char **inline_value)
     return -1;
 }
 
+/* The DeviceNet data rates, as --baud takes them and as the DeviceNet object reports them. */
+static const struct {
+    const char *name;
+    atv312d_baud_t baud;
+} baud_rates[] = {
+    {"125k", ATV312D_BAUD_125K},
+    {"250k", ATV312D_BAUD_250K},
+    {"500k", ATV312D_BAUD_500K},
+};
+
+static int parse_baud(const char *value, atv312d_options_t *opts, char *err, size_t err_len)
+{
+    for (size_t i = 0; i < sizeof baud_rates / sizeof baud_rates[0]; i++) {
+        if (strcmp(value, baud_rates[i].name) == 0) {
+            opts->baud = baud_rates[i].baud;
+            opts->baud_given = true;
+            return 0;
+        }
+    }
+    return usage_error(err, err_len,
+                       "--baud: unknown data rate '%s': DeviceNet runs at 125k, 250k or 500k",
+                       value);
+}
+
 static int apply_option(opt_t opt, const char *value, atv312d_options_t *opts,
                         node_groups_t *groups, char *err, size_t err_len)
 {
     switch (opt) {
     case OPT_NODE_ID:
-        return parse_node_ids(value, groups, err, err_len);
+        return parse_ids(&node_id_kind, value, groups, err, err_len);
+    case OPT_MAC_ID:
+        return parse_ids(&mac_id_kind, value, groups, err, err_len);
+    case OPT_DEVICENET:
+        opts->devicenet = true;
+        return 0;
+    case OPT_BAUD:
+        return parse_baud(value, opts, err, err_len);
     case OPT_MODEL:
         return parse_model(value, groups, err, err_len);
     case OPT_STORE:
@@ -213,8 +263,58 @@ static int apply_option(opt_t opt, const char *value, atv312d_options_t *opts,
     return 0;
 }
 
-static int check_complete(atv312d_options_t *opts, const node_groups_t *groups, char *err,
-                          size_t err_len)
+/* "atv312": the models with DeviceNet data. */
+static void list_devicenet_models(char *buf, size_t len)
+{
+    size_t used = 0;
+    buf[0] = '\0';
+    for (size_t i = 0; i < drive_model_count && used < len; i++) {
+        if (drive_models[i].devicenet)
+            used += (size_t)snprintf(buf + used, len - used, "%s%s", used ? ", " : "",
+                                     drive_models[i].name);
+    }
+}
+
+/* One interface is one bus: CANopen (node-ids) or DeviceNet (--devicenet, MAC IDs), never both;
+ * a DeviceNet bus takes only the models with a DeviceNet card. */
+static int check_bus(atv312d_options_t *opts, node_groups_t *groups, char *err, size_t err_len)
+{
+    if (!opts->devicenet) {
+        if (groups->first_mac_id)
+            return usage_error(err, err_len,
+                               "--mac-id %s: MAC IDs are DeviceNet's and this interface is "
+                               "CANopen: add --devicenet to put the drives on DeviceNet",
+                               groups->first_mac_id);
+        if (opts->baud_given)
+            return usage_error(err, err_len,
+                               "--baud: the data rate is DeviceNet's (its DeviceNet object "
+                               "reports it): add --devicenet; a CANopen interface's bitrate is "
+                               "set with ip link");
+        return 0;
+    }
+    if (groups->first_node_id)
+        return usage_error(err, err_len,
+                           "--node-id %s: --devicenet makes %s a DeviceNet bus, whose drives have "
+                           "MAC IDs: give --mac-id 0..63 instead (one interface is either CANopen "
+                           "or DeviceNet: run one atv312d per bus)",
+                           groups->first_node_id, opts->iface);
+    if (!groups->first_mac_id)
+        groups->group_of[ATV312D_MAC_ID_DEFAULT] = ++groups->count;
+    for (uint8_t g = 1; g <= groups->count; g++) {
+        const drive_model_t *model = groups->model_of[g];
+        if (model && !model->devicenet) {
+            char names[128];
+            list_devicenet_models(names, sizeof names);
+            return usage_error(err, err_len,
+                               "--model %s: the %s has no DeviceNet card here: on DeviceNet give "
+                               "--model %s, or leave --model out",
+                               model->name, model->name, names);
+        }
+    }
+    return 0;
+}
+
+static int check_complete(atv312d_options_t *opts, node_groups_t *groups, char *err, size_t err_len)
 {
     if (!opts->iface)
         return usage_error(err, err_len,
@@ -224,12 +324,15 @@ static int check_complete(atv312d_options_t *opts, const node_groups_t *groups, 
         return usage_error(err, err_len,
                            "interface name '%s' is too long: Linux allows at most %d characters",
                            opts->iface, IFNAMSIZ - 1);
-    for (int id = ATV312D_NODE_ID_MIN; id <= ATV312D_NODE_ID_MAX; id++) {
+    int rc = check_bus(opts, groups, err, err_len);
+    if (rc)
+        return rc;
+    for (int id = 0; id <= ATV312D_NODE_ID_MAX; id++) {
         uint8_t group = groups->group_of[id];
         if (!group)
             continue;
         const drive_model_t *model = groups->model_of[group];
-        if (model && id > model->node_id_max)
+        if (model && !opts->devicenet && id > model->node_id_max)
             return usage_error(err, err_len,
                                "--node-id %d: the %s takes node-ids %d..%d, give it one of those",
                                id, model->name, ATV312D_NODE_ID_MIN, model->node_id_max);
@@ -283,10 +386,11 @@ int atv312d_parse_args(int argc, char *const argv[], atv312d_options_t *opts, ch
 void atv312d_print_usage(FILE *out)
 {
     fputs("usage: atv312d IFACE --node-id N [--model M] [--node-id N [--model M]...] [options]\n"
+          "       atv312d IFACE --devicenet [--mac-id N [--model M]...] [--baud RATE] [options]\n"
           "       atv312d ctl PATH [--json] COMMAND...\n"
           "\n"
           "Puts emulated Schneider Altivar drives (CANopen, CiA 402) on a SocketCAN\n"
-          "interface.\n"
+          "interface, or Altivar 312 drives with their DeviceNet card on a DeviceNet bus.\n"
           "\n"
           "  IFACE               SocketCAN interface, e.g. can0 or vcan0\n"
           "  --node-id N         node-id 1..127 of a drive; a range 4-9 or a list 4,6 puts\n"
@@ -297,8 +401,15 @@ void atv312d_print_usage(FILE *out)
     for (size_t i = 0; i < drive_model_count; i++)
         fprintf(out, "                        %-10s %s\n", drive_models[i].name,
                 drive_models[i].description);
-    fputs("  --store FILE        keep parameters saved with 1010h in FILE (all drives share\n"
-          "                      it, one record per node-id); without it 1010h aborts\n"
+    fputs("  --devicenet         the interface is a DeviceNet bus: the drives are DeviceNet\n"
+          "                      slaves (Group 2 only servers) instead of CANopen nodes\n"
+          "  --mac-id N          MAC ID 0..63 of a DeviceNet drive (default 63); ranges,\n"
+          "                      lists, repeats and --model after it as for --node-id\n"
+          "  --baud RATE         125k (default), 250k or 500k: the data rate the DeviceNet\n"
+          "                      object reports (the interface's bitrate is ip link's)\n"
+          "  --store FILE        keep parameters saved with 1010h in FILE (all drives share\n"
+          "                      it, one record per node-id); on DeviceNet the assembly\n"
+          "                      selection and Quick Connect; without it 1010h aborts\n"
           "  --trace FILE        write every frame in and out to FILE in candump -L format\n"
           "                      ('-' = standard output)\n"
           "  --control PATH      take control commands on a UNIX socket at PATH (see below)\n"
@@ -310,6 +421,7 @@ void atv312d_print_usage(FILE *out)
           "  -V, --version       show the version\n"
           "\n"
           "Example: atv312d vcan0 --node-id 4-5 --model atv312 --node-id 6\n"
+          "         atv312d vcan1 --devicenet --mac-id 25,63\n"
           "\n"
           "Control commands, for testing a master: atv312d ctl PATH COMMAND sends one to the\n"
           "daemon started with --control PATH and prints its one-line reply, 'ok ...' (exit 0)\n"
@@ -329,6 +441,8 @@ void atv312d_print_usage(FILE *out)
           "                      to it (rFC, CCS, rPS) acts at once\n"
           "  state [NODE]        NMT and CiA 402 state, status word, speed, current, torque,\n"
           "                      front panel display, RUN and ERR LEDs, latched fault, inputs\n"
+          "                      (on DeviceNet NODE is the MAC ID, and the MS and NS LEDs\n"
+          "                      and the Control supervisor state replace the NMT state)\n"
           "Example: atv312d ctl /tmp/atv312d.sock fault 4 OHF\n"
           "\n"
           "Exit status: 0 after SIGINT/SIGTERM, 64 usage error, 69 interface or CAN support\n"

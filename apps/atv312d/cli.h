@@ -1,4 +1,5 @@
-/* The command line of atv312d: `atv312d IFACE --node-id N [--model M] [options]`. Parsing is
+/* The command line of atv312d: `atv312d IFACE --node-id N [--model M] [options]`, or on a
+ * DeviceNet bus `atv312d IFACE --devicenet [--mac-id N [--model M]...] [--baud RATE]`. Parsing is
  * separate from main() so the unit tests can check every error and its exit code. */
 #ifndef ATV312D_CLI_H
 #define ATV312D_CLI_H
@@ -13,12 +14,29 @@
 
 #define ATV312D_NODE_ID_MIN 1
 #define ATV312D_NODE_ID_MAX ((int)CO_NODE_ID_MAX) /* an int, as the parser counts */
+/* DeviceNet MAC IDs (--devicenet --mac-id), and the MAC ID of a DeviceNet drive given none: an
+ * out-of-box DeviceNet device's (the Altivar 312 DeviceNet manual). */
+#define ATV312D_MAC_ID_MIN 0
+#define ATV312D_MAC_ID_MAX 63
+#define ATV312D_MAC_ID_DEFAULT 63
+
+/* The DeviceNet object's baud rate attribute (class 3, attribute 2): only information here, a
+ * SocketCAN interface's bitrate is set with ip link. */
+typedef enum atv312d_baud {
+    ATV312D_BAUD_125K = 0,
+    ATV312D_BAUD_250K = 1,
+    ATV312D_BAUD_500K = 2
+} atv312d_baud_t;
 
 typedef struct atv312d_options {
     const char *iface;
-    uint8_t node_ids[ATV312D_NODE_ID_MAX];            /* ascending, each once */
+    /* The drives: node-ids on CANopen, MAC IDs on DeviceNet; ascending, each once. */
+    uint8_t node_ids[ATV312D_NODE_ID_MAX];
     const drive_model_t *models[ATV312D_NODE_ID_MAX]; /* the model of node_ids[i] */
     size_t node_count;
+    bool devicenet;      /* --devicenet: the interface is a DeviceNet bus */
+    atv312d_baud_t baud; /* --baud, DeviceNet only (default 125k) */
+    bool baud_given;
     const char *store_path;   /* NULL: no storage, 1010h aborts */
     const char *trace_path;   /* NULL: no trace; "-": stdout */
     const char *control_path; /* NULL: no control socket */

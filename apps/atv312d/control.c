@@ -96,8 +96,8 @@ static void list_nodes(const atv312d_control_t *control, char *buf, size_t len)
     size_t used = 0;
     buf[0] = '\0';
     for (size_t i = 0; i < control->count && used < len; i++)
-        used += (size_t)snprintf(buf + used, len - used, "%s%u", i ? "," : "",
-                                 control->nodes[i].drive->node.node_id);
+        used +=
+            (size_t)snprintf(buf + used, len - used, "%s%u", i ? "," : "", control->nodes[i].id);
 }
 
 static const atv312d_control_node_t *find_node(const atv312d_control_t *control, const char *word,
@@ -107,13 +107,14 @@ static const atv312d_control_node_t *find_node(const atv312d_control_t *control,
     long id = strtol(word, &end, 10);
     if (*word >= '0' && *word <= '9' && *end == '\0') {
         for (size_t i = 0; i < control->count; i++) {
-            if (control->nodes[i].drive->node.node_id == id)
+            if (control->nodes[i].id == id)
                 return &control->nodes[i];
         }
     }
     char ids[512];
     list_nodes(control, ids, sizeof ids);
-    fail(r, "node %s is not present: this daemon runs node-id %s", shown(word), ids);
+    fail(r, "node %s is not present: this daemon runs %s %s", shown(word),
+         control->count && control->nodes[0].devicenet ? "MAC ID" : "node-id", ids);
     return NULL;
 }
 
@@ -127,14 +128,15 @@ static void list_faults(const drive_t *drive, char *buf, size_t len)
             (size_t)snprintf(buf + used, len - used, "%s%s", i ? ", " : "", table->faults[i].code);
 }
 
-static int find_fault(const drive_t *drive, const char *code, reply_t *r)
+static int find_fault(const atv312d_control_node_t *node, const char *code, reply_t *r)
 {
+    const drive_t *drive = node->drive;
     int index = drive_fault_find(drive, code);
     if (index >= 0)
         return index;
     char codes[512];
     list_faults(drive, codes, sizeof codes);
-    fail(r, "unknown fault '%s': node %u knows %s", shown(code), drive->node.node_id, codes);
+    fail(r, "unknown fault '%s': node %u knows %s", shown(code), node->id, codes);
     return -1;
 }
 
@@ -149,13 +151,12 @@ static bool inject(const atv312d_control_node_t *node, uint8_t index, reply_t *r
     drive_t *drive = node->drive;
     const drive_fault_def_t *def = &drive->profile->faults->faults[index];
     if (drive_fault_cause_present(drive, index))
-        return fail(r, "node %u: the cause of %s is present already", drive->node.node_id,
-                    def->code);
+        return fail(r, "node %u: the cause of %s is present already", node->id, def->code);
     drive_fault_inject(drive, index, node->device->loop->now);
     changed(node);
-    co_log(CO_LOG_INFO, "node %u: control: fault %s (%s) injected", drive->node.node_id, def->code,
+    co_log(CO_LOG_INFO, "node %u: control: fault %s (%s) injected", node->id, def->code,
            def->meaning);
-    return succeed(r, "node %u: %s (%s), EMCY %04X", drive->node.node_id, def->code, def->meaning,
+    return succeed(r, "node %u: %s (%s), EMCY %04X", node->id, def->code, def->meaning,
                    def->emcy_code);
 }
 
@@ -163,7 +164,7 @@ static void remove_cause(const atv312d_control_node_t *node, uint8_t index)
 {
     drive_fault_remove_cause(node->drive, index, node->device->loop->now);
     changed(node);
-    co_log(CO_LOG_INFO, "node %u: control: cause of %s removed", node->drive->node.node_id,
+    co_log(CO_LOG_INFO, "node %u: control: cause of %s removed", node->id,
            node->drive->profile->faults->faults[index].code);
 }
 
@@ -174,7 +175,7 @@ static bool command_fault(const atv312d_control_t *control, char **words, size_t
     const atv312d_control_node_t *node = find_node(control, words[1], r);
     if (!node)
         return false;
-    int index = find_fault(node->drive, words[2], r);
+    int index = find_fault(node, words[2], r);
     return index >= 0 && inject(node, (uint8_t)index, r);
 }
 
@@ -192,8 +193,8 @@ static bool clear_all(const atv312d_control_node_t *node, reply_t *r)
                                      table->faults[i].code);
     }
     if (used == 0)
-        return succeed(r, "node %u: no fault cause was present", node->drive->node.node_id);
-    return succeed(r, "node %u: causes removed: %s", node->drive->node.node_id, codes);
+        return succeed(r, "node %u: no fault cause was present", node->id);
+    return succeed(r, "node %u: causes removed: %s", node->id, codes);
 }
 
 static bool command_clear(const atv312d_control_t *control, char **words, size_t n, reply_t *r)
@@ -205,14 +206,14 @@ static bool command_clear(const atv312d_control_t *control, char **words, size_t
         return false;
     if (strcmp(words[2], "all") == 0)
         return clear_all(node, r);
-    int index = find_fault(node->drive, words[2], r);
+    int index = find_fault(node, words[2], r);
     if (index < 0)
         return false;
     const char *code = node->drive->profile->faults->faults[index].code;
     if (!drive_fault_cause_present(node->drive, (uint8_t)index))
-        return fail(r, "node %u: no cause of %s is present", node->drive->node.node_id, code);
+        return fail(r, "node %u: no cause of %s is present", node->id, code);
     remove_cause(node, (uint8_t)index);
-    return succeed(r, "node %u: cause of %s removed", node->drive->node.node_id, code);
+    return succeed(r, "node %u: cause of %s removed", node->id, code);
 }
 
 /* The mains undervoltage is the model's USF fault. */
@@ -223,14 +224,14 @@ static bool command_mains(const atv312d_control_t *control, char **words, size_t
     const atv312d_control_node_t *node = find_node(control, words[1], r);
     if (!node)
         return false;
-    int index = find_fault(node->drive, "USF", r);
+    int index = find_fault(node, "USF", r);
     if (index < 0)
         return false;
     if (strcmp(words[2], "undervoltage") == 0)
         return inject(node, (uint8_t)index, r);
     if (drive_fault_cause_present(node->drive, (uint8_t)index))
         remove_cause(node, (uint8_t)index);
-    return succeed(r, "node %u: mains normal", node->drive->node.node_id);
+    return succeed(r, "node %u: mains normal", node->id);
 }
 
 static bool command_stop_key(const atv312d_control_t *control, char **words, size_t n, reply_t *r)
@@ -243,8 +244,8 @@ static bool command_stop_key(const atv312d_control_t *control, char **words, siz
     drive_t *drive = node->drive;
     drive_stop_key(drive, node->device->loop->now);
     changed(node);
-    co_log(CO_LOG_INFO, "node %u: control: STOP key", drive->node.node_id);
-    return succeed(r, "node %u: STOP key (%s stop, status word bit 14)", drive->node.node_id,
+    co_log(CO_LOG_INFO, "node %u: control: STOP key", node->id);
+    return succeed(r, "node %u: STOP key (%s stop, status word bit 14)", node->id,
                    drive_local_control(drive) ? "ramp" : "freewheel");
 }
 
@@ -256,7 +257,7 @@ static bool command_run_key(const atv312d_control_t *control, char **words, size
     if (!node)
         return false;
     drive_t *drive = node->drive;
-    unsigned id = drive->node.node_id;
+    unsigned id = node->id;
     if (!drive_local_control(drive))
         return fail(r,
                     "node %u is under network control: the RUN key works under local control "
@@ -282,13 +283,12 @@ static bool command_local(const atv312d_control_t *control, char **words, size_t
     drive_t *drive = node->drive;
     bool local = strcmp(words[2], "on") == 0;
     if (drive->local == local)
-        return fail(r, "node %u is under %s control already", drive->node.node_id,
+        return fail(r, "node %u is under %s control already", node->id,
                     local ? "local" : "network");
     drive_set_local(drive, local, node->device->loop->now);
     changed(node);
-    co_log(CO_LOG_INFO, "node %u: control: %s control", drive->node.node_id,
-           local ? "local" : "network");
-    return succeed(r, "node %u: %s control (status word bit 9 = %d)", drive->node.node_id,
+    co_log(CO_LOG_INFO, "node %u: control: %s control", node->id, local ? "local" : "network");
+    return succeed(r, "node %u: %s control (status word bit 9 = %d)", node->id,
                    local ? "local" : "network", local ? 0 : 1);
 }
 
@@ -309,16 +309,22 @@ static bool command_load(const atv312d_control_t *control, char **words, size_t 
                     LOAD_MAX_PERCENT);
     drive_set_load(node->drive, (uint8_t)percent, node->device->loop->now);
     changed(node);
-    co_log(CO_LOG_INFO, "node %u: control: load %ld %%", node->drive->node.node_id, percent);
-    return succeed(r, "node %u: load %ld %%", node->drive->node.node_id, percent);
+    co_log(CO_LOG_INFO, "node %u: control: load %ld %%", node->id, percent);
+    return succeed(r, "node %u: load %ld %%", node->id, percent);
 }
 
-/* The drive's traffic: the runtime's counts of its device, the daemon's of its services. */
+/* The drive's traffic: the runtime's counts of its device, the daemon's of its CANopen services
+ * (none on DeviceNet). */
 static void put_counters(const atv312d_control_node_t *node, reply_t *r)
 {
     const co_linux_device_stats_t *frames = &node->device->stats;
     const atv312d_counters_t *services = node->counters;
-    if (r->json)
+    if (node->devicenet)
+        put(r,
+            r->json ? "\"frames\":{\"received\":%llu,\"sent\":%llu,\"dropped\":%llu}"
+                    : "frames received %llu, sent %llu, dropped %llu",
+            frames->rx, frames->tx, frames->tx_dropped);
+    else if (r->json)
         put(r,
             "\"frames\":{\"received\":%llu,\"sent\":%llu,\"dropped\":%llu,\"sdo_requests\":%llu,"
             "\"sdo_aborts\":%llu,\"emcy\":%llu}",
@@ -349,7 +355,7 @@ static bool command_input(const atv312d_control_t *control, char **words, size_t
     if (!node)
         return false;
     drive_t *drive = node->drive;
-    unsigned id = drive->node.node_id;
+    unsigned id = node->id;
     unsigned count = drive->profile->logic_inputs;
     unsigned input = input_number(words[2]);
     bool on = strcmp(words[3], "on") == 0;
@@ -380,6 +386,35 @@ static void put_inputs(const drive_t *drive, reply_t *r)
     put(r, "%s", r->json ? "]" : "");
 }
 
+/* What the bus sees of the drive: its NMT state on CANopen; on DeviceNet the card's MS and NS
+ * LEDs and the Control supervisor's state. */
+static void put_bus_state(const atv312d_control_node_t *node, reply_t *r)
+{
+    const drive_dn_t *dn = node->devicenet;
+    if (!dn) {
+        const char *nmt = co_nmt_state_name(node->drive->node.nmt_state);
+        put(r, r->json ? "{\"node\":%u,\"nmt\":\"%s\"," : "node %u: nmt %s, ", node->id, nmt);
+        return;
+    }
+    const char *ms = drive_dn_led_name(dn_node_ms_led(&dn->node));
+    const char *ns = drive_dn_led_name(dn_node_ns_led(&dn->node));
+    const char *supervisor = drive_dn_state_name(drive_dn_state(dn));
+    put(r,
+        r->json ? "{\"node\":%u,\"ms\":\"%s\",\"ns\":\"%s\",\"supervisor\":\"%s\","
+                : "node %u: ms %s, ns %s, supervisor %s, ",
+        node->id, ms, ns, supervisor);
+}
+
+/* The CANopen card's RUN and ERR LEDs (CiA 303-3); a DeviceNet card has MS and NS instead. */
+static void put_canopen_leds(const atv312d_control_node_t *node, reply_t *r)
+{
+    if (node->devicenet)
+        return;
+    const char *run = drive_led_name(drive_panel_run_led(node->drive));
+    const char *err = drive_led_name(drive_panel_err_led(node->drive));
+    put(r, r->json ? "\"run_led\":\"%s\",\"err_led\":\"%s\"," : "RUN %s, ERR %s, ", run, err);
+}
+
 static void put_state(const atv312d_control_node_t *node, reply_t *r)
 {
     const drive_t *drive = node->drive;
@@ -397,22 +432,22 @@ static void put_state(const atv312d_control_node_t *node, reply_t *r)
     else
         snprintf(shows, sizeof shows, "%u.%u", display.decihertz / 10, display.decihertz % 10);
     const drive_fault_def_t *fault = drive_fault_latched(drive);
-    const char *run = drive_led_name(drive_panel_run_led(drive));
-    const char *err = drive_led_name(drive_panel_err_led(drive));
+    put_bus_state(node, r);
     if (r->json)
         put(r,
-            "{\"node\":%u,\"nmt\":\"%s\",\"cia402\":\"%s\",\"statusword\":%u,\"speed_rpm\":%d,"
-            "\"current_a\":%u.%u,\"torque_percent\":%d,\"display\":\"%s\",\"run_led\":\"%s\","
-            "\"err_led\":\"%s\",\"fault\":%s%s%s,",
-            co->node_id, co_nmt_state_name(co->nmt_state), drive_state_name(drive), status, speed,
-            current / 10, current % 10, torque, shows, run, err, fault ? "\"" : "",
-            fault ? fault->code : "null", fault ? "\"" : "");
+            "\"cia402\":\"%s\",\"statusword\":%u,\"speed_rpm\":%d,\"current_a\":%u.%u,"
+            "\"torque_percent\":%d,\"display\":\"%s\",",
+            drive_state_name(drive), status, speed, current / 10, current % 10, torque, shows);
     else
         put(r,
-            "node %u: nmt %s, cia402 %s, statusword %04X, speed %d rpm, current %u.%u A, torque "
-            "%d %%, display %s, RUN %s, ERR %s, fault %s, ",
-            co->node_id, co_nmt_state_name(co->nmt_state), drive_state_name(drive), status, speed,
-            current / 10, current % 10, torque, shows, run, err, fault ? fault->code : "none");
+            "cia402 %s, statusword %04X, speed %d rpm, current %u.%u A, torque %d %%, display %s, ",
+            drive_state_name(drive), status, speed, current / 10, current % 10, torque, shows);
+    put_canopen_leds(node, r);
+    if (r->json)
+        put(r, "\"fault\":%s%s%s,", fault ? "\"" : "", fault ? fault->code : "null",
+            fault ? "\"" : "");
+    else
+        put(r, "fault %s, ", fault ? fault->code : "none");
     put_counters(node, r);
     put_inputs(drive, r);
     put(r, "%s", r->json ? "}" : "");

@@ -12,6 +12,7 @@
 #include "co_linux/loop.h"
 #include "counters.h"
 #include "drive/drive.h"
+#include "drive/drive_devicenet.h"
 
 #include <stdbool.h>
 #include <stddef.h>
@@ -22,8 +23,10 @@
 #define ATV312D_CONTROL_REPLY_MAX 65536
 
 typedef struct atv312d_control_node {
+    uint8_t id; /* what NODE names: the node-id on CANopen, the MAC ID on DeviceNet */
     drive_t *drive;
-    co_linux_device_t *device; /* processed after a command changed the drive; its frame counts */
+    const drive_dn_t *devicenet; /* its DeviceNet card; NULL on CANopen */
+    co_linux_device_t *device;   /* processed after a command changed the drive; its frame counts */
     const atv312d_counters_t *counters;
 } atv312d_control_node_t;
 
@@ -33,7 +36,8 @@ typedef struct atv312d_control {
     size_t count;
 } atv312d_control_t;
 
-/* One node's state as `state` reports it: "node 4: nmt ..., fault none" or its JSON object. */
+/* One node's state as `state` reports it: "node 4: nmt ..., fault none" (on DeviceNet "node 25:
+ * ms ..., ns ..., supervisor ..., cia402 ...") or its JSON object. */
 void atv312d_format_state(const atv312d_control_node_t *node, bool json, char *buf, size_t len);
 
 /* Executes one command line (without its newline) on the nodes; writes the reply line without

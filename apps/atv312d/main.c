@@ -2,12 +2,14 @@
  * loop, one socket for all of them. Usage and behaviour: docs/atv312d.md. */
 #include "cli.h"
 #include "co/co_store.h"
+#include "co_linux/conditions.h"
 #include "co_linux/file_store.h"
 #include "co_linux/log.h"
 #include "co_linux/loop.h"
 #include "control.h"
 #include "counters.h"
 #include "drive/drive.h"
+#include "drive/drive_devicenet.h"
 #include "status.h"
 
 #include <errno.h>
@@ -17,29 +19,53 @@
 #include <sysexits.h>
 #include <unistd.h>
 
+/* The node-id of the drive behind a DeviceNet card: the card's internal link to the drive, whose
+ * frames are not on the bus (drive_dn_drop_frame), so any valid node-id does. */
+#define DN_DRIVE_NODE_ID 1u
+/* A DeviceNet drive's serial number (Identity attribute 6, in its duplicate MAC ID checks):
+ * this base plus its MAC ID, so that every drive of a bench has its own (docs/atv312d.md). */
+#define DN_SERIAL_BASE 0x31200000u
+
 /* One drive and what the runtime and the logs need around it. */
 typedef struct drive_slot {
     drive_t drive;
     uint8_t *od_data; /* the drive's dictionary data block, of its model's size */
+    uint8_t id;       /* node-id on CANopen, MAC ID on DeviceNet */
+    drive_dn_t *dn;   /* its DeviceNet card, NULL on CANopen */
+    co_file_store_t *store;
     co_linux_device_t device;
     co_file_store_node_t store_node;
     co_storage_t storage;
     co_nmt_state_t nmt_state; /* last logged */
     const char *cia402_state; /* last logged */
+    dn_led_t ms_led, ns_led;  /* last logged, DeviceNet */
     atv312d_counters_t counters;
 } drive_slot_t;
 
 static uint8_t slot_node_id(const drive_slot_t *slot)
 {
-    return slot->drive.node.node_id;
+    return slot->id;
+}
+
+static void log_led_change(const drive_slot_t *slot, const char *name, dn_led_t *logged,
+                           dn_led_t now)
+{
+    if (now != *logged)
+        co_log(CO_LOG_INFO, "node %u: %s LED %s -> %s", slot->id, name, drive_dn_led_name(*logged),
+               drive_dn_led_name(now));
+    *logged = now;
 }
 
 /* State changes are logged by comparing after every call into the drive: the drive owns the
- * core's application hooks. */
+ * core's application hooks. On DeviceNet the bus's view is the card's LEDs, not the drive's
+ * internal NMT state. */
 static void log_state_changes(drive_slot_t *slot)
 {
-    co_nmt_state_t nmt = slot->drive.node.nmt_state;
-    if (nmt != slot->nmt_state) {
+    if (slot->dn) {
+        log_led_change(slot, "MS", &slot->ms_led, dn_node_ms_led(&slot->dn->node));
+        log_led_change(slot, "NS", &slot->ns_led, dn_node_ns_led(&slot->dn->node));
+    } else if (slot->drive.node.nmt_state != slot->nmt_state) {
+        co_nmt_state_t nmt = slot->drive.node.nmt_state;
         co_log(CO_LOG_INFO, "node %u: NMT %s -> %s", slot_node_id(slot),
                co_nmt_state_name(slot->nmt_state), co_nmt_state_name(nmt));
         slot->nmt_state = nmt;
@@ -141,6 +167,105 @@ static const co_linux_device_ops_t slot_ops = {
     .node = slot_node,
 };
 
+/* The same drive slot behind its DeviceNet card (drive_devicenet.h): the card's frames go to the
+ * bus, the drive's own are its internal link. No core node: the card names the CAN-IDs it acts
+ * on (its MAC ID's), so a frame reaches one card and the socket's filter keeps the others out
+ * (docs/runtime.md, "Routing and the receive filter"). */
+static void dn_slot_send(void *user, const co_frame_t *frame)
+{
+    drive_slot_t *slot = user;
+    co_linux_device_send(&slot->device, frame);
+}
+
+static void dn_slot_start(void *ctx, co_time_t now)
+{
+    drive_slot_t *slot = ctx;
+    co_log(CO_LOG_INFO, "node %u: duplicate MAC ID check", slot->id);
+    drive_dn_start(slot->dn, now);
+    log_state_changes(slot);
+}
+
+/* After the interface was down the card goes on the bus again as after power-up: a new duplicate
+ * MAC ID check, its connections gone; the drive keeps its state. */
+static void dn_slot_restart(void *ctx, co_time_t now)
+{
+    drive_slot_t *slot = ctx;
+    co_log(CO_LOG_INFO, "node %u: duplicate MAC ID check after the interface came back", slot->id);
+    drive_dn_restart(slot->dn, now);
+    log_state_changes(slot);
+}
+
+static void dn_slot_receive(void *ctx, const co_frame_t *frame, co_time_t now)
+{
+    drive_slot_t *slot = ctx;
+    drive_dn_receive(slot->dn, frame, now);
+    log_state_changes(slot);
+}
+
+static co_time_t dn_slot_process(void *ctx, co_time_t now)
+{
+    drive_slot_t *slot = ctx;
+    co_time_t next = drive_dn_process(slot->dn, now);
+    log_state_changes(slot);
+    return next;
+}
+
+/* Bus off is the card's (its bus-off counter, BOI); the other conditions are CANopen
+ * emergencies, which a DeviceNet card has not. */
+static void dn_slot_bus_event(void *ctx, uint16_t emcy_code, bool active)
+{
+    drive_slot_t *slot = ctx;
+    if (emcy_code == CO_LINUX_EMCY_BUS_OFF && active) {
+        drive_dn_bus_off(slot->dn, slot->device.loop->now);
+        log_state_changes(slot);
+    }
+}
+
+_Static_assert(DN_NODE_CONSUMED_IDS <= CO_CONSUMERS_MAX, "a card's CAN-IDs fit a device's");
+
+static size_t dn_slot_consumers(void *ctx, co_cob_t *cobs)
+{
+    const drive_slot_t *slot = ctx;
+    uint16_t ids[DN_NODE_CONSUMED_IDS];
+    size_t count = dn_node_consumed_ids(&slot->dn->node, ids);
+    for (size_t i = 0; i < count; i++)
+        cobs[i] = (co_cob_t){.can_id = ids[i], .rtr = false};
+    return count;
+}
+
+static const co_linux_device_ops_t dn_slot_ops = {
+    .start = dn_slot_start,
+    .restart = dn_slot_restart,
+    .receive = dn_slot_receive,
+    .process = dn_slot_process,
+    .bus_event = dn_slot_bus_event,
+    .node = NULL,
+    .consumers = dn_slot_consumers,
+};
+
+/* The card's stored values (Connection class attributes 100/101, Quick Connect) in the --store
+ * file, keyed by MAC ID. */
+static bool dn_slot_store(void *user, const dn_stored_t *stored)
+{
+    drive_slot_t *slot = user;
+    co_file_devicenet_t values = {.consumed_assembly = stored->consumed_assembly,
+                                  .produced_assembly = stored->produced_assembly,
+                                  .quick_connect = stored->quick_connect};
+    if (co_file_store_set_devicenet(slot->store, slot->id, &values) == 0)
+        return true;
+    co_log(CO_LOG_WARN, "store %s: node %u: DeviceNet values not saved: %s", slot->store->path,
+           slot->id, slot->store->reason);
+    return false;
+}
+
+static dn_stored_t dn_slot_stored(const drive_slot_t *slot)
+{
+    co_file_devicenet_t values;
+    if (!slot->store || !co_file_store_get_devicenet(slot->store, slot->id, &values))
+        return (dn_stored_t){0, 0, false};
+    return (dn_stored_t){values.consumed_assembly, values.produced_assembly, values.quick_connect};
+}
+
 static int report_open_error(const co_linux_loop_t *loop, co_linux_open_result_t result)
 {
     const char *iface = loop->iface;
@@ -221,7 +346,7 @@ static void log_store_images(const char *path, const co_file_store_t *store)
         for (; i < store->count && store->records[i].node_id == node_id; i++) {
             const co_file_record_t *r = &store->records[i];
             const char *sep = used ? ", " : "";
-            if (used >= sizeof line)
+            if (used >= sizeof line || r->area == CO_FILE_STORE_AREA_DEVICENET)
                 continue;
             if (r->len >= CO_STORE_IMAGE_HEADER_SIZE && memcmp(r->data, "COS\x02", 4) == 0)
                 used +=
@@ -234,7 +359,21 @@ static void log_store_images(const char *path, const co_file_store_t *store)
                     r->len >= 4 && memcmp(r->data, "COS\x01", 4) == 0 ? "format 1"
                                                                       : "unknown format");
         }
-        co_log(CO_LOG_INFO, "store %s: node %u: %s", path, node_id, line);
+        if (used)
+            co_log(CO_LOG_INFO, "store %s: node %u: %s", path, node_id, line);
+    }
+    for (uint8_t mac_id = 0; mac_id <= CO_FILE_STORE_MAC_ID_MAX; mac_id++) {
+        co_file_devicenet_t dn;
+        if (!co_file_store_get_devicenet(store, mac_id, &dn))
+            continue;
+        char consumed[8] = "default", produced[8] = "default";
+        if (dn.consumed_assembly)
+            snprintf(consumed, sizeof consumed, "%u", dn.consumed_assembly);
+        if (dn.produced_assembly)
+            snprintf(produced, sizeof produced, "%u", dn.produced_assembly);
+        co_log(CO_LOG_INFO,
+               "store %s: MAC ID %u: consumed assembly %s, produced assembly %s, Quick Connect %s",
+               path, mac_id, consumed, produced, dn.quick_connect ? "on" : "off");
     }
 }
 
@@ -262,6 +401,19 @@ static int open_store(const char *path, co_file_store_t *store)
     return EX_IOERR;
 }
 
+static const char *baud_text(atv312d_baud_t baud)
+{
+    switch (baud) {
+    case ATV312D_BAUD_125K:
+        return "125 kbit/s";
+    case ATV312D_BAUD_250K:
+        return "250 kbit/s";
+    case ATV312D_BAUD_500K:
+        return "500 kbit/s";
+    }
+    return "?";
+}
+
 /* "4,5 (atv312)" or, on a mixed bench, "4,5 (atv312), 6 (atv31)": node-ids ascending, each run
  * of one model followed by its name. */
 static void format_node_ids(const atv312d_options_t *opts, char *buf, size_t len)
@@ -278,7 +430,7 @@ static void format_node_ids(const atv312d_options_t *opts, char *buf, size_t len
 }
 
 static int init_drive(drive_slot_t *slot, uint8_t node_id, const drive_model_t *model,
-                      const co_storage_t *storage)
+                      const co_storage_t *storage, co_send_fn send)
 {
     slot->od_data = calloc(1, model->profile->od->data_size);
     if (!slot->od_data)
@@ -287,7 +439,7 @@ static int init_drive(drive_slot_t *slot, uint8_t node_id, const drive_model_t *
         .profile = model->profile,
         .od_data = slot->od_data,
         .node_id = node_id,
-        .send = slot_send,
+        .send = send,
         .send_user = slot,
         .storage = storage,
         /* The heartbeats of every drive on one grid: one wake-up per period for the whole bench,
@@ -298,8 +450,37 @@ static int init_drive(drive_slot_t *slot, uint8_t node_id, const drive_model_t *
     int rc = drive_init(&slot->drive, &config);
     if (rc == 0)
         return 0;
-    co_log(CO_LOG_ERROR, "node %u: the %s drive cannot be initialised (error 0x%X)", node_id,
+    co_log(CO_LOG_ERROR, "node %u: the %s drive cannot be initialised (error 0x%X)", slot->id,
            model->name, (unsigned)rc);
+    return EX_SOFTWARE;
+}
+
+/* The drive behind its DeviceNet card, on the MAC ID of the slot. */
+static int init_devicenet_drive(drive_slot_t *slot, const drive_model_t *model,
+                                const atv312d_options_t *opts)
+{
+    int rc = init_drive(slot, DN_DRIVE_NODE_ID, model, NULL, drive_dn_drop_frame);
+    if (rc != 0)
+        return rc;
+    slot->dn = calloc(1, sizeof *slot->dn);
+    if (!slot->dn)
+        return EX_OSERR;
+    drive_dn_config_t config = {
+        .drive = &slot->drive,
+        .profile = model->devicenet,
+        .mac_id = slot->id,
+        .baud_rate = (uint8_t)opts->baud,
+        .serial_number = DN_SERIAL_BASE + slot->id,
+        .stored = dn_slot_stored(slot),
+        .send = dn_slot_send,
+        .user = slot,
+        .store = slot->store ? dn_slot_store : NULL,
+    };
+    rc = drive_dn_init(slot->dn, &config);
+    if (rc == 0)
+        return 0;
+    co_log(CO_LOG_ERROR, "node %u: the %s's DeviceNet card cannot be initialised (error %d)",
+           slot->id, model->name, rc);
     return EX_SOFTWARE;
 }
 
@@ -308,17 +489,24 @@ static int init_drives(drive_slot_t *slots, const atv312d_options_t *opts, co_fi
 {
     for (size_t i = 0; i < opts->node_count; i++) {
         drive_slot_t *slot = &slots[i];
-        const co_storage_t *storage = NULL;
-        if (store) {
-            co_file_store_bind(store, opts->node_ids[i], &slot->store_node, &slot->storage);
-            storage = &slot->storage;
+        slot->id = opts->node_ids[i];
+        slot->store = store;
+        int rc;
+        if (opts->devicenet) {
+            rc = init_devicenet_drive(slot, opts->models[i], opts);
+        } else {
+            const co_storage_t *storage = NULL;
+            if (store) {
+                co_file_store_bind(store, slot->id, &slot->store_node, &slot->storage);
+                storage = &slot->storage;
+            }
+            rc = init_drive(slot, slot->id, opts->models[i], storage, slot_send);
         }
-        int rc = init_drive(slot, opts->node_ids[i], opts->models[i], storage);
         if (rc != 0)
             return rc;
         slot->nmt_state = slot->drive.node.nmt_state;
         slot->cia402_state = drive_state_name(&slot->drive);
-        co_linux_loop_add(loop, &slot->device, &slot_ops, slot);
+        co_linux_loop_add(loop, &slot->device, slot->dn ? &dn_slot_ops : &slot_ops, slot);
     }
     return 0;
 }
@@ -329,8 +517,11 @@ static int open_surfaces(atv312d_control_t *control, atv312d_status_t *status,
                          atv312d_control_node_t *nodes)
 {
     for (size_t i = 0; i < opts->node_count; i++)
-        nodes[i] = (atv312d_control_node_t){
-            .drive = &slots[i].drive, .device = &slots[i].device, .counters = &slots[i].counters};
+        nodes[i] = (atv312d_control_node_t){.id = slots[i].id,
+                                            .drive = &slots[i].drive,
+                                            .devicenet = slots[i].dn,
+                                            .device = &slots[i].device,
+                                            .counters = &slots[i].counters};
     int rc = atv312d_status_open(status, loop, opts->status_path, nodes, opts->node_count);
     if (rc == 0 && opts->control_path)
         rc = atv312d_control_open(control, loop, opts->control_path, nodes, opts->node_count);
@@ -354,8 +545,13 @@ static int run(const atv312d_options_t *opts, FILE *trace, co_file_store_t *stor
     if (rc == 0) {
         char ids[2048];
         format_node_ids(opts, ids, sizeof ids);
-        co_log(CO_LOG_INFO, "atv312d %s started on %s: %zu drive(s), node-id %s", ATV312D_VERSION,
-               opts->iface, opts->node_count, ids);
+        if (opts->devicenet)
+            co_log(CO_LOG_INFO,
+                   "atv312d %s started on %s: %zu drive(s) on DeviceNet at %s, MAC ID %s",
+                   ATV312D_VERSION, opts->iface, opts->node_count, baud_text(opts->baud), ids);
+        else
+            co_log(CO_LOG_INFO, "atv312d %s started on %s: %zu drive(s), node-id %s",
+                   ATV312D_VERSION, opts->iface, opts->node_count, ids);
         rc = co_linux_loop_run(&loop);
         co_log(CO_LOG_INFO,
                "stopped: %llu wake-ups, %llu frames received, %llu sent, %llu dropped, %llu lost "
@@ -372,6 +568,7 @@ static int run(const atv312d_options_t *opts, FILE *trace, co_file_store_t *stor
         for (size_t i = 0; i < opts->node_count; i++) {
             co_file_store_unbind(&slots[i].store_node);
             free(slots[i].od_data);
+            free(slots[i].dn);
         }
     }
     free(slots);

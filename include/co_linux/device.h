@@ -4,6 +4,7 @@
 #ifndef CO_LINUX_DEVICE_H
 #define CO_LINUX_DEVICE_H
 
+#include "co/co_consumers.h"
 #include "co/co_types.h"
 
 #include <stdbool.h>
@@ -27,8 +28,12 @@ typedef struct co_linux_device_ops {
     void (*bus_event)(void *ctx, uint16_t emcy_code, bool active);
     /* The device's core node, which must stay the same: frames reach the device only when the
      * node consumes their COB-ID (co_consumers.h). NULL: the device gets every frame, and the
-     * socket then receives the whole bus. */
+     * socket then receives the whole bus, unless `consumers` names what the device takes. */
     const struct co_node *(*node)(void *ctx);
+    /* A device that is no core node (a DeviceNet card): fills cobs (at most CO_CONSUMERS_MAX) with
+     * the CAN-IDs it consumes, which never change, and returns their number; frames reach it
+     * only on those. Used when `node` is NULL; both NULL: every frame. */
+    size_t (*consumers)(void *ctx, co_cob_t *cobs);
 } co_linux_device_ops_t;
 
 /* One device's share of the loop's traffic (co_linux_stats_t), counted where the loop routes a

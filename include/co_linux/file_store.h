@@ -20,6 +20,21 @@
 #define CO_FILE_STORE_RECORD_HEADER_SIZE 8u /* node-id, area, reserved u16, length u32 */
 #define CO_FILE_STORE_CRC_SIZE 4u
 
+/* A DeviceNet drive's record (atv312d --devicenet): not an image of 1010h's areas but the
+ * DeviceNet node's stored values, keyed by MAC ID (0..63) in the node-id field with this area,
+ * which no 1010h sub-index has. Its data: consumed assembly (u16, Connection class attribute
+ * 100), produced assembly (u16, attribute 101), Quick Connect (u8, 0 or 1, DeviceNet attribute
+ * 10); an assembly 0 is the device's default. */
+#define CO_FILE_STORE_AREA_DEVICENET 0x80u
+#define CO_FILE_STORE_DEVICENET_SIZE 5u
+#define CO_FILE_STORE_MAC_ID_MAX 63u
+
+typedef struct co_file_devicenet {
+    uint16_t consumed_assembly;
+    uint16_t produced_assembly;
+    bool quick_connect;
+} co_file_devicenet_t;
+
 typedef struct co_file_record {
     uint8_t node_id;
     uint8_t area;
@@ -77,6 +92,14 @@ int co_file_store_update(co_file_store_t *store, uint8_t node_id, uint8_t area, 
 /* Applies several such changes (in order) and rewrites the file once: all of them or none. The
  * store takes ownership of every change's data. */
 int co_file_store_update_many(co_file_store_t *store, const co_file_record_t *changes, size_t n);
+
+/* The DeviceNet record of a MAC ID: true and *values when there is one. */
+bool co_file_store_get_devicenet(const co_file_store_t *store, uint8_t mac_id,
+                                 co_file_devicenet_t *values);
+/* Replaces the DeviceNet record of a MAC ID and rewrites the file atomically; 0 or -1 as
+ * co_file_store_update. */
+int co_file_store_set_devicenet(co_file_store_t *store, uint8_t mac_id,
+                                const co_file_devicenet_t *values);
 
 /* Fills a co_storage_t for one node of the store: the areas of one 1010h / 1011h write are
  * staged and written together in one file replacement (group_begin / group_end). */

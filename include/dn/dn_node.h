@@ -249,6 +249,12 @@ struct dn_node {
 int dn_node_init(dn_node_t *node, const dn_config_t *config);
 /* Goes on the bus: the duplicate MAC ID check's first request. */
 void dn_node_start(dn_node_t *node, co_time_t now);
+/* The CAN-IDs of the frames dn_node_receive acts on: group 2 with the node's MAC ID, messages
+ * 2, 4, 5, 6 and 7 (the predefined set's master-to-slave messages and the duplicate MAC ID check).
+ * They depend on the MAC ID only, so a runtime can route by them once: the others are no
+ * business of this node. Returns DN_NODE_CONSUMED_IDS. */
+#define DN_NODE_CONSUMED_IDS 5u
+size_t dn_node_consumed_ids(const dn_node_t *node, uint16_t ids[DN_NODE_CONSUMED_IDS]);
 /* Every received frame; 29-bit and remote frames, and a length over 8, are ignored. */
 void dn_node_receive(dn_node_t *node, const co_frame_t *frame, co_time_t now);
 /* Runs what is due; returns the next deadline or CO_TIME_NEVER. Call it after every frame. */

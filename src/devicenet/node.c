@@ -121,6 +121,16 @@ static void duplicate_mac_receive(dn_node_t *node, const co_frame_t *frame)
     }
 }
 
+size_t dn_node_consumed_ids(const dn_node_t *node, uint16_t ids[DN_NODE_CONSUMED_IDS])
+{
+    static const uint8_t messages[DN_NODE_CONSUMED_IDS] = {
+        DN_G2_MASTER_COS_CYCLIC_ACK, DN_G2_MASTER_EXPLICIT_REQUEST, DN_G2_MASTER_POLL_COS_CYCLIC,
+        DN_G2_UNCONNECTED_REQUEST, DN_G2_DUPLICATE_MAC_CHECK};
+    for (size_t i = 0; i < DN_NODE_CONSUMED_IDS; i++)
+        ids[i] = dn_group2_id(node->config->mac_id, messages[i]);
+    return DN_NODE_CONSUMED_IDS;
+}
+
 void dn_node_receive(dn_node_t *node, const co_frame_t *frame, co_time_t now)
 {
     node->now = now;

@@ -94,7 +94,10 @@ static bool check_records(const uint8_t *p, uint32_t len, uint16_t count, co_fil
         const uint8_t *h = p + offset;
         co_file_record_t r = {.node_id = h[0], .area = h[1], .len = co_get_u32(h + 4)};
         offset += CO_FILE_STORE_RECORD_HEADER_SIZE;
-        if (r.node_id < 1 || r.node_id > 127 || r.area == 0 || co_get_u16(h + 2) != 0)
+        bool id_valid = r.area == CO_FILE_STORE_AREA_DEVICENET
+                            ? r.node_id <= CO_FILE_STORE_MAC_ID_MAX
+                            : r.node_id >= 1 && r.node_id <= CO_NODE_ID_MAX;
+        if (!id_valid || r.area == 0 || co_get_u16(h + 2) != 0)
             return fail(reason, reason_len,
                         "record %u: node-id %u, area %u or reserved bytes are invalid", i + 1,
                         r.node_id, r.area);
@@ -147,12 +150,30 @@ static void describe_image_fault(const co_store_image_fault_t *f, char *text, si
     }
 }
 
+/* A DeviceNet record: its length and its Quick Connect flag (the assemblies are the node's to
+ * check: an unknown one falls back to its default). */
+static bool check_devicenet(const co_file_record_t *r, char *reason, size_t reason_len)
+{
+    if (r->len != CO_FILE_STORE_DEVICENET_SIZE)
+        return fail(reason, reason_len, "MAC ID %u (DeviceNet): %u bytes, its record has %u",
+                    r->node_id, r->len, CO_FILE_STORE_DEVICENET_SIZE);
+    if (r->data[4] > 1)
+        return fail(reason, reason_len, "MAC ID %u (DeviceNet): Quick Connect %u is not 0 or 1",
+                    r->node_id, r->data[4]);
+    return true;
+}
+
 /* Every image as the core checks it before applying it: a file that holds one the core would
  * refuse is ignored whole, as for a bad CRC, rather than applied in part. */
 static bool check_images(co_file_record_t *records, size_t count, char *reason, size_t reason_len)
 {
     co_file_store_t parsed = {.records = records, .count = count};
     for (size_t i = 0; i < count; i++) {
+        if (records[i].area == CO_FILE_STORE_AREA_DEVICENET) {
+            if (!check_devicenet(&records[i], reason, reason_len))
+                return false;
+            continue;
+        }
         co_file_store_node_t node;
         co_storage_t storage;
         co_store_image_fault_t fault;
@@ -460,6 +481,33 @@ int co_file_store_update(co_file_store_t *store, uint8_t node_id, uint8_t area, 
 {
     co_file_record_t change = {node_id, area, len, data};
     return co_file_store_update_many(store, &change, 1);
+}
+
+bool co_file_store_get_devicenet(const co_file_store_t *store, uint8_t mac_id,
+                                 co_file_devicenet_t *values)
+{
+    const co_file_record_t *r = co_file_store_find(store, mac_id, CO_FILE_STORE_AREA_DEVICENET);
+    if (!r)
+        return false;
+    *values = (co_file_devicenet_t){.consumed_assembly = co_get_u16(r->data),
+                                    .produced_assembly = co_get_u16(r->data + 2),
+                                    .quick_connect = r->data[4] != 0};
+    return true;
+}
+
+int co_file_store_set_devicenet(co_file_store_t *store, uint8_t mac_id,
+                                const co_file_devicenet_t *values)
+{
+    uint8_t *data = malloc(CO_FILE_STORE_DEVICENET_SIZE);
+    if (!data) {
+        snprintf(store->reason, sizeof store->reason, "out of memory");
+        return -1;
+    }
+    co_put_u16(data, values->consumed_assembly);
+    co_put_u16(data + 2, values->produced_assembly);
+    data[4] = values->quick_connect ? 1u : 0u;
+    return co_file_store_update(store, mac_id, CO_FILE_STORE_AREA_DEVICENET, data,
+                                CO_FILE_STORE_DEVICENET_SIZE);
 }
 
 /* A change of the node's area: written at once, or staged while a group is open. */

@@ -71,6 +71,23 @@ static bool reserve_routes(co_linux_router_t *router, size_t count)
     return true;
 }
 
+/* The COB-IDs a device consumes now: its core node's (and their generation), or the fixed ones
+ * it names; false for a device that takes every frame. */
+static bool device_consumers(co_linux_device_t *dev, co_cob_t *cobs, size_t *count)
+{
+    if (dev->ops->node != NULL) {
+        const co_node_t *node = device_node(dev);
+        dev->generation = co_node_consumer_generation(node);
+        *count = co_node_consumers(node, cobs);
+        return true;
+    }
+    if (dev->ops->consumers != NULL) {
+        *count = dev->ops->consumers(dev->ctx, cobs);
+        return true;
+    }
+    return false;
+}
+
 /* A counting sort of the (COB-ID, device) pairs by key: one pass counts each key's consumers, a
  * prefix sum gives each key its range, a second pass fills the ranges in device order. Runs when
  * a consumed set changed, never per frame. */
@@ -78,17 +95,16 @@ static void build_routes(co_linux_router_t *router)
 {
     uint32_t cursor[CO_LINUX_ROUTE_KEYS];
     co_cob_t cobs[CO_CONSUMERS_MAX];
+    size_t count;
     router->routes_stale = false;
     router->filter.stale = true;
     router->route_all = false;
     memset(router->route_first, 0, sizeof router->route_first);
     for (co_linux_device_t *dev = router->devices; dev; dev = dev->next) {
-        if (dev->ops->node == NULL) {
+        if (!device_consumers(dev, cobs, &count)) {
             router->route_all = true;
             continue;
         }
-        dev->generation = co_node_consumer_generation(device_node(dev));
-        size_t count = co_node_consumers(device_node(dev), cobs);
         for (size_t i = 0; i < count; i++)
             router->route_first[route_key(cobs[i].can_id, cobs[i].rtr) + 1]++;
     }
@@ -100,7 +116,7 @@ static void build_routes(co_linux_router_t *router)
     }
     memcpy(cursor, router->route_first, sizeof cursor);
     for (co_linux_device_t *dev = router->devices; dev; dev = dev->next) {
-        size_t count = co_node_consumers(device_node(dev), cobs);
+        device_consumers(dev, cobs, &count);
         for (size_t i = 0; i < count; i++)
             router->route_devices[cursor[route_key(cobs[i].can_id, cobs[i].rtr)]++] = dev;
     }

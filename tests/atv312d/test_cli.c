@@ -2,6 +2,7 @@
  * every usage error with its exit code and a message naming what would be right. */
 #include "atv31/atv31.h"
 #include "atv312/atv312.h"
+#include "atv312/atv312_devicenet.h"
 #include "atv58/atv58.h"
 #include "check_main.h"
 #include "cli.h"
@@ -84,7 +85,8 @@ START_TEST(model_errors)
         err, "--model: unknown model 'atv99': the models are atv312, atv31, atv31-v1.1, atv58");
     ck_assert_int_eq(parse("vcan0", "--model", "atv312", "--node-id", "4", NULL), EX_USAGE);
     ck_assert_str_eq(err, "--model atv312: no --node-id before it: a model follows the node-ids "
-                          "of its drives, e.g. --node-id 4 --model atv312");
+                          "of its drives, e.g. --node-id 4 --model atv312 (--mac-id 25 --model "
+                          "atv312 on DeviceNet)");
     ck_assert_int_eq(
         parse("vcan0", "--node-id", "4", "--model", "atv312", "--model", "atv312", NULL), EX_USAGE);
     ck_assert_str_eq(err, "--model atv312: the drives of the --node-id before it are already "
@@ -227,6 +229,89 @@ START_TEST(help_and_version_win)
 }
 END_TEST
 
+/* --devicenet: the drives on a DeviceNet bus, at MAC ID 63 when none is given, 125 kbit/s. */
+START_TEST(devicenet_defaults)
+{
+    ck_assert_int_eq(parse("vcan1", "--devicenet", NULL), 0);
+    ck_assert(opts.devicenet);
+    assert_ids(1, (const uint8_t[]){63});
+    ck_assert_str_eq(opts.models[0]->name, "atv312");
+    ck_assert_ptr_eq(opts.models[0]->devicenet, &atv312_devicenet_profile);
+    ck_assert_int_eq(opts.baud, ATV312D_BAUD_125K);
+    ck_assert_int_eq(parse("vcan0", "--node-id", "4", NULL), 0);
+    ck_assert(!opts.devicenet);
+}
+END_TEST
+
+/* MAC IDs are written like node-ids (ranges, lists, repeats, --model after them), 0..63. */
+START_TEST(devicenet_mac_ids_and_baud)
+{
+    ck_assert_int_eq(parse("--mac-id", "25", "vcan1", "--devicenet", "--mac-id=0,62-63", "--model",
+                           "atv312", "--baud", "500k", NULL),
+                     0);
+    assert_ids(4, (const uint8_t[]){0, 25, 62, 63});
+    for (size_t i = 0; i < 4; i++)
+        ck_assert_str_eq(opts.models[i]->name, "atv312");
+    ck_assert_int_eq(opts.baud, ATV312D_BAUD_500K);
+    ck_assert_int_eq(parse("vcan1", "--devicenet", "--baud=250k", NULL), 0);
+    ck_assert_int_eq(opts.baud, ATV312D_BAUD_250K);
+    ck_assert_int_eq(parse("vcan1", "--devicenet", "--mac-id", "0-63", NULL), 0);
+    ck_assert_uint_eq(opts.node_count, 64);
+}
+END_TEST
+
+START_TEST(devicenet_errors)
+{
+    static const struct {
+        const char *args[8];
+        const char *message;
+    } cases[] = {
+        {{"vcan1", "--devicenet", "--mac-id", "64"},
+         "--mac-id: 64 is out of range: MAC IDs are 0..63"},
+        {{"vcan1", "--devicenet", "--mac-id", "x"},
+         "--mac-id: 'x' is not a MAC ID: use a number 0..63, a range like 4-9 or a list like 4,6"},
+        {{"vcan1", "--devicenet", "--mac-id", "9-4"},
+         "--mac-id: range 9-4 is backwards: write it as 4-9"},
+        {{"vcan1", "--devicenet", "--mac-id", "25", "--mac-id", "20-30"},
+         "--mac-id: MAC ID 25 is given twice: each drive needs its own MAC ID in 0..63"},
+        {{"vcan1", "--mac-id", "25"},
+         "--mac-id 25: MAC IDs are DeviceNet's and this interface is CANopen: add --devicenet to "
+         "put the drives on DeviceNet"},
+        {{"vcan1", "--node-id", "4", "--baud", "125k"},
+         "--baud: the data rate is DeviceNet's (its DeviceNet object reports it): add "
+         "--devicenet; a CANopen interface's bitrate is set with ip link"},
+        {{"vcan1", "--devicenet", "--node-id", "4"},
+         "--node-id 4: --devicenet makes vcan1 a DeviceNet bus, whose drives have MAC IDs: give "
+         "--mac-id 0..63 instead (one interface is either CANopen or DeviceNet: run one atv312d "
+         "per bus)"},
+        {{"vcan1", "--mac-id", "25", "--node-id", "4-5", "--devicenet"},
+         "--node-id 4-5: --devicenet makes vcan1 a DeviceNet bus, whose drives have MAC IDs: give "
+         "--mac-id 0..63 instead (one interface is either CANopen or DeviceNet: run one atv312d "
+         "per bus)"},
+        {{"vcan1", "--node-id", "4", "--mac-id", "25"},
+         "--mac-id 25: MAC IDs are DeviceNet's and this interface is CANopen: add --devicenet to "
+         "put the drives on DeviceNet"},
+        {{"vcan1", "--devicenet", "--mac-id", "25", "--model", "atv31"},
+         "--model atv31: the atv31 has no DeviceNet card here: on DeviceNet give --model atv312, "
+         "or leave --model out"},
+        {{"vcan1", "--mac-id", "1", "--model", "atv58", "--mac-id", "2", "--devicenet"},
+         "--model atv58: the atv58 has no DeviceNet card here: on DeviceNet give --model atv312, "
+         "or leave --model out"},
+        {{"vcan1", "--devicenet", "--baud", "1M"},
+         "--baud: unknown data rate '1M': DeviceNet runs at 125k, 250k or 500k"},
+        {{"vcan1", "--devicenet=yes"}, "unknown option '--devicenet=yes' (see atv312d --help)"},
+    };
+    for (size_t i = 0; i < sizeof cases / sizeof cases[0]; i++) {
+        char *argv[10] = {"atv312d"};
+        int argc = 1;
+        for (size_t k = 0; k < 8 && cases[i].args[k]; k++)
+            argv[argc++] = (char *)cases[i].args[k];
+        ck_assert_int_eq(atv312d_parse_args(argc, argv, &opts, err, sizeof err), EX_USAGE);
+        ck_assert_str_eq(err, cases[i].message);
+    }
+}
+END_TEST
+
 int main(void)
 {
     Suite *s = suite_create("cli");
@@ -244,6 +329,9 @@ int main(void)
     tcase_add_test(tc, missing_pieces);
     tcase_add_test(tc, unknown_options_and_extra_arguments);
     tcase_add_test(tc, help_and_version_win);
+    tcase_add_test(tc, devicenet_defaults);
+    tcase_add_test(tc, devicenet_mac_ids_and_baud);
+    tcase_add_test(tc, devicenet_errors);
     suite_add_tcase(s, tc);
     return check_run_suite(s);
 }

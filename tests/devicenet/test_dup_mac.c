@@ -43,6 +43,30 @@ START_TEST(mac_25_check_frames)
 }
 END_TEST
 
+/* What a runtime may route to the node: group 2 messages 2, 4, 5, 6, 7 of its MAC ID, and an
+ * online node ignores the other group 2 messages of its MAC ID (0, 1 and its own 3) and every
+ * frame of another MAC ID: they change nothing and send nothing. */
+START_TEST(consumed_ids_are_all_it_acts_on)
+{
+    uint16_t ids[DN_NODE_CONSUMED_IDS];
+    bench_online(&b, 25);
+    ck_assert_uint_eq(dn_node_consumed_ids(&b.node, ids), 5);
+    static const uint16_t mac_25[5] = {0x4CA, 0x4CC, 0x4CD, 0x4CE, 0x4CF};
+    ck_assert_mem_eq(ids, mac_25, sizeof mac_25);
+    bench_rx(&b, "4C8#004B03010100");
+    bench_rx(&b, "4C9#004B03010100");
+    bench_rx(&b, "4CB#004B03010100");
+    bench_rx(&b, "4D6#004B03010100"); /* MAC ID 26's unconnected port */
+    bench_rx(&b, "4D7#00F30078563412");
+    bench_expect_none(&b);
+    ck_assert_int_eq(dn_node_ns_led(&b.node), DN_LED_FLASHING_GREEN);
+    bench_online(&b, 63);
+    dn_node_consumed_ids(&b.node, ids);
+    static const uint16_t mac_63[5] = {0x5FA, 0x5FC, 0x5FD, 0x5FE, 0x5FF};
+    ck_assert_mem_eq(ids, mac_63, sizeof mac_63);
+}
+END_TEST
+
 /* A node online with MAC ID 63 answers the check: the node stays offline. */
 START_TEST(response_means_duplicate)
 {
@@ -146,6 +170,7 @@ static Suite *suite(void)
     TCase *tc = tcase_create("dup_mac");
     tcase_add_test(tc, no_answer_goes_online);
     tcase_add_test(tc, mac_25_check_frames);
+    tcase_add_test(tc, consumed_ids_are_all_it_acts_on);
     tcase_add_test(tc, response_means_duplicate);
     tcase_add_test(tc, request_during_check_means_duplicate);
     tcase_add_test(tc, other_mac_ids_ignored);

@@ -439,6 +439,82 @@ START_TEST(damaged_file_is_kept_aside_at_next_save)
 }
 END_TEST
 
+/* A DeviceNet drive's record (atv312d --devicenet): keyed by MAC ID, 0 included, beside the
+ * CANopen images of the same file; byte for byte, and read back after a reopen. */
+START_TEST(devicenet_records_beside_images)
+{
+    uint8_t buf[256];
+    make_valid_file(buf, sizeof buf);
+    co_file_store_t store;
+    ck_assert_int_eq(co_file_store_open(&store, path), CO_FILE_STORE_LOADED);
+    co_file_devicenet_t values;
+    ck_assert(!co_file_store_get_devicenet(&store, 4, &values));
+    co_file_devicenet_t mac0 = {100, 101, true};
+    co_file_devicenet_t mac4 = {20, 70, false};
+    ck_assert_int_eq(co_file_store_set_devicenet(&store, 0, &mac0), 0);
+    ck_assert_int_eq(co_file_store_set_devicenet(&store, 4, &mac4), 0);
+    co_file_store_close(&store);
+
+    size_t len = read_file(buf, sizeof buf);
+    /* Sorted by id then area: MAC 0, node 4 area 2, MAC 4 (area 0x80), node 5 area 4. */
+    static const uint8_t mac0_record[13] = {0, 0x80, 0, 0, 5, 0, 0, 0, 100, 0, 101, 0, 1};
+    ck_assert_mem_eq(buf + 12, mac0_record, sizeof mac0_record);
+    static const uint8_t mac4_record[13] = {4, 0x80, 0, 0, 5, 0, 0, 0, 20, 0, 70, 0, 0};
+    size_t image = 8 + strlen(IMAGE("COMM"));
+    ck_assert_mem_eq(buf + 12 + 13 + image, mac4_record, sizeof mac4_record);
+    ck_assert_uint_eq(co_get_u32(buf + len - 4), co_crc32(buf, len - 4));
+
+    ck_assert_int_eq(co_file_store_open(&store, path), CO_FILE_STORE_LOADED);
+    ck_assert_uint_eq(store.count, 4);
+    ck_assert(co_file_store_get_devicenet(&store, 0, &values));
+    ck_assert_uint_eq(values.consumed_assembly, 100);
+    ck_assert_uint_eq(values.produced_assembly, 101);
+    ck_assert(values.quick_connect);
+    ck_assert(co_file_store_get_devicenet(&store, 4, &values));
+    ck_assert_uint_eq(values.consumed_assembly, 20);
+    ck_assert_uint_eq(values.produced_assembly, 70);
+    ck_assert(!values.quick_connect);
+    co_file_store_node_t n4;
+    co_storage_t s4;
+    co_file_store_bind(&store, 4, &n4, &s4);
+    assert_loads(&s4, 2, IMAGE("COMM"));
+    co_file_store_unbind(&n4);
+    co_file_store_close(&store);
+}
+END_TEST
+
+/* A DeviceNet record with a MAC ID above 63, another length or a Quick Connect other than 0/1
+ * makes the file ignored like any other bad record. */
+START_TEST(bad_devicenet_record_is_ignored)
+{
+    static const struct {
+        uint8_t mac_id;
+        uint8_t data[6];
+        uint32_t len;
+        const char *why;
+    } cases[] = {
+        {64, {21, 0, 71, 0, 0}, 5, "record 1: node-id 64, area 128"},
+        {25, {21, 0, 71, 0}, 4, "MAC ID 25 (DeviceNet): 4 bytes, its record has 5"},
+        {25, {21, 0, 71, 0, 0, 0}, 6, "MAC ID 25 (DeviceNet): 6 bytes, its record has 5"},
+        {25, {21, 0, 71, 0, 2}, 5, "MAC ID 25 (DeviceNet): Quick Connect 2 is not 0 or 1"},
+    };
+    for (size_t i = 0; i < sizeof cases / sizeof cases[0]; i++) {
+        uint8_t buf[64];
+        uint32_t len = cases[i].len;
+        memcpy(buf, "CoSF", 4);
+        co_put_u16(buf + 4, 1);
+        co_put_u16(buf + 6, 1);
+        co_put_u32(buf + 8, 8 + len);
+        uint8_t header[8] = {cases[i].mac_id, 0x80, 0, 0, (uint8_t)len, 0, 0, 0};
+        memcpy(buf + 12, header, 8);
+        memcpy(buf + 20, cases[i].data, len);
+        co_put_u32(buf + 20 + len, co_crc32(buf, 20 + len));
+        write_file(buf, 24 + len);
+        assert_ignored(cases[i].why);
+    }
+}
+END_TEST
+
 int main(void)
 {
     Suite *s = suite_create("file_store");
@@ -457,6 +533,8 @@ int main(void)
     tcase_add_test(tc, image_with_a_record_outside_its_area_is_ignored);
     tcase_add_test(tc, duplicate_record_or_foreign_image_is_ignored);
     tcase_add_test(tc, damaged_file_is_kept_aside_at_next_save);
+    tcase_add_test(tc, devicenet_records_beside_images);
+    tcase_add_test(tc, bad_devicenet_record_is_ignored);
     suite_add_tcase(s, tc);
     return check_run_suite(s);
 }

@@ -5,6 +5,7 @@
 #define DRIVE_MODELS_H
 
 #include "drive/drive.h"
+#include "drive/drive_devicenet.h"
 
 #include <stddef.h>
 
@@ -13,6 +14,9 @@ typedef struct drive_model {
     const char *description; /* for --help */
     const drive_profile_t *profile;
     uint8_t node_id_max; /* highest node-id the model takes (the ATV58's card: 63) */
+    /* Its DeviceNet card's data (drive_devicenet.h), NULL when the model has none here: only
+     * such a model runs on a DeviceNet bus (atv312d --devicenet). */
+    const drive_dn_profile_t *devicenet;
 } drive_model_t;
 
 /* The models; the first is the default of a --node-id without --model. */

@@ -1,0 +1,320 @@
+"""atv312d --devicenet on real SocketCAN against the project's scanner, dnscan: the duplicate MAC ID
+check of several drives on one bus, scan, explicit get/set with a fragmented response, polled I/O
+to 1200 rpm, the transparent assemblies after selecting them and an Identity Reset, the stored
+selection across a restart, an I/O timeout faulting the drive with CnF and the scanner's fault
+reset, a drive killed and restarted, and the command lines that mix CANopen and DeviceNet.
+
+Frames are DeviceNet's predefined master/slave connection set (docs/devicenet.md): for MAC ID 25
+the check is 4CF, the explicit response 4CB, the scanner's explicit request 4CC, its unconnected
+request 4CE. Every wait has a deadline: a frame, a line of dnscan, or a state of the control
+surface."""
+
+import json
+import os
+import queue
+import signal
+import subprocess
+import threading
+import time
+
+import can
+import pytest
+
+from conftest import ROOT, daemon_path
+
+DNSCAN = os.environ.get("DNSCAN") or str(ROOT / "build" / "apps" / "dnscan" / "dnscan")
+IFACE = "vcan0"
+EX_USAGE = 64
+
+# The check request of MAC ID 25 and 63: port 0, vendor 0x00F3, serial 0x31200000 + MAC ID.
+CHECK_25 = (0x4CF, "00F30019002031")
+CHECK_63 = (0x5FF, "00F3003F002031")
+# From the daemon's start to online: two check requests a second apart, then a second of silence,
+# with room for User-Mode Linux on a loaded machine.
+ONLINE_TIMEOUT = 4.0
+STATE_TIMEOUT = 3.0
+
+
+def dnscan(*args, timeout=30):
+    """Runs dnscan on vcan0 as MAC ID 0 without its own 2 s check; (exit status, stdout, stderr)."""
+    p = subprocess.run([DNSCAN, "-i", IFACE, "--no-check", *map(str, args)], capture_output=True, text=True,
+                       timeout=timeout)
+    return p.returncode, p.stdout, p.stderr
+
+
+def ctl_state(sock, mac_id):
+    done = subprocess.run([daemon_path(), "ctl", str(sock), "--json", "state", str(mac_id)], capture_output=True,
+                          text=True, timeout=10)
+    assert done.returncode == 0, done.stdout + done.stderr
+    return json.loads(done.stdout)["nodes"][0]
+
+
+def wait_state(sock, mac_id, timeout=STATE_TIMEOUT, **wanted):
+    """Polls the control surface until the drive's state has every wanted field; returns it."""
+    deadline = time.monotonic() + timeout
+    while True:
+        state = ctl_state(sock, mac_id)
+        if all(state[k] == v for k, v in wanted.items()):
+            return state
+        if time.monotonic() > deadline:
+            raise AssertionError(f"MAC ID {mac_id}: no {wanted} within {timeout} s; last {state}")
+        time.sleep(0.02)
+
+
+class Poller:
+    """dnscan poll ... --every MS running in the background, its lines read with deadlines."""
+
+    def __init__(self, *args):
+        self.proc = subprocess.Popen([DNSCAN, "-i", IFACE, "--no-check", "poll", *map(str, args)],
+                                     stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True)
+        self.lines = queue.Queue()
+        threading.Thread(target=self._read, daemon=True).start()
+
+    def _read(self):
+        for line in self.proc.stdout:
+            self.lines.put(line.rstrip("\n"))
+
+    def expect(self, text, timeout):
+        """The first line containing text; fails with the lines seen when the deadline passes."""
+        deadline = time.monotonic() + timeout
+        seen = []
+        while True:
+            try:
+                line = self.lines.get(timeout=max(0.0, deadline - time.monotonic()))
+            except queue.Empty:
+                raise AssertionError(f"no line with {text!r} within {timeout} s; saw {seen[-5:]}") from None
+            if text in line:
+                return line
+            seen.append(line)
+
+    def stop(self, sig=signal.SIGINT):
+        self.proc.send_signal(sig)
+        return self.proc.wait(timeout=5)
+
+
+@pytest.fixture
+def start_dn(start_daemon, dump, tmp_path):
+    """start_dn(mac_ids, *args): atv312d --devicenet with --control; waits for each MAC ID's two
+    check requests, a second apart, and for every drive online (NS flashing green: no connection
+    yet). Returns (daemon, control socket)."""
+
+    def start(mac_ids, *args):
+        sock = tmp_path / f"dn-{time.monotonic_ns()}.sock"
+        mark = dump.mark()
+        d = start_daemon(dump, "--devicenet", "--mac-id", ",".join(map(str, mac_ids)), "--control", sock, *args,
+                         boot_ids=[])
+        for mac_id in mac_ids:
+            check = (0x400 | mac_id << 3 | 7, f"00F300{mac_id:02X}002031")
+            first = dump.expect(*check, timeout=ONLINE_TIMEOUT, since=mark)
+            second = dump.expect(*check, timeout=ONLINE_TIMEOUT)
+            assert 0.95 <= second.timestamp - first.timestamp <= 1.1, (first, second)
+        for mac_id in mac_ids:
+            wait_state(sock, mac_id, timeout=ONLINE_TIMEOUT, ns="flashing-green", ms="green")
+        return d, sock
+
+    return start
+
+
+def test_two_drives_check_their_mac_ids_and_answer_a_scan(start_dn, dump):
+    d, sock = start_dn([25, 63])
+    assert "started on vcan0: 2 drive(s) on DeviceNet at 125 kbit/s, MAC ID 25,63 (atv312)" in d.log()
+    status, out, err = dnscan("scan")
+    assert (status, err) == (0, "")
+    assert out.splitlines() == [
+        "25  vendor 0x00F3  type 2  product 6153  revision 1.1  serial 0x31200019  ATV312",
+        "63  vendor 0x00F3  type 2  product 6153  revision 1.1  serial 0x3120003F  ATV312",
+    ]
+    # Allocate explicit on the unconnected port, Release after the identity.
+    dump.expect(0x4CE, "004B03010100")
+    dump.expect(0x4CB, "00CB00")
+    dump.expect(0x5FE, "004B03010100", since=0)
+    dump.expect(0x5FB, "00CB00", since=0)
+    state = ctl_state(sock, 63)
+    assert (state["node"], state["ms"], state["ns"], state["supervisor"], state["cia402"]) == (
+        63, "green", "flashing-green", "not-ready", "Switch on disabled")
+    # MS and NS are the card's LEDs; the CANopen card's RUN and ERR do not exist on DeviceNet.
+    assert "run_led" not in state and "err_led" not in state and "sdo_requests" not in state["frames"]
+
+
+# Frames for nobody on a bench of MAC IDs 25 and 63: other MAC IDs' group 2 messages, the group 2
+# messages a slave does not take (bit-strobe, multicast poll, its own explicit response), group 1
+# and group 3 frames, a CANopen heartbeat, a 29-bit frame.
+FOR_NOBODY = ["4D6#004B03010100", "4D7#00F30078563412", "4C8#00", "4C9#00", "4CB#00CB00", "3D9#00000000",
+              "359#00000000", "619#00", "719#05"]
+
+
+def test_frames_for_other_mac_ids_do_not_wake_the_daemon(start_dn, bus):
+    d, sock = start_dn([25, 63])
+    before = d.proc_status("voluntary_ctxt_switches")
+    for _ in range(40):
+        for text in FOR_NOBODY:
+            bus.send(text)
+        bus.bus.send(can.Message(arbitration_id=0x1234567, is_extended_id=True, data=b"\x01"), timeout=1.0)
+    bus.collect(0.3)
+    woke = d.proc_status("voluntary_ctxt_switches") - before
+    assert woke == 0, f"{woke} wake-ups for {40 * (len(FOR_NOBODY) + 1)} frames addressed to nobody"
+    # What a card consumes reaches it, and only it: MAC ID 63 counts no frame of MAC ID 25's.
+    assert dnscan("get", 25, 1, 1, 1, "--type", "u16") == (0, "243\n", "")
+    assert ctl_state(sock, 25)["frames"]["received"] == 3  # Allocate, Get, Release
+    assert ctl_state(sock, 63)["frames"]["received"] == 0
+
+
+def test_explicit_get_and_set_with_a_fragmented_response(start_dn, dump):
+    start_dn([25])
+    mark = dump.mark()
+    assert dnscan("get", 25, 1, 1, 7, "--type", "string") == (0, "ATV312\n", "")
+    # Identity product name, 9 bytes of response body: two fragments, each acknowledged.
+    dump.expect(0x4CC, "400E010107", since=mark)
+    dump.expect(0x4CB, "C0008E0641545633")
+    dump.expect(0x4CC, "C0C000")
+    dump.expect(0x4CB, "C0813132")
+    dump.expect(0x4CC, "C0C100")
+    # ACC (address 9001): class 8Eh, attribute 2, in 0.1 s.
+    assert dnscan("set", 25, "0x8E", 1, 2, "u16:50") == (0, "", "")
+    assert dnscan("get", 25, "0x8E", 1, 2, "--type", "u16") == (0, "50\n", "")
+    status, out, err = dnscan("get", 25, 1, 1, 99)
+    assert (status, out) == (1, "")
+    assert err == "dnscan: MAC ID 25, get 1/1/99: CIP error 0x14 (attribute not supported), additional code 0xFF\n"
+    status, _, err = dnscan("set", 25, "0x8E", 1, 2, "u16:65535")
+    assert status == 1 and "CIP error" in err, err
+
+
+def test_poll_21_71_runs_the_drive_to_1200_rpm(start_dn):
+    _, sock = start_dn([25, 63])
+    poller = Poller(25, "--assembly", "21/71", "--set", "NetCtrl=1", "--set", "NetRef=1", "--set", "Run_fwd=1",
+                    "--set", "Speed_reference=1200", "--every", 25)
+    try:
+        line = poller.expect("At reference=1", timeout=10)
+        assert line == ("MAC ID 25: Faulted=0 Warning=0 Running1=1 Running2=0 Ready=1 Ctrl from net=1 "
+                        "Ref from net=1 At reference=1 Drive state=4 Speed actual=1200")
+        state = wait_state(sock, 25, ns="green", supervisor="enabled", cia402="Operation enabled")
+        assert state["speed_rpm"] == 1200
+        # The other drive saw every frame and stayed as it was.
+        other = ctl_state(sock, 63)
+        assert (other["ns"], other["cia402"], other["speed_rpm"]) == ("flashing-green", "Switch on disabled", 0)
+    finally:
+        assert poller.stop() == 0
+
+
+def test_transparent_assemblies_after_selecting_them_and_a_reset(start_dn, dump, bus, tmp_path):
+    store = tmp_path / "dn.store"
+    d, sock = start_dn([25], "--store", store)
+    assert dnscan("set", 25, 5, 0, 100, "u16:100") == (0, "", "")
+    assert dnscan("set", 25, 5, 0, 101, "u16:101") == (0, "", "")
+    # Used after a restart: Identity Reset type 0 on the explicit connection, its response, then
+    # the card checks its MAC ID again.
+    bus.request("4CE#004B03010100", 0x4CB, "00CB00")
+    mark = dump.mark()
+    bus.request("4CC#0005010100", 0x4CB, "0085")
+    dump.expect(*CHECK_25, timeout=1.0, since=mark)
+    dump.expect(*CHECK_25, timeout=1.5)
+    wait_state(sock, 25, timeout=ONLINE_TIMEOUT, ns="flashing-green")
+    # The assemblies in use come from the slave (Connection instance 2's paths): 101 answers
+    # 6041h (0x0640, Switch on disabled) and 6044h.
+    assert dnscan("poll", 25, "--count", 1) == (0, "MAC ID 25: Status word=1600 Output speed=0\n", "")
+    # 100 carries 6040h and 6042h as they are: Shutdown, Switch on, Enable operation.
+    for control_word in (6, 7, 15):
+        status, _, err = dnscan("poll", 25, "--assembly", "100/101", "--set", f"Control_word={control_word}",
+                                  "--set", "Reference_speed=300", "--count", 1)
+        assert (status, err) == (0, ""), err
+    wait_state(sock, 25, timeout=5.0, cia402="Operation enabled", speed_rpm=300)
+    # The selection and Quick Connect are in the store: the next start reads them.
+    assert d.stop() == 0
+    d2, _ = start_dn([25], "--store", store)
+    assert f"store {store}: MAC ID 25: consumed assembly 100, produced assembly 101, Quick Connect off" in d2.log()
+    assert dnscan("get", 25, 5, 0, 100, "--type", "u16") == (0, "100\n", "")
+    assert dnscan("get", 25, 5, 0, 101, "--type", "u16") == (0, "101\n", "")
+
+
+def test_io_timeout_is_cnf_and_the_scanner_resets_it(start_dn):
+    _, sock = start_dn([25])
+    poller = Poller(25, "--assembly", "21/71", "--set", "NetCtrl=1", "--set", "NetRef=1", "--set", "Run_fwd=1",
+                    "--set", "Speed_reference=600", "--every", 25)
+    poller.expect("Running1=1", timeout=5)
+    wait_state(sock, 25, ns="green", cia402="Operation enabled")
+    # The scanner dies: no poll, no release. The polled connection times out (4 x its expected
+    # packet rate): the drive's communication loss CnF, NS flashing red.
+    poller.proc.kill()
+    poller.proc.wait(timeout=5)
+    state = wait_state(sock, 25, timeout=2.0, fault="CnF", ns="flashing-red")
+    assert state["cia402"] in ("Fault", "Fault reaction active")
+    # The scanner comes back: releases the timed-out connections, polls once with Fault reset.
+    assert dnscan("release", 25) == (0, "MAC ID 25: released 0x33\n", "")
+    wait_state(sock, 25, cia402="Fault", ns="flashing-green")
+    status, _, err = dnscan("poll", 25, "--assembly", "21/71", "--set", "Fault_reset=1", "--count", 1)
+    assert (status, err) == (0, ""), err
+    state = wait_state(sock, 25, fault=None)
+    assert state["cia402"] != "Fault"
+
+
+def test_a_killed_drive_checks_its_mac_id_again_and_is_allocated_again(start_dn, dump):
+    d, _ = start_dn([25])
+    assert dnscan("allocate", 25, "0x03")[0] == 0
+    assert d.stop(signal.SIGKILL) == -signal.SIGKILL
+    # Gone: nobody answers the scanner.
+    status, _, err = dnscan("--timeout", 300, "get", 25, 1, 1, 1)
+    assert status == 2, err
+    start_dn([25])
+    # A fresh card: nothing allocated, the scanner allocates again.
+    assert dnscan("allocate", 25, "0x03") == (0, "MAC ID 25: allocated 0x03\n", "")
+    assert dnscan("release", 25) == (0, "MAC ID 25: released 0x33\n", "")
+
+
+@pytest.mark.parametrize("args, message", [
+    (["--devicenet", "--node-id", "4"],
+     "--node-id 4: --devicenet makes vcan0 a DeviceNet bus, whose drives have MAC IDs: give --mac-id 0..63 "
+     "instead (one interface is either CANopen or DeviceNet: run one atv312d per bus)"),
+    (["--node-id", "4", "--mac-id", "25"],
+     "--mac-id 25: MAC IDs are DeviceNet's and this interface is CANopen: add --devicenet to put the drives on "
+     "DeviceNet"),
+    (["--devicenet", "--mac-id", "25", "--model", "atv58"],
+     "--model atv58: the atv58 has no DeviceNet card here: on DeviceNet give --model atv312, or leave --model out"),
+])
+def test_mixing_canopen_and_devicenet_is_refused(args, message, dump):
+    p = subprocess.run([daemon_path(), IFACE, *args], capture_output=True, text=True, timeout=10)
+    assert (p.returncode, p.stdout, p.stderr) == (EX_USAGE, "", f"atv312d: error: {message}\n")
+    dump.expect_none(0x4CF, 0.2)
+
+
+def send_bus_off():
+    """A bus-off error frame, as a controller driver reports it (linux/can/error.h CAN_ERR_BUSOFF)."""
+    subprocess.run(["cansend", IFACE, "20000040#0000000000000000"], check=True, timeout=5)
+
+
+def test_bus_off_goes_to_the_card_with_and_without_boi(start_dn, dump):
+    _, sock = start_dn([25, 63])
+    # MAC ID 25 with BOI (DeviceNet attribute 3) set starts over: a new check, online again.
+    assert dnscan("set", 25, 3, 1, 3, "u8:1") == (0, "", "")
+    mark = dump.mark()
+    send_bus_off()
+    dump.expect(*CHECK_25, timeout=1.0, since=mark)
+    dump.expect(*CHECK_25, timeout=1.5)
+    wait_state(sock, 25, timeout=ONLINE_TIMEOUT, ns="flashing-green")
+    assert dnscan("get", 25, 3, 1, 4, "--type", "u8") == (0, "1\n", "")  # the bus-off counter
+    # MAC ID 63, without BOI, stays off the bus: NS solid red, no answer.
+    state = wait_state(sock, 63, ns="red")
+    assert state["ms"] == "green"
+    assert dnscan("--timeout", 300, "get", 63, 1, 1, 1)[0] == 2
+
+
+def ctl(sock, *words):
+    done = subprocess.run([daemon_path(), "ctl", str(sock), *map(str, words)], capture_output=True, text=True,
+                          timeout=10)
+    return done.returncode, (done.stdout + done.stderr).strip()
+
+
+def test_control_surface_faults_and_keys_by_mac_id(start_dn):
+    _, sock = start_dn([25])
+    assert ctl(sock, "fault", 25, "OHF") == (0, "ok node 25: OHF (drive overheating), EMCY 4210")
+    state = wait_state(sock, 25, fault="OHF", cia402="Fault", supervisor="faulted")
+    assert (state["display"], state["ms"], state["ns"]) == ("OHF", "green", "flashing-green")
+    # The scanner sees it: Faulted in assembly 71, refused fault reset while the cause is present.
+    assert dnscan("poll", 25, "--assembly", "21/71", "--count", 1) == (
+        0, "MAC ID 25: Faulted=1 Warning=0 Running1=0 Running2=0 Ready=0 Ctrl from net=1 Ref from net=1 "
+        "At reference=1 Drive state=7 Speed actual=0\n", "")
+    assert ctl(sock, "clear", 25, "OHF") == (0, "ok node 25: cause of OHF removed")
+    assert dnscan("poll", 25, "--assembly", "21/71", "--set", "Fault_reset=1", "--count", 1)[0] == 0
+    # The card's Stop after the reset is a Shutdown: Ready to switch on.
+    wait_state(sock, 25, fault=None, supervisor="ready", cia402="Ready to switch on")
+    assert ctl(sock, "load", 25, 50) == (0, "ok node 25: load 50 %")
+    assert ctl(sock, "fault", 4, "OHF") == (65, "error: node 4 is not present: this daemon runs MAC ID 25")

@@ -1,6 +1,7 @@
 /* dnscan's commands: each builds the slaves' sequences of steps, prints their results and
  * decides the exit status (docs/dnscan.md). */
-#include "assemblies.h"
+#include "cip_assembly.h"
+#include "cip_text.h"
 #include "run.h"
 
 #include <ctype.h>
@@ -79,7 +80,7 @@ static int step_error(dnscan_run_t *run, const dnscan_sequence_t *seq, const cha
         status = dnscan_fail(
             opts, DNSCAN_EXIT_CIP_ERROR,
             "MAC ID %u, %s: CIP error 0x%02X (%s), additional code 0x%02X%s", seq->mac_id, what,
-            r->general, dn_cip_status_text(r->general), r->additional,
+            r->general, cip_general_status_text(r->general), r->additional,
             r->general == DN_GS_OBJECT_STATE_CONFLICT && r->additional == DN_AC_ALLOCATION_CONFLICT
                 ? ": another master owns the connections"
                 : "");
@@ -437,8 +438,8 @@ int dnscan_scan(dnscan_options_t *opts)
 /* ---- poll --------------------------------------------------------------------------------- */
 
 typedef struct poll_command {
-    const dnscan_assembly_t *out;
-    const dnscan_assembly_t *in;
+    const cip_assembly_t *out;
+    const cip_assembly_t *in;
     uint32_t count; /* polls before the end; 0: until interrupted */
 } poll_command_t;
 
@@ -447,7 +448,7 @@ static poll_command_t poll_state;
 static void print_input(const dnscan_run_t *run, const dnscan_sequence_t *seq, const uint8_t *data,
                         uint8_t len)
 {
-    const dnscan_assembly_t *in = poll_state.in;
+    const cip_assembly_t *in = poll_state.in;
     char hex[17];
     hex_text(data, len, hex);
     if (run->opts->json)
@@ -455,14 +456,14 @@ static void print_input(const dnscan_run_t *run, const dnscan_sequence_t *seq, c
                in ? in->instance : 0, hex);
     else
         printf("MAC ID %u", seq->mac_id);
-    if (in && len == DNSCAN_ASSEMBLY_SIZE) {
+    if (in && len == CIP_ASSEMBLY_SIZE) {
         printf(run->opts->json ? ", \"values\": {" : ":");
         for (uint8_t i = 0; i < in->field_count; i++) {
-            const dnscan_field_t *f = &in->fields[i];
+            const cip_field_t *f = &in->fields[i];
             if (run->opts->json)
-                printf("%s\"%s\": %d", i ? ", " : "", f->name, (int)dnscan_field_get(f, data));
+                printf("%s\"%s\": %d", i ? ", " : "", f->name, (int)cip_field_get(f, data));
             else
-                printf(" %s=%d", f->name, (int)dnscan_field_get(f, data));
+                printf(" %s=%d", f->name, (int)cip_field_get(f, data));
         }
         printf(run->opts->json ? "}" : "");
     } else if (!run->opts->json) {
@@ -521,7 +522,7 @@ static bool poll_result(dnscan_run_t *run, dnscan_sequence_t *seq, const dnscan_
         return true;
     }
     if (step->service == DN_SVC_GET_ATTRIBUTE_SINGLE) {
-        const dnscan_assembly_t *a = dnscan_assembly(path_instance(r->data, r->len));
+        const cip_assembly_t *a = cip_assembly(path_instance(r->data, r->len));
         if (step->data[0] == DN_CONN_ATTR_PRODUCED_PATH)
             poll_state.in = a;
         else
@@ -537,16 +538,16 @@ static int poll_output(dnscan_options_t *opts, dnscan_run_t *run)
         unsigned out = 0, in = 0;
         char extra;
         if (sscanf(opts->assembly, "%u/%u%c", &out, &in, &extra) != 2 ||
-            !dnscan_assembly((uint16_t)out) || dnscan_assembly((uint16_t)out)->produced ||
-            !dnscan_assembly((uint16_t)in) || !dnscan_assembly((uint16_t)in)->produced)
+            !cip_assembly((uint16_t)out) || cip_assembly((uint16_t)out)->produced ||
+            !cip_assembly((uint16_t)in) || !cip_assembly((uint16_t)in)->produced)
             return dnscan_fail(opts, EX_USAGE,
                                "--assembly: '%s' is not OUT/IN: give 20/70, 21/71 or 100/101 "
                                "(or a mix)",
                                opts->assembly);
-        poll_state.out = dnscan_assembly((uint16_t)out);
-        poll_state.in = dnscan_assembly((uint16_t)in);
+        poll_state.out = cip_assembly((uint16_t)out);
+        poll_state.in = cip_assembly((uint16_t)in);
     }
-    run->output_len = DNSCAN_ASSEMBLY_SIZE;
+    run->output_len = CIP_ASSEMBLY_SIZE;
     if (opts->output &&
         !parse_hex(&opts->output, 1, run->output, sizeof run->output, &run->output_len))
         return dnscan_fail(opts, EX_DATAERR,
@@ -560,10 +561,10 @@ static int poll_output(dnscan_options_t *opts, dnscan_run_t *run)
         long value;
         char *end;
         const char *eq = strchr(opts->sets[i], '=');
-        const dnscan_field_t *f = NULL;
+        const cip_field_t *f = NULL;
         if (eq && (size_t)(eq - opts->sets[i]) < sizeof name) {
             snprintf(name, sizeof name, "%.*s", (int)(eq - opts->sets[i]), opts->sets[i]);
-            f = dnscan_field_by_name(poll_state.out, name);
+            f = cip_field_by_name(poll_state.out, name);
         }
         if (!f)
             return dnscan_fail(opts, EX_USAGE,
@@ -571,7 +572,7 @@ static int poll_output(dnscan_options_t *opts, dnscan_run_t *run)
                                "docs/dnscan.md)",
                                opts->sets[i], poll_state.out->instance);
         value = strtol(eq + 1, &end, 0);
-        if (end == eq + 1 || *end || !dnscan_field_set(f, value, run->output))
+        if (end == eq + 1 || *end || !cip_field_set(f, value, run->output))
             return dnscan_fail(opts, EX_DATAERR, "--set: '%s' does not fit %s", eq + 1, f->name);
     }
     return -1;

@@ -2,6 +2,7 @@
  * decides the exit status (docs/dnscan.md). */
 #include "cip_assembly.h"
 #include "cip_text.h"
+#include "cli.h"
 #include "run.h"
 
 #include <ctype.h>
@@ -175,7 +176,7 @@ static void print_value(const dnscan_options_t *opts, const dn_result_t *r)
     if (value[0]) {
         printf(", \"value\": ");
         if (is_text)
-            dnscan_json_string(value);
+            cli_json_string(stdout, value);
         else
             fputs(value, stdout);
     }
@@ -389,7 +390,7 @@ static void print_slave(const dnscan_options_t *opts, const dnscan_sequence_t *s
         printf("\"vendor\": %u, \"device_type\": %u, \"product_code\": %u, \"revision\": "
                "\"%u.%u\", \"serial\": \"0x%08X\", \"name\": ",
                s->vendor, s->device_type, s->product_code, s->revision[0], s->revision[1], serial);
-        dnscan_json_string(s->name);
+        cli_json_string(stdout, s->name);
         printf("}\n");
     } else if (s->state == 2) {
         printf("%2u  connections allocated by another master\n", s->mac_id);

@@ -271,9 +271,9 @@ static const char *fragment_type_name(uint8_t type)
 }
 
 /* A fragment of an explicit message (either direction), or an acknowledgement of one; the
- * message is decoded whole at its last fragment. */
-static void fragment(cotrace_dn_node_t *n, cotrace_dn_message_t *m, const struct can_frame *f,
-                     text_t *t)
+ * message is reassembled by the slave's and scanner's own rules (dn_fragment.h) and decoded
+ * whole at its last fragment. */
+static void fragment(cotrace_dn_node_t *n, dn_fragments_t *m, const struct can_frame *f, text_t *t)
 {
     uint8_t type = f->data[1] & DN_FRAG_TYPE;
     uint8_t count = f->data[1] & DN_FRAG_COUNT;
@@ -288,41 +288,34 @@ static void fragment(cotrace_dn_node_t *n, cotrace_dn_message_t *m, const struct
             say(t, "status 0x%02X", status);
         return;
     }
-    const char *name = fragment_type_name(type);
-    size_t chunk = f->len - 2u;
-    say(t, "fragment %u (%s)", count, name);
-    if (type == DN_FRAG_FIRST) {
-        m->active = true;
-        m->len = 0;
-    } else if (!m->active) {
+    uint8_t chunk = (uint8_t)(f->len - 2u);
+    uint8_t previous = m->count;
+    say(t, "fragment %u (%s)", count, fragment_type_name(type));
+    switch (dn_fragment_receive(m, f->data, f->len)) {
+    case DN_FRAGMENT_RX_IGNORED:
         say(t, " without a first fragment: ");
         say_bytes(t, &f->data[2], chunk);
         return;
-    } else if (count == m->count) {
+    case DN_FRAGMENT_RX_REPEATED:
         say(t, " repeated");
         return;
-    } else if (count != ((m->count + 1u) & DN_FRAG_COUNT)) {
-        m->active = false;
-        say(t, " out of sequence after %u: message dropped", m->count);
+    case DN_FRAGMENT_RX_LOST:
+        say(t, " out of sequence after %u: message dropped", previous);
         return;
-    }
-    m->count = count;
-    if (chunk > (size_t)(DN_MESSAGE_MAX - m->len)) {
-        m->active = false;
+    case DN_FRAGMENT_RX_TOO_MUCH:
         say(t, ": more than %u bytes, message dropped", DN_MESSAGE_MAX);
         return;
+    case DN_FRAGMENT_RX_TAKEN:
+        say(t, ", %u bytes", chunk);
+        return;
+    case DN_FRAGMENT_RX_COMPLETE:
+        break;
     }
-    memcpy(&m->body[m->len], &f->data[2], chunk);
-    m->len = (uint8_t)(m->len + chunk);
-    say(t, ", %zu bytes", chunk);
-    if (type == DN_FRAG_LAST) {
-        m->active = false;
-        say(t, ", message of %u bytes: ", m->len);
-        if (m->len == 0)
-            say(t, "empty");
-        else
-            message_body(n, m->body, m->len, t);
-    }
+    say(t, ", %u bytes, message of %u bytes: ", chunk, m->len);
+    if (m->len == 0)
+        say(t, "empty");
+    else
+        message_body(n, m->body, m->len, t);
 }
 
 static void explicit_frame(cotrace_dn_node_t *n, const struct can_frame *f, kind_t kind, text_t *t)

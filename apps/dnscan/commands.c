@@ -17,29 +17,35 @@
 #define EPATH_INSTANCE_8 0x24u
 #define EPATH_INSTANCE_16 0x25u
 
-static int parse_mac(const dnscan_options_t *opts, const char *text, uint8_t *mac_id)
+/* The argument parsers: true with the value, or false after the one-line usage error (the
+ * command's exit status is then EX_USAGE). */
+static bool parse_mac(const dnscan_options_t *opts, const char *text, uint8_t *mac_id)
 {
     unsigned long n;
-    if (!dnscan_parse_number(text, DN_MAC_ID_MAX, &n))
-        return dnscan_fail(opts, EX_USAGE, "'%s' is not a MAC ID: give a number 0..63", text);
-    if (n == opts->mac_id)
-        return dnscan_fail(opts, EX_USAGE,
-                           "MAC ID %lu is the scanner's own: give the scanner another with "
-                           "--mac-id N",
-                           n);
+    if (!dnscan_parse_number(text, DN_MAC_ID_MAX, &n)) {
+        dnscan_fail(opts, EX_USAGE, "'%s' is not a MAC ID: give a number 0..63", text);
+        return false;
+    }
+    if (n == opts->mac_id) {
+        dnscan_fail(opts, EX_USAGE,
+                    "MAC ID %lu is the scanner's own: give the scanner another with --mac-id N", n);
+        return false;
+    }
     *mac_id = (uint8_t)n;
-    return -1;
+    return true;
 }
 
-static int parse_byte(const dnscan_options_t *opts, const char *what, const char *text,
-                      unsigned long min, uint8_t *value)
+static bool parse_byte(const dnscan_options_t *opts, const char *what, const char *text,
+                       unsigned long min, uint8_t *value)
 {
     unsigned long n;
-    if (!dnscan_parse_number(text, UINT8_MAX, &n) || n < min)
-        return dnscan_fail(opts, EX_USAGE, "'%s' is not a%s %s: give %lu..255", text,
-                           what[0] == 'a' || what[0] == 'i' ? "n" : "", what, min);
+    if (!dnscan_parse_number(text, UINT8_MAX, &n) || n < min) {
+        dnscan_fail(opts, EX_USAGE, "'%s' is not a%s %s: give %lu..255", text,
+                    what[0] == 'a' || what[0] == 'i' ? "n" : "", what, min);
+        return false;
+    }
     *value = (uint8_t)n;
-    return -1;
+    return true;
 }
 
 /* Hexadecimal bytes, in one or several words ("B0 04", "B004"); false when not. */
@@ -127,16 +133,14 @@ typedef struct attribute_command {
     uint8_t mac_id, class_id, instance, attribute;
 } attribute_command_t;
 
+/* MAC CLASS INST ATTR; -1 to go on, else the exit status. */
 static int parse_attribute(const dnscan_options_t *opts, attribute_command_t *a)
 {
-    int rc = parse_mac(opts, opts->args[1], &a->mac_id);
-    if (rc < 0)
-        rc = parse_byte(opts, "class", opts->args[2], 1, &a->class_id);
-    if (rc < 0)
-        rc = parse_byte(opts, "instance", opts->args[3], 0, &a->instance);
-    if (rc < 0)
-        rc = parse_byte(opts, "attribute", opts->args[4], 1, &a->attribute);
-    return rc;
+    bool parsed = parse_mac(opts, opts->args[1], &a->mac_id) &&
+                  parse_byte(opts, "class", opts->args[2], 1, &a->class_id) &&
+                  parse_byte(opts, "instance", opts->args[3], 0, &a->instance) &&
+                  parse_byte(opts, "attribute", opts->args[4], 1, &a->attribute);
+    return parsed ? -1 : EX_USAGE;
 }
 
 static void print_value(const dnscan_options_t *opts, const dn_result_t *r)
@@ -308,11 +312,9 @@ static bool connection_result(dnscan_run_t *run, dnscan_sequence_t *seq, const d
 static int run_connections(dnscan_options_t *opts, dnscan_step_kind_t kind, uint8_t fallback)
 {
     uint8_t mac_id, choice = fallback;
-    int rc = parse_mac(opts, opts->args[1], &mac_id);
-    if (rc < 0 && opts->arg_count == 3)
-        rc = parse_byte(opts, "choice", opts->args[2], 1, &choice);
-    if (rc >= 0)
-        return rc;
+    if (!parse_mac(opts, opts->args[1], &mac_id) ||
+        (opts->arg_count == 3 && !parse_byte(opts, "choice", opts->args[2], 1, &choice)))
+        return EX_USAGE;
     static dnscan_run_t run;
     dnscan_run_init(&run, opts);
     run.on_result = connection_result;
@@ -582,13 +584,12 @@ static int poll_output(dnscan_options_t *opts, dnscan_run_t *run)
 int dnscan_poll(dnscan_options_t *opts)
 {
     uint8_t mac_id;
-    int rc = parse_mac(opts, opts->args[1], &mac_id);
-    if (rc >= 0)
-        return rc;
+    if (!parse_mac(opts, opts->args[1], &mac_id))
+        return EX_USAGE;
     static dnscan_run_t run;
     dnscan_run_init(&run, opts);
     memset(&poll_state, 0, sizeof poll_state);
-    rc = poll_output(opts, &run);
+    int rc = poll_output(opts, &run);
     if (rc >= 0)
         return rc;
     run.on_result = poll_result;

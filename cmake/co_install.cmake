@@ -1,15 +1,23 @@
 # What `cmake --install` puts where (GNUInstallDirs; relative to the prefix, /usr/local by default,
 # /usr in the Debian package), and the Debian package itself (`cpack -G DEB`). README.md, Install.
 #
-#   include/co/, co_linux/, drive/        the public headers of the three libraries
+#   include/co/, co_linux/, drive/, dn/    the public headers of the libraries
 #   lib/libcanopen.a                       canopen::core, the portable core
 #   lib/libco_linux.a                      canopen::linux, the Linux runtime (links canopen::core)
 #   lib/libco_drive.a                      canopen::drive, the generic CiA 402 velocity drive
 #                                          (portable; links canopen::core)
+#   lib/libdevicenet.a                     canopen::devicenet, the portable DeviceNet slave
+#   lib/libdnscanner.a                     canopen::dnscanner, the DeviceNet scanner (links
+#                                          canopen::devicenet)
+#   lib/libdrive_devicenet.a               canopen::drive_devicenet, the drive behind the
+#                                          DeviceNet slave (links canopen::drive, canopen::devicenet)
 #   lib/cmake/canopen/                     find_package(canopen): those targets and co_generate_od()
 #   lib/pkgconfig/canopen.pc               pkg-config: the core (variables edstool and edsdir)
 #   lib/pkgconfig/canopen-linux.pc         pkg-config: the Linux runtime (requires canopen)
 #   lib/pkgconfig/canopen-drive.pc         pkg-config: the drive (requires canopen)
+#   lib/pkgconfig/devicenet.pc             pkg-config: the DeviceNet slave and scanner
+#   lib/pkgconfig/devicenet-drive.pc       pkg-config: the drive on DeviceNet (requires
+#                                          canopen-drive, devicenet)
 #   bin/atv312d, bin/cotrace, bin/comaster, bin/dnscan, bin/co-edstool, bin/vcan-run
 #                                          the daemon, the trace decoder, the master tool,
 #                                          tools/edstool.py, tools/vcan-run
@@ -31,11 +39,11 @@ set(CO_INSTALL_EDSDIR ${CMAKE_INSTALL_DATADIR}/${PROJECT_NAME}/eds)
 
 # Libraries and their headers. The models' headers (src/drive/models/<model>/<model>.h) are the
 # daemon's: their libraries are not installed, so neither are their headers.
-set(CO_INSTALL_HEADER_DIRS co co_linux drive)
+set(CO_INSTALL_HEADER_DIRS co co_linux drive dn)
 set_target_properties(canopen PROPERTIES EXPORT_NAME core)
 set_target_properties(co_linux PROPERTIES EXPORT_NAME linux)
 set_target_properties(co_drive PROPERTIES EXPORT_NAME drive)
-install(TARGETS canopen co_linux co_drive EXPORT canopenTargets
+install(TARGETS canopen co_linux co_drive devicenet dnscanner drive_devicenet EXPORT canopenTargets
         ARCHIVE DESTINATION ${CMAKE_INSTALL_LIBDIR}
         INCLUDES DESTINATION ${CMAKE_INSTALL_INCLUDEDIR})
 foreach(dir ${CO_INSTALL_HEADER_DIRS})
@@ -103,6 +111,10 @@ co_install_configured(${PROJECT_SOURCE_DIR}/cmake/canopen.pc.in
 co_install_configured(${PROJECT_SOURCE_DIR}/cmake/canopen-linux.pc.in
                       ${CMAKE_INSTALL_LIBDIR}/pkgconfig)
 co_install_configured(${PROJECT_SOURCE_DIR}/cmake/canopen-drive.pc.in
+                      ${CMAKE_INSTALL_LIBDIR}/pkgconfig)
+co_install_configured(${PROJECT_SOURCE_DIR}/cmake/devicenet.pc.in
+                      ${CMAKE_INSTALL_LIBDIR}/pkgconfig)
+co_install_configured(${PROJECT_SOURCE_DIR}/cmake/devicenet-drive.pc.in
                       ${CMAKE_INSTALL_LIBDIR}/pkgconfig)
 co_install_configured(${PROJECT_SOURCE_DIR}/tools/atv312d.service.in
                       ${CMAKE_INSTALL_DOCDIR}/examples)

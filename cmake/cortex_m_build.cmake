@@ -1,8 +1,8 @@
-# ctest script: configures and builds the portable core and the DeviceNet slave library with
+# ctest script: configures and builds the portable core, the DeviceNet slave and scanner with
 # arm-none-eabi-gcc for one Cortex-M (-Os, -Wall -Wextra -pedantic and, whatever the calling
 # build's CO_WERROR, -Werror) and prints their size: text / data / bss of each module, then the
-# RAM of one CANopen node in the default configuration (include/co/co_config.h) and of one
-# DeviceNet slave, as the target's compiler lays them out. Fails when the toolchain is missing.
+# RAM of one CANopen node in the default configuration (include/co/co_config.h), of one
+# DeviceNet slave and of a scanner, as the target's compiler lays them out. Fails when the toolchain is missing.
 #   cmake -DSOURCE_DIR=<repo> -DBINARY_DIR=<dir> -DCPU=cortex-m0 -P cmake/cortex_m_build.cmake
 find_program(ARM_GCC arm-none-eabi-gcc)
 find_program(ARM_NM arm-none-eabi-nm)
@@ -25,8 +25,10 @@ if(NOT built EQUAL 0)
   message(FATAL_ERROR "the core does not build for ${CPU}")
 endif()
 execute_process(COMMAND arm-none-eabi-size -t ${BINARY_DIR}/libcanopen.a)
-# The DeviceNet slave library, built by the same configuration (docs/footprint.md).
+# The DeviceNet slave library and the scanner, built by the same configuration
+# (docs/footprint.md).
 execute_process(COMMAND arm-none-eabi-size -t ${BINARY_DIR}/libdevicenet.a)
+execute_process(COMMAND arm-none-eabi-size -t ${BINARY_DIR}/libdnscanner.a)
 
 # sizeof(co_node_t) for this CPU, without running anything on it: the size of a variable of that
 # type in an object file.
@@ -50,3 +52,21 @@ if(NOT compiled EQUAL 0 OR NOT symbols MATCHES "[0-9]+ 0*([0-9]+) B dn_node_size
   message(FATAL_ERROR "could not measure sizeof(dn_node_t) for ${CPU}")
 endif()
 message("${CPU}: sizeof(dn_node_t) = ${CMAKE_MATCH_1} bytes")
+
+# sizeof(dn_scanner_t), the RAM of a scanner without its slaves, and sizeof(dn_slave_t), each
+# slave's (the application allocates one per slave it talks to).
+file(WRITE ${BINARY_DIR}/dn_scanner_size.c
+     "#include \"dn/dn_scanner.h\"\ndn_scanner_t dn_scanner_size;\ndn_slave_t dn_slave_size;\n")
+execute_process(
+  COMMAND ${ARM_GCC} -mcpu=${CPU} -mthumb -Os -std=c11 -fno-common -I${SOURCE_DIR}/include -c
+          ${BINARY_DIR}/dn_scanner_size.c -o ${BINARY_DIR}/dn_scanner_size.o
+  RESULT_VARIABLE compiled)
+execute_process(COMMAND ${ARM_NM} -S -t d ${BINARY_DIR}/dn_scanner_size.o OUTPUT_VARIABLE symbols)
+if(NOT compiled EQUAL 0 OR NOT symbols MATCHES "[0-9]+ 0*([0-9]+) B dn_scanner_size")
+  message(FATAL_ERROR "could not measure sizeof(dn_scanner_t) for ${CPU}")
+endif()
+set(scanner_size ${CMAKE_MATCH_1})
+if(NOT symbols MATCHES "[0-9]+ 0*([0-9]+) B dn_slave_size")
+  message(FATAL_ERROR "could not measure sizeof(dn_slave_t) for ${CPU}")
+endif()
+message("${CPU}: sizeof(dn_scanner_t) = ${scanner_size} bytes, sizeof(dn_slave_t) = ${CMAKE_MATCH_1} bytes")

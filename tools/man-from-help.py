@@ -11,7 +11,8 @@ COLUMNS=80 and turns the text into roff (man(7)):
     by NAME;
   - an unindented line ending in ':' followed by indented lines: a subsection heading (`options:`);
   - an indented line `TERM  description` (two spaces or more between them), with continuation
-    lines aligned on the description: a tagged paragraph (.TP);
+    lines aligned on the description: a tagged paragraph (.TP); a term alone on its line may go
+    on over lines indented deeper than it, its description on lines deeper still;
   - a paragraph starting `Exit status:` or `Exit codes:`: the EXIT STATUS section;
   - any other paragraph: a paragraph, its lines joined.
 The rest of the top-level help is DESCRIPTION; each subcommand's help (after its usage) is a
@@ -91,12 +92,17 @@ def paragraphs(lines):
 def render_items(lines):
     """Tagged paragraphs from indented `TERM  description` lines and their continuations."""
     items = []  # [indent, term, description lines, description column]
-    for line in lines:
+    for i, line in enumerate(lines):
         indent = len(line) - len(line.lstrip())
         m = ITEM.match(line)
         last = items[-1] if items else None
+        following = lines[i + 1] if i + 1 < len(lines) else ""
+        deeper_follows = len(following) - len(following.lstrip()) > indent
         if last and last[3] is not None and indent == last[3]:
             last[2].append(line)
+        elif last and last[3] is None and indent > last[0] and not m.group(3) and deeper_follows:
+            # A term too long for one line: its continuation, the description further right.
+            last[1] += " " + line.strip()
         elif last and last[3] is None and indent > last[0] and not m.group(3):
             last[2].append(line)
             last[3] = indent

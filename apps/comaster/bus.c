@@ -3,6 +3,8 @@
  * come from the core's process calls, so nothing sleeps. */
 #include "comaster.h"
 
+#include "cli.h"
+
 #include "co_linux/log.h"
 
 #include <stddef.h>
@@ -44,29 +46,10 @@ static const co_linux_device_ops_t device_ops = {
 static int report_open_error(const comaster_bus_t *bus, const comaster_options_t *opts,
                              co_linux_open_result_t result)
 {
-    const co_linux_loop_t *loop = &bus->loop;
-    const char *why = strerror(loop->open_errno);
-    switch (result) {
-    case CO_LINUX_OPEN_NO_CAN:
-        return comaster_fail(opts, EX_UNAVAILABLE,
-                             "this kernel has no SocketCAN support (%s: %s): load it with modprobe "
-                             "can-raw vcan, or run inside the sandbox: tools/vcan-run comaster ...",
-                             loop->open_call, why);
-    case CO_LINUX_OPEN_NO_IFACE:
-        return comaster_fail(opts, EX_UNAVAILABLE,
-                             "no network interface '%s': give one with -i IFACE or "
-                             "$COMASTER_IFACE (list them: ip link show type can, or type vcan)",
-                             loop->iface);
-    case CO_LINUX_OPEN_NOT_CAN:
-        return comaster_fail(opts, EX_UNAVAILABLE,
-                             "'%s' is not a CAN interface (%s: %s): give a SocketCAN interface "
-                             "such as can0 or vcan0 with -i",
-                             loop->iface, loop->open_call, why);
-    case CO_LINUX_OPEN_OS_ERROR:
-    case CO_LINUX_OPEN_OK:
-        break;
-    }
-    return comaster_fail(opts, EX_OSERR, "%s on %s failed: %s", loop->open_call, loop->iface, why);
+    char message[512];
+    int status = cli_open_error_text(&bus->loop, result, "comaster", "COMASTER_IFACE", message,
+                                     sizeof message);
+    return comaster_fail(opts, status, "%s", message);
 }
 
 int comaster_bus_open(comaster_bus_t *bus, const comaster_options_t *opts)

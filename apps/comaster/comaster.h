@@ -79,9 +79,6 @@ int comaster_fail(const comaster_options_t *opts, int status, const char *format
 bool comaster_parse_node(const comaster_options_t *opts, const char *text, bool allow_all,
                          uint8_t *node);
 
-/* Writes `text` as a JSON string (quoted, escaped) to stdout. */
-void comaster_json_string(const char *text);
-
 /* ---- the bus --------------------------------------------------------------------------------- */
 
 /* A job runs on the bus until it calls comaster_bus_finish: it gets every received frame and is

@@ -1,6 +1,8 @@
-/* What the commands share: the common options, node-ids, one-line errors, JSON strings (the EDS
- * of a node is node_eds.c). */
+/* What the commands share: the common options, node-ids, one-line errors (the conventions of
+ * src/cli; the EDS of a node is node_eds.c). */
 #include "comaster.h"
+
+#include "cli.h"
 
 #include <errno.h>
 #include <stdarg.h>
@@ -8,33 +10,12 @@
 #include <stdlib.h>
 #include <string.h>
 
-void comaster_json_string(const char *text)
-{
-    putchar('"');
-    for (const unsigned char *p = (const unsigned char *)text; *p; p++) {
-        if (*p == '"' || *p == '\\')
-            printf("\\%c", *p);
-        else if (*p < 0x20)
-            printf("\\u%04x", *p);
-        else
-            putchar(*p);
-    }
-    putchar('"');
-}
-
 int comaster_fail(const comaster_options_t *opts, int status, const char *format, ...)
 {
-    char message[1024];
     va_list ap;
     va_start(ap, format);
-    vsnprintf(message, sizeof message, format, ap);
+    status = cli_vfail("comaster", opts && opts->json, status, format, ap);
     va_end(ap);
-    fprintf(stderr, "comaster: %s\n", message);
-    if (opts && opts->json) {
-        printf("{\"error\": ");
-        comaster_json_string(message);
-        printf(", \"exit\": %d}\n", status);
-    }
     return status;
 }
 

@@ -1,6 +1,7 @@
 /* comaster monitor: what happens on the bus, as it arrives: NMT state changes told by boot-ups
  * and heartbeats, emergencies decoded, SYNC, and PDOs decoded by name through each watched node's
  * mapping, read over SDO (with the names of its EDS). Runs until SIGINT or SIGTERM. */
+#include "cli.h"
 #include "co/co_emcy_consumer.h"
 #include "co/co_nmt.h"
 #include "co/co_nmt_master.h"
@@ -108,7 +109,7 @@ static void print_emcy(monitor_t *m, const co_emcy_message_t *msg)
     if (m->opts->json) {
         printf("\"node\": %u, \"code\": \"0x%04X\", \"register\": \"0x%02X\", \"text\": ",
                msg->node_id, msg->code, msg->reg);
-        comaster_json_string(text);
+        cli_json_string(stdout, text);
         printf("}\n");
     } else {
         printf("node %u: EMCY 0x%04X %s, error register 0x%02X\n", msg->node_id, msg->code, text,
@@ -146,7 +147,7 @@ static void print_pdo(monitor_t *m, const co_frame_t *frame)
     line_start(m, "pdo");
     if (m->opts->json) {
         printf("\"cob_id\": \"0x%03X\", \"text\": ", frame->id);
-        comaster_json_string(text);
+        cli_json_string(stdout, text);
         printf("}\n");
     } else {
         printf("%s\n", text);

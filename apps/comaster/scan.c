@@ -3,6 +3,7 @@
  * their identity (1018h:01..03) and name (1008h), and their NMT state is taken from their
  * heartbeat (the NMT master follows them while the scan runs) or asked by a node guarding
  * request. */
+#include "cli.h"
 #include "co/co_nmt.h"
 #include "co/co_nmt_master.h"
 #include "comaster.h"
@@ -228,7 +229,7 @@ static void print_node(const comaster_options_t *opts, uint8_t node, const probe
     if (json) {
         printf(", \"name\": ");
         if (id->name[0])
-            comaster_json_string(id->name);
+            cli_json_string(stdout, id->name);
         else
             printf("null");
         printf(", \"state\": ");

@@ -1,5 +1,6 @@
 /* comaster read and write: one SDO upload or download, the value printed or parsed by its data
  * type (given, from the EDS, or guessed from the size). */
+#include "cli.h"
 #include "comaster.h"
 #include "value.h"
 
@@ -109,7 +110,7 @@ static void print_json_head(const sdo_request_t *req)
            req->object.sub);
     if (req->object.name) {
         printf("\"name\": ");
-        comaster_json_string(req->object.name);
+        cli_json_string(stdout, req->object.name);
         printf(", ");
     }
     printf("\"type\": \"%s\"", req->type->name);
@@ -124,7 +125,7 @@ static int save_output(const comaster_options_t *opts, const sdo_request_t *req,
     if (opts->json) {
         print_json_head(req);
         printf(", \"size\": %u, \"file\": ", size);
-        comaster_json_string(path);
+        cli_json_string(stdout, path);
         printf("}\n");
     }
     return 0;
@@ -144,7 +145,7 @@ static int print_value(const comaster_options_t *opts, const sdo_request_t *req,
     print_json_head(req);
     printf(", \"value\": ");
     if (is_text)
-        comaster_json_string(text);
+        cli_json_string(stdout, text);
     else
         fputs(text, stdout);
     printf("}\n");

@@ -1,6 +1,8 @@
 /* dnscan's commands: each builds the slaves' sequences of steps, prints their results and
  * decides the exit status (docs/dnscan.md). */
-#include "assemblies.h"
+#include "cip_assembly.h"
+#include "cip_text.h"
+#include "cli.h"
 #include "run.h"
 
 #include <ctype.h>
@@ -15,29 +17,35 @@
 #define EPATH_INSTANCE_8 0x24u
 #define EPATH_INSTANCE_16 0x25u
 
-static int parse_mac(const dnscan_options_t *opts, const char *text, uint8_t *mac_id)
+/* The argument parsers: true with the value, or false after the one-line usage error (the
+ * command's exit status is then EX_USAGE). */
+static bool parse_mac(const dnscan_options_t *opts, const char *text, uint8_t *mac_id)
 {
     unsigned long n;
-    if (!dnscan_parse_number(text, DN_MAC_ID_MAX, &n))
-        return dnscan_fail(opts, EX_USAGE, "'%s' is not a MAC ID: give a number 0..63", text);
-    if (n == opts->mac_id)
-        return dnscan_fail(opts, EX_USAGE,
-                           "MAC ID %lu is the scanner's own: give the scanner another with "
-                           "--mac-id N",
-                           n);
+    if (!dnscan_parse_number(text, DN_MAC_ID_MAX, &n)) {
+        dnscan_fail(opts, EX_USAGE, "'%s' is not a MAC ID: give a number 0..63", text);
+        return false;
+    }
+    if (n == opts->mac_id) {
+        dnscan_fail(opts, EX_USAGE,
+                    "MAC ID %lu is the scanner's own: give the scanner another with --mac-id N", n);
+        return false;
+    }
     *mac_id = (uint8_t)n;
-    return -1;
+    return true;
 }
 
-static int parse_byte(const dnscan_options_t *opts, const char *what, const char *text,
-                      unsigned long min, uint8_t *value)
+static bool parse_byte(const dnscan_options_t *opts, const char *what, const char *text,
+                       unsigned long min, uint8_t *value)
 {
     unsigned long n;
-    if (!dnscan_parse_number(text, UINT8_MAX, &n) || n < min)
-        return dnscan_fail(opts, EX_USAGE, "'%s' is not a%s %s: give %lu..255", text,
-                           what[0] == 'a' || what[0] == 'i' ? "n" : "", what, min);
+    if (!dnscan_parse_number(text, UINT8_MAX, &n) || n < min) {
+        dnscan_fail(opts, EX_USAGE, "'%s' is not a%s %s: give %lu..255", text,
+                    what[0] == 'a' || what[0] == 'i' ? "n" : "", what, min);
+        return false;
+    }
     *value = (uint8_t)n;
-    return -1;
+    return true;
 }
 
 /* Hexadecimal bytes, in one or several words ("B0 04", "B004"); false when not. */
@@ -79,7 +87,7 @@ static int step_error(dnscan_run_t *run, const dnscan_sequence_t *seq, const cha
         status = dnscan_fail(
             opts, DNSCAN_EXIT_CIP_ERROR,
             "MAC ID %u, %s: CIP error 0x%02X (%s), additional code 0x%02X%s", seq->mac_id, what,
-            r->general, dn_cip_status_text(r->general), r->additional,
+            r->general, cip_general_status_text(r->general), r->additional,
             r->general == DN_GS_OBJECT_STATE_CONFLICT && r->additional == DN_AC_ALLOCATION_CONFLICT
                 ? ": another master owns the connections"
                 : "");
@@ -125,16 +133,14 @@ typedef struct attribute_command {
     uint8_t mac_id, class_id, instance, attribute;
 } attribute_command_t;
 
+/* MAC CLASS INST ATTR; -1 to go on, else the exit status. */
 static int parse_attribute(const dnscan_options_t *opts, attribute_command_t *a)
 {
-    int rc = parse_mac(opts, opts->args[1], &a->mac_id);
-    if (rc < 0)
-        rc = parse_byte(opts, "class", opts->args[2], 1, &a->class_id);
-    if (rc < 0)
-        rc = parse_byte(opts, "instance", opts->args[3], 0, &a->instance);
-    if (rc < 0)
-        rc = parse_byte(opts, "attribute", opts->args[4], 1, &a->attribute);
-    return rc;
+    bool parsed = parse_mac(opts, opts->args[1], &a->mac_id) &&
+                  parse_byte(opts, "class", opts->args[2], 1, &a->class_id) &&
+                  parse_byte(opts, "instance", opts->args[3], 0, &a->instance) &&
+                  parse_byte(opts, "attribute", opts->args[4], 1, &a->attribute);
+    return parsed ? -1 : EX_USAGE;
 }
 
 static void print_value(const dnscan_options_t *opts, const dn_result_t *r)
@@ -174,7 +180,7 @@ static void print_value(const dnscan_options_t *opts, const dn_result_t *r)
     if (value[0]) {
         printf(", \"value\": ");
         if (is_text)
-            dnscan_json_string(value);
+            cli_json_string(stdout, value);
         else
             fputs(value, stdout);
     }
@@ -305,12 +311,10 @@ static bool connection_result(dnscan_run_t *run, dnscan_sequence_t *seq, const d
 
 static int run_connections(dnscan_options_t *opts, dnscan_step_kind_t kind, uint8_t fallback)
 {
-    uint8_t mac_id = 0, choice = fallback; /* set when parse_mac goes on (-1) */
-    int rc = parse_mac(opts, opts->args[1], &mac_id);
-    if (rc < 0 && opts->arg_count == 3)
-        rc = parse_byte(opts, "choice", opts->args[2], 1, &choice);
-    if (rc >= 0)
-        return rc;
+    uint8_t mac_id, choice = fallback;
+    if (!parse_mac(opts, opts->args[1], &mac_id) ||
+        (opts->arg_count == 3 && !parse_byte(opts, "choice", opts->args[2], 1, &choice)))
+        return EX_USAGE;
     static dnscan_run_t run;
     dnscan_run_init(&run, opts);
     run.on_result = connection_result;
@@ -388,7 +392,7 @@ static void print_slave(const dnscan_options_t *opts, const dnscan_sequence_t *s
         printf("\"vendor\": %u, \"device_type\": %u, \"product_code\": %u, \"revision\": "
                "\"%u.%u\", \"serial\": \"0x%08X\", \"name\": ",
                s->vendor, s->device_type, s->product_code, s->revision[0], s->revision[1], serial);
-        dnscan_json_string(s->name);
+        cli_json_string(stdout, s->name);
         printf("}\n");
     } else if (s->state == 2) {
         printf("%2u  connections allocated by another master\n", s->mac_id);
@@ -437,8 +441,8 @@ int dnscan_scan(dnscan_options_t *opts)
 /* ---- poll --------------------------------------------------------------------------------- */
 
 typedef struct poll_command {
-    const dnscan_assembly_t *out;
-    const dnscan_assembly_t *in;
+    const cip_assembly_t *out;
+    const cip_assembly_t *in;
     uint32_t count; /* polls before the end; 0: until interrupted */
 } poll_command_t;
 
@@ -447,7 +451,7 @@ static poll_command_t poll_state;
 static void print_input(const dnscan_run_t *run, const dnscan_sequence_t *seq, const uint8_t *data,
                         uint8_t len)
 {
-    const dnscan_assembly_t *in = poll_state.in;
+    const cip_assembly_t *in = poll_state.in;
     char hex[17];
     hex_text(data, len, hex);
     if (run->opts->json)
@@ -455,14 +459,14 @@ static void print_input(const dnscan_run_t *run, const dnscan_sequence_t *seq, c
                in ? in->instance : 0, hex);
     else
         printf("MAC ID %u", seq->mac_id);
-    if (in && len == DNSCAN_ASSEMBLY_SIZE) {
+    if (in && len == CIP_ASSEMBLY_SIZE) {
         printf(run->opts->json ? ", \"values\": {" : ":");
         for (uint8_t i = 0; i < in->field_count; i++) {
-            const dnscan_field_t *f = &in->fields[i];
+            const cip_field_t *f = &in->fields[i];
             if (run->opts->json)
-                printf("%s\"%s\": %d", i ? ", " : "", f->name, (int)dnscan_field_get(f, data));
+                printf("%s\"%s\": %d", i ? ", " : "", f->name, (int)cip_field_get(f, data));
             else
-                printf(" %s=%d", f->name, (int)dnscan_field_get(f, data));
+                printf(" %s=%d", f->name, (int)cip_field_get(f, data));
         }
         printf(run->opts->json ? "}" : "");
     } else if (!run->opts->json) {
@@ -521,7 +525,7 @@ static bool poll_result(dnscan_run_t *run, dnscan_sequence_t *seq, const dnscan_
         return true;
     }
     if (step->service == DN_SVC_GET_ATTRIBUTE_SINGLE) {
-        const dnscan_assembly_t *a = dnscan_assembly(path_instance(r->data, r->len));
+        const cip_assembly_t *a = cip_assembly(path_instance(r->data, r->len));
         if (step->data[0] == DN_CONN_ATTR_PRODUCED_PATH)
             poll_state.in = a;
         else
@@ -537,16 +541,16 @@ static int poll_output(dnscan_options_t *opts, dnscan_run_t *run)
         unsigned out = 0, in = 0;
         char extra;
         if (sscanf(opts->assembly, "%u/%u%c", &out, &in, &extra) != 2 ||
-            !dnscan_assembly((uint16_t)out) || dnscan_assembly((uint16_t)out)->produced ||
-            !dnscan_assembly((uint16_t)in) || !dnscan_assembly((uint16_t)in)->produced)
+            !cip_assembly((uint16_t)out) || cip_assembly((uint16_t)out)->produced ||
+            !cip_assembly((uint16_t)in) || !cip_assembly((uint16_t)in)->produced)
             return dnscan_fail(opts, EX_USAGE,
                                "--assembly: '%s' is not OUT/IN: give 20/70, 21/71 or 100/101 "
                                "(or a mix)",
                                opts->assembly);
-        poll_state.out = dnscan_assembly((uint16_t)out);
-        poll_state.in = dnscan_assembly((uint16_t)in);
+        poll_state.out = cip_assembly((uint16_t)out);
+        poll_state.in = cip_assembly((uint16_t)in);
     }
-    run->output_len = DNSCAN_ASSEMBLY_SIZE;
+    run->output_len = CIP_ASSEMBLY_SIZE;
     if (opts->output &&
         !parse_hex(&opts->output, 1, run->output, sizeof run->output, &run->output_len))
         return dnscan_fail(opts, EX_DATAERR,
@@ -560,10 +564,10 @@ static int poll_output(dnscan_options_t *opts, dnscan_run_t *run)
         long value;
         char *end;
         const char *eq = strchr(opts->sets[i], '=');
-        const dnscan_field_t *f = NULL;
+        const cip_field_t *f = NULL;
         if (eq && (size_t)(eq - opts->sets[i]) < sizeof name) {
             snprintf(name, sizeof name, "%.*s", (int)(eq - opts->sets[i]), opts->sets[i]);
-            f = dnscan_field_by_name(poll_state.out, name);
+            f = cip_field_by_name(poll_state.out, name);
         }
         if (!f)
             return dnscan_fail(opts, EX_USAGE,
@@ -571,7 +575,7 @@ static int poll_output(dnscan_options_t *opts, dnscan_run_t *run)
                                "docs/dnscan.md)",
                                opts->sets[i], poll_state.out->instance);
         value = strtol(eq + 1, &end, 0);
-        if (end == eq + 1 || *end || !dnscan_field_set(f, value, run->output))
+        if (end == eq + 1 || *end || !cip_field_set(f, value, run->output))
             return dnscan_fail(opts, EX_DATAERR, "--set: '%s' does not fit %s", eq + 1, f->name);
     }
     return -1;
@@ -579,14 +583,13 @@ static int poll_output(dnscan_options_t *opts, dnscan_run_t *run)
 
 int dnscan_poll(dnscan_options_t *opts)
 {
-    uint8_t mac_id = 0; /* set when parse_mac goes on (-1) */
-    int rc = parse_mac(opts, opts->args[1], &mac_id);
-    if (rc >= 0)
-        return rc;
+    uint8_t mac_id;
+    if (!parse_mac(opts, opts->args[1], &mac_id))
+        return EX_USAGE;
     static dnscan_run_t run;
     dnscan_run_init(&run, opts);
     memset(&poll_state, 0, sizeof poll_state);
-    rc = poll_output(opts, &run);
+    int rc = poll_output(opts, &run);
     if (rc >= 0)
         return rc;
     run.on_result = poll_result;

@@ -39,7 +39,6 @@ typedef struct dnscan_options {
 
 int dnscan_fail(const dnscan_options_t *opts, int status, const char *format, ...)
     __attribute__((format(printf, 3, 4)));
-void dnscan_json_string(const char *text);
 bool dnscan_parse_number(const char *text, unsigned long max, unsigned long *value);
 
 int dnscan_scan(dnscan_options_t *opts);

@@ -4,6 +4,8 @@
  * the Linux runtime's loop with the portable scanner (src/devicenet/scanner) as its device. */
 #include "dnscan.h"
 
+#include "cli.h"
+
 #include <errno.h>
 #include <stdarg.h>
 #include <stdio.h>
@@ -56,33 +58,12 @@ static const char usage_text[] =
     "interrupted by SIGINT or SIGTERM, 4 the scanner's MAC ID is in use on the bus, 64\n"
     "usage error, 65 bad data, 69 interface or CAN support missing, 71 system error.\n";
 
-void dnscan_json_string(const char *text)
-{
-    putchar('"');
-    for (const unsigned char *p = (const unsigned char *)text; *p; p++) {
-        if (*p == '"' || *p == '\\')
-            printf("\\%c", *p);
-        else if (*p < 0x20)
-            printf("\\u%04x", *p);
-        else
-            putchar(*p);
-    }
-    putchar('"');
-}
-
 int dnscan_fail(const dnscan_options_t *opts, int status, const char *format, ...)
 {
-    char message[512];
     va_list ap;
     va_start(ap, format);
-    vsnprintf(message, sizeof message, format, ap);
+    status = cli_vfail("dnscan", opts->json, status, format, ap);
     va_end(ap);
-    fprintf(stderr, "dnscan: %s\n", message);
-    if (opts->json) {
-        printf("{\"error\": ");
-        dnscan_json_string(message);
-        printf(", \"exit\": %d}\n", status);
-    }
     return status;
 }
 

@@ -3,6 +3,8 @@
  * other, all slaves at once, and the command ends when every sequence has. */
 #include "run.h"
 
+#include "cli.h"
+
 #include "co_linux/log.h"
 
 #include <stdio.h>
@@ -165,29 +167,10 @@ static const co_linux_device_ops_t device_ops = {
 
 static int open_error(const dnscan_run_t *run, co_linux_open_result_t result)
 {
-    const co_linux_loop_t *loop = &run->loop;
-    const char *why = strerror(loop->open_errno);
-    switch (result) {
-    case CO_LINUX_OPEN_NO_CAN:
-        return dnscan_fail(run->opts, EX_UNAVAILABLE,
-                           "this kernel has no SocketCAN support (%s: %s): load it with modprobe "
-                           "can-raw vcan, or run inside the sandbox: tools/vcan-run dnscan ...",
-                           loop->open_call, why);
-    case CO_LINUX_OPEN_NO_IFACE:
-        return dnscan_fail(run->opts, EX_UNAVAILABLE,
-                           "no network interface '%s': give one with -i IFACE or $DNSCAN_IFACE",
-                           loop->iface);
-    case CO_LINUX_OPEN_NOT_CAN:
-        return dnscan_fail(run->opts, EX_UNAVAILABLE,
-                           "'%s' is not a CAN interface (%s: %s): give a SocketCAN interface "
-                           "such as can0 or vcan0 with -i",
-                           loop->iface, loop->open_call, why);
-    case CO_LINUX_OPEN_OS_ERROR:
-    case CO_LINUX_OPEN_OK:
-        break;
-    }
-    return dnscan_fail(run->opts, EX_OSERR, "%s on %s failed: %s", loop->open_call, loop->iface,
-                       why);
+    char message[512];
+    int status =
+        cli_open_error_text(&run->loop, result, "dnscan", "DNSCAN_IFACE", message, sizeof message);
+    return dnscan_fail(run->opts, status, "%s", message);
 }
 
 void dnscan_run_init(dnscan_run_t *run, dnscan_options_t *opts)

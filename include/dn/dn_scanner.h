@@ -163,8 +163,4 @@ bool dn_scanner_poll(dn_scanner_t *scanner, uint8_t mac_id, co_time_t now);
 bool dn_scanner_poll_every(dn_scanner_t *scanner, uint8_t mac_id, co_time_t period_us,
                            co_time_t now);
 
-/* The CIP general status code in words ("attribute not supported"); "unknown status" for a
- * code it does not know. */
-const char *dn_cip_status_text(uint8_t general);
-
 #endif

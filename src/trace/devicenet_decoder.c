@@ -2,6 +2,7 @@
  * and status texts by cip_text.h, I/O data by the Altivar 312 card's assemblies. */
 #include "devicenet_decoder.h"
 
+#include "cip_assembly.h"
 #include "cip_text.h"
 #include "decoder.h" /* cotrace_control_word_command, cotrace_status_word_state */
 #include "text.h"
@@ -21,7 +22,6 @@
 #define CONN_CLASS_CONSUMED_ASSEMBLY 100u
 #define CONN_CLASS_PRODUCED_ASSEMBLY 101u
 #define ASSEMBLY_DATA_ATTRIBUTE 3u
-#define ASSEMBLY_SIZE 4u /* every assembly of the card */
 #define BODY_FORMAT_8_8 0u
 
 typedef enum explicit_kind { EXPLICIT_REQUEST, UNCONNECTED_REQUEST, EXPLICIT_RESPONSE } kind_t;
@@ -75,72 +75,47 @@ static void say_choice(text_t *t, uint8_t choice)
         say(t, ")");
 }
 
-static void say_flags(text_t *t, uint8_t byte, const char *const names[8], const char **sep)
-{
-    for (unsigned bit = 0; bit < 8; bit++) {
-        if (byte >> bit & 1u && names[bit]) {
-            say(t, "%s%s", *sep, names[bit]);
-            *sep = ", ";
-        }
-    }
-}
-
-/* The Control supervisor's state (attribute 6), byte 1 of assembly 71. */
-static const char *supervisor_state(uint8_t state)
-{
-    static const char *const states[] = {"Vendor specific", "Startup",  "Not_Ready",  "Ready",
-                                         "Enabled",         "Stopping", "Fault_Stop", "Faulted"};
-    return state < sizeof states / sizeof states[0] ? states[state] : "reserved";
-}
-
-/* I/O data by the card's assemblies (the manual's Assembly object): ODVA 20/21 out, 70/71 in,
- * the transparent 100 (6040h, 6042h) and 101 (6041h, 6044h). */
+/* I/O data by the card's assemblies (cip_assembly.h): the bits set, the Control supervisor's
+ * state, the speeds in rpm and the DRIVECOM words with their meaning. */
 static void say_assembly(text_t *t, uint16_t instance, const uint8_t *data, size_t len)
 {
-    static const char *const basic_out[8] = {"RunFwd", NULL, "FaultRst"};
-    static const char *const extended_out[8] = {"RunFwd", "RunRev",  "FaultRst", NULL,
-                                                NULL,     "NetCtrl", "NetRef"};
-    static const char *const basic_in[8] = {"Faulted", NULL, "Running1"};
-    static const char *const extended_in[8] = {"Faulted",    "Warning",    "Running1",
-                                               "Running2",   "Ready",      "CtrlFromNet",
-                                               "RefFromNet", "AtReference"};
+    const cip_assembly_t *assembly = cip_assembly(instance);
     say(t, "assembly %u", instance);
-    bool known = instance == 20 || instance == 21 || instance == 70 || instance == 71 ||
-                 instance == 100 || instance == 101;
-    if (!known || len != ASSEMBLY_SIZE) {
-        if (known)
-            say(t, " (%u bytes) does not fit %zu bytes", ASSEMBLY_SIZE, len);
+    if (!assembly || len != CIP_ASSEMBLY_SIZE) {
+        if (assembly)
+            say(t, " (%u bytes) does not fit %zu bytes", CIP_ASSEMBLY_SIZE, len);
         say(t, ": ");
         say_bytes(t, data, len);
         return;
     }
-    uint16_t word = co_get_u16(data);
-    int16_t speed = (int16_t)co_get_u16(&data[2]);
     const char *sep = ": ";
-    const char *meaning;
-    switch (instance) {
-    case 20:
-    case 21:
-        say_flags(t, data[0], instance == 20 ? basic_out : extended_out, &sep);
-        say(t, "%sspeed reference %d rpm", sep, speed);
-        return;
-    case 70:
-    case 71:
-        say_flags(t, data[0], instance == 70 ? basic_in : extended_in, &sep);
-        if (instance == 71)
-            say(t, "%sstate %u %s", sep, data[1], supervisor_state(data[1]));
-        say(t, ", speed actual %d rpm", speed);
-        return;
-    case 100:
-        meaning = cotrace_control_word_command(word);
-        say(t, ": 6040h control word 0x%04X%s%s, 6042h speed reference %d rpm", word,
-            meaning ? " " : "", meaning ? meaning : "", speed);
-        return;
-    default:
-        meaning = cotrace_status_word_state(word);
-        say(t, ": 6041h status word 0x%04X%s%s, 6044h speed actual %d rpm", word,
-            meaning ? " " : "", meaning ? meaning : "", speed);
-        return;
+    for (uint8_t i = 0; i < assembly->field_count; i++) {
+        const cip_field_t *f = &assembly->fields[i];
+        int32_t value = cip_field_get(f, data);
+        const char *meaning = NULL;
+        switch (f->kind) {
+        case CIP_FIELD_BIT:
+            if (!value)
+                continue;
+            say(t, "%s%s", sep, f->name);
+            break;
+        case CIP_FIELD_STATE:
+            say(t, "%s%s %d %s", sep, f->name, (int)value,
+                cip_supervisor_state_name((uint8_t)value));
+            break;
+        case CIP_FIELD_RPM:
+            say(t, "%s%s %d rpm", sep, f->name, (int)value);
+            break;
+        case CIP_FIELD_CONTROL_WORD:
+        case CIP_FIELD_STATUS_WORD:
+            meaning = f->kind == CIP_FIELD_CONTROL_WORD
+                          ? cotrace_control_word_command((uint16_t)value)
+                          : cotrace_status_word_state((uint16_t)value);
+            say(t, "%s%s 0x%04X%s%s", sep, f->name, (unsigned)value, meaning ? " " : "",
+                meaning ? meaning : "");
+            break;
+        }
+        sep = ", ";
     }
 }
 
@@ -296,9 +271,9 @@ static const char *fragment_type_name(uint8_t type)
 }
 
 /* A fragment of an explicit message (either direction), or an acknowledgement of one; the
- * message is decoded whole at its last fragment. */
-static void fragment(cotrace_dn_node_t *n, cotrace_dn_message_t *m, const struct can_frame *f,
-                     text_t *t)
+ * message is reassembled by the slave's and scanner's own rules (dn_fragment.h) and decoded
+ * whole at its last fragment. */
+static void fragment(cotrace_dn_node_t *n, dn_fragments_t *m, const struct can_frame *f, text_t *t)
 {
     uint8_t type = f->data[1] & DN_FRAG_TYPE;
     uint8_t count = f->data[1] & DN_FRAG_COUNT;
@@ -313,41 +288,34 @@ static void fragment(cotrace_dn_node_t *n, cotrace_dn_message_t *m, const struct
             say(t, "status 0x%02X", status);
         return;
     }
-    const char *name = fragment_type_name(type);
-    size_t chunk = f->len - 2u;
-    say(t, "fragment %u (%s)", count, name);
-    if (type == DN_FRAG_FIRST) {
-        m->active = true;
-        m->len = 0;
-    } else if (!m->active) {
+    uint8_t chunk = (uint8_t)(f->len - 2u);
+    uint8_t previous = m->count;
+    say(t, "fragment %u (%s)", count, fragment_type_name(type));
+    switch (dn_fragment_receive(m, f->data, f->len)) {
+    case DN_FRAGMENT_RX_IGNORED:
         say(t, " without a first fragment: ");
         say_bytes(t, &f->data[2], chunk);
         return;
-    } else if (count == m->count) {
+    case DN_FRAGMENT_RX_REPEATED:
         say(t, " repeated");
         return;
-    } else if (count != ((m->count + 1u) & DN_FRAG_COUNT)) {
-        m->active = false;
-        say(t, " out of sequence after %u: message dropped", m->count);
+    case DN_FRAGMENT_RX_LOST:
+        say(t, " out of sequence after %u: message dropped", previous);
         return;
-    }
-    m->count = count;
-    if (chunk > (size_t)(DN_MESSAGE_MAX - m->len)) {
-        m->active = false;
+    case DN_FRAGMENT_RX_TOO_MUCH:
         say(t, ": more than %u bytes, message dropped", DN_MESSAGE_MAX);
         return;
+    case DN_FRAGMENT_RX_TAKEN:
+        say(t, ", %u bytes", chunk);
+        return;
+    case DN_FRAGMENT_RX_COMPLETE:
+        break;
     }
-    memcpy(&m->body[m->len], &f->data[2], chunk);
-    m->len = (uint8_t)(m->len + chunk);
-    say(t, ", %zu bytes", chunk);
-    if (type == DN_FRAG_LAST) {
-        m->active = false;
-        say(t, ", message of %u bytes: ", m->len);
-        if (m->len == 0)
-            say(t, "empty");
-        else
-            message_body(n, m->body, m->len, t);
-    }
+    say(t, ", %u bytes, message of %u bytes: ", chunk, m->len);
+    if (m->len == 0)
+        say(t, "empty");
+    else
+        message_body(n, m->body, m->len, t);
 }
 
 static void explicit_frame(cotrace_dn_node_t *n, const struct can_frame *f, kind_t kind, text_t *t)

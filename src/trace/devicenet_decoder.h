@@ -10,7 +10,8 @@
 #ifndef COTRACE_DEVICENET_DECODER_H
 #define COTRACE_DEVICENET_DECODER_H
 
-#include "dn/dn_node.h" /* DN_MESSAGE_MAX, the vocabulary of dn_cip.h */
+#include "dn/dn_fragment.h" /* the reassembly, DN_MESSAGE_MAX */
+#include "dn/dn_node.h"     /* the vocabulary of dn_cip.h */
 
 #include <linux/can.h>
 #include <stdbool.h>
@@ -18,14 +19,6 @@
 /* The default assemblies of the Altivar 312 card (the manual): 21 out, 71 in. */
 #define COTRACE_DN_CONSUMED_DEFAULT 21u
 #define COTRACE_DN_PRODUCED_DEFAULT 71u
-
-/* An explicit message of one direction being reassembled from its fragments. */
-typedef struct cotrace_dn_message {
-    bool active;
-    uint8_t count; /* the last fragment's count */
-    uint8_t len;
-    uint8_t body[DN_MESSAGE_MAX];
-} cotrace_dn_message_t;
 
 /* The last request of a master to a slave, for the response. */
 typedef struct cotrace_dn_request {
@@ -38,8 +31,8 @@ typedef struct cotrace_dn_request {
 
 /* What the trace showed of one slave. */
 typedef struct cotrace_dn_node {
-    cotrace_dn_message_t request;  /* master to slave (group 2 message 4) */
-    cotrace_dn_message_t response; /* slave to master (group 2 message 3) */
+    dn_fragments_t request;  /* master to slave (group 2 message 4), reassembled as a slave does */
+    dn_fragments_t response; /* slave to master (group 2 message 3), as a scanner does */
     cotrace_dn_request_t last;
     uint8_t allocation; /* the allocation choice bits allocated */
     uint16_t consumed;  /* the assemblies in use */

@@ -44,8 +44,8 @@ START_TEST(groups_and_identifiers)
 {
     static const step_t steps[] = {
         {"3FF#", "G1 msg 15 from 63: poll response: no data (idle)"},
-        {"37F#01020304", "G1 msg 13 from 63: COS/cyclic data: assembly 71: Faulted, state 2 "
-                         "Not_Ready, speed actual 1027 rpm"},
+        {"37F#01020304", "G1 msg 13 from 63: COS/cyclic data: assembly 71: Faulted, Drive "
+                         "state 2 Not_Ready, Speed actual 1027 rpm"},
         {"3BF#01", "G1 msg 14 from 63: bit-strobe response: 01"},
         {"33F#", "G1 msg 12 from 63: multicast poll response"},
         {"07F#AA", "G1 msg 1 from 63: not in the predefined master/slave connection set: AA"},
@@ -144,7 +144,7 @@ START_TEST(fragments_reassembled)
                                  "bytes"},
         {"5FC#8181B004", "G2 msg 4 to 63: explicit request from 1: fragment 1 (last), 2 bytes, "
                          "message of 8 bytes: Set_Attribute_Single Assembly (0x04) instance 21 "
-                         "attribute 3 = assembly 21: RunFwd, NetCtrl, NetRef, speed reference "
+                         "attribute 3 = assembly 21: Run fwd, NetCtrl, NetRef, Speed reference "
                          "1200 rpm"},
     };
     PLAY(&dec, steps);
@@ -177,14 +177,14 @@ END_TEST
 START_TEST(io_by_allocation_and_assembly)
 {
     static const step_t steps[] = {
-        {"5FD#6100B004", "G2 msg 5 to 63: poll command: assembly 21: RunFwd, NetCtrl, NetRef, "
-                         "speed reference 1200 rpm"},
+        {"5FD#6100B004", "G2 msg 5 to 63: poll command: assembly 21: Run fwd, NetCtrl, NetRef, "
+                         "Speed reference 1200 rpm"},
         {"5FD#", "G2 msg 5 to 63: poll command: no data (idle)"},
         {"5FD#0102", "G2 msg 5 to 63: poll command: assembly 21 (4 bytes) does not fit 2 bytes: "
                      "01 02"},
         {"3FF#FF074FFB", "G1 msg 15 from 63: poll response: assembly 71: Faulted, Warning, "
-                         "Running1, Running2, Ready, CtrlFromNet, RefFromNet, AtReference, state "
-                         "7 Faulted, speed actual -1201 rpm"},
+                         "Running1, Running2, Ready, Ctrl from net, Ref from net, At reference, "
+                         "Drive state 7 Faulted, Speed actual -1201 rpm"},
         /* Change of state only: message 5 is the master's data, 0xF the slave's ack. */
         {"5FE#014B03011001", "G2 msg 6 to 63: unconnected request from 1: "
                              "Allocate_Master/Slave_Connection_Set DeviceNet (0x03) instance 1, "
@@ -192,10 +192,11 @@ START_TEST(io_by_allocation_and_assembly)
         {"5FB#01CB00", "G2 msg 3 from 63: explicit response to 1: "
                        "Allocate_Master/Slave_Connection_Set DeviceNet (0x03) instance 1: "
                        "message body format 8/8"},
-        {"5FD#0100B004", "G2 msg 5 to 63: COS data: assembly 21: RunFwd, speed reference 1200 rpm"},
+        {"5FD#0100B004",
+         "G2 msg 5 to 63: COS data: assembly 21: Run fwd, Speed reference 1200 rpm"},
         {"3FF#", "G1 msg 15 from 63: COS/cyclic acknowledge"},
-        {"37F#70030000", "G1 msg 13 from 63: COS data: assembly 71: Ready, CtrlFromNet, "
-                         "RefFromNet, state 3 Ready, speed actual 0 rpm"},
+        {"37F#70030000", "G1 msg 13 from 63: COS data: assembly 71: Ready, Ctrl from net, "
+                         "Ref from net, Drive state 3 Ready, Speed actual 0 rpm"},
         {"5FA#", "G2 msg 2 to 63: COS/cyclic acknowledge"},
         {"5FE#014C030110", "G2 msg 6 to 63: unconnected request from 1: "
                            "Release_Group_2_Identifier_Set DeviceNet (0x03) instance 1, choice "
@@ -208,8 +209,8 @@ START_TEST(io_by_allocation_and_assembly)
         {"5FB#01CB00", "G2 msg 3 from 63: explicit response to 1: "
                        "Allocate_Master/Slave_Connection_Set DeviceNet (0x03) instance 1: "
                        "message body format 8/8"},
-        {"37F#70030000", "G1 msg 13 from 63: cyclic data: assembly 71: Ready, CtrlFromNet, "
-                         "RefFromNet, state 3 Ready, speed actual 0 rpm"},
+        {"37F#70030000", "G1 msg 13 from 63: cyclic data: assembly 71: Ready, Ctrl from net, "
+                         "Ref from net, Drive state 3 Ready, Speed actual 0 rpm"},
     };
     PLAY(&dec, steps);
 }
@@ -229,19 +230,20 @@ START_TEST(assembly_selection_applies_at_restart)
         {"5FB#019409FF", "G2 msg 3 from 63: explicit response to 1: Set_Attribute_Single "
                          "Connection (0x05) instance 0 attribute 101: error 0x09 invalid "
                          "attribute value, additional code 0xFF"},
-        {"5FD#0F00B004", "G2 msg 5 to 63: poll command: assembly 21: RunFwd, RunRev, FaultRst, "
-                         "speed reference 1200 rpm"},
+        {"5FD#0F00B004", "G2 msg 5 to 63: poll command: assembly 21: Run fwd, Run rev, Fault "
+                         "reset, Speed reference 1200 rpm"},
         {"5FF#00F30078563412", "G2 msg 7 from 63: duplicate MAC ID check request, port 0, vendor "
                                "0x00F3, serial number 0x12345678"},
-        {"5FD#0F00B004", "G2 msg 5 to 63: poll command: assembly 100: 6040h control word 0x000F "
-                         "Enable operation, 6042h speed reference 1200 rpm"},
+        {"5FD#0F00B004", "G2 msg 5 to 63: poll command: assembly 100: Control word 0x000F "
+                         "Enable operation, Reference speed 1200 rpm"},
         {"3FF#2706B004", "G1 msg 15 from 63: poll response: assembly 71: Faulted, Warning, "
-                         "Running1, CtrlFromNet, state 6 Fault_Stop, speed actual 1200 rpm"},
+                         "Running1, Ctrl from net, Drive state 6 Fault_Stop, Speed actual 1200 "
+                         "rpm"},
         {"5FC#010E046503", "G2 msg 4 to 63: explicit request from 1: Get_Attribute_Single "
                            "Assembly (0x04) instance 101 attribute 3"},
         {"5FB#018E2706B004", "G2 msg 3 from 63: explicit response to 1: Get_Attribute_Single "
-                             "Assembly (0x04) instance 101 attribute 3 = assembly 101: 6041h "
-                             "status word 0x0627 Operation enabled, 6044h speed actual 1200 rpm"},
+                             "Assembly (0x04) instance 101 attribute 3 = assembly 101: Status "
+                             "word 0x0627 Operation enabled, Output speed 1200 rpm"},
     };
     PLAY(&dec, steps);
 }
@@ -251,10 +253,12 @@ START_TEST(assemblies_given)
 {
     cotrace_dn_decoder_init(&dec, 20, 70);
     static const step_t steps[] = {
-        {"5FD#0500F6FF", "G2 msg 5 to 63: poll command: assembly 20: RunFwd, FaultRst, speed "
-                         "reference -10 rpm"},
+        {"5FD#0500F6FF", "G2 msg 5 to 63: poll command: assembly 20: Run fwd, Fault reset, "
+                         "Speed reference -10 rpm"},
         {"3FF#FF00F6FF", "G1 msg 15 from 63: poll response: assembly 70: Faulted, Running1, "
-                         "speed actual -10 rpm"},
+                         "Speed actual -10 rpm"},
+        /* No bit set: the speed right after the assembly's colon. */
+        {"3FF#00000000", "G1 msg 15 from 63: poll response: assembly 70: Speed actual 0 rpm"},
     };
     PLAY(&dec, steps);
 }

@@ -5,9 +5,12 @@ interface or CAN support is 69 (docs/dnscan.md)."""
 import json
 import os
 import subprocess
+import sys
+import tempfile
 import unittest
 
 DNSCAN = os.environ["DNSCAN"]
+MAN_FROM_HELP = os.path.join(os.environ["PROJECT_SOURCE_DIR"], "tools", "man-from-help.py")
 
 
 def run(*args):
@@ -122,6 +125,23 @@ class Help(unittest.TestCase):
         result = run("--version")
         self.assertEqual(result.returncode, 0)
         self.assertRegex(result.stdout, r"^dnscan \d+\.\d+\.\d+\n$")
+
+
+class ManPage(unittest.TestCase):
+    """The man page is written from --help by tools/man-from-help.py: the poll command, whose
+    synopsis takes two lines of the help, is one tagged paragraph with its description."""
+
+    def test_poll_is_one_item(self):
+        with tempfile.TemporaryDirectory() as tmp:
+            page = os.path.join(tmp, "dnscan.1")
+            subprocess.run([sys.executable, MAN_FROM_HELP, "--name", "dnscan", "--summary", "s",
+                            "--version", "v", "--output", page, "--", DNSCAN], check=True)
+            with open(page, encoding="utf-8") as f:
+                roff = f.read()
+        self.assertIn(".TP\n\\fBpoll MAC [\\-\\-assembly OUT/IN] [\\-\\-output HEX] "
+                      "[\\-\\-set NAME=VALUE]... [\\-\\-every MS] [\\-\\-count N]\\fR\n"
+                      "poll I/O once, or every MS (N times, or until interrupted); values by the "
+                      "assembly's names\n.TP\n\\fBmonitor\\fR\n", roff)
 
 
 if __name__ == "__main__":

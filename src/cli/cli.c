@@ -1,0 +1,63 @@
+/* The command-line tools' output conventions (cli.h). */
+#include "cli.h"
+
+#include <string.h>
+#include <sysexits.h>
+
+void cli_json_string(FILE *out, const char *text)
+{
+    fputc('"', out);
+    for (const unsigned char *p = (const unsigned char *)text; *p; p++) {
+        if (*p == '"' || *p == '\\')
+            fprintf(out, "\\%c", *p);
+        else if (*p < 0x20)
+            fprintf(out, "\\u%04x", *p);
+        else
+            fputc(*p, out);
+    }
+    fputc('"', out);
+}
+
+int cli_vfail(const char *program, bool json, int status, const char *format, va_list ap)
+{
+    char message[1024];
+    vsnprintf(message, sizeof message, format, ap);
+    fprintf(stderr, "%s: %s\n", program, message);
+    if (json) {
+        printf("{\"error\": ");
+        cli_json_string(stdout, message);
+        printf(", \"exit\": %d}\n", status);
+    }
+    return status;
+}
+
+int cli_open_error_text(const co_linux_loop_t *loop, co_linux_open_result_t result,
+                        const char *program, const char *iface_env, char *out, size_t cap)
+{
+    const char *why = strerror(loop->open_errno);
+    switch (result) {
+    case CO_LINUX_OPEN_NO_CAN:
+        snprintf(out, cap,
+                 "this kernel has no SocketCAN support (%s: %s): load it with modprobe can-raw "
+                 "vcan, or run inside the sandbox: tools/vcan-run %s ...",
+                 loop->open_call, why, program);
+        return EX_UNAVAILABLE;
+    case CO_LINUX_OPEN_NO_IFACE:
+        snprintf(out, cap,
+                 "no network interface '%s': give one with -i IFACE or $%s (list them: ip link "
+                 "show type can, or type vcan)",
+                 loop->iface, iface_env);
+        return EX_UNAVAILABLE;
+    case CO_LINUX_OPEN_NOT_CAN:
+        snprintf(out, cap,
+                 "'%s' is not a CAN interface (%s: %s): give a SocketCAN interface such as can0 "
+                 "or vcan0 with -i",
+                 loop->iface, loop->open_call, why);
+        return EX_UNAVAILABLE;
+    case CO_LINUX_OPEN_OS_ERROR:
+    case CO_LINUX_OPEN_OK:
+        break;
+    }
+    snprintf(out, cap, "%s on %s failed: %s", loop->open_call, loop->iface, why);
+    return EX_OSERR;
+}

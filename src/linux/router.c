@@ -72,9 +72,10 @@ static bool reserve_routes(co_linux_router_t *router, size_t count)
 }
 
 /* The COB-IDs a device consumes now: its core node's (and their generation), or the fixed ones
- * it names; false for a device that takes every frame. */
+ * it names; false, and none, for a device that takes every frame. */
 static bool device_consumers(co_linux_device_t *dev, co_cob_t *cobs, size_t *count)
 {
+    *count = 0;
     if (dev->ops->node != NULL) {
         const co_node_t *node = device_node(dev);
         dev->generation = co_node_consumer_generation(node);

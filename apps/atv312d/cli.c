@@ -398,8 +398,14 @@ void atv312d_print_usage(FILE *out)
           "  --model M           model of the drives of the --node-id just before it\n",
           out);
     fprintf(out, "                      (default %s), one of:\n", drive_models[0].name);
+    /* The names in a column as wide as the longest: two spaces or more before each description,
+     * which is how a reader (and tools/man-from-help.py) tells a term from its description. */
+    int width = 0;
     for (size_t i = 0; i < drive_model_count; i++)
-        fprintf(out, "                        %-10s %s\n", drive_models[i].name,
+        if ((int)strlen(drive_models[i].name) > width)
+            width = (int)strlen(drive_models[i].name);
+    for (size_t i = 0; i < drive_model_count; i++)
+        fprintf(out, "                        %-*s  %s\n", width, drive_models[i].name,
                 drive_models[i].description);
     fputs("  --devicenet         the interface is a DeviceNet bus: the drives are DeviceNet\n"
           "                      slaves (Group 2 only servers) instead of CANopen nodes\n"

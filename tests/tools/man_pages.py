@@ -1,12 +1,14 @@
 """The man pages of the built programs, written by tools/man-from-help.py from their --help: every
 item of a list in the help is one term of the page. A term and its description are told apart by
 two spaces or more, so a name one space short of its description swallows it (`atv31-v1.1
-Schneider Altivar 31 ...` as one term).
+Schneider Altivar 31 ...` as one term), and a list under a paragraph that is no heading ending in
+':' is run into that paragraph (`... a JSON object. fault NODE CODE     the fault ...`).
 
-  man_pages.py ATV312D COMASTER COMMAND...
+  man_pages.py ATV312D COMASTER DNSCAN COTRACE COMMAND...
 
-ATV312D's models (as its --model error lists them) and COMASTER's commands must each be a term of
-its own, with a description. Standard library only."""
+ATV312D's models (as its --model error lists them) and control commands, and COMASTER's
+COMMANDs, must each be a term of its own; in every page every term has a description and no
+paragraph has a list run into it. Standard library only."""
 import os
 import re
 import subprocess
@@ -16,7 +18,11 @@ import unittest
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 TOOL = os.path.normpath(os.path.join(HERE, "..", "..", "tools", "man-from-help.py"))
-ATV312D, COMASTER, COMMANDS = None, None, []
+ATV312D, COMASTER, DNSCAN, COTRACE, COMMANDS = None, None, None, None, []
+# atv312d's control commands as its help writes their synopses (docs/atv312d.md).
+CONTROL_COMMANDS = ["fault NODE CODE", "clear NODE CODE|all", "mains NODE undervoltage|normal",
+                    "stop-key NODE", "run-key NODE", "local NODE on|off", "load NODE PERCENT",
+                    "input NODE LIn on|off", "state [NODE]"]
 
 
 def man_page(name, program):
@@ -54,6 +60,21 @@ class ManPagesTest(unittest.TestCase):
             self.assertIn(roff(model), page, "model %s is no term of its own" % model)
             self.assertTrue(page[roff(model)].startswith("Schneider Altivar"), page[roff(model)])
 
+    def test_every_control_command_of_atv312d_is_a_term(self):
+        page = terms(man_page("atv312d", ATV312D))
+        for command in CONTROL_COMMANDS:
+            self.assertIn(roff(command), page, "control command %s is no term of its own" % command)
+
+    def test_every_term_has_a_description_and_no_list_is_a_paragraph(self):
+        for name, program in ("atv312d", ATV312D), ("comaster", COMASTER), ("dnscan", DNSCAN), \
+                ("cotrace", COTRACE):
+            page = man_page(name, program)
+            for term, description in terms(page).items():
+                self.assertTrue(description, "%s: term %r has no description" % (name, term))
+            for line in page:
+                if not line.startswith("."):
+                    self.assertNotIn("   ", line, "%s: a list run into a paragraph" % name)
+
     def test_every_command_of_comaster_is_a_term(self):
         page = terms(man_page("comaster", COMASTER))
         for command in COMMANDS:
@@ -62,5 +83,6 @@ class ManPagesTest(unittest.TestCase):
 
 
 if __name__ == "__main__":
-    ATV312D, COMASTER, COMMANDS = sys.argv[1], sys.argv[2], sys.argv[3:]
+    ATV312D, COMASTER, DNSCAN, COTRACE = sys.argv[1:5]
+    COMMANDS = sys.argv[5:]
     unittest.main(argv=sys.argv[:1])

@@ -334,7 +334,9 @@ def ctl(sock, *words):
 
 def test_control_surface_faults_and_keys_by_mac_id(start_dn):
     _, sock = start_dn([25])
-    assert ctl(sock, "fault", 25, "OHF") == (0, "ok node 25: OHF (drive overheating), EMCY 4210")
+    # What the DeviceNet bus shows of it: the Control supervisor and the Identity, no EMCY.
+    assert ctl(sock, "fault", 25, "OHF") == (
+        0, "ok node 25: OHF (drive overheating), supervisor faulted, Identity major recoverable fault")
     state = wait_state(sock, 25, fault="OHF", cia402="Fault", supervisor="faulted")
     assert (state["display"], state["ms"], state["ns"]) == ("OHF", "green", "flashing-green")
     # The scanner sees it: Faulted in assembly 71, refused fault reset while the cause is present.

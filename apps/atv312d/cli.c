@@ -398,8 +398,14 @@ void atv312d_print_usage(FILE *out)
           "  --model M           model of the drives of the --node-id just before it\n",
           out);
     fprintf(out, "                      (default %s), one of:\n", drive_models[0].name);
+    /* The names in a column as wide as the longest: two spaces or more before each description,
+     * which is how a reader (and tools/man-from-help.py) tells a term from its description. */
+    int width = 0;
     for (size_t i = 0; i < drive_model_count; i++)
-        fprintf(out, "                        %-10s %s\n", drive_models[i].name,
+        if ((int)strlen(drive_models[i].name) > width)
+            width = (int)strlen(drive_models[i].name);
+    for (size_t i = 0; i < drive_model_count; i++)
+        fprintf(out, "                        %-*s  %s\n", width, drive_models[i].name,
                 drive_models[i].description);
     fputs("  --devicenet         the interface is a DeviceNet bus: the drives are DeviceNet\n"
           "                      slaves (Group 2 only servers) instead of CANopen nodes\n"
@@ -425,24 +431,33 @@ void atv312d_print_usage(FILE *out)
           "\n"
           "Control commands, for testing a master: atv312d ctl PATH COMMAND sends one to the\n"
           "daemon started with --control PATH and prints its one-line reply, 'ok ...' (exit 0)\n"
-          "or 'error: ...' (exit 65); with --json the reply is a JSON object.\n"
+          "or 'error: ...' (exit 65); with --json the reply is a JSON object. On DeviceNet NODE\n"
+          "is the MAC ID.\n"
+          "\n"
+          "Control commands:\n"
           "  fault NODE CODE     the fault CODE (OHF, OCF, USF, CnF, ...) happens: EMCY, 603Fh,\n"
-          "                      state Fault; its cause stays until cleared\n"
-          "  clear NODE CODE|all the cause of the fault is gone (a fault reset is then\n"
+          "                      state Fault (on DeviceNet: Faulted); its cause stays until\n"
+          "                      cleared\n"
+          "  clear NODE CODE|all\n"
+          "                      the cause of the fault is gone (a fault reset is then\n"
           "                      accepted; USF, CFF and CFI end by themselves)\n"
-          "  mains NODE undervoltage|normal  mains undervoltage (the fault USF) or back\n"
+          "  mains NODE undervoltage|normal\n"
+          "                      mains undervoltage (the fault USF) or back\n"
           "  stop-key NODE       the keypad's STOP key: status word bit 14; a freewheel stop\n"
           "                      under network control, a ramp stop under local control\n"
           "  run-key NODE        the keypad's RUN key, under local control: runs to 6042h\n"
           "  local NODE on|off   forced local control (status word bit 9 = 0): the network's\n"
           "                      control word is ignored; either way a freewheel stop\n"
           "  load NODE PERCENT   extra load torque, 0..150 % of nominal: torque and current\n"
-          "  input NODE LIn on|off  a logic input (LI1..LI3 on an ATV312): a switch assigned\n"
+          "  input NODE LIn on|off\n"
+          "                      a logic input (LI1..LI3 on an ATV312): a switch assigned\n"
           "                      to it (rFC, CCS, rPS) acts at once\n"
           "  state [NODE]        NMT and CiA 402 state, status word, speed, current, torque,\n"
-          "                      front panel display, RUN and ERR LEDs, latched fault, inputs\n"
-          "                      (on DeviceNet NODE is the MAC ID, and the MS and NS LEDs\n"
-          "                      and the Control supervisor state replace the NMT state)\n"
+          "                      front panel display, RUN and ERR LEDs, latched fault, frame\n"
+          "                      counters, inputs (on DeviceNet the MS and NS LEDs and the\n"
+          "                      Control supervisor state replace the NMT state and the RUN\n"
+          "                      and ERR LEDs, the card's counters the CANopen services')\n"
+          "\n"
           "Example: atv312d ctl /tmp/atv312d.sock fault 4 OHF\n"
           "\n"
           "Exit status: 0 after SIGINT/SIGTERM, 64 usage error, 69 interface or CAN support\n"

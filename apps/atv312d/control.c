@@ -146,6 +146,22 @@ static void changed(const atv312d_control_node_t *node)
     co_linux_device_process(node->device);
 }
 
+/* What a master sees of a fault that happened: on CANopen its EMCY; on DeviceNet, where the
+ * drive's EMCY stays on the card's internal link, the Control supervisor's state and the
+ * Identity's major recoverable fault, which the card shows for a drive in Fault. */
+static bool succeed_fault(const atv312d_control_node_t *node, const drive_fault_def_t *def,
+                          reply_t *r)
+{
+    const drive_dn_t *dn = node->devicenet;
+    if (!dn)
+        return succeed(r, "node %u: %s (%s), EMCY %04X", node->id, def->code, def->meaning,
+                       def->emcy_code);
+    bool major = (dn_node_identity_status(&dn->node) & DN_STATUS_MAJOR_RECOVERABLE) != 0;
+    return succeed(r, "node %u: %s (%s), supervisor %s, Identity %s", node->id, def->code,
+                   def->meaning, drive_dn_state_name(drive_dn_state(dn)),
+                   major ? "major recoverable fault" : "no fault");
+}
+
 static bool inject(const atv312d_control_node_t *node, uint8_t index, reply_t *r)
 {
     drive_t *drive = node->drive;
@@ -156,8 +172,7 @@ static bool inject(const atv312d_control_node_t *node, uint8_t index, reply_t *r
     changed(node);
     co_log(CO_LOG_INFO, "node %u: control: fault %s (%s) injected", node->id, def->code,
            def->meaning);
-    return succeed(r, "node %u: %s (%s), EMCY %04X", node->id, def->code, def->meaning,
-                   def->emcy_code);
+    return succeed_fault(node, def, r);
 }
 
 static void remove_cause(const atv312d_control_node_t *node, uint8_t index)
@@ -258,6 +273,12 @@ static bool command_run_key(const atv312d_control_t *control, char **words, size
         return false;
     drive_t *drive = node->drive;
     unsigned id = node->id;
+    if (!drive_local_control(drive) && node->devicenet)
+        return fail(r,
+                    "node %u is under network control (CtrlFromNet 1): the RUN key works under "
+                    "local control (local %u on, or a command channel other than DeviceNet: "
+                    "NetCtrl 0 with CCS = C212)",
+                    id, id);
     if (!drive_local_control(drive))
         return fail(r,
                     "node %u is under network control: the RUN key works under local control "
@@ -313,18 +334,32 @@ static bool command_load(const atv312d_control_t *control, char **words, size_t 
     return succeed(r, "node %u: load %ld %%", node->id, percent);
 }
 
-/* The drive's traffic: the runtime's counts of its device, the daemon's of its CANopen services
- * (none on DeviceNet). */
+/* A DeviceNet card's traffic as its slave library counts it (dn_stats_t), where the CANopen
+ * services' counters stand. */
+static void put_devicenet_counters(const dn_stats_t *s, reply_t *r)
+{
+    put(r,
+        r->json ? ",\"explicit_requests\":%lu,\"error_responses\":%lu,\"io_messages\":%lu,"
+                  "\"fragments\":%lu,\"timeouts\":%lu}"
+                : ", explicit requests %lu, error responses %lu, I/O messages %lu, fragments %lu, "
+                  "timeouts %lu",
+        (unsigned long)s->explicit_requests, (unsigned long)s->error_responses,
+        (unsigned long)s->io_messages, (unsigned long)s->fragments, (unsigned long)s->timeouts);
+}
+
+/* The drive's traffic: the runtime's counts of its device, then the daemon's of its CANopen
+ * services or its DeviceNet card's. */
 static void put_counters(const atv312d_control_node_t *node, reply_t *r)
 {
     const co_linux_device_stats_t *frames = &node->device->stats;
     const atv312d_counters_t *services = node->counters;
-    if (node->devicenet)
+    if (node->devicenet) {
         put(r,
-            r->json ? "\"frames\":{\"received\":%llu,\"sent\":%llu,\"dropped\":%llu}"
+            r->json ? "\"frames\":{\"received\":%llu,\"sent\":%llu,\"dropped\":%llu"
                     : "frames received %llu, sent %llu, dropped %llu",
             frames->rx, frames->tx, frames->tx_dropped);
-    else if (r->json)
+        put_devicenet_counters(&node->devicenet->stats, r);
+    } else if (r->json)
         put(r,
             "\"frames\":{\"received\":%llu,\"sent\":%llu,\"dropped\":%llu,\"sdo_requests\":%llu,"
             "\"sdo_aborts\":%llu,\"emcy\":%llu}",

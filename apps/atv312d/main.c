@@ -10,6 +10,7 @@
 #include "counters.h"
 #include "drive/drive.h"
 #include "drive/drive_devicenet.h"
+#include "leds.h"
 #include "status.h"
 
 #include <errno.h>
@@ -51,8 +52,8 @@ static void log_led_change(const drive_slot_t *slot, const char *name, dn_led_t 
                            dn_led_t now)
 {
     if (now != *logged)
-        co_log(CO_LOG_INFO, "node %u: %s LED %s -> %s", slot->id, name, drive_dn_led_name(*logged),
-               drive_dn_led_name(now));
+        co_log(atv312d_led_change_level(*logged, now), "node %u: %s LED %s -> %s", slot->id, name,
+               drive_dn_led_name(*logged), drive_dn_led_name(now));
     *logged = now;
 }
 

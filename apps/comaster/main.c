@@ -36,8 +36,14 @@ static void print_usage(void)
            "emergencies, SYNC and PDOs, and a CiA 402 drive helper.\n"
            "\n"
            "Commands (comaster COMMAND --help tells more):\n");
+    /* The names in a column as wide as the longest: two spaces or more before each summary,
+     * which is how tools/man-from-help.py tells a term from its description. */
+    int width = 0;
     for (size_t i = 0; i < COMMAND_COUNT; i++)
-        printf("  %-9s %s\n", commands[i].name, strchr(commands[i].summary, ':') + 2);
+        if ((int)strlen(commands[i].name) > width)
+            width = (int)strlen(commands[i].name);
+    for (size_t i = 0; i < COMMAND_COUNT; i++)
+        printf("  %-*s  %s\n", width, commands[i].name, strchr(commands[i].summary, ':') + 2);
     printf("\n"
            "Options (before the command or among its arguments):\n"
            "  -i, --interface IFACE\n"

@@ -109,16 +109,33 @@ typedef struct dn_stored {
     bool quick_connect;         /* DeviceNet attribute 10 */
 } dn_stored_t;
 
-/* What happens to the I/O connections, for the application (a drive maps DN_IO_TIMEOUT to its
- * communication fault). */
+/* What happens to the I/O connections, for the application (a drive maps DN_IO_TIMEOUT, and
+ * DN_IO_CLOSED while it runs, to its communication fault). */
 typedef enum dn_io_event {
     DN_IO_ESTABLISHED, /* an I/O connection entered Established */
     DN_IO_RUN,         /* data after idle: the master is in run mode */
     DN_IO_IDLE,        /* a zero-length poll or COS message: the master is idle */
     DN_IO_TIMEOUT,     /* an I/O connection's watchdog expired: Timed out */
     DN_IO_ACK_FAILED,  /* the COS/cyclic data were not acknowledged after the retries */
-    DN_IO_RELEASED     /* the last I/O connection was released or deleted */
+    /* The master released the connection its data came on (instance 2) while it was Established:
+     * the data stop as after a timeout, without one. Before DN_IO_RELEASED when that follows. */
+    DN_IO_CLOSED,
+    DN_IO_RELEASED /* the last I/O connection was released or deleted */
 } dn_io_event_t;
+
+/* What the node counts of its traffic, each where it happens. The application keeps the counters
+ * (dn_app_t.stats), so that they outlive a restart of the node (an Identity Reset, the bus
+ * again); they wrap around at 2^32. */
+typedef struct dn_stats {
+    uint32_t explicit_requests; /* requests answered, on the explicit connection or message 6 */
+    uint32_t error_responses;   /* of those, the ones answered with an error response (0x94) */
+    uint32_t io_messages;       /* poll commands and the master's COS/cyclic data consumed, idle
+                                   (zero-length) ones included; a wrong length is not */
+    uint32_t fragments;         /* explicit fragments received and sent (repeats too), not their
+                                   acknowledgements */
+    uint32_t timeouts;          /* watchdogs expired: an I/O connection Timed out, the explicit
+                                   connection deleted or in deferred delete */
+} dn_stats_t;
 
 typedef struct dn_app {
     void *user;
@@ -134,6 +151,7 @@ typedef struct dn_app {
     /* Identity Reset, type 0 (as a power cycle) or 1 (out-of-box values, then as a power cycle),
      * called after its response left: the application restarts the node. Optional. */
     void (*reset)(void *user, uint8_t type);
+    dn_stats_t *stats; /* where the node counts its traffic; NULL: not counted */
 } dn_app_t;
 
 typedef struct dn_config {

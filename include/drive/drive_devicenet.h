@@ -97,6 +97,7 @@ typedef struct drive_dn {
     bool reverse;          /* the last run was Run2: 6042h is the negated speed reference */
     int16_t pending_reset; /* an Identity Reset type to carry out, or -1 */
     co_time_t now;
+    dn_stats_t stats; /* the card's traffic since drive_dn_init, through its resets */
 } drive_dn_t;
 
 /* The send callback of the drive's CANopen node on DeviceNet: its frames are the card's internal

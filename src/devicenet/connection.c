@@ -208,6 +208,7 @@ dn_status_t dn_release(dn_node_t *node, const dn_request_t *request)
     if (choice & ~SUPPORTED_CHOICE)
         return DN_STATUS(DN_GS_INVALID_PARAMETER, DN_AC_INVALID_CHOICE);
     bool had_io = io_allocated(node);
+    bool consuming = node->conn[DN_IO_CONSUMER].state == DN_CONN_ESTABLISHED;
     uint8_t before = node->allocation;
     uint8_t remaining = (uint8_t)(before & ~choice);
     if (!(remaining & (DN_ALLOC_COS | DN_ALLOC_CYCLIC)))
@@ -223,6 +224,8 @@ dn_status_t dn_release(dn_node_t *node, const dn_request_t *request)
         open_consumer(node); /* instance 2 goes on consuming the master's COS/cyclic data */
     if (before & choice & DN_ALLOC_EXPLICIT)
         delete_explicit(node);
+    if (consuming && node->conn[DN_IO_CONSUMER].state != DN_CONN_ESTABLISHED)
+        dn_io_event(node, DN_IO_CLOSED);
     if (had_io && !io_allocated(node)) {
         if (node->conn[DN_EXPLICIT].state == DN_CONN_DEFERRED_DELETE)
             delete_explicit(node);
@@ -289,6 +292,7 @@ void dn_io_receive(dn_node_t *node, const co_frame_t *frame)
     } else {
         return; /* another length than the consumed assembly's: dropped, unanswered */
     }
+    DN_COUNT(node, io_messages);
     kick(node, c);
     if (c->produced_size) {
         uint8_t data[DN_IO_MAX];
@@ -368,6 +372,7 @@ static co_time_t io_watchdog(dn_node_t *node, unsigned index)
         c->watchdog = CO_TIME_NEVER;
         if (index == DN_IO_PRODUCER)
             node->awaiting_ack = false;
+        DN_COUNT(node, timeouts);
         dn_io_event(node, DN_IO_TIMEOUT);
     }
     return c->watchdog;
@@ -382,6 +387,7 @@ static co_time_t explicit_watchdog(dn_node_t *node)
         return CO_TIME_NEVER;
     if (node->now < c->watchdog)
         return c->watchdog;
+    DN_COUNT(node, timeouts);
     if (c->timeout_action == DN_WATCHDOG_DEFERRED_DELETE && io_allocated(node)) {
         c->state = DN_CONN_DEFERRED_DELETE;
         c->watchdog = CO_TIME_NEVER;

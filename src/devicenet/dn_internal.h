@@ -11,6 +11,14 @@
 #define DN_IO_CONSUMER 1u /* instance 2: polled, or the master's COS/cyclic data */
 #define DN_IO_PRODUCER 2u /* instance 4: the slave's COS/cyclic data */
 
+/* Counts one event in the application's dn_stats_t, when it keeps one. */
+#define DN_COUNT(node, counter)                                                                    \
+    do {                                                                                           \
+        dn_stats_t *stats_ = (node)->config->app->stats;                                           \
+        if (stats_)                                                                                \
+            stats_->counter++;                                                                     \
+    } while (0)
+
 /* node.c */
 void dn_send(dn_node_t *node, uint16_t can_id, const uint8_t *data, uint8_t len);
 void dn_io_event(dn_node_t *node, dn_io_event_t event);

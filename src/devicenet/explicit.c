@@ -16,6 +16,7 @@ static void send_fragment(dn_node_t *node)
     uint8_t frame[8];
     uint8_t len = dn_fragment_frame(&node->tx, frame);
     dn_send(node, node->ids.explicit_response, frame, len);
+    DN_COUNT(node, fragments);
     node->tx.deadline = node->now + DN_FRAG_ACK_WAIT_US;
 }
 
@@ -47,6 +48,7 @@ static void execute(dn_node_t *node, uint8_t header, const uint8_t *body, uint8_
 {
     if (len == 0 || body[0] & DN_SERVICE_RESPONSE)
         return;
+    DN_COUNT(node, explicit_requests);
     uint8_t service = body[0];
     dn_request_t request;
     memset(&request, 0, sizeof(request));
@@ -77,6 +79,7 @@ static void execute(dn_node_t *node, uint8_t header, const uint8_t *body, uint8_
         memcpy(&response[1], reply.data, reply.len);
         response_len = (uint8_t)(1 + reply.len);
     } else {
+        DN_COUNT(node, error_responses);
         response[0] = DN_SVC_ERROR_RESPONSE | DN_SERVICE_RESPONSE;
         response[1] = (uint8_t)status;
         response[2] = (uint8_t)(status >> 8);
@@ -102,6 +105,7 @@ static void fragment_receive(dn_node_t *node, const co_frame_t *frame)
             send_fragment(node);
         return;
     }
+    DN_COUNT(node, fragments);
     dn_fragments_t *rx = &node->rx;
     switch (dn_fragment_receive(rx, frame->data, frame->len)) {
     case DN_FRAGMENT_RX_TAKEN:

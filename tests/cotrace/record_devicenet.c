@@ -107,7 +107,7 @@ static void setup(recorder_t *r)
 {
     memset(r, 0, sizeof *r);
     r->reset_type = -1;
-    r->app = (dn_app_t){r, on_send, on_read, on_write, NULL, on_store, on_reset};
+    r->app = (dn_app_t){r, on_send, on_read, on_write, NULL, on_store, on_reset, NULL};
     dn_config_t *c = &r->config;
     c->mac_id = SLAVE_MAC;
     c->baud_rate = 2;

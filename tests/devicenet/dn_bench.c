@@ -130,6 +130,7 @@ void bench_init(dn_bench_t *b, uint8_t mac_id, dn_stored_t stored)
     b->app.io_event = on_event;
     b->app.store = on_store;
     b->app.reset = on_reset;
+    b->app.stats = &b->stats;
     dn_object_t *objects = b->objects;
     objects[0] = (dn_object_t){DN_CLASS_CONTROL_SUPERVISOR,
                                DN_CLASS_CONTROL_SUPERVISOR,
@@ -212,4 +213,18 @@ void bench_expect_none_at(dn_bench_t *b, const char *file, int line)
     if (b->next < b->count)
         ck_abort_msg("%s:%d: expected silence, got %s", file, line,
                      test_format(&b->frame[b->next], got));
+}
+
+void bench_expect_stats_at(const dn_bench_t *b, dn_stats_t want, const char *file, int line)
+{
+    const dn_stats_t *s = &b->stats;
+    ck_assert_msg(s->explicit_requests == want.explicit_requests &&
+                      s->error_responses == want.error_responses &&
+                      s->io_messages == want.io_messages && s->fragments == want.fragments &&
+                      s->timeouts == want.timeouts,
+                  "%s:%d: counted requests %u, errors %u, I/O %u, fragments %u, timeouts %u; "
+                  "expected %u, %u, %u, %u, %u",
+                  file, line, s->explicit_requests, s->error_responses, s->io_messages,
+                  s->fragments, s->timeouts, want.explicit_requests, want.error_responses,
+                  want.io_messages, want.fragments, want.timeouts);
 }

@@ -28,6 +28,7 @@ typedef struct dn_bench {
     uint8_t data[BENCH_ASSEMBLIES][DN_IO_MAX]; /* by position in the assembly table */
     dn_io_event_t events[BENCH_EVENTS];
     size_t event_count;
+    dn_stats_t stats; /* what the node counted */
     dn_stored_t stored;
     bool store_fails;
     int stores;
@@ -58,5 +59,9 @@ void bench_expect_none_at(dn_bench_t *b, const char *file, int line);
         bench_expect_none(b);                                                                      \
     } while (0)
 uint8_t *bench_assembly(dn_bench_t *b, uint16_t instance);
+/* The node's counters, all five. */
+void bench_expect_stats_at(const dn_bench_t *b, dn_stats_t want, const char *file, int line);
+#define bench_expect_stats(b, ...)                                                                 \
+    bench_expect_stats_at((b), (dn_stats_t){__VA_ARGS__}, __FILE__, __LINE__)
 
 #endif

@@ -25,6 +25,8 @@ START_TEST(request_in_three_fragments)
     bench_expect(&b, "5FB#81C200");
     bench_expect(&b, "5FB#019415FF");
     bench_expect_none(&b);
+    /* The Allocate of the setup, and one request of three fragments. */
+    bench_expect_stats(&b, .explicit_requests = 2, .error_responses = 1, .fragments = 3);
 }
 END_TEST
 
@@ -45,6 +47,7 @@ START_TEST(repeated_fragment_acknowledged_again)
     bench_expect(&b, "5FB#81C200");
     bench_expect(&b, "5FB#019415FF"); /* 10 bytes of data, not 16 */
     bench_expect_none(&b);
+    bench_expect_stats(&b, .explicit_requests = 3, .error_responses = 1, .fragments = 7);
 }
 END_TEST
 
@@ -121,6 +124,8 @@ START_TEST(lost_acknowledgement)
     ck_assert_uint_eq(b.deadline, b.node.conn[0].watchdog);
     bench_rx(&b, "5FC#81C000");
     bench_expect_none(&b);
+    /* The first fragment sent twice; acknowledgements are not counted. */
+    bench_expect_stats(&b, .explicit_requests = 2, .fragments = 2);
 }
 END_TEST
 

@@ -98,9 +98,14 @@ START_TEST(poll_exchange_idle_and_timeout)
     bench_exchange(&b, "5FD#0100DC05", "3FF#6403DC05");
     ck_assert_int_eq(dn_node_ns_led(&b.node), DN_LED_GREEN);
     bench_exchange(&b, "5FE#014C030102", "5FB#01CC");
-    ck_assert_int_eq(b.events[b.event_count - 1], DN_IO_RELEASED);
+    dn_io_event_t released[] = {DN_IO_ESTABLISHED, DN_IO_RUN, DN_IO_IDLE,   DN_IO_TIMEOUT,
+                                DN_IO_ESTABLISHED, DN_IO_RUN, DN_IO_CLOSED, DN_IO_RELEASED};
+    expect_events(released, 8);
     bench_rx(&b, "5FD#0100DC05");
     bench_expect_none(&b);
+    /* Consumed: a poll, two idle ones and a poll after the timeout; not the one of the
+     * configuring connection, the wrong length, the timed-out or the released connection's. */
+    bench_expect_stats(&b, .explicit_requests = 6, .io_messages = 4, .timeouts = 1);
 }
 END_TEST
 
@@ -280,13 +285,18 @@ START_TEST(poll_and_cos_together)
     bench_exchange(&b, "5FC#010E050207", "5FB#018E0400");
     bench_exchange(&b, "5FC#01100502090000", "5FB#01900000");
     bench_exchange(&b, "5FD#0100DC05", "3FF#6403DC05");
-    /* The poll released: instance 2 goes on with the master's COS data. */
+    /* The poll released: instance 2 goes on with the master's COS data, configuring again, so
+     * the master's data stopped (closed). */
+    size_t before = b.event_count;
     bench_exchange(&b, "5FE#014C030102", "5FB#01CC");
+    ck_assert_uint_eq(b.event_count, before + 1);
+    ck_assert_int_eq(b.events[before], DN_IO_CLOSED);
     bench_exchange(&b, "5FC#010E050201", "5FB#018E01");
     bench_exchange(&b, "5FC#010E050207", "5FB#018E0000");
-    /* COS released too: no I/O left. */
+    /* COS released too: no I/O left; instance 2 was configuring, nothing closed. */
     bench_exchange(&b, "5FE#014C030110", "5FB#01CC");
     bench_exchange(&b, "5FC#010E050201", "5FB#019416FF");
+    ck_assert_uint_eq(b.event_count, before + 2);
     ck_assert_int_eq(b.events[b.event_count - 1], DN_IO_RELEASED);
     ck_assert_uint_eq(b.node.allocation, DN_ALLOC_EXPLICIT);
 }

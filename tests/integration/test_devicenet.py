@@ -2,7 +2,8 @@
 check of several drives on one bus, scan, explicit get/set with a fragmented response, polled I/O
 to 1200 rpm, the transparent assemblies after selecting them and an Identity Reset, the stored
 selection across a restart, an I/O timeout faulting the drive with CnF and the scanner's fault
-reset, a drive killed and restarted, and the command lines that mix CANopen and DeviceNet.
+reset, the connections released while the drive runs as the same CnF, a drive killed and
+restarted, and the command lines that mix CANopen and DeviceNet.
 
 Frames are DeviceNet's predefined master/slave connection set (docs/devicenet.md): for MAC ID 25
 the check is 4CF, the explicit response 4CB, the scanner's explicit request 4CC, its unconnected
@@ -212,12 +213,19 @@ def test_transparent_assemblies_after_selecting_them_and_a_reset(start_dn, dump,
     # The assemblies in use come from the slave (Connection instance 2's paths): 101 answers
     # 6041h (0x0640, Switch on disabled) and 6044h.
     assert dnscan("poll", 25, "--count", 1) == (0, "MAC ID 25: Status word=1600 Output speed=0\n", "")
-    # 100 carries 6040h and 6042h as they are: Shutdown, Switch on, Enable operation.
-    for control_word in (6, 7, 15):
+    # 100 carries 6040h and 6042h as they are: Shutdown, Switch on (one poll each, then released:
+    # the drive stands), Enable operation polled on, since a release while the drive runs would
+    # be its CnF (test_release_while_running_is_cnf).
+    for control_word in (6, 7):
         status, _, err = dnscan("poll", 25, "--assembly", "100/101", "--set", f"Control_word={control_word}",
                                   "--set", "Reference_speed=300", "--count", 1)
         assert (status, err) == (0, ""), err
+    wait_state(sock, 25, cia402="Switched on", fault=None)
+    poller = Poller(25, "--assembly", "100/101", "--set", "Control_word=15", "--set", "Reference_speed=300",
+                    "--every", 25)
     wait_state(sock, 25, timeout=5.0, cia402="Operation enabled", speed_rpm=300)
+    poller.proc.kill()
+    poller.proc.wait(timeout=5)
     # The selection and Quick Connect are in the store: the next start reads them.
     assert d.stop() == 0
     d2, _ = start_dn([25], "--store", store)
@@ -245,6 +253,27 @@ def test_io_timeout_is_cnf_and_the_scanner_resets_it(start_dn):
     assert (status, err) == (0, ""), err
     state = wait_state(sock, 25, fault=None)
     assert state["cia402"] != "Fault"
+
+
+def test_release_while_running_is_cnf(start_dn):
+    _, sock = start_dn([25])
+    poller = Poller(25, "--assembly", "21/71", "--set", "NetCtrl=1", "--set", "NetRef=1", "--set", "Run_fwd=1",
+                    "--set", "Speed_reference=600", "--every", 25)
+    try:
+        poller.expect("Running1=1", timeout=5)
+        wait_state(sock, 25, ns="green", supervisor="enabled", fault=None)
+        # Another scanner process of the same MAC ID releases the connections while the drive
+        # runs: its commands stop, the same CnF as a timeout, at once (COL 1: freewheel).
+        assert dnscan("release", 25) == (0, "MAC ID 25: released 0x33\n", "")
+        state = wait_state(sock, 25, fault="CnF", supervisor="faulted", ns="flashing-green")
+        assert (state["cia402"], state["frames"]["timeouts"]) == ("Fault", 0)
+    finally:
+        poller.proc.kill()
+        poller.proc.wait(timeout=5)
+    # The fault reset by the scanner; its release after it leaves the standing drive as it is.
+    status, _, err = dnscan("poll", 25, "--assembly", "21/71", "--set", "Fault_reset=1", "--count", 1)
+    assert (status, err) == (0, ""), err
+    wait_state(sock, 25, fault=None, supervisor="ready")
 
 
 def test_a_killed_drive_checks_its_mac_id_again_and_is_allocated_again(start_dn, dump):
@@ -305,7 +334,9 @@ def ctl(sock, *words):
 
 def test_control_surface_faults_and_keys_by_mac_id(start_dn):
     _, sock = start_dn([25])
-    assert ctl(sock, "fault", 25, "OHF") == (0, "ok node 25: OHF (drive overheating), EMCY 4210")
+    # What the DeviceNet bus shows of it: the Control supervisor and the Identity, no EMCY.
+    assert ctl(sock, "fault", 25, "OHF") == (
+        0, "ok node 25: OHF (drive overheating), supervisor faulted, Identity major recoverable fault")
     state = wait_state(sock, 25, fault="OHF", cia402="Fault", supervisor="faulted")
     assert (state["display"], state["ms"], state["ns"]) == ("OHF", "green", "flashing-green")
     # The scanner sees it: Faulted in assembly 71, refused fault reset while the cause is present.

@@ -118,13 +118,25 @@ static void on_write_assembly(void *user, uint16_t instance, const uint8_t *data
     drive_dn_command(dn, &next);
 }
 
+/* The drive runs on a network command: Operation enabled (the Control supervisor's Enabled, not
+ * a stop already under way), the command channel the network's. */
+static bool runs_on_network_command(const drive_dn_t *dn)
+{
+    return drive_dn_state(dn) == DRIVE_DN_ENABLED && drive_dn_control_from_net(dn->drive);
+}
+
 /* An I/O connection timed out: the periodic data stopped, the drive's communication loss (CnF on
- * an Altivar, with the reaction of its COL). Idle keeps the last command
- * (docs/decisions.md, D-DEVICENET-IDLE). */
+ * an Altivar, with the reaction of its COL). The scanner releasing the connection its data came
+ * on while the drive runs on them stops those data too, without a timeout: the same loss, rather
+ * than a motor left at the last command that the network can no longer stop; a standing or
+ * stopping drive is released as it is (docs/decisions.md, D-DEVICENET-RELEASE). Idle keeps the
+ * last command (D-DEVICENET-DRIVE-IDLE). */
 static void on_io_event(void *user, dn_io_event_t event)
 {
     drive_dn_t *dn = user;
-    if (event == DN_IO_TIMEOUT)
+    if (event == DN_IO_CLOSED)
+        (void)drive_process(dn->drive, dn->now); /* the state at the frame's time */
+    if (event == DN_IO_TIMEOUT || (event == DN_IO_CLOSED && runs_on_network_command(dn)))
         drive_communication_loss(dn->drive, dn->now);
 }
 
@@ -173,7 +185,8 @@ int drive_dn_init(drive_dn_t *dn, const drive_dn_config_t *config)
                          .write_assembly = on_write_assembly,
                          .io_event = on_io_event,
                          .store = config->store ? on_store : NULL,
-                         .reset = on_reset};
+                         .reset = on_reset,
+                         .stats = &dn->stats};
     drive_dn_objects(dn, dn->objects);
     const drive_dn_profile_t *p = config->profile;
     dn->config = (dn_config_t){

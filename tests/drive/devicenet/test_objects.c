@@ -2,7 +2,8 @@
  * 0x2A attribute by attribute with their refusals; the application objects by the manual's
  * address formula (read, write, refusals with their CIP codes); the assemblies 20/70 and 100/101
  * byte for byte after a stored selection and a restart; the I/O timeout as CnF and its reset;
- * the LEDs. */
+ * the polled connection released while the drive runs as CnF too, not while it stands; the LEDs.
+ */
 #include "check_main.h"
 #include "dn_drive_bench.h"
 
@@ -117,6 +118,76 @@ START_TEST(io_timeout_is_cnf_and_the_scanner_resets_it)
 }
 END_TEST
 
+/* Run1 at 1200 rpm on the polled connection, at the reference 2.4 s later. */
+static void run_at_1200_rpm(void)
+{
+    db_exchange(&b, "4CD#0100B004", "3D9#74040000");
+    db_advance(&b, 2400000);
+    db_exchange(&b, "4CD#0100B004", "3D9#F404B004");
+}
+
+/* The scanner releases the polled connection while the drive runs on its commands: the data stop
+ * as after a timeout, and it is the same CnF with COL's reaction (docs/decisions.md,
+ * D-DEVICENET-RELEASE); COL = 1 (the default) freewheels into Fault at once. The explicit
+ * connection stays: NS green, the Identity owned, without I/O, major recoverable fault. */
+START_TEST(release_while_running_is_cnf)
+{
+    run_at_1200_rpm();
+    db_exchange(&b, "4CE#014C030102", "4CB#01CC");
+    ck_assert_str_eq(drive_fault_latched(&b.drive)->code, "CnF");
+    ck_assert_int_eq(db_value(&b, 0x2022, 3), 1); /* CnF: time out */
+    ck_assert_int_eq(db_value(&b, 0x6041, 0), 0x0608);
+    ck_assert_int_eq(drive_dn_state(&b.dn), DRIVE_DN_FAULTED);
+    ck_assert_int_eq(dn_node_ns_led(&b.dn.node), DN_LED_GREEN);
+    ck_assert_uint_eq(dn_node_identity_status(&b.dn.node), 0x0431);
+    db_rx(&b, "4CD#0100B004"); /* no polled connection: ignored */
+    db_expect_none(&b);
+    /* Allocated again, the scanner resets the fault. */
+    db_exchange(&b, "4CE#014B03010201", "4CB#01CB00");
+    db_exchange(&b, "4CC#01100502091027", "4CB#01901027");
+    db_exchange(&b, "4CD#0400B004", "3D9#F0030000"); /* FaultRst, then Stop: Ready */
+    ck_assert_ptr_null(drive_fault_latched(&b.drive));
+}
+END_TEST
+
+/* With COL = 2 (2022:02, ADL 6401: class 81h attribute 2) the released drive stops on its DEC
+ * ramp (3.0 s from 1500 rpm) in Fault reaction active, the supervisor Stopping, then Faulted. */
+START_TEST(release_while_running_stops_as_col_says)
+{
+    db_exchange(&b, "4CC#011081010202 00", "4CB#0190");
+    run_at_1200_rpm();
+    db_exchange(&b, "4CE#014C030102", "4CB#01CC");
+    ck_assert_int_eq(db_value(&b, 0x6041, 0), 0x020F);
+    ck_assert_int_eq(drive_dn_state(&b.dn), DRIVE_DN_STOPPING);
+    db_advance(&b, 2399999);
+    ck_assert_int_eq(drive_dn_state(&b.dn), DRIVE_DN_STOPPING);
+    db_advance(&b, 1);
+    ck_assert_int_eq(db_value(&b, 0x6044, 0), 0);
+    ck_assert_int_eq(db_value(&b, 0x6041, 0), 0x0608);
+    ck_assert_int_eq(drive_dn_state(&b.dn), DRIVE_DN_FAULTED);
+}
+END_TEST
+
+/* A drive standing (Ready) or already stopping (Run1 off, on its ramp) is released as it is: the
+ * scanner ended its session, nothing runs that the network could no longer stop. */
+START_TEST(release_of_a_standing_or_stopping_drive_keeps_it)
+{
+    db_exchange(&b, "4CD#00000000", "3D9#F0030000"); /* Stop: Ready */
+    db_exchange(&b, "4CE#014C030102", "4CB#01CC");
+    ck_assert_ptr_null(drive_fault_latched(&b.drive));
+    ck_assert_int_eq(drive_dn_state(&b.dn), DRIVE_DN_READY);
+    db_exchange(&b, "4CE#014B03010201", "4CB#01CB00");
+    db_exchange(&b, "4CC#01100502091027", "4CB#01901027");
+    run_at_1200_rpm();
+    db_exchange(&b, "4CD#0000B004", "3D9#7405B004"); /* Run1 off: Stopping */
+    db_exchange(&b, "4CE#014C030102", "4CB#01CC");
+    ck_assert_ptr_null(drive_fault_latched(&b.drive));
+    db_advance(&b, 2400000);
+    ck_assert_int_eq(db_value(&b, 0x6044, 0), 0);
+    ck_assert_int_eq(drive_dn_state(&b.dn), DRIVE_DN_READY);
+}
+END_TEST
+
 START_TEST(leds_before_and_after_the_check)
 {
     memset(&b, 0, sizeof b);
@@ -172,6 +243,9 @@ static Suite *suite(void)
     tcase_add_test(tc, ac_dc_drive);
     tcase_add_test(tc, application_objects_by_address);
     tcase_add_test(tc, io_timeout_is_cnf_and_the_scanner_resets_it);
+    tcase_add_test(tc, release_while_running_is_cnf);
+    tcase_add_test(tc, release_while_running_stops_as_col_says);
+    tcase_add_test(tc, release_of_a_standing_or_stopping_drive_keeps_it);
     tcase_add_test(tc, leds_before_and_after_the_check);
     tcase_add_test(tc, stored_selection_after_a_reset);
     suite_add_tcase(s, tc);

@@ -1,0 +1,157 @@
+/* The control surface's replies where a CANopen and a DeviceNet drive differ: a fault happening
+ * (its EMCY on CANopen; on DeviceNet, where EMCYs stay on the card's internal link, the Control
+ * supervisor's state and the Identity's fault), the RUN key refused under network control, and the
+ * state line's counters (the CANopen services', or the DeviceNet card's). A drive of each kind is
+ * a device of an unopened loop: nothing here reaches a socket. */
+#include "atv312/atv312.h"
+#include "atv312/atv312_devicenet.h"
+#include "check_main.h"
+#include "control.h"
+
+#include <check.h>
+#include <string.h>
+
+#define NODE 4
+#define MAC_ID 25
+
+static co_linux_loop_t loop;
+static uint8_t od_data[ATV312_OD_DATA_SIZE];
+static drive_t drive;
+static drive_dn_t dn;
+static co_linux_device_t device;
+static atv312d_counters_t counters;
+static atv312d_control_node_t node;
+static atv312d_control_t control;
+static char reply[4096];
+
+static void no_send(void *user, const co_frame_t *frame)
+{
+    (void)user, (void)frame;
+}
+
+static co_time_t canopen_process(void *ctx, co_time_t now)
+{
+    return drive_process(ctx, now);
+}
+
+static co_time_t devicenet_process(void *ctx, co_time_t now)
+{
+    return drive_dn_process(ctx, now);
+}
+
+static const co_linux_device_ops_t canopen_ops = {.process = canopen_process};
+static const co_linux_device_ops_t devicenet_ops = {.process = devicenet_process};
+
+static void start_canopen(void)
+{
+    memset(&loop, 0, sizeof loop);
+    drive_config_t config = {
+        .profile = &atv312_profile, .od_data = od_data, .node_id = NODE, .send = no_send};
+    ck_assert_int_eq(drive_init(&drive, &config), 0);
+    drive_start(&drive, loop.now);
+    co_linux_loop_add(&loop, &device, &canopen_ops, &drive);
+    node = (atv312d_control_node_t){
+        .id = NODE, .drive = &drive, .device = &device, .counters = &counters};
+    control = (atv312d_control_t){.nodes = &node, .count = 1};
+}
+
+static void start_devicenet(void)
+{
+    memset(&loop, 0, sizeof loop);
+    drive_config_t config = {
+        .profile = &atv312_profile, .od_data = od_data, .node_id = 1, .send = drive_dn_drop_frame};
+    ck_assert_int_eq(drive_init(&drive, &config), 0);
+    drive_dn_config_t dn_config = {.drive = &drive,
+                                   .profile = &atv312_devicenet_profile,
+                                   .mac_id = MAC_ID,
+                                   .serial_number = 0x31200019,
+                                   .send = no_send};
+    ck_assert_int_eq(drive_dn_init(&dn, &dn_config), 0);
+    drive_dn_start(&dn, loop.now);
+    co_linux_loop_add(&loop, &device, &devicenet_ops, &dn);
+    node = (atv312d_control_node_t){
+        .id = MAC_ID, .drive = &drive, .devicenet = &dn, .device = &device, .counters = &counters};
+    control = (atv312d_control_t){.nodes = &node, .count = 1};
+}
+
+static const char *execute(const char *line)
+{
+    atv312d_control_execute(&control, line, reply, sizeof reply);
+    return reply;
+}
+
+START_TEST(canopen_fault_is_its_emcy)
+{
+    start_canopen();
+    ck_assert_str_eq(execute("fault 4 OHF"), "ok node 4: OHF (drive overheating), EMCY 4210");
+    ck_assert_str_eq(execute("json fault 4 OCF"),
+                     "{\"ok\":true,\"message\":\"node 4: OCF (overcurrent), EMCY 2310\"}");
+}
+END_TEST
+
+/* A fault (the ATV312's all freewheel but CnF): Faulted at once, which the card shows as the
+ * Identity's major recoverable fault. */
+START_TEST(devicenet_fault_is_the_supervisor_and_identity)
+{
+    start_devicenet();
+    ck_assert_str_eq(execute("fault 25 OHF"), "ok node 25: OHF (drive overheating), supervisor "
+                                              "faulted, Identity major recoverable fault");
+    ck_assert_uint_eq(dn_node_identity_status(&dn.node) & DN_STATUS_MAJOR_RECOVERABLE,
+                      DN_STATUS_MAJOR_RECOVERABLE);
+    ck_assert_str_eq(execute("json mains 25 undervoltage"),
+                     "{\"ok\":true,\"message\":\"node 25: USF (line supply undervoltage), "
+                     "supervisor faulted, Identity major recoverable fault\"}");
+}
+END_TEST
+
+START_TEST(run_key_refused_under_network_control)
+{
+    start_canopen();
+    ck_assert_str_eq(execute("run-key 4"),
+                     "error: node 4 is under network control: the RUN key works under local "
+                     "control (local 4 on, or a command channel other than CANopen)");
+    start_devicenet();
+    ck_assert_str_eq(execute("run-key 25"),
+                     "error: node 25 is under network control (CtrlFromNet 1): the RUN key works "
+                     "under local control (local 25 on, or a command channel other than "
+                     "DeviceNet: NetCtrl 0 with CCS = C212)");
+    ck_assert_str_eq(execute("local 25 on"), "ok node 25: local control (status word bit 9 = 0)");
+    ck_assert_str_eq(execute("run-key 25"), "ok node 25: RUN key");
+}
+END_TEST
+
+/* The state line ends with the device's frame counts and the card's counters (then the logic
+ * inputs that are on: none here). */
+START_TEST(devicenet_state_shows_the_card_counters)
+{
+    start_devicenet();
+    device.stats = (co_linux_device_stats_t){.rx = 52, .tx = 50, .tx_dropped = 1};
+    dn.stats = (dn_stats_t){.explicit_requests = 7,
+                            .error_responses = 2,
+                            .io_messages = 40,
+                            .fragments = 3,
+                            .timeouts = 1};
+    char line[1024];
+    atv312d_format_state(&node, false, line, sizeof line);
+    const char *text = ", fault none, frames received 52, sent 50, dropped 1, explicit requests 7, "
+                       "error responses 2, I/O messages 40, fragments 3, timeouts 1";
+    ck_assert_str_eq(line + strlen(line) - strlen(text), text);
+    atv312d_format_state(&node, true, line, sizeof line);
+    const char *json = ",\"fault\":null,\"frames\":{\"received\":52,\"sent\":50,\"dropped\":1,"
+                       "\"explicit_requests\":7,\"error_responses\":2,\"io_messages\":40,"
+                       "\"fragments\":3,\"timeouts\":1},\"inputs\":[]}";
+    ck_assert_str_eq(line + strlen(line) - strlen(json), json);
+}
+END_TEST
+
+int main(void)
+{
+    Suite *s = suite_create("control");
+    TCase *tc = tcase_create("control");
+    tcase_add_test(tc, canopen_fault_is_its_emcy);
+    tcase_add_test(tc, devicenet_fault_is_the_supervisor_and_identity);
+    tcase_add_test(tc, run_key_refused_under_network_control);
+    tcase_add_test(tc, devicenet_state_shows_the_card_counters);
+    suite_add_tcase(s, tc);
+    return check_run_suite(s);
+}

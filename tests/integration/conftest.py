@@ -42,7 +42,7 @@ EX_USAGE = 64
 
 # Without ATV312D: build/'s daemon. One build's, never "the newest of build*/": after
 # scripts/run-tests that would be build-asan/'s, which cannot run inside User-Mode Linux.
-DEFAULT_DAEMON = ROOT / "build" / "src" / "atv312d" / "atv312d"
+DEFAULT_DAEMON = ROOT / "build" / "apps" / "atv312d" / "atv312d"
 
 
 def daemon_path():

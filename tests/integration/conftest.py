@@ -9,6 +9,7 @@ header names it.
 Every wait here is deadline based: a test waits for the frame it expects, never sleeps and hopes.
 """
 
+import json
 import os
 import queue
 import re
@@ -42,7 +43,7 @@ EX_USAGE = 64
 
 # Without ATV312D: build/'s daemon. One build's, never "the newest of build*/": after
 # scripts/run-tests that would be build-asan/'s, which cannot run inside User-Mode Linux.
-DEFAULT_DAEMON = ROOT / "build" / "src" / "atv312d" / "atv312d"
+DEFAULT_DAEMON = ROOT / "build" / "apps" / "atv312d" / "atv312d"
 
 
 def daemon_path():
@@ -425,3 +426,53 @@ def assert_periodic(frames, period, what):
     assert spread <= PERIODIC_LATENESS, (
         f"{what}: {len(frames)} frames drift or jitter {spread * 1000:.1f} ms from a {period * 1000:.0f} ms "
         f"schedule; intervals {[round(i, 4) for i in intervals(frames)]}")
+
+
+# ---- DeviceNet drives ---------------------------------------------------------------------------
+
+# From the daemon's start to online: two check requests a second apart, then a second of silence,
+# with room for User-Mode Linux on a loaded machine.
+ONLINE_TIMEOUT = 4.0
+STATE_TIMEOUT = 3.0
+
+
+def ctl_state(sock, mac_id):
+    done = subprocess.run([daemon_path(), "ctl", str(sock), "--json", "state", str(mac_id)], capture_output=True,
+                          text=True, timeout=10)
+    assert done.returncode == 0, done.stdout + done.stderr
+    return json.loads(done.stdout)["nodes"][0]
+
+
+def wait_state(sock, mac_id, timeout=STATE_TIMEOUT, **wanted):
+    """Polls the control surface until the drive's state has every wanted field; returns it."""
+    deadline = time.monotonic() + timeout
+    while True:
+        state = ctl_state(sock, mac_id)
+        if all(state[k] == v for k, v in wanted.items()):
+            return state
+        if time.monotonic() > deadline:
+            raise AssertionError(f"MAC ID {mac_id}: no {wanted} within {timeout} s; last {state}")
+        time.sleep(0.02)
+
+
+@pytest.fixture
+def start_dn(start_daemon, dump, tmp_path):
+    """start_dn(mac_ids, *args): atv312d --devicenet with --control; waits for each MAC ID's two
+    check requests, a second apart, and for every drive online (NS flashing green: no connection
+    yet). Returns (daemon, control socket)."""
+
+    def start(mac_ids, *args):
+        sock = tmp_path / f"dn-{time.monotonic_ns()}.sock"
+        mark = dump.mark()
+        d = start_daemon(dump, "--devicenet", "--mac-id", ",".join(map(str, mac_ids)), "--control", sock, *args,
+                         boot_ids=[])
+        for mac_id in mac_ids:
+            check = (0x400 | mac_id << 3 | 7, f"00F300{mac_id:02X}002031")
+            first = dump.expect(*check, timeout=ONLINE_TIMEOUT, since=mark)
+            second = dump.expect(*check, timeout=ONLINE_TIMEOUT)
+            assert 0.95 <= second.timestamp - first.timestamp <= 1.1, (first, second)
+        for mac_id in mac_ids:
+            wait_state(sock, mac_id, timeout=ONLINE_TIMEOUT, ns="flashing-green", ms="green")
+        return d, sock
+
+    return start

@@ -17,7 +17,7 @@ import pytest
 
 from conftest import BOOT_TIMEOUT, EDS, IFACE, ROOT, Frame
 
-COMASTER = os.environ.get("COMASTER") or str(ROOT / "build" / "src" / "comaster" / "comaster")
+COMASTER = os.environ.get("COMASTER") or str(ROOT / "build" / "apps" / "comaster" / "comaster")
 HELPER = Path(__file__).with_name("sdo_server_helper.py")
 LOCAL_NODE = 10
 

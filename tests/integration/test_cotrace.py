@@ -13,7 +13,7 @@ import pytest
 
 from conftest import IFACE, MARKER_ID, ROOT, Frame
 
-COTRACE = os.environ.get("COTRACE") or str(ROOT / "build" / "src" / "cotrace" / "cotrace")
+COTRACE = os.environ.get("COTRACE") or str(ROOT / "build" / "apps" / "cotrace" / "cotrace")
 EX_UNAVAILABLE = 69
 LINE = re.compile(r"^\((\d{10}\.\d{6})\) (.*)$")
 

@@ -10,7 +10,6 @@ the check is 4CF, the explicit response 4CB, the scanner's explicit request 4CC,
 request 4CE. Every wait has a deadline: a frame, a line of dnscan, or a state of the control
 surface."""
 
-import json
 import os
 import queue
 import signal
@@ -21,7 +20,7 @@ import time
 import can
 import pytest
 
-from conftest import ROOT, daemon_path
+from conftest import ONLINE_TIMEOUT, ROOT, ctl_state, daemon_path, wait_state
 
 DNSCAN = os.environ.get("DNSCAN") or str(ROOT / "build" / "apps" / "dnscan" / "dnscan")
 IFACE = "vcan0"
@@ -30,10 +29,6 @@ EX_USAGE = 64
 # The check request of MAC ID 25 and 63: port 0, vendor 0x00F3, serial 0x31200000 + MAC ID.
 CHECK_25 = (0x4CF, "00F30019002031")
 CHECK_63 = (0x5FF, "00F3003F002031")
-# From the daemon's start to online: two check requests a second apart, then a second of silence,
-# with room for User-Mode Linux on a loaded machine.
-ONLINE_TIMEOUT = 4.0
-STATE_TIMEOUT = 3.0
 
 
 def dnscan(*args, timeout=30):
@@ -41,25 +36,6 @@ def dnscan(*args, timeout=30):
     p = subprocess.run([DNSCAN, "-i", IFACE, "--no-check", *map(str, args)], capture_output=True, text=True,
                        timeout=timeout)
     return p.returncode, p.stdout, p.stderr
-
-
-def ctl_state(sock, mac_id):
-    done = subprocess.run([daemon_path(), "ctl", str(sock), "--json", "state", str(mac_id)], capture_output=True,
-                          text=True, timeout=10)
-    assert done.returncode == 0, done.stdout + done.stderr
-    return json.loads(done.stdout)["nodes"][0]
-
-
-def wait_state(sock, mac_id, timeout=STATE_TIMEOUT, **wanted):
-    """Polls the control surface until the drive's state has every wanted field; returns it."""
-    deadline = time.monotonic() + timeout
-    while True:
-        state = ctl_state(sock, mac_id)
-        if all(state[k] == v for k, v in wanted.items()):
-            return state
-        if time.monotonic() > deadline:
-            raise AssertionError(f"MAC ID {mac_id}: no {wanted} within {timeout} s; last {state}")
-        time.sleep(0.02)
 
 
 class Poller:
@@ -91,29 +67,6 @@ class Poller:
     def stop(self, sig=signal.SIGINT):
         self.proc.send_signal(sig)
         return self.proc.wait(timeout=5)
-
-
-@pytest.fixture
-def start_dn(start_daemon, dump, tmp_path):
-    """start_dn(mac_ids, *args): atv312d --devicenet with --control; waits for each MAC ID's two
-    check requests, a second apart, and for every drive online (NS flashing green: no connection
-    yet). Returns (daemon, control socket)."""
-
-    def start(mac_ids, *args):
-        sock = tmp_path / f"dn-{time.monotonic_ns()}.sock"
-        mark = dump.mark()
-        d = start_daemon(dump, "--devicenet", "--mac-id", ",".join(map(str, mac_ids)), "--control", sock, *args,
-                         boot_ids=[])
-        for mac_id in mac_ids:
-            check = (0x400 | mac_id << 3 | 7, f"00F300{mac_id:02X}002031")
-            first = dump.expect(*check, timeout=ONLINE_TIMEOUT, since=mark)
-            second = dump.expect(*check, timeout=ONLINE_TIMEOUT)
-            assert 0.95 <= second.timestamp - first.timestamp <= 1.1, (first, second)
-        for mac_id in mac_ids:
-            wait_state(sock, mac_id, timeout=ONLINE_TIMEOUT, ns="flashing-green", ms="green")
-        return d, sock
-
-    return start
 
 
 def test_two_drives_check_their_mac_ids_and_answer_a_scan(start_dn, dump):

@@ -16,7 +16,7 @@ import pytest
 
 from conftest import BOOT_TIMEOUT, EDS, IFACE, ROOT
 
-COMASTER = os.environ.get("COMASTER") or str(ROOT / "build" / "src" / "comaster" / "comaster")
+COMASTER = os.environ.get("COMASTER") or str(ROOT / "build" / "apps" / "comaster" / "comaster")
 NET = ROOT / "examples" / "netmaster"
 EX_DATAERR, EX_UNAVAILABLE = 65, 69
 EXIT_TIMEOUT = 2

@@ -72,7 +72,7 @@ static bool reserve_routes(co_linux_router_t *router, size_t count)
 }
 
 /* The COB-IDs a device consumes now: its core node's (and their generation), or the fixed ones
- * it names; false for a device that takes every frame. */
+ * it names; false (and none counted) for a device that takes every frame. */
 static bool device_consumers(co_linux_device_t *dev, co_cob_t *cobs, size_t *count)
 {
     if (dev->ops->node != NULL) {
@@ -85,6 +85,7 @@ static bool device_consumers(co_linux_device_t *dev, co_cob_t *cobs, size_t *cou
         *count = dev->ops->consumers(dev->ctx, cobs);
         return true;
     }
+    *count = 0;
     return false;
 }
 

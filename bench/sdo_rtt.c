@@ -1,7 +1,9 @@
-/* Load generator of bench/socketcan on raw SocketCAN (python is too slow to measure the floor).
+/* Load generator of bench/socketcan, bench/native and bench/devicenet on raw SocketCAN (python
+ * is too slow to measure the floor).
  *
  *   sdo_rtt IFACE NODE-ID COUNT          expedited uploads of 1000h, one at a time
  *   sdo_rtt --sync IFACE NODE-ID COUNT   SYNC -> synchronous TPDO6 latency
+ *   sdo_rtt --poll IFACE MAC-ID COUNT    DeviceNet poll commands, one at a time
  *
  * IFACE may be --fd=FD: a socket the generator inherits, one struct can_frame per datagram
  * (bench/native: one end of an AF_UNIX SOCK_SEQPACKET socketpair, on a kernel without CAN).
@@ -11,9 +13,14 @@
  * not counted (the first ones fault pages in). --sync first makes TPDO6 synchronous (1805h:02 = 1,
  * with the PDO invalid meanwhile, as CiA 301 asks; the ATV312's TPDO1 has a read-only
  * transmission type) and valid on 280h + NODE-ID by SDO, starts the node (NMT), then sends SYNC
- * after SYNC and times the TPDO each one triggers. Prints one JSON line: transactions per second,
- * latency p50/p99/max in microseconds. Exits 1, saying why, when an answer is missing or an SDO
- * request is aborted. */
+ * after SYNC and times the TPDO each one triggers. --poll sends poll commands of 4 bytes of zeros
+ * (an assembly 21 that neither runs nor stops the drive; group 2 message 5 of MAC-ID) and waits
+ * for each poll response (group 1 message 15): the polled connection must be allocated and
+ * established already (bench/devicenet does it with dnscan). Prints one JSON line: transactions per
+ * second, latency p50/p99/max in microseconds. Exits 1, saying why, when an answer is missing or an
+ * SDO request is aborted. */
+#include "dn/dn_link.h"
+
 #include <errno.h>
 #include <linux/can.h>
 #include <linux/can/raw.h>
@@ -43,7 +50,11 @@ enum {
     TRANSMISSION_SYNC_1 = 1,
     WARM_UP = 100,
     ANSWER_TIMEOUT_MS = 1000,
+    NODE_ID_MAX = 127,
+    POLL_COMMAND_LEN = 4, /* the output assemblies of the Altivar 312 are 4 bytes */
 };
+
+typedef enum transaction_kind { SDO_UPLOAD, SYNC_TPDO, POLL } transaction_kind_t;
 
 /* CiA 301: bit 31 of a PDO's COB-ID, the PDO does not exist. */
 static const uint32_t COB_ID_INVALID = 0x80000000u;
@@ -60,7 +71,16 @@ static uint64_t now_ns(void)
     return (uint64_t)ts.tv_sec * 1000000000u + (uint64_t)ts.tv_nsec;
 }
 
-static int open_bus(bus_t *bus, const char *iface, unsigned node)
+/* The CAN-IDs the generator waits for: `filters` (two) exact ones of its kind of transaction. */
+static void answer_ids(transaction_kind_t kind, unsigned node, struct can_filter filters[2])
+{
+    const canid_t exact = CAN_SFF_MASK | CAN_EFF_FLAG | CAN_RTR_FLAG;
+    canid_t poll_response = dn_group1_id(DN_G1_SLAVE_POLL_RESPONSE, (uint8_t)node);
+    filters[0] = (struct can_filter){kind == POLL ? poll_response : SDO_TX_BASE + node, exact};
+    filters[1] = (struct can_filter){kind == POLL ? poll_response : TPDO6_BASE + node, exact};
+}
+
+static int open_bus(bus_t *bus, const char *iface, unsigned node, transaction_kind_t kind)
 {
     bus->node = node;
     if (strncmp(iface, "--fd=", 5) == 0) {
@@ -77,9 +97,8 @@ static int open_bus(bus_t *bus, const char *iface, unsigned node)
         perror("sdo_rtt: socket");
         return -1;
     }
-    const canid_t exact = CAN_SFF_MASK | CAN_EFF_FLAG | CAN_RTR_FLAG;
-    struct can_filter filters[] = {{.can_id = SDO_TX_BASE + node, .can_mask = exact},
-                                   {.can_id = TPDO6_BASE + node, .can_mask = exact}};
+    struct can_filter filters[2];
+    answer_ids(kind, node, filters);
     struct sockaddr_can addr = {.can_family = AF_CAN, .can_ifindex = (int)if_nametoindex(iface)};
     if (addr.can_ifindex == 0) {
         fprintf(stderr, "sdo_rtt: no interface %s\n", iface);
@@ -181,6 +200,18 @@ static int make_tpdo6_synchronous(const bus_t *bus)
     return send_frame(bus, NMT_ID, start, sizeof start);
 }
 
+/* One poll command and its response; bus->node is the MAC ID here. */
+static int poll_command(const bus_t *bus)
+{
+    const uint8_t command[POLL_COMMAND_LEN] = {0};
+    struct can_frame response;
+    uint8_t mac_id = (uint8_t)bus->node;
+    if (send_frame(bus, dn_group2_id(mac_id, DN_G2_MASTER_POLL_COS_CYCLIC), command,
+                   sizeof command) != 0)
+        return -1;
+    return receive_frame(bus, dn_group1_id(DN_G1_SLAVE_POLL_RESPONSE, mac_id), &response);
+}
+
 static int compare_u64(const void *a, const void *b)
 {
     uint64_t x = *(const uint64_t *)a, y = *(const uint64_t *)b;
@@ -193,24 +224,41 @@ static double percentile_us(const uint64_t *sorted, size_t count, double p)
     return (double)sorted[rank] / 1000.0;
 }
 
+static const struct {
+    const char *option; /* the first argument that selects it */
+    const char *name;   /* in the JSON line */
+    int (*run)(const bus_t *);
+    unsigned long id_min, id_max;
+} KINDS[] = {
+    [SDO_UPLOAD] = {NULL, "sdo_upload", sdo_upload_1000h, 1, NODE_ID_MAX},
+    [SYNC_TPDO] = {"--sync", "sync_tpdo", sync_tpdo6, 1, NODE_ID_MAX},
+    [POLL] = {"--poll", "poll", poll_command, 0, DN_MAC_ID_MAX},
+};
+
 int main(int argc, char **argv)
 {
-    bool sync = argc > 1 && strcmp(argv[1], "--sync") == 0;
-    char **args = argv + 1 + sync;
+    transaction_kind_t kind = SDO_UPLOAD;
+    for (transaction_kind_t k = SYNC_TPDO; k <= POLL && argc > 1; k++)
+        if (strcmp(argv[1], KINDS[k].option) == 0)
+            kind = k;
+    int options = kind != SDO_UPLOAD;
+    char **args = argv + 1 + options;
     char *end_node = NULL, *end_count = NULL;
-    unsigned long node = argc == 4 + sync ? strtoul(args[1], &end_node, 0) : 0;
-    unsigned long count = argc == 4 + sync ? strtoul(args[2], &end_count, 0) : 0;
-    if (argc != 4 + sync || *end_node != '\0' || *end_count != '\0' || node < 1 || node > 127 ||
-        count < 1 || count > 10000000) {
+    bool three = argc == 4 + options;
+    unsigned long node = three ? strtoul(args[1], &end_node, 0) : 0;
+    unsigned long count = three ? strtoul(args[2], &end_count, 0) : 0;
+    if (!three || *end_node != '\0' || *end_count != '\0' || node < KINDS[kind].id_min ||
+        node > KINDS[kind].id_max || count < 1 || count > 10000000) {
         fprintf(stderr,
-                "usage: sdo_rtt [--sync] (IFACE | --fd=FD) NODE-ID (1-127) COUNT (1-10000000)\n");
+                "usage: sdo_rtt [--sync] (IFACE | --fd=FD) NODE-ID (1-127) COUNT (1-10000000)\n"
+                "       sdo_rtt --poll (IFACE | --fd=FD) MAC-ID (0-63) COUNT (1-10000000)\n");
         return 64;
     }
     bus_t bus;
-    if (open_bus(&bus, args[0], (unsigned)node) != 0)
+    if (open_bus(&bus, args[0], (unsigned)node, kind) != 0)
         return 1;
-    int (*transaction)(const bus_t *) = sync ? sync_tpdo6 : sdo_upload_1000h;
-    if (sync && make_tpdo6_synchronous(&bus) != 0)
+    int (*transaction)(const bus_t *) = KINDS[kind].run;
+    if (kind == SYNC_TPDO && make_tpdo6_synchronous(&bus) != 0)
         return 1;
     for (int i = 0; i < WARM_UP; i++) {
         if (transaction(&bus) != 0)
@@ -232,9 +280,8 @@ int main(int argc, char **argv)
     qsort(latency, count, sizeof *latency, compare_u64);
     printf("{\"mode\": \"%s\", \"count\": %lu, \"per_s\": %.0f, \"p50_us\": %.1f, \"p99_us\": "
            "%.1f, \"max_us\": %.1f}\n",
-           sync ? "sync_tpdo" : "sdo_upload", count, (double)count / seconds,
-           percentile_us(latency, count, 0.50), percentile_us(latency, count, 0.99),
-           percentile_us(latency, count, 1.0));
+           KINDS[kind].name, count, (double)count / seconds, percentile_us(latency, count, 0.50),
+           percentile_us(latency, count, 0.99), percentile_us(latency, count, 1.0));
     free(latency);
     return 0;
 }

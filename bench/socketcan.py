@@ -44,40 +44,42 @@ def stop(proc):
     proc.wait(timeout=10)
 
 
-def wait_ready(generator, node):
-    """Until the program answers an SDO upload (it has bound its socket)."""
+def wait_ready(generator, node, mode=None):
+    """Until the program answers the generator's transaction (it has bound its socket)."""
     deadline = time.monotonic() + 10
     while time.monotonic() < deadline:
-        if subprocess.run([generator, IFACE, str(node), "1"], capture_output=True).returncode == 0:
+        command = [generator] + ([mode] if mode else []) + [IFACE, str(node), "1"]
+        if subprocess.run(command, capture_output=True).returncode == 0:
             return
         time.sleep(0.05)
     sys.exit("socketcan.py: the program under test never answered")
 
 
-def generate(generator, node, count, sync=False):
-    command = [generator] + (["--sync"] if sync else []) + [IFACE, str(node), str(count)]
+def generate(generator, node, count, mode=None):
+    """The generator's JSON line; mode: None (SDO uploads), "--sync" or "--poll" (bench/sdo_rtt.c)."""
+    command = [generator] + ([mode] if mode else []) + [IFACE, str(node), str(count)]
     run = subprocess.run(command, capture_output=True, text=True)
     if run.returncode != 0:
         sys.exit(f"socketcan.py: {' '.join(command)}: {run.stderr.strip()}")
     return json.loads(run.stdout)
 
 
-def timed_run(pid, generator, node, count, sync=False):
+def timed_run(pid, generator, node, count, mode=None):
     """The generator's figures, with the CPU milliseconds the answering program spent per 10,000
     transactions (warm-up included in both)."""
     cpu0 = proc_stat_cpu(pid)
-    result = generate(generator, node, count, sync)
+    result = generate(generator, node, count, mode)
     result["cpu_ms_per_10k"] = round((proc_stat_cpu(pid) - cpu0) * 1e3 * 10000 / (count + WARM_UP), 1)
     return result
 
 
-def calls_per_transaction(pid, generator, node):
+def calls_per_transaction(pid, generator, node, mode=None):
     """{syscall: calls per transaction} of the program while the generator makes STRACE_COUNT
     (+ warm-up) transactions, by strace -c -f -p: every thread, counted by the kernel's ptrace
     stops, not sampled."""
     tracer = subprocess.Popen(["strace", "-c", "-f", "-p", str(pid)], stderr=subprocess.PIPE, text=True)
     time.sleep(0.5)  # strace has attached
-    generate(generator, node, STRACE_COUNT)
+    generate(generator, node, STRACE_COUNT, mode)
     tracer.send_signal(signal.SIGINT)
     _, stderr = tracer.communicate(timeout=10)
     transactions = STRACE_COUNT + WARM_UP
@@ -114,7 +116,7 @@ def main():
             result[key].append(timed_run(proc.pid, args.generator, node, args.count))
             mark(args.host_marks, f"{key}-{round_}-end")
             if key == "daemon":
-                result["sync"].append(timed_run(proc.pid, args.generator, node, args.count, sync=True))
+                result["sync"].append(timed_run(proc.pid, args.generator, node, args.count, "--sync"))
             stop(proc)
 
     for key, command in programs:

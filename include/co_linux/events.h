@@ -50,9 +50,10 @@ int co_linux_events_modify(co_linux_events_t *ev, int fd, uint32_t events);
 /* Stops watching fd (before its owner closes it); may be called from its handler. */
 void co_linux_events_remove(co_linux_events_t *ev, int fd);
 
-/* Arms the timer to `deadline` (CO_TIME_NEVER disarms it) unless it holds it already; a failure
- * is logged and stops the loop with EX_OSERR. */
-void co_linux_events_arm(co_linux_events_t *ev, co_time_t deadline);
+/* Arms the timer to `deadline` (CO_TIME_NEVER disarms it) unless it holds it already, or holds
+ * an earlier one that is still ahead of `now` (it fires early, and is armed then); a failure is
+ * logged and stops the loop with EX_OSERR. */
+void co_linux_events_arm(co_linux_events_t *ev, co_time_t deadline, co_time_t now);
 
 /* Sleeps until a descriptor is ready (no timeout); the number of ready ones in fired (at most
  * max), or -1 after logging why epoll_wait failed. */

@@ -96,12 +96,19 @@ const char *co_linux_events_open(co_linux_events_t *ev, co_linux_ready_fn on_tim
 }
 
 /* The timerfd is not read: the timerfd_settime here resets its expiration count, and it always
- * runs after a firing, since the earliest deadline then either moved or was disarmed. Were a
- * deadline still due at the armed time, the timer is left as it is and, still readable, brings
- * the loop straight back for it. */
-void co_linux_events_arm(co_linux_events_t *ev, co_time_t deadline)
+ * runs after a firing, since the armed deadline has then passed. Were a deadline still due at
+ * the armed time, the timer is left as it is and, still readable, brings the loop straight back
+ * for it.
+ *
+ * A deadline that only moved later while the armed one is still ahead is not armed: the timer
+ * fires at the earlier time, finds nothing due and is armed then. A watchdog that every frame
+ * pushes on (a DeviceNet I/O connection's, at each poll) would otherwise cost a timerfd_settime
+ * per frame; this way it costs one early wake-up per armed period. No deadline at all disarms at
+ * once, so that an idle loop does not wake up. */
+void co_linux_events_arm(co_linux_events_t *ev, co_time_t deadline, co_time_t now)
 {
-    if (deadline == ev->timer_armed)
+    bool later = deadline != CO_TIME_NEVER && deadline > ev->timer_armed && ev->timer_armed > now;
+    if (deadline == ev->timer_armed || later)
         return;
     struct itimerspec its;
     memset(&its, 0, sizeof its);

@@ -106,7 +106,7 @@ static void arm_timer(co_linux_loop_t *loop)
     co_time_t next = co_linux_bus_deadline(&loop->bus);
     for (co_linux_device_t *dev = loop->router.devices; dev; dev = dev->next)
         next = co_time_min(next, dev->deadline);
-    co_linux_events_arm(&loop->events, next);
+    co_linux_events_arm(&loop->events, next, loop->now);
 }
 
 /* The routes and the filter follow a changed consumer set before the frames of the wake-up

@@ -1,13 +1,19 @@
 /* The scanner of bench/devicenet: a bus of DeviceNet drives polled at a period, as a PLC's
  * scanner polls its scan list, on the portable scanner library and the Linux runtime's loop.
  *
- *   dn_poll_bus IFACE FIRST-LAST PERIOD-MS
+ *   dn_poll_bus [--spread] IFACE FIRST-LAST PERIOD-MS
  *
+ * IFACE may be --fd=FD: a socket the scanner inherits, one struct can_frame per datagram
+ * (bench/native-devicenet: one end of an AF_UNIX SOCK_SEQPACKET socketpair, on a kernel without
+ * CAN; co_linux_loop_open_fd).
  * The scanner (MAC ID 0, online at once: the drives' MAC IDs are FIRST..LAST, 1..63) allocates
  * the explicit and polled connections of every slave, sets the polled connection's expected
  * packet rate to PERIOD-MS (the slave's watchdog is 4 times it) and, once every slave's is set,
  * polls them all every PERIOD-MS from that moment on, in one scan cycle as a PLC's scanner does,
- * with 4 bytes of zeros (an assembly 21 that neither runs nor stops the drive). Then it prints
+ * with 4 bytes of zeros (an assembly 21 that neither runs nor stops the drive); with --spread the
+ * slaves' polls are spread evenly over the period instead (slave i at i x PERIOD / N), one frame at
+ * a time as a scan cycle's frames follow one another on a real bus, where a burst written at once
+ * on a socketpair reaches the slaves' side in one read. Then it prints
  * "polling N" on a line of its own, so that the measurement starts with the whole bus polled; a
  * slave that refuses or does not answer its allocation ends the program with status 1, saying
  * which. SIGUSR1 prints one JSON line of counts: the polls sent, the responses and the polls
@@ -46,6 +52,7 @@ typedef struct poll_bus {
     slave_step_t steps[DN_MAC_ID_MAX + 1];
     uint8_t polling; /* slaves at POLLING */
     uint16_t period_ms;
+    bool spread; /* the polls spread over the period, not in one burst */
     co_time_t now;
     int status;
 } poll_bus_t;
@@ -85,9 +92,11 @@ static void on_done(void *user, const dn_result_t *result)
     bus->steps[i] = POLLING;
     if (++bus->polling < bus->config.slave_count)
         return;
-    for (i = 0; i < bus->config.slave_count; i++)
-        dn_scanner_poll_every(&bus->scanner, bus->slaves[i].mac_id,
-                              (co_time_t)bus->period_ms * US_PER_MS, bus->now);
+    co_time_t period_us = (co_time_t)bus->period_ms * US_PER_MS;
+    for (i = 0; i < bus->config.slave_count; i++) {
+        co_time_t offset = bus->spread ? period_us * i / bus->config.slave_count : 0;
+        dn_scanner_poll_every(&bus->scanner, bus->slaves[i].mac_id, period_us, bus->now + offset);
+    }
     printf("polling %u\n", bus->polling);
     fflush(stdout);
 }
@@ -167,6 +176,18 @@ static int watch_sigusr1(poll_bus_t *bus)
     return fd;
 }
 
+/* The interface, or the inherited socket of --fd=FD. */
+static co_linux_open_result_t open_bus(co_linux_loop_t *loop, const co_linux_loop_config_t *config)
+{
+    if (strncmp(config->iface, "--fd=", 5) != 0)
+        return co_linux_loop_open(loop, config);
+    char *end = NULL;
+    long fd = strtol(config->iface + 5, &end, 10);
+    if (*end != '\0' || end == config->iface + 5 || fd < 0 || fd > 1023)
+        return CO_LINUX_OPEN_OS_ERROR;
+    return co_linux_loop_open_fd(loop, config, (int)fd);
+}
+
 static bool parse_range(const char *text, unsigned *first, unsigned *last)
 {
     char extra;
@@ -179,10 +200,14 @@ int main(int argc, char **argv)
     static poll_bus_t bus;
     unsigned first = 0, last = 0;
     char *end = NULL;
+    bus.spread = argc > 1 && strcmp(argv[1], "--spread") == 0;
+    argc -= bus.spread;
+    argv += bus.spread;
     unsigned long period = argc == 4 ? strtoul(argv[3], &end, 10) : 0;
     if (argc != 4 || !parse_range(argv[2], &first, &last) || *end != '\0' || period < 1 ||
         period > PERIOD_MS_MAX) {
-        fprintf(stderr, "usage: dn_poll_bus IFACE FIRST-LAST (MAC IDs 1..63) PERIOD-MS (1-%d)\n",
+        fprintf(stderr,
+                "usage: dn_poll_bus [--spread] IFACE FIRST-LAST (MAC IDs 1..63) PERIOD-MS (1-%d)\n",
                 PERIOD_MS_MAX);
         return EXIT_USAGE;
     }
@@ -198,7 +223,7 @@ int main(int argc, char **argv)
         return 1;
     co_log_setup("dn_poll_bus", CO_LOG_WARN);
     co_linux_loop_config_t config = {.iface = argv[1]};
-    if (co_linux_loop_open(&bus.loop, &config) != CO_LINUX_OPEN_OK) {
+    if (open_bus(&bus.loop, &config) != CO_LINUX_OPEN_OK) {
         fprintf(stderr, "dn_poll_bus: cannot open %s\n", argv[1]);
         return 1;
     }

@@ -4,6 +4,7 @@
  *   sdo_rtt IFACE NODE-ID COUNT          expedited uploads of 1000h, one at a time
  *   sdo_rtt --sync IFACE NODE-ID COUNT   SYNC -> synchronous TPDO6 latency
  *   sdo_rtt --poll IFACE MAC-ID COUNT    DeviceNet poll commands, one at a time
+ *   sdo_rtt --every=US ...               one transaction every US microseconds (a paced load)
  *
  * IFACE may be --fd=FD: a socket the generator inherits, one struct can_frame per datagram
  * (bench/native: one end of an AF_UNIX SOCK_SEQPACKET socketpair, on a kernel without CAN).
@@ -16,7 +17,10 @@
  * after SYNC and times the TPDO each one triggers. --poll sends poll commands of 4 bytes of zeros
  * (an assembly 21 that neither runs nor stops the drive; group 2 message 5 of MAC-ID) and waits
  * for each poll response (group 1 message 15): the polled connection must be allocated and
- * established already (bench/devicenet does it with dnscan). Prints one JSON line: transactions per
+ * established already (bench/devicenet does it with dnscan). --every=US, before the rest, starts
+ * the transactions US microseconds apart (the first at once, clock_nanosleep to an absolute
+ * time) instead of back to back, so that the answering program sleeps between them as on a bus
+ * whose frames are spread (bench/native-devicenet). Prints one JSON line: transactions per
  * second, latency p50/p99/max in microseconds. Exits 1, saying why, when an answer is missing or an
  * SDO request is aborted. */
 #include "dn/dn_link.h"
@@ -235,8 +239,32 @@ static const struct {
     [POLL] = {"--poll", "poll", poll_command, 0, DN_MAC_ID_MAX},
 };
 
+/* Sleeps until `start` + `index` x `interval_ns` (CLOCK_MONOTONIC); nothing when interval_ns is 0.
+ */
+static void wait_turn(uint64_t start, size_t index, uint64_t interval_ns)
+{
+    if (interval_ns == 0)
+        return;
+    uint64_t at = start + index * interval_ns;
+    struct timespec ts = {.tv_sec = (time_t)(at / 1000000000u),
+                          .tv_nsec = (long)(at % 1000000000u)};
+    while (clock_nanosleep(CLOCK_MONOTONIC, TIMER_ABSTIME, &ts, NULL) == EINTR)
+        continue;
+}
+
 int main(int argc, char **argv)
 {
+    uint64_t interval_ns = 0;
+    if (argc > 1 && strncmp(argv[1], "--every=", 8) == 0) {
+        char *end = NULL;
+        interval_ns = strtoull(argv[1] + 8, &end, 10) * 1000u;
+        if (*end != '\0' || interval_ns == 0) {
+            fprintf(stderr, "sdo_rtt: bad %s\n", argv[1]);
+            return 64;
+        }
+        argc--;
+        argv++;
+    }
     transaction_kind_t kind = SDO_UPLOAD;
     for (transaction_kind_t k = SYNC_TPDO; k <= POLL && argc > 1; k++)
         if (strcmp(argv[1], KINDS[k].option) == 0)
@@ -251,7 +279,8 @@ int main(int argc, char **argv)
         node > KINDS[kind].id_max || count < 1 || count > 10000000) {
         fprintf(stderr,
                 "usage: sdo_rtt [--sync] (IFACE | --fd=FD) NODE-ID (1-127) COUNT (1-10000000)\n"
-                "       sdo_rtt --poll (IFACE | --fd=FD) MAC-ID (0-63) COUNT (1-10000000)\n");
+                "       sdo_rtt --poll (IFACE | --fd=FD) MAC-ID (0-63) COUNT (1-10000000)\n"
+                "       (either after --every=US: one transaction every US microseconds)\n");
         return 64;
     }
     bus_t bus;
@@ -271,6 +300,7 @@ int main(int argc, char **argv)
     }
     uint64_t started = now_ns();
     for (size_t i = 0; i < count; i++) {
+        wait_turn(started, i, interval_ns);
         uint64_t t0 = now_ns();
         if (transaction(&bus) != 0)
             return 1;

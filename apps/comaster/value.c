@@ -266,7 +266,7 @@ bool comaster_value_format(const comaster_type_t *type, const uint8_t *data, siz
 }
 
 /* "0x203C:2", "203C:2", "0x1008": index in hexadecimal (four digits without 0x, so that a
- * mnemonic such as ACC is a name), sub-index in decimal or 0x hexadecimal. */
+ * parameter code such as ACC is a name), sub-index in decimal or 0x hexadecimal. */
 static bool parse_numeric_object(const char *text, comaster_object_t *object)
 {
     const char *p = text;
@@ -294,6 +294,30 @@ static bool parse_numeric_object(const char *text, comaster_object_t *object)
     object->index = (uint16_t)index;
     object->sub = (uint8_t)sub;
     return true;
+}
+
+/* Up to this many codes are suggested for a name the EDS does not know. */
+#define SUGGESTED_CODES_MAX 3u
+
+/* "no object of the EDS is named 'ACX' (the closest codes are ACC, AC2): ..." */
+static void unknown_name(const eds_t *eds, const char *text, char *err, size_t err_len)
+{
+    const eds_entry_t *codes[SUGGESTED_CODES_MAX];
+    size_t count = eds_closest_codes(eds, text, codes, SUGGESTED_CODES_MAX);
+    char closest[256] = "";
+    size_t used = 0;
+    for (size_t i = 0; i < count && used < sizeof closest; i++) {
+        const char *lead = i > 0        ? ", "
+                           : count == 1 ? " (the closest code is "
+                                        : " (the closest codes are ";
+        int code_len = (int)strcspn(codes[i]->name, " ");
+        used += (size_t)snprintf(closest + used, sizeof closest - used, "%s%.*s%s", lead, code_len,
+                                 codes[i]->name, i + 1 == count ? ")" : "");
+    }
+    snprintf(err, err_len,
+             "no object of the EDS is named '%s'%s: give its ParameterName (or code, ACC), or "
+             "INDEX:SUB such as 0x203C:2",
+             text, closest);
 }
 
 bool comaster_object_parse(const char *text, const eds_t *eds, comaster_object_t *object, char *err,
@@ -326,10 +350,7 @@ bool comaster_object_parse(const char *text, const eds_t *eds, comaster_object_t
                  text, e->index, e->sub == EDS_OBJECT ? 0 : e->sub, e->name);
         return false;
     case EDS_LOOKUP_NONE:
-        snprintf(err, err_len,
-                 "no object of the EDS is named '%s': give its ParameterName (or mnemonic, "
-                 "ACC), or INDEX:SUB such as 0x203C:2",
-                 text);
+        unknown_name(eds, text, err, err_len);
         return false;
     }
     object->index = e->index;

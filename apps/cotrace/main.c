@@ -217,7 +217,7 @@ static int decode_stream(decoder_t *dec, FILE *in, const char *name, bool strict
         if (line[n - 1] == '\n')
             line[n - 1] = '\0';
         fprintf(stderr,
-                "cotrace: %s:%lu: not a candump -L line: '%.80s': expected '(SECONDS.MICROS) "
+                "cotrace: %s:%lu: not a candump -L line: '%.80s': expected '(SECONDS.FRACTION) "
                 "IFACE ID#DATA', e.g. (1700000000.000100) vcan0 604#4008100000000000\n",
                 name, number, line);
         rc = EX_DATAERR;

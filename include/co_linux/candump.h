@@ -2,7 +2,8 @@
  *   (1700000000.123456) vcan0 604#4000100000000000
  * 3 hex digits for an 11-bit identifier, 8 for a 29-bit one (error frames: 8 digits including
  * CAN_ERR_FLAG, as candump prints them), upper-case data bytes, `R` for a remote frame followed by
- * its DLC when non-zero (`704#R`, `704#R1`). */
+ * its DLC when non-zero (`704#R`, `704#R1`). Written with 6 fraction digits; read with any number
+ * of digits on either side of the point, as canplayer and log2asc read them. */
 #ifndef CO_LINUX_CANDUMP_H
 #define CO_LINUX_CANDUMP_H
 

@@ -1,6 +1,8 @@
 /* A small leveled logger for the Linux runtime and the daemon: one line per message on stderr,
  * "<ident>: <level>: <message>", written with a single write so lines of concurrent processes
- * never interleave. */
+ * never interleave. When stderr is the systemd journal ($JOURNAL_STREAM) each line starts with
+ * its syslog priority, "<3>" error, "<4>" warn, "<6>" info, "<7>" debug, which journald keeps as
+ * the entry's priority and strips from the text. */
 #ifndef CO_LINUX_LOG_H
 #define CO_LINUX_LOG_H
 
@@ -8,7 +10,8 @@
 
 typedef enum co_log_level { CO_LOG_ERROR, CO_LOG_WARN, CO_LOG_INFO, CO_LOG_DEBUG } co_log_level_t;
 
-/* Sets the program name printed first on every line and the most verbose level printed. */
+/* Sets the program name printed first on every line and the most verbose level printed, and
+ * looks whether stderr is the journal. */
 void co_log_setup(const char *ident, co_log_level_t level);
 
 /* True when messages of this level are printed (to skip formatting work otherwise). */

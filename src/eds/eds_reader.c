@@ -320,24 +320,40 @@ bool eds_set_value(eds_t *eds, uint16_t index, uint8_t sub, uint64_t value)
     return true;
 }
 
-/* The first word of a name: the mnemonic of a manufacturer parameter ("ACC acceleration ..."). */
+/* The length of a name's first word: the code of a manufacturer parameter ("ACC acceleration"). */
+static size_t first_word_len(const char *name)
+{
+    return strcspn(name, " ");
+}
+
 static bool first_word_is(const char *name, const char *word)
 {
-    size_t len = strcspn(name, " ");
+    size_t len = first_word_len(name);
     return len == strlen(word) && strncasecmp(name, word, len) == 0;
 }
 
-static bool contains_nocase(const char *haystack, const char *needle)
+static bool is_word_char(char c)
+{
+    return isalnum((unsigned char)c) != 0;
+}
+
+/* The words of needle stand as whole words in haystack: "acceleration time" is in "ACC
+ * acceleration time (0.1 s)", but "NOPE" is not in "COL CANopen fault management". */
+static bool contains_words_nocase(const char *haystack, const char *needle)
 {
     size_t len = strlen(needle);
-    for (; *haystack; haystack++) {
-        if (strncasecmp(haystack, needle, len) == 0)
+    for (const char *p = haystack; *p; p++) {
+        if (strncasecmp(p, needle, len) != 0)
+            continue;
+        bool starts_word = p == haystack || !is_word_char(p[-1]) || !is_word_char(needle[0]);
+        bool ends_word = !is_word_char(p[len]) || !is_word_char(needle[len - 1]);
+        if (starts_word && ends_word)
             return true;
     }
     return false;
 }
 
-typedef enum name_match { MATCH_WHOLE, MATCH_FIRST_WORD, MATCH_PART, MATCH_KINDS } name_match_t;
+typedef enum name_match { MATCH_WHOLE, MATCH_FIRST_WORD, MATCH_WORDS, MATCH_KINDS } name_match_t;
 
 static bool name_matches(const char *entry_name, const char *name, name_match_t kind)
 {
@@ -346,11 +362,11 @@ static bool name_matches(const char *entry_name, const char *name, name_match_t 
         return strcasecmp(entry_name, name) == 0;
     case MATCH_FIRST_WORD:
         return first_word_is(entry_name, name);
-    case MATCH_PART:
+    case MATCH_WORDS:
     case MATCH_KINDS:
         break;
     }
-    return contains_nocase(entry_name, name);
+    return contains_words_nocase(entry_name, name);
 }
 
 /* A variable: a sub-index section, or the section of an object that has no sub-index sections. */
@@ -380,6 +396,73 @@ eds_lookup_t eds_find_by_name(const eds_t *eds, const char *name, const eds_entr
             return matches == 1 ? EDS_LOOKUP_FOUND : EDS_LOOKUP_AMBIGUOUS;
     }
     return EDS_LOOKUP_NONE;
+}
+
+/* CiA 301 7.4.1: the manufacturer-specific profile area. */
+#define MANUFACTURER_AREA_FIRST 0x2000u
+#define MANUFACTURER_AREA_LAST 0x5FFFu
+/* Longer names are phrases, never near a parameter code: no suggestion is looked for. */
+#define SUGGEST_NAME_MAX 32u
+
+/* A manufacturer parameter, whose name starts with its code: a variable of the manufacturer area
+ * other than a record's sub-index 0 ("Highest sub-index supported"). */
+static bool has_code(const eds_t *eds, const eds_entry_t *e)
+{
+    return e->name && e->index >= MANUFACTURER_AREA_FIRST && e->index <= MANUFACTURER_AREA_LAST &&
+           e->sub != 0 && is_variable(eds, e);
+}
+
+/* Levenshtein distance between a and the first b_len characters of b, ignoring case;
+ * strlen(a) <= SUGGEST_NAME_MAX. */
+static size_t edit_distance(const char *a, const char *b, size_t b_len)
+{
+    size_t a_len = strlen(a);
+    size_t row[SUGGEST_NAME_MAX + 1];
+    for (size_t i = 0; i <= a_len; i++)
+        row[i] = i;
+    for (size_t j = 1; j <= b_len; j++) {
+        size_t diagonal = row[0];
+        row[0] = j;
+        for (size_t i = 1; i <= a_len; i++) {
+            size_t substitute =
+                diagonal + (tolower((unsigned char)a[i - 1]) != tolower((unsigned char)b[j - 1]));
+            size_t best = row[i] + 1 < row[i - 1] + 1 ? row[i] + 1 : row[i - 1] + 1;
+            diagonal = row[i];
+            row[i] = substitute < best ? substitute : best;
+        }
+    }
+    return row[a_len];
+}
+
+static bool code_listed(const eds_entry_t *const *codes, size_t count, const eds_entry_t *e)
+{
+    size_t len = first_word_len(e->name);
+    for (size_t i = 0; i < count; i++) {
+        if (first_word_len(codes[i]->name) == len && strncasecmp(codes[i]->name, e->name, len) == 0)
+            return true;
+    }
+    return false;
+}
+
+size_t eds_closest_codes(const eds_t *eds, const char *name, const eds_entry_t **codes, size_t max)
+{
+    size_t name_len = strlen(name);
+    if (name_len == 0 || name_len > SUGGEST_NAME_MAX)
+        return 0;
+    /* At most half the name's letters changed (at least one): "ACX" is near ACC, "NOPE" near NSP,
+     * "speed reference" near no code. Nearest first, in the file's order among equals. */
+    size_t limit = name_len / 2 > 1 ? name_len / 2 : 1;
+    size_t count = 0;
+    for (size_t distance = 0; distance <= limit && count < max; distance++) {
+        for (size_t i = 0; i < eds->count && count < max; i++) {
+            const eds_entry_t *e = &eds->entries[i];
+            if (has_code(eds, e) &&
+                edit_distance(name, e->name, first_word_len(e->name)) == distance &&
+                !code_listed(codes, count, e))
+                codes[count++] = e;
+        }
+    }
+    return count;
 }
 
 static bool has_eds_suffix(const char *file)

@@ -71,8 +71,14 @@ typedef enum eds_lookup {
 
 /* Finds a variable (not a record's own section) by its ParameterName, case-insensitive: the whole
  * name ("ACC acceleration time (0.1 s)") or a DCF's Denotation ("speed"), else its first word, the
- * mnemonic of a manufacturer parameter ("ACC"), else a part of one name ("acceleration time"). */
+ * code of a manufacturer parameter ("ACC"), else whole words of one name ("acceleration time";
+ * "NOPE" is no word of "COL CANopen fault management"). */
 eds_lookup_t eds_find_by_name(const eds_t *eds, const char *name, const eds_entry_t **found);
+
+/* The manufacturer parameters (2000h-5FFFh) whose code, the first word of the name, is closest to
+ * name by edit distance, at most half its letters changed: up to max entries in *codes, one per
+ * code, nearest first. For a name that eds_find_by_name does not know ("ACX": ACC, AC2). */
+size_t eds_closest_codes(const eds_t *eds, const char *name, const eds_entry_t **codes, size_t max);
 
 /* A device as it tells who it is: 1018h:01, 1018h:02 and 1008h. */
 typedef struct eds_identity {

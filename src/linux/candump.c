@@ -1,12 +1,15 @@
 #include "co_linux/candump.h"
 
 #include <ctype.h>
+#include <errno.h>
 #include <stdint.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
 static const char hex_digits[] = "0123456789ABCDEF";
+
+#define NSEC_PER_SEC 1000000000L
 
 size_t co_candump_format(char *buf, size_t cap, const struct timespec *wall, const char *iface,
                          const struct can_frame *frame)
@@ -64,26 +67,31 @@ static bool parse_hex(const char **p, int digits, unsigned long *value)
     return true;
 }
 
+/* Reads "(SECONDS.FRACTION) ". candump writes 6 fraction digits, but canplayer and log2asc read
+ * any number of digits on either side of the point (at least one each), so hand-written and
+ * other tools' logs such as "(1.0)" are accepted too. The fraction is read as a decimal fraction
+ * of a second, kept to the nanosecond (D-CANDUMP-FRACTION). */
 static bool parse_timestamp(const char **p, struct timespec *wall)
 {
     const char *s = *p;
     if (*s++ != '(' || !isdigit((unsigned char)*s))
         return false;
     char *end;
+    errno = 0;
     long long sec = strtoll(s, &end, 10);
-    if (*end != '.')
+    if (errno == ERANGE || *end != '.' || !isdigit((unsigned char)end[1]))
         return false;
     s = end + 1;
-    long usec = 0;
-    int digits = 0;
-    while (isdigit((unsigned char)*s) && digits < 6) {
-        usec = usec * 10 + (*s++ - '0');
-        digits++;
+    long nsec = 0;
+    long scale = NSEC_PER_SEC;
+    for (; isdigit((unsigned char)*s); s++) {
+        scale /= 10;
+        nsec += (*s - '0') * scale;
     }
-    if (digits != 6 || *s++ != ')' || *s++ != ' ')
+    if (*s++ != ')' || *s++ != ' ')
         return false;
     wall->tv_sec = (time_t)sec;
-    wall->tv_nsec = usec * 1000;
+    wall->tv_nsec = nsec;
     *p = s;
     return true;
 }

@@ -164,9 +164,34 @@ START_TEST(objects_by_name)
     ck_assert_str_eq(o.name, "Manufacturer device name");
     ck_assert(!comaster_object_parse("no such thing", &eds, &o, err, sizeof err));
     ck_assert_str_eq(err, "no object of the EDS is named 'no such thing': give its ParameterName "
-                          "(or mnemonic, ACC), or INDEX:SUB such as 0x203C:2");
+                          "(or code, ACC), or INDEX:SUB such as 0x203C:2");
     ck_assert(!comaster_object_parse("time", &eds, &o, err, sizeof err));
-    ck_assert_msg(strstr(err, "'time' names several objects of the EDS") == err, "%s", err);
+    ck_assert_str_eq(err, "'time' names several objects of the EDS (one is 100C:00 'Guard time'): "
+                          "give more of the name, or INDEX:SUB");
+}
+END_TEST
+
+/* A name matches whole words of a ParameterName, not any part of one: "NOPE" is in "CANopen" but
+ * names nothing; an unknown name is told with the parameter codes closest to it. */
+START_TEST(names_match_words_and_unknown_ones_suggest_codes)
+{
+    comaster_object_t o;
+    char err[512];
+    ck_assert(!comaster_object_parse("NOPE", &eds, &o, err, sizeof err));
+    ck_assert_str_eq(err, "no object of the EDS is named 'NOPE' (the closest code is NSP): give "
+                          "its ParameterName (or code, ACC), or INDEX:SUB such as 0x203C:2");
+    ck_assert(!comaster_object_parse("ACX", &eds, &o, err, sizeof err));
+    ck_assert_str_eq(err, "no object of the EDS is named 'ACX' (the closest codes are ACC, AC2): "
+                          "give its ParameterName (or code, ACC), or INDEX:SUB such as 0x203C:2");
+    ck_assert(!comaster_object_parse("celeration", &eds, &o, err, sizeof err));
+    ck_assert_str_eq(err, "no object of the EDS is named 'celeration': give its ParameterName "
+                          "(or code, ACC), or INDEX:SUB such as 0x203C:2");
+    ck_assert(comaster_object_parse("deceleration time", &eds, &o, err, sizeof err));
+    ck_assert_uint_eq(o.index, 0x203C);
+    ck_assert_uint_eq(o.sub, 3);
+    ck_assert(comaster_object_parse("fault management", &eds, &o, err, sizeof err));
+    ck_assert_uint_eq(o.index, 0x2022);
+    ck_assert_uint_eq(o.sub, 2);
 }
 END_TEST
 
@@ -214,6 +239,7 @@ int main(void)
     TCase *named = tcase_create("names");
     tcase_add_checked_fixture(named, load_eds, free_eds);
     tcase_add_test(named, objects_by_name);
+    tcase_add_test(named, names_match_words_and_unknown_ones_suggest_codes);
     tcase_add_test(named, eds_for_identity);
     tcase_add_test(named, values_set_as_read_over_sdo);
     suite_add_tcase(s, named);

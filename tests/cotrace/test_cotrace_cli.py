@@ -66,7 +66,7 @@ class MalformedLines(unittest.TestCase):
         self.assertEqual(result.stdout, GOOD_OUT + GOOD_OUT)
         self.assertEqual(result.stderr,
                          "cotrace: <stdin>:2: not a candump -L line: 'garbage': expected "
-                         "'(SECONDS.MICROS) IFACE ID#DATA', e.g. (1700000000.000100) vcan0 "
+                         "'(SECONDS.FRACTION) IFACE ID#DATA', e.g. (1700000000.000100) vcan0 "
                          "604#4008100000000000\n")
 
     def test_strict_stops_at_the_first(self):
@@ -78,6 +78,27 @@ class MalformedLines(unittest.TestCase):
         self.assertEqual(result.stdout, GOOD_OUT)
         self.assertTrue(result.stderr.startswith(f"cotrace: {f.name}:2: not a candump -L line: "
                                                  "'(1700000000.000200) vcan0 604#12345'"))
+
+    def test_every_timestamp_canplayer_reads(self):
+        """canplayer and log2asc read any number of digits on either side of the point; the
+        fraction is a decimal fraction of a second (D-CANDUMP-FRACTION), shown to the microsecond."""
+        lines = ["(1.0) vcan0 000#0104\n", "(0.5) vcan0 000#0104\n",
+                 "(1700000000.1234567891) vcan0 000#0104\n", "(01.000100) vcan0 000#0104\n"]
+        result = cotrace(stdin="".join(lines))
+        self.assertEqual(result.stderr, "")
+        self.assertEqual(result.returncode, 0)
+        meaning = " vcan0 000#0104              NMT Start remote node, node 4\n"
+        self.assertEqual(result.stdout, "".join(f"({stamp}){meaning}" for stamp in [
+            "0000000001.000000", "0000000000.500000", "1700000000.123456", "0000000001.000100"]))
+
+    def test_timestamp_without_digits_refused(self):
+        for stamp in ["(1.)", "(.5)", "(1)", "(1.5x)"]:
+            result = cotrace(stdin=f"{stamp} vcan0 000#0104\n")
+            self.assertEqual(result.returncode, EX_DATAERR, stamp)
+            self.assertEqual(result.stderr,
+                             f"cotrace: <stdin>:1: not a candump -L line: '{stamp} vcan0 000#0104': "
+                             "expected '(SECONDS.FRACTION) IFACE ID#DATA', e.g. (1700000000.000100) "
+                             "vcan0 604#4008100000000000\n")
 
     def test_blank_lines_are_ignored(self):
         result = cotrace(stdin=GOOD + "\n" + GOOD)

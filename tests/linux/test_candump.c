@@ -101,13 +101,43 @@ START_TEST(parses_lower_case_and_no_newline)
 }
 END_TEST
 
+/* canplayer and log2asc read any number of digits on either side of the point; the fraction is
+ * a decimal fraction of a second, kept to the nanosecond (D-CANDUMP-FRACTION). */
+START_TEST(parses_any_number_of_timestamp_digits)
+{
+    static const struct {
+        const char *line;
+        long long sec;
+        long nsec;
+    } cases[] = {
+        {"(1.0) vcan0 604#00", 1, 0},
+        {"(0.5) vcan0 604#00", 0, 500000000},
+        {"(12.34567) vcan0 604#00", 12, 345670000},
+        {"(1700000000.123456789) vcan0 604#00", 1700000000, 123456789},
+        {"(1700000000.1234567891) vcan0 604#00", 1700000000, 123456789},
+        {"(007.000001) vcan0 604#00", 7, 1000},
+    };
+    for (size_t i = 0; i < sizeof cases / sizeof cases[0]; i++) {
+        struct timespec ts;
+        char iface[IFNAMSIZ];
+        struct can_frame f;
+        ck_assert_msg(co_candump_parse(cases[i].line, &ts, iface, &f), "refused %s", cases[i].line);
+        ck_assert_int_eq(ts.tv_sec, cases[i].sec);
+        ck_assert_int_eq(ts.tv_nsec, cases[i].nsec);
+    }
+}
+END_TEST
+
 START_TEST(refuses_malformed_lines)
 {
     static const char *const bad[] = {
         "",
         "604#00",
         "(1700000000.123456) vcan0 604",
-        "(1700000000.12345) vcan0 604#00",                  /* 5 fraction digits */
+        "(1700000000.) vcan0 604#00",                       /* no fraction digit */
+        "(.123456) vcan0 604#00",                           /* no second digit */
+        "(1700000000) vcan0 604#00",                        /* no point */
+        "(99999999999999999999.0) vcan0 604#00",            /* seconds overflow */
         "(1700000000.123456)vcan0 604#00",                  /* no space */
         "(1700000000.123456) vcan0 6040#00",                /* 4-digit id */
         "(1700000000.123456) vcan0 804#00",                 /* above 0x7FF */
@@ -138,6 +168,7 @@ int main(void)
     tcase_add_test(tc, refuses_too_small_buffer);
     tcase_add_test(tc, parses_what_it_formats);
     tcase_add_test(tc, parses_lower_case_and_no_newline);
+    tcase_add_test(tc, parses_any_number_of_timestamp_digits);
     tcase_add_test(tc, refuses_malformed_lines);
     suite_add_tcase(s, tc);
     return check_run_suite(s);

@@ -247,9 +247,10 @@ static bool same_span(const char *a, const span_t *b)
 static bool same_entry(const eds_entry_t *a, const eds_entry_t *b)
 {
     return a->index == b->index && a->sub == b->sub && a->data_type == b->data_type &&
-           a->has_value == b->has_value && a->value == b->value && same_string(a->name, b->name) &&
-           same_string(a->text, b->text) && a->configured == b->configured &&
-           same_string(a->denotation, b->denotation) && a->writable == b->writable;
+           a->has_value == b->has_value && a->value == b->value && a->negative == b->negative &&
+           same_string(a->name, b->name) && same_string(a->text, b->text) &&
+           a->configured == b->configured && same_string(a->denotation, b->denotation) &&
+           a->writable == b->writable;
 }
 
 static bool same_eds(const eds_t *a, const eds_t *b)
@@ -341,7 +342,7 @@ static void check_set_value(eds_t *eds)
         uint64_t value = 0x0123456789ABCDEFu ^ k;
         rig_check(eds_set_value(eds, index, at, value), "eds_set_value failed");
         const eds_entry_t *e = eds_find(eds, index, at);
-        rig_check(e != NULL && e->has_value && e->value == value,
+        rig_check(e != NULL && e->has_value && e->value == value && !e->negative,
                   "eds_find does not give the value eds_set_value set");
     }
 }

@@ -39,7 +39,7 @@ typedef struct comaster_slave {
     char name[COMASTER_NAME_MAX];
     char dcf_path[PATH_MAX];
     eds_t dcf;
-    co_net_write_t *writes; /* the DCF's configuration, in file order */
+    co_net_write_t *writes; /* the DCF's configuration in file order, a PDO's as one group */
     uint8_t *write_bytes;   /* the bytes the writes point at */
 } comaster_slave_t;
 

@@ -2,6 +2,7 @@
 
 #include <ctype.h>
 #include <errno.h>
+#include <float.h>
 #include <inttypes.h>
 #include <math.h>
 #include <stdio.h>
@@ -143,6 +144,11 @@ static bool parse_real(const comaster_type_t *type, const char *text, uint64_t *
         return false;
     }
     if (type->code == CO_DT_REAL32) {
+        if (fabs(v) > FLT_MAX) {
+            snprintf(err, err_len, "%s is out of range for REAL32 (at most %g in magnitude)", text,
+                     (double)FLT_MAX);
+            return false;
+        }
         float f = (float)v;
         uint32_t u;
         memcpy(&u, &f, sizeof u);
@@ -207,6 +213,87 @@ bool comaster_value_parse(const comaster_type_t *type, const char *text, uint8_t
                                 : parse_unsigned(type, text, &bits, err, err_len);
     if (!ok)
         return false;
+    put_le(out, bits, type->size);
+    *len = type->size;
+    return true;
+}
+
+/* The range of an integer type (BOOLEAN: 0..1) as signed and unsigned bounds. */
+static void integer_range(const comaster_type_t *type, int64_t *min, uint64_t *max)
+{
+    unsigned bits = 8u * type->size;
+    if (type->code == CO_DT_BOOLEAN) {
+        *min = 0;
+        *max = 1;
+    } else if (is_signed(type)) {
+        *max = (UINT64_C(1) << (bits - 1)) - 1;
+        *min = -(int64_t)*max - 1;
+    } else {
+        *min = 0;
+        *max = bits == 64 ? UINT64_MAX : (UINT64_C(1) << bits) - 1;
+    }
+}
+
+/* An integer of the reader ($NODEID resolved, negative in two's complement) within the type's
+ * range: a hexadecimal bit pattern of a negative number (0xFFFF for an INTEGER16) is out of it
+ * (docs/decisions.md, D-DCF-VALUES). */
+static bool dcf_integer(const comaster_type_t *type, const eds_entry_t *e, uint64_t *bits,
+                        char *err, size_t err_len)
+{
+    int64_t min;
+    uint64_t max;
+    integer_range(type, &min, &max);
+    if (!e->has_value) {
+        snprintf(err, err_len,
+                 "not a number for %s: give 12, -12 (a signed type), 0x1F, 017 or "
+                 "$NODEID+number",
+                 type->name);
+        return false;
+    }
+    bool fits = e->negative ? (int64_t)e->value >= min : e->value <= max;
+    if (!fits) {
+        if (min < 0)
+            snprintf(err, err_len, "out of range for %s (%" PRId64 "..%" PRIu64 ")", type->name,
+                     min, max);
+        else
+            snprintf(err, err_len, "out of range for %s (0..%" PRIu64 "%s)", type->name, max,
+                     e->negative ? ", no sign" : "");
+        return false;
+    }
+    *bits = e->value;
+    return true;
+}
+
+bool comaster_value_from_dcf(const eds_entry_t *e, uint8_t *out, size_t cap, size_t *len, char *err,
+                             size_t err_len)
+{
+    const comaster_type_t *type = comaster_type_by_code(e->data_type);
+    const char *text = e->text ? e->text : "";
+    if (!type) {
+        snprintf(err, err_len, "comaster cannot write a value of DataType 0x%04X (it writes %s)",
+                 e->data_type,
+                 "BOOLEAN, INTEGER8..64, UNSIGNED8..64, REAL32, REAL64, "
+                 "VISIBLE_STRING, OCTET_STRING and DOMAIN");
+        return false;
+    }
+    if (type->size == 0 && text[0] == '\0') {
+        snprintf(err, err_len, "an empty %s: nothing to write", type->name);
+        return false;
+    }
+    if (is_real(type) && strspn(text, "0123456789+-.eE") != strlen(text)) {
+        snprintf(err, err_len, "not a number for %s: give a decimal number such as 1.5 or -2e3",
+                 type->name);
+        return false;
+    }
+    if (type->size == 0 || is_real(type))
+        return comaster_value_parse(type, text, out, cap, len, err, err_len);
+    uint64_t bits;
+    if (!dcf_integer(type, e, &bits, err, err_len))
+        return false;
+    if (cap < type->size) {
+        snprintf(err, err_len, "more than %zu bytes", cap);
+        return false;
+    }
     put_le(out, bits, type->size);
     *len = type->size;
     return true;

@@ -32,6 +32,15 @@ const char *comaster_type_names(void);
 bool comaster_value_parse(const comaster_type_t *type, const char *text, uint8_t *out, size_t cap,
                           size_t *len, char *err, size_t err_len);
 
+/* The bytes of a DCF entry's value (eds_entry_t) for its DataType, as the master downloads it:
+ * an integer type's number as the EDS reader read it (decimal, 0x hexadecimal, 0 octal, $NODEID+
+ * number, a '-' sign on a lone number), within the type's range (a sign only for INTEGERn,
+ * BOOLEAN 0 or 1); REAL32/REAL64 a decimal number; VISIBLE_STRING its text, OCTET_STRING and
+ * DOMAIN hexadecimal bytes, none of them empty. False with the reason (without the entry's name)
+ * in err. */
+bool comaster_value_from_dcf(const eds_entry_t *e, uint8_t *out, size_t cap, size_t *len, char *err,
+                             size_t err_len);
+
 /* Prints an upload's len bytes as `type` into out. Integers and reals in decimal, strings as
  * they are, OCTET_STRING / DOMAIN as hexadecimal bytes. *is_text tells a JSON writer to quote
  * the result. False, with the reason in out, when len does not fit the type. */

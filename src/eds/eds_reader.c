@@ -91,7 +91,7 @@ static section_kind_t parse_section(const char *name, uint16_t *index, uint16_t 
 
 /* CiA 306 values: decimal, 0x hexadecimal, octal with a leading 0, and "$NODEID+x" / "x+$NODEID";
  * blanks around the terms. A term starts with a digit (no sign), and the sum fits 64 bits. */
-static bool parse_value(const char *text, uint8_t node_id, uint64_t *value)
+static bool parse_sum(const char *text, uint8_t node_id, uint64_t *value)
 {
     *value = 0;
     const char *p = text;
@@ -124,6 +124,31 @@ static bool parse_value(const char *text, uint8_t node_id, uint64_t *value)
         if (*p++ != '+')
             return false;
     }
+}
+
+/* A value as parse_sum reads it, or a lone number with a '-' sign (-1234, -0x10, -010), which
+ * CiA 306 allows for the signed types: *value is then its two's complement. A sign is never part
+ * of a $NODEID expression, whose terms are unsigned (docs/decisions.md, D-DCF-VALUES). */
+static bool parse_value(const char *text, uint8_t node_id, uint64_t *value, bool *negative)
+{
+    *negative = false;
+    const char *p = text;
+    while (isspace((unsigned char)*p))
+        p++;
+    if (*p != '-')
+        return parse_sum(text, node_id, value);
+    if (!isdigit((unsigned char)p[1]))
+        return false;
+    char *end;
+    errno = 0;
+    long long v = strtoll(p, &end, 0);
+    while (isspace((unsigned char)*end))
+        end++;
+    if (errno != 0 || *end != '\0')
+        return false;
+    *value = (uint64_t)v;
+    *negative = v < 0;
+    return true;
 }
 
 static eds_entry_t *add_entry(eds_t *eds, uint16_t index, uint16_t sub)
@@ -168,7 +193,7 @@ static bool set_key(parse_state_t *st, const ini_line_t *line, char *err, size_t
             return out_of_memory(line, err, err_len);
     } else if (strcasecmp(key, "DataType") == 0) {
         uint64_t type;
-        if (!parse_value(value, st->node_id, &type) || type > 0xFFFF) {
+        if (!parse_sum(value, st->node_id, &type) || type > 0xFFFF) {
             snprintf(err, err_len, "%s:%u: DataType '%s' is not a number such as 0x0006",
                      line->path, line->number, value);
             return false;
@@ -185,7 +210,8 @@ static bool set_key(parse_state_t *st, const ini_line_t *line, char *err, size_t
     } else if (strcasecmp(key, "ParameterValue") == 0 ||
                (strcasecmp(key, "DefaultValue") == 0 && !st->value_is_parameter)) {
         /* Strings and domains have values that are not numbers: they are only not decoded. */
-        e->has_value = parse_value(value, st->node_id, &e->value);
+        e->has_value = parse_value(value, st->node_id, &e->value, &e->negative);
+        e->value_line = line->number;
         free(e->text);
         e->text = strdup(value);
         if (!e->text)
@@ -200,7 +226,7 @@ static bool set_key(parse_state_t *st, const ini_line_t *line, char *err, size_t
 static void set_device_info(eds_t *eds, const char *key, const char *value)
 {
     uint64_t number;
-    if (!parse_value(value, 0, &number) || number > UINT32_MAX)
+    if (!parse_sum(value, 0, &number) || number > UINT32_MAX)
         return;
     if (strcasecmp(key, "VendorNumber") == 0)
         eds->vendor_number = (uint32_t)number;
@@ -317,6 +343,7 @@ bool eds_set_value(eds_t *eds, uint16_t index, uint8_t sub, uint64_t value)
         return false;
     e->has_value = true;
     e->value = value;
+    e->negative = false;
     return true;
 }
 

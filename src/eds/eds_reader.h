@@ -20,7 +20,9 @@ typedef struct eds_entry {
     uint16_t sub; /* 0..255, or EDS_OBJECT */
     uint16_t data_type;
     bool has_value;
-    uint64_t value; /* numeric value, $NODEID resolved */
+    uint64_t value; /* numeric value, $NODEID resolved; a negative one in two's complement */
+    bool negative;  /* the value was written with a '-' sign (only a lone number may have one) */
+    unsigned value_line; /* the line of the value's key, for messages */
     char *name;
     char *text; /* the value as written (a VISIBLE_STRING's default), or NULL */
     /* A DCF's own keys: the value is a ParameterValue (the configuration of the device, which a

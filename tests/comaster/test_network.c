@@ -18,12 +18,14 @@ static char err[512];
 static char tmpdir[] = "/tmp/comaster-network-XXXXXX";
 static char ini[PATH_MAX];
 static char cpj[PATH_MAX];
+static char dcf[PATH_MAX];
 
 static void setup(void)
 {
     ck_assert_ptr_nonnull(mkdtemp(tmpdir));
     snprintf(ini, sizeof ini, "%s/net.ini", tmpdir);
     snprintf(cpj, sizeof cpj, "%s/net.cpj", tmpdir);
+    snprintf(dcf, sizeof dcf, "%s/slave.dcf", tmpdir);
     err[0] = '\0';
 }
 
@@ -32,6 +34,7 @@ static void teardown(void)
     comaster_network_free(&net);
     unlink(ini);
     unlink(cpj);
+    unlink(dcf);
     rmdir(tmpdir);
     memcpy(tmpdir + strlen(tmpdir) - 6, "XXXXXX", 6);
 }
@@ -311,6 +314,163 @@ START_TEST(option_file_and_nodelist_syntax_errors)
 }
 END_TEST
 
+/* ---- a DCF's values and PDOs, as the master downloads them ---------------------------------- */
+
+/* The DCF `text` (after a [1000] section, so line 6 is its first line) as node 4's, for boot. */
+static int load_dcf(const char *text)
+{
+    comaster_network_free(&net);
+    char file[4096];
+    snprintf(file, sizeof file,
+             "[1000]\nParameterName=Device type\nDataType=0x0007\nAccessType=ro\n"
+             "DefaultValue=0x00010192\n%s",
+             text);
+    write_file(dcf, file);
+    return comaster_network_single(&net, 4, dcf, err, sizeof err);
+}
+
+/* An object section of the DCF: a plain variable, read-write, with its ParameterValue. */
+#define VARIABLE(index, type, value)                                                               \
+    "[" index "]\nParameterName=v\nObjectType=0x7\nDataType=" type                                 \
+    "\nAccessType=rw\nParameterValue=" value "\n"
+
+/* The writes of node 4 as the expedited SDO downloads that carry them, in candump text, one
+ * after the other with a blank; a write of more than 4 bytes as "segmented". */
+static const char *download_frames(void)
+{
+    static char text[4096];
+    static const uint8_t command[] = {0, 0x2F, 0x2B, 0x27, 0x23};
+    size_t used = 0;
+    text[0] = '\0';
+    for (size_t i = 0; i < slave(0)->write_count; i++) {
+        const co_net_write_t *w = &slave(0)->writes[i];
+        const char *blank = i ? " " : "";
+        if (w->len > 4) {
+            used += (size_t)snprintf(text + used, sizeof text - used, "%ssegmented", blank);
+            continue;
+        }
+        uint8_t data[4] = {0};
+        memcpy(data, w->data, w->len);
+        used += (size_t)snprintf(text + used, sizeof text - used,
+                                 "%s604#%02X%02X%02X%02X%02X%02X%02X%02X", blank, command[w->len],
+                                 w->index & 0xFF, w->index >> 8, w->subindex, data[0], data[1],
+                                 data[2], data[3]);
+    }
+    return text;
+}
+
+/* CiA 306: a sign for the signed types, decimal, 0x hexadecimal, 0 octal, $NODEID+number; every
+ * integer type to its limits, BOOLEAN, REAL32/REAL64 as decimal numbers. */
+START_TEST(every_numeric_form_of_every_type)
+{
+    ck_assert_int_eq(
+        load_dcf(VARIABLE("2005", "0x0003", "-1234") VARIABLE("2006", "0x0002", "-128")
+                     VARIABLE("2007", "0x0004", "-0x10") VARIABLE("2008", "0x0006", "010")
+                         VARIABLE("2009", "0x0007", "$NODEID+0x180") VARIABLE("200A", "0x0001", "1")
+                             VARIABLE("200B", "0x0008", "-1.5") VARIABLE("200C", "0x0003", "32767")
+                                 VARIABLE("200D", "0x0003", "-32768")
+                                     VARIABLE("200E", "0x0002", "-010")),
+        0);
+    ck_assert_str_eq(download_frames(), "604#2B0520002EFB0000 604#2F06200080000000 "
+                                        "604#23072000F0FFFFFF 604#2B08200008000000 "
+                                        "604#2309200084010000 604#2F0A200001000000 "
+                                        "604#230B20000000C0BF 604#2B0C2000FF7F0000 "
+                                        "604#2B0D200000800000 604#2F0E2000F8000000");
+    ck_assert_int_eq(load_dcf(VARIABLE("2005", "0x0015", "-2") VARIABLE(
+                         "2006", "0x001B", "0xFFFFFFFFFFFFFFFF") VARIABLE("2007", "0x0011", "0.5")),
+                     0);
+    ck_assert_str_eq(download_frames(), "segmented segmented segmented");
+    ck_assert_mem_eq(slave(0)->writes[0].data, "\xFE\xFF\xFF\xFF\xFF\xFF\xFF\xFF", 8);
+    ck_assert_mem_eq(slave(0)->writes[1].data, "\xFF\xFF\xFF\xFF\xFF\xFF\xFF\xFF", 8);
+    ck_assert_mem_eq(slave(0)->writes[2].data, "\x00\x00\x00\x00\x00\x00\xE0\x3F", 8);
+}
+END_TEST
+
+/* What cannot be written is refused with the file, the line, the section and the key. */
+START_TEST(values_out_of_their_type_are_refused)
+{
+    static const struct {
+        const char *dcf;
+        const char *message;
+    } cases[] = {
+        {VARIABLE("2005", "0x0003", "-32769"),
+         ":11: [2005] ParameterValue = '-32769': out of range for INTEGER16 (-32768..32767)"},
+        {VARIABLE("2005", "0x0003", "0xFFFF"),
+         ":11: [2005] ParameterValue = '0xFFFF': out of range for INTEGER16 (-32768..32767)"},
+        {VARIABLE("2005", "0x0006", "-1"),
+         ":11: [2005] ParameterValue = '-1': out of range for UNSIGNED16 (0..65535, no sign)"},
+        {VARIABLE("2005", "0x0006", "70000"),
+         ":11: [2005] ParameterValue = '70000': out of range for UNSIGNED16 (0..65535)"},
+        {VARIABLE("2005", "0x0005", "256"),
+         ":11: [2005] ParameterValue = '256': out of range for UNSIGNED8 (0..255)"},
+        {VARIABLE("2005", "0x0001", "2"),
+         ":11: [2005] ParameterValue = '2': out of range for BOOLEAN (0..1)"},
+        {VARIABLE("2005sub3", "0x0003", "$NODEID+-5"),
+         ":11: [2005sub3] ParameterValue = '$NODEID+-5': not a number for INTEGER16: give 12, "
+         "-12 (a signed type), 0x1F, 017 or $NODEID+number"},
+        {VARIABLE("2005", "0x0003", "-$NODEID"), ":11: [2005] ParameterValue = '-$NODEID': not a "
+                                                 "number for INTEGER16"},
+        {VARIABLE("2005", "0x0008", "0x3F800000"),
+         ":11: [2005] ParameterValue = '0x3F800000': not a number for REAL32: give a decimal "
+         "number such as 1.5 or -2e3"},
+        {VARIABLE("2005", "0x0008", "1e39"),
+         ":11: [2005] ParameterValue = '1e39': 1e39 is out of range for REAL32"},
+        {VARIABLE("2005", "0x0010", "-5"),
+         ":11: [2005] ParameterValue = '-5': comaster cannot write a value of DataType 0x0010"},
+    };
+    for (size_t i = 0; i < sizeof cases / sizeof cases[0]; i++) {
+        ck_assert_int_eq(load_dcf(cases[i].dcf), EX_DATAERR);
+        ck_assert_msg(strstr(err, cases[i].message) != NULL, "%zu: %s", i, err);
+        ck_assert_ptr_nonnull(strstr(err, "/slave.dcf:11: ["));
+    }
+}
+END_TEST
+
+#define SUB(index, sub, type, key, value)                                                          \
+    "[" index "sub" sub "]\nParameterName=v\nDataType=" type "\nAccessType=rw\n" key "=" value "\n"
+
+/* TPDO1 of a DCF that changes its transmission type, inhibit time, event timer and mapping, the
+ * PDO being valid: CiA 301's procedure as CiA 302 masters follow it, at the place of the PDO's
+ * first entry: invalidate, parameters, mapping count 0, entries, count, validate. */
+START_TEST(pdo_configured_invalid_then_valid)
+{
+    ck_assert_int_eq(
+        load_dcf(
+            VARIABLE("2005", "0x0003", "-1234") SUB("1800", "2", "0x0005", "ParameterValue", "254")
+                SUB("1800", "1", "0x0007", "DefaultValue", "$NODEID+0x180")
+                    SUB("1800", "3", "0x0006", "ParameterValue", "100")
+                        SUB("1800", "5", "0x0006", "ParameterValue", "500")
+                            SUB("1A00", "0", "0x0005", "ParameterValue", "2")
+                                SUB("1A00", "1", "0x0007", "ParameterValue", "0x60410010")
+                                    SUB("1A00", "2", "0x0007", "ParameterValue", "0x20050010")
+                                        VARIABLE("2006", "0x0005", "7")),
+        0);
+    ck_assert_str_eq(download_frames(), "604#2B0520002EFB0000 "
+                                        "604#2300180184010080 "
+                                        "604#2F001802FE000000 "
+                                        "604#2B00180364000000 "
+                                        "604#2B001805F4010000 "
+                                        "604#2F001A0000000000 "
+                                        "604#23001A0110004160 "
+                                        "604#23001A0210000520 "
+                                        "604#2F001A0002000000 "
+                                        "604#2300180184010000 "
+                                        "604#2F06200007000000");
+    /* A PDO the DCF leaves invalid stays so: no validation at the end. */
+    ck_assert_int_eq(load_dcf(SUB("1800", "1", "0x0007", "ParameterValue", "0x80000184")
+                                  SUB("1800", "5", "0x0006", "ParameterValue", "500")),
+                     0);
+    ck_assert_str_eq(download_frames(), "604#2300180184010080 604#2B001805F4010000");
+    /* Only a COB-ID: written alone, as before. */
+    ck_assert_int_eq(load_dcf(SUB("1800", "1", "0x0007", "ParameterValue", "$NODEID+0x190")), 0);
+    ck_assert_str_eq(download_frames(), "604#2300180194010000");
+    /* Without a COB-ID to invalidate and validate the PDO with, the DCF is refused. */
+    ck_assert_int_eq(load_dcf(SUB("1A00", "0", "0x0005", "ParameterValue", "1")), EX_DATAERR);
+    ck_assert_ptr_nonnull(strstr(err, "/slave.dcf: [1800sub1] has no value (ParameterValue or "
+                                      "DefaultValue) to configure the PDO with"));
+}
+END_TEST
+
 static Suite *network_suite(void)
 {
     Suite *s = suite_create("network");
@@ -325,6 +485,9 @@ static Suite *network_suite(void)
     tcase_add_test(tc, bad_files_are_refused);
     tcase_add_test(tc, option_file_and_nodelist_syntax);
     tcase_add_test(tc, option_file_and_nodelist_syntax_errors);
+    tcase_add_test(tc, every_numeric_form_of_every_type);
+    tcase_add_test(tc, values_out_of_their_type_are_refused);
+    tcase_add_test(tc, pdo_configured_invalid_then_valid);
     suite_add_tcase(s, tc);
     return s;
 }

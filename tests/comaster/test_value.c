@@ -78,6 +78,9 @@ START_TEST(reals_strings_bytes)
     round_trip("octets", "01 02 0a", (const uint8_t[]){1, 2, 0x0A}, 3, "01 02 0A");
     round_trip("domain", "DEADBEEF", (const uint8_t[]){0xDE, 0xAD, 0xBE, 0xEF}, 4, "DE AD BE EF");
     parse_fails("f32", "nan", "'nan' is not a REAL32: give a finite number such as 1.5 or -2e3");
+    /* Beyond a REAL32's finite range: refused, not written as an infinity. */
+    parse_fails("f32", "-1e39",
+                "-1e39 is out of range for REAL32 (at most 3.40282e+38 in magnitude)");
     parse_fails("octets", "0G", "'0G' is not hexadecimal bytes: give them as 01 02 0A or 01020A");
     parse_fails("octets", "010203040506070809", "more than 8 bytes");
 }

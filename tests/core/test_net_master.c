@@ -501,8 +501,14 @@ START_TEST(sdo_abort_of_a_write_is_recorded)
     table[1].writes = refused_write;
     table[1].write_count = 1;
     start_master();
+    /* Found, configuration refused (PLC300 5.6.3): contacted and init error together. */
     ck_assert_uint_eq(co_net_master_slave_status(&master, 5),
-                      CO_NET_SLAVE_INIT_ERROR); /* contacted was reset by the failure */
+                      CO_NET_SLAVE_CONTACTED | CO_NET_SLAVE_INIT_ERROR);
+    ck_assert_uint_eq(co_net_master_slave(&master, 5)->step, CO_NET_STEP_FAILED);
+    /* Every slave contacted, not every one configured. */
+    ck_assert_uint_eq(co_net_master_status(&master), CO_NET_MASTER_ALL_CONTACTED |
+                                                         CO_NET_MASTER_INIT_FINISHED |
+                                                         CO_NET_MASTER_INIT_ERROR);
     ck_assert_uint_eq(master.last_sdo_error.node_id, 5);
     ck_assert_uint_eq(master.last_sdo_error.index, 0x2000);
     ck_assert_uint_eq(master.last_sdo_error.subindex, 0x10);

@@ -474,8 +474,8 @@ static const row_t rows[] = {
     {S_DOWNLOAD, E_HB_STOP, DOWNLOAD, 0x01, "", 200},
     {S_DOWNLOAD, E_SILENCE, DOWNLOAD, 0x01, "", 100},
     {S_DOWNLOAD, E_SDO_DONE, OPERATIONAL, 0x0F, "000#0104", 100}, /* first heartbeat due */
-    {S_DOWNLOAD, E_SDO_ABORT, FAILED, 0x10, "", 400},
-    {S_DOWNLOAD, E_TIMEOUT, FAILED, 0x10, "604#8017100000000405", 400},
+    {S_DOWNLOAD, E_SDO_ABORT, FAILED, 0x11, "", 400},             /* contacted stays */
+    {S_DOWNLOAD, E_TIMEOUT, FAILED, 0x11, "604#8017100000000405", 400},
     {S_DOWNLOAD, E_START, WAIT_BOOT, 0x00, "000#8204", 300},
     /* Configured, waiting for the start of all; the heartbeat is watched. */
     {S_WAIT_START, E_BOOT_UP, DEVICE_TYPE, 0x00, BOOT_AGAIN, 200},

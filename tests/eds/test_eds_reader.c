@@ -203,7 +203,7 @@ START_TEST(object_sections_named_as_cia306_writes_them)
 }
 END_TEST
 
-/* CiA 306 numbers: decimal, 0x hex or octal, "+" only between the terms of a sum, no sign before a
+/* CiA 306 numbers: decimal, 0x hex or octal, "+" only between the terms of a sum, no "+" before a
  * number, and no sum beyond 64 bits. */
 START_TEST(numbers_as_cia306_writes_them)
 {
@@ -232,6 +232,46 @@ START_TEST(numbers_as_cia306_writes_them)
 }
 END_TEST
 
+/* A '-' sign before a lone number (the value of a signed type): decimal, hex or octal, in two's
+ * complement, down to INT64_MIN; never in a $NODEID sum, never before a blank or a second sign;
+ * not in a DataType. The line of the value is kept for messages. */
+START_TEST(negative_numbers_alone)
+{
+    ck_assert_int_eq(load("[1000]\n"
+                          "DefaultValue=-1234\n"
+                          "[1001]\n"
+                          "ParameterValue= -0x10 \n"
+                          "[1002]\n"
+                          "DefaultValue=-010\n"
+                          "[1003]\n"
+                          "DefaultValue=-9223372036854775808\n"
+                          "[1004]\n"
+                          "DefaultValue=-9223372036854775809\n"
+                          "[1005]\n"
+                          "DefaultValue=-5+$NODEID\n"
+                          "[1006]\n"
+                          "DefaultValue=$NODEID+-5\n"
+                          "[1007]\n"
+                          "DefaultValue=- 5\n"
+                          "[1008]\n"
+                          "DefaultValue=--5\n"
+                          "[1009]\n"
+                          "DefaultValue=-$NODEID\n"),
+                     EDS_OK);
+    static const int64_t values[] = {-1234, -16, -8, INT64_MIN};
+    for (uint16_t index = 0x1000; index <= 0x1003; index++) {
+        const eds_entry_t *e = eds_find(&eds, index, 0);
+        ck_assert_msg(e->has_value && e->negative, "%04X", index);
+        ck_assert_int_eq((int64_t)e->value, values[index - 0x1000]);
+    }
+    ck_assert_uint_eq(eds_find(&eds, 0x1001, 0)->value_line, 4);
+    for (uint16_t index = 0x1004; index <= 0x1009; index++)
+        ck_assert_msg(!eds_find(&eds, index, 0)->has_value, "%04X has a value", index);
+    ck_assert_str_eq(error_of("[1000]\nDataType=-7\n"),
+                     ":2: DataType '-7' is not a number such as 0x0006");
+}
+END_TEST
+
 int main(void)
 {
     Suite *s = suite_create("eds_reader");
@@ -245,6 +285,7 @@ int main(void)
     tcase_add_test(tc, syntax_errors_name_the_line);
     tcase_add_test(tc, object_sections_named_as_cia306_writes_them);
     tcase_add_test(tc, numbers_as_cia306_writes_them);
+    tcase_add_test(tc, negative_numbers_alone);
     suite_add_tcase(s, tc);
     return check_run_suite(s);
 }

@@ -187,6 +187,74 @@ def test_block_transfers_against_local_node(local_node):
         0, "LocalNode label\n", "")
 
 
+# A DCF for LocalNode as configuration tools write one (CiA 306): a negative INTEGER16, and TPDO1's
+# transmission type, inhibit time, event timer and mapping while the PDO is valid.
+LOCAL_NODE_DCF = """[1000]
+ParameterName=Device type
+DataType=0x0007
+AccessType=ro
+DefaultValue=0
+[1800sub1]
+ParameterName=COB-ID
+DataType=0x0007
+AccessType=rw
+DefaultValue=$NODEID+0x180
+[1800sub2]
+ParameterName=Transmission type
+DataType=0x0005
+AccessType=rw
+ParameterValue=254
+[1800sub3]
+ParameterName=Inhibit time
+DataType=0x0006
+AccessType=rw
+ParameterValue=100
+[1800sub5]
+ParameterName=Event timer
+DataType=0x0006
+AccessType=rw
+ParameterValue=500
+[1A00sub0]
+ParameterName=Number of mapped objects
+DataType=0x0005
+AccessType=rw
+ParameterValue=2
+[1A00sub1]
+ParameterName=Object 1
+DataType=0x0007
+AccessType=rw
+ParameterValue=0x20030010
+[1A00sub2]
+ParameterName=Object 2
+DataType=0x0007
+AccessType=rw
+ParameterValue=0x20000020
+[2003]
+ParameterName=Offset
+DataType=0x0003
+AccessType=rw
+ParameterValue=-1234
+"""
+
+
+def test_boot_a_dcf_against_local_node(local_node, dump, tmp_path):
+    """comaster boot downloads a negative INTEGER16 and a valid PDO's configuration to a server the
+    project did not write: the PDO invalidated, configured, mapped (count 0, entries, count) and
+    validated (docs/comaster.md, "The configuration of PDOs"). LocalNode itself has no rule of a
+    valid PDO: it stores every write of the right length, so it would take them in any order."""
+    dcf = tmp_path / "local.dcf"
+    dcf.write_text(LOCAL_NODE_DCF)
+    rc, out, err = comaster("boot", LOCAL_NODE, dcf)
+    assert rc == 0, out + err
+    for request in ("230018018A010080", "2F001802FE000000", "2B00180364000000", "2B001805F4010000",
+                    "2F001A0000000000", "23001A0110000320", "23001A0220000020", "2F001A0002000000",
+                    "230018018A010000", "2B0320002EFB0000"):
+        dump.expect(0x60A, request)  # in this order
+    assert comaster("read", LOCAL_NODE, "0x2003", "i16") == (0, "-1234\n", "")
+    assert comaster("read", LOCAL_NODE, "0x1A00:1", "u32") == (0, f"{0x20030010}\n", "")
+    assert comaster("read", LOCAL_NODE, "0x1800:1", "u32") == (0, f"{0x18A}\n", "")
+
+
 def assert_enabled(lines, node):
     """The last line of an enable: Operation enabled with remote (bit 9) set; bit 10 (target
     reached) depends on how far the ramp is when the status word is read."""

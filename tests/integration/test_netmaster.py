@@ -6,6 +6,7 @@ mismatch. Every wait is deadline based."""
 
 import os
 import queue
+import re
 import signal
 import subprocess
 import threading
@@ -230,6 +231,35 @@ def test_identity_mismatch_is_an_init_error(bus, start_daemon, run, tmp_path):
     rc, out, _ = r.request("status")
     assert rc == 0
     assert "node 6 drive6 0x0010 init error: identity mismatch (read 0x0000005F)" in out.splitlines(), out
+
+
+def configured(dcf, section, value):
+    """The DCF text with the DefaultValue of [section] turned into a ParameterValue of value."""
+    start = dcf.index(f"[{section}]\n")
+    end = dcf.index("\n\n", start)
+    block = re.sub(r"(?m)^DefaultValue=.*$", f"ParameterValue={value}", dcf[start:end])
+    return dcf[:start] + block + dcf[end:]
+
+
+def test_boot_signed_values_and_valid_pdos(bus, start_daemon, remote, tmp_path):
+    """A DCF as configuration tools write it (issue 19): 6042h = -1234 (INTEGER16), TPDO1's inhibit
+    time and TPDO6's mapping while both PDOs are valid, which the drive refuses (0x06090030,
+    0x06010000) unless the master invalidates them first, as it does."""
+    text = (NET / "drive4.dcf").read_text()
+    for section, value in (("6042", "-1234"), ("1800sub3", "200"), ("1A05sub0", "1")):
+        text = configured(text, section, value)
+    dcf = tmp_path / "drive4.dcf"
+    dcf.write_text(text)
+    start_daemon(bus, "--node-id", "4")
+    rc, out, err = comaster("boot", 4, dcf)
+    assert rc == 0, out + err
+    for request in ("2300180184010080", "2B001803C8000000", "2300180184010000",
+                    "2305180184020080", "2F051A0000000000", "2F051A0001000000", "2305180184020000",
+                    "2B4260002EFB0000"):
+        bus.expect(0x604, request)  # in this order
+    assert remote(4).sdo[0x6042].raw == -1234
+    assert remote(4).sdo[0x1800][3].raw == 200
+    assert remote(4).sdo[0x1A05][0].raw == 1
 
 
 def test_boot_one_slave(bus, start_daemon, remote):

@@ -183,6 +183,9 @@ static void release(co_net_master_t *m)
     m->current = m->config.slave_count;
 }
 
+/* A failed attempt keeps "contacted" when its identification succeeded (the attempt cleared it
+ * when it began): the PLC300 (5.6.3) shows a slave that was found but refused its configuration
+ * as contacted with an init error, one that was not found as an init error alone. */
 static void fail(co_net_master_t *m, size_t i, co_net_failure_t failure)
 {
     co_net_slave_t *s = slave_at(m, i);
@@ -190,7 +193,9 @@ static void fail(co_net_master_t *m, size_t i, co_net_failure_t failure)
     s->deadline = after_ms(m->now, m->config.retry_delay_ms);
     s->tried = true;
     set_step(m, i, CO_NET_STEP_FAILED);
-    set_status(m, i, (uint16_t)((s->status & ~SLAVE_PROGRESS) | CO_NET_SLAVE_INIT_ERROR));
+    set_status(m, i,
+               (uint16_t)((s->status & ~(SLAVE_PROGRESS & ~CO_NET_SLAVE_CONTACTED)) |
+                          CO_NET_SLAVE_INIT_ERROR));
     if (m->current == i)
         release(m);
 }
@@ -213,12 +218,12 @@ static void begin_attempt(co_net_master_t *m, size_t i)
                                   .user = m,
                                   .done = sdo_done};
     m->current = i;
+    clear_status(m, i, SLAVE_PROGRESS);
     if (co_sdo_client_init(&m->sdo, &sdo) != 0) {
         fail(m, i, CO_NET_FAIL_SDO);
         return;
     }
     s->failure = CO_NET_FAIL_NONE;
-    clear_status(m, i, SLAVE_PROGRESS);
     set_step(m, i, CO_NET_STEP_DEVICE_TYPE);
     begin_read(m, i, CO_IDX_DEVICE_TYPE, 0);
 }

@@ -282,7 +282,9 @@ static void check_slave(size_t i)
                   "operational without an NMT start since its reset or boot-up");
         break;
     case CO_NET_STEP_FAILED:
-        rig_check((st & CO_NET_SLAVE_INIT_ERROR) && !(st & STATUS_PROGRESS),
+        /* Contacted may stay: found, then its configuration failed (D-NET-MASTER-CONTACTED). */
+        rig_check((st & CO_NET_SLAVE_INIT_ERROR) &&
+                      !(st & STATUS_PROGRESS & ~CO_NET_SLAVE_CONTACTED),
                   "a failed slave without init error, or with the bits of progress");
         break;
     case CO_NET_STEP_LOST:

@@ -259,6 +259,16 @@ static void enter_failed(void)
     deliver("584#8000100000000206");
 }
 
+static const char *sdo_abort(uint8_t step);
+
+/* Found, then its configuration refused: contacted with the init error (D-NET-MASTER-CONTACTED),
+ * retried at 400 ms from the refusal. */
+static void enter_failed_found(void)
+{
+    enter_download();
+    deliver(sdo_abort(DOWNLOAD));
+}
+
 typedef enum situation {
     S_IDLE,
     S_WAIT_BOOT,
@@ -275,6 +285,7 @@ typedef enum situation {
     S_LOST_FIRST_HEARTBEAT,
     S_LOST_WAITING_START,
     S_FAILED,
+    S_FAILED_FOUND,
     SITUATIONS
 } situation_t;
 
@@ -300,6 +311,7 @@ static const struct {
     [S_LOST_FIRST_HEARTBEAT] = {"lost, never heard", enter_lost_first_heartbeat, LOST, 0x2F},
     [S_LOST_WAITING_START] = {"lost waiting start all", enter_lost_waiting_start, LOST, 0x27},
     [S_FAILED] = {"init error", enter_failed, FAILED, 0x10},
+    [S_FAILED_FOUND] = {"init error, found", enter_failed_found, FAILED, 0x11},
 };
 
 /* ---- the events ------------------------------------------------------------------------------ */
@@ -554,6 +566,16 @@ static const row_t rows[] = {
     {S_FAILED, E_SDO_ABORT, FAILED, 0x10, "", 400},
     {S_FAILED, E_TIMEOUT, WAIT_BOOT, 0x10, "000#8204", 300},
     {S_FAILED, E_START, WAIT_BOOT, 0x00, "000#8204", 300},
+    /* Found, then refused: as above; contacted holds until the slave restarts or is reset. */
+    {S_FAILED_FOUND, E_BOOT_UP, DEVICE_TYPE, 0x10, BOOT_AGAIN, 200},
+    {S_FAILED_FOUND, E_HB_PREOP, FAILED, 0x11, "", 400},
+    {S_FAILED_FOUND, E_HB_OP, FAILED, 0x11, "", 400},
+    {S_FAILED_FOUND, E_HB_STOP, FAILED, 0x11, "", 400},
+    {S_FAILED_FOUND, E_SILENCE, FAILED, 0x11, "", 300},
+    {S_FAILED_FOUND, E_SDO_DONE, FAILED, 0x11, "", 400},
+    {S_FAILED_FOUND, E_SDO_ABORT, FAILED, 0x11, "", 400},
+    {S_FAILED_FOUND, E_TIMEOUT, WAIT_BOOT, 0x10, "000#8204", 300},
+    {S_FAILED_FOUND, E_START, WAIT_BOOT, 0x00, "000#8204", 300},
 };
 
 #define ROWS (sizeof(rows) / sizeof(rows[0]))

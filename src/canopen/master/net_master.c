@@ -381,6 +381,7 @@ static void await_boot(co_net_master_t *m, size_t i, bool booted)
     co_net_slave_t *s = slave_at(m, i);
     abandon_transfer(m, i);
     stop_error_control(m, i);
+    clear_status(m, i, SLAVE_PROGRESS);
     s->booted = booted;
     s->deadline = after_ms(m->now, m->config.boot_time_ms);
     set_step(m, i, CO_NET_STEP_WAIT_BOOT);
@@ -430,7 +431,6 @@ static void booted_up(co_net_master_t *m, size_t i)
         s->booted = true;
         return;
     }
-    clear_status(m, i, SLAVE_PROGRESS);
     await_boot(m, i, true);
 }
 

@@ -40,19 +40,23 @@ extern const drive_fault_table_t atv312_family_faults;
  * D-MANUFACTURER-ADDRESS): ACC 9001, DEC 9002, HSP 3104, LSP 3105, FRS 9602, NCR 9603, NSP 9604,
  * LCR 3203, OTR 3208, CMD 8501, ETA 3201, COL 6401, CnF 6402, RFR 3202, LFR 8502, CHCF 8401,
  * rFC 8411, Fr1 8413, Fr2 8414, CCS 8421, Cd1 8423, Cd2 8424, Stt 11203, tUn 9608, LAC 8400,
- * rPS 9010, AC2 9012, dE2 9013. A macro, not a function, so that each model's profile stays a
- * constant initialiser (in flash on a microcontroller); the ATV31 (atv31/atv31.h) is the same
- * drive under another name. */
+ * rPS 9010, AC2 9012, dE2 9013. SDO writes longer than their object are taken when the extra bytes
+ * are 0 (CO_NODE_SDO_LONG_EXPEDITED): the manuals' own PL7 guarding example writes 100Ch and 100Dh
+ * with "Data length = 4 bytes" (docs/decisions.md, D-ATV312-LONG-EXPEDITED). A macro, not a
+ * function, so that each model's profile stays a constant initialiser (in flash on a
+ * microcontroller); the ATV31 (atv31/atv31.h) is the same drive under another name. */
 #define ATV312_FAMILY_PROFILE(dictionary, inputs)                                                  \
     {                                                                                              \
-        .od = (dictionary), .control_reverse = 0x0800, .control_ramp_stop = 0x1000,                \
-        .control_fast_stop = 0x2000 | 0x4000, .status_reverse = 0x8000, .status_stop_key = 0x4000, \
-        .fast_ramp_divider = 4, .acceleration = DRIVE_PARAM(0x203C, 2),                            \
-        .deceleration = DRIVE_PARAM(0x203C, 3), .high_speed = DRIVE_PARAM(0x2001, 5),              \
-        .low_speed = DRIVE_PARAM(0x2001, 6), .nominal_frequency = DRIVE_PARAM(0x2042, 3),          \
-        .nominal_current = DRIVE_PARAM(0x2042, 4), .nominal_speed = DRIVE_PARAM(0x2042, 5),        \
-        .motor_current = DRIVE_PARAM(0x2002, 4), .motor_torque = DRIVE_PARAM(0x2002, 9),           \
-        .control_word_copy = DRIVE_PARAM(0x2037, 2), .status_word_copy = DRIVE_PARAM(0x2002, 2),   \
+        .od = (dictionary), .node_options = CO_NODE_SDO_LONG_EXPEDITED,                            \
+        .node_options_code = &co_node_options, .control_reverse = 0x0800,                          \
+        .control_ramp_stop = 0x1000, .control_fast_stop = 0x2000 | 0x4000,                         \
+        .status_reverse = 0x8000, .status_stop_key = 0x4000, .fast_ramp_divider = 4,               \
+        .acceleration = DRIVE_PARAM(0x203C, 2), .deceleration = DRIVE_PARAM(0x203C, 3),            \
+        .high_speed = DRIVE_PARAM(0x2001, 5), .low_speed = DRIVE_PARAM(0x2001, 6),                 \
+        .nominal_frequency = DRIVE_PARAM(0x2042, 3), .nominal_current = DRIVE_PARAM(0x2042, 4),    \
+        .nominal_speed = DRIVE_PARAM(0x2042, 5), .motor_current = DRIVE_PARAM(0x2002, 4),          \
+        .motor_torque = DRIVE_PARAM(0x2002, 9), .control_word_copy = DRIVE_PARAM(0x2037, 2),       \
+        .status_word_copy = DRIVE_PARAM(0x2002, 2),                                                \
         .communication_loss_mode = DRIVE_PARAM(0x2022, 2),                                         \
         .network_fault_code = DRIVE_PARAM(0x2022, 3), .faults = &atv312_family_faults,             \
         .stop_type = DRIVE_PARAM(0x2052, 4), .channel_mode = DRIVE_PARAM(0x2036, 2),               \

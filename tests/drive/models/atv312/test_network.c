@@ -112,6 +112,30 @@ START_TEST(manual_sdo_vectors)
 }
 END_TEST
 
+/* The manual's node guarding example as its PL7 program sends it: WRITE_VAR with "Data length = 4
+ * bytes" writes 100Ch (UNSIGNED16) and 100Dh (UNSIGNED8) with command 0x23, the values zero
+ * extended; both are taken (docs/decisions.md, D-ATV312-LONG-EXPEDITED), and a life time of
+ * 500 ms x 4 = 2 s follows. A longer write whose extra bytes are not 0 is still too long. */
+START_TEST(manual_pl7_guarding_example)
+{
+    bench_t b;
+    bench_start(&b);
+    static const bench_exchange_t pl7[] = {
+        {"guard time", "604#230C1000F4010000", 0, {"584#600C100000000000"}},
+        {"life time factor", "604#230D100004000000", 0, {"584#600D100000000000"}},
+        {"extra byte not 0", "604#230D100004000100", 0, {"584#800D100012000706"}},
+        {"guarding", "704#R", 0, {"704#7F"}},
+    };
+    bench_play(&b, pl7, sizeof pl7 / sizeof pl7[0]);
+    ck_assert_uint_eq(bench_read(&b, 0x100C, 0), 500);
+    ck_assert_uint_eq(bench_read(&b, 0x100D, 0), 4);
+    bench_advance(&b, 1999000);
+    bench_expect_none(&b);
+    bench_advance(&b, 1000);
+    bench_expect(&b, "084#3081110000000000");
+}
+END_TEST
+
 /* T31-03 and T31-02: RPDO1 carries the control word, TPDO1 the status word on every change
  * (0x0627 where the manual misprints 0x0607, docs/decisions.md, D-STATUS-WORD-0627), spaced by
  * the 30 ms inhibit. */
@@ -247,6 +271,7 @@ int main(void)
     tcase_add_test(tc, pdo6_parameter_rules);
     tcase_add_test(tc, dictionary_dependent_cia301_rules);
     tcase_add_test(tc, manual_sdo_vectors);
+    tcase_add_test(tc, manual_pl7_guarding_example);
     tcase_add_test(tc, tpdo1_follows_the_status_word);
     tcase_add_test(tc, manual_pdo6_default_mappings);
     tcase_add_test(tc, manual_tpdo6_user_mapping);

@@ -121,6 +121,7 @@ START_TEST(manual_pl7_guarding_example)
         bench_expect_none(&b);
         bench_advance(&b, 1000);
         bench_expect(&b, "084#3081110000000000");
+        ck_assert_str_eq(drive_fault_latched(&b.drive)->code, "COF");
     }
 }
 END_TEST
@@ -167,6 +168,7 @@ START_TEST(heartbeat_only_from_v1_2)
     bench_advance(&b, 300000);
     bench_expect(&b, "084#3081110000000000");
     ck_assert_uint_eq(bench_read(&b, 0x6041, 0), 0x0608);
+    ck_assert_str_eq(drive_fault_latched(&b.drive)->code, "COF");
 }
 END_TEST
 
@@ -181,9 +183,9 @@ START_TEST(network_fault_fast_stop_with_col_3)
     bench_command(&b, 0x0006);
     bench_command(&b, 0x000F);
     bench_advance(&b, 3000000);
-    int cnf = drive_fault_find(&b.drive, "CnF");
-    ck_assert_int_ge(cnf, 0);
-    drive_fault_inject(&b.drive, (uint8_t)cnf, b.now);
+    int cof = drive_fault_find(&b.drive, "COF");
+    ck_assert_int_ge(cof, 0);
+    drive_fault_inject(&b.drive, (uint8_t)cof, b.now);
     b.deadline = drive_process(&b.drive, b.now);
     ck_assert_uint_eq(bench_read(&b, 0x6041, 0), 0x020F);
     bench_advance(&b, 350000);

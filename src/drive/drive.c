@@ -189,6 +189,7 @@ static void restart_drive(drive_t *drive, co_time_t now)
     drive->stop_key = false;
     drive->local_run = false;
     drive->auto_tune_end = CO_TIME_NEVER;
+    drive->service_received_at = CO_TIME_NEVER;
     drive_faults_restart(drive);
     drive->dirty = true;
 }
@@ -264,9 +265,32 @@ void drive_start(drive_t *drive, co_time_t now)
     settle(drive);
 }
 
+/* An SDO request to the node or a data frame of one of its valid RPDOs: the services a card's
+ * reception LED shows (NMT, SYNC, guarding and heartbeats are not). */
+static bool is_service_request(const drive_t *drive, const co_frame_t *frame)
+{
+    if (frame->flags & (CO_FRAME_RTR | CO_FRAME_EFF))
+        return false;
+    if (frame->id == CO_CAN_ID_SDO_RX + drive->node.node_id)
+        return true;
+    for (size_t i = 0; i < CO_CONFIG_RPDO_MAX; i++) {
+        const co_rpdo_t *rpdo = &drive->node.pdo.rpdo[i];
+        if (rpdo->valid && rpdo->can_id == frame->id)
+            return true;
+    }
+    return false;
+}
+
 void drive_receive(drive_t *drive, const co_frame_t *frame, co_time_t now)
 {
+    if (is_service_request(drive, frame))
+        drive->service_received_at = now;
     co_node_receive(&drive->node, frame, now);
+}
+
+co_time_t drive_last_service_request(const drive_t *drive)
+{
+    return drive->service_received_at;
 }
 
 /* A written entry settles the drive at once (on_written); a steady motor changes nothing over

@@ -285,7 +285,10 @@ void drive_receive(drive_t *drive, const co_frame_t *frame, co_time_t now)
 {
     if (is_service_request(drive, frame))
         drive->service_received_at = now;
+    uint8_t errors = drive->node.emcy.active_count;
     co_node_receive(&drive->node, frame, now);
+    if (drive->node.emcy.active_count != errors)
+        drive_output_publish(drive); /* an RPDO's length error raised or ended: the warning bit */
 }
 
 co_time_t drive_last_service_request(const drive_t *drive)
@@ -331,6 +334,7 @@ void drive_bus_event(drive_t *drive, uint16_t emcy_code, bool active)
         co_emcy_raise(&drive->node, emcy_code, bus_error_register(drive), NULL);
     else if (!drive_emcy_code_in_use(drive, emcy_code))
         co_emcy_clear(&drive->node, emcy_code);
+    drive_output_publish(drive); /* the warning bit */
 }
 
 void drive_communication_loss(drive_t *drive, co_time_t now)

@@ -133,6 +133,21 @@ bool drive_emcy_code_in_use(const drive_t *drive, uint16_t code)
     return false;
 }
 
+bool drive_warning_present(const drive_t *drive)
+{
+    const drive_fault_table_t *table = drive->profile->faults;
+    const co_emcy_t *emcy = &drive->node.emcy;
+    for (uint8_t e = 0; e < emcy->active_count; e++) {
+        bool fault = false;
+        for (uint8_t i = 0; i < table->count && !fault; i++)
+            fault = (drive->faults_active & fault_bit(i)) &&
+                    table->faults[i].emcy_code == emcy->active[e].code;
+        if (!fault)
+            return true;
+    }
+    return false;
+}
+
 /* The fault's EMCY code stays an active error while another fault or a bus condition reports it
  * (the Altivars' CFF and CFI are both 6300h). */
 static void forget_fault(drive_t *drive, uint8_t index)

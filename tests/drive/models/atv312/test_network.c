@@ -136,6 +136,30 @@ START_TEST(manual_pl7_guarding_example)
 }
 END_TEST
 
+/* The status word's bit 7, "Alarm" in the DeviceNet manual's ETA table, while a warning lasts: a
+ * CAN error passive (EMCY 8120h) sets it, TPDO1 carries it at once, and its end clears it after
+ * the TPDO1 inhibit time (30 ms); a fault is bit 3, not an alarm (D-STATUS-ALARM). */
+START_TEST(alarm_bit_while_a_warning_lasts)
+{
+    bench_t b;
+    bench_start(&b);
+    bench_operational(&b);
+    bench_expect(&b, "184#4006");
+    bench_advance(&b, 100000);
+    drive_bus_event(&b.drive, 0x8120, true);
+    bench_advance(&b, 0);
+    bench_expect(&b, "084#2081110000000000");
+    bench_expect(&b, "184#C006");
+    bench_advance(&b, 10000);
+    drive_bus_event(&b.drive, 0x8120, false);
+    bench_advance(&b, 0);
+    bench_expect(&b, "084#0000000000000000");
+    bench_expect_none(&b);
+    bench_advance(&b, 20000);
+    ck_assert_uint_eq(bench_expect(&b, "184#4006"), 130000);
+}
+END_TEST
+
 /* T31-03 and T31-02: RPDO1 carries the control word, TPDO1 the status word on every change
  * (0x0627 where the manual misprints 0x0607, docs/decisions.md, D-STATUS-WORD-0627), spaced by
  * the 30 ms inhibit. */
@@ -272,6 +296,7 @@ int main(void)
     tcase_add_test(tc, dictionary_dependent_cia301_rules);
     tcase_add_test(tc, manual_sdo_vectors);
     tcase_add_test(tc, manual_pl7_guarding_example);
+    tcase_add_test(tc, alarm_bit_while_a_warning_lasts);
     tcase_add_test(tc, tpdo1_follows_the_status_word);
     tcase_add_test(tc, manual_pdo6_default_mappings);
     tcase_add_test(tc, manual_tpdo6_user_mapping);

@@ -213,6 +213,7 @@ static void on_nmt_state(co_node_t *node, co_nmt_state_t state)
     drive_t *drive = drive_of(node);
     for (uint8_t i = 0; i < drive->bus_event_count; i++)
         co_emcy_raise(node, drive->bus_events[i], bus_error_register(drive), NULL);
+    drive_error_code_publish(drive);
     for (uint8_t i = 0; i < drive->profile->faults->count; i++) {
         if (drive_fault_cause_present(drive, i))
             raise_fault(drive, i);
@@ -334,6 +335,7 @@ void drive_bus_event(drive_t *drive, uint16_t emcy_code, bool active)
         co_emcy_raise(&drive->node, emcy_code, bus_error_register(drive), NULL);
     else if (!drive_emcy_code_in_use(drive, emcy_code))
         co_emcy_clear(&drive->node, emcy_code);
+    drive_error_code_publish(drive);
     drive_output_publish(drive); /* the warning bit */
 }
 

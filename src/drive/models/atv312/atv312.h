@@ -8,6 +8,7 @@
 #define ATV312_H
 
 #include "atv312_od.h" /* generated */
+#include "co/co_emcy.h"
 #include "drive/drive.h"
 
 /* The faults of the Altivar 312 and of the Altivar 31, their EMCY codes and reset classes
@@ -33,6 +34,10 @@ extern const drive_fault_table_t atv31_family_faults;
  * the base terminal card (ATV312 CANopen manual, "Control terminals characteristics"). */
 #define ATV312_LOGIC_INPUTS 3
 
+/* 1001h in the family's EMCYs, CAN bus conditions too: the manuals' byte 2, "=0 (no error) =1
+ * (error)", the generic bit alone (docs/decisions.md, D-ERROR-REGISTER). */
+#define ATV312_ERROR_REGISTER CO_ERR_REG_GENERIC
+
 /* The profile of an Altivar 31/312 on the dictionary `dictionary`, with `inputs` logic inputs and
  * the faults of `fault_table`. The
  * family's default assignment of control word bits 11-14 (DeviceNet manual, "CMD control word":
@@ -51,15 +56,15 @@ extern const drive_fault_table_t atv31_family_faults;
 #define ATV312_FAMILY_PROFILE(dictionary, inputs, fault_table)                                     \
     {                                                                                              \
         .od = (dictionary), .node_options = CO_NODE_SDO_LONG_EXPEDITED,                            \
-        .node_options_code = &co_node_options, .control_reverse = 0x0800,                          \
-        .control_ramp_stop = 0x1000, .control_fast_stop = 0x2000 | 0x4000,                         \
-        .status_reverse = 0x8000, .status_stop_key = 0x4000, .fast_ramp_divider = 4,               \
-        .acceleration = DRIVE_PARAM(0x203C, 2), .deceleration = DRIVE_PARAM(0x203C, 3),            \
-        .high_speed = DRIVE_PARAM(0x2001, 5), .low_speed = DRIVE_PARAM(0x2001, 6),                 \
-        .nominal_frequency = DRIVE_PARAM(0x2042, 3), .nominal_current = DRIVE_PARAM(0x2042, 4),    \
-        .nominal_speed = DRIVE_PARAM(0x2042, 5), .motor_current = DRIVE_PARAM(0x2002, 4),          \
-        .motor_torque = DRIVE_PARAM(0x2002, 9), .control_word_copy = DRIVE_PARAM(0x2037, 2),       \
-        .status_word_copy = DRIVE_PARAM(0x2002, 2),                                                \
+        .bus_error_register = ATV312_ERROR_REGISTER, .node_options_code = &co_node_options,        \
+        .control_reverse = 0x0800, .control_ramp_stop = 0x1000,                                    \
+        .control_fast_stop = 0x2000 | 0x4000, .status_reverse = 0x8000, .status_stop_key = 0x4000, \
+        .fast_ramp_divider = 4, .acceleration = DRIVE_PARAM(0x203C, 2),                            \
+        .deceleration = DRIVE_PARAM(0x203C, 3), .high_speed = DRIVE_PARAM(0x2001, 5),              \
+        .low_speed = DRIVE_PARAM(0x2001, 6), .nominal_frequency = DRIVE_PARAM(0x2042, 3),          \
+        .nominal_current = DRIVE_PARAM(0x2042, 4), .nominal_speed = DRIVE_PARAM(0x2042, 5),        \
+        .motor_current = DRIVE_PARAM(0x2002, 4), .motor_torque = DRIVE_PARAM(0x2002, 9),           \
+        .control_word_copy = DRIVE_PARAM(0x2037, 2), .status_word_copy = DRIVE_PARAM(0x2002, 2),   \
         .communication_loss_mode = DRIVE_PARAM(0x2022, 2),                                         \
         .network_fault_code = DRIVE_PARAM(0x2022, 3), .faults = (fault_table),                     \
         .stop_type = DRIVE_PARAM(0x2052, 4), .channel_mode = DRIVE_PARAM(0x2036, 2),               \

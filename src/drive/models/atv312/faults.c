@@ -1,18 +1,14 @@
 /* The faults of the Altivar 31/312 family (docs/atv312.md, "Faults"). Codes as the front panel
  * shows them; EMCY codes from the manuals' only code table, the Altivar 58 CANopen card manual's
  * (the ATV31/312 manuals: "the Emergency Error Code is the same as the variable Fault code
- * (603F)" without a list), where the ATV58 and the ATV312 share the fault; the error register
- * class is the CiA 301 class of the code. Reset classes after the Altivar 31/312 programming
- * manual's three lists (not among docs/manuals.md: the project's reading). Every fault freewheels:
- * the manuals give a stop to CnF alone, chosen by COL (the profile's communication_loss_mode), and
- * nothing for the others (the project's choice, docs/atv312.md). */
+ * (603F)" without a list), where the ATV58 and the ATV312 share the fault. No entry adds a class
+ * bit to 1001h: the manuals' EMCY byte 2 is "=0 (no error) =1 (error)" (docs/decisions.md,
+ * D-ERROR-REGISTER). Reset classes after the Altivar 31/312 programming manual's three lists (not
+ * among docs/manuals.md: the project's reading). Every fault freewheels: the manuals give a stop
+ * to CnF alone, chosen by COL (the profile's communication_loss_mode), and nothing for the others
+ * (the project's choice, docs/atv312.md). */
 #include "atv312/atv312.h"
-#include "co/co_emcy.h"
 
-#define CURRENT CO_ERR_REG_CURRENT
-#define VOLTAGE CO_ERR_REG_VOLTAGE
-#define TEMPERATURE CO_ERR_REG_TEMPERATURE
-#define COMMUNICATION CO_ERR_REG_COMMUNICATION
 #define COMMAND DRIVE_FAULT_RESET_COMMAND
 #define AUTOMATIC DRIVE_FAULT_RESET_AUTOMATIC
 #define POWER_CYCLE DRIVE_FAULT_RESET_POWER_CYCLE
@@ -23,13 +19,13 @@
  * DeviceNet manual names it (its CANopen manual shows the life guarding fault as COF); the
  * ATV31's is COF, the name its manual gives ("goes to COF fault"). */
 static const drive_fault_def_t atv312_faults[] = {
-    {"CnF", "network fault (life guarding, heartbeat)", 0x8130, COMMUNICATION, COMMAND, FREEWHEEL},
+    {"CnF", "network fault (life guarding, heartbeat)", 0x8130, 0, COMMAND, FREEWHEEL},
 #include "family_faults.inc"
 };
 
 static const drive_fault_def_t atv31_faults[] = {
-    {"COF", "CANopen communication fault (life guarding, heartbeat)", 0x8130, COMMUNICATION,
-     COMMAND, FREEWHEEL},
+    {"COF", "CANopen communication fault (life guarding, heartbeat)", 0x8130, 0, COMMAND,
+     FREEWHEEL},
 #include "family_faults.inc"
 };
 

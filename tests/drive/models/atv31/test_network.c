@@ -120,7 +120,7 @@ START_TEST(manual_pl7_guarding_example)
         bench_advance(&b, 1999000);
         bench_expect_none(&b);
         bench_advance(&b, 1000);
-        bench_expect(&b, "084#3081110000000000");
+        bench_expect(&b, "084#3081010000000000");
         ck_assert_str_eq(drive_fault_latched(&b.drive)->code, "COF");
     }
 }
@@ -166,7 +166,7 @@ START_TEST(heartbeat_only_from_v1_2)
     bench_rx(&b, "704#R");
     bench_expect(&b, "704#7F");
     bench_advance(&b, 300000);
-    bench_expect(&b, "084#3081110000000000");
+    bench_expect(&b, "084#3081010000000000");
     ck_assert_uint_eq(bench_read(&b, 0x6041, 0), 0x0608);
     ck_assert_str_eq(drive_fault_latched(&b.drive)->code, "COF");
 }

@@ -132,7 +132,7 @@ START_TEST(manual_pl7_guarding_example)
     bench_advance(&b, 1999000);
     bench_expect_none(&b);
     bench_advance(&b, 1000);
-    bench_expect(&b, "084#3081110000000000");
+    bench_expect(&b, "084#3081010000000000");
 }
 END_TEST
 
@@ -148,7 +148,7 @@ START_TEST(alarm_bit_while_a_warning_lasts)
     bench_advance(&b, 100000);
     drive_bus_event(&b.drive, 0x8120, true);
     bench_advance(&b, 0);
-    bench_expect(&b, "084#2081110000000000");
+    bench_expect(&b, "084#2081010000000000");
     bench_expect(&b, "184#C006");
     bench_advance(&b, 10000);
     drive_bus_event(&b.drive, 0x8120, false);
@@ -181,14 +181,14 @@ START_TEST(error_code_follows_the_emcy)
     bench_advance(&b, 100000);
     drive_bus_event(&b.drive, 0x8120, true);
     bench_advance(&b, 0);
-    bench_expect(&b, "084#2081110000000000");
+    bench_expect(&b, "084#2081010000000000");
     bench_expect(&b, "184#C006");
     bench_expect(&b, "284#C0062081");
     bench_advance(&b, 100000);
     drive_fault_inject(&b.drive, (uint8_t)drive_fault_find(&b.drive, "OHF"), b.now);
     drive_fault_remove_cause(&b.drive, (uint8_t)drive_fault_find(&b.drive, "OHF"), b.now);
     bench_advance(&b, 0);
-    bench_expect(&b, "084#1042190000000000"); /* 1001h: OHF's temperature, 8120h's communication */
+    bench_expect(&b, "084#1042010000000000"); /* 1001h "=1 (error)" */
     bench_expect(&b, "184#8806");
     bench_expect(&b, "284#88061042");
     bench_advance(&b, 100000);

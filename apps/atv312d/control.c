@@ -5,6 +5,7 @@
 #include "co_linux/log.h"
 #include "drive/panel.h"
 
+#include <ctype.h>
 #include <errno.h>
 #include <stdarg.h>
 #include <stdio.h>
@@ -440,14 +441,32 @@ static void put_bus_state(const atv312d_control_node_t *node, reply_t *r)
         node->id, ms, ns, supervisor);
 }
 
-/* The CANopen card's RUN and ERR LEDs (CiA 303-3); a DeviceNet card has MS and NS instead. */
+/* An LED's JSON key: its name in lower case, then "_led" ("run_led", "ok_led"). */
+static void put_led_key(const char *name, reply_t *r)
+{
+    put(r, "\"");
+    for (const char *c = name; *c != '\0'; c++)
+        put(r, "%c", tolower((unsigned char)*c));
+    put(r, "_led\":");
+}
+
+/* The CANopen card's LEDs as the model's manual names them: RUN and ERR (CiA 303-3), the ATV58
+ * card's OK and COM ("OK on, COM flashing"; JSON "ok_led":"on"); a DeviceNet card has MS and NS
+ * instead. */
 static void put_canopen_leds(const atv312d_control_node_t *node, reply_t *r)
 {
     if (node->devicenet)
         return;
-    const char *run = drive_led_name(drive_panel_run_led(node->drive));
-    const char *err = drive_led_name(drive_panel_err_led(node->drive));
-    put(r, r->json ? "\"run_led\":\"%s\",\"err_led\":\"%s\"," : "RUN %s, ERR %s, ", run, err);
+    uint8_t count;
+    const drive_indicator_t *leds = drive_panel_indicators(node->drive, &count);
+    for (uint8_t i = 0; i < count; i++) {
+        const char *pattern = drive_led_name(leds[i].pattern(node->drive, node->device->loop->now));
+        if (r->json) {
+            put_led_key(leds[i].name, r);
+            put(r, "\"%s\",", pattern);
+        } else
+            put(r, "%s %s, ", leds[i].name, pattern);
+    }
 }
 
 static void put_state(const atv312d_control_node_t *node, reply_t *r)

@@ -38,6 +38,7 @@ typedef struct cia402_state_machine {
 
 /* Status word 6041h: the state (mask 0x006F) and the CiA 402 bits the drive sets beyond it. */
 #define CIA402_SW_STATE_MASK 0x006Fu
+#define CIA402_SW_WARNING 0x0080u        /* a warning is present (the Altivars' "Alarm") */
 #define CIA402_SW_REMOTE 0x0200u         /* network control (forced local is active at 0) */
 #define CIA402_SW_TARGET_REACHED 0x0400u /* the speed equals its target */
 #define CIA402_SW_INTERNAL_LIMIT 0x0800u /* the reference was clipped to the speed limits */

@@ -140,6 +140,10 @@ typedef struct drive_profile {
     uint16_t status_stop_key;
     /* The faults of the model's manuals (faults.h); required. */
     const drive_fault_table_t *faults;
+    /* The LEDs of the model's card as its manual names them (panel.h), indicator_count of them;
+     * NULL: the CiA 303-3 RUN and ERR pair of the drive layer. */
+    const struct drive_indicator *indicators;
+    uint8_t indicator_count;
 } drive_profile_t;
 
 /* Values of the profile's communication_loss_mode. */
@@ -211,6 +215,9 @@ typedef struct drive {
     bool stop_key;           /* the STOP key was pressed, until the next run command */
     uint8_t load;            /* extra load torque, % of nominal torque */
     co_time_t auto_tune_end; /* when the running auto-tune completes; CO_TIME_NEVER: none runs */
+    /* When the node last received an SDO request or one of its RPDOs (a card's reception LED,
+     * drive_last_service_request); CO_TIME_NEVER: none since the power-up. */
+    co_time_t service_received_at;
 } drive_t;
 
 /* drive_init's error for a profile without a valid fault table. */
@@ -237,6 +244,9 @@ int drive_init(drive_t *drive, const drive_config_t *config);
 /* Boot-up: Pre-operational, the power state machine in Switch on disabled. */
 void drive_start(drive_t *drive, co_time_t now);
 void drive_receive(drive_t *drive, const co_frame_t *frame, co_time_t now);
+/* When the drive last received an SDO request or one of its valid RPDOs; CO_TIME_NEVER: none
+ * since the power-up (or the last reset node). */
+co_time_t drive_last_service_request(const drive_t *drive);
 /* Runs the motor model and co_node_process; returns the next deadline (CO_TIME_NEVER when the
  * motor is steady and the core has nothing due). */
 co_time_t drive_process(drive_t *drive, co_time_t now);

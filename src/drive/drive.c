@@ -189,6 +189,7 @@ static void restart_drive(drive_t *drive, co_time_t now)
     drive->stop_key = false;
     drive->local_run = false;
     drive->auto_tune_end = CO_TIME_NEVER;
+    drive->service_received_at = CO_TIME_NEVER;
     drive_faults_restart(drive);
     drive->dirty = true;
 }
@@ -212,6 +213,7 @@ static void on_nmt_state(co_node_t *node, co_nmt_state_t state)
     drive_t *drive = drive_of(node);
     for (uint8_t i = 0; i < drive->bus_event_count; i++)
         co_emcy_raise(node, drive->bus_events[i], bus_error_register(drive), NULL);
+    drive_error_code_publish(drive);
     for (uint8_t i = 0; i < drive->profile->faults->count; i++) {
         if (drive_fault_cause_present(drive, i))
             raise_fault(drive, i);
@@ -264,9 +266,35 @@ void drive_start(drive_t *drive, co_time_t now)
     settle(drive);
 }
 
+/* An SDO request to the node or a data frame of one of its valid RPDOs: the services a card's
+ * reception LED shows (NMT, SYNC, guarding and heartbeats are not). */
+static bool is_service_request(const drive_t *drive, const co_frame_t *frame)
+{
+    if (frame->flags & (CO_FRAME_RTR | CO_FRAME_EFF))
+        return false;
+    if (frame->id == CO_CAN_ID_SDO_RX + drive->node.node_id)
+        return true;
+    for (size_t i = 0; i < CO_CONFIG_RPDO_MAX; i++) {
+        const co_rpdo_t *rpdo = &drive->node.pdo.rpdo[i];
+        if (rpdo->valid && rpdo->can_id == frame->id)
+            return true;
+    }
+    return false;
+}
+
 void drive_receive(drive_t *drive, const co_frame_t *frame, co_time_t now)
 {
+    if (is_service_request(drive, frame))
+        drive->service_received_at = now;
+    uint8_t errors = drive->node.emcy.active_count;
     co_node_receive(&drive->node, frame, now);
+    if (drive->node.emcy.active_count != errors)
+        drive_output_publish(drive); /* an RPDO's length error raised or ended: the warning bit */
+}
+
+co_time_t drive_last_service_request(const drive_t *drive)
+{
+    return drive->service_received_at;
 }
 
 /* A written entry settles the drive at once (on_written); a steady motor changes nothing over
@@ -307,6 +335,8 @@ void drive_bus_event(drive_t *drive, uint16_t emcy_code, bool active)
         co_emcy_raise(&drive->node, emcy_code, bus_error_register(drive), NULL);
     else if (!drive_emcy_code_in_use(drive, emcy_code))
         co_emcy_clear(&drive->node, emcy_code);
+    drive_error_code_publish(drive);
+    drive_output_publish(drive); /* the warning bit */
 }
 
 void drive_communication_loss(drive_t *drive, co_time_t now)

@@ -101,6 +101,13 @@ void drive_faults_acknowledge(drive_t *drive);
  * one active error per code (CiA 301), however many causes share it: the code is cleared only
  * when none does. */
 bool drive_emcy_code_in_use(const drive_t *drive, uint16_t code);
+/* Whether the node reports an error by EMCY that is not one of the drive's active faults (a CAN
+ * bus condition, an RPDO length or timeout error): a warning, status word bit 7. */
+bool drive_warning_present(const drive_t *drive);
+/* 603Fh: the latched fault's EMCY code while a fault is active, else the code of a CAN bus
+ * condition still present, else 0 (the Altivar manuals: "The Emergency Error Code is the same as
+ * the variable Fault code (603F)"; D-ERROR-CODE-EMCY). */
+void drive_error_code_publish(drive_t *drive);
 /* Reset node: the drive forgets its faults (the EMCY producer forgets their errors), not the
  * causes still present. */
 void drive_faults_restart(drive_t *drive);

@@ -87,6 +87,16 @@ static void react(drive_t *drive, drive_fault_reaction_t reaction)
     cia402_fault(&drive->cia402, stopping);
 }
 
+void drive_error_code_publish(drive_t *drive)
+{
+    uint16_t code = 0;
+    if (drive->faults_active)
+        code = fault_def(drive, drive->fault_latched)->emcy_code;
+    else if (drive->bus_event_count > 0)
+        code = drive->bus_events[drive->bus_event_count - 1];
+    co_od_set_value(&drive->node, CIA402_IDX_ERROR_CODE, 0, code);
+}
+
 bool drive_fault_raise(drive_t *drive, uint8_t index)
 {
     if (drive->faults_active & fault_bit(index))
@@ -94,11 +104,10 @@ bool drive_fault_raise(drive_t *drive, uint8_t index)
     co_node_t *node = &drive->node;
     const drive_fault_def_t *def = fault_def(drive, index);
     drive_motor_advance(&drive->motor, node->now);
-    if (!drive->faults_active) {
+    if (!drive->faults_active)
         drive->fault_latched = index;
-        co_od_set_value(node, CIA402_IDX_ERROR_CODE, 0, def->emcy_code);
-    }
     drive->faults_active |= fault_bit(index);
+    drive_error_code_publish(drive);
     react(drive, reaction_of(drive, index));
     co_emcy_raise(node, def->emcy_code, CO_ERR_REG_GENERIC | def->error_register, NULL);
     return true;
@@ -133,6 +142,21 @@ bool drive_emcy_code_in_use(const drive_t *drive, uint16_t code)
     return false;
 }
 
+bool drive_warning_present(const drive_t *drive)
+{
+    const drive_fault_table_t *table = drive->profile->faults;
+    const co_emcy_t *emcy = &drive->node.emcy;
+    for (uint8_t e = 0; e < emcy->active_count; e++) {
+        bool fault = false;
+        for (uint8_t i = 0; i < table->count && !fault; i++)
+            fault = (drive->faults_active & fault_bit(i)) &&
+                    table->faults[i].emcy_code == emcy->active[e].code;
+        if (!fault)
+            return true;
+    }
+    return false;
+}
+
 /* The fault's EMCY code stays an active error while another fault or a bus condition reports it
  * (the Altivars' CFF and CFI are both 6300h). */
 static void forget_fault(drive_t *drive, uint8_t index)
@@ -150,7 +174,7 @@ void drive_faults_acknowledge(drive_t *drive)
         if (drive->faults_active & fault_bit(i))
             forget_fault(drive, i);
     }
-    co_od_set_value(&drive->node, CIA402_IDX_ERROR_CODE, 0, 0);
+    drive_error_code_publish(drive);
 }
 
 void drive_faults_restart(drive_t *drive)
@@ -171,15 +195,14 @@ static void end_automatic_fault(drive_t *drive, uint8_t index)
 {
     forget_fault(drive, index);
     if (drive->faults_active == 0) {
-        co_od_set_value(&drive->node, CIA402_IDX_ERROR_CODE, 0, 0);
         cia402_fault_cleared(&drive->cia402);
     } else if (drive->fault_latched == index) {
         uint8_t next = 0;
         while (!(drive->faults_active & fault_bit(next)))
             next++;
         drive->fault_latched = next;
-        co_od_set_value(&drive->node, CIA402_IDX_ERROR_CODE, 0, fault_def(drive, next)->emcy_code);
     }
+    drive_error_code_publish(drive);
 }
 
 bool drive_fault_cause_ends(drive_t *drive, uint8_t index, co_time_t now)

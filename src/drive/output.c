@@ -111,6 +111,8 @@ static uint16_t status_word(const drive_t *drive)
         status |= CIA402_SW_TARGET_REACHED;
     if (drive->limited)
         status |= CIA402_SW_INTERNAL_LIMIT;
+    if (drive_warning_present(drive))
+        status |= CIA402_SW_WARNING;
     if (drive_motor_reverse(motor))
         status |= drive->profile->status_reverse;
     return status;

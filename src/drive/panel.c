@@ -63,6 +63,34 @@ drive_led_t drive_panel_err_led(const drive_t *drive)
     return DRIVE_LED_OFF;
 }
 
+static drive_led_t run_pattern(const drive_t *drive, co_time_t now)
+{
+    (void)now;
+    return drive_panel_run_led(drive);
+}
+
+static drive_led_t err_pattern(const drive_t *drive, co_time_t now)
+{
+    (void)now;
+    return drive_panel_err_led(drive);
+}
+
+/* CiA 303-3's pair, which the Altivar 31 and 312 manuals' signalling tables follow. */
+static const drive_indicator_t cia303_indicators[] = {
+    {"RUN", "green", run_pattern},
+    {"ERR", "red", err_pattern},
+};
+
+const drive_indicator_t *drive_panel_indicators(const drive_t *drive, uint8_t *count)
+{
+    if (drive->profile->indicators != NULL) {
+        *count = drive->profile->indicator_count;
+        return drive->profile->indicators;
+    }
+    *count = sizeof cia303_indicators / sizeof cia303_indicators[0];
+    return cia303_indicators;
+}
+
 const char *drive_led_name(drive_led_t led)
 {
     switch (led) {
@@ -72,6 +100,8 @@ const char *drive_led_name(drive_led_t led)
         return "double flash";
     case DRIVE_LED_BLINKING:
         return "blinking";
+    case DRIVE_LED_FLASHING:
+        return "flashing";
     case DRIVE_LED_ON:
         return "on";
     case DRIVE_LED_OFF:

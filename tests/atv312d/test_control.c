@@ -5,6 +5,7 @@
  * a device of an unopened loop: nothing here reaches a socket. */
 #include "atv312/atv312.h"
 #include "atv312/atv312_devicenet.h"
+#include "atv58/atv58.h"
 #include "check_main.h"
 #include "control.h"
 
@@ -15,7 +16,8 @@
 #define MAC_ID 25
 
 static co_linux_loop_t loop;
-static uint8_t od_data[ATV312_OD_DATA_SIZE];
+static uint8_t
+    od_data[ATV312_OD_DATA_SIZE > ATV58_OD_DATA_SIZE ? ATV312_OD_DATA_SIZE : ATV58_OD_DATA_SIZE];
 static drive_t drive;
 static drive_dn_t dn;
 static co_linux_device_t device;
@@ -42,17 +44,22 @@ static co_time_t devicenet_process(void *ctx, co_time_t now)
 static const co_linux_device_ops_t canopen_ops = {.process = canopen_process};
 static const co_linux_device_ops_t devicenet_ops = {.process = devicenet_process};
 
-static void start_canopen(void)
+static void start_model(const drive_profile_t *profile)
 {
     memset(&loop, 0, sizeof loop);
     drive_config_t config = {
-        .profile = &atv312_profile, .od_data = od_data, .node_id = NODE, .send = no_send};
+        .profile = profile, .od_data = od_data, .node_id = NODE, .send = no_send};
     ck_assert_int_eq(drive_init(&drive, &config), 0);
     drive_start(&drive, loop.now);
     co_linux_loop_add(&loop, &device, &canopen_ops, &drive);
     node = (atv312d_control_node_t){
         .id = NODE, .drive = &drive, .device = &device, .counters = &counters};
     control = (atv312d_control_t){.nodes = &node, .count = 1};
+}
+
+static void start_canopen(void)
+{
+    start_model(&atv312_profile);
 }
 
 static void start_devicenet(void)
@@ -144,6 +151,27 @@ START_TEST(devicenet_state_shows_the_card_counters)
 }
 END_TEST
 
+/* Each model's LEDs as its manual names them: the ATV312's RUN and ERR (CiA 303-3), the ATV58
+ * card's green OK and yellow COM (COM flashing for 1 s after an SDO request). */
+START_TEST(canopen_state_shows_the_models_leds)
+{
+    char line[1024];
+    start_canopen();
+    atv312d_format_state(&node, false, line, sizeof line);
+    ck_assert_ptr_nonnull(strstr(line, ", display nSt, RUN blinking, ERR off, fault none, "));
+    atv312d_format_state(&node, true, line, sizeof line);
+    ck_assert_ptr_nonnull(strstr(line, ",\"run_led\":\"blinking\",\"err_led\":\"off\","));
+
+    start_model(&atv58_profile);
+    atv312d_format_state(&node, false, line, sizeof line);
+    ck_assert_ptr_nonnull(strstr(line, ", display nSt, OK on, COM off, fault none, "));
+    co_frame_t request = {.id = 0x604, .len = 8, .data = {0x40, 0x0C, 0x10}};
+    drive_receive(&drive, &request, loop.now);
+    atv312d_format_state(&node, true, line, sizeof line);
+    ck_assert_ptr_nonnull(strstr(line, ",\"ok_led\":\"on\",\"com_led\":\"flashing\","));
+}
+END_TEST
+
 int main(void)
 {
     Suite *s = suite_create("control");
@@ -152,6 +180,7 @@ int main(void)
     tcase_add_test(tc, devicenet_fault_is_the_supervisor_and_identity);
     tcase_add_test(tc, run_key_refused_under_network_control);
     tcase_add_test(tc, devicenet_state_shows_the_card_counters);
+    tcase_add_test(tc, canopen_state_shows_the_models_leds);
     suite_add_tcase(s, tc);
     return check_run_suite(s);
 }

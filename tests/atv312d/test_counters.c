@@ -74,7 +74,8 @@ START_TEST(state_shows_the_counters)
     drive_config_t config = {
         .profile = &atv312_profile, .od_data = od_data, .node_id = NODE, .send = no_send};
     ck_assert_int_eq(drive_init(&drive, &config), 0);
-    co_linux_device_t device = {.stats = {.rx = 12, .tx = 9, .tx_dropped = 1}};
+    static co_linux_loop_t loop; /* the time the LEDs are shown at: 0 */
+    co_linux_device_t device = {.loop = &loop, .stats = {.rx = 12, .tx = 9, .tx_dropped = 1}};
     atv312d_counters_t counters = {.sdo_requests = 7, .sdo_aborts = 2, .emcy = 3};
     atv312d_control_node_t node = {.drive = &drive, .device = &device, .counters = &counters};
     char line[1024];

@@ -111,7 +111,7 @@ def test_sdo_abort_codes(node):
     assert abort_code(lambda: node.sdo.upload(0x1234, 0)) == SDO_ABORT_NO_OBJECT
     assert abort_code(lambda: node.sdo.upload(0x1018, 7)) == SDO_ABORT_NO_SUBINDEX
     assert abort_code(lambda: node.sdo.download(0x203C, 2, bytes(2))) == SDO_ABORT_VALUE_TOO_LOW
-    assert abort_code(lambda: node.sdo.download(0x203C, 2, bytes(4))) == SDO_ABORT_LENGTH_TOO_HIGH
+    assert abort_code(lambda: node.sdo.download(0x203C, 2, b"\x1e\x00\x00\x01")) == SDO_ABORT_LENGTH_TOO_HIGH
     assert abort_code(lambda: node.sdo.download(0x203C, 2, bytes(1))) == SDO_ABORT_LENGTH_TOO_LOW
     assert node.sdo[0x203C][2].raw == 30  # nothing lost
 

@@ -398,7 +398,7 @@ def test_monitor_states_pdos_by_name_sync_and_emcy(drives, bus):
         assert comaster("write", 5, "0x1016:1", "u32", "0x007E0032") == (0, "", "")
         bus.send(Frame(0x77E, b"\x05"))
         monitor.expect("node 5: EMCY 0x8130 life guard error or heartbeat error, error register "
-                       "0x11")
+                       "0x01")
         assert comaster("nmt", "stop", 4) == (0, "", "")
         monitor.expect("node 4: Operational -> Stopped")
     finally:

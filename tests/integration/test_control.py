@@ -37,10 +37,10 @@ def control(bus, start_daemon, tmp_path):
 def test_fault_then_reset_once_the_cause_is_gone(bus, control):
     status, reply = ctl(control, "fault", NODE, "OHF")
     assert status == 0 and reply.startswith("ok node 4: OHF"), reply
-    bus.expect(0x84, "1042090000000000")
+    bus.expect(0x84, "1042010000000000")
     assert bus.sdo_read(NODE, 0x603F, 0) == 0x4210
     assert bus.sdo_read(NODE, 0x6041, 0) == 0x0608
-    assert bus.sdo_read(NODE, 0x1001, 0) == 0x09
+    assert bus.sdo_read(NODE, 0x1001, 0) == 0x01  # "=1 (error)"
     assert bus.sdo_read(NODE, 0x1003, 1) == 0x4210
     s = state(control)
     assert (s["cia402"], s["display"], s["fault"], s["statusword"]) == ("Fault", "OHF", "OHF", 0x0608)
@@ -71,7 +71,7 @@ def test_fault_stops_the_running_motor_on_tpdo1(bus, control):
     s = state(control)
     assert (s["nmt"], s["run_led"], s["cia402"]) == ("Operational", "on", "Operation enabled")
     assert ctl(control, "fault", NODE, "OCF")[0] == 0
-    bus.expect(0x84, "1023030000000000")
+    bus.expect(0x84, "1023010000000000")
     bus.expect(0x184, "0806")
     s = state(control)
     assert (s["speed_rpm"], s["current_a"], s["display"]) == (0, 0, "OCF")
@@ -111,7 +111,7 @@ def test_fault_reaction_ramps_down_in_tpdos_before_the_fault(bus, control):
             break
         reaction.append(speed)
     assert (status, speed) == (0x0608, 0), frame
-    bus.expect(0x84, "3081110000000000", since=mark)
+    bus.expect(0x84, "3081010000000000", since=mark)
     assert len(reaction) >= 5, reaction
     assert all(a > b for a, b in zip(reaction, reaction[1:])), reaction
     assert 1500 >= reaction[0] and reaction[-1] >= 0, reaction
@@ -120,7 +120,7 @@ def test_fault_reaction_ramps_down_in_tpdos_before_the_fault(bus, control):
 
 def test_mains_undervoltage_ends_by_itself(bus, control):
     assert ctl(control, "mains", NODE, "undervoltage")[0] == 0
-    bus.expect(0x84, "2031050000000000")
+    bus.expect(0x84, "2031010000000000")
     assert state(control)["display"] == "USF"
     assert ctl(control, "mains", NODE, "normal") == (0, "ok node 4: mains normal")
     bus.expect(0x84, "0000000000000000")
@@ -151,7 +151,7 @@ def test_frame_counters_of_each_of_two_drives(bus, start_daemon, tmp_path):
         assert bus.sdo_read(5, 0x1000, 0) == 0x00010192
     assert bus.sdo_abort_code(5, "4034120000000000") == 0x06020000  # 1234h does not exist
     assert ctl(sock, "fault", 5, "OHF")[0] == 0
-    bus.expect(0x85, "1042090000000000")
+    bus.expect(0x85, "1042010000000000")
 
     def frames():
         status, reply = ctl(sock, "--json", "state")
@@ -193,7 +193,7 @@ def test_refused_commands_say_why_and_send_nothing(bus, control, words, error):
 
 def test_fault_injected_twice_is_refused(bus, control):
     assert ctl(control, "fault", NODE, "ohf")[0] == 0
-    bus.expect(0x84, "1042090000000000")
+    bus.expect(0x84, "1042010000000000")
     assert ctl(control, "fault", NODE, "OHF") == (EX_DATAERR, "error: node 4: the cause of OHF is present already")
     bus.expect_none(0x84, 0.2)
 

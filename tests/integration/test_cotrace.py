@@ -75,8 +75,8 @@ def test_live_frames_decoded(bus):
                                      "last: 1008:00 Manufacturer device name = \"ATV312\" (6 bytes)"),
             ("704#R", "guarding request, node 4"),
             ("704#85", "guarding reply, node 4: Operational, toggle 1"),
-            ("084#3081110000000000", "EMCY node 4: 0x8130 life guard error or heartbeat error, "
-                                     "error register 0x11 (generic, communication), manufacturer "
+            ("084#3081010000000000", "EMCY node 4: 0x8130 life guard error or heartbeat error, "
+                                     "error register 0x01 (generic), manufacturer "
                                      "bytes 00 00 00 00 00"),
             ("284#27062C01", "TPDO6 node 4: 6041:00 Statusword (ETAD) = 0x0627 Operation enabled, "
                              "6044:00 vl velocity actual value (RFRD) = 300"),

@@ -115,7 +115,7 @@ def test_col_fault_stops_the_motor_with_cnf(bus, drive):
     assert read(bus, COL) == 1
     run_at_1500(bus, 30)
     heartbeat_lost(bus)
-    bus.expect(0x080 + NODE, "3081110000000000", timeout=1.0)
+    bus.expect(0x080 + NODE, "3081010000000000", timeout=1.0)
     assert bus.sdo_read(NODE, 0x6041, 0) & 0x006F == 0x0008
     assert bus.sdo_read(NODE, 0x6044, 0) == 0
     assert read(bus, CNF) == 1

@@ -8,7 +8,7 @@ import can
 
 from conftest import EX_OK, IFACE
 
-EMCY_COMMUNICATION = "3081110000000000"  # EMCY 0x8130, error register 0x11
+EMCY_COMMUNICATION = "3081010000000000"  # EMCY 0x8130, error register 0x01
 
 
 def stopped_counters(daemon):

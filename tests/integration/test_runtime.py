@@ -245,7 +245,7 @@ CAN_ERR_FLAG = 0x20000000
 CAN_ERR_CRTL, CAN_ERR_BUSOFF, CAN_ERR_RESTARTED = 0x004, 0x040, 0x100  # linux/can/error.h classes
 CRTL_RX_OVERFLOW, CRTL_RX_WARNING, CRTL_TX_PASSIVE, CRTL_ACTIVE = 0x01, 0x04, 0x20, 0x40  # data[1]
 EMCY = 0x080 + NODE
-COMMUNICATION_ERROR_REGISTER = 0x11  # 1001h: generic error + communication error
+COMMUNICATION_ERROR_REGISTER = 0x01  # 1001h: the ATV312 manual's "=1 (error)", no class bit
 
 
 def send_error_frame(error_class, controller_status=0):

@@ -2,5 +2,7 @@
  * from eds/ATV31.eds, with and without the heartbeat objects of firmware V1.2. */
 #include "atv31/atv31.h"
 
-const drive_profile_t atv31_profile = ATV312_FAMILY_PROFILE(&atv31_od, ATV31_LOGIC_INPUTS);
-const drive_profile_t atv31_v11_profile = ATV312_FAMILY_PROFILE(&atv31_v11_od, ATV31_LOGIC_INPUTS);
+const drive_profile_t atv31_profile =
+    ATV312_FAMILY_PROFILE(&atv31_od, ATV31_LOGIC_INPUTS, &atv31_family_faults);
+const drive_profile_t atv31_v11_profile =
+    ATV312_FAMILY_PROFILE(&atv31_v11_od, ATV31_LOGIC_INPUTS, &atv31_family_faults);

@@ -2,4 +2,5 @@
  * from eds/ATV312.eds. */
 #include "atv312/atv312.h"
 
-const drive_profile_t atv312_profile = ATV312_FAMILY_PROFILE(&atv312_od, ATV312_LOGIC_INPUTS);
+const drive_profile_t atv312_profile =
+    ATV312_FAMILY_PROFILE(&atv312_od, ATV312_LOGIC_INPUTS, &atv312_family_faults);

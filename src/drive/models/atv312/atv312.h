@@ -8,11 +8,14 @@
 #define ATV312_H
 
 #include "atv312_od.h" /* generated */
+#include "co/co_emcy.h"
 #include "drive/drive.h"
 
-/* The faults of the Altivar 31/312 family, their EMCY codes and reset classes
- * (src/drive/models/atv312/faults.c, docs/atv312.md). */
+/* The faults of the Altivar 312 and of the Altivar 31, their EMCY codes and reset classes
+ * (src/drive/models/atv312/faults.c, docs/atv312.md): the same but for the name of the
+ * communication-loss fault, CnF on the ATV312, COF on the ATV31. */
 extern const drive_fault_table_t atv312_family_faults;
+extern const drive_fault_table_t atv31_family_faults;
 
 /* Codes of the channel parameters (the project's, docs/atv312.md): CHCF 1 not separate, 2
  * separate, 3 I/O; rFC 1 Fr1, 2 Fr2; CCS 1 Cd1, 2 Cd2; Fr1/Fr2 1 AI1, 2 AI2, 3 AI3, 4 keypad, 5
@@ -31,7 +34,12 @@ extern const drive_fault_table_t atv312_family_faults;
  * the base terminal card (ATV312 CANopen manual, "Control terminals characteristics"). */
 #define ATV312_LOGIC_INPUTS 3
 
-/* The profile of an Altivar 31/312 on the dictionary `dictionary`, with `inputs` logic inputs. The
+/* 1001h in the family's EMCYs, CAN bus conditions too: the manuals' byte 2, "=0 (no error) =1
+ * (error)", the generic bit alone (docs/decisions.md, D-ERROR-REGISTER). */
+#define ATV312_ERROR_REGISTER CO_ERR_REG_GENERIC
+
+/* The profile of an Altivar 31/312 on the dictionary `dictionary`, with `inputs` logic inputs and
+ * the faults of `fault_table`. The
  * family's default assignment of control word bits 11-14 (DeviceNet manual, "CMD control word":
  * "CMD = 16#080F: reverse operation" ...): bit 11 reverses, bit 12 stops on the ramp (Stt), bits 13
  * (DC injection stop, modelled as the fast stop) and 14 stop on the fast ramp, DEC / 4 (dCF's
@@ -40,12 +48,16 @@ extern const drive_fault_table_t atv312_family_faults;
  * D-MANUFACTURER-ADDRESS): ACC 9001, DEC 9002, HSP 3104, LSP 3105, FRS 9602, NCR 9603, NSP 9604,
  * LCR 3203, OTR 3208, CMD 8501, ETA 3201, COL 6401, CnF 6402, RFR 3202, LFR 8502, CHCF 8401,
  * rFC 8411, Fr1 8413, Fr2 8414, CCS 8421, Cd1 8423, Cd2 8424, Stt 11203, tUn 9608, LAC 8400,
- * rPS 9010, AC2 9012, dE2 9013. A macro, not a function, so that each model's profile stays a
- * constant initialiser (in flash on a microcontroller); the ATV31 (atv31/atv31.h) is the same
- * drive under another name. */
-#define ATV312_FAMILY_PROFILE(dictionary, inputs)                                                  \
+ * rPS 9010, AC2 9012, dE2 9013. SDO writes longer than their object are taken when the extra bytes
+ * are 0 (CO_NODE_SDO_LONG_EXPEDITED): the manuals' own PL7 guarding example writes 100Ch and 100Dh
+ * with "Data length = 4 bytes" (docs/decisions.md, D-ATV312-LONG-EXPEDITED). A macro, not a
+ * function, so that each model's profile stays a constant initialiser (in flash on a
+ * microcontroller); the ATV31 (atv31/atv31.h) is the same drive under another name. */
+#define ATV312_FAMILY_PROFILE(dictionary, inputs, fault_table)                                     \
     {                                                                                              \
-        .od = (dictionary), .control_reverse = 0x0800, .control_ramp_stop = 0x1000,                \
+        .od = (dictionary), .node_options = CO_NODE_SDO_LONG_EXPEDITED,                            \
+        .bus_error_register = ATV312_ERROR_REGISTER, .node_options_code = &co_node_options,        \
+        .control_reverse = 0x0800, .control_ramp_stop = 0x1000,                                    \
         .control_fast_stop = 0x2000 | 0x4000, .status_reverse = 0x8000, .status_stop_key = 0x4000, \
         .fast_ramp_divider = 4, .acceleration = DRIVE_PARAM(0x203C, 2),                            \
         .deceleration = DRIVE_PARAM(0x203C, 3), .high_speed = DRIVE_PARAM(0x2001, 5),              \
@@ -54,7 +66,7 @@ extern const drive_fault_table_t atv312_family_faults;
         .motor_current = DRIVE_PARAM(0x2002, 4), .motor_torque = DRIVE_PARAM(0x2002, 9),           \
         .control_word_copy = DRIVE_PARAM(0x2037, 2), .status_word_copy = DRIVE_PARAM(0x2002, 2),   \
         .communication_loss_mode = DRIVE_PARAM(0x2022, 2),                                         \
-        .network_fault_code = DRIVE_PARAM(0x2022, 3), .faults = &atv312_family_faults,             \
+        .network_fault_code = DRIVE_PARAM(0x2022, 3), .faults = (fault_table),                     \
         .stop_type = DRIVE_PARAM(0x2052, 4), .channel_mode = DRIVE_PARAM(0x2036, 2),               \
         .channel_mode_separate = ATV312_CHCF_SEPARATE, .channel_mode_io = ATV312_CHCF_IO,          \
         .command_channels = {DRIVE_PARAM(0x2036, 24), DRIVE_PARAM(0x2036, 25),                     \

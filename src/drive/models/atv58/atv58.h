@@ -12,6 +12,7 @@
 #include "atv58/emcy.h"
 #include "atv58_od.h" /* generated */
 #include "drive/drive.h"
+#include "drive/panel.h"
 
 /* The card's address switches 3 to 8: 1..63 (0 unused). */
 #define ATV58_NODE_ID_MAX 63
@@ -19,5 +20,8 @@
 extern const drive_profile_t atv58_profile;
 /* The faults of its manual's EMCY table (src/drive/models/atv58/faults.c). */
 extern const drive_fault_table_t atv58_faults;
+/* The card's green OK and yellow COM LEDs (src/drive/models/atv58/indicators.c). */
+#define ATV58_INDICATORS 2
+extern const drive_indicator_t atv58_indicators[ATV58_INDICATORS];
 
 #endif

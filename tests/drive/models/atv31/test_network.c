@@ -102,6 +102,30 @@ START_TEST(manual_vectors_frame_for_frame)
 }
 END_TEST
 
+/* The manual's node guarding example as its PL7 program sends it ("Data length = 4 bytes"): 100Ch
+ * and 100Dh written with command 0x23, zero extended, are taken (docs/decisions.md,
+ * D-ATV312-LONG-EXPEDITED), on both firmware versions; the life time is then 2 s. */
+START_TEST(manual_pl7_guarding_example)
+{
+    static const drive_profile_t *const profiles[] = {&atv31_profile, &atv31_v11_profile};
+    for (size_t i = 0; i < sizeof profiles / sizeof profiles[0]; i++) {
+        bench_t b;
+        bench_start_model(&b, profiles[i], NULL);
+        static const bench_exchange_t pl7[] = {
+            {"guard time", "604#230C1000F4010000", 0, {"584#600C100000000000"}},
+            {"life time factor", "604#230D100004000000", 0, {"584#600D100000000000"}},
+            {"guarding", "704#R", 0, {"704#7F"}},
+        };
+        bench_play(&b, pl7, sizeof pl7 / sizeof pl7[0]);
+        bench_advance(&b, 1999000);
+        bench_expect_none(&b);
+        bench_advance(&b, 1000);
+        bench_expect(&b, "084#3081010000000000");
+        ck_assert_str_eq(drive_fault_latched(&b.drive)->code, "COF");
+    }
+}
+END_TEST
+
 /* T31-16: the boot-up after a reset, 0x700 + Node-ID with one byte 00; the drive is then
  * pre-operational (T31-01's state) and answers a guarding RTR with 0x7F. */
 START_TEST(manual_boot_up)
@@ -142,8 +166,9 @@ START_TEST(heartbeat_only_from_v1_2)
     bench_rx(&b, "704#R");
     bench_expect(&b, "704#7F");
     bench_advance(&b, 300000);
-    bench_expect(&b, "084#3081110000000000");
+    bench_expect(&b, "084#3081010000000000");
     ck_assert_uint_eq(bench_read(&b, 0x6041, 0), 0x0608);
+    ck_assert_str_eq(drive_fault_latched(&b.drive)->code, "COF");
 }
 END_TEST
 
@@ -158,9 +183,9 @@ START_TEST(network_fault_fast_stop_with_col_3)
     bench_command(&b, 0x0006);
     bench_command(&b, 0x000F);
     bench_advance(&b, 3000000);
-    int cnf = drive_fault_find(&b.drive, "CnF");
-    ck_assert_int_ge(cnf, 0);
-    drive_fault_inject(&b.drive, (uint8_t)cnf, b.now);
+    int cof = drive_fault_find(&b.drive, "COF");
+    ck_assert_int_ge(cof, 0);
+    drive_fault_inject(&b.drive, (uint8_t)cof, b.now);
     b.deadline = drive_process(&b.drive, b.now);
     ck_assert_uint_eq(bench_read(&b, 0x6041, 0), 0x020F);
     bench_advance(&b, 350000);
@@ -181,6 +206,7 @@ int main(void)
     tcase_add_test(tc, identity_is_the_atv31s);
     tcase_add_test(tc, manual_vectors_frame_for_frame);
     tcase_add_test(tc, manual_boot_up);
+    tcase_add_test(tc, manual_pl7_guarding_example);
     tcase_add_test(tc, heartbeat_only_from_v1_2);
     tcase_add_test(tc, network_fault_fast_stop_with_col_3);
     suite_add_tcase(s, tc);

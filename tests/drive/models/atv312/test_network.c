@@ -112,6 +112,98 @@ START_TEST(manual_sdo_vectors)
 }
 END_TEST
 
+/* The manual's node guarding example as its PL7 program sends it: WRITE_VAR with "Data length = 4
+ * bytes" writes 100Ch (UNSIGNED16) and 100Dh (UNSIGNED8) with command 0x23, the values zero
+ * extended; both are taken (docs/decisions.md, D-ATV312-LONG-EXPEDITED), and a life time of
+ * 500 ms x 4 = 2 s follows. A longer write whose extra bytes are not 0 is still too long. */
+START_TEST(manual_pl7_guarding_example)
+{
+    bench_t b;
+    bench_start(&b);
+    static const bench_exchange_t pl7[] = {
+        {"guard time", "604#230C1000F4010000", 0, {"584#600C100000000000"}},
+        {"life time factor", "604#230D100004000000", 0, {"584#600D100000000000"}},
+        {"extra byte not 0", "604#230D100004000100", 0, {"584#800D100012000706"}},
+        {"guarding", "704#R", 0, {"704#7F"}},
+    };
+    bench_play(&b, pl7, sizeof pl7 / sizeof pl7[0]);
+    ck_assert_uint_eq(bench_read(&b, 0x100C, 0), 500);
+    ck_assert_uint_eq(bench_read(&b, 0x100D, 0), 4);
+    bench_advance(&b, 1999000);
+    bench_expect_none(&b);
+    bench_advance(&b, 1000);
+    bench_expect(&b, "084#3081010000000000");
+}
+END_TEST
+
+/* The status word's bit 7, "Alarm" in the DeviceNet manual's ETA table, while a warning lasts: a
+ * CAN error passive (EMCY 8120h) sets it, TPDO1 carries it at once, and its end clears it after
+ * the TPDO1 inhibit time (30 ms); a fault is bit 3, not an alarm (D-STATUS-ALARM). */
+START_TEST(alarm_bit_while_a_warning_lasts)
+{
+    bench_t b;
+    bench_start(&b);
+    bench_operational(&b);
+    bench_expect(&b, "184#4006");
+    bench_advance(&b, 100000);
+    drive_bus_event(&b.drive, 0x8120, true);
+    bench_advance(&b, 0);
+    bench_expect(&b, "084#2081010000000000");
+    bench_expect(&b, "184#C006");
+    bench_advance(&b, 10000);
+    drive_bus_event(&b.drive, 0x8120, false);
+    bench_advance(&b, 0);
+    bench_expect(&b, "084#0000000000000000");
+    bench_expect_none(&b);
+    bench_advance(&b, 20000);
+    ck_assert_uint_eq(bench_expect(&b, "184#4006"), 130000);
+}
+END_TEST
+
+/* The manual: "The Emergency Error Code is the same as the variable Fault code (603F)". A CAN
+ * bus condition's EMCY (error passive, 8120h) is in 603Fh while it lasts, here mapped into TPDO6
+ * beside ETAD; a fault's code takes its place while the fault is active, and the condition's comes
+ * back after the fault reset (D-ERROR-CODE-EMCY). */
+START_TEST(error_code_follows_the_emcy)
+{
+    bench_t b;
+    bench_start(&b);
+    static const bench_exchange_t tpdo6_etad_603f[] = {
+        {"1A05h:00", "604#2F051A0000000000", 0, {"584#60051A0000000000"}},
+        {"1A05h:02", "604#23051A0210003F60", 0, {"584#60051A0200000000"}},
+        {"1A05h:00", "604#2F051A0002000000", 0, {"584#60051A0000000000"}},
+        {"1805h:01", "604#2305180184020000", 0, {"584#6005180100000000"}},
+    };
+    bench_play(&b, tpdo6_etad_603f, sizeof tpdo6_etad_603f / sizeof tpdo6_etad_603f[0]);
+    bench_operational(&b);
+    bench_expect(&b, "184#4006");
+    bench_expect(&b, "284#40060000");
+    bench_advance(&b, 100000);
+    drive_bus_event(&b.drive, 0x8120, true);
+    bench_advance(&b, 0);
+    bench_expect(&b, "084#2081010000000000");
+    bench_expect(&b, "184#C006");
+    bench_expect(&b, "284#C0062081");
+    bench_advance(&b, 100000);
+    drive_fault_inject(&b.drive, (uint8_t)drive_fault_find(&b.drive, "OHF"), b.now);
+    drive_fault_remove_cause(&b.drive, (uint8_t)drive_fault_find(&b.drive, "OHF"), b.now);
+    bench_advance(&b, 0);
+    bench_expect(&b, "084#1042010000000000"); /* 1001h "=1 (error)" */
+    bench_expect(&b, "184#8806");
+    bench_expect(&b, "284#88061042");
+    bench_advance(&b, 100000);
+    bench_rx(&b, "204#8000");
+    bench_expect(&b, "184#C006");
+    bench_expect(&b, "284#C0062081");
+    bench_advance(&b, 100000);
+    drive_bus_event(&b.drive, 0x8120, false);
+    bench_advance(&b, 0);
+    bench_expect(&b, "084#0000000000000000");
+    bench_expect(&b, "184#4006");
+    bench_expect(&b, "284#40060000");
+}
+END_TEST
+
 /* T31-03 and T31-02: RPDO1 carries the control word, TPDO1 the status word on every change
  * (0x0627 where the manual misprints 0x0607, docs/decisions.md, D-STATUS-WORD-0627), spaced by
  * the 30 ms inhibit. */
@@ -247,6 +339,9 @@ int main(void)
     tcase_add_test(tc, pdo6_parameter_rules);
     tcase_add_test(tc, dictionary_dependent_cia301_rules);
     tcase_add_test(tc, manual_sdo_vectors);
+    tcase_add_test(tc, manual_pl7_guarding_example);
+    tcase_add_test(tc, alarm_bit_while_a_warning_lasts);
+    tcase_add_test(tc, error_code_follows_the_emcy);
     tcase_add_test(tc, tpdo1_follows_the_status_word);
     tcase_add_test(tc, manual_pdo6_default_mappings);
     tcase_add_test(tc, manual_tpdo6_user_mapping);

@@ -38,7 +38,8 @@ typedef struct line {
     line_kind_t kind;
     bool object;    /* a header naming an object section; a key line in one */
     bool data_type; /* a key line of DataType in an object section */
-    bool too_long;  /* longer than ini_reader.c reads as one line */
+    bool too_long;  /* longer than ini_reader.c reads as one line (INI_LINE_MAX - 2 characters) */
+    bool nul;       /* holding a NUL byte, which no line of a text file has */
 } line_t;
 
 /* A value as the file writes it, blanks trimmed. */
@@ -224,7 +225,8 @@ static void read_text(text_t *t, const uint8_t *data, size_t size)
         const char *nul = memchr(s, '\0', len);
         line_t *line = &t->lines[t->line_count++];
         *line = read_line(t, s, nul ? (size_t)(nul - s) : len);
-        line->too_long = len + (newline != NULL) > INI_LINE_MAX - 1;
+        line->too_long = len > INI_LINE_MAX - 2;
+        line->nul = nul != NULL;
     }
 }
 
@@ -371,16 +373,18 @@ static void check_accepted(eds_t *eds, const text_t *t)
 
 /* A line the reader may refuse: a header without ']' or one it does not take as a name, a line
  * that is neither a header nor a key line, a DataType that may be no number, a line longer than
- * it reads at once. */
+ * it reads at once, a line with a NUL byte. */
 static bool wrong_line(const line_t *line)
 {
     return line->kind == LINE_OPEN_HEADER || line->kind == LINE_OTHER ||
-           (line->kind == LINE_HEADER && !line->object) || line->data_type || line->too_long;
+           (line->kind == LINE_HEADER && !line->object) || line->data_type || line->too_long ||
+           line->nul;
 }
 
 static bool surely_wrong_line(const line_t *line)
 {
-    return line->kind == LINE_OPEN_HEADER || line->kind == LINE_OTHER;
+    return line->kind == LINE_OPEN_HEADER || line->kind == LINE_OTHER || line->too_long ||
+           line->nul;
 }
 
 static void check_refused(const eds_t *eds, const text_t *t, const char *err)

@@ -65,19 +65,32 @@ static bool read_line(const ini_reader_t *reader, ini_line_t *line, char *sectio
     return reader->on_key(ctx, line, err, err_len);
 }
 
-/* Whether `buf`, as fgets filled it, holds a whole line: a longer one comes in pieces, and each
- * piece read as a line would make a "[1001]" at the end of a long name a section of the file. A
- * full buffer without its newline is whole only at the end of the file. */
-static bool whole_line(FILE *file, const char *buf)
+typedef enum raw_line {
+    RAW_LINE,          /* a line in buf, its newline (if any) and a NUL after it */
+    RAW_END,           /* the end of the file, nothing read */
+    RAW_LINE_TOO_LONG, /* more than INI_LINE_MAX - 2 characters before the newline */
+    RAW_LINE_NUL       /* a NUL byte before the newline */
+} raw_line_t;
+
+/* Reads one line into buf (INI_LINE_MAX bytes) to its newline or the end of the file. A line
+ * that does not fit, or holds a NUL byte, is refused rather than cut: fgets would hand over its
+ * pieces, and each piece read as a line makes a "[1001]" at the end of a long name a section of
+ * the file. The rest of a refused line is left unread (the reading stops there). */
+static raw_line_t read_raw_line(FILE *file, char *buf)
 {
-    size_t len = strlen(buf);
-    if (len < INI_LINE_MAX - 1 || buf[len - 1] == '\n')
-        return true;
-    int next = getc(file);
-    if (next == EOF)
-        return true;
-    ungetc(next, file);
-    return false;
+    size_t len = 0;
+    int c;
+    while ((c = getc(file)) != EOF) {
+        if (c == '\0')
+            return RAW_LINE_NUL;
+        if (len == INI_LINE_MAX - 2 && c != '\n')
+            return RAW_LINE_TOO_LONG;
+        buf[len++] = (char)c;
+        if (c == '\n')
+            break;
+    }
+    buf[len] = '\0';
+    return len == 0 ? RAW_END : RAW_LINE;
 }
 
 bool ini_read(FILE *file, const char *path, const ini_reader_t *reader, void *ctx, char *err,
@@ -87,11 +100,16 @@ bool ini_read(FILE *file, const char *path, const ini_reader_t *reader, void *ct
     char buf[INI_LINE_MAX];
     ini_line_t line = {.path = path, .section = section};
     bool ok = true;
-    while (ok && fgets(buf, sizeof buf, file)) {
+    raw_line_t raw;
+    while (ok && (raw = read_raw_line(file, buf)) != RAW_END) {
         line.number++;
-        if (!whole_line(file, buf)) {
+        if (raw == RAW_LINE_TOO_LONG) {
             snprintf(err, err_len, "%s:%u: line longer than %d characters", path, line.number,
                      INI_LINE_MAX - 2);
+            return false;
+        }
+        if (raw == RAW_LINE_NUL) {
+            snprintf(err, err_len, "%s:%u: a NUL byte in the line", path, line.number);
             return false;
         }
         ok = read_line(reader, &line, section, buf, ctx, err, err_len);

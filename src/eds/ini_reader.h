@@ -9,8 +9,9 @@
 #include <stddef.h>
 #include <stdio.h>
 
-/* The longest line read, its newline and the terminating NUL included: a longer line is refused
- * with its number. */
+/* The longest line read, its newline and the terminating NUL included: a longer line (more than
+ * INI_LINE_MAX - 2 characters, the last line of the file too), or one with a NUL byte, is
+ * refused with its number. */
 #define INI_LINE_MAX 1024
 
 /* A section header (key and value NULL) or a key = value line, blanks trimmed. */
@@ -38,8 +39,8 @@ typedef struct ini_reader {
 } ini_reader_t;
 
 /* Reads `file` (`path` in errors) to its end or its first error. False with a one-line error in
- * err ("path:line: ..." for a line longer than INI_LINE_MAX - 2 characters, a header without ']'
- * or a line of neither kind, else a callback's). */
+ * err ("path:line: ..." for a line longer than INI_LINE_MAX - 2 characters or with a NUL byte, a
+ * header without ']' or a line of neither kind, else a callback's). */
 bool ini_read(FILE *file, const char *path, const ini_reader_t *reader, void *ctx, char *err,
               size_t err_len);
 

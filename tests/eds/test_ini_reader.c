@@ -108,16 +108,38 @@ START_TEST(a_line_too_long_is_refused_with_its_number)
 }
 END_TEST
 
-START_TEST(a_last_line_filling_the_buffer_without_newline_is_read)
+/* A NUL byte is no character of a text file; read as the end of the line, it cut a long line in
+ * two without notice, its tail read as a line of its own. */
+START_TEST(a_nul_byte_is_refused_with_its_line)
+{
+    const ini_reader_t reader = {.key_line = "key=value", .on_section = record, .on_key = record};
+    static const char text[] = "[1000]\nParameterName=x\0x[1001]\n";
+    seen_t seen = {0};
+    char err[128] = "";
+    FILE *f = fmemopen((void *)text, sizeof text - 1, "r");
+    ck_assert_ptr_nonnull(f);
+    ck_assert(!ini_read(f, "test.ini", &reader, &seen, err, sizeof err));
+    fclose(f);
+    ck_assert_uint_eq(seen.count, 1);
+    ck_assert_str_eq(err, "test.ini:2: a NUL byte in the line");
+}
+END_TEST
+
+/* The last line, without its newline, has the same limit: 1022 characters, not one more. */
+START_TEST(a_last_line_without_newline_has_the_same_limit)
 {
     const ini_reader_t reader = {.key_line = "key=value", .on_section = record, .on_key = record};
     static char text[2 * INI_LINE_MAX];
     strcpy(text, "[A]\nk=");
-    memset(text + strlen(text), 'v', INI_LINE_MAX - 1 - strlen("k=")); /* no newline at the end */
+    memset(text + strlen(text), 'v', INI_LINE_MAX - 2 - strlen("k=")); /* no newline at the end */
     seen_t seen = {0};
     char err[128] = "";
     ck_assert_msg(read_text(text, &reader, &seen, err, sizeof err), "%s", err);
     ck_assert_uint_eq(seen.count, 2);
+    strcat(text, "v");
+    seen = (seen_t){0};
+    ck_assert(!read_text(text, &reader, &seen, err, sizeof err));
+    ck_assert_str_eq(err, "test.ini:2: line longer than 1022 characters");
 }
 END_TEST
 
@@ -129,7 +151,8 @@ int main(void)
     tcase_add_test(tc, headers_without_callback_only_name_the_section);
     tcase_add_test(tc, a_refusing_callback_stops_the_reading);
     tcase_add_test(tc, a_line_too_long_is_refused_with_its_number);
-    tcase_add_test(tc, a_last_line_filling_the_buffer_without_newline_is_read);
+    tcase_add_test(tc, a_last_line_without_newline_has_the_same_limit);
+    tcase_add_test(tc, a_nul_byte_is_refused_with_its_line);
     suite_add_tcase(s, tc);
     return check_run_suite(s);
 }

@@ -129,9 +129,8 @@ static bool parse_sum(const char *text, uint8_t node_id, uint64_t *value)
 /* A value as parse_sum reads it, or a lone number with a '-' sign (-1234, -0x10, -010), which
  * CiA 306 allows for the signed types: *value is then its two's complement. A sign is never part
  * of a $NODEID expression, whose terms are unsigned (docs/decisions.md, D-DCF-VALUES). */
-static bool parse_value(const char *text, uint8_t node_id, uint64_t *value, bool *negative)
+static bool parse_signed_value(const char *text, uint8_t node_id, uint64_t *value, bool *negative)
 {
-    *negative = false;
     const char *p = text;
     while (isspace((unsigned char)*p))
         p++;
@@ -149,6 +148,19 @@ static bool parse_value(const char *text, uint8_t node_id, uint64_t *value, bool
     *value = (uint64_t)v;
     *negative = v < 0;
     return true;
+}
+
+/* A value that is no number leaves 0, not what an earlier value of the entry or a part of this
+ * one left. */
+static bool parse_value(const char *text, uint8_t node_id, uint64_t *value, bool *negative)
+{
+    *value = 0;
+    *negative = false;
+    if (parse_signed_value(text, node_id, value, negative))
+        return true;
+    *value = 0;
+    *negative = false;
+    return false;
 }
 
 static eds_entry_t *add_entry(eds_t *eds, uint16_t index, uint16_t sub)

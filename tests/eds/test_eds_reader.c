@@ -272,12 +272,33 @@ START_TEST(negative_numbers_alone)
 }
 END_TEST
 
+/* A value that is no number leaves no number behind: not the entry's earlier value, not the one
+ * of its sign's number. The fuzz harness read "ParameterValue=-1)" after "DefaultValue=5" as 5,
+ * and a canonical rendering of the file, without the 5, differently. */
+START_TEST(a_value_that_is_no_number_leaves_none)
+{
+    ck_assert_int_eq(load("[1000]\n"
+                          "DefaultValue=5\n"
+                          "ParameterValue=-1)\n"
+                          "[1001]\n"
+                          "DefaultValue=7\n"
+                          "ParameterValue=12x\n"),
+                     EDS_OK);
+    for (uint16_t index = 0x1000; index <= 0x1001; index++) {
+        const eds_entry_t *e = eds_find(&eds, index, 0);
+        ck_assert_msg(!e->has_value && e->value == 0 && !e->negative, "%04X: %llu", index,
+                      (unsigned long long)e->value);
+    }
+}
+END_TEST
+
 int main(void)
 {
     Suite *s = suite_create("eds_reader");
     TCase *tc = tcase_create("syntax");
     tcase_add_checked_fixture(tc, setup, teardown);
     tcase_add_test(tc, comments_only_on_lines_of_their_own);
+    tcase_add_test(tc, a_value_that_is_no_number_leaves_none);
     tcase_add_test(tc, blanks_carriage_returns_and_case);
     tcase_add_test(tc, keys_outside_object_sections_ignored);
     tcase_add_test(tc, repeated_keys_and_sections);

@@ -692,18 +692,9 @@ static void decode_lss(const struct can_frame *f, text_t *t)
 
 void cotrace_decode(cotrace_decoder_t *dec, const struct can_frame *f, char *out, size_t cap)
 {
-    text_t t = {out, cap, 0};
-    if (cap == 0)
+    text_t t;
+    if (!say_start(&t, out, cap, f, "CANopen"))
         return;
-    out[0] = '\0';
-    if (f->can_id & CAN_ERR_FLAG) {
-        say_error_frame(&t, f);
-        return;
-    }
-    if (f->can_id & CAN_EFF_FLAG) {
-        say(&t, "29-bit identifier: not CANopen");
-        return;
-    }
     uint16_t id = f->can_id & CAN_SFF_MASK;
     uint8_t node = id & CO_NODE_ID_MASK;
     bool rtr = f->can_id & CAN_RTR_FLAG;

@@ -538,18 +538,9 @@ static const char *mac_role(dn_can_id_t id)
 
 void cotrace_dn_decode(cotrace_dn_decoder_t *dec, const struct can_frame *f, char *out, size_t cap)
 {
-    text_t t = {out, cap, 0};
-    if (cap == 0)
+    text_t t;
+    if (!say_start(&t, out, cap, f, "DeviceNet"))
         return;
-    out[0] = '\0';
-    if (f->can_id & CAN_ERR_FLAG) {
-        say_error_frame(&t, f);
-        return;
-    }
-    if (f->can_id & CAN_EFF_FLAG) {
-        say(&t, "29-bit identifier: not DeviceNet");
-        return;
-    }
     uint32_t can_id = f->can_id & CAN_SFF_MASK;
     if (f->can_id & CAN_RTR_FLAG) {
         say(&t, "remote frame 0x%03lX: DeviceNet has none", (unsigned long)can_id);

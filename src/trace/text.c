@@ -96,3 +96,20 @@ void say_error_frame(text_t *t, const struct can_frame *f)
         }
     }
 }
+
+bool say_start(text_t *t, char *out, size_t cap, const struct can_frame *f, const char *protocol)
+{
+    *t = (text_t){out, cap, 0};
+    if (cap == 0)
+        return false;
+    out[0] = '\0';
+    if (f->can_id & CAN_ERR_FLAG) {
+        say_error_frame(t, f);
+        return false;
+    }
+    if (f->can_id & CAN_EFF_FLAG) {
+        say(t, "29-bit identifier: not %s", protocol);
+        return false;
+    }
+    return true;
+}

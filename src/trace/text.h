@@ -22,5 +22,9 @@ void say_bytes(text_t *t, const uint8_t *data, size_t len);
 void say_value(text_t *t, const uint8_t *data, size_t len, size_t total);
 /* "CAN error frame: <classes>" with the controller's problems. */
 void say_error_frame(text_t *t, const struct can_frame *f);
+/* Starts the line of frame f in out (cap bytes), in *t. An error frame, or a 29-bit frame that
+ * `protocol` (CANopen, DeviceNet) does not have, is said whole: false then, and for cap 0; true
+ * for a standard frame, which the decoder goes on with. */
+bool say_start(text_t *t, char *out, size_t cap, const struct can_frame *f, const char *protocol);
 
 #endif

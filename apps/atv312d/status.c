@@ -20,9 +20,7 @@ static bool condition(const co_linux_loop_t *loop, uint16_t emcy_code)
     return co_linux_conditions_active(&loop->bus.conditions, emcy_code);
 }
 
-/* The CAN controller as the loop sees it: down (the interface), bus-off, error-passive or
- * error-active; overrun when frames are being lost. */
-static const char *can_state(const co_linux_loop_t *loop)
+const char *atv312d_can_state(const co_linux_loop_t *loop)
 {
     if (!loop->bus.link_up)
         return "down";
@@ -41,9 +39,10 @@ size_t atv312d_status_format(const atv312d_status_t *status, char *buf, size_t l
         buf, len,
         "%s: CAN %s%s; frames received %llu, sent %llu, dropped %llu, lost while down %llu, "
         "error frames %llu; wake-ups %llu, sendmmsg calls %llu\n",
-        loop->iface, can_state(loop), condition(loop, CO_LINUX_EMCY_CAN_OVERRUN) ? ", overrun" : "",
-        stats->rx, stats->tx, stats->tx_dropped, stats->down_dropped, stats->error_frames,
-        stats->wakeups, stats->tx_calls);
+        loop->iface, atv312d_can_state(loop),
+        condition(loop, CO_LINUX_EMCY_CAN_OVERRUN) ? ", overrun" : "", stats->rx, stats->tx,
+        stats->tx_dropped, stats->down_dropped, stats->error_frames, stats->wakeups,
+        stats->tx_calls);
     for (size_t i = 0; i < status->count && used < len; i++) {
         char line[1024];
         atv312d_format_state(&status->nodes[i], false, line, sizeof line);

@@ -107,6 +107,11 @@ int atv312d_http_parse_address(const char *text, atv312d_http_address_t *address
         if (!colon)
             snprintf(host, sizeof host, DEFAULT_HOST);
         port_text = colon ? colon + 1 : text;
+        if (strchr(host, ':'))
+            return usage_error(err, err_len,
+                               "--http %s: write an IPv6 address in brackets with its port, "
+                               "e.g. [::1]:8080",
+                               text);
     }
     uint16_t port;
     if (!parse_port(port_text, &port))
@@ -479,8 +484,8 @@ static bool command_allowed(atv312d_http_t *http, const atv312d_http_request_t *
         answer_error(http, answer, 413, "the body is longer than %d bytes", ATV312D_HTTP_BODY_MAX);
     else
         return true;
-    co_log(CO_LOG_WARN, "http %s: command refused (%u)", request->peer ? request->peer : "?",
-           answer->status);
+    co_log(CO_LOG_WARN, "http %s: command refused, %u %.*s", request->peer ? request->peer : "?",
+           answer->status, (int)answer->body_len, (const char *)answer->body);
     return false;
 }
 

@@ -96,6 +96,16 @@ def test_action_puts_the_emcy_on_the_bus(bus, web):
     assert get_json(web, "/api/state")["nodes"][0]["fault"] == "OHF"
 
 
+def test_mains_undervoltage_and_back(bus, web):
+    """USF resets itself when the mains come back: its EMCY, then the error reset."""
+    assert command(web, "mains 5 undervoltage") == (
+        200, {"ok": True, "reply": "ok node 5: USF (line supply undervoltage), EMCY 3120"})
+    bus.expect(0x85, "2031010000000000")
+    assert command(web, "mains 5 normal") == (200, {"ok": True, "reply": "ok node 5: mains normal"})
+    bus.expect(0x85, "0000000000000000")
+    assert get_json(web, "/api/state")["nodes"][1]["fault"] is None
+
+
 def test_events_first_at_once_then_four_a_second(web):
     sock = socket.create_connection(("127.0.0.1", web), timeout=5)
     sock.sendall(b"GET /api/events HTTP/1.1\r\nHost: 127.0.0.1\r\n\r\n")

@@ -59,6 +59,7 @@ static const co_linux_device_ops_t ops = {
 
 static FILE *report;
 static uint16_t port;
+static bool ipv6; /* the server listens on [::1] */
 
 static double seconds(void)
 {
@@ -69,10 +70,14 @@ static double seconds(void)
 
 static int connect_server(void)
 {
-    int fd = socket(AF_INET, SOCK_STREAM, 0);
+    int fd = socket(ipv6 ? AF_INET6 : AF_INET, SOCK_STREAM, 0);
     struct sockaddr_in addr = {.sin_family = AF_INET, .sin_port = htons(port)};
+    struct sockaddr_in6 addr6 = {.sin6_family = AF_INET6, .sin6_port = htons(port)};
     addr.sin_addr.s_addr = htonl(INADDR_LOOPBACK);
-    if (fd < 0 || connect(fd, (struct sockaddr *)&addr, sizeof addr) != 0)
+    addr6.sin6_addr = in6addr_loopback;
+    int rc = ipv6 ? connect(fd, (struct sockaddr *)&addr6, sizeof addr6)
+                  : connect(fd, (struct sockaddr *)&addr, sizeof addr);
+    if (fd < 0 || rc != 0)
         exit(2);
     struct timeval timeout = {.tv_sec = 5};
     setsockopt(fd, SOL_SOCKET, SO_RCVTIMEO, &timeout, sizeof timeout);
@@ -196,10 +201,21 @@ static void client_refused_post(void)
     close(fd);
 }
 
+/* On [::1], with its name as Host. */
+static void client_ipv6(void)
+{
+    int fd = connect_server();
+    char answer[8192];
+    send_text(fd, "GET /api/bench HTTP/1.1\r\nHost: [::1]\r\nConnection: close\r\n\r\n");
+    read_until(fd, answer, sizeof answer, NULL);
+    fprintf(report, "ipv6: %.*s\n", (int)strcspn(answer, "\r"), answer);
+    close(fd);
+}
+
 /* ---- the server, in the parent ---- */
 
 /* Runs the loop with the server until the child, running `client`, exits; returns its report. */
-static const char *serve(void (*client)(void))
+static const char *serve_at(const char *address, void (*client)(void))
 {
     int bus[2], pipe_fds[2];
     ck_assert_int_eq(socketpair(AF_UNIX, SOCK_SEQPACKET, 0, bus), 0);
@@ -218,8 +234,8 @@ static const char *serve(void (*client)(void))
     control = (atv312d_control_t){.nodes = &node, .count = 1};
     atv312d_http_settings_t settings = {0};
     char err[256];
-    ck_assert_int_eq(atv312d_http_parse_address("127.0.0.1:0", &settings.address, err, sizeof err),
-                     0);
+    ck_assert_int_eq(atv312d_http_parse_address(address, &settings.address, err, sizeof err), 0);
+    ipv6 = settings.address.addr.ss_family == AF_INET6;
     ck_assert_int_eq(atv312d_http_open(&http, &loop, &settings, &control), 0);
     port = http.port;
     ck_assert_uint_ne(port, 0);
@@ -249,6 +265,11 @@ static const char *serve(void (*client)(void))
     atv312d_http_close(&http);
     co_linux_loop_close(&loop);
     return text;
+}
+
+static const char *serve(void (*client)(void))
+{
+    return serve_at("127.0.0.1:0", client);
 }
 
 START_TEST(connections_are_kept)
@@ -282,6 +303,12 @@ START_TEST(refused_post_answered_before_its_body)
 }
 END_TEST
 
+START_TEST(listens_on_ipv6)
+{
+    ck_assert_str_eq(serve_at("[::1]:0", client_ipv6), "ipv6: HTTP/1.1 200 OK\n");
+}
+END_TEST
+
 int main(void)
 {
     Suite *s = suite_create("atv312d_http_server");
@@ -291,6 +318,7 @@ int main(void)
     tcase_add_test(tc, events_first_at_once_then_each_period);
     tcase_add_test(tc, past_the_cap_503_then_a_place_freed);
     tcase_add_test(tc, refused_post_answered_before_its_body);
+    tcase_add_test(tc, listens_on_ipv6);
     suite_add_tcase(s, tc);
     return check_run_suite(s);
 }

@@ -130,6 +130,20 @@ def test_events_first_at_once_then_four_a_second(web):
     assert json.loads(data)["nodes"][0]["node"] == 4
 
 
+def test_stops_with_a_stream_open(bus, start_daemon):
+    """SIGTERM while a stream waits for its next event: the daemon closes it and exits 0."""
+    d = start_daemon(bus, "--node-id", NODE, "--http", "0")
+    sock = socket.create_connection(("127.0.0.1", http_port(d)), timeout=5)
+    sock.sendall(b"GET /api/events HTTP/1.1\r\nHost: 127.0.0.1\r\n\r\n")
+    received = b""
+    while b"event: state\n" not in received:
+        received += sock.recv(65536)
+    assert d.stop() == 0, d.log()
+    while sock.recv(65536):  # the server closed the stream
+        pass
+    sock.close()
+
+
 def test_actions_refused_without_the_option(bus, start_daemon):
     port = http_port(start_daemon(bus, "--node-id", NODE, "--http", "0"))
     status, answer = command(port, "fault 4 OHF")

@@ -17,6 +17,7 @@
 #include <stdlib.h>
 #include <string.h>
 #include <sys/socket.h>
+#include <sys/timerfd.h>
 #include <sys/wait.h>
 #include <time.h>
 #include <unistd.h>
@@ -239,6 +240,10 @@ static const char *serve_at(const char *address, void (*client)(void))
     ck_assert_int_eq(atv312d_http_open(&http, &loop, &settings, &control), 0);
     port = http.port;
     ck_assert_uint_ne(port, 0);
+    /* No client yet: nothing armed. */
+    struct itimerspec armed;
+    ck_assert_int_eq(timerfd_gettime(http.timer_fd, &armed), 0);
+    ck_assert(armed.it_value.tv_sec == 0 && armed.it_value.tv_nsec == 0);
     pid_t pid = fork();
     ck_assert_int_ge(pid, 0);
     if (pid == 0) {

@@ -899,6 +899,7 @@ static enum MHD_Result on_request(void *cls, struct MHD_Connection *connection, 
         *req_cls = calloc(1, sizeof(request_body_t));
         return *req_cls ? MHD_YES : MHD_NO;
     }
+    co_log(CO_LOG_DEBUG, "http %s: %s %s: %u", peer, method, url, answer.status);
     return queue_answer(http, connection, &answer);
 }
 

@@ -37,7 +37,7 @@ typedef struct atv312d_http_address {
     struct sockaddr_storage addr;
     socklen_t len;
     bool loopback; /* 127.0.0.0/8 or ::1: only this machine can connect */
-    char text[64]; /* "127.0.0.1:8080", "[::1]:8080" */
+    char text[80]; /* "127.0.0.1:8080", "[::1]:8080" */
 } atv312d_http_address_t;
 
 /* Parses --http's value; 0, or EX_USAGE with a message in err saying what would be right. */

@@ -4,6 +4,7 @@
  * file. One ATV312 at node 4, a device of an unopened loop: nothing here reaches a socket (the
  * server on a socket: test_http_server.c). */
 #include "atv312/atv312.h"
+#include "atv312/atv312_devicenet.h"
 #include "check_main.h"
 #include "cli.h"
 #include "http.h"
@@ -130,6 +131,50 @@ START_TEST(bench_describes_each_drive)
     ck_assert_ptr_nonnull(strstr(json, "{\"code\":\"USF\",\"name\":\"line supply undervoltage\"}"));
     const char *tail = "],\"inputs\":[\"LI1\",\"LI2\",\"LI3\"],\"leds\":[\"RUN\",\"ERR\"]}]}";
     ck_assert_str_eq(json + strlen(json) - strlen(tail), tail);
+    stop();
+}
+END_TEST
+
+static drive_dn_t dn;
+
+static co_time_t devicenet_process(void *ctx, co_time_t now)
+{
+    return drive_dn_process(ctx, now);
+}
+
+static const co_linux_device_ops_t devicenet_ops = {.process = devicenet_process};
+
+/* On DeviceNet the drives are MAC IDs and their LEDs the card's MS and NS. */
+START_TEST(bench_on_devicenet)
+{
+    start(false, NULL);
+    memset(&loop, 0, sizeof loop);
+    snprintf(loop.iface, sizeof loop.iface, "vcan1");
+    drive_config_t config = {
+        .profile = &atv312_profile, .od_data = od_data, .node_id = 1, .send = drive_dn_drop_frame};
+    ck_assert_int_eq(drive_init(&drive, &config), 0);
+    drive_dn_config_t dn_config = {.drive = &drive,
+                                   .profile = &atv312_devicenet_profile,
+                                   .mac_id = 25,
+                                   .serial_number = 0x31200019,
+                                   .send = no_send};
+    ck_assert_int_eq(drive_dn_init(&dn, &dn_config), 0);
+    drive_dn_start(&dn, loop.now);
+    co_linux_loop_add(&loop, &device, &devicenet_ops, &dn);
+    node = (atv312d_control_node_t){.id = 25,
+                                    .model = "atv312",
+                                    .drive = &drive,
+                                    .devicenet = &dn,
+                                    .device = &device,
+                                    .counters = &counters};
+    const char *json = get("/api/bench");
+    const char *head = "{\"interface\":\"vcan1\",\"protocol\":\"devicenet\",\"actions\":false,"
+                       "\"token_required\":false,\"drives\":[{\"node\":25,\"model\":\"ATV312\",";
+    ck_assert_mem_eq(json, head, strlen(head));
+    const char *tail = "],\"inputs\":[\"LI1\",\"LI2\",\"LI3\"],\"leds\":[\"MS\",\"NS\"]}]}";
+    ck_assert_str_eq(json + strlen(json) - strlen(tail), tail);
+    get("/api/state");
+    ck_assert_ptr_nonnull(strstr(body, "\"nodes\":[{\"node\":25,\"ms\":"));
     stop();
 }
 END_TEST
@@ -558,6 +603,7 @@ int main(void)
     Suite *s = suite_create("atv312d_http");
     TCase *tc = tcase_create("handler");
     tcase_add_test(tc, bench_describes_each_drive);
+    tcase_add_test(tc, bench_on_devicenet);
     tcase_add_test(tc, bench_says_actions_and_token);
     tcase_add_test(tc, state_is_the_bus_and_the_control_surface_nodes);
     tcase_add_test(tc, frame_rate_over_a_second_or_more);

@@ -96,6 +96,16 @@ def test_action_puts_the_emcy_on_the_bus(bus, web):
     assert get_json(web, "/api/state")["nodes"][0]["fault"] == "OHF"
 
 
+def test_mains_undervoltage_and_back(bus, web):
+    """USF resets itself when the mains come back: its EMCY, then the error reset."""
+    assert command(web, "mains 5 undervoltage") == (
+        200, {"ok": True, "reply": "ok node 5: USF (line supply undervoltage), EMCY 3120"})
+    bus.expect(0x85, "2031010000000000")
+    assert command(web, "mains 5 normal") == (200, {"ok": True, "reply": "ok node 5: mains normal"})
+    bus.expect(0x85, "0000000000000000")
+    assert get_json(web, "/api/state")["nodes"][1]["fault"] is None
+
+
 def test_events_first_at_once_then_four_a_second(web):
     sock = socket.create_connection(("127.0.0.1", web), timeout=5)
     sock.sendall(b"GET /api/events HTTP/1.1\r\nHost: 127.0.0.1\r\n\r\n")
@@ -118,6 +128,20 @@ def test_events_first_at_once_then_four_a_second(web):
     assert 4 <= events <= 6, f"{events} events in the first {1 + first:.2f} s"
     data = received.split(b"data: ")[1].split(b"\n")[0]
     assert json.loads(data)["nodes"][0]["node"] == 4
+
+
+def test_stops_with_a_stream_open(bus, start_daemon):
+    """SIGTERM while a stream waits for its next event: the daemon closes it and exits 0."""
+    d = start_daemon(bus, "--node-id", NODE, "--http", "0")
+    sock = socket.create_connection(("127.0.0.1", http_port(d)), timeout=5)
+    sock.sendall(b"GET /api/events HTTP/1.1\r\nHost: 127.0.0.1\r\n\r\n")
+    received = b""
+    while b"event: state\n" not in received:
+        received += sock.recv(65536)
+    assert d.stop() == 0, d.log()
+    while sock.recv(65536):  # the server closed the stream
+        pass
+    sock.close()
 
 
 def test_actions_refused_without_the_option(bus, start_daemon):

@@ -230,7 +230,7 @@ def test_canopen_bench_started_by_a_master_and_a_fault_by_click(bus, dump, start
     # the token it asks for.
     page.open_drive(NODE)
     assert browser.find_element(By.ID, "drive-title").text == "Node 4 · ATV312"
-    assert browser.find_element(By.ID, "control-fields").is_enabled()
+    assert browser.find_element(By.ID, "control-fields").get_property("disabled") is False
     page.give_token(TOKEN)
     mark = dump.mark()
     page.click_fault("CnF")
@@ -285,4 +285,18 @@ def test_devicenet_drive_polled_by_a_scanner_and_a_fault_by_click(dump, start_dn
     finally:
         status = poller.stop()
         assert status == 0, f"dnscan poll exited {status}; its last lines: {drain(poller.lines)[-10:]}"
+    assert page.console_errors() == []
+
+
+def test_read_only_without_actions(bus, start_daemon, browser):
+    daemon = start_daemon(bus, "--node-id", NODE, "--http", "0")
+    page = Page(browser, http_port(daemon))
+    page.load()
+    page.open_drive(NODE)
+    # The controls are there to see, disabled, with the reason; no token is asked for.
+    assert browser.find_element(By.ID, "control-fields").get_property("disabled") is True
+    assert all(not b.is_enabled() for b in browser.find_elements(By.CSS_SELECTOR, "#control-fields button"))
+    assert browser.find_element(By.ID, "actions-off").text == (
+        "Actions are off: start atv312d with --http-actions to use these controls.")
+    assert not browser.find_element(By.ID, "token-form").is_displayed()
     assert page.console_errors() == []

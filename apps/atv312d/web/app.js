@@ -43,7 +43,6 @@ const page = {
   tiles: new Map(), // node -> the bench's tile
   driveTile: null, // the drive page's tile
   driveNode: null, // the node the drive page shows, null on the bench
-  events: null, // the EventSource
 };
 
 // ---- small helpers -------------------------------------------------------------------------------
@@ -240,7 +239,6 @@ function applyState(state) {
 function listen() {
   const link = document.getElementById("link");
   const events = new EventSource("api/events");
-  page.events = events;
   events.addEventListener("open", () => {
     link.textContent = "live";
     link.dataset.live = "true";
@@ -298,6 +296,7 @@ function openDrivePage(nodeId) {
     openBench();
     return;
   }
+  showProblem("");
   page.driveNode = nodeId;
   document.getElementById("drive-title").textContent = `${nodeTitle(nodeId)} · ${drive.model}`;
   page.driveTile = buildTile(drive, false);

@@ -107,5 +107,5 @@ const SevenSegment = (() => {
     all.forEach((cell, i) => drawDigit(svg, cell, i));
   }
 
-  return { create, render, cells };
+  return { create, render };
 })();

@@ -223,5 +223,5 @@ const Trend = (() => {
     }
   }
 
-  return { History, draw, SERIES, WINDOW_MS };
+  return { History, draw };
 })();

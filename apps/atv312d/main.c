@@ -79,15 +79,27 @@ static void log_state_changes(drive_slot_t *slot)
     slot->cia402_state = state;
 }
 
+/* Which error control lost the master: the drive knows it when its EMCY leaves. */
+static void log_communication_loss(const drive_slot_t *slot, uint8_t reg)
+{
+    drive_comm_loss_t loss = slot->drive.comm_loss;
+    char why[64];
+    if (loss.source == DRIVE_COMM_LOSS_HEARTBEAT)
+        snprintf(why, sizeof why, "heartbeat of node %u timed out", loss.node);
+    else if (loss.source == DRIVE_COMM_LOSS_GUARDING)
+        snprintf(why, sizeof why, "life guarding timed out");
+    else
+        snprintf(why, sizeof why, "heartbeat or life guarding timeout");
+    co_log(CO_LOG_WARN, "node %u: communication loss (EMCY 8130, error register %02X): %s",
+           slot_node_id(slot), reg, why);
+}
+
 static void log_emcy(const drive_slot_t *slot, const co_frame_t *frame)
 {
     uint16_t code = co_get_u16(frame->data);
     uint8_t reg = frame->data[2];
     if (code == CO_EMCY_HEARTBEAT)
-        co_log(CO_LOG_WARN,
-               "node %u: communication loss (EMCY 8130, error register %02X): heartbeat or life "
-               "guarding timeout",
-               slot_node_id(slot), reg);
+        log_communication_loss(slot, reg);
     else if (code == 0)
         co_log(CO_LOG_INFO, "node %u: EMCY 0000 error reset (error register %02X)",
                slot_node_id(slot), reg);
@@ -153,6 +165,12 @@ static void slot_bus_event(void *ctx, uint16_t emcy_code, bool active)
     drive_bus_event(&slot->drive, emcy_code, active);
 }
 
+static void slot_bus_warning(void *ctx, bool active)
+{
+    drive_slot_t *slot = ctx;
+    drive_bus_warning(&slot->drive, active);
+}
+
 static const co_node_t *slot_node(void *ctx)
 {
     drive_slot_t *slot = ctx;
@@ -165,6 +183,7 @@ static const co_linux_device_ops_t slot_ops = {
     .receive = slot_receive,
     .process = slot_process,
     .bus_event = slot_bus_event,
+    .bus_warning = slot_bus_warning,
     .node = slot_node,
 };
 

@@ -74,14 +74,24 @@ static void timer_fired(void *ctx, uint32_t events)
     }
 }
 
+static void tell_device(co_linux_loop_t *loop, co_linux_device_t *dev,
+                        const co_linux_condition_t *condition)
+{
+    if (condition->emcy_code == CO_LINUX_EMCY_NONE) {
+        if (dev->ops->bus_warning)
+            dev->ops->bus_warning(dev->ctx, condition->wanted);
+        return;
+    }
+    if (dev->ops->bus_event) {
+        dev->ops->bus_event(dev->ctx, condition->emcy_code, condition->wanted);
+        process(loop, dev);
+    }
+}
+
 static void tell_devices(co_linux_loop_t *loop, const co_linux_condition_t *condition)
 {
-    for (co_linux_device_t *dev = loop->router.devices; dev; dev = dev->next) {
-        if (dev->ops->bus_event) {
-            dev->ops->bus_event(dev->ctx, condition->emcy_code, condition->wanted);
-            process(loop, dev);
-        }
-    }
+    for (co_linux_device_t *dev = loop->router.devices; dev; dev = dev->next)
+        tell_device(loop, dev, condition);
 }
 
 /* Returns true when a device was told something (it may have sent frames, or a dropped frame may

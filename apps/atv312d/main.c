@@ -11,6 +11,7 @@
 #include "drive/drive.h"
 #include "drive/drive_devicenet.h"
 #include "leds.h"
+#include "notify.h"
 #include "status.h"
 
 #include <errno.h>
@@ -548,6 +549,49 @@ static int open_surfaces(atv312d_control_t *control, atv312d_status_t *status,
     return rc;
 }
 
+/* What systemd's Type=notify waits for (docs/atv312d.md, "systemd"). */
+typedef struct readiness {
+    const atv312d_options_t *opts;
+    const drive_slot_t *slots;
+} readiness_t;
+
+static void notify(const char *state)
+{
+    if (atv312d_notify(state))
+        return;
+    co_log(CO_LOG_WARN, "NOTIFY_SOCKET %s: %s: the service manager was not told",
+           getenv("NOTIFY_SOCKET"), strerror(errno));
+}
+
+/* READY=1 once every drive's start has reached the bus: on CANopen its boot-up written to the
+ * socket (an interface down at start: after it came up and the boot-ups left); on DeviceNet, in
+ * addition, every card's duplicate MAC ID check over, online or faulted. Told once. */
+static void tell_when_ready(void *ctx, co_linux_loop_t *loop)
+{
+    const readiness_t *ready = ctx;
+    if (!co_linux_loop_sent_all(loop))
+        return;
+    size_t faulted = 0;
+    for (size_t i = 0; i < ready->opts->node_count; i++) {
+        const drive_dn_t *dn = ready->slots[i].dn;
+        if (dn && dn->node.link != DN_LINK_ONLINE && dn->node.link != DN_LINK_FAULTED)
+            return;
+        faulted += dn && dn->node.link == DN_LINK_FAULTED;
+    }
+    co_linux_loop_on_settled(loop, NULL, NULL);
+    char state[256];
+    size_t count = ready->opts->node_count;
+    if (ready->opts->devicenet)
+        snprintf(state, sizeof state,
+                 "READY=1\nSTATUS=%zu drive(s) on DeviceNet on %s: %zu online, %zu faulted", count,
+                 loop->iface, count - faulted, faulted);
+    else
+        snprintf(state, sizeof state, "READY=1\nSTATUS=%zu drive(s) booted on %s", count,
+                 loop->iface);
+    co_log(CO_LOG_DEBUG, "service manager told: %s", strchr(state, '\n') + 1);
+    notify(state);
+}
+
 static int run(const atv312d_options_t *opts, FILE *trace, co_file_store_t *store)
 {
     static atv312d_control_t control = {.server.listen_fd = -1};
@@ -572,7 +616,10 @@ static int run(const atv312d_options_t *opts, FILE *trace, co_file_store_t *stor
         else
             co_log(CO_LOG_INFO, "atv312d %s started on %s: %zu drive(s), node-id %s",
                    ATV312D_VERSION, opts->iface, opts->node_count, ids);
+        readiness_t readiness = {.opts = opts, .slots = slots};
+        co_linux_loop_on_settled(&loop, tell_when_ready, &readiness);
         rc = co_linux_loop_run(&loop);
+        notify("STOPPING=1");
         co_log(CO_LOG_INFO,
                "stopped: %llu wake-ups, %llu frames received, %llu sent, %llu dropped, %llu lost "
                "while the interface was down, %llu error frames, %llu received for no drive, "

@@ -145,6 +145,19 @@ static void settle(co_linux_loop_t *loop)
     arm_timer(loop);
     if (!co_linux_bus_flush_trace(&loop->bus))
         co_linux_router_refilter(&loop->router); /* the socket no longer needs the whole bus */
+    if (loop->settled)
+        loop->settled(loop->settled_ctx, loop);
+}
+
+void co_linux_loop_on_settled(co_linux_loop_t *loop, co_linux_settled_fn fn, void *ctx)
+{
+    loop->settled = fn;
+    loop->settled_ctx = ctx;
+}
+
+bool co_linux_loop_sent_all(const co_linux_loop_t *loop)
+{
+    return loop->bus.link_up && co_txq_count(&loop->bus.tx.queue) == 0;
 }
 
 static void update_clocks(co_linux_loop_t *loop)

@@ -59,7 +59,24 @@ static void reset(co_node_t *self, co_nmt_reset_t scope)
         simulated_error = 0;
 }
 
-static const co_app_hooks_t hooks = {.od_written = od_written, .reset = reset};
+/* Error control: the master stopped guarding this node, or a monitored heartbeat stopped: the
+ * CiA 301 "life guard or heartbeat error", cleared when it resumes. */
+static void guarding(co_node_t *self, bool lost)
+{
+    if (lost)
+        co_emcy_raise(self, CO_EMCY_HEARTBEAT, CO_ERR_REG_COMMUNICATION, NULL);
+    else
+        co_emcy_clear(self, CO_EMCY_HEARTBEAT);
+}
+
+static void heartbeat(co_node_t *self, uint8_t producer, bool lost)
+{
+    (void)producer;
+    guarding(self, lost);
+}
+
+static const co_app_hooks_t hooks = {
+    .od_written = od_written, .reset = reset, .guarding = guarding, .heartbeat = heartbeat};
 
 /* The application's work: count blinks at the period of 2000h; 2001h is mapped into TPDO1, and
  * co_node_process sends it when it changes. */

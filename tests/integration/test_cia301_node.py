@@ -313,6 +313,10 @@ def test_store_and_restore_across_a_power_cycle(target, bus):
     bus.sdo_write(n, 0x1017, 0, 250, 2)
     bus.sdo_write(n, 0x1010, 1, SAVE, 4)
     bus.sdo_write(n, 0x1017, 0, 0, 2)  # not saved
+    bus.nmt(NMT_RESET_NODE, n)  # a reset loads the stored values, as the power cycle below does
+    bus.expect(0x700 + n, b"\x00", timeout=BOOT_TIMEOUT)
+    assert bus.sdo_read(n, 0x1017, 0) == 250
+    bus.sdo_write(n, 0x1017, 0, 0, 2)
     target.power_cycle()
     bus.expect(0x700 + n, b"\x00", timeout=BOOT_TIMEOUT)
     assert bus.sdo_read(n, 0x1017, 0) == 250

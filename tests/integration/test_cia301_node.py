@@ -363,3 +363,16 @@ def test_candump_trace_decoded_by_cotrace_has_no_unknown_frame(target, bus, tmp_
     node_lines = [line for line in lines if "7FF#" not in line]  # the listeners' markers
     unknown = [line for line in node_lines if "unknown" in line or "no predefined meaning" in line]
     assert unknown == [], "\n".join(unknown)
+
+
+if "firmware" in TARGETS:
+    # The daemon's dictionary has no writable object longer than 4 bytes: only the firmware's
+    # 2003h (a 32-byte string) takes a segmented and a block download of several segments, which
+    # cross the board's 64-byte SDO buffer and its serial link.
+    @pytest.mark.parametrize("target", ["firmware"], indirect=True)
+    def test_long_string_by_segmented_and_block_download(target, bus):
+        text = "emulated Cortex-M4 on slcan0"  # 28 bytes: 4 segments, or 4 block segments
+        assert comaster(target, "write", target.node, "0x2003", "string", text) == (0, "", "")
+        assert comaster(target, "read", target.node, "0x2003", "string") == (0, text + "\n", "")
+        assert comaster(target, "write", target.node, "0x2003", "string", text.upper(), "--block") == (0, "", "")
+        assert comaster(target, "read", target.node, "0x2003", "string", "--block") == (0, text.upper() + "\n", "")

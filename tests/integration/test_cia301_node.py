@@ -17,7 +17,6 @@ import statistics
 import subprocess
 import sys
 import time
-from pathlib import Path
 
 import pytest
 
@@ -25,7 +24,6 @@ from conftest import (BOOT_TIMEOUT, EDS, IFACE, MARKER_ID, NMT_PRE_OPERATIONAL, 
                       NMT_STOP, PERIODIC_LATENESS, ROOT, Bus, Candump, Daemon, Frame, assert_periodic,
                       cansend, intervals)
 
-sys.path.insert(0, str(ROOT / "tools"))
 TARGETS = os.environ.get("CIA301_TARGETS", "daemon").split()
 COMASTER = os.environ.get("COMASTER") or str(ROOT / "build" / "apps" / "comaster" / "comaster")
 COTRACE = os.environ.get("COTRACE") or str(ROOT / "build" / "apps" / "cotrace" / "cotrace")

@@ -112,15 +112,15 @@ void TIMER0_Handler(void)
 
 static void timer_arm(co_time_t delay_us)
 {
-    uint64_t ticks = delay_us * CPU_MHZ;
-    if (ticks > UINT32_MAX)
-        ticks = UINT32_MAX; /* 171 s: the loop wakes, finds nothing due and sleeps again */
+    /* At most 171 s (the 32-bit counter): the loop wakes, finds nothing due and sleeps again.
+     * Capped before the multiplication, which a far deadline would overflow. */
+    uint32_t ticks = delay_us >= UINT32_MAX / CPU_MHZ ? UINT32_MAX : (uint32_t)(delay_us * CPU_MHZ);
     if (ticks == 0)
         ticks = 1;
     TIMER_CTRL = 0;
     TIMER_INTCLEAR = 1;
-    TIMER_RELOAD = (uint32_t)ticks;
-    TIMER_VALUE = (uint32_t)ticks;
+    TIMER_RELOAD = ticks;
+    TIMER_VALUE = ticks;
     TIMER_CTRL = TIMER_CTRL_ENABLE_AND_INTERRUPT;
 }
 

@@ -416,15 +416,14 @@ def intervals(frames):
 PERIODIC_LATENESS = 0.020
 
 
-def assert_periodic(frames, period, what, lateness=PERIODIC_LATENESS):
+def assert_periodic(frames, period, what):
     """Frame k is due at t0 + k x period (the core schedules from the previous due time, never
     from the late send): after removing that schedule, the frames may differ only by wake-up
-    lateness (the daemon's by default; the emulated board's is larger, test_cia301_node.py). A
-    wrong period drifts out of the band (1 % over 10 periods is 10 ms); one frame early or late
-    by more than the band fails too."""
+    lateness. A wrong period drifts out of the band (1 % over 10 periods is 10 ms); one frame
+    early or late by more than the band fails too."""
     offsets = [f.timestamp - k * period for k, f in enumerate(frames)]
     spread = max(offsets) - min(offsets)
-    assert spread <= lateness, (
+    assert spread <= PERIODIC_LATENESS, (
         f"{what}: {len(frames)} frames drift or jitter {spread * 1000:.1f} ms from a {period * 1000:.0f} ms "
         f"schedule; intervals {[round(i, 4) for i in intervals(frames)]}")
 

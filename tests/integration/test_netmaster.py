@@ -272,3 +272,19 @@ def test_boot_one_slave(bus, start_daemon, remote):
     rc, out, err = comaster("boot", 7, NET / "drive4.dcf")
     assert rc == EXIT_TIMEOUT, out + err
     assert "SDO error: node 7 read 1000h:00 abort 0x05040000 (SDO protocol timed out)" in out.splitlines(), out
+
+
+def test_boot_new_can_id_of_a_valid_pdo(bus, start_daemon, remote, tmp_path):
+    """A DCF that changes only the COB-ID of TPDO1, valid on the drive (issue 19): the drive refuses
+    a new CAN-ID of a valid PDO (0x06090030), so the master writes the old COB-ID (the DCF's
+    DefaultValue) with bit 31 set first, then the new one."""
+    text = (NET / "drive4.dcf").read_text()
+    text = text.replace("[1800sub1]\n", "[1800sub1]\nParameterValue=$NODEID+0x190\n", 1)
+    dcf = tmp_path / "drive4.dcf"
+    dcf.write_text(text)
+    start_daemon(bus, "--node-id", "4")
+    rc, out, err = comaster("boot", 4, dcf)
+    assert rc == 0, out + err
+    bus.expect(0x604, "2300180184010080")
+    bus.expect(0x604, "2300180194010000")
+    assert remote(4).sdo[0x1800][1].raw == 0x194

@@ -62,6 +62,9 @@ int comaster_run_main(comaster_options_t *opts, int argc, char **argv);
 int comaster_set_main(comaster_options_t *opts, int argc, char **argv);
 int comaster_get_main(comaster_options_t *opts, int argc, char **argv);
 int comaster_status_main(comaster_options_t *opts, int argc, char **argv);
+int comaster_disable_main(comaster_options_t *opts, int argc, char **argv);
+int comaster_enable_main(comaster_options_t *opts, int argc, char **argv);
+int comaster_can_main(comaster_options_t *opts, int argc, char **argv);
 
 /* Parses a command's arguments (argv[0] is the command): the common options, --help (prints
  * `help` and returns 0), the command's flags named in `flags` (" --block --output "), and at
@@ -79,6 +82,11 @@ int comaster_fail(const comaster_options_t *opts, int status, const char *format
 bool comaster_parse_node(const comaster_options_t *opts, const char *text, bool allow_all,
                          uint8_t *node);
 
+/* An NMT command by the name comaster nmt takes (start, stop, preop, reset-node, reset-comm);
+ * false for another name. And the name of a command. */
+bool comaster_nmt_command(const char *name, uint8_t *command);
+const char *comaster_nmt_name(uint8_t command);
+
 /* ---- the bus --------------------------------------------------------------------------------- */
 
 /* A job runs on the bus until it calls comaster_bus_finish: it gets every received frame and is
@@ -86,6 +94,8 @@ bool comaster_parse_node(const comaster_options_t *opts, const char *text, bool 
 typedef struct comaster_job {
     void (*receive)(void *ctx, const co_frame_t *frame, co_time_t now);
     co_time_t (*process)(void *ctx, co_time_t now);
+    /* A CAN condition began or ended (CO_LINUX_EMCY_*); may be NULL. */
+    void (*bus_event)(void *ctx, uint16_t emcy_code, bool active);
     void *ctx;
 } comaster_job_t;
 

@@ -594,10 +594,18 @@ static bool master_key(comaster_network_t *net, const ini_line_t *line, char *er
     } else if (strcasecmp(k, "reset_all") == 0) {
         if (!parse_yes_no(line->value, &c->reset_all))
             return bad_value(line, "give yes or no", err, err_len);
+    } else if (strcasecmp(k, "node_id") == 0) {
+        if (!parse_number(line->value, CO_NMT_MASTER_NODE_ID_MAX, &v) || v < 1)
+            return bad_value(line, "give the master's own node-id, 1..127", err, err_len);
+        c->node_id = (uint8_t)v;
+    } else if (strcasecmp(k, "heartbeat") == 0) {
+        if (!parse_number(line->value, UINT16_MAX, &v))
+            return bad_value(line, "give 0 (none) or 1..65535 ms", err, err_len);
+        c->heartbeat_ms = (uint16_t)v;
     } else {
         snprintf(err, err_len,
                  "%s:%u: unknown key '%s' in [Master] (cpj, interface, control, sdo_timeout, "
-                 "boot_time, retry_delay, sync_period, start, reset_all)",
+                 "boot_time, retry_delay, sync_period, start, reset_all, node_id, heartbeat)",
                  line->path, line->number, k);
         return false;
     }
@@ -765,6 +773,28 @@ static int load_topology(comaster_network_t *net, const char *cpj, char *err, si
     return rc;
 }
 
+/* The master's heartbeat is sent on 700h + its own node-id, which no slave may have. */
+static int check_master_node(const comaster_network_t *net, const char *path, char *err,
+                             size_t err_len)
+{
+    const co_net_master_config_t *c = &net->config;
+    if (c->heartbeat_ms == 0)
+        return 0;
+    if (c->node_id == 0) {
+        snprintf(err, err_len,
+                 "%s: [Master] heartbeat = %u needs node_id = N, the master's own node-id (its "
+                 "heartbeat is 700h + N)",
+                 path, c->heartbeat_ms);
+        return EX_DATAERR;
+    }
+    if (slave_of_node(net, c->node_id) != net->slave_count) {
+        snprintf(err, err_len, "%s: [Master] node_id = %u is the node-id of a slave", path,
+                 c->node_id);
+        return EX_DATAERR;
+    }
+    return 0;
+}
+
 static void finish(comaster_network_t *net)
 {
     net->config.slave_count = net->slave_count;
@@ -784,6 +814,8 @@ int comaster_network_load(comaster_network_t *net, const char *path, char *err, 
         rc = load_topology(net, cpj.path, err, err_len);
     if (rc == 0)
         rc = read_ini(path, option_key, net, err, err_len);
+    if (rc == 0)
+        rc = check_master_node(net, path, err, err_len);
     if (rc != 0)
         comaster_network_free(net);
     finish(net);

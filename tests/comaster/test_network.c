@@ -214,6 +214,26 @@ START_TEST(node_options)
 }
 END_TEST
 
+/* The master's own heartbeat: [Master] heartbeat and node_id, which no slave may have. */
+START_TEST(master_heartbeat_and_node_id)
+{
+    ck_assert_int_eq(load_with("node_id = 1\nheartbeat = 50\n"), 0);
+    ck_assert_uint_eq(net.config.node_id, 1);
+    ck_assert_uint_eq(net.config.heartbeat_ms, 50);
+    ck_assert_int_eq(load_with(""), 0);
+    ck_assert_uint_eq(net.config.heartbeat_ms, 0);
+    ck_assert_int_eq(load_with("heartbeat = 50\n"), EX_DATAERR);
+    ck_assert_ptr_nonnull(strstr(err, "/net.ini: [Master] heartbeat = 50 needs node_id = N, the "
+                                      "master's own node-id"));
+    ck_assert_int_eq(load_with("node_id = 4\nheartbeat = 50\n"), EX_DATAERR);
+    ck_assert_ptr_nonnull(strstr(err, "/net.ini: [Master] node_id = 4 is the node-id of a slave"));
+    ck_assert_int_eq(load_with("node_id = 128\n"), EX_DATAERR);
+    ck_assert_ptr_nonnull(strstr(err, "node_id"));
+    ck_assert_int_eq(load_with("heartbeat = 65536\nnode_id = 1\n"), EX_DATAERR);
+    ck_assert_ptr_nonnull(strstr(err, "heartbeat"));
+}
+END_TEST
+
 START_TEST(bad_files_are_refused)
 {
     ck_assert_int_eq(comaster_network_load(&net, "/nonexistent/net.ini", err, sizeof err),
@@ -511,6 +531,7 @@ static Suite *network_suite(void)
     tcase_add_test(tc, unknown_variables_are_told);
     tcase_add_test(tc, one_slave_for_boot);
     tcase_add_test(tc, node_options);
+    tcase_add_test(tc, master_heartbeat_and_node_id);
     tcase_add_test(tc, bad_files_are_refused);
     tcase_add_test(tc, option_file_and_nodelist_syntax);
     tcase_add_test(tc, option_file_and_nodelist_syntax_errors);

@@ -79,11 +79,14 @@ void run_nmt_done(runner_t *r)
     if (r->nmt_ticket == 0)
         return;
     const co_net_nmt_request_t *n = &r->master.nmt_request;
-    char target[16], confirmed[512], missing[512], reply[1280];
-    if (n->node_id == CO_NMT_MASTER_ALL_NODES)
+    char target[16], json_node[8], confirmed[512], missing[512], reply[1280];
+    if (n->node_id == CO_NMT_MASTER_ALL_NODES) {
         snprintf(target, sizeof target, "all");
-    else
+        snprintf(json_node, sizeof json_node, "\"all\"");
+    } else {
         snprintf(target, sizeof target, "node %u", n->node_id);
+        snprintf(json_node, sizeof json_node, "%u", n->node_id);
+    }
     const char *command = comaster_nmt_name(n->command);
     const char *state = state_text(n->expected);
     node_list(r, false, r->nmt_json, confirmed, sizeof confirmed);
@@ -101,10 +104,8 @@ void run_nmt_done(runner_t *r)
                  state, missing, r->nmt_timeout_ms, command, confirmed[0] ? confirmed : " none");
     else if (r->nmt_json)
         snprintf(reply, sizeof reply,
-                 "{\"node\": %s%s%s, \"command\": \"%s\", \"state\": \"%s\", \"confirmed\": "
-                 "[%s]}\n",
-                 n->node_id ? "" : "\"", n->node_id ? target + 5 : "all", n->node_id ? "" : "\"",
-                 command, state, confirmed + 1);
+                 "{\"node\": %s, \"command\": \"%s\", \"state\": \"%s\", \"confirmed\": [%s]}\n",
+                 json_node, command, state, confirmed + 1);
     else if (n->node_id == CO_NMT_MASTER_ALL_NODES)
         snprintf(reply, sizeof reply, "all: %s (nodes%s)\n", state, confirmed);
     else
@@ -116,11 +117,10 @@ void run_nmt_done(runner_t *r)
 static bool request_nmt(runner_t *r, char **field, size_t count, bool json, char *reply, size_t cap)
 {
     uint8_t command, node;
-    char *end;
+    char *end = NULL;
     unsigned long ms = count == 4 ? strtoul(field[3], &end, 10) : 0;
-    if (count != 4 || !comaster_nmt_command(field[1], &command) ||
-        !parse_node(field[2], true, &node) || *end != '\0' || ms < 1 ||
-        ms > COMASTER_CONTROL_WAIT_MAX_MS) {
+    bool valid = count == 4 && *end == '\0' && ms >= 1 && ms <= COMASTER_CONTROL_WAIT_MAX_MS;
+    if (!valid || !comaster_nmt_command(field[1], &command) || !parse_node(field[2], true, &node)) {
         snprintf(reply, cap,
                  "error: nmt start|stop|preop|reset-node|reset-comm NODE|all MS (1..%u)\n",
                  COMASTER_CONTROL_WAIT_MAX_MS);

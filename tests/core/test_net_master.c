@@ -1045,6 +1045,32 @@ START_TEST(nmt_command_confirmed_by_the_next_heartbeat)
 }
 END_TEST
 
+/* A node that produces no heartbeat confirms by its reply to the guarding request (its toggle
+ * bit set aside), at once. */
+START_TEST(nmt_command_confirmed_by_a_guarding_reply)
+{
+    for (size_t i = 0; i < SLAVES; i++) {
+        table[i].writes = &writes[1]; /* no 1017h: the slaves send no heartbeat */
+        table[i].write_count = 1;
+    }
+    start_master();
+    bus.next = bus.count;
+    ck_assert(co_net_master_nmt(&master, CO_NMT_CS_ENTER_PRE_OPERATIONAL, 6, 500, bus.now));
+    advance(0);
+    expect("000#8006");
+    expect("706#R1");
+    ck_assert(sent_later("706#7F")); /* the reply: Pre-operational */
+    ck_assert_uint_eq(nmt_done_events(), 1);
+    ck_assert(!co_net_master_nmt_awaited(&master, 6));
+    ck_assert(co_net_master_nmt(&master, CO_NMT_CS_START, 6, 500, bus.now));
+    advance(0);
+    expect("000#0106");
+    expect("706#R1");
+    ck_assert(sent_later("706#85")); /* Operational, toggle bit set */
+    ck_assert_uint_eq(nmt_done_events(), 2);
+}
+END_TEST
+
 /* A node that never answers is still awaited when the deadline ends the command, exactly then;
  * a node the master consumes the heartbeat of is not asked by a guarding request. */
 START_TEST(nmt_command_unconfirmed_at_its_deadline)
@@ -1239,6 +1265,7 @@ static Suite *net_master_suite(void)
     tcase_add_test(tc, disable_stops_every_frame_and_enable_boots_again);
     tcase_add_test(tc, bus_off_and_bus_power_bits);
     tcase_add_test(tc, nmt_command_confirmed_by_the_next_heartbeat);
+    tcase_add_test(tc, nmt_command_confirmed_by_a_guarding_reply);
     tcase_add_test(tc, nmt_command_unconfirmed_at_its_deadline);
     tcase_add_test(tc, nmt_reset_confirmed_by_the_boot_up);
     tcase_add_test(tc, sdo_requests_queued_behind_the_boot);

@@ -561,8 +561,6 @@ void co_net_master_start(co_net_master_t *master, co_time_t now)
 
 /* ---- NMT commands of the application, confirmed by the state the nodes report -------------- */
 
-#define CO_NMT_STATE_MASK 0x7Fu /* a guarding reply's bit 7 is its toggle */
-
 static bool nmt_awaits(const co_net_nmt_request_t *r, uint8_t node_id)
 {
     return r->pending && (r->awaited[node_id / 32u] & (1u << (node_id % 32u))) != 0;

@@ -561,14 +561,20 @@ void co_net_master_start(co_net_master_t *master, co_time_t now)
 
 /* ---- NMT commands of the application, confirmed by the state the nodes report -------------- */
 
+/* Node-id n is bit n % 32 of awaited[n / 32]. */
+static uint32_t awaited_bit(uint8_t node_id)
+{
+    return 1u << (node_id % 32u);
+}
+
 static bool nmt_awaits(const co_net_nmt_request_t *r, uint8_t node_id)
 {
-    return r->pending && (r->awaited[node_id / 32u] & (1u << (node_id % 32u))) != 0;
+    return r->pending && (r->awaited[node_id / 32u] & awaited_bit(node_id)) != 0;
 }
 
 static void nmt_await(co_net_nmt_request_t *r, uint8_t node_id)
 {
-    r->awaited[node_id / 32u] |= 1u << (node_id % 32u);
+    r->awaited[node_id / 32u] |= awaited_bit(node_id);
 }
 
 static bool nmt_awaits_any(const co_net_nmt_request_t *r)
@@ -587,7 +593,7 @@ static void confirm_nmt(co_net_master_t *m, uint8_t node_id, uint8_t state)
     co_net_nmt_request_t *r = &m->nmt_request;
     if (!nmt_awaits(r, node_id) || state != r->expected)
         return;
-    r->awaited[node_id / 32u] &= ~(1u << (node_id % 32u));
+    r->awaited[node_id / 32u] &= ~awaited_bit(node_id);
     if (!nmt_awaits_any(r))
         finish_nmt(m);
 }
@@ -656,7 +662,7 @@ bool co_net_master_nmt(co_net_master_t *master, uint8_t command, uint8_t node_id
 bool co_net_master_nmt_awaited(const co_net_master_t *master, uint8_t node_id)
 {
     return node_id <= CO_NMT_MASTER_NODE_ID_MAX &&
-           (master->nmt_request.awaited[node_id / 32u] & (1u << (node_id % 32u))) != 0;
+           (master->nmt_request.awaited[node_id / 32u] & awaited_bit(node_id)) != 0;
 }
 
 /* ---- SDO requests of the application on the master's client --------------------------------- */

@@ -13,7 +13,7 @@
 #include <stddef.h>
 
 #define COMASTER_CONTROL_LINE_MAX CO_LINE_MAX
-#define COMASTER_CONTROL_REPLY_MAX 8192u
+#define COMASTER_CONTROL_REPLY_MAX 16384u /* status --json of 127 slaves */
 
 /* Answers one request line (without its newline) into `reply` (cap bytes, newline-terminated
  * lines; an error is one line "error: ...", an SDO abort "abort: ...", no answer in time

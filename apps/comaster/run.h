@@ -59,6 +59,9 @@ void run_nmt_done(runner_t *r);
 /* The controller's state as the master's status bits 13-14 (the runtime's conditions and link). */
 uint16_t run_bus_bits(const runner_t *r);
 
+/* `text` as a JSON string ("..." with its escapes) into out (cap bytes). */
+void run_json_string(const char *text, char *out, size_t cap);
+
 /* "master 0x000F all-contacted ...": the master's status word and its bits by name. */
 void run_master_status_text(uint16_t status, char *out, size_t cap);
 

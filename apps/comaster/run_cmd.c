@@ -4,6 +4,7 @@
  * run_requests.c. */
 #include "run.h"
 
+#include <stdarg.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -225,11 +226,71 @@ static void job_bus_event(void *ctx, uint16_t emcy_code, bool active)
 
 /* ---- the control requests: status, get, set (tab-separated fields) --------------------------- */
 
-static void reply_status(runner_t *r, char *reply, size_t cap)
+/* Appends to out (cap bytes, `used` of them written) what the format says; the new length, at
+ * most cap - 1 when it did not fit. */
+static size_t append(char *out, size_t cap, size_t used, const char *format, ...)
+    __attribute__((format(printf, 4, 5)));
+static size_t append(char *out, size_t cap, size_t used, const char *format, ...)
+{
+    if (used + 1 >= cap)
+        return used;
+    va_list ap;
+    va_start(ap, format);
+    int n = vsnprintf(out + used, cap - used, format, ap);
+    va_end(ap);
+    size_t end = used + (n < 0 ? 0u : (size_t)n);
+    return end < cap ? end : cap - 1;
+}
+
+/* status --json: one object, the records of the PLC300's 5.6.3-5.6.5. */
+static void reply_status_json(runner_t *r, uint16_t status, char *reply, size_t cap)
+{
+    char name[2 * COMASTER_NAME_MAX + 3], failure[300], text[256];
+    size_t used = append(reply, cap, 0, "{\"status\": \"0x%04X\", \"slaves\": [", status);
+    for (size_t i = 0; i < r->net->slave_count; i++) {
+        const co_net_slave_t *s = &r->net->slave_state[i];
+        run_json_string(r->net->slave[i].name, name, sizeof name);
+        snprintf(failure, sizeof failure, "null");
+        if (s->step == CO_NET_STEP_FAILED) {
+            format_failure(s, text, sizeof text);
+            run_json_string(text, failure, sizeof failure);
+        }
+        used = append(reply, cap, used,
+                      "%s{\"node\": %u, \"name\": %s, \"status\": \"0x%04X\", \"step\": \"%s\", "
+                      "\"failure\": %s}",
+                      i ? ", " : "", r->net->slave_config[i].node_id, name, s->status,
+                      co_net_step_text(s->step), failure);
+    }
+    const co_net_sdo_error_t *e = &r->master.last_sdo_error;
+    if (e->node_id == 0)
+        used = append(reply, cap, used, "], \"last_sdo_error\": null");
+    else
+        used = append(reply, cap, used,
+                      "], \"last_sdo_error\": {\"node\": %u, \"access\": \"%s\", \"index\": "
+                      "\"0x%04X\", \"subindex\": %u, \"value\": %u, \"abort_code\": \"0x%08X\"}",
+                      e->node_id, e->access == CO_NET_ACCESS_WRITE ? "write" : "read", e->index,
+                      e->subindex, e->value, e->abort_code);
+    const co_emcy_message_t *m = &r->master.last_emcy;
+    if (m->node_id == 0)
+        append(reply, cap, used, ", \"last_emcy\": null}\n");
+    else
+        append(reply, cap, used,
+               ", \"last_emcy\": {\"node\": %u, \"code\": \"0x%04X\", \"register\": \"0x%02X\", "
+               "\"data\": \"%02X %02X %02X %02X %02X\"}}\n",
+               m->node_id, m->code, m->reg, m->msef[0], m->msef[1], m->msef[2], m->msef[3],
+               m->msef[4]);
+}
+
+static void reply_status(runner_t *r, bool json, char *reply, size_t cap)
 {
     char text[256];
     co_net_master_set_bus(&r->master, run_bus_bits(r));
-    run_master_status_text(co_net_master_status(&r->master), text, sizeof text);
+    uint16_t status = co_net_master_status(&r->master);
+    if (json) {
+        reply_status_json(r, status, reply, cap);
+        return;
+    }
+    run_master_status_text(status, text, sizeof text);
     size_t used = (size_t)snprintf(reply, cap, "%s\n", text);
     for (size_t i = 0; i < r->net->slave_count && used < cap; i++) {
         const co_net_slave_t *s = &r->net->slave_state[i];
@@ -259,7 +320,20 @@ static const comaster_type_t *variable_type(const comaster_variable_t *v, char *
     return type;
 }
 
-static void reply_get(runner_t *r, uint8_t node, const char *name, char *reply, size_t cap)
+/* get and set --json: {"node": 4, "name": "speed", "value": 1200}. */
+static void variable_json(const comaster_variable_t *v, const char *value, bool is_text,
+                          char *reply, size_t cap)
+{
+    char name[256], text[256];
+    run_json_string(v->name, name, sizeof name);
+    if (is_text)
+        run_json_string(value, text, sizeof text);
+    snprintf(reply, cap, "{\"node\": %u, \"name\": %s, \"value\": %s}\n", v->node_id, name,
+             is_text ? text : value);
+}
+
+static void reply_get(runner_t *r, uint8_t node, const char *name, bool json, char *reply,
+                      size_t cap)
 {
     const comaster_variable_t *v;
     char err[256];
@@ -274,11 +348,24 @@ static void reply_get(runner_t *r, uint8_t node, const char *name, char *reply, 
     char text[128];
     bool is_text;
     comaster_value_format(type, image + v->offset, v->size, text, sizeof text, &is_text);
-    snprintf(reply, cap, "%s\n", text);
+    if (json)
+        variable_json(v, text, is_text, reply, cap);
+    else
+        snprintf(reply, cap, "%s\n", text);
 }
 
-static void reply_set(runner_t *r, uint8_t node, const char *name, const char *value, char *reply,
-                      size_t cap)
+/* The value set, as its type prints it (0x10 given is 16). */
+static void set_json(const comaster_variable_t *v, const comaster_type_t *type,
+                     const uint8_t *bytes, size_t len, char *reply, size_t cap)
+{
+    char text[128];
+    bool is_text;
+    comaster_value_format(type, bytes, len, text, sizeof text, &is_text);
+    variable_json(v, text, is_text, reply, cap);
+}
+
+static void reply_set(runner_t *r, uint8_t node, const char *name, const char *value, bool json,
+                      char *reply, size_t cap)
 {
     const comaster_variable_t *first;
     char err[256];
@@ -307,6 +394,8 @@ static void reply_set(runner_t *r, uint8_t node, const char *name, const char *v
     if (written == 0)
         snprintf(reply, cap, "error: %s of node %u is an input (a TPDO of the slave): get it\n",
                  first->name, node);
+    else if (json)
+        set_json(first, type, bytes, len, reply, cap);
     else
         snprintf(reply, cap, "ok\n");
 }
@@ -344,13 +433,13 @@ static bool handle_request(void *ctx, const char *request, char *reply, size_t c
     else if (run_request(r, fields, count, json, reply, cap, &deferred))
         ;
     else if (count == 1 && strcmp(fields[0], "status") == 0)
-        reply_status(r, reply, cap);
+        reply_status(r, json, reply, cap);
     else if (count >= 3 && !parse_node_field(fields[1], &node))
         snprintf(reply, cap, "error: '%s' is not a node-id 1..127\n", fields[1]);
     else if (count == 3 && strcmp(fields[0], "get") == 0)
-        reply_get(r, node, fields[2], reply, cap);
+        reply_get(r, node, fields[2], json, reply, cap);
     else if (count == 4 && strcmp(fields[0], "set") == 0)
-        reply_set(r, node, fields[2], fields[3], reply, cap);
+        reply_set(r, node, fields[2], fields[3], json, reply, cap);
     else
         snprintf(reply, cap,
                  "error: unknown request (status, get NODE NAME, set NODE NAME VALUE, nmt "

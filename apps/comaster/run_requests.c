@@ -13,8 +13,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-/* `text` as a JSON string into out (cap bytes). */
-static void json_string(const char *text, char *out, size_t cap)
+void run_json_string(const char *text, char *out, size_t cap)
 {
     FILE *f = fmemopen(out, cap, "w");
     if (!f) {
@@ -175,7 +174,7 @@ static const comaster_type_t *type_by_size(uint32_t size)
 static size_t json_head(const run_sdo_t *s, const comaster_type_t *type, char *out, size_t cap)
 {
     char name[256];
-    json_string(s->object.name ? s->object.name : "", name, sizeof name);
+    run_json_string(s->object.name ? s->object.name : "", name, sizeof name);
     return (size_t)snprintf(out, cap,
                             "{\"node\": %u, \"index\": \"0x%04X\", \"subindex\": %u, \"name\": "
                             "%s, \"type\": \"%s\"",
@@ -224,7 +223,7 @@ static void format_sdo_reply(const runner_t *r, run_sdo_t *s, const co_net_reque
     size_t used = json_head(s, type, reply, cap);
     char value[sizeof text * 2];
     if (is_text)
-        json_string(text, value, sizeof value);
+        run_json_string(text, value, sizeof value);
     snprintf(reply + used, cap - used, ", \"value\": %s}\n", is_text ? value : text);
 }
 
@@ -233,7 +232,7 @@ static void sdo_done(void *user, const co_net_request_t *request,
 {
     run_sdo_t *s = user;
     runner_t *r = s->runner;
-    char reply[COMASTER_CONTROL_REPLY_MAX];
+    char reply[4096];
     format_sdo_reply(r, s, request, result, reply, sizeof reply);
     comaster_control_reply(&r->control, s->ticket, reply);
     s->used = false;

@@ -163,6 +163,13 @@ def test_run_boots_drives_4_to_6_from_their_dcfs(bus, start_daemon, run, remote)
         "master 0x000F all-contacted all-configured all-error-control-started init-finished",
         "node 4 drive4 0x000F operational", "node 5 drive5 0x000F operational",
         "node 6 drive6 0x000F operational", "last SDO error: none", "last EMCY: none"]
+    rc, out, _ = r.request("--json", "status")
+    assert rc == 0
+    assert json.loads(out) == {
+        "status": "0x000F",
+        "slaves": [{"node": n, "name": f"drive{n}", "status": "0x000F", "step": "operational", "failure": None}
+                   for n in (4, 5, 6)],
+        "last_sdo_error": None, "last_emcy": None}
 
 
 def test_set_speed_reaches_the_drive_by_rpdo(bus, start_daemon, run, remote):
@@ -186,6 +193,8 @@ def test_set_speed_reaches_the_drive_by_rpdo(bus, start_daemon, run, remote):
     assert r.request("get", 4, "actual_speed") == (0, "1200\n", "")
     assert r.request("get", 4, "status")[1] == "1575\n"  # 0x0627: operation enabled, at speed
     assert r.request("get", 4, "speed") == (0, "1200\n", "")
+    assert r.request("--json", "get", 4, "actual_speed") == (0, '{"node": 4, "name": "actual_speed", "value": 1200}\n', "")
+    assert r.request("--json", "set", 5, "speed", "0x10") == (0, '{"node": 5, "name": "speed", "value": 16}\n', "")
     assert r.request("get", 5, "actual_speed") == (0, "0\n", "")
 
 

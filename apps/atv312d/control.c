@@ -1,6 +1,7 @@
 /* The control surface: command execution on the drives, its session on the runtime's line socket
  * in the daemon's loop, and the `atv312d ctl` client (control.h). */
 #include "control.h"
+#include "status.h"
 
 #include "co_linux/log.h"
 #include "drive/panel.h"
@@ -469,6 +470,30 @@ static void put_canopen_leds(const atv312d_control_node_t *node, reply_t *r)
     }
 }
 
+/* The cause of the communication loss the drive reacted to: "comm-loss heartbeat node 1, ",
+ * "comm-loss guarding, " (nothing while there is none); JSON "comm_loss":{"by":"heartbeat",
+ * "node":1}, {"by":"guarding"} or null. */
+static void put_comm_loss(const drive_t *drive, reply_t *r)
+{
+    static const char *const by[] = {
+        [DRIVE_COMM_LOSS_GUARDING] = "guarding",
+        [DRIVE_COMM_LOSS_HEARTBEAT] = "heartbeat",
+        [DRIVE_COMM_LOSS_NETWORK] = "network",
+    };
+    drive_comm_loss_t loss = drive->comm_loss;
+    bool producer = loss.source == DRIVE_COMM_LOSS_HEARTBEAT;
+    if (r->json && loss.source == DRIVE_COMM_LOSS_NONE)
+        put(r, "\"comm_loss\":null,");
+    else if (r->json && producer)
+        put(r, "\"comm_loss\":{\"by\":\"%s\",\"node\":%u},", by[loss.source], loss.node);
+    else if (r->json)
+        put(r, "\"comm_loss\":{\"by\":\"%s\"},", by[loss.source]);
+    else if (producer)
+        put(r, "comm-loss %s node %u, ", by[loss.source], loss.node);
+    else if (loss.source != DRIVE_COMM_LOSS_NONE)
+        put(r, "comm-loss %s, ", by[loss.source]);
+}
+
 static void put_state(const atv312d_control_node_t *node, reply_t *r)
 {
     const drive_t *drive = node->drive;
@@ -502,6 +527,7 @@ static void put_state(const atv312d_control_node_t *node, reply_t *r)
             fault ? "\"" : "");
     else
         put(r, "fault %s, ", fault ? fault->code : "none");
+    put_comm_loss(drive, r);
     put_counters(node, r);
     put_inputs(drive, r);
     put(r, "%s", r->json ? "}" : "");
@@ -521,7 +547,12 @@ static bool command_state(const atv312d_control_t *control, char **words, size_t
     const atv312d_control_node_t *only = NULL;
     if (n == 2 && !(only = find_node(control, words[1], r)))
         return false;
-    put(r, r->json ? "{\"ok\":true,\"nodes\":[" : "ok ");
+    if (r->json) {
+        const co_linux_loop_t *loop = control->nodes[0].device->loop;
+        put(r, "{\"ok\":true,\"can\":{\"state\":\"%s\",\"bus_offs\":%llu},\"nodes\":[",
+            atv312d_can_state(loop), loop->bus.conditions.bus_offs);
+    } else
+        put(r, "ok ");
     bool first = true;
     for (size_t i = 0; i < control->count; i++) {
         if (only && only != &control->nodes[i])

@@ -20,9 +20,7 @@ static bool condition(const co_linux_loop_t *loop, uint16_t emcy_code)
     return co_linux_conditions_active(&loop->bus.conditions, emcy_code);
 }
 
-/* The CAN controller as the loop sees it: down (the interface), bus-off, error-passive or
- * error-active; overrun when frames are being lost. */
-static const char *can_state(const co_linux_loop_t *loop)
+const char *atv312d_can_state(const co_linux_loop_t *loop)
 {
     if (!loop->bus.link_up)
         return "down";
@@ -30,6 +28,8 @@ static const char *can_state(const co_linux_loop_t *loop)
         return "bus-off";
     if (condition(loop, CO_LINUX_EMCY_CAN_PASSIVE))
         return "error-passive";
+    if (co_linux_conditions_warning(&loop->bus.conditions))
+        return "error-warning";
     return "error-active";
 }
 
@@ -40,9 +40,10 @@ size_t atv312d_status_format(const atv312d_status_t *status, char *buf, size_t l
     size_t used = (size_t)snprintf(
         buf, len,
         "%s: CAN %s%s; frames received %llu, sent %llu, dropped %llu, lost while down %llu, "
-        "error frames %llu; wake-ups %llu, sendmmsg calls %llu\n",
-        loop->iface, can_state(loop), condition(loop, CO_LINUX_EMCY_CAN_OVERRUN) ? ", overrun" : "",
-        stats->rx, stats->tx, stats->tx_dropped, stats->down_dropped, stats->error_frames,
+        "error frames %llu, bus-offs %llu; wake-ups %llu, sendmmsg calls %llu\n",
+        loop->iface, atv312d_can_state(loop),
+        condition(loop, CO_LINUX_EMCY_CAN_OVERRUN) ? ", overrun" : "", stats->rx, stats->tx,
+        stats->tx_dropped, stats->down_dropped, stats->error_frames, loop->bus.conditions.bus_offs,
         stats->wakeups, stats->tx_calls);
     for (size_t i = 0; i < status->count && used < len; i++) {
         char line[1024];

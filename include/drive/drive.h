@@ -169,6 +169,19 @@ typedef struct drive_profile {
 /* CAN conditions the runtime reports at once (overrun, error passive, bus off). */
 #define DRIVE_BUS_EVENTS_MAX 4
 
+/* What the last communication loss was (drive_comm_loss_t.source). */
+typedef enum drive_comm_loss_source {
+    DRIVE_COMM_LOSS_NONE,      /* none since the power-up, the last reset node or fault reset */
+    DRIVE_COMM_LOSS_GUARDING,  /* life guarding: the master's guarding requests stopped */
+    DRIVE_COMM_LOSS_HEARTBEAT, /* a heartbeat consumer: the producer `node` fell silent */
+    DRIVE_COMM_LOSS_NETWORK    /* drive_communication_loss: a fieldbus front-end's timeout */
+} drive_comm_loss_source_t;
+
+typedef struct drive_comm_loss {
+    drive_comm_loss_source_t source;
+    uint8_t node; /* the heartbeat producer's node-id; 0 otherwise */
+} drive_comm_loss_t;
+
 /* The dictionary entries the drive reads and writes whenever it settles, found once by
  * drive_init (NULL where the model has none: it reads as 0 and writes to it do nothing), so that
  * its work never searches the dictionary. */
@@ -195,6 +208,11 @@ typedef struct drive {
     /* Bus conditions still present: a reset node forgets their EMCYs, not the conditions. */
     uint16_t bus_events[DRIVE_BUS_EVENTS_MAX];
     uint8_t bus_event_count;
+    bool can_warning; /* the CAN controller is at its error warning level (no EMCY) */
+    /* The cause of the communication loss the drive last reacted to, until the communication-loss
+     * fault is reset or a reset node (with a COL that ignores the loss: until a reset node, as
+     * the network fault code). */
+    drive_comm_loss_t comm_loss;
     /* Faults, one bit per entry of the profile's table: raised and not yet reset, and those
      * whose cause is present (injected and not removed). */
     uint32_t faults_active;
@@ -254,6 +272,9 @@ co_time_t drive_process(drive_t *drive, co_time_t now);
  * (active) or clears the EMCY, and raises it again after a reset node while it lasts. They do not
  * fault the drive. */
 void drive_bus_event(drive_t *drive, uint16_t emcy_code, bool active);
+/* The CAN controller reached (active) or left its error warning level: no EMCY (CiA 301 has
+ * none), the ERR LED's single flash (CiA 303-3). Outlives a reset node, as the bus conditions. */
+void drive_bus_warning(drive_t *drive, bool active);
 /* The network the drive is on stopped sending what it must (a fieldbus front-end's timeout, as
  * the heartbeat consumer's or life guarding's on CANopen): the communication-loss fault at `now`,
  * with the reaction and network fault code of the model's parameters. */

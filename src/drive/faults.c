@@ -163,6 +163,8 @@ static void forget_fault(drive_t *drive, uint8_t index)
 {
     uint16_t code = fault_def(drive, index)->emcy_code;
     drive->faults_active &= ~fault_bit(index);
+    if (index == drive->profile->faults->communication_loss)
+        drive->comm_loss = (drive_comm_loss_t){DRIVE_COMM_LOSS_NONE, 0};
     if (!drive_emcy_code_in_use(drive, code))
         co_emcy_clear(&drive->node, code);
 }

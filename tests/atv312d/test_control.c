@@ -144,9 +144,10 @@ START_TEST(devicenet_state_shows_the_card_counters)
                        "error responses 2, I/O messages 40, fragments 3, timeouts 1";
     ck_assert_str_eq(line + strlen(line) - strlen(text), text);
     atv312d_format_state(&node, true, line, sizeof line);
-    const char *json = ",\"fault\":null,\"frames\":{\"received\":52,\"sent\":50,\"dropped\":1,"
-                       "\"explicit_requests\":7,\"error_responses\":2,\"io_messages\":40,"
-                       "\"fragments\":3,\"timeouts\":1},\"inputs\":[]}";
+    const char *json =
+        ",\"fault\":null,\"comm_loss\":null,\"frames\":{\"received\":52,\"sent\":50,\"dropped\":1,"
+        "\"explicit_requests\":7,\"error_responses\":2,\"io_messages\":40,"
+        "\"fragments\":3,\"timeouts\":1},\"inputs\":[]}";
     ck_assert_str_eq(line + strlen(line) - strlen(json), json);
 }
 END_TEST

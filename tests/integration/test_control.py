@@ -8,7 +8,7 @@ import subprocess
 
 import pytest
 
-from conftest import NMT_START, REPLY_TIMEOUT, daemon_path
+from conftest import NMT_START, REPLY_TIMEOUT, Frame, daemon_path
 
 NODE = 4
 EX_DATAERR = 65
@@ -264,3 +264,27 @@ def test_state_of_a_full_bench(bus, start_daemon, tmp_path):
     status, reply = ctl(sock, "state")
     assert status == 0 and reply.count("; node ") == 126 and reply.endswith("node 127: nmt Pre-operational, cia402 Switch on disabled, statusword 0640, speed 0 rpm, current 0.0 A, torque 0 %, display nSt, RUN blinking, ERR off, fault none, frames received 0, sent 1, dropped 0, SDO requests 0, SDO aborts 0, EMCY 0")
     assert len(reply) < 65536
+
+
+def test_state_and_log_tell_a_heartbeat_loss_from_a_guarding_loss(bus, start_daemon, tmp_path):
+    sock = tmp_path / "atv312d.sock"
+    d = start_daemon(bus, "--node-id", "4-5", "--control", sock)
+    # Node 4 consumes node 1's heartbeat (1016h:01, 100 ms); node 5 is life guarded (100 ms x 2).
+    bus.sdo_write(4, 0x1016, 1, (1 << 16) | 100, 4)
+    bus.sdo_write(5, 0x100C, 0, 100, 2)
+    bus.sdo_write(5, 0x100D, 0, 2, 1)
+    bus.send(Frame(0x701, b"\x05"))
+    bus.request(Frame(0x705, b"", rtr=True), 0x705)
+    bus.expect(0x084, "3081010000000000", timeout=1.0)
+    bus.expect(0x085, "3081010000000000", timeout=1.0)
+    status, reply = ctl(sock, "state")
+    assert status == 0, reply
+    assert ", ERR double flash, fault CnF, comm-loss heartbeat node 1, frames " in reply, reply
+    assert ", ERR double flash, fault CnF, comm-loss guarding, frames " in reply, reply
+    assert state(sock, 4)["comm_loss"] == {"by": "heartbeat", "node": 1}
+    assert state(sock, 5)["comm_loss"] == {"by": "guarding"}
+    log = d.log()
+    assert "node 4: communication loss (EMCY 8130, error register 01): heartbeat of node 1 timed out" in log, log
+    assert "node 5: communication loss (EMCY 8130, error register 01): life guarding timed out" in log, log
+    bus.sdo_write(4, 0x6040, 0, 0x0080, 2)  # fault reset: the loss is over
+    assert state(sock, 4)["comm_loss"] is None

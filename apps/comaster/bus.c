@@ -36,19 +36,11 @@ static co_time_t device_process(void *ctx, co_time_t now)
     return bus->job->process(bus->job->ctx, now);
 }
 
-static void device_bus_event(void *ctx, uint16_t emcy_code, bool active)
-{
-    comaster_bus_t *bus = ctx;
-    if (bus->job && bus->job->bus_event)
-        bus->job->bus_event(bus->job->ctx, emcy_code, active);
-}
-
 static const co_linux_device_ops_t device_ops = {
     .start = device_start,
     .restart = device_start,
     .receive = device_receive,
     .process = device_process,
-    .bus_event = device_bus_event,
 };
 
 static int report_open_error(const comaster_bus_t *bus, const comaster_options_t *opts,

@@ -94,8 +94,6 @@ const char *comaster_nmt_name(uint8_t command);
 typedef struct comaster_job {
     void (*receive)(void *ctx, const co_frame_t *frame, co_time_t now);
     co_time_t (*process)(void *ctx, co_time_t now);
-    /* A CAN condition began or ended (CO_LINUX_EMCY_*); may be NULL. */
-    void (*bus_event)(void *ctx, uint16_t emcy_code, bool active);
     void *ctx;
 } comaster_job_t;
 

@@ -57,8 +57,9 @@ static const char can_help[] =
     "usage: comaster can [--control PATH]\n"
     "\n"
     "Prints the CAN controller's state as a comaster run sees it (error-active,\n"
-    "error-passive, bus-off, or no bus power when the interface is down) and its\n"
-    "counters: frames received and sent, frames dropped, error frames, bus-offs.\n"
+    "warning, error-passive, bus-off, or no bus power when the interface is down)\n"
+    "and its counters: frames received and sent, frames dropped, error frames,\n"
+    "bus-offs.\n"
     "\n"
     "Example: comaster -i vcan0 can\n";
 

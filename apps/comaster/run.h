@@ -40,8 +40,7 @@ typedef struct runner {
     uint16_t master_status; /* as last printed */
     bool boot_only;         /* comaster boot: finish when the slave is operational or failed */
     comaster_control_t control;
-    unsigned long long bus_offs; /* times the controller went bus off */
-    uint32_t nmt_ticket;         /* the client awaiting the NMT command's confirmation */
+    uint32_t nmt_ticket; /* the client awaiting the NMT command's confirmation */
     bool nmt_json;
     uint32_t nmt_timeout_ms;
     run_sdo_t sdo[CO_NET_REQUEST_MAX];

@@ -217,13 +217,6 @@ static co_time_t job_process(void *ctx, co_time_t now)
     return next;
 }
 
-static void job_bus_event(void *ctx, uint16_t emcy_code, bool active)
-{
-    runner_t *r = ctx;
-    if (emcy_code == CO_LINUX_EMCY_BUS_OFF && active)
-        r->bus_offs++;
-}
-
 /* ---- the control requests: status, get, set (tab-separated fields) --------------------------- */
 
 /* Appends to out (cap bytes, `used` of them written) what the format says; the new length, at
@@ -478,8 +471,7 @@ static int run_master(runner_t *r, comaster_options_t *opts, const char *control
         printf("comaster: network %s: %zu slaves on %s, control socket %s\n", r->net->net_name,
                r->net->slave_count, opts->iface, control_path);
     }
-    comaster_job_t job = {
-        .receive = job_receive, .process = job_process, .bus_event = job_bus_event, .ctx = r};
+    comaster_job_t job = {.receive = job_receive, .process = job_process, .ctx = r};
     rc = comaster_bus_run(&r->bus, &job);
     if (control_path)
         comaster_control_close(&r->control);

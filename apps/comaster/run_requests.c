@@ -348,6 +348,8 @@ static const char *controller_state(const runner_t *r)
         return "bus-off";
     if (co_linux_conditions_active(&bus->conditions, CO_LINUX_EMCY_CAN_PASSIVE))
         return "error-passive";
+    if (co_linux_conditions_warning(&bus->conditions))
+        return "warning";
     return "error-active";
 }
 
@@ -362,13 +364,13 @@ static void reply_can(const runner_t *r, bool json, char *reply, size_t cap)
                  "\"tx\": %llu, \"tx_dropped\": %llu, \"error_frames\": %llu, \"bus_off\": "
                  "%llu}\n",
                  iface, controller_state(r), r->bus.loop.bus.link_up ? "true" : "false", st->rx,
-                 st->tx, dropped, st->error_frames, r->bus_offs);
+                 st->tx, dropped, st->error_frames, r->bus.loop.bus.conditions.bus_offs);
     else
         snprintf(reply, cap,
                  "can %s: %s, rx %llu, tx %llu, tx-dropped %llu, error-frames %llu, bus-off "
                  "%llu\n",
                  iface, controller_state(r), st->rx, st->tx, dropped, st->error_frames,
-                 r->bus_offs);
+                 r->bus.loop.bus.conditions.bus_offs);
 }
 
 bool run_request(runner_t *r, char **field, size_t count, bool json, char *reply, size_t cap,

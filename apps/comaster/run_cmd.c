@@ -71,9 +71,10 @@ static void bit_names(uint16_t status, const char *const *names, size_t count, c
 
 void run_master_status_text(uint16_t status, char *out, size_t cap)
 {
-    char names[256];
-    bit_names(status, master_bits, sizeof master_bits / sizeof master_bits[0], names, sizeof names);
-    snprintf(out, cap, "master 0x%04X%s", status, names);
+    int prefix = snprintf(out, cap, "master 0x%04X", status);
+    if (prefix > 0 && (size_t)prefix < cap)
+        bit_names(status, master_bits, sizeof master_bits / sizeof master_bits[0], out + prefix,
+                  cap - (size_t)prefix);
 }
 
 /* The master's status word, printed when it changed. */

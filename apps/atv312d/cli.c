@@ -435,7 +435,7 @@ void atv312d_print_usage(FILE *out)
           "is the MAC ID.\n"
           "\n"
           "Control commands:\n"
-          "  fault NODE CODE     the fault CODE (OHF, OCF, USF, CnF, ...) happens: EMCY, 603Fh,\n"
+          "  fault NODE CODE     the fault CODE (OHF, OCF, USF, COF, ...) happens: EMCY, 603Fh,\n"
           "                      state Fault (on DeviceNet: Faulted); its cause stays until\n"
           "                      cleared\n"
           "  clear NODE CODE|all\n"

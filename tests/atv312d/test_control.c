@@ -65,8 +65,10 @@ static void start_canopen(void)
 static void start_devicenet(void)
 {
     memset(&loop, 0, sizeof loop);
-    drive_config_t config = {
-        .profile = &atv312_profile, .od_data = od_data, .node_id = 1, .send = drive_dn_drop_frame};
+    drive_config_t config = {.profile = atv312_devicenet_profile.drive,
+                             .od_data = od_data,
+                             .node_id = 1,
+                             .send = drive_dn_drop_frame};
     ck_assert_int_eq(drive_init(&drive, &config), 0);
     drive_dn_config_t dn_config = {.drive = &drive,
                                    .profile = &atv312_devicenet_profile,

@@ -83,7 +83,7 @@ def test_fault_stops_the_running_motor_on_tpdo1(bus, control):
 
 
 def test_fault_reaction_ramps_down_in_tpdos_before_the_fault(bus, control):
-    """COL = 2 (ramp stop): CnF injected into the running drive stops the motor on the DEC ramp
+    """COL = 2 (ramp stop): COF injected into the running drive stops the motor on the DEC ramp
     (2.0 s here) in Fault reaction active: TPDO6 (ETAD, RFRD) shows ETAD 0x020F with the speed
     falling frame after frame, then ETAD 0x0608 at speed 0 (Fault). The speed is whole rpm of a
     motor modelled in milli-rpm: when a 10 ms step leaves it under 1 rpm, the last reaction frame
@@ -97,10 +97,10 @@ def test_fault_reaction_ramps_down_in_tpdos_before_the_fault(bus, control):
     bus.sdo_write(NODE, 0x6040, 0, 0x000F, 2)
     bus.expect(0x284, "2706DC05", timeout=5.0)
     mark = bus.mark()
-    status, reply = ctl(control, "fault", NODE, "CnF")
-    assert status == 0 and reply.startswith("ok node 4: CnF"), reply
+    status, reply = ctl(control, "fault", NODE, "COF")
+    assert status == 0 and reply.startswith("ok node 4: COF"), reply
     s = state(control)
-    assert (s["cia402"], s["display"], s["statusword"]) == ("Fault reaction active", "CnF", 0x020F)
+    assert (s["cia402"], s["display"], s["statusword"]) == ("Fault reaction active", "COF", 0x020F)
     reaction = []
     while True:
         frame = bus.expect(0x284, timeout=5.0)
@@ -170,7 +170,7 @@ def test_frame_counters_of_each_of_two_drives(bus, start_daemon, tmp_path):
 @pytest.mark.parametrize(
     "words, error",
     [
-        (["fault", 4, "XYZ"], "error: unknown fault 'XYZ': node 4 knows CnF, ILF, SLF, OCF, SCF, OSF, USF, PHF, ObF, OPF, OHF, OtF, OLF, SOF, CrF, EEF, InF, CFF, CFI, LFF, EPF"),
+        (["fault", 4, "XYZ"], "error: unknown fault 'XYZ': node 4 knows COF, ILF, SLF, OCF, SCF, OSF, USF, PHF, ObF, OPF, OHF, OtF, OLF, SOF, CrF, EEF, InF, CFF, CFI, LFF, EPF"),
         (["fault", 9, "OHF"], "error: node 9 is not present: this daemon runs node-id 4"),
         (["fault", 4], "error: usage: fault NODE CODE (e.g. fault 4 OHF)"),
         (["clear", 4, "OHF"], "error: node 4: no cause of OHF is present"),
@@ -279,8 +279,8 @@ def test_state_and_log_tell_a_heartbeat_loss_from_a_guarding_loss(bus, start_dae
     bus.expect(0x085, "3081010000000000", timeout=1.0)
     status, reply = ctl(sock, "state")
     assert status == 0, reply
-    assert ", ERR double flash, fault CnF, comm-loss heartbeat node 1, frames " in reply, reply
-    assert ", ERR double flash, fault CnF, comm-loss guarding, frames " in reply, reply
+    assert ", ERR double flash, fault COF, comm-loss heartbeat node 1, frames " in reply, reply
+    assert ", ERR double flash, fault COF, comm-loss guarding, frames " in reply, reply
     assert state(sock, 4)["comm_loss"] == {"by": "heartbeat", "node": 1}
     assert state(sock, 5)["comm_loss"] == {"by": "guarding"}
     log = d.log()

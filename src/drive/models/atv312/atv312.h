@@ -13,9 +13,11 @@
 
 /* The faults of the Altivar 312 and of the Altivar 31, their EMCY codes and reset classes
  * (src/drive/models/atv312/faults.c, docs/atv312.md): the same but for the name of the
- * communication-loss fault, CnF on the ATV312, COF on the ATV31. */
+ * communication-loss fault, COF on CANopen (both CANopen manuals), CnF behind the ATV312's
+ * DeviceNet card (its DeviceNet manual). */
 extern const drive_fault_table_t atv312_family_faults;
 extern const drive_fault_table_t atv31_family_faults;
+extern const drive_fault_table_t atv312_devicenet_faults;
 
 /* Codes of the channel parameters (the project's, docs/atv312.md): CHCF 1 not separate, 2
  * separate, 3 I/O; rFC 1 Fr1, 2 Fr2; CCS 1 Cd1, 2 Cd2; Fr1/Fr2 1 AI1, 2 AI2, 3 AI3, 4 keypad, 5
@@ -81,5 +83,8 @@ extern const drive_fault_table_t atv31_family_faults;
     }
 
 extern const drive_profile_t atv312_profile;
+/* The same drive behind its DeviceNet card (atv312_devicenet.h): the faults of its DeviceNet
+ * manual. */
+extern const drive_profile_t atv312_devicenet_drive_profile;
 
 #endif

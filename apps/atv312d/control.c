@@ -259,9 +259,16 @@ static bool command_stop_key(const atv312d_control_t *control, char **words, siz
     if (!node)
         return false;
     drive_t *drive = node->drive;
+    const drive_fault_def_t *fault = drive_fault_latched(drive);
     drive_stop_key(drive, node->device->loop->now);
     changed(node);
     co_log(CO_LOG_INFO, "node %u: control: STOP key", node->id);
+    if (fault && !drive_fault_latched(drive))
+        return succeed(r, "node %u: STOP/RESET key: fault %s reset (status word bit 14)", node->id,
+                       fault->code);
+    if (fault)
+        return succeed(r, "node %u: STOP key: still in fault %s (status word bit 14)", node->id,
+                       drive_fault_latched(drive)->code);
     return succeed(r, "node %u: STOP key (%s stop, status word bit 14)", node->id,
                    drive_local_control(drive) ? "ramp" : "freewheel");
 }

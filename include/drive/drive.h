@@ -138,6 +138,9 @@ typedef struct drive_profile {
     uint16_t access_level_full;
     /* Status word bit set after the keypad's STOP key (the Altivars' ETA bit 14). */
     uint16_t status_stop_key;
+    /* The STOP key also resets the faults in Fault when a fault reset would (the ATV31's
+     * STOP/RESET key: every active fault reset by command, its cause gone). */
+    bool stop_key_resets_faults;
     /* The faults of the model's manuals (faults.h); required. */
     const drive_fault_table_t *faults;
     /* The LEDs of the model's card as its manual names them (panel.h), indicator_count of them;
@@ -302,7 +305,8 @@ bool drive_local_control(const drive_t *drive);
 /* The keypad's STOP key: the profile's status_stop_key bit is set until the next run command (the
  * RUN key, or a network command leaving Switch on disabled). Under network control a freewheel
  * stop to Switch on disabled (the Altivars' "STOP key priority"); under local control a stop on
- * the deceleration ramp, then Switch on disabled. */
+ * the deceleration ramp, then Switch on disabled. With the profile's stop_key_resets_faults, in
+ * Fault it is also a fault reset: Switch on disabled when the network's reset edge would be. */
 void drive_stop_key(drive_t *drive, co_time_t now);
 /* The keypad's RUN key: under local control (forced, or a command channel other than the network)
  * and not in Fault, Operation enabled and the motor

@@ -363,9 +363,22 @@ void drive_set_local(drive_t *drive, bool local, co_time_t now)
     settle(drive);
 }
 
+/* A STOP key that resets faults (the ATV31's STOP/RESET) resets them as the fault reset edge
+ * would: in Fault only, when every active fault accepts a reset by command. The network's
+ * recorded control word stays, so its own reset still needs a new edge. */
+static void stop_key_fault_reset(drive_t *drive)
+{
+    if (!drive->profile->stop_key_resets_faults || drive->cia402.state != CIA402_FAULT ||
+        !drive_faults_resettable(drive))
+        return;
+    drive->cia402.state = CIA402_SWITCH_ON_DISABLED;
+    drive_faults_acknowledge(drive);
+}
+
 void drive_stop_key(drive_t *drive, co_time_t now)
 {
     drive_local_stop_key(drive, now);
+    stop_key_fault_reset(drive);
     settle(drive);
 }
 

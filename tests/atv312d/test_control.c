@@ -1,8 +1,10 @@
 /* The control surface's replies where a CANopen and a DeviceNet drive differ: a fault happening
  * (its EMCY on CANopen; on DeviceNet, where EMCYs stay on the card's internal link, the Control
  * supervisor's state and the Identity's fault), the RUN key refused under network control, and the
- * state line's counters (the CANopen services', or the DeviceNet card's). A drive of each kind is
+ * state line's counters (the CANopen services', or the DeviceNet card's); the STOP key's reset of
+ * a fault where the model's manual gives it (the ATV31). A drive of each kind is
  * a device of an unopened loop: nothing here reaches a socket. */
+#include "atv31/atv31.h"
 #include "atv312/atv312.h"
 #include "atv312/atv312_devicenet.h"
 #include "atv58/atv58.h"
@@ -16,8 +18,8 @@
 #define MAC_ID 25
 
 static co_linux_loop_t loop;
-static uint8_t
-    od_data[ATV312_OD_DATA_SIZE > ATV58_OD_DATA_SIZE ? ATV312_OD_DATA_SIZE : ATV58_OD_DATA_SIZE];
+#define LARGER(a, b) ((a) > (b) ? (a) : (b))
+static uint8_t od_data[LARGER(LARGER(ATV312_OD_DATA_SIZE, ATV58_OD_DATA_SIZE), ATV31_OD_DATA_SIZE)];
 static drive_t drive;
 static drive_dn_t dn;
 static co_linux_device_t device;
@@ -129,6 +131,25 @@ START_TEST(run_key_refused_under_network_control)
 }
 END_TEST
 
+/* The ATV31's STOP/RESET key resets a fault whose cause is gone; the ATV312's STOP key does not. */
+START_TEST(stop_key_resets_a_fault_where_the_manual_says)
+{
+    start_model(&atv31_profile);
+    ck_assert_str_eq(execute("fault 4 OHF"), "ok node 4: OHF (drive overheating), EMCY 4210");
+    ck_assert_str_eq(execute("stop-key 4"),
+                     "ok node 4: STOP key: still in fault OHF (status word bit 14)");
+    ck_assert_str_eq(execute("clear 4 OHF"), "ok node 4: cause of OHF removed");
+    ck_assert_str_eq(execute("stop-key 4"),
+                     "ok node 4: STOP/RESET key: fault OHF reset (status word bit 14)");
+    ck_assert_str_eq(drive_state_name(&drive), "Switch on disabled");
+    start_canopen();
+    execute("fault 4 OHF");
+    execute("clear 4 OHF");
+    ck_assert_str_eq(execute("stop-key 4"),
+                     "ok node 4: STOP key: still in fault OHF (status word bit 14)");
+}
+END_TEST
+
 /* The state line ends with the device's frame counts and the card's counters (then the logic
  * inputs that are on: none here). */
 START_TEST(devicenet_state_shows_the_card_counters)
@@ -182,6 +203,7 @@ int main(void)
     tcase_add_test(tc, canopen_fault_is_its_emcy);
     tcase_add_test(tc, devicenet_fault_is_the_supervisor_and_identity);
     tcase_add_test(tc, run_key_refused_under_network_control);
+    tcase_add_test(tc, stop_key_resets_a_fault_where_the_manual_says);
     tcase_add_test(tc, devicenet_state_shows_the_card_counters);
     tcase_add_test(tc, canopen_state_shows_the_models_leds);
     suite_add_tcase(s, tc);

@@ -4,6 +4,6 @@
 #include "atv312/atv312.h"
 
 const drive_profile_t atv312_profile =
-    ATV312_FAMILY_PROFILE(&atv312_od, ATV312_LOGIC_INPUTS, &atv312_family_faults);
+    ATV312_FAMILY_PROFILE(&atv312_od, ATV312_LOGIC_INPUTS, &atv312_family_faults, false);
 const drive_profile_t atv312_devicenet_drive_profile =
-    ATV312_FAMILY_PROFILE(&atv312_od, ATV312_LOGIC_INPUTS, &atv312_devicenet_faults);
+    ATV312_FAMILY_PROFILE(&atv312_od, ATV312_LOGIC_INPUTS, &atv312_devicenet_faults, false);

@@ -40,8 +40,9 @@ extern const drive_fault_table_t atv312_devicenet_faults;
  * (error)", the generic bit alone (docs/decisions.md, D-ERROR-REGISTER). */
 #define ATV312_ERROR_REGISTER CO_ERR_REG_GENERIC
 
-/* The profile of an Altivar 31/312 on the dictionary `dictionary`, with `inputs` logic inputs and
- * the faults of `fault_table`. The
+/* The profile of an Altivar 31/312 on the dictionary `dictionary`, with `inputs` logic inputs, the
+ * faults of `fault_table` and a STOP key that resets faults when `stop_key_resets` (the ATV31's
+ * STOP/RESET key; the ATV312 CANopen manual gives its key no reset). The
  * family's default assignment of control word bits 11-14 (DeviceNet manual, "CMD control word":
  * "CMD = 16#080F: reverse operation" ...): bit 11 reverses, bit 12 stops on the ramp (Stt), bits 13
  * (DC injection stop, modelled as the fast stop) and 14 stop on the fast ramp, DEC / 4 (dCF's
@@ -55,7 +56,7 @@ extern const drive_fault_table_t atv312_devicenet_faults;
  * with "Data length = 4 bytes" (docs/decisions.md, D-ATV312-LONG-EXPEDITED). A macro, not a
  * function, so that each model's profile stays a constant initialiser (in flash on a
  * microcontroller); the ATV31 (atv31/atv31.h) is the same drive under another name. */
-#define ATV312_FAMILY_PROFILE(dictionary, inputs, fault_table)                                     \
+#define ATV312_FAMILY_PROFILE(dictionary, inputs, fault_table, stop_key_resets)                    \
     {                                                                                              \
         .od = (dictionary), .node_options = CO_NODE_SDO_LONG_EXPEDITED,                            \
         .bus_error_register = ATV312_ERROR_REGISTER, .node_options_code = &co_node_options,        \
@@ -79,7 +80,7 @@ extern const drive_fault_table_t atv312_devicenet_faults;
         .auto_tune = DRIVE_PARAM(0x2042, 9), .ramp_switch = DRIVE_PARAM(0x203C, 11),               \
         .acceleration_2 = DRIVE_PARAM(0x203C, 13), .deceleration_2 = DRIVE_PARAM(0x203C, 14),      \
         .logic_inputs = (inputs), .access_level = DRIVE_PARAM(0x2036, 1),                          \
-        .access_level_full = ATV312_LAC_L3,                                                        \
+        .access_level_full = ATV312_LAC_L3, .stop_key_resets_faults = (stop_key_resets),           \
     }
 
 extern const drive_profile_t atv312_profile;

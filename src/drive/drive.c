@@ -246,6 +246,8 @@ int drive_init(drive_t *drive, const drive_config_t *config)
     };
     if (!drive_faults_valid(config->profile))
         return DRIVE_INIT_BAD_FAULTS;
+    if (config->profile->analog_input_count > DRIVE_ANALOG_MAX)
+        return DRIVE_INIT_BAD_ANALOG;
     /* Every field from a known value, whatever the caller's memory held: no bus condition, fault
      * cause, input or load, not forced local. */
     memset(drive, 0, sizeof *drive);
@@ -394,6 +396,15 @@ void drive_set_load(drive_t *drive, uint8_t percent, co_time_t now)
 {
     drive_local_load(drive, percent, now);
     settle(drive);
+}
+
+/* A reference channel assigned to the input follows it at once. */
+bool drive_set_analog(drive_t *drive, uint8_t index, int32_t value, co_time_t now)
+{
+    if (!drive_local_analog(drive, index, value, now))
+        return false;
+    settle(drive);
+    return true;
 }
 
 /* An input may be a switching source: the channels follow it before the drive settles. */

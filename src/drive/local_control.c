@@ -64,6 +64,45 @@ bool drive_local_input(drive_t *drive, uint8_t input, bool on, co_time_t now)
     return true;
 }
 
+int drive_analog_find(const drive_t *drive, const char *name)
+{
+    for (uint8_t i = 0; i < drive->profile->analog_input_count; i++) {
+        if (drive_same_code(drive->profile->analog_inputs[i].name, name))
+            return i;
+    }
+    return -1;
+}
+
+static bool analog_in_range(drive_analog_kind_t kind, int32_t value)
+{
+    switch (kind) {
+    case DRIVE_ANALOG_VOLTAGE:
+        return value >= 0 && value <= DRIVE_ANALOG_VOLTAGE_MAX_MV;
+    case DRIVE_ANALOG_BIPOLAR:
+        return value >= -DRIVE_ANALOG_VOLTAGE_MAX_MV && value <= DRIVE_ANALOG_VOLTAGE_MAX_MV;
+    case DRIVE_ANALOG_CURRENT:
+        return value >= 0 && value <= DRIVE_ANALOG_CURRENT_MAX_UA;
+    case DRIVE_ANALOG_POTENTIOMETER:
+        return value >= 0 && value <= DRIVE_ANALOG_POTENTIOMETER_MAX;
+    }
+    return false;
+}
+
+bool drive_local_analog(drive_t *drive, uint8_t index, int32_t value, co_time_t now)
+{
+    if (index >= drive->profile->analog_input_count ||
+        !analog_in_range(drive->profile->analog_inputs[index].kind, value))
+        return false;
+    drive_motor_advance(&drive->motor, now);
+    drive->analog[index] = value;
+    return true;
+}
+
+int32_t drive_analog(const drive_t *drive, uint8_t index)
+{
+    return index < drive->profile->analog_input_count ? drive->analog[index] : 0;
+}
+
 bool drive_input(const drive_t *drive, uint8_t input)
 {
     return input != 0 && input <= drive->profile->logic_inputs &&

@@ -150,6 +150,50 @@ START_TEST(stop_key_resets_a_fault_where_the_manual_says)
 }
 END_TEST
 
+/* Analogue inputs in the units their manuals give them: volts for AI1/AI2, mA for AI3, % for the
+ * ATV31's potentiometer; each model's own inputs and ranges, refusals naming them. With Fr1 =
+ * AI2 and the network commanding, the motor runs to the input's speed. */
+START_TEST(analog_inputs_in_their_units)
+{
+    start_canopen();
+    ck_assert_str_eq(execute("analog 4 AI2 -2.5"), "ok node 4: AI2 -2.500 V");
+    ck_assert_int_eq(drive_analog(&drive, (uint8_t)drive_analog_find(&drive, "AI2")), -2500);
+    ck_assert_str_eq(execute("analog 4 ai3 12"), "ok node 4: AI3 12.000 mA");
+    ck_assert_str_eq(execute("json analog 4 AI2 5"),
+                     "{\"ok\":true,\"message\":\"node 4: AI2 5.000 V\"}");
+    ck_assert_str_eq(execute("analog 4 AI2 10.5"), "error: analog AI2 10.5: give a voltage of "
+                                                   "-10..10 V");
+    ck_assert_str_eq(execute("analog 4 AI3 -1"),
+                     "error: analog AI3 -1: give a current of 0..20 mA");
+    ck_assert_str_eq(execute("analog 4 AI2 1.2345"),
+                     "error: analog AI2 1.2345: give a voltage of -10..10 V");
+    ck_assert_str_eq(execute("analog 4 AI1 5"),
+                     "error: node 4 has no analogue input AI1: its analogue inputs are AI2, AI3");
+    ck_assert_str_eq(execute("analog 4 AI2"), "error: usage: analog NODE AIn VALUE (volts or mA "
+                                              "as the input takes them, e.g. analog 4 AI2 -2.5)");
+    ck_assert_str_eq(execute("pot 4 50"), "error: node 4 has no reference potentiometer");
+    ck_assert_uint_eq(
+        co_od_write(&drive.node, 0x2036, 2, (const uint8_t *)"\x02\x00", 2, CO_OD_ORIGIN_SDO), 0);
+    ck_assert_uint_eq(
+        co_od_write(&drive.node, 0x2036, 14, (const uint8_t *)"\x02\x00", 2, CO_OD_ORIGIN_SDO), 0);
+    ck_assert_uint_eq(
+        co_od_write(&drive.node, 0x6040, 0, (const uint8_t *)"\x06\x00", 2, CO_OD_ORIGIN_SDO), 0);
+    ck_assert_uint_eq(
+        co_od_write(&drive.node, 0x6040, 0, (const uint8_t *)"\x0F\x00", 2, CO_OD_ORIGIN_SDO), 0);
+    loop.now = 3000000;
+    drive_process(&drive, loop.now);
+    ck_assert_int_eq((int16_t)co_od_value(&drive.node, 0x6044, 0), 750);
+
+    start_model(&atv31_profile);
+    ck_assert_str_eq(execute("pot 4 50.5"), "ok node 4: AIP 50.5 %");
+    ck_assert_str_eq(execute("analog 4 AIP 20"), "ok node 4: AIP 20.0 %");
+    ck_assert_str_eq(execute("pot 4 101"), "error: pot AIP 101: give a percentage of 0..100");
+    ck_assert_str_eq(execute("analog 4 AI1 -1"), "error: analog AI1 -1: give a voltage of 0..10 V");
+    start_model(&atv58_profile);
+    ck_assert_str_eq(execute("analog 4 AI1 5"), "error: node 4 has no analogue inputs");
+}
+END_TEST
+
 /* The state line ends with the device's frame counts and the card's counters (then the logic
  * inputs that are on: none here). */
 START_TEST(devicenet_state_shows_the_card_counters)
@@ -204,6 +248,7 @@ int main(void)
     tcase_add_test(tc, devicenet_fault_is_the_supervisor_and_identity);
     tcase_add_test(tc, run_key_refused_under_network_control);
     tcase_add_test(tc, stop_key_resets_a_fault_where_the_manual_says);
+    tcase_add_test(tc, analog_inputs_in_their_units);
     tcase_add_test(tc, devicenet_state_shows_the_card_counters);
     tcase_add_test(tc, canopen_state_shows_the_models_leds);
     suite_add_tcase(s, tc);

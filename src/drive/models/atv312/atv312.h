@@ -36,11 +36,22 @@ extern const drive_fault_table_t atv312_devicenet_faults;
  * the base terminal card (ATV312 CANopen manual, "Control terminals characteristics"). */
 #define ATV312_LOGIC_INPUTS 3
 
+/* The reference channel codes of the analogue inputs (Fr1/Fr2: 1 AI1, 2 AI2, 3 AI3; the ATV31's
+ * potentiometer 7) and the AI3 scaling parameters CrL3 and CrH3, 0.1 mA (ADL 4602, 4603: the
+ * project's addresses, docs/atv312.md). */
+#define ATV312_FR_AI1 1
+#define ATV312_FR_AI2 2
+#define ATV312_FR_AI3 3
+#define ATV312_FR_AIP 7
+#define ATV312_AI3_LOW DRIVE_PARAM(0x2010, 3)
+#define ATV312_AI3_HIGH DRIVE_PARAM(0x2010, 4)
+
 /* 1001h in the family's EMCYs, CAN bus conditions too: the manuals' byte 2, "=0 (no error) =1
  * (error)", the generic bit alone (docs/decisions.md, D-ERROR-REGISTER). */
 #define ATV312_ERROR_REGISTER CO_ERR_REG_GENERIC
 
 /* The profile of an Altivar 31/312 on the dictionary `dictionary`, with `inputs` logic inputs, the
+ * analogue inputs of the array `analog` (drive_analog_input_t, as reference channels), the
  * faults of `fault_table` and a STOP key that resets faults when `stop_key_resets` (the ATV31's
  * STOP/RESET key; the ATV312 CANopen manual gives its key no reset). The
  * family's default assignment of control word bits 11-14 (DeviceNet manual, "CMD control word":
@@ -56,7 +67,7 @@ extern const drive_fault_table_t atv312_devicenet_faults;
  * with "Data length = 4 bytes" (docs/decisions.md, D-ATV312-LONG-EXPEDITED). A macro, not a
  * function, so that each model's profile stays a constant initialiser (in flash on a
  * microcontroller); the ATV31 (atv31/atv31.h) is the same drive under another name. */
-#define ATV312_FAMILY_PROFILE(dictionary, inputs, fault_table, stop_key_resets)                    \
+#define ATV312_FAMILY_PROFILE(dictionary, inputs, analog, fault_table, stop_key_resets)            \
     {                                                                                              \
         .od = (dictionary), .node_options = CO_NODE_SDO_LONG_EXPEDITED,                            \
         .bus_error_register = ATV312_ERROR_REGISTER, .node_options_code = &co_node_options,        \
@@ -79,8 +90,10 @@ extern const drive_fault_table_t atv312_devicenet_faults;
         .output_frequency = DRIVE_PARAM(0x2002, 3), .frequency_reference = DRIVE_PARAM(0x2037, 3), \
         .auto_tune = DRIVE_PARAM(0x2042, 9), .ramp_switch = DRIVE_PARAM(0x203C, 11),               \
         .acceleration_2 = DRIVE_PARAM(0x203C, 13), .deceleration_2 = DRIVE_PARAM(0x203C, 14),      \
-        .logic_inputs = (inputs), .access_level = DRIVE_PARAM(0x2036, 1),                          \
-        .access_level_full = ATV312_LAC_L3, .stop_key_resets_faults = (stop_key_resets),           \
+        .logic_inputs = (inputs), .analog_inputs = (analog),                                       \
+        .analog_input_count = sizeof(analog) / sizeof((analog)[0]),                                \
+        .access_level = DRIVE_PARAM(0x2036, 1), .access_level_full = ATV312_LAC_L3,                \
+        .stop_key_resets_faults = (stop_key_resets),                                               \
     }
 
 extern const drive_profile_t atv312_profile;

@@ -160,6 +160,13 @@ typedef struct drive_profile {
     /* Analogue inputs at the drive (0..DRIVE_ANALOG_MAX of them), reference channels. */
     const drive_analog_input_t *analog_inputs;
     uint8_t analog_input_count;
+    /* The terminals' run inputs, 2-wire control: while the command comes from the terminals (the
+     * active command channel holds `terminals`; not separate, while the reference is an analogue
+     * input), logic input run_forward (run_reverse) switched on runs the drive forward (in
+     * reverse), and off stops it on the deceleration ramp. 0: the model has none. */
+    uint16_t terminals;
+    uint8_t run_forward;
+    uint8_t run_reverse;
     /* The access level (the Altivars' LAC): below access_level_full the separate channel mode and
      * control word bits as switching sources are refused, and the channels are managed by
      * priority: the network commands and gives the reference (forced local control first).
@@ -265,10 +272,12 @@ typedef struct drive {
     uint8_t inputs;                   /* logic inputs on: bit n - 1 for LIn */
     int32_t analog[DRIVE_ANALOG_MAX]; /* the analogue inputs' values, in their units */
     int8_t reference_analog;          /* the analogue input the reference comes from; -1: none */
-    bool local;              /* forced local: the network's control word is ignored, bit 9 = 0 */
-    bool local_run;          /* the RUN key's run command, under forced local control */
-    bool stop_key;           /* the STOP key was pressed, until the next run command */
-    uint8_t load;            /* extra load torque, % of nominal torque */
+    bool local;     /* forced local: the network's control word is ignored, bit 9 = 0 */
+    bool local_run; /* the RUN key's or the terminals' run command, under local control */
+    bool command_from_terminals; /* the terminals command: their run inputs count */
+    bool terminal_reverse;       /* the terminals' run command is the reverse one */
+    bool stop_key;               /* the STOP key was pressed, until the next run command */
+    uint8_t load;                /* extra load torque, % of nominal torque */
     co_time_t auto_tune_end; /* when the running auto-tune completes; CO_TIME_NEVER: none runs */
     /* When the node last received an SDO request or one of its RPDOs (a card's reception LED,
      * drive_last_service_request); CO_TIME_NEVER: none since the power-up. */
@@ -350,8 +359,12 @@ bool drive_run_key(drive_t *drive, co_time_t now);
 /* An extra load on the motor, % of nominal torque (0..150): torque and current follow while
  * the motor turns. */
 void drive_set_load(drive_t *drive, uint8_t percent, co_time_t now);
-/* Logic input `input` (1 for LI1) on or off at `now`: a switching source on it acts at once.
- * false (nothing happens) when the model has no such input. Inputs outlive a reset node. */
+/* Logic input `input` (1 for LI1) on or off at `now`: a switching source on it acts at once, and
+ * while the terminals command, a run input (the profile's run_forward, run_reverse) switched on
+ * alone runs the drive (not in Fault), switched off stops it on the deceleration ramp to Switch on
+ * disabled; both on stop it. A run needs the input's change to on: one on already when the
+ * terminals take the command starts nothing. false (nothing happens) when the model has no such
+ * input. Inputs outlive a reset node. */
 bool drive_set_input(drive_t *drive, uint8_t input, bool on, co_time_t now);
 bool drive_input(const drive_t *drive, uint8_t input);
 /* The index of the model's analogue input named `name` ("ai2" finds AI2), or -1. */

@@ -106,6 +106,7 @@ bool drive_channels_update(drive_t *drive)
     uint32_t mode = drive_param_value(drive, profile->channel_mode);
     drive->io_mode = profile->channel_mode_io != 0 && mode == profile->channel_mode_io;
     drive->reference_analog = -1;
+    drive->command_from_terminals = false;
     if (!drive_access_full(drive)) {
         drive->reference_from_network = true;
         drive->command_from_network = true;
@@ -117,6 +118,10 @@ bool drive_channels_update(drive_t *drive)
             drive->reference_analog = analog_of_reference(drive);
         drive->command_from_network =
             separate ? from_network(drive, &profile->command_channels) : reference;
+        drive->command_from_terminals =
+            profile->terminals != 0 &&
+            (separate ? active_channel(drive, &profile->command_channels) == profile->terminals
+                      : drive->reference_analog >= 0);
     }
     return drive->command_from_network != was_from_network;
 }

@@ -410,9 +410,11 @@ bool drive_set_analog(drive_t *drive, uint8_t index, int32_t value, co_time_t no
 /* An input may be a switching source: the channels follow it before the drive settles. */
 bool drive_set_input(drive_t *drive, uint8_t input, bool on, co_time_t now)
 {
+    uint8_t before = drive->inputs;
     if (!drive_local_input(drive, input, on, now))
         return false;
     update_channels(drive);
+    drive_local_terminals(drive, before);
     settle(drive);
     return true;
 }

@@ -53,6 +53,9 @@ bool drive_local_input(drive_t *drive, uint8_t input, bool on, co_time_t now);
 /* false (nothing happens) when the model has no such analogue input or the value is out of its
  * range. */
 bool drive_local_analog(drive_t *drive, uint8_t index, int32_t value, co_time_t now);
+/* The terminals' run inputs after a change of the logic inputs (`before`: as they were), while
+ * the terminals command: a run or a stop. */
+void drive_local_terminals(drive_t *drive, uint8_t before);
 /* The command channel changed: a freewheel stop to Switch on disabled. */
 void drive_local_channel_changed(drive_t *drive);
 /* The motor follows the reference under forced local control. */

@@ -36,15 +36,48 @@ void drive_local_stop_key(drive_t *drive, co_time_t now)
         cia402_configuration_changed(&drive->cia402);
 }
 
+/* A local run command (the RUN key, a terminal's run input): Operation enabled. */
+static void local_run(drive_t *drive, bool reverse)
+{
+    drive->stop_key = false;
+    drive->local_run = true;
+    drive->terminal_reverse = reverse;
+    drive->cia402.state = CIA402_OPERATION_ENABLED;
+}
+
 bool drive_local_run_key(drive_t *drive, co_time_t now)
 {
     if (!drive_local_control(drive) || cia402_faulted(&drive->cia402))
         return false;
     drive_motor_advance(&drive->motor, now);
-    drive->stop_key = false;
-    drive->local_run = true;
-    drive->cia402.state = CIA402_OPERATION_ENABLED;
+    local_run(drive, false);
     return true;
+}
+
+/* Logic input `input` is on and was off in `before`. */
+static bool input_rose(const drive_t *drive, uint8_t before, uint8_t input)
+{
+    return drive_input(drive, input) && (before & (1u << (input - 1u))) == 0;
+}
+
+/* 2-wire control: a run input switched on alone starts the drive in its direction, and it runs
+ * while that input alone stays on; anything else stops it (on the deceleration ramp). `before`
+ * holds the inputs before this change. */
+void drive_local_terminals(drive_t *drive, uint8_t before)
+{
+    const drive_profile_t *profile = drive->profile;
+    if (!drive->command_from_terminals || drive->local)
+        return;
+    bool forward = drive_input(drive, profile->run_forward);
+    bool reverse = drive_input(drive, profile->run_reverse);
+    bool rose = input_rose(drive, before, profile->run_forward) ||
+                input_rose(drive, before, profile->run_reverse);
+    if (forward == reverse || (drive->local_run && drive->terminal_reverse != reverse)) {
+        drive->local_run = false;
+        return;
+    }
+    if (rose && !drive->local_run && !cia402_faulted(&drive->cia402))
+        local_run(drive, reverse);
 }
 
 void drive_local_load(drive_t *drive, uint8_t percent, co_time_t now)

@@ -87,7 +87,9 @@ static int32_t run_reference(drive_t *drive)
         reference = (int16_t)drive_entry_value(drive, e->target_velocity);
     else if (drive_reference_analog(drive) != NULL)
         reference = analog_reference(drive, low, high);
-    bool reverse = (reference < 0) != (control_bits(drive, profile->control_reverse) != 0);
+    bool reversed = control_bits(drive, profile->control_reverse) != 0 ||
+                    (drive_local_control(drive) && drive->terminal_reverse);
+    bool reverse = (reference < 0) != reversed;
     uint32_t wanted = (uint32_t)(reference < 0 ? -reference : reference);
     uint32_t speed = wanted > high ? high : (wanted < low ? low : wanted);
     drive->limited = speed != wanted;

@@ -194,6 +194,21 @@ START_TEST(analog_inputs_in_their_units)
 }
 END_TEST
 
+/* Under terminal control (CHCF = SEP, Cd1 = terminals) LI1 is the forward run input. */
+START_TEST(input_runs_the_drive_from_the_terminals)
+{
+    start_canopen();
+    ck_assert_uint_eq(
+        co_od_write(&drive.node, 0x2036, 2, (const uint8_t *)"\x02\x00", 2, CO_OD_ORIGIN_SDO), 0);
+    ck_assert_uint_eq(
+        co_od_write(&drive.node, 0x2036, 24, (const uint8_t *)"\x01\x00", 2, CO_OD_ORIGIN_SDO), 0);
+    ck_assert_str_eq(execute("input 4 LI1 on"), "ok node 4: LI1 on");
+    ck_assert_str_eq(drive_state_name(&drive), "Operation enabled");
+    ck_assert_str_eq(execute("input 4 LI1 off"), "ok node 4: LI1 off");
+    ck_assert_str_eq(drive_state_name(&drive), "Switch on disabled");
+}
+END_TEST
+
 /* The state line ends with the device's frame counts and the card's counters (then the logic
  * inputs that are on: none here). */
 START_TEST(devicenet_state_shows_the_card_counters)
@@ -249,6 +264,7 @@ int main(void)
     tcase_add_test(tc, run_key_refused_under_network_control);
     tcase_add_test(tc, stop_key_resets_a_fault_where_the_manual_says);
     tcase_add_test(tc, analog_inputs_in_their_units);
+    tcase_add_test(tc, input_runs_the_drive_from_the_terminals);
     tcase_add_test(tc, devicenet_state_shows_the_card_counters);
     tcase_add_test(tc, canopen_state_shows_the_models_leds);
     suite_add_tcase(s, tc);

@@ -28,6 +28,7 @@ extern const drive_fault_table_t atv312_devicenet_faults;
 #define ATV312_CCS_CD2 2
 #define ATV312_FR_CANOPEN 6
 #define ATV312_CD_CANOPEN 4
+#define ATV312_CD_TERMINALS 1
 
 /* The access level (LAC): 1 L1, 2 L2, 3 L3, the project's codes; L3 allows separate channels and
  * control word bits as switching sources. */
@@ -50,7 +51,9 @@ extern const drive_fault_table_t atv312_devicenet_faults;
  * (error)", the generic bit alone (docs/decisions.md, D-ERROR-REGISTER). */
 #define ATV312_ERROR_REGISTER CO_ERR_REG_GENERIC
 
-/* The profile of an Altivar 31/312 on the dictionary `dictionary`, with `inputs` logic inputs, the
+/* The profile of an Altivar 31/312 on the dictionary `dictionary`, with `inputs` logic inputs (LI1
+ * forward and LI2 reverse in 2-wire control while the terminals command, the factory assignment
+ * the project takes, docs/decisions.md D-TERMINAL-RUN), the
  * analogue inputs of the array `analog` (drive_analog_input_t, as reference channels), the
  * faults of `fault_table` and a STOP key that resets faults when `stop_key_resets` (the ATV31's
  * STOP/RESET key; the ATV312 CANopen manual gives its key no reset). The
@@ -90,7 +93,8 @@ extern const drive_fault_table_t atv312_devicenet_faults;
         .output_frequency = DRIVE_PARAM(0x2002, 3), .frequency_reference = DRIVE_PARAM(0x2037, 3), \
         .auto_tune = DRIVE_PARAM(0x2042, 9), .ramp_switch = DRIVE_PARAM(0x203C, 11),               \
         .acceleration_2 = DRIVE_PARAM(0x203C, 13), .deceleration_2 = DRIVE_PARAM(0x203C, 14),      \
-        .logic_inputs = (inputs), .analog_inputs = (analog),                                       \
+        .logic_inputs = (inputs), .analog_inputs = (analog), .terminals = ATV312_CD_TERMINALS,     \
+        .run_forward = 1, .run_reverse = 2,                                                        \
         .analog_input_count = sizeof(analog) / sizeof((analog)[0]),                                \
         .access_level = DRIVE_PARAM(0x2036, 1), .access_level_full = ATV312_LAC_L3,                \
         .stop_key_resets_faults = (stop_key_resets),                                               \

@@ -252,6 +252,46 @@ def test_load_raises_torque_and_current(bus, control):
     assert (s["torque_percent"], s["current_a"], s["speed_rpm"]) == (70, 3.1, 1500)
 
 
+def test_analog_input_and_terminal_run(bus, control):
+    """CHCF = SIM, Fr1 = AI2: reference and command from the terminals. `analog 4 AI2 5` and
+    `input 4 LI1 on` run the drive to 750 rpm (TPDO6: ETAD 0x0427, RFRD 750); -5 V reverses it
+    (0x8427, -750); LI1 off stops it to Switch on disabled (0x0440)."""
+    bus.sdo_write(NODE, 0x2036, 0x0E, 2, 2)  # Fr1 = AI2
+    bus.sdo_write(NODE, 0x1805, 1, 0x284, 4)  # TPDO6 valid: ETAD + RFRD
+    bus.nmt(NMT_START, NODE)
+    bus.expect(0x284, "40040000", timeout=REPLY_TIMEOUT)
+    assert ctl(control, "analog", NODE, "AI2", 5) == (0, "ok node 4: AI2 5.000 V")
+    assert ctl(control, "input", NODE, "LI1", "on") == (0, "ok node 4: LI1 on")
+    bus.expect(0x284, "2704EE02", timeout=5.0)
+    assert ctl(control, "analog", NODE, "AI2", -5) == (0, "ok node 4: AI2 -5.000 V")
+    bus.expect(0x284, "278412FD", timeout=5.0)
+    assert ctl(control, "input", NODE, "LI1", "off") == (0, "ok node 4: LI1 off")
+    bus.expect(0x284, "40040000", timeout=5.0)
+    assert ctl(control, "pot", NODE, 50) == (EX_DATAERR, "error: node 4 has no reference potentiometer")
+
+
+def test_atv31_potentiometer_and_stop_reset_key(bus, start_daemon, tmp_path):
+    """The ATV31's potentiometer (Fr1 = 7) gives the reference: 50 % is 750 rpm (TPDO6); its
+    STOP/RESET key resets OHF once the cause is gone (EMCY 0000, status word 0x4640)."""
+    sock = tmp_path / "atv31.sock"
+    start_daemon(bus, "--node-id", NODE, "--model", "atv31", "--control", sock)
+    bus.sdo_write(NODE, 0x2036, 2, 2, 2)  # CHCF = SEP: the network commands
+    bus.sdo_write(NODE, 0x2036, 0x0E, 7, 2)  # Fr1 = AIP
+    bus.sdo_write(NODE, 0x1805, 1, 0x284, 4)  # TPDO6 valid: ETAD + RFRD
+    bus.nmt(NMT_START, NODE)
+    assert ctl(sock, "pot", NODE, 50) == (0, "ok node 4: AIP 50.0 %")
+    bus.sdo_write(NODE, 0x6040, 0, 0x0006, 2)
+    bus.sdo_write(NODE, 0x6040, 0, 0x000F, 2)
+    bus.expect(0x284, "2706EE02", timeout=5.0)
+    assert ctl(sock, "fault", NODE, "OHF")[0] == 0
+    bus.expect(0x84, "1042010000000000")
+    assert ctl(sock, "clear", NODE, "OHF")[0] == 0
+    mark = bus.mark()
+    assert ctl(sock, "stop-key", NODE) == (0, "ok node 4: STOP/RESET key: fault OHF reset (status word bit 14)")
+    bus.expect(0x84, "0000000000000000", since=mark)
+    assert bus.sdo_read(NODE, 0x6041, 0) == 0x4640
+
+
 def test_state_of_a_full_bench(bus, start_daemon, tmp_path):
     """127 drives: `state` answers every one on one line, whole (text and JSON)."""
     sock = tmp_path / "bench.sock"

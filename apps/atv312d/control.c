@@ -471,6 +471,18 @@ static const char *analog_range(drive_analog_kind_t kind)
     return "a percentage of 0..100";
 }
 
+/* A value of an input of `kind` in the unit the control surface takes: "-2.500 V", "12.000 mA",
+ * "50.5 %". */
+static void format_analog(drive_analog_kind_t kind, int32_t value, char *buf, size_t len)
+{
+    int32_t magnitude = value < 0 ? -value : value;
+    if (kind == DRIVE_ANALOG_POTENTIOMETER)
+        snprintf(buf, len, "%d.%d %%", (int)(value / 10), (int)(value % 10));
+    else
+        snprintf(buf, len, "%s%d.%03d %s", value < 0 ? "-" : "", (int)(magnitude / 1000),
+                 (int)(magnitude % 1000), kind == DRIVE_ANALOG_CURRENT ? "mA" : "V");
+}
+
 /* Input `index` at the value of `word` (V, mA or %): the drive's unit is mV, uA or 0.1 %. */
 static bool set_analog(const atv312d_control_node_t *node, uint8_t index, const char *word,
                        const char *command, reply_t *r)
@@ -486,14 +498,8 @@ static bool set_analog(const atv312d_control_node_t *node, uint8_t index, const 
     if (!valid || !drive_set_analog(drive, index, value, node->device->loop->now))
         return fail(r, "%s %s %s: give %s", command, in->name, shown(word), analog_range(in->kind));
     changed(node);
-    int32_t magnitude = value < 0 ? -value : value;
-    const char *sign = value < 0 ? "-" : "";
     char shown_value[32];
-    if (percent)
-        snprintf(shown_value, sizeof shown_value, "%d.%d %%", (int)(value / 10), (int)(value % 10));
-    else
-        snprintf(shown_value, sizeof shown_value, "%s%d.%03d %s", sign, (int)(magnitude / 1000),
-                 (int)(magnitude % 1000), in->kind == DRIVE_ANALOG_CURRENT ? "mA" : "V");
+    format_analog(in->kind, value, shown_value, sizeof shown_value);
     co_log(CO_LOG_INFO, "node %u: control: %s %s", node->id, in->name, shown_value);
     return succeed(r, "node %u: %s %s", node->id, in->name, shown_value);
 }
@@ -550,6 +556,35 @@ static void put_inputs(const drive_t *drive, reply_t *r)
         first = false;
     }
     put(r, "%s", r->json ? "]" : "");
+}
+
+/* The analogue inputs: in text those not at 0 (", analog AI2 5.000 V AI3 12.000 mA", nothing when
+ * all are), in JSON every one of the model in its unit ("analog":{"AI2":5.0,"AI3":12.0}). */
+static void put_analog(const drive_t *drive, reply_t *r)
+{
+    const drive_profile_t *profile = drive->profile;
+    bool first = true;
+    put(r, "%s", r->json ? ",\"analog\":{" : "");
+    for (uint8_t i = 0; i < profile->analog_input_count; i++) {
+        const drive_analog_input_t *in = &profile->analog_inputs[i];
+        int32_t value = drive_analog(drive, i);
+        if (r->json) {
+            int32_t per = in->kind == DRIVE_ANALOG_POTENTIOMETER ? 10 : 1000;
+            int32_t magnitude = value < 0 ? -value : value;
+            put(r,
+                in->kind == DRIVE_ANALOG_POTENTIOMETER ? "%s\"%s\":%s%d.%01d"
+                                                       : "%s\"%s\":%s%d.%03d",
+                first ? "" : ",", in->name, value < 0 ? "-" : "", (int)(magnitude / per),
+                (int)(magnitude % per));
+        } else if (value != 0) {
+            char shown_value[32];
+            format_analog(in->kind, value, shown_value, sizeof shown_value);
+            put(r, "%s%s %s", first ? ", analog " : " ", in->name, shown_value);
+        } else
+            continue;
+        first = false;
+    }
+    put(r, "%s", r->json ? "}" : "");
 }
 
 /* What the bus sees of the drive: its NMT state on CANopen; on DeviceNet the card's MS and NS
@@ -659,6 +694,7 @@ static void put_state(const atv312d_control_node_t *node, reply_t *r)
     put_comm_loss(drive, r);
     put_counters(node, r);
     put_inputs(drive, r);
+    put_analog(drive, r);
     put(r, "%s", r->json ? "}" : "");
 }
 

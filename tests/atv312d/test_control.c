@@ -159,6 +159,13 @@ START_TEST(analog_inputs_in_their_units)
     ck_assert_str_eq(execute("analog 4 AI2 -2.5"), "ok node 4: AI2 -2.500 V");
     ck_assert_int_eq(drive_analog(&drive, (uint8_t)drive_analog_find(&drive, "AI2")), -2500);
     ck_assert_str_eq(execute("analog 4 ai3 12"), "ok node 4: AI3 12.000 mA");
+    char line[1024];
+    atv312d_format_state(&node, false, line, sizeof line);
+    const char *text = ", EMCY 0, analog AI2 -2.500 V AI3 12.000 mA";
+    ck_assert_str_eq(line + strlen(line) - strlen(text), text);
+    atv312d_format_state(&node, true, line, sizeof line);
+    const char *json = ",\"inputs\":[],\"analog\":{\"AI2\":-2.500,\"AI3\":12.000}}";
+    ck_assert_str_eq(line + strlen(line) - strlen(json), json);
     ck_assert_str_eq(execute("json analog 4 AI2 5"),
                      "{\"ok\":true,\"message\":\"node 4: AI2 5.000 V\"}");
     ck_assert_str_eq(execute("analog 4 AI2 10.5"), "error: analog AI2 10.5: give a voltage of "
@@ -186,6 +193,9 @@ START_TEST(analog_inputs_in_their_units)
 
     start_model(&atv31_profile);
     ck_assert_str_eq(execute("pot 4 50.5"), "ok node 4: AIP 50.5 %");
+    atv312d_format_state(&node, true, line, sizeof line);
+    ck_assert_ptr_nonnull(
+        strstr(line, "\"analog\":{\"AI1\":0.000,\"AI2\":0.000,\"AI3\":0.000,\"AIP\":50.5}"));
     ck_assert_str_eq(execute("analog 4 AIP 20"), "ok node 4: AIP 20.0 %");
     ck_assert_str_eq(execute("pot 4 101"), "error: pot AIP 101: give a percentage of 0..100");
     ck_assert_str_eq(execute("analog 4 AI1 -1"), "error: analog AI1 -1: give a voltage of 0..10 V");
@@ -210,7 +220,7 @@ START_TEST(input_runs_the_drive_from_the_terminals)
 END_TEST
 
 /* The state line ends with the device's frame counts and the card's counters (then the logic
- * inputs that are on: none here). */
+ * inputs that are on and the analogue inputs not at 0: none here; in JSON every analogue input). */
 START_TEST(devicenet_state_shows_the_card_counters)
 {
     start_devicenet();
@@ -229,7 +239,8 @@ START_TEST(devicenet_state_shows_the_card_counters)
     const char *json =
         ",\"fault\":null,\"comm_loss\":null,\"frames\":{\"received\":52,\"sent\":50,\"dropped\":1,"
         "\"explicit_requests\":7,\"error_responses\":2,\"io_messages\":40,"
-        "\"fragments\":3,\"timeouts\":1},\"inputs\":[]}";
+        "\"fragments\":3,\"timeouts\":1},\"inputs\":[],"
+        "\"analog\":{\"AI2\":0.000,\"AI3\":0.000}}";
     ck_assert_str_eq(line + strlen(line) - strlen(json), json);
 }
 END_TEST

@@ -54,28 +54,30 @@ bool drive_local_run_key(drive_t *drive, co_time_t now)
     return true;
 }
 
-/* Logic input `input` is on and was off in `before`. */
-static bool input_rose(const drive_t *drive, uint8_t before, uint8_t input)
+/* Logic input `input` of the model is not as it was in `before`. */
+static bool input_changed(const drive_t *drive, uint8_t before, uint8_t input)
 {
-    return drive_input(drive, input) && (before & (1u << (input - 1u))) == 0;
+    return input != 0 && input <= drive->profile->logic_inputs &&
+           (((unsigned)(before ^ drive->inputs) >> (input - 1u)) & 1u) != 0;
 }
 
 /* 2-wire control: a run input switched on alone starts the drive in its direction, and it runs
- * while that input alone stays on; anything else stops it (on the deceleration ramp). `before`
- * holds the inputs before this change. */
+ * while that input alone stays on; a run input's other changes stop it (on the deceleration
+ * ramp). Other inputs leave the run as it is. `before` holds the inputs before this change. */
 void drive_local_terminals(drive_t *drive, uint8_t before)
 {
     const drive_profile_t *profile = drive->profile;
-    if (!drive->command_from_terminals || drive->local)
+    bool forward_changed = input_changed(drive, before, profile->run_forward);
+    bool reverse_changed = input_changed(drive, before, profile->run_reverse);
+    if (!drive->command_from_terminals || drive->local || !(forward_changed || reverse_changed))
         return;
     bool forward = drive_input(drive, profile->run_forward);
     bool reverse = drive_input(drive, profile->run_reverse);
-    bool rose = input_rose(drive, before, profile->run_forward) ||
-                input_rose(drive, before, profile->run_reverse);
     if (forward == reverse || (drive->local_run && drive->terminal_reverse != reverse)) {
         drive->local_run = false;
         return;
     }
+    bool rose = (forward && forward_changed) || (reverse && reverse_changed);
     if (rose && !drive->local_run && !cia402_faulted(&drive->cia402))
         local_run(drive, reverse);
 }

@@ -71,6 +71,23 @@ START_TEST(both_run_inputs_stop)
 }
 END_TEST
 
+/* An input that is no run input (LI3) leaves a run as it is: here the keypad's, with both run
+ * inputs off. */
+START_TEST(other_inputs_leave_the_run)
+{
+    bench_t b;
+    bench_start(&b);
+    terminals_command(&b);
+    ck_assert(drive_run_key(&b.drive, b.now));
+    bench_advance(&b, 3000000);
+    input(&b, 3, true);
+    input(&b, 3, false);
+    bench_advance(&b, 1000000);
+    ck_assert_int_eq(bench_speed(&b), 1500);
+    ck_assert_uint_eq(bench_read(&b, 0x6041, 0), 0x0427);
+}
+END_TEST
+
 /* LI1 on before the terminals take the command starts nothing (a run needs the change), nor does
  * a run input in Fault; under network control the run inputs do nothing. */
 START_TEST(a_run_needs_the_inputs_change)
@@ -114,6 +131,7 @@ int main(void)
     TCase *tc = tcase_create("terminals");
     tcase_add_test(tc, li1_forward_li2_reverse_in_2_wire_control);
     tcase_add_test(tc, both_run_inputs_stop);
+    tcase_add_test(tc, other_inputs_leave_the_run);
     tcase_add_test(tc, a_run_needs_the_inputs_change);
     tcase_add_test(tc, terminals_with_an_analogue_reference);
     suite_add_tcase(s, tc);

@@ -450,14 +450,15 @@ static void format_node_ids(const atv312d_options_t *opts, char *buf, size_t len
     }
 }
 
+/* The drive of `model` on `profile`: the model's own, or the one behind its DeviceNet card. */
 static int init_drive(drive_slot_t *slot, uint8_t node_id, const drive_model_t *model,
-                      const co_storage_t *storage, co_send_fn send)
+                      const drive_profile_t *profile, const co_storage_t *storage, co_send_fn send)
 {
-    slot->od_data = calloc(1, model->profile->od->data_size);
+    slot->od_data = calloc(1, profile->od->data_size);
     if (!slot->od_data)
         return EX_OSERR;
     drive_config_t config = {
-        .profile = model->profile,
+        .profile = profile,
         .od_data = slot->od_data,
         .node_id = node_id,
         .send = send,
@@ -480,7 +481,8 @@ static int init_drive(drive_slot_t *slot, uint8_t node_id, const drive_model_t *
 static int init_devicenet_drive(drive_slot_t *slot, const drive_model_t *model,
                                 const atv312d_options_t *opts)
 {
-    int rc = init_drive(slot, DN_DRIVE_NODE_ID, model, NULL, drive_dn_drop_frame);
+    int rc = init_drive(slot, DN_DRIVE_NODE_ID, model, model->devicenet->drive, NULL,
+                        drive_dn_drop_frame);
     if (rc != 0)
         return rc;
     slot->dn = calloc(1, sizeof *slot->dn);
@@ -521,7 +523,8 @@ static int init_drives(drive_slot_t *slots, const atv312d_options_t *opts, co_fi
                 co_file_store_bind(store, slot->id, &slot->store_node, &slot->storage);
                 storage = &slot->storage;
             }
-            rc = init_drive(slot, slot->id, opts->models[i], storage, slot_send);
+            rc = init_drive(slot, slot->id, opts->models[i], opts->models[i]->profile, storage,
+                            slot_send);
         }
         if (rc != 0)
             return rc;

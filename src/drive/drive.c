@@ -246,6 +246,8 @@ int drive_init(drive_t *drive, const drive_config_t *config)
     };
     if (!drive_faults_valid(config->profile))
         return DRIVE_INIT_BAD_FAULTS;
+    if (config->profile->analog_input_count > DRIVE_ANALOG_MAX)
+        return DRIVE_INIT_BAD_ANALOG;
     /* Every field from a known value, whatever the caller's memory held: no bus condition, fault
      * cause, input or load, not forced local. */
     memset(drive, 0, sizeof *drive);
@@ -363,9 +365,22 @@ void drive_set_local(drive_t *drive, bool local, co_time_t now)
     settle(drive);
 }
 
+/* A STOP key that resets faults (the ATV31's STOP/RESET) resets them as the fault reset edge
+ * would: in Fault only, when every active fault accepts a reset by command. The network's
+ * recorded control word stays, so its own reset still needs a new edge. */
+static void stop_key_fault_reset(drive_t *drive)
+{
+    if (!drive->profile->stop_key_resets_faults || drive->cia402.state != CIA402_FAULT ||
+        !drive_faults_resettable(drive))
+        return;
+    drive->cia402.state = CIA402_SWITCH_ON_DISABLED;
+    drive_faults_acknowledge(drive);
+}
+
 void drive_stop_key(drive_t *drive, co_time_t now)
 {
     drive_local_stop_key(drive, now);
+    stop_key_fault_reset(drive);
     settle(drive);
 }
 
@@ -383,12 +398,23 @@ void drive_set_load(drive_t *drive, uint8_t percent, co_time_t now)
     settle(drive);
 }
 
+/* A reference channel assigned to the input follows it at once. */
+bool drive_set_analog(drive_t *drive, uint8_t index, int32_t value, co_time_t now)
+{
+    if (!drive_local_analog(drive, index, value, now))
+        return false;
+    settle(drive);
+    return true;
+}
+
 /* An input may be a switching source: the channels follow it before the drive settles. */
 bool drive_set_input(drive_t *drive, uint8_t input, bool on, co_time_t now)
 {
+    uint8_t before = drive->inputs;
     if (!drive_local_input(drive, input, on, now))
         return false;
     update_channels(drive);
+    drive_local_terminals(drive, before);
     settle(drive);
     return true;
 }

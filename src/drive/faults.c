@@ -14,20 +14,6 @@ static uint32_t fault_bit(uint8_t index)
     return (uint32_t)1u << index;
 }
 
-static char lower(char c)
-{
-    return c >= 'A' && c <= 'Z' ? (char)(c - 'A' + 'a') : c;
-}
-
-static bool same_code(const char *a, const char *b)
-{
-    for (; *a && *b; a++, b++) {
-        if (lower(*a) != lower(*b))
-            return false;
-    }
-    return *a == *b;
-}
-
 bool drive_faults_valid(const drive_profile_t *profile)
 {
     const drive_fault_table_t *table = profile->faults;
@@ -39,7 +25,7 @@ int drive_fault_find(const drive_t *drive, const char *code)
 {
     const drive_fault_table_t *table = drive->profile->faults;
     for (uint8_t i = 0; i < table->count; i++) {
-        if (same_code(table->faults[i].code, code))
+        if (drive_same_code(table->faults[i].code, code))
             return i;
     }
     return -1;

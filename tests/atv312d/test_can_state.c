@@ -127,8 +127,8 @@ START_TEST(state_says_a_heartbeat_loss_and_its_producer)
     receive("604#2316100164000100", 0);
     receive("701#05", 1000);
     drive_process(&drive, 101000);
-    expect_state(", ERR double flash, fault CnF, comm-loss heartbeat node 1, frames received ",
-                 ",\"fault\":\"CnF\",\"comm_loss\":{\"by\":\"heartbeat\",\"node\":1},\"frames\"");
+    expect_state(", ERR double flash, fault COF, comm-loss heartbeat node 1, frames received ",
+                 ",\"fault\":\"COF\",\"comm_loss\":{\"by\":\"heartbeat\",\"node\":1},\"frames\"");
     receive("604#2B40600080000000", 200000); /* fault reset: the cause is gone with it */
     expect_state(", ERR off, fault none, frames received ", ",\"comm_loss\":null,");
 }
@@ -141,8 +141,8 @@ START_TEST(state_says_a_life_guarding_loss)
     receive("604#2F0D100003000000", 0);
     receive("704#R", 1000);
     drive_process(&drive, 301000);
-    expect_state(", ERR double flash, fault CnF, comm-loss guarding, frames received ",
-                 ",\"fault\":\"CnF\",\"comm_loss\":{\"by\":\"guarding\"},\"frames\"");
+    expect_state(", ERR double flash, fault COF, comm-loss guarding, frames received ",
+                 ",\"fault\":\"COF\",\"comm_loss\":{\"by\":\"guarding\"},\"frames\"");
 }
 END_TEST
 

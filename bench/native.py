@@ -53,38 +53,48 @@ def run_time_ns(pid):
     return int(open(f"/proc/{pid}/schedstat").read().split()[0])
 
 
-class Answering:
-    """One answering program on its own end of a new socketpair; `bus` is the generator's end."""
+def pinned(cpu, argv):
+    return ["taskset", "-c", str(cpu)] + argv
 
-    def __init__(self, command, cpu):
+
+class Answering:
+    """One answering program on its own end of a new socketpair; `bus` is the generator's end.
+    ARGV's "{fd}" stands for the program's end."""
+
+    def __init__(self, argv, cpu):
         ours, self.bus = socket.socketpair(socket.AF_UNIX, socket.SOCK_SEQPACKET)
         fd = str(ours.fileno())
-        argv = [arg.replace("{fd}", fd) for arg in command]
-        self.proc = subprocess.Popen(["taskset", "-c", str(cpu)] + argv, pass_fds=[ours.fileno()],
-                                     stdout=subprocess.PIPE, text=True)
+        self.proc = subprocess.Popen(pinned(cpu, [arg.replace("{fd}", fd) for arg in argv]),
+                                     pass_fds=[ours.fileno()], stdout=subprocess.PIPE, text=True)
         ours.close()
 
-    def generate(self, generator, count, cpu, sync=False):
-        fd = self.bus.fileno()
-        command = ["taskset", "-c", str(cpu), generator] + (["--sync"] if sync else []) + \
-            [f"--fd={fd}", str(NODE_ID), str(count)]
-        run = subprocess.run(command, pass_fds=[fd], capture_output=True, text=True)
+    def run_generator(self, generator, cpu, arguments):
+        """Runs GENERATOR on the bus's end ("{fd}" in ARGUMENTS) and returns the JSON it prints."""
+        fd = str(self.bus.fileno())
+        command = pinned(cpu, [generator] + [arg.replace("{fd}", fd) for arg in arguments])
+        run = subprocess.run(command, pass_fds=[self.bus.fileno()], capture_output=True, text=True)
         if run.returncode != 0:
-            sys.exit(f"native.py: {' '.join(command)}: {run.stderr.strip()}")
+            sys.exit(f"{os.path.basename(sys.argv[0])}: {' '.join(command)}: {run.stderr.strip()}")
         return json.loads(run.stdout)
+
+    def generate(self, generator, count, cpu, sync=False):
+        return self.run_generator(generator, cpu, (["--sync"] if sync else []) +
+                                  ["--fd={fd}", str(NODE_ID), str(count)])
 
     def close(self):
         """Hangs up: the program ends; returns what it printed."""
         self.bus.close()
         out, _ = self.proc.communicate(timeout=10)
         if self.proc.returncode != 0:
-            sys.exit(f"native.py: {self.proc.args}: exit status {self.proc.returncode}")
+            sys.exit(f"{os.path.basename(sys.argv[0])}: {self.proc.args}: exit status "
+                     f"{self.proc.returncode}")
         return out
 
 
-def timed(program, generator, count, cpu, sync=False):
+def timed(program, generator, count, cpu, *options):
+    """PROGRAM's generate(), with the answering program's CPU time per 10,000 transactions."""
     before = run_time_ns(program.proc.pid)
-    result = program.generate(generator, count, cpu, sync)
+    result = program.generate(generator, count, cpu, *options)
     result["cpu_ms_per_10k"] = round((run_time_ns(program.proc.pid) - before) / 1e6 * 10000 /
                                      (count + WARM_UP), 1)
     return result

@@ -33,18 +33,17 @@ import json
 import os
 import select
 import signal
-import socket
 import statistics
 import subprocess
 import sys
 import time
 
-from benchproc import proc_status, strace_counts, syscalls
-from native import machine, median_interval, quartiles, run_time_ns
+from benchproc import proc_status, syscalls
+import native
+from native import (STRACE_COUNT, calls_per_transaction, machine, median_interval, pinned,
+                    quartiles, run_time_ns, timed)
 
 MAC_ID = 63
-WARM_UP = 100  # polls the generator makes before it times (bench/sdo_rtt.c)
-STRACE_COUNT = 5000
 # The single drive's polled connection: a watchdog of 40 s, longer than the pauses of its polls
 # while the floors are timed.
 ROUND_TRIP_EPR_MS = 10000
@@ -63,23 +62,12 @@ def read_line(proc, timeout):
     return proc.stdout.readline().strip() if ready else ""
 
 
-def pinned(cpu, argv):
-    return ["taskset", "-c", str(cpu)] + argv
-
-
 def other_cpu(cpu):
     return (cpu + 1) % os.cpu_count()
 
 
-class Answering:
-    """One answering program on its own end of a new socketpair; `bus` is the other end."""
-
-    def __init__(self, argv, cpu):
-        ours, self.bus = socket.socketpair(socket.AF_UNIX, socket.SOCK_SEQPACKET)
-        fd = str(ours.fileno())
-        self.proc = subprocess.Popen(pinned(cpu, [arg.replace("{fd}", fd) for arg in argv]),
-                                     pass_fds=[ours.fileno()], stdout=subprocess.PIPE, text=True)
-        ours.close()
+class Answering(native.Answering):
+    """bench/native.py's answering program, with the DeviceNet steps: online, polled."""
 
     def wait_online(self, drives):
         line = read_line(self.proc, 10.0)
@@ -115,40 +103,13 @@ class Answering:
             pass
 
     def generate(self, generator, count, cpu, options=()):
-        fd = self.bus.fileno()
-        command = pinned(cpu, [generator, *options, "--poll", f"--fd={fd}", str(MAC_ID),
-                               str(count)])
-        run = subprocess.run(command, pass_fds=[fd], capture_output=True, text=True)
-        if run.returncode != 0:
-            sys.exit(f"native_devicenet.py: {' '.join(command)}: {run.stderr.strip()}")
-        return json.loads(run.stdout)
+        return self.run_generator(generator, cpu,
+                                  [*options, "--poll", "--fd={fd}", str(MAC_ID), str(count)])
 
     def close(self):
         """Hangs up: the program ends; returns its last line."""
-        self.bus.close()
-        out, _ = self.proc.communicate(timeout=10)
-        if self.proc.returncode != 0:
-            sys.exit(f"native_devicenet.py: {self.proc.args}: exit status {self.proc.returncode}")
-        return out.strip().splitlines()[-1] if out.strip() else ""
-
-
-def timed(program, generator, count, cpu):
-    before = run_time_ns(program.proc.pid)
-    result = program.generate(generator, count, cpu)
-    result["cpu_ms_per_10k"] = round((run_time_ns(program.proc.pid) - before) / 1e6 * 10000 /
-                                     (count + WARM_UP), 1)
-    return result
-
-
-def calls_per_poll(program, generator, cpu):
-    tracer = subprocess.Popen(["strace", "-c", "-f", "-p", str(program.proc.pid)],
-                              stderr=subprocess.PIPE, text=True)
-    time.sleep(0.5)  # strace has attached
-    program.generate(generator, STRACE_COUNT, cpu)
-    tracer.send_signal(signal.SIGINT)
-    _, stderr = tracer.communicate(timeout=10)
-    return {name: round(calls / (STRACE_COUNT + WARM_UP), 2)
-            for name, calls in strace_counts(stderr).items()}
+        out = super().close().strip()
+        return out.splitlines()[-1] if out else ""
 
 
 def start_answering(key, args):
@@ -181,7 +142,7 @@ def round_trips(args):
         programs["floor_clock"].close()
     programs = round_trip_programs(args)
     for key in PROGRAMS:
-        result[f"{key}_calls"] = calls_per_poll(programs[key], args.generator, args.cpu)
+        result[f"{key}_calls"] = calls_per_transaction(programs[key], args.generator, args.cpu)
         programs[key].close()
     return result
 

@@ -133,8 +133,8 @@ static const co_linux_device_ops_t card_ops = {.start = card_start,
 static int init_card(bench_card_t *card, const drive_model_t *model, uint8_t mac_id)
 {
     card->mac_id = mac_id;
-    card->od_data = calloc(1, model->profile->od->data_size);
-    drive_config_t drive = {.profile = model->profile,
+    card->od_data = calloc(1, model->devicenet->drive->od->data_size);
+    drive_config_t drive = {.profile = model->devicenet->drive,
                             .od_data = card->od_data,
                             .node_id = DN_DRIVE_NODE_ID,
                             .send = drive_dn_drop_frame,

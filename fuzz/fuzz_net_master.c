@@ -13,8 +13,14 @@
  *                 three configuration writes, bits 6-7 the identity checked (0 nothing, 1 the
  *                 device type, 2 and vendor and product, 3 and revision and serial)), then the
  *                 heartbeat consumer time or guard time in 10 ms (0: none)
- *     E0h..EFh:   co_net_master_write_output: (tag & 0Fh) bytes at the offset in the next byte,
+ *     E0h..EBh:   co_net_master_write_output: (tag & 0Fh) bytes at the offset in the next byte,
  *                 the bytes following
+ *     ECh, EDh:   co_net_master_disable, co_net_master_enable
+ *     EEh:        co_net_master_nmt: the command (a byte: its index in start, stop, preop, reset
+ *                 node, reset communication, mod 5), the node (a byte: 0 all, else a slave of
+ *                 the table), a timeout of (byte + 1) x 10 ms
+ *     EFh:        co_net_master_sdo: a slave of the table (a byte), read (bit 0 of the next byte
+ *                 clear) of 1018h:01, or write of 6060h = 2, each of 4 bytes
  *
  * fuzz/seeds.py writes the seeds from readable frames. */
 #include "co/co_net_master.h"
@@ -51,6 +57,11 @@
 /* As in rig.c, deadlines handled one by one within a time step, then the rig wakes up late; fewer:
  * each call runs the NMT master over its 127 nodes. */
 #define DEADLINES_PER_STEP 16
+/* The commands of the application above the writes of the output image (tag & 0Fh). */
+#define COMMAND_DISABLE 0x0Cu
+#define COMMAND_ENABLE 0x0Du
+#define COMMAND_NMT 0x0Eu
+#define COMMAND_SDO 0x0Fu
 
 enum { EC_NONE, EC_HEARTBEAT, EC_GUARDING };
 
@@ -96,6 +107,9 @@ static struct harness {
     bool writing;
     co_frame_t expected[SLAVES_MAX];
     size_t expected_count, matched;
+    /* The application's requests. */
+    size_t requests_queued, requests_done;
+    uint8_t request_buffer[CO_NET_REQUEST_MAX][4];
 } h;
 
 /* The slave of `node_id`, SLAVES_MAX when it is not one. */
@@ -114,10 +128,26 @@ static bool configuring(uint8_t step)
            step == CO_NET_STEP_DOWNLOAD;
 }
 
+/* The command of co_net_master_nmt under way, sent just now. */
+static bool application_nmt(uint8_t command, uint8_t node_id)
+{
+    const co_net_nmt_request_t *r = &h.master.nmt_request;
+    return r->pending && r->command == command && r->node_id == node_id;
+}
+
 static void check_nmt_command(const co_frame_t *frame)
 {
     uint8_t command = frame->data[0], node_id = frame->data[1];
     rig_check(frame->len == 2, "an NMT command that is not 2 bytes");
+    /* The application's own command: a start starts; after any other the master, which does not
+     * check the state a slave reports, keeps it where it was. */
+    if (application_nmt(command, node_id)) {
+        for (size_t i = 0; i < h.config.slave_count; i++) {
+            if (node_id == CO_NMT_MASTER_ALL_NODES || node_id == h.slaves[i].node_id)
+                h.started[i] = h.started[i] || command == CO_NMT_CS_START;
+        }
+        return;
+    }
     rig_check(command == CO_NMT_CS_START || command == CO_NMT_CS_RESET_NODE ||
                   command == CO_NMT_CS_RESET_COMMUNICATION,
               "an NMT command the master has no use for");
@@ -145,6 +175,11 @@ static void check_sdo_request(const co_frame_t *frame, size_t i)
     rig_check(frame->len == 8, "an SDO request that is not 8 bytes");
     if (frame->data[0] == CO_SDO_COMMAND(CO_SDO_CS_ABORT))
         return;
+    if (h.master.serving) {
+        rig_check(h.master.requests[0].node_id == h.slaves[i].node_id,
+                  "an SDO request of the application to another node than asked");
+        return;
+    }
     rig_check(configuring(h.state[i].step),
               "an SDO request to a slave that is not being configured");
     bool download = ccs == CO_SDO_COMMAND(CO_SDO_CCS_DOWNLOAD_INITIATE) ||
@@ -193,7 +228,12 @@ static void on_send(void *user, const co_frame_t *frame)
     bool rtr = (frame->flags & CO_FRAME_RTR) != 0;
     size_t sdo = slave_of(frame->id - CO_CAN_ID_SDO_RX);
     size_t guarded = slave_of(frame->id - CO_CAN_ID_ERROR_CONTROL);
-    if (frame->id == CO_CAN_ID_NMT && !rtr) {
+    rig_check(!h.master.disabled, "a frame while the communication is disabled");
+    if (guarded < SLAVES_MAX && rtr && h.error_control[guarded] != EC_GUARDING) {
+        rig_check(co_net_master_nmt_awaited(&h.master, h.slaves[guarded].node_id) &&
+                      frame->len == 1,
+                  "a guarding request to a slave neither guarded nor asked for its state");
+    } else if (frame->id == CO_CAN_ID_NMT && !rtr) {
         check_nmt_command(frame);
     } else if (sdo < SLAVES_MAX && !rtr) {
         check_sdo_request(frame, sdo);
@@ -210,6 +250,10 @@ static void on_send(void *user, const co_frame_t *frame)
 static void on_event(void *user, const co_net_event_t *event)
 {
     (void)user;
+    if (event->kind == CO_NET_EVENT_NMT_DONE) {
+        rig_check(!h.master.nmt_request.pending, "an NMT command ended that still awaits");
+        return;
+    }
     if (event->kind == CO_NET_EVENT_STARTED) {
         rig_check(h.started_all && event->node_id == 0, "a start-all event without the command");
         return;
@@ -253,7 +297,8 @@ static void check_slave(size_t i)
     const co_net_slave_t *s = &h.state[i];
     uint16_t st = s->status;
     rig_check(s->step == h.step[i] && st == h.status[i], "a step or status change not reported");
-    rig_check(s->step != CO_NET_STEP_IDLE, "a slave idle after the start");
+    rig_check(s->step != CO_NET_STEP_IDLE || h.master.disabled,
+              "a slave idle after the start, communication enabled");
     rig_check(!(st & CO_NET_SLAVE_CONFIGURED) || (st & CO_NET_SLAVE_CONTACTED),
               "configured without being contacted");
     rig_check(!(st & CO_NET_SLAVE_EC_STARTED) || (st & CO_NET_SLAVE_CONFIGURED),
@@ -263,6 +308,9 @@ static void check_slave(size_t i)
     rig_check(!(st & CO_NET_SLAVE_INIT_DONE) || !(st & CO_NET_SLAVE_INIT_ERROR),
               "init done and init error at once");
     switch (s->step) {
+    case CO_NET_STEP_IDLE:
+        rig_check(st == 0, "a slave idle with status bits (disabling clears them)");
+        break;
     case CO_NET_STEP_WAIT_BOOT:
     case CO_NET_STEP_DEVICE_TYPE:
     case CO_NET_STEP_IDENTITY:
@@ -309,9 +357,12 @@ static void check_heard(size_t i)
     rig_check(h.now < h.heard[i] + consumer_us, "a slave silent past its heartbeat time not lost");
 }
 
-/* After a process: the SDO client is not left idle while a slave waits for it. */
+/* After a process: the SDO client is not left idle while a slave waits for it (a transfer of the
+ * application under way may hold it). */
 static void check_sdo_client_used(void)
 {
+    if (h.master.serving)
+        return;
     for (size_t i = 0; i < h.config.slave_count; i++) {
         if (configuring(h.state[i].step))
             return;
@@ -336,6 +387,11 @@ static void check_master(void)
         }
     }
     rig_check(busy <= 1, "two slaves configured at once over one SDO client");
+    rig_check(busy == 0 || !h.master.serving, "a slave configured during a request's transfer");
+    rig_check(h.requests_done + h.master.request_count == h.requests_queued,
+              "a request of the application lost, or ended twice");
+    rig_check(!h.master.disabled || co_net_master_status(&h.master) == CO_NET_MASTER_DISABLED,
+              "a disabled master with another status than bit 15");
     rig_check(h.master.last_sdo_error.node_id == 0 ||
                   slave_of(h.master.last_sdo_error.node_id) < SLAVES_MAX,
               "an SDO error of a node not in the table");
@@ -390,7 +446,7 @@ static void deliver(const co_frame_t *frame)
         rig_check(h.state[from].step != CO_NET_STEP_LOST &&
                       !(h.state[from].status & CO_NET_SLAVE_EC_ERROR),
                   "a lost slave still lost when its heartbeat comes again");
-    for (size_t p = 0; p < h.config.input_count; p++) {
+    for (size_t p = 0; p < h.config.input_count && !h.master.disabled; p++) {
         const co_net_pdo_t *pdo = &h.config.inputs[p];
         if (pdo->can_id == frame->id && frame->len >= pdo->len && !frame->flags)
             rig_check(memcmp(h.input_image + pdo->offset, frame->data, pdo->len) == 0,
@@ -506,6 +562,81 @@ static void configure(const uint8_t *header)
     };
 }
 
+static void request_done(void *user, const co_net_request_t *request,
+                         const co_sdo_client_result_t *result)
+{
+    (void)user;
+    rig_check(request->done == request_done && h.requests_done < h.requests_queued,
+              "a request ended that was not queued");
+    rig_check(result->status == CO_SDO_CLIENT_OK || result->abort_code != 0,
+              "a failed request without its abort code");
+    h.requests_done++;
+}
+
+/* The application's NMT command: mod 5 of the commands, to all or to a slave of the table. */
+static void request_nmt(const uint8_t *args)
+{
+    static const uint8_t commands[] = {CO_NMT_CS_START, CO_NMT_CS_STOP,
+                                       CO_NMT_CS_ENTER_PRE_OPERATIONAL, CO_NMT_CS_RESET_NODE,
+                                       CO_NMT_CS_RESET_COMMUNICATION};
+    uint8_t node = args[1] == 0 ? 0 : h.slaves[args[1] % h.config.slave_count].node_id;
+    bool busy = h.master.nmt_request.pending || h.master.disabled;
+    bool sent = co_net_master_nmt(&h.master, commands[args[0] % 5], node,
+                                  (args[2] + 1u) * FAST_UNIT_MS, h.now);
+    rig_check(sent != busy, "an NMT command refused when it may go, or sent when it may not");
+}
+
+/* The application's SDO transfer on the master's client: 1018h:01 read, or 6060h written. */
+static void request_sdo(const uint8_t *args)
+{
+    co_net_request_t request = {
+        .node_id = h.slaves[args[0] % h.config.slave_count].node_id,
+        .index = (args[1] & 1u) ? 0x6060 : CO_IDX_IDENTITY,
+        .subindex = (args[1] & 1u) ? 0 : 1,
+        .write = (args[1] & 1u) != 0,
+        .data = h.request_buffer[h.requests_queued % CO_NET_REQUEST_MAX],
+        .len = 4,
+        .done = request_done,
+    };
+    bool room = !h.master.disabled && h.master.request_count < CO_NET_REQUEST_MAX;
+    bool queued = co_net_master_sdo(&h.master, &request, h.now);
+    rig_check(queued == room, "an SDO request refused with room, or queued without");
+    h.requests_queued += queued;
+}
+
+/* A command of the application; false when the input ended in its arguments. */
+static bool command(fuzz_input_t *input, uint8_t tag)
+{
+    const uint8_t *args;
+    switch (tag) {
+    case COMMAND_DISABLE:
+        co_net_master_disable(&h.master, h.now);
+        return true;
+    case COMMAND_ENABLE:
+        /* Enabling a disabled master boots the network again: a new start of all may go. */
+        h.started_all = h.started_all && !h.master.disabled;
+        co_net_master_enable(&h.master, h.now);
+        return true;
+    case COMMAND_NMT:
+        args = fuzz_take(input, 3);
+        if (args)
+            request_nmt(args);
+        return args != NULL;
+    case COMMAND_SDO:
+        args = fuzz_take(input, 2);
+        if (args)
+            request_sdo(args);
+        return args != NULL;
+    default: {
+        const uint8_t *offset = fuzz_take(input, 1);
+        const uint8_t *bytes = offset ? fuzz_take(input, tag) : NULL;
+        if (bytes)
+            write_output(*offset, bytes, tag);
+        return bytes != NULL;
+    }
+    }
+}
+
 int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size);
 
 int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
@@ -527,11 +658,8 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
             deliver(&step.frame);
             deadline = process();
         } else {
-            const uint8_t *offset = fuzz_take(&input, 1);
-            const uint8_t *bytes = offset ? fuzz_take(&input, step.command) : NULL;
-            if (bytes == NULL)
+            if (!command(&input, step.command))
                 break;
-            write_output(*offset, bytes, step.command);
             deadline = process();
         }
     }

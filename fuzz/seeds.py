@@ -189,6 +189,25 @@ def write_output(offset, data):
     return bytes([0xE0 | len(payload), offset]) + payload
 
 
+def disable():
+    return bytes([0xEC])
+
+
+def enable():
+    return bytes([0xED])
+
+
+def nmt_request(command, node, timeout_10ms=9):
+    """co_net_master_nmt: command 0..4 (start, stop, preop, reset node, reset communication), node
+    0 (all) or the table's slave k % count."""
+    return bytes([0xEE, command, node, timeout_10ms])
+
+
+def sdo_request(slave_index, write=False):
+    """co_net_master_sdo: 1018h:01 read, or 6060h written, on slave slave_index % count."""
+    return bytes([0xEF, slave_index, 1 if write else 0])
+
+
 def heartbeats(node, count, period_ms=50, state="05"):
     return ["%03X#%s" % (0x700 + node, state), "+%dms" % period_ms] * count
 
@@ -234,6 +253,14 @@ NET_MASTER = {
         net_header([slave(control="guarding", time_ms=50)]),
         ["701#00"] + configured(1) + ["701#05", "+50ms", "701#85", "+50ms", "701#05", "+50ms",
                                       "+200ms", "701#85"]),
+    "requests": (
+        net_header([slave(), slave(check=0)]),
+        [sdo_request(0), "701#00", "702#00"] + configured(1) + configured(2, check=0)
+        + ["581#431810015F000000", sdo_request(1, write=True), "+1ms", "582#6060600000000000",
+           nmt_request(1, 1), "+1ms", "702#04", nmt_request(2, 0), "701#7F", "702#7F",
+           nmt_request(3, 2), "+1ms", "702#00"] + configured(2, check=0)
+        + [sdo_request(0), sdo_request(1), disable(), "+200ms", "701#05", enable(), "+1ms",
+           "701#00", "702#00"] + configured(1) + configured(2, check=0) + heartbeats(1, 2)),
     "process-image": (
         net_header([slave(), slave(writes=0, check=0)], sync=True, image=True),
         ["701#00", "702#00"] + configured(1) + configured(2, writes=0, check=0)

@@ -1,6 +1,7 @@
 /* The control surface: command execution on the drives, its session on the runtime's line socket
  * in the daemon's loop, and the `atv312d ctl` client (control.h). */
 #include "control.h"
+#include "status.h"
 
 #include "co_linux/log.h"
 #include "drive/panel.h"
@@ -259,9 +260,16 @@ static bool command_stop_key(const atv312d_control_t *control, char **words, siz
     if (!node)
         return false;
     drive_t *drive = node->drive;
+    const drive_fault_def_t *fault = drive_fault_latched(drive);
     drive_stop_key(drive, node->device->loop->now);
     changed(node);
     co_log(CO_LOG_INFO, "node %u: control: STOP key", node->id);
+    if (fault && !drive_fault_latched(drive))
+        return succeed(r, "node %u: STOP/RESET key: fault %s reset (status word bit 14)", node->id,
+                       fault->code);
+    if (fault)
+        return succeed(r, "node %u: STOP key: still in fault %s (status word bit 14)", node->id,
+                       drive_fault_latched(drive)->code);
     return succeed(r, "node %u: STOP key (%s stop, status word bit 14)", node->id,
                    drive_local_control(drive) ? "ramp" : "freewheel");
 }
@@ -406,6 +414,134 @@ static bool command_input(const atv312d_control_t *control, char **words, size_t
     return succeed(r, "node %u: LI%u %s", id, input, words[3]);
 }
 
+/* A decimal number with at most `decimals` digits after the point ("-2.5"), in thousandths: false
+ * when the word is none. */
+static bool parse_thousandths(const char *word, int decimals, int32_t *value)
+{
+    const char *c = word;
+    bool negative = *c == '-';
+    if (negative)
+        c++;
+    if (*c < '0' || *c > '9')
+        return false;
+    int64_t whole = 0;
+    for (; *c >= '0' && *c <= '9'; c++) {
+        whole = whole * 10 + (*c - '0');
+        if (whole > 1000000)
+            return false;
+    }
+    int64_t fraction = 0;
+    int digits = 0;
+    if (*c == '.') {
+        for (c++; *c >= '0' && *c <= '9' && digits < decimals; c++, digits++)
+            fraction = fraction * 10 + (*c - '0');
+        if (digits == 0)
+            return false;
+    }
+    if (*c != '\0')
+        return false;
+    for (; digits < 3; digits++)
+        fraction *= 10;
+    int64_t thousandths = whole * 1000 + fraction;
+    *value = (int32_t)(negative ? -thousandths : thousandths);
+    return true;
+}
+
+static void list_analog_inputs(const drive_t *drive, char *buf, size_t len)
+{
+    size_t used = 0;
+    buf[0] = '\0';
+    for (uint8_t i = 0; i < drive->profile->analog_input_count && used < len; i++)
+        used += (size_t)snprintf(buf + used, len - used, "%s%s", i ? ", " : "",
+                                 drive->profile->analog_inputs[i].name);
+}
+
+/* What a value of the input is given in, and its range, for the replies. */
+static const char *analog_range(drive_analog_kind_t kind)
+{
+    switch (kind) {
+    case DRIVE_ANALOG_VOLTAGE:
+        return "a voltage of 0..10 V";
+    case DRIVE_ANALOG_BIPOLAR:
+        return "a voltage of -10..10 V";
+    case DRIVE_ANALOG_CURRENT:
+        return "a current of 0..20 mA";
+    case DRIVE_ANALOG_POTENTIOMETER:
+        break;
+    }
+    return "a percentage of 0..100";
+}
+
+/* A value of an input of `kind` in the unit the control surface takes: "-2.500 V", "12.000 mA",
+ * "50.5 %". */
+static void format_analog(drive_analog_kind_t kind, int32_t value, char *buf, size_t len)
+{
+    int32_t magnitude = value < 0 ? -value : value;
+    if (kind == DRIVE_ANALOG_POTENTIOMETER)
+        snprintf(buf, len, "%d.%d %%", (int)(value / 10), (int)(value % 10));
+    else
+        snprintf(buf, len, "%s%d.%03d %s", value < 0 ? "-" : "", (int)(magnitude / 1000),
+                 (int)(magnitude % 1000), kind == DRIVE_ANALOG_CURRENT ? "mA" : "V");
+}
+
+/* Input `index` at the value of `word` (V, mA or %): the drive's unit is mV, uA or 0.1 %. */
+static bool set_analog(const atv312d_control_node_t *node, uint8_t index, const char *word,
+                       const char *command, reply_t *r)
+{
+    drive_t *drive = node->drive;
+    const drive_analog_input_t *in = &drive->profile->analog_inputs[index];
+    bool percent = in->kind == DRIVE_ANALOG_POTENTIOMETER;
+    int32_t thousandths;
+    int32_t value = 0;
+    bool valid = parse_thousandths(word, percent ? 1 : 3, &thousandths);
+    if (valid)
+        value = percent ? thousandths / 100 : thousandths;
+    if (!valid || !drive_set_analog(drive, index, value, node->device->loop->now))
+        return fail(r, "%s %s %s: give %s", command, in->name, shown(word), analog_range(in->kind));
+    changed(node);
+    char shown_value[32];
+    format_analog(in->kind, value, shown_value, sizeof shown_value);
+    co_log(CO_LOG_INFO, "node %u: control: %s %s", node->id, in->name, shown_value);
+    return succeed(r, "node %u: %s %s", node->id, in->name, shown_value);
+}
+
+static bool command_analog(const atv312d_control_t *control, char **words, size_t n, reply_t *r)
+{
+    if (n != 4)
+        return fail(r, "usage: analog NODE AIn VALUE (volts or mA as the input takes them, e.g. "
+                       "analog 4 AI2 -2.5)");
+    const atv312d_control_node_t *node = find_node(control, words[1], r);
+    if (!node)
+        return false;
+    const drive_t *drive = node->drive;
+    if (drive->profile->analog_input_count == 0)
+        return fail(r, "node %u has no analogue inputs", node->id);
+    int index = drive_analog_find(drive, words[2]);
+    if (index < 0) {
+        char names[128];
+        list_analog_inputs(drive, names, sizeof names);
+        return fail(r, "node %u has no analogue input %s: its analogue inputs are %s", node->id,
+                    shown(words[2]), names);
+    }
+    return set_analog(node, (uint8_t)index, words[3], "analog", r);
+}
+
+/* The reference potentiometer of the front panel (the ATV31's AIP). */
+static bool command_pot(const atv312d_control_t *control, char **words, size_t n, reply_t *r)
+{
+    if (n != 3)
+        return fail(r, "usage: pot NODE PERCENT (0..100, e.g. pot 5 50)");
+    const atv312d_control_node_t *node = find_node(control, words[1], r);
+    if (!node)
+        return false;
+    const drive_profile_t *profile = node->drive->profile;
+    for (uint8_t i = 0; i < profile->analog_input_count; i++) {
+        if (profile->analog_inputs[i].kind == DRIVE_ANALOG_POTENTIOMETER)
+            return set_analog(node, i, words[2], "pot", r);
+    }
+    return fail(r, "node %u has no reference potentiometer", node->id);
+}
+
 /* The logic inputs that are on: ", inputs LI1 LI3" (nothing when none is), or the JSON list. */
 static void put_inputs(const drive_t *drive, reply_t *r)
 {
@@ -421,6 +557,35 @@ static void put_inputs(const drive_t *drive, reply_t *r)
         first = false;
     }
     put(r, "%s", r->json ? "]" : "");
+}
+
+/* The analogue inputs: in text those not at 0 (", analog AI2 5.000 V AI3 12.000 mA", nothing when
+ * all are), in JSON every one of the model in its unit ("analog":{"AI2":5.0,"AI3":12.0}). */
+static void put_analog(const drive_t *drive, reply_t *r)
+{
+    const drive_profile_t *profile = drive->profile;
+    bool first = true;
+    put(r, "%s", r->json ? ",\"analog\":{" : "");
+    for (uint8_t i = 0; i < profile->analog_input_count; i++) {
+        const drive_analog_input_t *in = &profile->analog_inputs[i];
+        int32_t value = drive_analog(drive, i);
+        if (r->json) {
+            int32_t per = in->kind == DRIVE_ANALOG_POTENTIOMETER ? 10 : 1000;
+            int32_t magnitude = value < 0 ? -value : value;
+            put(r,
+                in->kind == DRIVE_ANALOG_POTENTIOMETER ? "%s\"%s\":%s%d.%01d"
+                                                       : "%s\"%s\":%s%d.%03d",
+                first ? "" : ",", in->name, value < 0 ? "-" : "", (int)(magnitude / per),
+                (int)(magnitude % per));
+        } else if (value != 0) {
+            char shown_value[32];
+            format_analog(in->kind, value, shown_value, sizeof shown_value);
+            put(r, "%s%s %s", first ? ", analog " : " ", in->name, shown_value);
+        } else
+            continue;
+        first = false;
+    }
+    put(r, "%s", r->json ? "}" : "");
 }
 
 /* What the bus sees of the drive: its NMT state on CANopen; on DeviceNet the card's MS and NS
@@ -470,6 +635,30 @@ static void put_canopen_leds(const atv312d_control_node_t *node, reply_t *r)
     }
 }
 
+/* The cause of the communication loss the drive reacted to: "comm-loss heartbeat node 1, ",
+ * "comm-loss guarding, " (nothing while there is none); JSON "comm_loss":{"by":"heartbeat",
+ * "node":1}, {"by":"guarding"} or null. */
+static void put_comm_loss(const drive_t *drive, reply_t *r)
+{
+    static const char *const by[] = {
+        [DRIVE_COMM_LOSS_GUARDING] = "guarding",
+        [DRIVE_COMM_LOSS_HEARTBEAT] = "heartbeat",
+        [DRIVE_COMM_LOSS_NETWORK] = "network",
+    };
+    drive_comm_loss_t loss = drive->comm_loss;
+    bool producer = loss.source == DRIVE_COMM_LOSS_HEARTBEAT;
+    if (r->json && loss.source == DRIVE_COMM_LOSS_NONE)
+        put(r, "\"comm_loss\":null,");
+    else if (r->json && producer)
+        put(r, "\"comm_loss\":{\"by\":\"%s\",\"node\":%u},", by[loss.source], loss.node);
+    else if (r->json)
+        put(r, "\"comm_loss\":{\"by\":\"%s\"},", by[loss.source]);
+    else if (producer)
+        put(r, "comm-loss %s node %u, ", by[loss.source], loss.node);
+    else if (loss.source != DRIVE_COMM_LOSS_NONE)
+        put(r, "comm-loss %s, ", by[loss.source]);
+}
+
 static void put_state(const atv312d_control_node_t *node, reply_t *r)
 {
     const drive_t *drive = node->drive;
@@ -505,8 +694,10 @@ static void put_state(const atv312d_control_node_t *node, reply_t *r)
             fault ? "\"" : "");
     else
         put(r, "fault %s, ", fault ? fault->code : "none");
+    put_comm_loss(drive, r);
     put_counters(node, r);
     put_inputs(drive, r);
+    put_analog(drive, r);
     put(r, "%s", r->json ? "}" : "");
 }
 
@@ -524,7 +715,12 @@ static bool command_state(const atv312d_control_t *control, char **words, size_t
     const atv312d_control_node_t *only = NULL;
     if (n == 2 && !(only = find_node(control, words[1], r)))
         return false;
-    put(r, r->json ? "{\"ok\":true,\"nodes\":[" : "ok ");
+    if (r->json) {
+        const co_linux_loop_t *loop = control->nodes[0].device->loop;
+        put(r, "{\"ok\":true,\"can\":{\"state\":\"%s\",\"bus_offs\":%llu},\"nodes\":[",
+            atv312d_can_state(loop), loop->bus.conditions.bus_offs);
+    } else
+        put(r, "ok ");
     bool first = true;
     for (size_t i = 0; i < control->count; i++) {
         if (only && only != &control->nodes[i])
@@ -543,10 +739,12 @@ static const struct {
 } commands[] = {
     {"fault", command_fault},       {"clear", command_clear},     {"mains", command_mains},
     {"stop-key", command_stop_key}, {"run-key", command_run_key}, {"local", command_local},
-    {"load", command_load},         {"input", command_input},     {"state", command_state},
+    {"load", command_load},         {"input", command_input},     {"analog", command_analog},
+    {"pot", command_pot},           {"state", command_state},
 };
 
-#define COMMAND_NAMES "fault, clear, mains, stop-key, run-key, local, load, input, state"
+#define COMMAND_NAMES                                                                              \
+    "fault, clear, mains, stop-key, run-key, local, load, input, analog, pot, state"
 
 bool atv312d_control_execute(const atv312d_control_t *control, const char *line, char *reply,
                              size_t reply_len)

@@ -12,6 +12,7 @@
 #include "drive/drive_devicenet.h"
 #include "http.h"
 #include "leds.h"
+#include "notify.h"
 #include "status.h"
 
 #include <errno.h>
@@ -80,15 +81,27 @@ static void log_state_changes(drive_slot_t *slot)
     slot->cia402_state = state;
 }
 
+/* Which error control lost the master: the drive knows it when its EMCY leaves. */
+static void log_communication_loss(const drive_slot_t *slot, uint8_t reg)
+{
+    drive_comm_loss_t loss = slot->drive.comm_loss;
+    char why[64];
+    if (loss.source == DRIVE_COMM_LOSS_HEARTBEAT)
+        snprintf(why, sizeof why, "heartbeat of node %u timed out", loss.node);
+    else if (loss.source == DRIVE_COMM_LOSS_GUARDING)
+        snprintf(why, sizeof why, "life guarding timed out");
+    else
+        snprintf(why, sizeof why, "heartbeat or life guarding timeout");
+    co_log(CO_LOG_WARN, "node %u: communication loss (EMCY 8130, error register %02X): %s",
+           slot_node_id(slot), reg, why);
+}
+
 static void log_emcy(const drive_slot_t *slot, const co_frame_t *frame)
 {
     uint16_t code = co_get_u16(frame->data);
     uint8_t reg = frame->data[2];
     if (code == CO_EMCY_HEARTBEAT)
-        co_log(CO_LOG_WARN,
-               "node %u: communication loss (EMCY 8130, error register %02X): heartbeat or life "
-               "guarding timeout",
-               slot_node_id(slot), reg);
+        log_communication_loss(slot, reg);
     else if (code == 0)
         co_log(CO_LOG_INFO, "node %u: EMCY 0000 error reset (error register %02X)",
                slot_node_id(slot), reg);
@@ -154,6 +167,12 @@ static void slot_bus_event(void *ctx, uint16_t emcy_code, bool active)
     drive_bus_event(&slot->drive, emcy_code, active);
 }
 
+static void slot_bus_warning(void *ctx, bool active)
+{
+    drive_slot_t *slot = ctx;
+    drive_bus_warning(&slot->drive, active);
+}
+
 static const co_node_t *slot_node(void *ctx)
 {
     drive_slot_t *slot = ctx;
@@ -166,6 +185,7 @@ static const co_linux_device_ops_t slot_ops = {
     .receive = slot_receive,
     .process = slot_process,
     .bus_event = slot_bus_event,
+    .bus_warning = slot_bus_warning,
     .node = slot_node,
 };
 
@@ -431,14 +451,15 @@ static void format_node_ids(const atv312d_options_t *opts, char *buf, size_t len
     }
 }
 
+/* The drive of `model` on `profile`: the model's own, or the one behind its DeviceNet card. */
 static int init_drive(drive_slot_t *slot, uint8_t node_id, const drive_model_t *model,
-                      const co_storage_t *storage, co_send_fn send)
+                      const drive_profile_t *profile, const co_storage_t *storage, co_send_fn send)
 {
-    slot->od_data = calloc(1, model->profile->od->data_size);
+    slot->od_data = calloc(1, profile->od->data_size);
     if (!slot->od_data)
         return EX_OSERR;
     drive_config_t config = {
-        .profile = model->profile,
+        .profile = profile,
         .od_data = slot->od_data,
         .node_id = node_id,
         .send = send,
@@ -461,7 +482,8 @@ static int init_drive(drive_slot_t *slot, uint8_t node_id, const drive_model_t *
 static int init_devicenet_drive(drive_slot_t *slot, const drive_model_t *model,
                                 const atv312d_options_t *opts)
 {
-    int rc = init_drive(slot, DN_DRIVE_NODE_ID, model, NULL, drive_dn_drop_frame);
+    int rc = init_drive(slot, DN_DRIVE_NODE_ID, model, model->devicenet->drive, NULL,
+                        drive_dn_drop_frame);
     if (rc != 0)
         return rc;
     slot->dn = calloc(1, sizeof *slot->dn);
@@ -502,7 +524,8 @@ static int init_drives(drive_slot_t *slots, const atv312d_options_t *opts, co_fi
                 co_file_store_bind(store, slot->id, &slot->store_node, &slot->storage);
                 storage = &slot->storage;
             }
-            rc = init_drive(slot, slot->id, opts->models[i], storage, slot_send);
+            rc = init_drive(slot, slot->id, opts->models[i], opts->models[i]->profile, storage,
+                            slot_send);
         }
         if (rc != 0)
             return rc;
@@ -552,6 +575,49 @@ static int open_surfaces(atv312d_control_t *control, atv312d_status_t *status, a
     return rc;
 }
 
+/* What systemd's Type=notify waits for (docs/atv312d.md, "systemd"). */
+typedef struct readiness {
+    const atv312d_options_t *opts;
+    const drive_slot_t *slots;
+} readiness_t;
+
+static void notify(const char *state)
+{
+    if (atv312d_notify(state))
+        return;
+    co_log(CO_LOG_WARN, "NOTIFY_SOCKET %s: %s: the service manager was not told",
+           getenv("NOTIFY_SOCKET"), strerror(errno));
+}
+
+/* READY=1 once every drive's start has reached the bus: on CANopen its boot-up written to the
+ * socket (an interface down at start: after it came up and the boot-ups left); on DeviceNet, in
+ * addition, every card's duplicate MAC ID check over, online or faulted. Told once. */
+static void tell_when_ready(void *ctx, co_linux_loop_t *loop)
+{
+    const readiness_t *ready = ctx;
+    if (!co_linux_loop_sent_all(loop))
+        return;
+    size_t faulted = 0;
+    for (size_t i = 0; i < ready->opts->node_count; i++) {
+        const drive_dn_t *dn = ready->slots[i].dn;
+        if (dn && dn->node.link != DN_LINK_ONLINE && dn->node.link != DN_LINK_FAULTED)
+            return;
+        faulted += dn && dn->node.link == DN_LINK_FAULTED;
+    }
+    co_linux_loop_on_settled(loop, NULL, NULL);
+    char state[256];
+    size_t count = ready->opts->node_count;
+    if (ready->opts->devicenet)
+        snprintf(state, sizeof state,
+                 "READY=1\nSTATUS=%zu drive(s) on DeviceNet on %s: %zu online, %zu faulted", count,
+                 loop->iface, count - faulted, faulted);
+    else
+        snprintf(state, sizeof state, "READY=1\nSTATUS=%zu drive(s) booted on %s", count,
+                 loop->iface);
+    co_log(CO_LOG_DEBUG, "service manager told: %s", strchr(state, '\n') + 1);
+    notify(state);
+}
+
 static int run(const atv312d_options_t *opts, FILE *trace, co_file_store_t *store)
 {
     static atv312d_control_t control = {.server.listen_fd = -1};
@@ -577,7 +643,10 @@ static int run(const atv312d_options_t *opts, FILE *trace, co_file_store_t *stor
         else
             co_log(CO_LOG_INFO, "atv312d %s started on %s: %zu drive(s), node-id %s",
                    ATV312D_VERSION, opts->iface, opts->node_count, ids);
+        readiness_t readiness = {.opts = opts, .slots = slots};
+        co_linux_loop_on_settled(&loop, tell_when_ready, &readiness);
         rc = co_linux_loop_run(&loop);
+        notify("STOPPING=1");
         co_log(CO_LOG_INFO,
                "stopped: %llu wake-ups, %llu frames received, %llu sent, %llu dropped, %llu lost "
                "while the interface was down, %llu error frames, %llu received for no drive, "

@@ -28,6 +28,8 @@ const char *atv312d_can_state(const co_linux_loop_t *loop)
         return "bus-off";
     if (condition(loop, CO_LINUX_EMCY_CAN_PASSIVE))
         return "error-passive";
+    if (co_linux_conditions_warning(&loop->bus.conditions))
+        return "error-warning";
     return "error-active";
 }
 
@@ -38,11 +40,11 @@ size_t atv312d_status_format(const atv312d_status_t *status, char *buf, size_t l
     size_t used = (size_t)snprintf(
         buf, len,
         "%s: CAN %s%s; frames received %llu, sent %llu, dropped %llu, lost while down %llu, "
-        "error frames %llu; wake-ups %llu, sendmmsg calls %llu\n",
+        "error frames %llu, bus-offs %llu; wake-ups %llu, sendmmsg calls %llu\n",
         loop->iface, atv312d_can_state(loop),
         condition(loop, CO_LINUX_EMCY_CAN_OVERRUN) ? ", overrun" : "", stats->rx, stats->tx,
-        stats->tx_dropped, stats->down_dropped, stats->error_frames, stats->wakeups,
-        stats->tx_calls);
+        stats->tx_dropped, stats->down_dropped, stats->error_frames, loop->bus.conditions.bus_offs,
+        stats->wakeups, stats->tx_calls);
     for (size_t i = 0; i < status->count && used < len; i++) {
         char line[1024];
         atv312d_format_state(&status->nodes[i], false, line, sizeof line);

@@ -17,8 +17,8 @@ typedef struct atv312d_status {
     sigset_t old_mask;
 } atv312d_status_t;
 
-/* The CAN controller as the loop sees it: "down" (the interface), "bus-off", "error-passive" or
- * "error-active". */
+/* The CAN controller as the loop sees it: "down" (the interface), "bus-off", "error-passive",
+ * "error-warning" (an error counter at or over the warning limit, 96) or "error-active". */
 const char *atv312d_can_state(const co_linux_loop_t *loop);
 
 /* Writes the status text (one line each, newline-terminated) into buf; returns its length. */

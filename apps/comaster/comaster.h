@@ -62,6 +62,9 @@ int comaster_run_main(comaster_options_t *opts, int argc, char **argv);
 int comaster_set_main(comaster_options_t *opts, int argc, char **argv);
 int comaster_get_main(comaster_options_t *opts, int argc, char **argv);
 int comaster_status_main(comaster_options_t *opts, int argc, char **argv);
+int comaster_disable_main(comaster_options_t *opts, int argc, char **argv);
+int comaster_enable_main(comaster_options_t *opts, int argc, char **argv);
+int comaster_can_main(comaster_options_t *opts, int argc, char **argv);
 
 /* Parses a command's arguments (argv[0] is the command): the common options, --help (prints
  * `help` and returns 0), the command's flags named in `flags` (" --block --output "), and at
@@ -78,6 +81,11 @@ int comaster_fail(const comaster_options_t *opts, int status, const char *format
 /* A node-id 1..127 (or "all" when allow_all: *node = 0). False after a usage error message. */
 bool comaster_parse_node(const comaster_options_t *opts, const char *text, bool allow_all,
                          uint8_t *node);
+
+/* An NMT command by the name comaster nmt takes (start, stop, preop, reset-node, reset-comm);
+ * false for another name. And the name of a command. */
+bool comaster_nmt_command(const char *name, uint8_t *command);
+const char *comaster_nmt_name(uint8_t command);
 
 /* ---- the bus --------------------------------------------------------------------------------- */
 

@@ -20,8 +20,19 @@ static size_t answer(void *ctx, const char *line, bool cut, char *reply, size_t 
     const comaster_control_t *c = ctx;
     (void)cut;
     reply[0] = '\0';
-    c->handle(c->ctx, line, reply, cap);
+    if (c->handle(c->ctx, line, reply, cap))
+        return CO_LINE_DEFERRED;
     return strlen(reply);
+}
+
+uint32_t comaster_control_defer(comaster_control_t *control)
+{
+    return co_line_server_defer(&control->server);
+}
+
+void comaster_control_reply(comaster_control_t *control, uint32_t ticket, const char *reply)
+{
+    co_line_server_reply(&control->server, ticket, reply, strlen(reply));
 }
 
 int comaster_control_open(comaster_control_t *control, co_linux_loop_t *loop, const char *path,

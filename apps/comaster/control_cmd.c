@@ -35,8 +35,104 @@ static const char status_help[] =
     "\n"
     "Example: comaster -i vcan0 status\n";
 
-/* Parses the command's arguments, sends the request (its fields joined by tabs) and prints the
- * reply; an "error: ..." reply exits 65. */
+static const char disable_help[] =
+    "usage: comaster disable [--control PATH]\n"
+    "\n"
+    "Disables the communication of a comaster run (the PLC300's DisableComm): its\n"
+    "master sends nothing more (heartbeat, SYNC, PDOs, NMT, SDO), takes no frame,\n"
+    "stops supervising the slaves and clears the status words, the last SDO error\n"
+    "and EMCY; its status shows bit 15 (disabled). Prints the master's status word.\n"
+    "\n"
+    "Example: comaster -i vcan0 disable\n";
+
+static const char enable_help[] =
+    "usage: comaster enable [--control PATH]\n"
+    "\n"
+    "Enables the communication of a disabled comaster run: its master boots the\n"
+    "network again from the start (reset communication, identify, configure, start).\n"
+    "\n"
+    "Example: comaster -i vcan0 enable\n";
+
+static const char can_help[] =
+    "usage: comaster can [--control PATH]\n"
+    "\n"
+    "Prints the CAN controller's state as a comaster run sees it (error-active,\n"
+    "warning, error-passive, bus-off, or no bus power when the interface is down)\n"
+    "and its counters: frames received and sent, frames dropped, error frames,\n"
+    "bus-offs.\n"
+    "\n"
+    "Example: comaster -i vcan0 can\n";
+
+/* The exit status a reply's first word says, and the length of that word with its ": ". */
+static int reply_status(const char *reply, size_t *prefix)
+{
+    static const struct {
+        const char *word;
+        int status;
+    } words[] = {{"error: ", EX_DATAERR},
+                 {"abort: ", COMASTER_EXIT_ABORT},
+                 {"timeout: ", COMASTER_EXIT_TIMEOUT}};
+    for (size_t i = 0; i < sizeof words / sizeof words[0]; i++) {
+        *prefix = strlen(words[i].word);
+        if (strncmp(reply, words[i].word, *prefix) == 0)
+            return words[i].status;
+    }
+    *prefix = 0;
+    return COMASTER_EXIT_OK;
+}
+
+int comaster_control_forward(comaster_options_t *opts, const char *path, const char *const *fields,
+                             size_t count)
+{
+    char line[COMASTER_CONTROL_LINE_MAX];
+    size_t used = (size_t)snprintf(line, sizeof line, "%s", opts->json ? "json\t" : "");
+    for (size_t i = 0; i < count && used < sizeof line; i++) {
+        if (strchr(fields[i], '\t') || strchr(fields[i], '\n'))
+            return comaster_fail(opts, EX_USAGE, "%s: '%s' has a tab or a newline", fields[0],
+                                 fields[i]);
+        used += (size_t)snprintf(line + used, sizeof line - used, "%s%s", i ? "\t" : "", fields[i]);
+    }
+    if (used >= sizeof line)
+        return comaster_fail(opts, EX_USAGE, "%s: the request is too long", fields[0]);
+    char default_path[COMASTER_CONTROL_PATH_MAX];
+    if (!path) {
+        comaster_control_default_path(opts->iface, default_path, sizeof default_path);
+        path = default_path;
+    }
+    static char reply[COMASTER_CONTROL_REPLY_MAX];
+    char err[512];
+    int rc = comaster_control_request(path, line, reply, sizeof reply, err, sizeof err);
+    if (rc != 0)
+        return comaster_fail(opts, rc, "%s", err);
+    size_t prefix;
+    rc = reply_status(reply, &prefix);
+    if (rc != COMASTER_EXIT_OK)
+        return comaster_fail(opts, rc, "%.*s", (int)strcspn(reply + prefix, "\n"), reply + prefix);
+    fputs(reply, stdout);
+    return COMASTER_EXIT_OK;
+}
+
+bool comaster_run_option(int *argc, char **argv, bool *via_run, const char **path)
+{
+    for (int i = 1; i < *argc; i++) {
+        if (strcmp(argv[i], "--run") != 0)
+            continue;
+        *via_run = true;
+        memmove(&argv[i], &argv[i + 1], (size_t)(*argc - i - 1) * sizeof *argv);
+        (*argc)--;
+        break;
+    }
+    const char *given = NULL;
+    if (!comaster_control_take_option(argc, argv, &given))
+        return false;
+    if (given) {
+        *via_run = true;
+        *path = given;
+    }
+    return true;
+}
+
+/* Parses the command's arguments and sends them, fields of the request after its name. */
 static int request(comaster_options_t *opts, int argc, char **argv, const char *help, int args_n)
 {
     const char *control = NULL;
@@ -49,30 +145,10 @@ static int request(comaster_options_t *opts, int argc, char **argv, const char *
     uint8_t node;
     if (args_n > 0 && !comaster_parse_node(opts, args.positional[0], false, &node))
         return EX_USAGE;
-    char line[COMASTER_CONTROL_LINE_MAX];
-    size_t used = (size_t)snprintf(line, sizeof line, "%s", argv[0]);
-    for (int i = 0; i < args.count && used < sizeof line; i++) {
-        if (strchr(args.positional[i], '\t') || strchr(args.positional[i], '\n'))
-            return comaster_fail(opts, EX_USAGE, "%s: '%s' has a tab or a newline", argv[0],
-                                 args.positional[i]);
-        used += (size_t)snprintf(line + used, sizeof line - used, "\t%s", args.positional[i]);
-    }
-    if (used >= sizeof line)
-        return comaster_fail(opts, EX_USAGE, "%s: the request is too long", argv[0]);
-    char path[COMASTER_CONTROL_PATH_MAX];
-    if (!control) {
-        comaster_control_default_path(opts->iface, path, sizeof path);
-        control = path;
-    }
-    static char reply[COMASTER_CONTROL_REPLY_MAX];
-    char err[512];
-    rc = comaster_control_request(control, line, reply, sizeof reply, err, sizeof err);
-    if (rc != 0)
-        return comaster_fail(opts, rc, "%s", err);
-    if (strncmp(reply, "error: ", 7) == 0)
-        return comaster_fail(opts, EX_DATAERR, "%.*s", (int)strcspn(reply + 7, "\n"), reply + 7);
-    fputs(reply, stdout);
-    return COMASTER_EXIT_OK;
+    const char *fields[COMASTER_MAX_ARGS + 1] = {argv[0]};
+    for (int i = 0; i < args.count; i++)
+        fields[i + 1] = args.positional[i];
+    return comaster_control_forward(opts, control, fields, (size_t)args.count + 1);
 }
 
 int comaster_set_main(comaster_options_t *opts, int argc, char **argv)
@@ -88,4 +164,19 @@ int comaster_get_main(comaster_options_t *opts, int argc, char **argv)
 int comaster_status_main(comaster_options_t *opts, int argc, char **argv)
 {
     return request(opts, argc, argv, status_help, 0);
+}
+
+int comaster_disable_main(comaster_options_t *opts, int argc, char **argv)
+{
+    return request(opts, argc, argv, disable_help, 0);
+}
+
+int comaster_enable_main(comaster_options_t *opts, int argc, char **argv)
+{
+    return request(opts, argc, argv, enable_help, 0);
+}
+
+int comaster_can_main(comaster_options_t *opts, int argc, char **argv)
+{
+    return request(opts, argc, argv, can_help, 0);
 }

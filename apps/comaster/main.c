@@ -22,6 +22,9 @@ static const comaster_command_t commands[] = {
     {"set", "set NODE NAME VALUE: set an output of a run's process image", comaster_set_main},
     {"get", "get NODE NAME: a variable of a run's process image", comaster_get_main},
     {"status", "status: the status bits of a run's master and slaves", comaster_status_main},
+    {"disable", "disable: disable the communication of a run's master", comaster_disable_main},
+    {"enable", "enable: enable it again (the network boots again)", comaster_enable_main},
+    {"can", "can: the CAN controller's state and counters of a run", comaster_can_main},
 };
 
 #define COMMAND_COUNT (sizeof commands / sizeof commands[0])

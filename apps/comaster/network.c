@@ -238,12 +238,17 @@ static int add_configured(write_list_t *l, const comaster_slave_t *s, const eds_
  * write a PDO whose parameters or mapping the DCF configures as one group, at the place of its
  * first configured entry: COB-ID with bit 31 (invalid), the communication parameters, the
  * mapping (sub-index 0 = 0, the entries, sub-index 0 = the count), the COB-ID as the DCF gives it
- * (docs/comaster.md, "The configuration of PDOs"). A DCF that configures only a COB-ID writes it
- * alone, as before. */
+ * (docs/comaster.md, "The configuration of PDOs"). The invalidation writes the COB-ID the slave
+ * holds (the DCF's DefaultValue: the slave was just reset) with bit 31 set, since a slave may
+ * refuse any change of bits 0-29 of a valid PDO. A DCF that configures only a COB-ID writes it
+ * alone, unless it gives a new CAN-ID to a PDO valid on the slave, which the slave refuses
+ * (0x06090030): that PDO is invalidated first too (docs/decisions.md, D-DCF-PDO). */
 
 #define PDO_COUNT (2u * CO_PDO_INDEX_SPAN)
 #define PDO_SUB_COB_ID 1u
 #define PDO_MAP_ENTRIES_MAX 64u
+/* The bits of a COB-ID a slave may refuse to change while the PDO is valid (CiA 301 7.5.2.35). */
+#define PDO_COB_ID_IDENTIFIER (~(CO_PDO_COBID_INVALID | CO_PDO_COBID_NO_RTR))
 
 /* The communication parameter index of the PDO an index belongs to, 0 for another object. */
 static uint16_t pdo_comm_of(uint16_t index)
@@ -276,7 +281,29 @@ static bool configures_mapping(const eds_t *dcf, uint16_t map)
     return false;
 }
 
-/* The DCF configures more of the PDO than its COB-ID. */
+/* The COB-ID the slave holds after its reset: the DCF's DefaultValue, else (a DCF without one)
+ * the value it configures. */
+static uint32_t held_cob_id(const eds_t *dcf, uint16_t comm, uint32_t configured)
+{
+    const eds_entry_t *e = eds_find(dcf, comm, PDO_SUB_COB_ID);
+    return e && e->has_default && e->default_value <= UINT32_MAX ? (uint32_t)e->default_value
+                                                                 : configured;
+}
+
+/* The DCF gives a PDO valid on the slave another identifier, which the slave refuses while the
+ * PDO stays valid. */
+static bool changes_valid_identifier(const eds_t *dcf, uint16_t comm)
+{
+    const eds_entry_t *e = eds_find(dcf, comm, PDO_SUB_COB_ID);
+    if (!e || !is_configuration(e) || !e->has_value || e->negative || e->value > UINT32_MAX)
+        return false;
+    uint32_t configured = (uint32_t)e->value;
+    uint32_t held = held_cob_id(dcf, comm, configured);
+    return (held & CO_PDO_COBID_INVALID) == 0 && (configured & CO_PDO_COBID_INVALID) == 0 &&
+           ((held ^ configured) & PDO_COB_ID_IDENTIFIER) != 0;
+}
+
+/* The DCF configures more of the PDO than its COB-ID, or a new identifier of a valid PDO. */
 static bool needs_invalidation(const eds_t *dcf, uint16_t comm)
 {
     for (size_t i = 0; i < dcf->count; i++) {
@@ -285,7 +312,8 @@ static bool needs_invalidation(const eds_t *dcf, uint16_t comm)
             is_configuration(e))
             return true;
     }
-    return configures_mapping(dcf, (uint16_t)(comm + CO_PDO_INDEX_SPAN));
+    return configures_mapping(dcf, (uint16_t)(comm + CO_PDO_INDEX_SPAN)) ||
+           changes_valid_identifier(dcf, comm);
 }
 
 static int pdo_value(const comaster_slave_t *s, uint16_t index, uint8_t sub, uint64_t max,
@@ -324,8 +352,9 @@ static int add_pdo(write_list_t *l, const comaster_slave_t *s, uint16_t comm, ch
     int rc = pdo_value(s, comm, PDO_SUB_COB_ID, UINT32_MAX, &cob_id, err, err_len);
     if (rc == 0 && configures_mapping(&s->dcf, map))
         rc = pdo_value(s, map, 0, PDO_MAP_ENTRIES_MAX, &count, err, err_len);
+    uint32_t invalid = held_cob_id(&s->dcf, comm, cob_id) | CO_PDO_COBID_INVALID;
     if (rc == 0)
-        rc = add_u32(l, comm, PDO_SUB_COB_ID, cob_id | CO_PDO_COBID_INVALID, 4, err, err_len);
+        rc = add_u32(l, comm, PDO_SUB_COB_ID, invalid, 4, err, err_len);
     if (rc == 0)
         rc = add_subs(l, s, comm, PDO_SUB_COB_ID + 1, UINT8_MAX, err, err_len);
     if (rc == 0 && configures_mapping(&s->dcf, map)) {
@@ -335,7 +364,7 @@ static int add_pdo(write_list_t *l, const comaster_slave_t *s, uint16_t comm, ch
         if (rc == 0)
             rc = add_u32(l, map, 0, count, 1, err, err_len);
     }
-    if (rc == 0 && (cob_id & CO_PDO_COBID_INVALID) == 0)
+    if (rc == 0 && cob_id != invalid)
         rc = add_u32(l, comm, PDO_SUB_COB_ID, cob_id, 4, err, err_len);
     return rc;
 }
@@ -565,10 +594,18 @@ static bool master_key(comaster_network_t *net, const ini_line_t *line, char *er
     } else if (strcasecmp(k, "reset_all") == 0) {
         if (!parse_yes_no(line->value, &c->reset_all))
             return bad_value(line, "give yes or no", err, err_len);
+    } else if (strcasecmp(k, "node_id") == 0) {
+        if (!parse_number(line->value, CO_NMT_MASTER_NODE_ID_MAX, &v) || v < 1)
+            return bad_value(line, "give the master's own node-id, 1..127", err, err_len);
+        c->node_id = (uint8_t)v;
+    } else if (strcasecmp(k, "heartbeat") == 0) {
+        if (!parse_number(line->value, UINT16_MAX, &v))
+            return bad_value(line, "give 0 (none) or 1..65535 ms", err, err_len);
+        c->heartbeat_ms = (uint16_t)v;
     } else {
         snprintf(err, err_len,
                  "%s:%u: unknown key '%s' in [Master] (cpj, interface, control, sdo_timeout, "
-                 "boot_time, retry_delay, sync_period, start, reset_all)",
+                 "boot_time, retry_delay, sync_period, start, reset_all, node_id, heartbeat)",
                  line->path, line->number, k);
         return false;
     }
@@ -736,6 +773,28 @@ static int load_topology(comaster_network_t *net, const char *cpj, char *err, si
     return rc;
 }
 
+/* The master's heartbeat is sent on 700h + its own node-id, which no slave may have. */
+static int check_master_node(const comaster_network_t *net, const char *path, char *err,
+                             size_t err_len)
+{
+    const co_net_master_config_t *c = &net->config;
+    if (c->heartbeat_ms == 0)
+        return 0;
+    if (c->node_id == 0) {
+        snprintf(err, err_len,
+                 "%s: [Master] heartbeat = %u needs node_id = N, the master's own node-id (its "
+                 "heartbeat is 700h + N)",
+                 path, c->heartbeat_ms);
+        return EX_DATAERR;
+    }
+    if (slave_of_node(net, c->node_id) != net->slave_count) {
+        snprintf(err, err_len, "%s: [Master] node_id = %u is the node-id of a slave", path,
+                 c->node_id);
+        return EX_DATAERR;
+    }
+    return 0;
+}
+
 static void finish(comaster_network_t *net)
 {
     net->config.slave_count = net->slave_count;
@@ -755,6 +814,8 @@ int comaster_network_load(comaster_network_t *net, const char *path, char *err, 
         rc = load_topology(net, cpj.path, err, err_len);
     if (rc == 0)
         rc = read_ini(path, option_key, net, err, err_len);
+    if (rc == 0)
+        rc = check_master_node(net, path, err, err_len);
     if (rc != 0)
         comaster_network_free(net);
     finish(net);

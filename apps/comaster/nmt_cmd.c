@@ -2,6 +2,7 @@
  * awaited. */
 #include "co/co_nmt_master.h"
 #include "comaster.h"
+#include "control.h"
 
 #include <stdio.h>
 #include <string.h>
@@ -18,6 +19,10 @@ static const char nmt_help[] =
     "  preop        Enter pre-operational\n"
     "  reset-node   Reset node: the application and communication\n"
     "  reset-comm   Reset communication\n"
+    "  --run        send it through the comaster run on the interface (its control\n"
+    "               socket): the run's master sends it and confirms the state each\n"
+    "               node reports next (all: each slave of its network) within --timeout\n"
+    "  --control PATH  the same through the run listening on PATH\n"
     "\n"
     "Example: comaster -i vcan0 nmt start all\n";
 
@@ -107,17 +112,57 @@ static int send_command(comaster_bus_t *bus, const comaster_options_t *opts, con
     return rc;
 }
 
+static const nmt_name_t *nmt_by_name(const char *name)
+{
+    for (size_t i = 0; i < sizeof nmt_names / sizeof nmt_names[0]; i++) {
+        if (strcmp(nmt_names[i].name, name) == 0)
+            return &nmt_names[i];
+    }
+    return NULL;
+}
+
+bool comaster_nmt_command(const char *name, uint8_t *command)
+{
+    const nmt_name_t *cmd = nmt_by_name(name);
+    if (cmd)
+        *command = cmd->command;
+    return cmd != NULL;
+}
+
+const char *comaster_nmt_name(uint8_t command)
+{
+    for (size_t i = 0; i < sizeof nmt_names / sizeof nmt_names[0]; i++) {
+        if (nmt_names[i].command == command)
+            return nmt_names[i].name;
+    }
+    return "?";
+}
+
+/* Through a run: the request "nmt COMMAND NODE|all MS"; the run replies when confirmed. */
+static int through_run(comaster_options_t *opts, const char *control, const comaster_args_t *args)
+{
+    if (opts->timeout_ms > COMASTER_CONTROL_WAIT_MAX_MS)
+        return comaster_fail(opts, EX_USAGE,
+                             "nmt through a run: --timeout is at most %u ms (the run's reply "
+                             "must come within the control socket's wait)",
+                             COMASTER_CONTROL_WAIT_MAX_MS);
+    char timeout[16];
+    snprintf(timeout, sizeof timeout, "%u", opts->timeout_ms);
+    const char *fields[] = {"nmt", args->positional[0], args->positional[1], timeout};
+    return comaster_control_forward(opts, control, fields, 4);
+}
+
 int comaster_nmt_main(comaster_options_t *opts, int argc, char **argv)
 {
+    const char *control = NULL;
+    bool via_run = false;
+    if (!comaster_run_option(&argc, argv, &via_run, &control))
+        return comaster_fail(opts, EX_USAGE, "nmt: option --control needs a value");
     comaster_args_t args;
     int rc = comaster_parse_args(opts, &args, argc, argv, nmt_help, "", 2, 2);
     if (rc >= 0)
         return rc;
-    const nmt_name_t *cmd = NULL;
-    for (size_t i = 0; i < sizeof nmt_names / sizeof nmt_names[0]; i++) {
-        if (strcmp(nmt_names[i].name, args.positional[0]) == 0)
-            cmd = &nmt_names[i];
-    }
+    const nmt_name_t *cmd = nmt_by_name(args.positional[0]);
     if (!cmd)
         return comaster_fail(opts, EX_USAGE,
                              "nmt: '%s' is not an NMT command: give start, stop, preop, "
@@ -126,6 +171,8 @@ int comaster_nmt_main(comaster_options_t *opts, int argc, char **argv)
     uint8_t node;
     if (!comaster_parse_node(opts, args.positional[1], true, &node))
         return EX_USAGE;
+    if (via_run)
+        return through_run(opts, control, &args);
     static comaster_bus_t bus;
     rc = comaster_bus_open(&bus, opts);
     if (rc == 0)

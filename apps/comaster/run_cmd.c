@@ -1,11 +1,10 @@
 /* comaster boot and run: the network master of the core (co_net_master_t, docs/net-master.md) on
  * the bus, printing each step and status change; run also serves its process image and status on
- * the control socket (control.c) to comaster set, get and status. */
-#include "comaster.h"
-#include "control.h"
-#include "network.h"
-#include "value.h"
+ * the control socket (control.c) to comaster set, get and status, and the requests of
+ * run_requests.c. */
+#include "run.h"
 
+#include <stdarg.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -21,7 +20,8 @@ static const char run_help[] =
     "\n"
     "  NETWORK         the option file ([Master] cpj = the CiA 306-3 nodelist, whose\n"
     "                  DCFs configure the slaves; docs/comaster.md \"Network description\")\n"
-    "  --control PATH  the control socket for comaster set, get and status; default\n"
+    "  --control PATH  the control socket for comaster set, get, status, disable,\n"
+    "                  enable, can, and nmt, read and write with --run; default\n"
     "                  [Master] control, else $XDG_RUNTIME_DIR/comaster-IFACE.sock\n"
     "\n"
     "Example: comaster -i vcan0 run examples/netmaster/bench.ini\n";
@@ -37,22 +37,25 @@ static const char boot_help[] =
     "\n"
     "Example: comaster -i vcan0 boot 4 examples/netmaster/drive4.dcf\n";
 
-typedef struct runner {
-    comaster_bus_t bus;
-    comaster_network_t *net;
-    co_net_master_t master;
-    bool started;
-    uint16_t master_status; /* as last printed */
-    bool boot_only;         /* comaster boot: finish when the slave is operational or failed */
-    comaster_control_t control;
-} runner_t;
-
 static const char *const slave_bits[] = {"contacted",   "configured", "error-control-started",
                                          "initialised", "init-error", "error-control-error"};
-static const char *const master_bits[] = {
-    "all-contacted",  "all-configured", "all-error-control-started",
-    "init-finished",  "init-error",     "error-control-error",
-    "mandatory-error"};
+/* The PLC300's %SW3200 (bit 6 the project's own); NULL: reserved. */
+static const char *const master_bits[] = {"all-contacted",
+                                          "all-configured",
+                                          "all-error-control-started",
+                                          "init-finished",
+                                          "init-error",
+                                          "error-control-error",
+                                          "mandatory-error",
+                                          NULL,
+                                          "nmt-toggle",
+                                          NULL,
+                                          NULL,
+                                          NULL,
+                                          NULL,
+                                          "bus-off",
+                                          "no-bus-power",
+                                          "disabled"};
 
 /* " contacted configured": the names of the bits set. */
 static void bit_names(uint16_t status, const char *const *names, size_t count, char *out,
@@ -61,9 +64,29 @@ static void bit_names(uint16_t status, const char *const *names, size_t count, c
     size_t used = 0;
     out[0] = '\0';
     for (size_t bit = 0; bit < count && used < cap; bit++) {
-        if (status & (1u << bit))
+        if ((status & (1u << bit)) && names[bit] != NULL)
             used += (size_t)snprintf(out + used, cap - used, " %s", names[bit]);
     }
+}
+
+void run_master_status_text(uint16_t status, char *out, size_t cap)
+{
+    int prefix = snprintf(out, cap, "master 0x%04X", status);
+    if (prefix > 0 && (size_t)prefix < cap)
+        bit_names(status, master_bits, sizeof master_bits / sizeof master_bits[0], out + prefix,
+                  cap - (size_t)prefix);
+}
+
+/* The master's status word, printed when it changed. */
+static void print_master_status(runner_t *r)
+{
+    uint16_t status = co_net_master_status(&r->master);
+    if (status == r->master_status)
+        return;
+    r->master_status = status;
+    char text[256];
+    run_master_status_text(status, text, sizeof text);
+    printf("master: status %s\n", text + strlen("master "));
 }
 
 static const char *slave_name(const runner_t *r, uint8_t node_id)
@@ -161,16 +184,13 @@ static void on_event(void *user, const co_net_event_t *event)
     case CO_NET_EVENT_STARTED:
         printf("network: NMT start all\n");
         break;
+    case CO_NET_EVENT_NMT_DONE:
+        run_nmt_done(r);
+        break;
     case CO_NET_EVENT_INPUT:
         break;
     }
-    uint16_t status = co_net_master_status(&r->master);
-    if (status != r->master_status) {
-        r->master_status = status;
-        bit_names(status, master_bits, sizeof master_bits / sizeof master_bits[0], text,
-                  sizeof text);
-        printf("master: status 0x%04X%s\n", status, text);
-    }
+    print_master_status(r);
 }
 
 static void run_send(void *user, const co_frame_t *frame)
@@ -192,17 +212,80 @@ static co_time_t job_process(void *ctx, co_time_t now)
         r->started = true;
         co_net_master_start(&r->master, now);
     }
-    return co_net_master_process(&r->master, now);
+    co_net_master_set_bus(&r->master, run_bus_bits(r));
+    co_time_t next = co_net_master_process(&r->master, now);
+    print_master_status(r);
+    return next;
 }
 
 /* ---- the control requests: status, get, set (tab-separated fields) --------------------------- */
 
-static void reply_status(runner_t *r, char *reply, size_t cap)
+/* Appends to out (cap bytes, `used` of them written) what the format says; the new length, at
+ * most cap - 1 when it did not fit. */
+static size_t append(char *out, size_t cap, size_t used, const char *format, ...)
+    __attribute__((format(printf, 4, 5)));
+static size_t append(char *out, size_t cap, size_t used, const char *format, ...)
+{
+    if (used + 1 >= cap)
+        return used;
+    va_list ap;
+    va_start(ap, format);
+    int n = vsnprintf(out + used, cap - used, format, ap);
+    va_end(ap);
+    size_t end = used + (n < 0 ? 0u : (size_t)n);
+    return end < cap ? end : cap - 1;
+}
+
+/* status --json: one object, the records of the PLC300's 5.6.3-5.6.5. */
+static void reply_status_json(runner_t *r, uint16_t status, char *reply, size_t cap)
+{
+    char name[2 * COMASTER_NAME_MAX + 3], failure[300], text[256];
+    size_t used = append(reply, cap, 0, "{\"status\": \"0x%04X\", \"slaves\": [", status);
+    for (size_t i = 0; i < r->net->slave_count; i++) {
+        const co_net_slave_t *s = &r->net->slave_state[i];
+        run_json_string(r->net->slave[i].name, name, sizeof name);
+        snprintf(failure, sizeof failure, "null");
+        if (s->step == CO_NET_STEP_FAILED) {
+            format_failure(s, text, sizeof text);
+            run_json_string(text, failure, sizeof failure);
+        }
+        used = append(reply, cap, used,
+                      "%s{\"node\": %u, \"name\": %s, \"status\": \"0x%04X\", \"step\": \"%s\", "
+                      "\"failure\": %s}",
+                      i ? ", " : "", r->net->slave_config[i].node_id, name, s->status,
+                      co_net_step_text(s->step), failure);
+    }
+    const co_net_sdo_error_t *e = &r->master.last_sdo_error;
+    if (e->node_id == 0)
+        used = append(reply, cap, used, "], \"last_sdo_error\": null");
+    else
+        used = append(reply, cap, used,
+                      "], \"last_sdo_error\": {\"node\": %u, \"access\": \"%s\", \"index\": "
+                      "\"0x%04X\", \"subindex\": %u, \"value\": %u, \"abort_code\": \"0x%08X\"}",
+                      e->node_id, e->access == CO_NET_ACCESS_WRITE ? "write" : "read", e->index,
+                      e->subindex, e->value, e->abort_code);
+    const co_emcy_message_t *m = &r->master.last_emcy;
+    if (m->node_id == 0)
+        append(reply, cap, used, ", \"last_emcy\": null}\n");
+    else
+        append(reply, cap, used,
+               ", \"last_emcy\": {\"node\": %u, \"code\": \"0x%04X\", \"register\": \"0x%02X\", "
+               "\"data\": \"%02X %02X %02X %02X %02X\"}}\n",
+               m->node_id, m->code, m->reg, m->msef[0], m->msef[1], m->msef[2], m->msef[3],
+               m->msef[4]);
+}
+
+static void reply_status(runner_t *r, bool json, char *reply, size_t cap)
 {
     char text[256];
+    co_net_master_set_bus(&r->master, run_bus_bits(r));
     uint16_t status = co_net_master_status(&r->master);
-    bit_names(status, master_bits, sizeof master_bits / sizeof master_bits[0], text, sizeof text);
-    size_t used = (size_t)snprintf(reply, cap, "master 0x%04X%s\n", status, text);
+    if (json) {
+        reply_status_json(r, status, reply, cap);
+        return;
+    }
+    run_master_status_text(status, text, sizeof text);
+    size_t used = (size_t)snprintf(reply, cap, "%s\n", text);
     for (size_t i = 0; i < r->net->slave_count && used < cap; i++) {
         const co_net_slave_t *s = &r->net->slave_state[i];
         if (s->step == CO_NET_STEP_FAILED)
@@ -231,7 +314,20 @@ static const comaster_type_t *variable_type(const comaster_variable_t *v, char *
     return type;
 }
 
-static void reply_get(runner_t *r, uint8_t node, const char *name, char *reply, size_t cap)
+/* get and set --json: {"node": 4, "name": "speed", "value": 1200}. */
+static void variable_json(const comaster_variable_t *v, const char *value, bool is_text,
+                          char *reply, size_t cap)
+{
+    char name[256], text[256];
+    run_json_string(v->name, name, sizeof name);
+    if (is_text)
+        run_json_string(value, text, sizeof text);
+    snprintf(reply, cap, "{\"node\": %u, \"name\": %s, \"value\": %s}\n", v->node_id, name,
+             is_text ? text : value);
+}
+
+static void reply_get(runner_t *r, uint8_t node, const char *name, bool json, char *reply,
+                      size_t cap)
 {
     const comaster_variable_t *v;
     char err[256];
@@ -246,11 +342,24 @@ static void reply_get(runner_t *r, uint8_t node, const char *name, char *reply, 
     char text[128];
     bool is_text;
     comaster_value_format(type, image + v->offset, v->size, text, sizeof text, &is_text);
-    snprintf(reply, cap, "%s\n", text);
+    if (json)
+        variable_json(v, text, is_text, reply, cap);
+    else
+        snprintf(reply, cap, "%s\n", text);
 }
 
-static void reply_set(runner_t *r, uint8_t node, const char *name, const char *value, char *reply,
-                      size_t cap)
+/* The value set, as its type prints it (0x10 given is 16). */
+static void set_json(const comaster_variable_t *v, const comaster_type_t *type,
+                     const uint8_t *bytes, size_t len, char *reply, size_t cap)
+{
+    char text[128];
+    bool is_text;
+    comaster_value_format(type, bytes, len, text, sizeof text, &is_text);
+    variable_json(v, text, is_text, reply, cap);
+}
+
+static void reply_set(runner_t *r, uint8_t node, const char *name, const char *value, bool json,
+                      char *reply, size_t cap)
 {
     const comaster_variable_t *first;
     char err[256];
@@ -279,6 +388,8 @@ static void reply_set(runner_t *r, uint8_t node, const char *name, const char *v
     if (written == 0)
         snprintf(reply, cap, "error: %s of node %u is an input (a TPDO of the slave): get it\n",
                  first->name, node);
+    else if (json)
+        set_json(first, type, bytes, len, reply, cap);
     else
         snprintf(reply, cap, "ok\n");
 }
@@ -293,31 +404,45 @@ static bool parse_node_field(const char *text, uint8_t *node)
     return true;
 }
 
-static void handle_request(void *ctx, const char *request, char *reply, size_t cap)
+#define REQUEST_FIELDS 6
+
+static bool handle_request(void *ctx, const char *request, char *reply, size_t cap)
 {
     runner_t *r = ctx;
     char copy[COMASTER_CONTROL_LINE_MAX];
     snprintf(copy, sizeof copy, "%s", request);
-    char *field[4] = {0};
+    char *field[REQUEST_FIELDS + 1] = {0};
     size_t count = 0;
-    for (char *save, *f = strtok_r(copy, "\t", &save); f && count < 4;
+    for (char *save, *f = strtok_r(copy, "\t", &save); f && count < REQUEST_FIELDS + 1;
          f = strtok_r(NULL, "\t", &save))
         field[count++] = f;
+    /* "json" first: the client asks for JSON (the requests of run_requests.c answer in it). */
+    bool json = count > 0 && strcmp(field[0], "json") == 0;
+    char **fields = json ? field + 1 : field;
+    count -= json ? 1u : 0u;
     uint8_t node = 0;
-    if (count == 1 && strcmp(field[0], "status") == 0)
-        reply_status(r, reply, cap);
-    else if (count >= 3 && !parse_node_field(field[1], &node))
-        snprintf(reply, cap, "error: '%s' is not a node-id 1..127\n", field[1]);
-    else if (count == 3 && strcmp(field[0], "get") == 0)
-        reply_get(r, node, field[2], reply, cap);
-    else if (count == 4 && strcmp(field[0], "set") == 0)
-        reply_set(r, node, field[2], field[3], reply, cap);
+    bool deferred = false;
+    if (count == 0)
+        snprintf(reply, cap, "error: empty request\n");
+    else if (run_request(r, fields, count, json, reply, cap, &deferred))
+        ;
+    else if (count == 1 && strcmp(fields[0], "status") == 0)
+        reply_status(r, json, reply, cap);
+    else if (count >= 3 && !parse_node_field(fields[1], &node))
+        snprintf(reply, cap, "error: '%s' is not a node-id 1..127\n", fields[1]);
+    else if (count == 3 && strcmp(fields[0], "get") == 0)
+        reply_get(r, node, fields[2], json, reply, cap);
+    else if (count == 4 && strcmp(fields[0], "set") == 0)
+        reply_set(r, node, fields[2], fields[3], json, reply, cap);
     else
         snprintf(reply, cap,
-                 "error: unknown request (status, get NODE NAME, set NODE NAME "
-                 "VALUE)\n");
-    /* A set changes the output image outside a frame or a deadline: the master sends it now. */
+                 "error: unknown request (status, get NODE NAME, set NODE NAME VALUE, nmt "
+                 "COMMAND NODE|all MS, read NODE OBJECT [TYPE], write NODE OBJECT [TYPE] VALUE, "
+                 "disable, enable, can)\n");
+    /* A set, an NMT command, an SDO request or enable change what the master sends outside a
+     * frame or a deadline: it sends it now. */
     co_linux_device_process(&r->bus.device);
+    return deferred;
 }
 
 /* ---- the commands ---------------------------------------------------------------------------- */

@@ -2,6 +2,7 @@
  * type (given, from the EDS, or guessed from the size). */
 #include "cli.h"
 #include "comaster.h"
+#include "control.h"
 #include "value.h"
 
 #include <errno.h>
@@ -24,6 +25,9 @@ static const char read_help[] =
     "                 default the EDS's DataType, else unsigned by the size, else bytes\n"
     "  --block        block transfer whatever the size\n"
     "  --output FILE  write the value's bytes to FILE (a DOMAIN) instead of printing\n"
+    "  --run          read it through the comaster run on the interface: its master's\n"
+    "                 own SDO client, after the boot of its slaves (names from the\n"
+    "                 slave's DCF); --control PATH: the run listening on PATH\n"
     "\n"
     "The EDS is --eds FILE, else the one of the EDS directory whose VendorNumber and\n"
     "ProductNumber are the node's 1018h:01/02.\n"
@@ -43,6 +47,8 @@ static const char write_help[] =
     "                 false, a string, hexadecimal bytes for octets (01 02 0A); for\n"
     "                 domain the name of the file to send ('-': standard input)\n"
     "  --block        block transfer whatever the size\n"
+    "  --run          write it through the comaster run on the interface (see\n"
+    "                 comaster read --help); --control PATH: the run on PATH\n"
     "\n"
     "Example: comaster -i vcan0 write 4 ACC u16 50\n";
 
@@ -238,14 +244,38 @@ typedef struct sdo_command {
                     const comaster_args_t *args, sdo_request_t *req);
 } sdo_command_t;
 
+/* Through a run: the request "read NODE OBJECT [TYPE]" or "write NODE OBJECT [TYPE] VALUE",
+ * which the run's master queues on its own SDO client. */
+static int through_run(comaster_options_t *opts, const char *control, const char *name,
+                       const comaster_args_t *args)
+{
+    if (args->block || args->output)
+        return comaster_fail(opts, EX_USAGE,
+                             "%s through a run: --block and --output are not for a run's client",
+                             name);
+    uint8_t node;
+    if (!comaster_parse_node(opts, args->positional[0], false, &node))
+        return EX_USAGE;
+    const char *fields[COMASTER_MAX_ARGS + 1] = {name};
+    for (int i = 0; i < args->count; i++)
+        fields[i + 1] = args->positional[i];
+    return comaster_control_forward(opts, control, fields, (size_t)args->count + 1);
+}
+
 static int run_sdo_command(const sdo_command_t *command, comaster_options_t *opts, int argc,
                            char **argv)
 {
+    const char *control = NULL;
+    bool via_run = false;
+    if (!comaster_run_option(&argc, argv, &via_run, &control))
+        return comaster_fail(opts, EX_USAGE, "%s: option --control needs a value", argv[0]);
     comaster_args_t args;
     int rc = comaster_parse_args(opts, &args, argc, argv, command->help, command->flags,
                                  command->min_args, command->max_args);
     if (rc >= 0)
         return rc;
+    if (via_run)
+        return through_run(opts, control, argv[0], &args);
     static comaster_bus_t bus;
     eds_t eds = {0};
     sdo_request_t req = {0};

@@ -33,8 +33,14 @@ def main():
         print(f"  {name:24} {core[name]['flash']:6}")
     total = sum(s["flash"] for s in core.values())
     print(f"  {'core total':24} {total:6}")
+    print("flash of the rest, by object file or library member:")
+    for obj in sorted(o for o in sizes if "/src/canopen/" not in o and sizes[o]["flash"]):
+        print(f"  {re.sub(r'.*/', '', obj):40} {sizes[obj]['flash']:6}")
     rest = sum(s["flash"] for o, s in sizes.items() if "/src/canopen/" not in o)
     print(f"  {'everything else':24} {rest:6} (startup, board, storage, dictionary, newlib)")
+    print("RAM of the whole firmware, by object file (data + bss, bytes):")
+    for obj in sorted(o for o in sizes if sizes[o]["ram"]):
+        print(f"  {re.sub(r'.*/', '', obj):40} {sizes[obj]['ram']:6}")
     nm = subprocess.run(["arm-none-eabi-nm", "-S", "-t", "d", elf], check=True,
                         capture_output=True, text=True).stdout
     symbol = {f[3]: int(f[1]) for f in (l.split() for l in nm.splitlines()) if len(f) == 4}

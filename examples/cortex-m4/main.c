@@ -1,11 +1,12 @@
 /* A bare-metal CANopen node on a Cortex-M4: the integration a porter writes (docs/porting.md,
  * "The bare-metal example"). One node on the dictionary of blinky.eds, its SDO transfer buffer
  * given by the application (the core is built with CO_CONFIG_SDO_BUFFER=0 and tables sized to the
- * dictionary: CMakeLists.txt), parameters saved by 1010h into flash pages, frames in from the CAN
- * receive interrupt's queue and out through the transmit stub, and the main loop sleeping until
- * the next frame or deadline. */
+ * dictionary: CMakeLists.txt), parameters saved by 1010h into flash pages, frames in from the
+ * receive interrupt's queue and out through the board's transmitter, and the main loop sleeping
+ * until the next frame or deadline. The same file runs on both boards of board.h. */
 #include "blinky_od.h"
 #include "board.h"
+#include "co/co_emcy.h"
 #include "co/co_node.h"
 #include "flash_storage.h"
 
@@ -13,6 +14,9 @@
  * one firmware could share it (co_sdo_buffer_t). */
 #define SDO_BUFFER_SIZE 64u
 #define NODE_ID 0x10u
+#define BLINK_PERIOD 0x2000u
+#define BLINK_COUNT 0x2001u
+#define SIMULATED_ERROR 0x2002u
 
 static co_node_t node;
 static uint8_t od_data[BLINKY_OD_DATA_SIZE];
@@ -20,9 +24,12 @@ static uint8_t sdo_data[SDO_BUFFER_SIZE];
 static co_sdo_buffer_t sdo_buffer = {.data = sdo_data, .size = SDO_BUFFER_SIZE};
 static flash_storage_t flash;
 static co_storage_t storage;
+/* The EMCY code raised through 2002h, 0 for none. */
+static uint16_t simulated_error;
 
-/* The core never waits for a frame to leave: a full controller is a lost frame, reported once
- * as the CiA 301 "CAN overrun" error (cleared when the application decides, here never). */
+/* The core never waits for a frame to leave: a transmitter without room is a lost frame,
+ * reported as the CiA 301 "CAN overrun" error (cleared when the application decides, here
+ * never). */
 static void send(void *user, const co_frame_t *frame)
 {
     co_node_t *self = user;
@@ -30,15 +37,56 @@ static void send(void *user, const co_frame_t *frame)
         co_emcy_raise(self, CO_EMCY_CAN_OVERRUN, CO_ERR_REG_COMMUNICATION, NULL);
 }
 
+/* A write of 2002h raises the EMCY of its value (0 raises none) and clears the one before. */
+static void od_written(co_node_t *self, const co_od_entry_t *entry, co_od_origin_t origin)
+{
+    (void)origin;
+    if (entry->index != SIMULATED_ERROR)
+        return;
+    uint16_t code = (uint16_t)co_od_value(self, SIMULATED_ERROR, 0);
+    if (simulated_error != 0)
+        co_emcy_clear(self, simulated_error);
+    simulated_error = code;
+    if (code != 0)
+        co_emcy_raise(self, code, CO_ERR_REG_MANUFACTURER, NULL);
+}
+
+/* Reset node restores 2002h to 0, and the EMCY producer forgets what it raised. */
+static void reset(co_node_t *self, co_nmt_reset_t scope)
+{
+    (void)self;
+    if (scope == CO_NMT_RESET_NODE)
+        simulated_error = 0;
+}
+
+/* Error control: the master stopped guarding this node, or a monitored heartbeat stopped: the
+ * CiA 301 "life guard or heartbeat error", cleared when it resumes. */
+static void guarding(co_node_t *self, bool lost)
+{
+    if (lost)
+        co_emcy_raise(self, CO_EMCY_HEARTBEAT, CO_ERR_REG_COMMUNICATION, NULL);
+    else
+        co_emcy_clear(self, CO_EMCY_HEARTBEAT);
+}
+
+static void heartbeat(co_node_t *self, uint8_t producer, bool lost)
+{
+    (void)producer;
+    guarding(self, lost);
+}
+
+static const co_app_hooks_t hooks = {
+    .od_written = od_written, .reset = reset, .guarding = guarding, .heartbeat = heartbeat};
+
 /* The application's work: count blinks at the period of 2000h; 2001h is mapped into TPDO1, and
  * co_node_process sends it when it changes. */
 static co_time_t blink(co_time_t now, co_time_t due)
 {
     if (now < due)
         return due;
-    uint32_t count = (uint32_t)co_od_value(&node, 0x2001, 0);
-    co_od_set_value(&node, 0x2001, 0, count + 1);
-    return now + (co_time_t)co_od_value(&node, 0x2000, 0) * 1000u;
+    uint32_t count = (uint32_t)co_od_value(&node, BLINK_COUNT, 0);
+    co_od_set_value(&node, BLINK_COUNT, 0, count + 1);
+    return now + (co_time_t)co_od_value(&node, BLINK_PERIOD, 0) * 1000u;
 }
 
 int main(void)
@@ -51,6 +99,7 @@ int main(void)
         .od_data = od_data,
         .send = send,
         .user = &node,
+        .hooks = &hooks,
         .storage = &storage,
         .sdo_buffer = &sdo_buffer,
     };
@@ -63,12 +112,11 @@ int main(void)
         co_frame_t frame;
         while (can_receive(&frame))
             co_node_receive(&node, &frame, clock_us());
+        if (can_receive_overruns() != 0)
+            co_emcy_raise(&node, CO_EMCY_CAN_OVERRUN, CO_ERR_REG_COMMUNICATION, NULL);
         co_time_t now = clock_us();
         blink_due = blink(now, blink_due);
-        co_time_t next = co_time_min(co_node_process(&node, now), blink_due);
-        /* Sleep only when nothing is due. The SysTick wakes the loop every millisecond, so a
-         * frame queued since the receive loop above waits at most 1 ms. */
-        if (next > clock_us())
-            board_idle();
+        /* Sleep until the earlier of the core's deadline and the application's, or a frame. */
+        board_wait(co_time_min(co_node_process(&node, now), blink_due));
     }
 }

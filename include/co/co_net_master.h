@@ -30,6 +30,12 @@
 #define CO_NET_MASTER_INIT_ERROR 0x0010u      /* bit 4: some slave has bit 4 */
 #define CO_NET_MASTER_EC_ERROR 0x0020u        /* bit 5: some slave has bit 5 */
 #define CO_NET_MASTER_MANDATORY_ERROR 0x0040u /* bit 6: some mandatory slave has bit 4 */
+#define CO_NET_MASTER_NMT_TOGGLE 0x0100u      /* bit 8: flips after each co_net_master_nmt */
+#define CO_NET_MASTER_BUS_OFF 0x2000u         /* bit 13: the controller is bus off */
+#define CO_NET_MASTER_NO_BUS_POWER 0x4000u    /* bit 14: the interface has no bus power */
+#define CO_NET_MASTER_DISABLED                                                                     \
+    0x8000u /* bit 15: communication disabled (by the                                              \
+             * application, bus off or no bus power) */
 
 /* Which identity values are compared with the expected ones (co_net_slave_config_t.check). */
 #define CO_NET_CHECK_DEVICE_TYPE 0x01u /* 1000h */
@@ -90,13 +96,44 @@ typedef struct co_net_pdo {
     uint16_t offset;
 } co_net_pdo_t;
 
+/* How many SDO requests of the application wait for the master's client at once. */
+#define CO_NET_REQUEST_MAX 4u
+
+/* An SDO transfer the application asks of the master's own client (co_net_master_sdo): it runs
+ * when no slave's boot holds the client, one at a time in the order asked. */
+typedef struct co_net_request co_net_request_t;
+typedef void (*co_net_request_fn)(void *user, const co_net_request_t *request,
+                                  const co_sdo_client_result_t *result);
+struct co_net_request {
+    uint8_t node_id; /* 1..127, in the table or not */
+    uint16_t index;
+    uint8_t subindex;
+    bool write;
+    uint8_t *data; /* write: the bytes (which stay valid until done); read: the buffer */
+    uint32_t len;  /* write: the bytes to write; read: the buffer's size */
+    co_net_request_fn done;
+    void *user; /* passed to done */
+};
+
+/* What a co_net_master_nmt command confirms: the state each addressed node reports after it. */
+typedef struct co_net_nmt_request {
+    bool pending;
+    uint8_t command;  /* CO_NMT_CS_* */
+    uint8_t node_id;  /* 0: every slave of the table */
+    uint8_t expected; /* the state awaited: 05h, 04h, 7Fh, or 00h (boot-up) for a reset */
+    co_time_t deadline;
+    uint32_t awaited[4]; /* node-id n at bit n % 32 of word n / 32: not confirmed yet */
+} co_net_nmt_request_t;
+
 typedef enum co_net_event_kind {
     CO_NET_EVENT_STEP,      /* the slave entered another step */
     CO_NET_EVENT_STATUS,    /* the slave's status word changed */
     CO_NET_EVENT_SDO_ERROR, /* last_sdo_error was updated */
     CO_NET_EVENT_EMCY,      /* last_emcy was updated */
     CO_NET_EVENT_INPUT,     /* a TPDO updated the input image (`pdo` is its index) */
-    CO_NET_EVENT_STARTED    /* NMT start all was sent */
+    CO_NET_EVENT_STARTED,   /* NMT start all was sent */
+    CO_NET_EVENT_NMT_DONE   /* the co_net_master_nmt command ended: every addressed node
+                             * confirmed, or its deadline passed (master.nmt_request says who) */
 } co_net_event_kind_t;
 
 /* Where a slave is in its boot. */
@@ -177,6 +214,10 @@ typedef struct co_net_master_config {
     size_t output_count;
     uint8_t *output_image;
     size_t output_size;
+    /* The master's own heartbeat (the PLC300's 1017h): 700h + node_id [05h] every heartbeat_ms
+     * from co_net_master_start; 0: none. node_id 1..127, no slave's, when heartbeat_ms is set. */
+    uint8_t node_id;
+    uint16_t heartbeat_ms;
 } co_net_master_config_t;
 
 typedef struct co_net_master {
@@ -193,6 +234,15 @@ typedef struct co_net_master {
     uint8_t value[4]; /* an identity value being read */
     co_net_sdo_error_t last_sdo_error;
     co_emcy_message_t last_emcy; /* node_id 0: none yet */
+    co_time_t next_heartbeat;    /* CO_TIME_NEVER: none produced */
+    bool disabled;               /* co_net_master_disable: no frame in or out */
+    uint16_t bus;                /* CO_NET_MASTER_BUS_OFF, _NO_BUS_POWER as the runtime says */
+    uint16_t nmt_toggle;         /* CO_NET_MASTER_NMT_TOGGLE or 0 */
+    co_net_nmt_request_t nmt_request;
+    co_net_request_t requests[CO_NET_REQUEST_MAX]; /* the SDO requests waiting, the first one
+                                                    * under way when `serving` */
+    size_t request_count;
+    bool serving;
 } co_net_master_t;
 
 /* Checks and copies the configuration (the tables it points at are the application's and must
@@ -219,6 +269,38 @@ co_time_t co_net_master_process(co_net_master_t *master, co_time_t now);
  * always for a master without an output image. */
 bool co_net_master_write_output(co_net_master_t *master, size_t offset, const uint8_t *data,
                                 size_t len);
+
+/* Queues an SDO transfer on the master's own client, behind the boot of the slaves: it starts
+ * when no slave's identification or download holds the client, and `done` is called once at its
+ * end (with the master's SDO timeout, and 0x05040000 for a transfer the disabling of the master
+ * dropped). False, and nothing queued, when the queue is full, the node-id is outside 1..127, the
+ * data or the callback is missing, or the master is disabled. */
+bool co_net_master_sdo(co_net_master_t *master, const co_net_request_t *request, co_time_t now);
+
+/* Sends the NMT command (CO_NMT_CS_START, _STOP, _ENTER_PRE_OPERATIONAL, _RESET_NODE,
+ * _RESET_COMMUNICATION) to node_id, or to all (0), flips status bit 8 and awaits the state the
+ * command leads to from the node (from every slave of the table for 0): its heartbeat, guarding
+ * reply or boot-up; a node the master does not supervise is asked by one guarding request
+ * (700h + id, RTR). CO_NET_EVENT_NMT_DONE ends it, at the latest at now + timeout_ms. False, and
+ * nothing sent, for another command, a node-id above 127, a command still awaited, or a disabled
+ * master. A slave of the table that boots up after a reset is booted again by the master, as any
+ * slave that restarts. */
+bool co_net_master_nmt(co_net_master_t *master, uint8_t command, uint8_t node_id,
+                       uint32_t timeout_ms, co_time_t now);
+/* Whether node_id is still awaited by the NMT command (false once it confirmed). */
+bool co_net_master_nmt_awaited(const co_net_master_t *master, uint8_t node_id);
+
+/* The PLC300's "disable communication": the master sends nothing more (no heartbeat, SYNC, PDO,
+ * NMT or SDO), takes no frame, stops supervising the slaves and, as the PLC300 does, clears the
+ * status words, the last SDO error and EMCY (status bit 15 set); a transfer under way and the
+ * queued requests end with 0x05040000, an NMT command awaited ends. co_net_master_enable boots
+ * the network again from its start (co_net_master_start). */
+void co_net_master_disable(co_net_master_t *master, co_time_t now);
+void co_net_master_enable(co_net_master_t *master, co_time_t now);
+
+/* What the runtime knows of the controller: CO_NET_MASTER_BUS_OFF and/or _NO_BUS_POWER (status
+ * bits 13 and 14; either also sets bit 15, as the PLC300's CommDisabled). */
+void co_net_master_set_bus(co_net_master_t *master, uint16_t bus);
 
 /* The status word of the master (CO_NET_MASTER_*), and of the slave with node-id `node_id`
  * (CO_NET_SLAVE_*; 0 for a node not in the table). */

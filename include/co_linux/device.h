@@ -13,7 +13,8 @@
 struct co_node;
 typedef struct co_linux_loop co_linux_loop_t;
 
-/* What the loop calls on a device; ctx is the device's own object. Only bus_event may be NULL. */
+/* What the loop calls on a device; ctx is the device's own object. Only bus_event and
+ * bus_warning may be NULL. */
 typedef struct co_linux_device_ops {
     /* Once, when the loop starts: leave Initialising, send the boot-up. */
     void (*start)(void *ctx, co_time_t now);
@@ -26,6 +27,9 @@ typedef struct co_linux_device_ops {
     /* A CAN communication condition began (active) or ended; emcy_code is one of
      * CO_LINUX_EMCY_*. */
     void (*bus_event)(void *ctx, uint16_t emcy_code, bool active);
+    /* The controller reached (active) or left its error warning level, which has no EMCY: a
+     * device shows it on an indicator (CiA 303-3's ERR single flash). */
+    void (*bus_warning)(void *ctx, bool active);
     /* The device's core node, which must stay the same: frames reach the device only when the
      * node consumes their COB-ID (co_consumers.h). NULL: the device gets every frame, and the
      * socket then receives the whole bus, unless `consumers` names what the device takes. */

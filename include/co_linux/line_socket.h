@@ -10,6 +10,7 @@
 
 #include <stdbool.h>
 #include <stddef.h>
+#include <stdint.h>
 #include <sys/un.h>
 
 /* Longest request line with its terminating NUL; a longer line is cut (co_line_answer_fn). */
@@ -37,8 +38,13 @@ typedef enum co_line_result {
     CO_LINE_NO_REPLY   /* client: the connection ended or timed out before a whole reply */
 } co_line_result_t;
 
+/* Returned by an answer function that replies later (co_line_server_defer). */
+#define CO_LINE_DEFERRED SIZE_MAX
+
 /* Writes the reply to one request line (without its newline) into reply (cap bytes) and returns
- * its length; cut: the line was longer than CO_LINE_MAX - 1 and holds its beginning only. */
+ * its length; cut: the line was longer than CO_LINE_MAX - 1 and holds its beginning only. Or,
+ * in CO_LINE_ONE_REQUEST mode, takes a ticket from co_line_server_defer and returns
+ * CO_LINE_DEFERRED: the connection then waits for co_line_server_reply. */
 typedef size_t (*co_line_answer_fn)(void *ctx, const char *line, bool cut, char *reply, size_t cap);
 
 typedef struct co_line_server_config {
@@ -54,7 +60,8 @@ typedef struct co_line_client {
     int fd; /* -1: free */
     char line[CO_LINE_MAX];
     size_t len;
-    bool cut; /* the current line passed CO_LINE_MAX - 1 characters */
+    bool cut;        /* the current line passed CO_LINE_MAX - 1 characters */
+    uint32_t ticket; /* not 0: its reply was deferred under this ticket */
 } co_line_client_t;
 
 typedef struct co_line_server {
@@ -63,6 +70,8 @@ typedef struct co_line_server {
     int listen_fd;
     char path[CO_LINE_PATH_MAX];
     co_line_client_t clients[CO_LINE_CLIENTS];
+    co_line_client_t *answering; /* the client whose line the answer function has */
+    uint32_t last_ticket;
 } co_line_server_t;
 
 /* Listens on path in the loop: a socket file nobody accepts on (left by a program that died) is
@@ -71,6 +80,14 @@ typedef struct co_line_server {
 co_line_result_t co_line_server_open(co_line_server_t *server, co_linux_loop_t *loop,
                                      const char *path, const co_line_server_config_t *config,
                                      const char **call);
+/* Called by the answer function of a CO_LINE_ONE_REQUEST server: a ticket (never 0) for the
+ * connection of the line being answered, which stays open for co_line_server_reply. 0 outside an
+ * answer or in a session. */
+uint32_t co_line_server_defer(co_line_server_t *server);
+/* Sends the reply deferred under `ticket` and closes its connection. False when the client has
+ * gone (its ticket with it). */
+bool co_line_server_reply(co_line_server_t *server, uint32_t ticket, const char *reply, size_t len);
+
 /* Closes the connections and the socket and removes the path. */
 void co_line_server_close(co_line_server_t *server);
 

@@ -46,6 +46,10 @@ typedef struct co_linux_watch {
     void *ctx;
 } co_linux_watch_t;
 
+/* Called at the end of every wake-up, once it has settled: frames delivered, conditions reported,
+ * the transmit queue written as far as the socket took it (co_linux_loop_on_settled). */
+typedef void (*co_linux_settled_fn)(void *ctx, co_linux_loop_t *loop);
+
 /* The composition of the runtime's parts: the event loop (co_linux/events.h), the CAN bus
  * (co_linux/can_bus.h) and the router (co_linux/router.h). Opaque in practice: fields are public
  * only so the loop can live on the stack or in static storage, and for the counters and the
@@ -58,6 +62,8 @@ struct co_linux_loop {
     co_linux_router_t router;
     co_linux_stats_t stats;
     co_linux_watch_t watches[CO_LINUX_WATCH_MAX];
+    co_linux_settled_fn settled; /* NULL: none */
+    void *settled_ctx;
     const char *open_call; /* the system call that failed in co_linux_loop_open */
     int open_errno;
 };
@@ -100,6 +106,15 @@ void co_linux_loop_unwatch(co_linux_loop_t *loop, int fd);
 /* Runs a device's process function now and takes its new deadline: the application changed the
  * device outside a frame or a deadline (from a watched descriptor's fn). */
 void co_linux_device_process(co_linux_device_t *device);
+
+/* Calls fn(ctx, loop) at the end of every wake-up from then on, the first being the one that
+ * starts the devices (NULL: no more calls; fn may call this). For an application that waits for
+ * something the wake-ups bring about, such as the start's frames written (co_linux_loop_sent_all).
+ */
+void co_linux_loop_on_settled(co_linux_loop_t *loop, co_linux_settled_fn fn, void *ctx);
+/* True when every frame the devices sent has gone to the socket: the interface is up and the
+ * transmit queue is empty. (While the interface is down their frames are dropped, not sent.) */
+bool co_linux_loop_sent_all(const co_linux_loop_t *loop);
 
 /* Makes co_linux_loop_run return `status` after the current wake-up. */
 void co_linux_loop_stop(co_linux_loop_t *loop, int status);

@@ -49,6 +49,33 @@ typedef struct drive_param {
 /* Logic inputs a profile may give its model (LI1..LI8). */
 #define DRIVE_INPUTS_MAX 8u
 
+/* Analogue inputs at the drive, as reference channels: a reference channel parameter holding an
+ * input's `channel` code takes its reference from it, the low speed at the bottom of its range, the
+ * high speed at the top, linearly between. Values are set by drive_set_analog in the input's unit.
+ */
+typedef enum drive_analog_kind {
+    DRIVE_ANALOG_VOLTAGE,       /* 0..10 V, in mV */
+    DRIVE_ANALOG_BIPOLAR,       /* -10..+10 V, in mV: the sign is the direction of rotation */
+    DRIVE_ANALOG_CURRENT,       /* 0..20 mA, in uA, from the `low` to the `high` current */
+    DRIVE_ANALOG_POTENTIOMETER, /* 0..100 %, in 0.1 % */
+} drive_analog_kind_t;
+#define DRIVE_ANALOG_VOLTAGE_MAX_MV 10000
+#define DRIVE_ANALOG_CURRENT_MAX_UA 20000
+#define DRIVE_ANALOG_POTENTIOMETER_MAX 1000
+/* Analogue inputs a profile may give its model. */
+#define DRIVE_ANALOG_MAX 4u
+
+typedef struct drive_analog_input {
+    const char *name;         /* as the model's manuals name it: "AI2" */
+    uint16_t channel;         /* the reference channel code that assigns it */
+    drive_analog_kind_t kind; /* its range and unit */
+    /* A current input: the currents (0.1 mA) of the low and of the high speed (the Altivars' CrL3
+     * and CrH3); below the first the low speed, above the second the high speed, and the low
+     * speed throughout while the second is not above the first. Unused by other kinds. */
+    drive_param_t low;
+    drive_param_t high;
+} drive_analog_input_t;
+
 /* A pair of channels (command or reference) and the switch between them: each channel parameter
  * holds a channel code of the model; `network` is the code of the network this node is on.
  * Channel 2 is active while `select` equals `select_second` or holds an active switching source,
@@ -104,9 +131,9 @@ typedef struct drive_profile {
      * Fr1/Fr2/rFC). While channel_mode equals channel_mode_separate the command has its own
      * channels, otherwise it follows the reference's. A command channel other than the network
      * is local control (the network's control word is recorded, not obeyed; status word bit 9
-     * clear); a reference channel other than the network gives a zero reference (the low speed:
-     * the emulation has no analogue inputs). All zero: the network commands and gives the
-     * reference. */
+     * clear); a reference channel that is one of the analogue inputs takes its reference from
+     * it, any other (a keypad, another network) gives a zero reference (the low speed). All
+     * zero: the network commands and gives the reference. */
     drive_param_t channel_mode;
     uint16_t channel_mode_separate;
     /* The I/O mode's value of channel_mode (0: the model has none): separate channels, and the
@@ -130,6 +157,16 @@ typedef struct drive_profile {
     drive_param_t deceleration_2;
     /* Logic inputs LI1..LIn at the drive (0..DRIVE_INPUTS_MAX), switching sources. */
     uint8_t logic_inputs;
+    /* Analogue inputs at the drive (0..DRIVE_ANALOG_MAX of them), reference channels. */
+    const drive_analog_input_t *analog_inputs;
+    uint8_t analog_input_count;
+    /* The terminals' run inputs, 2-wire control: while the command comes from the terminals (the
+     * active command channel holds `terminals`; not separate, while the reference is an analogue
+     * input), logic input run_forward (run_reverse) switched on runs the drive forward (in
+     * reverse), and off stops it on the deceleration ramp. 0: the model has none. */
+    uint16_t terminals;
+    uint8_t run_forward;
+    uint8_t run_reverse;
     /* The access level (the Altivars' LAC): below access_level_full the separate channel mode and
      * control word bits as switching sources are refused, and the channels are managed by
      * priority: the network commands and gives the reference (forced local control first).
@@ -138,6 +175,9 @@ typedef struct drive_profile {
     uint16_t access_level_full;
     /* Status word bit set after the keypad's STOP key (the Altivars' ETA bit 14). */
     uint16_t status_stop_key;
+    /* The STOP key also resets the faults in Fault when a fault reset would (the ATV31's
+     * STOP/RESET key: every active fault reset by command, its cause gone). */
+    bool stop_key_resets_faults;
     /* The faults of the model's manuals (faults.h); required. */
     const drive_fault_table_t *faults;
     /* The LEDs of the model's card as its manual names them (panel.h), indicator_count of them;
@@ -169,6 +209,19 @@ typedef struct drive_profile {
 /* CAN conditions the runtime reports at once (overrun, error passive, bus off). */
 #define DRIVE_BUS_EVENTS_MAX 4
 
+/* What the last communication loss was (drive_comm_loss_t.source). */
+typedef enum drive_comm_loss_source {
+    DRIVE_COMM_LOSS_NONE,      /* none since the power-up, the last reset node or fault reset */
+    DRIVE_COMM_LOSS_GUARDING,  /* life guarding: the master's guarding requests stopped */
+    DRIVE_COMM_LOSS_HEARTBEAT, /* a heartbeat consumer: the producer `node` fell silent */
+    DRIVE_COMM_LOSS_NETWORK    /* drive_communication_loss: a fieldbus front-end's timeout */
+} drive_comm_loss_source_t;
+
+typedef struct drive_comm_loss {
+    drive_comm_loss_source_t source;
+    uint8_t node; /* the heartbeat producer's node-id; 0 otherwise */
+} drive_comm_loss_t;
+
 /* The dictionary entries the drive reads and writes whenever it settles, found once by
  * drive_init (NULL where the model has none: it reads as 0 and writes to it do nothing), so that
  * its work never searches the dictionary. */
@@ -180,6 +233,8 @@ typedef struct drive_entries {
     const co_od_entry_t *motor_current, *motor_torque, *control_word_copy, *status_word_copy;
     const co_od_entry_t *output_frequency, *frequency_reference, *stop_type;
     const co_od_entry_t *acceleration_2, *deceleration_2;
+    /* Each analogue input's low and high parameters (a current input's). */
+    const co_od_entry_t *analog_low[DRIVE_ANALOG_MAX], *analog_high[DRIVE_ANALOG_MAX];
 } drive_entries_t;
 
 typedef struct drive {
@@ -195,6 +250,11 @@ typedef struct drive {
     /* Bus conditions still present: a reset node forgets their EMCYs, not the conditions. */
     uint16_t bus_events[DRIVE_BUS_EVENTS_MAX];
     uint8_t bus_event_count;
+    bool can_warning; /* the CAN controller is at its error warning level (no EMCY) */
+    /* The cause of the communication loss the drive last reacted to, until the communication-loss
+     * fault is reset or a reset node (with a COL that ignores the loss: until a reset node, as
+     * the network fault code). */
+    drive_comm_loss_t comm_loss;
     /* Faults, one bit per entry of the profile's table: raised and not yet reset, and those
      * whose cause is present (injected and not removed). */
     uint32_t faults_active;
@@ -206,22 +266,27 @@ typedef struct drive {
      * reference. */
     bool command_from_network;
     bool reference_from_network;
-    bool second_ramp;        /* the ramp switch's source is active: AC2/dE2 */
-    bool io_mode;            /* channel_mode is the I/O mode */
-    uint16_t assigned_bits;  /* control word bits assigned to switching sources */
-    uint8_t inputs;          /* logic inputs on: bit n - 1 for LIn */
-    bool local;              /* forced local: the network's control word is ignored, bit 9 = 0 */
-    bool local_run;          /* the RUN key's run command, under forced local control */
-    bool stop_key;           /* the STOP key was pressed, until the next run command */
-    uint8_t load;            /* extra load torque, % of nominal torque */
+    bool second_ramp;                 /* the ramp switch's source is active: AC2/dE2 */
+    bool io_mode;                     /* channel_mode is the I/O mode */
+    uint16_t assigned_bits;           /* control word bits assigned to switching sources */
+    uint8_t inputs;                   /* logic inputs on: bit n - 1 for LIn */
+    int32_t analog[DRIVE_ANALOG_MAX]; /* the analogue inputs' values, in their units */
+    int8_t reference_analog;          /* the analogue input the reference comes from; -1: none */
+    bool local;     /* forced local: the network's control word is ignored, bit 9 = 0 */
+    bool local_run; /* the RUN key's or the terminals' run command, under local control */
+    bool command_from_terminals; /* the terminals command: their run inputs count */
+    bool terminal_reverse;       /* the terminals' run command is the reverse one */
+    bool stop_key;               /* the STOP key was pressed, until the next run command */
+    uint8_t load;                /* extra load torque, % of nominal torque */
     co_time_t auto_tune_end; /* when the running auto-tune completes; CO_TIME_NEVER: none runs */
     /* When the node last received an SDO request or one of its RPDOs (a card's reception LED,
      * drive_last_service_request); CO_TIME_NEVER: none since the power-up. */
     co_time_t service_received_at;
 } drive_t;
 
-/* drive_init's error for a profile without a valid fault table. */
+/* drive_init's error for a profile without a valid fault table, with too many analogue inputs. */
 #define DRIVE_INIT_BAD_FAULTS 0x200
+#define DRIVE_INIT_BAD_ANALOG 0x201
 
 typedef struct drive_config {
     const drive_profile_t *profile;
@@ -237,9 +302,9 @@ typedef struct drive_config {
     const co_node_options_code_t *node_options_code;
 } drive_config_t;
 
-/* 0, the co_node_init error, or DRIVE_INIT_BAD_FAULTS. Sets every field of *drive (the caller's
- * memory need not be zeroed): the channels are those of the dictionary's defaults. Sends nothing;
- * call drive_start next. */
+/* 0, the co_node_init error, DRIVE_INIT_BAD_FAULTS or DRIVE_INIT_BAD_ANALOG. Sets every field of
+ * *drive (the caller's memory need not be zeroed): the channels are those of the dictionary's
+ * defaults. Sends nothing; call drive_start next. */
 int drive_init(drive_t *drive, const drive_config_t *config);
 /* Boot-up: Pre-operational, the power state machine in Switch on disabled. */
 void drive_start(drive_t *drive, co_time_t now);
@@ -254,6 +319,9 @@ co_time_t drive_process(drive_t *drive, co_time_t now);
  * (active) or clears the EMCY, and raises it again after a reset node while it lasts. They do not
  * fault the drive. */
 void drive_bus_event(drive_t *drive, uint16_t emcy_code, bool active);
+/* The CAN controller reached (active) or left its error warning level: no EMCY (CiA 301 has
+ * none), the ERR LED's single flash (CiA 303-3). Outlives a reset node, as the bus conditions. */
+void drive_bus_warning(drive_t *drive, bool active);
 /* The network the drive is on stopped sending what it must (a fieldbus front-end's timeout, as
  * the heartbeat consumer's or life guarding's on CANopen): the communication-loss fault at `now`,
  * with the reaction and network fault code of the model's parameters. */
@@ -281,7 +349,8 @@ bool drive_local_control(const drive_t *drive);
 /* The keypad's STOP key: the profile's status_stop_key bit is set until the next run command (the
  * RUN key, or a network command leaving Switch on disabled). Under network control a freewheel
  * stop to Switch on disabled (the Altivars' "STOP key priority"); under local control a stop on
- * the deceleration ramp, then Switch on disabled. */
+ * the deceleration ramp, then Switch on disabled. With the profile's stop_key_resets_faults, in
+ * Fault it is also a fault reset: Switch on disabled when the network's reset edge would be. */
 void drive_stop_key(drive_t *drive, co_time_t now);
 /* The keypad's RUN key: under local control (forced, or a command channel other than the network)
  * and not in Fault, Operation enabled and the motor
@@ -290,10 +359,22 @@ bool drive_run_key(drive_t *drive, co_time_t now);
 /* An extra load on the motor, % of nominal torque (0..150): torque and current follow while
  * the motor turns. */
 void drive_set_load(drive_t *drive, uint8_t percent, co_time_t now);
-/* Logic input `input` (1 for LI1) on or off at `now`: a switching source on it acts at once.
- * false (nothing happens) when the model has no such input. Inputs outlive a reset node. */
+/* Logic input `input` (1 for LI1) on or off at `now`: a switching source on it acts at once, and
+ * while the terminals command, a run input (the profile's run_forward, run_reverse) switched on
+ * alone runs the drive (not in Fault), switched off stops it on the deceleration ramp to Switch on
+ * disabled; both on stop it. A run needs the input's change to on: one on already when the
+ * terminals take the command starts nothing. false (nothing happens) when the model has no such
+ * input. Inputs outlive a reset node. */
 bool drive_set_input(drive_t *drive, uint8_t input, bool on, co_time_t now);
 bool drive_input(const drive_t *drive, uint8_t input);
+/* The index of the model's analogue input named `name` ("ai2" finds AI2), or -1. */
+int drive_analog_find(const drive_t *drive, const char *name);
+/* Analogue input `index` at `value` in its unit (mV, uA or 0.1 %, drive_analog_kind_t) from
+ * `now`: a reference channel assigned to it follows at once. false (nothing happens) when the
+ * model has no such input or the value is outside the input's range. Inputs outlive a reset
+ * node. */
+bool drive_set_analog(drive_t *drive, uint8_t index, int32_t value, co_time_t now);
+int32_t drive_analog(const drive_t *drive, uint8_t index);
 /* For logs: "Switch on disabled", "Operation enabled", ... */
 const char *drive_state_name(const drive_t *drive);
 

@@ -23,6 +23,9 @@
  * index_first + (ADL - address_first) / addresses_per_index, sub-index
  * (ADL - address_first) % addresses_per_index + 1. */
 typedef struct drive_dn_profile {
+    /* The drive behind the card: the model's profile as the card's manual names its faults (the
+     * ATV312's communication loss is CnF here, COF on CANopen). */
+    const drive_profile_t *drive;
     uint16_t vendor_id;
     uint16_t device_type;
     uint16_t product_code;

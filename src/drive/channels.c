@@ -66,11 +66,28 @@ static bool second_selected(const drive_t *drive, const drive_channels_t *channe
            (select > channels->select_second && source_active(drive, select));
 }
 
-static bool from_network(const drive_t *drive, const drive_channels_t *channels)
+/* The code of the pair's active channel. */
+static uint32_t active_channel(const drive_t *drive, const drive_channels_t *channels)
 {
     bool second = second_selected(drive, channels);
-    return drive_param_value(drive, second ? channels->second : channels->first) ==
-           channels->network;
+    return drive_param_value(drive, second ? channels->second : channels->first);
+}
+
+static bool from_network(const drive_t *drive, const drive_channels_t *channels)
+{
+    return active_channel(drive, channels) == channels->network;
+}
+
+/* The analogue input whose code the active reference channel holds, or -1. */
+static int8_t analog_of_reference(const drive_t *drive)
+{
+    const drive_profile_t *profile = drive->profile;
+    uint32_t channel = active_channel(drive, &profile->reference_channels);
+    for (uint8_t i = 0; i < profile->analog_input_count; i++) {
+        if (profile->analog_inputs[i].channel == channel)
+            return (int8_t)i;
+    }
+    return -1;
 }
 
 /* In "not separate" mode the command comes from the reference's channel. Below the full access
@@ -88,6 +105,8 @@ bool drive_channels_update(drive_t *drive)
     drive->second_ramp = source_active(drive, drive_param_value(drive, profile->ramp_switch));
     uint32_t mode = drive_param_value(drive, profile->channel_mode);
     drive->io_mode = profile->channel_mode_io != 0 && mode == profile->channel_mode_io;
+    drive->reference_analog = -1;
+    drive->command_from_terminals = false;
     if (!drive_access_full(drive)) {
         drive->reference_from_network = true;
         drive->command_from_network = true;
@@ -95,8 +114,14 @@ bool drive_channels_update(drive_t *drive)
         bool reference = from_network(drive, &profile->reference_channels);
         bool separate = drive_mode_separate(profile, mode);
         drive->reference_from_network = reference;
+        if (!reference)
+            drive->reference_analog = analog_of_reference(drive);
         drive->command_from_network =
             separate ? from_network(drive, &profile->command_channels) : reference;
+        drive->command_from_terminals =
+            profile->terminals != 0 &&
+            (separate ? active_channel(drive, &profile->command_channels) == profile->terminals
+                      : drive->reference_analog >= 0);
     }
     return drive->command_from_network != was_from_network;
 }
@@ -120,4 +145,10 @@ bool drive_channel_parameter(const drive_t *drive, const co_od_entry_t *entry)
 bool drive_reference_from_network(const drive_t *drive)
 {
     return drive->reference_from_network;
+}
+
+const drive_analog_input_t *drive_reference_analog(const drive_t *drive)
+{
+    return drive->reference_analog >= 0 ? &drive->profile->analog_inputs[drive->reference_analog]
+                                        : NULL;
 }

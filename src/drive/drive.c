@@ -48,9 +48,10 @@ static void raise_fault(drive_t *drive, uint8_t index)
 /* A communication loss latches the network fault code and, unless the model's mode parameter
  * says to ignore it, raises the model's communication-loss fault (the Altivars' CnF), latched
  * until a fault reset. A model without the mode parameter always faults. */
-static void communication_fault(drive_t *drive)
+static void communication_fault(drive_t *drive, drive_comm_loss_t cause)
 {
     const drive_profile_t *profile = drive->profile;
+    drive->comm_loss = cause;
     drive_param_t mode = profile->communication_loss_mode;
     co_od_set_value(&drive->node, profile->network_fault_code.index,
                     profile->network_fault_code.subindex, DRIVE_NETWORK_FAULT_TIME_OUT);
@@ -166,15 +167,15 @@ static void on_written(co_node_t *node, const co_od_entry_t *entry, co_od_origin
 
 static void on_heartbeat(co_node_t *node, uint8_t producer, bool lost)
 {
-    (void)producer;
     if (lost)
-        communication_fault(drive_of(node));
+        communication_fault(drive_of(node),
+                            (drive_comm_loss_t){DRIVE_COMM_LOSS_HEARTBEAT, producer});
 }
 
 static void on_guarding(co_node_t *node, bool lost)
 {
     if (lost)
-        communication_fault(drive_of(node));
+        communication_fault(drive_of(node), (drive_comm_loss_t){DRIVE_COMM_LOSS_GUARDING, 0});
 }
 
 /* Switch on disabled, motor stopped: the state the dictionary's defaults describe. The bus
@@ -190,6 +191,7 @@ static void restart_drive(drive_t *drive, co_time_t now)
     drive->local_run = false;
     drive->auto_tune_end = CO_TIME_NEVER;
     drive->service_received_at = CO_TIME_NEVER;
+    drive->comm_loss = (drive_comm_loss_t){DRIVE_COMM_LOSS_NONE, 0};
     drive_faults_restart(drive);
     drive->dirty = true;
 }
@@ -244,6 +246,8 @@ int drive_init(drive_t *drive, const drive_config_t *config)
     };
     if (!drive_faults_valid(config->profile))
         return DRIVE_INIT_BAD_FAULTS;
+    if (config->profile->analog_input_count > DRIVE_ANALOG_MAX)
+        return DRIVE_INIT_BAD_ANALOG;
     /* Every field from a known value, whatever the caller's memory held: no bus condition, fault
      * cause, input or load, not forced local. */
     memset(drive, 0, sizeof *drive);
@@ -339,10 +343,15 @@ void drive_bus_event(drive_t *drive, uint16_t emcy_code, bool active)
     drive_output_publish(drive); /* the warning bit */
 }
 
+void drive_bus_warning(drive_t *drive, bool active)
+{
+    drive->can_warning = active;
+}
+
 void drive_communication_loss(drive_t *drive, co_time_t now)
 {
     drive_motor_advance(&drive->motor, now);
-    communication_fault(drive);
+    communication_fault(drive, (drive_comm_loss_t){DRIVE_COMM_LOSS_NETWORK, 0});
 }
 
 const char *drive_state_name(const drive_t *drive)
@@ -356,9 +365,22 @@ void drive_set_local(drive_t *drive, bool local, co_time_t now)
     settle(drive);
 }
 
+/* A STOP key that resets faults (the ATV31's STOP/RESET) resets them as the fault reset edge
+ * would: in Fault only, when every active fault accepts a reset by command. The network's
+ * recorded control word stays, so its own reset still needs a new edge. */
+static void stop_key_fault_reset(drive_t *drive)
+{
+    if (!drive->profile->stop_key_resets_faults || drive->cia402.state != CIA402_FAULT ||
+        !drive_faults_resettable(drive))
+        return;
+    drive->cia402.state = CIA402_SWITCH_ON_DISABLED;
+    drive_faults_acknowledge(drive);
+}
+
 void drive_stop_key(drive_t *drive, co_time_t now)
 {
     drive_local_stop_key(drive, now);
+    stop_key_fault_reset(drive);
     settle(drive);
 }
 
@@ -376,12 +398,23 @@ void drive_set_load(drive_t *drive, uint8_t percent, co_time_t now)
     settle(drive);
 }
 
+/* A reference channel assigned to the input follows it at once. */
+bool drive_set_analog(drive_t *drive, uint8_t index, int32_t value, co_time_t now)
+{
+    if (!drive_local_analog(drive, index, value, now))
+        return false;
+    settle(drive);
+    return true;
+}
+
 /* An input may be a switching source: the channels follow it before the drive settles. */
 bool drive_set_input(drive_t *drive, uint8_t input, bool on, co_time_t now)
 {
+    uint8_t before = drive->inputs;
     if (!drive_local_input(drive, input, on, now))
         return false;
     update_channels(drive);
+    drive_local_terminals(drive, before);
     settle(drive);
     return true;
 }

@@ -21,6 +21,8 @@
 drive_t *drive_of(co_node_t *node);
 /* A parameter of the profile, unsigned, found by its index. */
 uint32_t drive_param_value(const drive_t *drive, drive_param_t param);
+/* Two codes or names alike but for case ("ohf" and OHF). */
+bool drive_same_code(const char *a, const char *b);
 /* Whether `entry` is the parameter `param` of the model's dictionary. */
 bool drive_is_param(const co_od_entry_t *entry, drive_param_t param);
 /* Once at init: the entries the drive reads and writes whenever it settles (drive_entries_t). */
@@ -48,6 +50,12 @@ bool drive_local_run_key(drive_t *drive, co_time_t now);
 void drive_local_load(drive_t *drive, uint8_t percent, co_time_t now);
 /* false (nothing happens) when the model has no such input. */
 bool drive_local_input(drive_t *drive, uint8_t input, bool on, co_time_t now);
+/* false (nothing happens) when the model has no such analogue input or the value is out of its
+ * range. */
+bool drive_local_analog(drive_t *drive, uint8_t index, int32_t value, co_time_t now);
+/* The terminals' run inputs after a change of the logic inputs (`before`: as they were), while
+ * the terminals command: a run or a stop. */
+void drive_local_terminals(drive_t *drive, uint8_t before);
 /* The command channel changed: a freewheel stop to Switch on disabled. */
 void drive_local_channel_changed(drive_t *drive);
 /* The motor follows the reference under forced local control. */
@@ -66,6 +74,9 @@ void drive_local_command_applied(drive_t *drive);
 bool drive_channels_update(drive_t *drive);
 bool drive_channel_parameter(const drive_t *drive, const co_od_entry_t *entry);
 bool drive_reference_from_network(const drive_t *drive);
+/* The analogue input the reference comes from, or NULL (the network's, or a channel without
+ * one: a zero reference). */
+const drive_analog_input_t *drive_reference_analog(const drive_t *drive);
 /* Switching sources (drive.h, DRIVE_SOURCE_*): a control word bit of 11..15; a bit or a logic
  * input of the model. */
 bool drive_source_is_bit(uint32_t code);

@@ -14,20 +14,6 @@ static uint32_t fault_bit(uint8_t index)
     return (uint32_t)1u << index;
 }
 
-static char lower(char c)
-{
-    return c >= 'A' && c <= 'Z' ? (char)(c - 'A' + 'a') : c;
-}
-
-static bool same_code(const char *a, const char *b)
-{
-    for (; *a && *b; a++, b++) {
-        if (lower(*a) != lower(*b))
-            return false;
-    }
-    return *a == *b;
-}
-
 bool drive_faults_valid(const drive_profile_t *profile)
 {
     const drive_fault_table_t *table = profile->faults;
@@ -39,7 +25,7 @@ int drive_fault_find(const drive_t *drive, const char *code)
 {
     const drive_fault_table_t *table = drive->profile->faults;
     for (uint8_t i = 0; i < table->count; i++) {
-        if (same_code(table->faults[i].code, code))
+        if (drive_same_code(table->faults[i].code, code))
             return i;
     }
     return -1;
@@ -163,6 +149,8 @@ static void forget_fault(drive_t *drive, uint8_t index)
 {
     uint16_t code = fault_def(drive, index)->emcy_code;
     drive->faults_active &= ~fault_bit(index);
+    if (index == drive->profile->faults->communication_loss)
+        drive->comm_loss = (drive_comm_loss_t){DRIVE_COMM_LOSS_NONE, 0};
     if (!drive_emcy_code_in_use(drive, code))
         co_emcy_clear(&drive->node, code);
 }

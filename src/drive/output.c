@@ -36,22 +36,61 @@ static uint16_t control_bits(const drive_t *drive, uint16_t bits)
     return (uint16_t)(drive->cia402.control & bits & ~drive->assigned_bits);
 }
 
-/* The reference of a running drive: 6042h (0 from a channel other than the network), reversed by
- * the model's reverse bit, its magnitude held between the low and high speed (the drive runs at low
- * speed with a zero reference). */
+/* Where analogue input `index` stands in its range, as part / span (0 .. 1): a voltage's
+ * magnitude of 10 V, the potentiometer's turn, a current between its low and high currents (none
+ * of it while the high current is not above the low one). */
+static void analog_fraction(const drive_t *drive, uint8_t index, uint32_t *part, uint32_t *span)
+{
+    const drive_analog_input_t *input = &drive->profile->analog_inputs[index];
+    int32_t value = drive->analog[index];
+    uint32_t magnitude = (uint32_t)(value < 0 ? -value : value);
+    *part = magnitude;
+    if (input->kind == DRIVE_ANALOG_POTENTIOMETER) {
+        *span = DRIVE_ANALOG_POTENTIOMETER_MAX;
+    } else if (input->kind != DRIVE_ANALOG_CURRENT) {
+        *span = DRIVE_ANALOG_VOLTAGE_MAX_MV;
+    } else {
+        const drive_entries_t *e = &drive->entries;
+        uint32_t from = drive_entry_param(drive, e->analog_low[index], input->low) * 100u;
+        uint32_t to = drive_entry_param(drive, e->analog_high[index], input->high) * 100u;
+        uint32_t held = magnitude < from ? from : magnitude > to ? to : magnitude;
+        *part = to > from ? held - from : 0;
+        *span = to > from ? to - from : 1;
+    }
+}
+
+/* The reference of an analogue input (rpm): the low speed at the bottom of its range, the high
+ * speed at the top, linearly between, rounded; a negative voltage reverses it. */
+static int32_t analog_reference(const drive_t *drive, uint32_t low, uint32_t high)
+{
+    uint8_t index = (uint8_t)drive->reference_analog;
+    uint32_t part, span;
+    analog_fraction(drive, index, &part, &span);
+    uint32_t range = high > low ? high - low : 0;
+    int32_t rpm = (int32_t)(low + (uint32_t)(((uint64_t)range * part + span / 2) / span));
+    return drive->analog[index] < 0 ? -rpm : rpm;
+}
+
+/* The reference of a running drive: 6042h from the network, an analogue input's, or 0 from any
+ * other channel; reversed by the model's reverse bit, its magnitude held between the low and high
+ * speed (the drive runs at low speed with a zero reference). */
 static int32_t run_reference(drive_t *drive)
 {
     const drive_profile_t *profile = drive->profile;
     const drive_entries_t *e = &drive->entries;
-    int32_t reference = drive_reference_from_network(drive)
-                            ? (int16_t)drive_entry_value(drive, e->target_velocity)
-                            : 0;
-    bool reverse = (reference < 0) != (control_bits(drive, profile->control_reverse) != 0);
-    uint32_t wanted = (uint32_t)(reference < 0 ? -reference : reference);
     uint32_t high =
         drive_frequency_to_rpm(drive, drive_entry_param(drive, e->high_speed, profile->high_speed));
     uint32_t low =
         drive_frequency_to_rpm(drive, drive_entry_param(drive, e->low_speed, profile->low_speed));
+    int32_t reference = 0;
+    if (drive_reference_from_network(drive))
+        reference = (int16_t)drive_entry_value(drive, e->target_velocity);
+    else if (drive_reference_analog(drive) != NULL)
+        reference = analog_reference(drive, low, high);
+    bool reversed = control_bits(drive, profile->control_reverse) != 0 ||
+                    (drive_local_control(drive) && drive->terminal_reverse);
+    bool reverse = (reference < 0) != reversed;
+    uint32_t wanted = (uint32_t)(reference < 0 ? -reference : reference);
     uint32_t speed = wanted > high ? high : (wanted < low ? low : wanted);
     drive->limited = speed != wanted;
     return reverse ? -(int32_t)speed : (int32_t)speed;

@@ -51,6 +51,10 @@ static bool bus_condition(const drive_t *drive, uint16_t emcy_code)
     return false;
 }
 
+/* CiA 303-3's ERR, as the Altivar 31 and 312 manuals' signalling tables list it: on while bus off,
+ * double flash for an error control event (the latched communication-loss fault), single flash
+ * while the controller is at its warning level (error passive is above it). Lost frames
+ * (overrun) have no pattern: their EMCY tells the master (docs/decisions.md, D-ERR-LED). */
 drive_led_t drive_panel_err_led(const drive_t *drive)
 {
     uint32_t communication_loss = (uint32_t)1u << drive->profile->faults->communication_loss;
@@ -58,7 +62,7 @@ drive_led_t drive_panel_err_led(const drive_t *drive)
         return DRIVE_LED_ON;
     if (drive->faults_active & communication_loss)
         return DRIVE_LED_DOUBLE_FLASH;
-    if (drive->bus_event_count > 0)
+    if (drive->can_warning || bus_condition(drive, CO_EMCY_CAN_PASSIVE))
         return DRIVE_LED_SINGLE_FLASH;
     return DRIVE_LED_OFF;
 }

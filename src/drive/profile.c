@@ -23,6 +23,20 @@ bool drive_is_param(const co_od_entry_t *entry, drive_param_t param)
     return param.index != 0 && entry->index == param.index && entry->subindex == param.subindex;
 }
 
+static char lower(char c)
+{
+    return c >= 'A' && c <= 'Z' ? (char)(c - 'A' + 'a') : c;
+}
+
+bool drive_same_code(const char *a, const char *b)
+{
+    for (; *a && *b; a++, b++) {
+        if (lower(*a) != lower(*b))
+            return false;
+    }
+    return *a == *b;
+}
+
 int64_t drive_entry_value(const drive_t *drive, const co_od_entry_t *entry)
 {
     return entry != NULL ? co_od_get(&drive->node, entry) : 0;
@@ -69,6 +83,10 @@ void drive_entries_find(drive_t *drive)
         .acceleration_2 = param_entry(drive, profile->acceleration_2),
         .deceleration_2 = param_entry(drive, profile->deceleration_2),
     };
+    for (uint8_t i = 0; i < profile->analog_input_count && i < DRIVE_ANALOG_MAX; i++) {
+        drive->entries.analog_low[i] = param_entry(drive, profile->analog_inputs[i].low);
+        drive->entries.analog_high[i] = param_entry(drive, profile->analog_inputs[i].high);
+    }
 }
 
 /* A setting the model's dictionary lacks reads as its fixed value (DRIVE_FIXED), as

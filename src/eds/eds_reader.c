@@ -219,8 +219,15 @@ static bool set_key(parse_state_t *st, const ini_line_t *line, char *err, size_t
     } else if (strcasecmp(key, "AccessType") == 0) {
         e->writable = strcasecmp(value, "rw") == 0 || strcasecmp(value, "wo") == 0 ||
                       strcasecmp(value, "rww") == 0 || strcasecmp(value, "rwr") == 0;
-    } else if (strcasecmp(key, "ParameterValue") == 0 ||
-               (strcasecmp(key, "DefaultValue") == 0 && !st->value_is_parameter)) {
+    } else if (strcasecmp(key, "ParameterValue") == 0 || strcasecmp(key, "DefaultValue") == 0) {
+        bool is_default = strcasecmp(key, "DefaultValue") == 0;
+        if (is_default) {
+            bool negative;
+            e->has_default =
+                parse_value(value, st->node_id, &e->default_value, &negative) && !negative;
+        }
+        if (is_default && st->value_is_parameter)
+            return true; /* the ParameterValue read before it wins */
         /* Strings and domains have values that are not numbers: they are only not decoded. */
         e->has_value = parse_value(value, st->node_id, &e->value, &e->negative);
         e->value_line = line->number;

@@ -28,6 +28,10 @@ typedef struct eds_entry {
     /* A DCF's own keys: the value is a ParameterValue (the configuration of the device, which a
      * network master downloads), and the Denotation (the application's name of the object). */
     bool configured;
+    /* The DefaultValue as a number, also when a ParameterValue wins over it: what the device
+     * holds after its reset (a master invalidates a PDO on the COB-ID it holds). */
+    bool has_default;
+    uint64_t default_value;
     char *denotation;
     bool writable; /* AccessType rw, wo, rww or rwr */
 } eds_entry_t;

@@ -253,6 +253,26 @@ static void set_condition(co_linux_bus_t *bus, co_linux_condition_kind_t which, 
     co_linux_conditions_set(&bus->conditions, bus->iface, which, active);
 }
 
+/* The controller's error state from the kernel's error frames (linux/can/error.h): bus off, and
+ * its restart, in the class bits; otherwise CAN_ERR_CRTL's byte names the state entered, error
+ * active, warning or passive (the kernel's can_change_state), up or down. Error passive is above
+ * the warning limit, so it is a warning too; error active ends both. */
+static void handle_controller_state(co_linux_bus_t *bus, uint8_t crtl)
+{
+    if (crtl & (CAN_ERR_CRTL_RX_PASSIVE | CAN_ERR_CRTL_TX_PASSIVE)) {
+        set_condition(bus, CO_LINUX_COND_WARNING, true);
+        set_condition(bus, CO_LINUX_COND_PASSIVE, true);
+    } else if (crtl & (CAN_ERR_CRTL_RX_WARNING | CAN_ERR_CRTL_TX_WARNING)) {
+        set_condition(bus, CO_LINUX_COND_PASSIVE, false);
+        set_condition(bus, CO_LINUX_COND_WARNING, true);
+    } else if (crtl & CAN_ERR_CRTL_ACTIVE) {
+        set_condition(bus, CO_LINUX_COND_PASSIVE, false);
+        set_condition(bus, CO_LINUX_COND_WARNING, false);
+    }
+    if (crtl & (CAN_ERR_CRTL_RX_OVERFLOW | CAN_ERR_CRTL_TX_OVERFLOW))
+        set_condition(bus, CO_LINUX_COND_OVERRUN, true);
+}
+
 static void handle_error_frame(co_linux_bus_t *bus, const struct can_frame *cf)
 {
     bus->host.stats->error_frames++;
@@ -261,18 +281,10 @@ static void handle_error_frame(co_linux_bus_t *bus, const struct can_frame *cf)
     if (cf->can_id & CAN_ERR_RESTARTED) {
         set_condition(bus, CO_LINUX_COND_BUS_OFF, false);
         set_condition(bus, CO_LINUX_COND_PASSIVE, false);
+        set_condition(bus, CO_LINUX_COND_WARNING, false);
     }
-    if (!(cf->can_id & CAN_ERR_CRTL))
-        return;
-    uint8_t crtl = cf->data[1];
-    if (crtl & (CAN_ERR_CRTL_RX_PASSIVE | CAN_ERR_CRTL_TX_PASSIVE))
-        set_condition(bus, CO_LINUX_COND_PASSIVE, true);
-    if (crtl & CAN_ERR_CRTL_ACTIVE)
-        set_condition(bus, CO_LINUX_COND_PASSIVE, false);
-    if (crtl & (CAN_ERR_CRTL_RX_WARNING | CAN_ERR_CRTL_TX_WARNING))
-        co_log(CO_LOG_WARN, "%s: CAN controller reached the error warning level", bus->iface);
-    if (crtl & (CAN_ERR_CRTL_RX_OVERFLOW | CAN_ERR_CRTL_TX_OVERFLOW))
-        set_condition(bus, CO_LINUX_COND_OVERRUN, true);
+    if (cf->can_id & CAN_ERR_CRTL)
+        handle_controller_state(bus, cf->data[1]);
 }
 
 static void handle_rx_frame(co_linux_bus_t *bus, const struct can_frame *cf)

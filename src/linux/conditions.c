@@ -1,8 +1,8 @@
 #include "co_linux/conditions.h"
 #include "co_linux/log.h"
 
-static const char *const names[CO_LINUX_CONDITIONS] = {"CAN overrun (frames lost)",
-                                                       "CAN error passive", "CAN bus off"};
+static const char *const names[CO_LINUX_CONDITIONS] = {
+    "CAN overrun (frames lost)", "CAN error passive", "CAN bus off", "CAN error warning level"};
 
 void co_linux_conditions_init(co_linux_conditions_t *c)
 {
@@ -10,6 +10,7 @@ void co_linux_conditions_init(co_linux_conditions_t *c)
     c->items[CO_LINUX_COND_OVERRUN].emcy_code = CO_LINUX_EMCY_CAN_OVERRUN;
     c->items[CO_LINUX_COND_PASSIVE].emcy_code = CO_LINUX_EMCY_CAN_PASSIVE;
     c->items[CO_LINUX_COND_BUS_OFF].emcy_code = CO_LINUX_EMCY_BUS_OFF;
+    c->items[CO_LINUX_COND_WARNING].emcy_code = CO_LINUX_EMCY_NONE;
 }
 
 void co_linux_conditions_set(co_linux_conditions_t *c, const char *iface,
@@ -21,8 +22,14 @@ void co_linux_conditions_set(co_linux_conditions_t *c, const char *iface,
     item->wanted = active;
     if (which == CO_LINUX_COND_OVERRUN)
         c->traffic_since_overrun = false;
-    co_log(active ? CO_LOG_WARN : CO_LOG_INFO, "%s: %s (EMCY %04X %s)", iface, names[which],
-           item->emcy_code, active ? "active" : "cleared");
+    if (which == CO_LINUX_COND_BUS_OFF && active)
+        c->bus_offs++;
+    co_log_level_t level = active ? CO_LOG_WARN : CO_LOG_INFO;
+    const char *change = active ? "active" : "cleared";
+    if (item->emcy_code == CO_LINUX_EMCY_NONE)
+        co_log(level, "%s: %s (no EMCY) %s", iface, names[which], change);
+    else
+        co_log(level, "%s: %s (EMCY %04X %s)", iface, names[which], item->emcy_code, change);
 }
 
 void co_linux_conditions_restart(co_linux_conditions_t *c)
@@ -57,4 +64,9 @@ bool co_linux_conditions_active(const co_linux_conditions_t *c, uint16_t emcy_co
             return c->items[i].wanted;
     }
     return false;
+}
+
+bool co_linux_conditions_warning(const co_linux_conditions_t *c)
+{
+    return c->items[CO_LINUX_COND_WARNING].wanted;
 }

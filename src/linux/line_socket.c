@@ -50,23 +50,32 @@ static co_line_client_t *client_of(co_line_server_t *server, int fd)
 
 /* The reply in one non-blocking send: a client that does not read it in time loses it (the loop
  * never waits for a client). */
+static void send_reply(co_line_client_t *client, const char *reply, size_t len)
+{
+    if (send(client->fd, reply, len, MSG_NOSIGNAL | MSG_DONTWAIT) != (ssize_t)len)
+        co_log(CO_LOG_WARN, "control: a reply could not be sent whole: %s", strerror(errno));
+}
+
 static void answer(co_line_server_t *server, co_line_client_t *client)
 {
     const co_line_server_config_t *config = &server->config;
     client->line[client->len] = '\0';
+    server->answering = client;
     size_t len =
         config->answer(config->ctx, client->line, client->cut, config->reply, config->reply_cap);
-    if (send(client->fd, config->reply, len, MSG_NOSIGNAL | MSG_DONTWAIT) != (ssize_t)len)
-        co_log(CO_LOG_WARN, "control: a reply could not be sent whole: %s", strerror(errno));
+    server->answering = NULL;
+    if (len != CO_LINE_DEFERRED)
+        send_reply(client, config->reply, len);
     client->len = 0;
     client->cut = false;
 }
 
-/* Answers the complete lines in buf; false when the connection is done (one request answered). */
+/* Answers the complete lines in buf; false when the connection is done (one request answered
+ * now). A connection whose reply was deferred takes no more requests: what it sends is dropped. */
 static bool take_bytes(co_line_server_t *server, co_line_client_t *client, const char *buf,
                        size_t n)
 {
-    for (size_t i = 0; i < n; i++) {
+    for (size_t i = 0; i < n && client->ticket == 0; i++) {
         if (buf[i] != '\n') {
             if (client->len + 1 < sizeof client->line)
                 client->line[client->len++] = buf[i];
@@ -76,7 +85,7 @@ static bool take_bytes(co_line_server_t *server, co_line_client_t *client, const
         }
         answer(server, client);
         if (server->config.mode == CO_LINE_ONE_REQUEST)
-            return false;
+            return client->ticket != 0;
     }
     return true;
 }
@@ -89,9 +98,9 @@ static void on_client(void *ctx, int fd)
     ssize_t n = recv(fd, buf, sizeof buf, MSG_DONTWAIT);
     if (n < 0 && (errno == EAGAIN || errno == EINTR))
         return;
-    bool unterminated = client->len > 0 || client->cut;
+    bool unterminated = (client->len > 0 || client->cut) && client->ticket == 0;
     if (n == 0 && unterminated && server->config.mode == CO_LINE_ONE_REQUEST)
-        answer(server, client);
+        answer(server, client); /* a reply deferred now is lost: the client is gone */
     if (n <= 0 || !take_bytes(server, client, buf, (size_t)n))
         drop_client(server, client);
 }
@@ -182,6 +191,30 @@ co_line_result_t co_line_server_open(co_line_server_t *server, co_linux_loop_t *
     }
     snprintf(server->path, sizeof server->path, "%s", path);
     return CO_LINE_OK;
+}
+
+uint32_t co_line_server_defer(co_line_server_t *server)
+{
+    co_line_client_t *client = server->answering;
+    if (client == NULL || server->config.mode != CO_LINE_ONE_REQUEST)
+        return 0;
+    if (++server->last_ticket == 0)
+        server->last_ticket = 1;
+    client->ticket = server->last_ticket;
+    return client->ticket;
+}
+
+bool co_line_server_reply(co_line_server_t *server, uint32_t ticket, const char *reply, size_t len)
+{
+    for (size_t i = 0; ticket != 0 && i < CO_LINE_CLIENTS; i++) {
+        co_line_client_t *client = &server->clients[i];
+        if (client->fd < 0 || client->ticket != ticket)
+            continue;
+        send_reply(client, reply, len);
+        drop_client(server, client);
+        return true;
+    }
+    return false;
 }
 
 void co_line_server_close(co_line_server_t *server)

@@ -74,14 +74,24 @@ static void timer_fired(void *ctx, uint32_t events)
     }
 }
 
+static void tell_device(co_linux_loop_t *loop, co_linux_device_t *dev,
+                        const co_linux_condition_t *condition)
+{
+    if (condition->emcy_code == CO_LINUX_EMCY_NONE) {
+        if (dev->ops->bus_warning)
+            dev->ops->bus_warning(dev->ctx, condition->wanted);
+        return;
+    }
+    if (dev->ops->bus_event) {
+        dev->ops->bus_event(dev->ctx, condition->emcy_code, condition->wanted);
+        process(loop, dev);
+    }
+}
+
 static void tell_devices(co_linux_loop_t *loop, const co_linux_condition_t *condition)
 {
-    for (co_linux_device_t *dev = loop->router.devices; dev; dev = dev->next) {
-        if (dev->ops->bus_event) {
-            dev->ops->bus_event(dev->ctx, condition->emcy_code, condition->wanted);
-            process(loop, dev);
-        }
-    }
+    for (co_linux_device_t *dev = loop->router.devices; dev; dev = dev->next)
+        tell_device(loop, dev, condition);
 }
 
 /* Returns true when a device was told something (it may have sent frames, or a dropped frame may
@@ -135,6 +145,19 @@ static void settle(co_linux_loop_t *loop)
     arm_timer(loop);
     if (!co_linux_bus_flush_trace(&loop->bus))
         co_linux_router_refilter(&loop->router); /* the socket no longer needs the whole bus */
+    if (loop->settled)
+        loop->settled(loop->settled_ctx, loop);
+}
+
+void co_linux_loop_on_settled(co_linux_loop_t *loop, co_linux_settled_fn fn, void *ctx)
+{
+    loop->settled = fn;
+    loop->settled_ctx = ctx;
+}
+
+bool co_linux_loop_sent_all(const co_linux_loop_t *loop)
+{
+    return loop->bus.link_up && co_txq_count(&loop->bus.tx.queue) == 0;
 }
 
 static void update_clocks(co_linux_loop_t *loop)

@@ -1,8 +1,10 @@
 /* The control surface's replies where a CANopen and a DeviceNet drive differ: a fault happening
  * (its EMCY on CANopen; on DeviceNet, where EMCYs stay on the card's internal link, the Control
  * supervisor's state and the Identity's fault), the RUN key refused under network control, and the
- * state line's counters (the CANopen services', or the DeviceNet card's). A drive of each kind is
+ * state line's counters (the CANopen services', or the DeviceNet card's); the STOP key's reset of
+ * a fault where the model's manual gives it (the ATV31). A drive of each kind is
  * a device of an unopened loop: nothing here reaches a socket. */
+#include "atv31/atv31.h"
 #include "atv312/atv312.h"
 #include "atv312/atv312_devicenet.h"
 #include "atv58/atv58.h"
@@ -16,8 +18,8 @@
 #define MAC_ID 25
 
 static co_linux_loop_t loop;
-static uint8_t
-    od_data[ATV312_OD_DATA_SIZE > ATV58_OD_DATA_SIZE ? ATV312_OD_DATA_SIZE : ATV58_OD_DATA_SIZE];
+#define LARGER(a, b) ((a) > (b) ? (a) : (b))
+static uint8_t od_data[LARGER(LARGER(ATV312_OD_DATA_SIZE, ATV58_OD_DATA_SIZE), ATV31_OD_DATA_SIZE)];
 static drive_t drive;
 static drive_dn_t dn;
 static co_linux_device_t device;
@@ -65,8 +67,10 @@ static void start_canopen(void)
 static void start_devicenet(void)
 {
     memset(&loop, 0, sizeof loop);
-    drive_config_t config = {
-        .profile = &atv312_profile, .od_data = od_data, .node_id = 1, .send = drive_dn_drop_frame};
+    drive_config_t config = {.profile = atv312_devicenet_profile.drive,
+                             .od_data = od_data,
+                             .node_id = 1,
+                             .send = drive_dn_drop_frame};
     ck_assert_int_eq(drive_init(&drive, &config), 0);
     drive_dn_config_t dn_config = {.drive = &drive,
                                    .profile = &atv312_devicenet_profile,
@@ -127,8 +131,96 @@ START_TEST(run_key_refused_under_network_control)
 }
 END_TEST
 
+/* The ATV31's STOP/RESET key resets a fault whose cause is gone; the ATV312's STOP key does not. */
+START_TEST(stop_key_resets_a_fault_where_the_manual_says)
+{
+    start_model(&atv31_profile);
+    ck_assert_str_eq(execute("fault 4 OHF"), "ok node 4: OHF (drive overheating), EMCY 4210");
+    ck_assert_str_eq(execute("stop-key 4"),
+                     "ok node 4: STOP key: still in fault OHF (status word bit 14)");
+    ck_assert_str_eq(execute("clear 4 OHF"), "ok node 4: cause of OHF removed");
+    ck_assert_str_eq(execute("stop-key 4"),
+                     "ok node 4: STOP/RESET key: fault OHF reset (status word bit 14)");
+    ck_assert_str_eq(drive_state_name(&drive), "Switch on disabled");
+    start_canopen();
+    execute("fault 4 OHF");
+    execute("clear 4 OHF");
+    ck_assert_str_eq(execute("stop-key 4"),
+                     "ok node 4: STOP key: still in fault OHF (status word bit 14)");
+}
+END_TEST
+
+/* Analogue inputs in the units their manuals give them: volts for AI1/AI2, mA for AI3, % for the
+ * ATV31's potentiometer; each model's own inputs and ranges, refusals naming them. With Fr1 =
+ * AI2 and the network commanding, the motor runs to the input's speed. */
+START_TEST(analog_inputs_in_their_units)
+{
+    start_canopen();
+    ck_assert_str_eq(execute("analog 4 AI2 -2.5"), "ok node 4: AI2 -2.500 V");
+    ck_assert_int_eq(drive_analog(&drive, (uint8_t)drive_analog_find(&drive, "AI2")), -2500);
+    ck_assert_str_eq(execute("analog 4 ai3 12"), "ok node 4: AI3 12.000 mA");
+    char line[1024];
+    atv312d_format_state(&node, false, line, sizeof line);
+    const char *text = ", EMCY 0, analog AI2 -2.500 V AI3 12.000 mA";
+    ck_assert_str_eq(line + strlen(line) - strlen(text), text);
+    atv312d_format_state(&node, true, line, sizeof line);
+    const char *json = ",\"inputs\":[],\"analog\":{\"AI2\":-2.500,\"AI3\":12.000}}";
+    ck_assert_str_eq(line + strlen(line) - strlen(json), json);
+    ck_assert_str_eq(execute("json analog 4 AI2 5"),
+                     "{\"ok\":true,\"message\":\"node 4: AI2 5.000 V\"}");
+    ck_assert_str_eq(execute("analog 4 AI2 10.5"), "error: analog AI2 10.5: give a voltage of "
+                                                   "-10..10 V");
+    ck_assert_str_eq(execute("analog 4 AI3 -1"),
+                     "error: analog AI3 -1: give a current of 0..20 mA");
+    ck_assert_str_eq(execute("analog 4 AI2 1.2345"),
+                     "error: analog AI2 1.2345: give a voltage of -10..10 V");
+    ck_assert_str_eq(execute("analog 4 AI1 5"),
+                     "error: node 4 has no analogue input AI1: its analogue inputs are AI2, AI3");
+    ck_assert_str_eq(execute("analog 4 AI2"), "error: usage: analog NODE AIn VALUE (volts or mA "
+                                              "as the input takes them, e.g. analog 4 AI2 -2.5)");
+    ck_assert_str_eq(execute("pot 4 50"), "error: node 4 has no reference potentiometer");
+    ck_assert_uint_eq(
+        co_od_write(&drive.node, 0x2036, 2, (const uint8_t *)"\x02\x00", 2, CO_OD_ORIGIN_SDO), 0);
+    ck_assert_uint_eq(
+        co_od_write(&drive.node, 0x2036, 14, (const uint8_t *)"\x02\x00", 2, CO_OD_ORIGIN_SDO), 0);
+    ck_assert_uint_eq(
+        co_od_write(&drive.node, 0x6040, 0, (const uint8_t *)"\x06\x00", 2, CO_OD_ORIGIN_SDO), 0);
+    ck_assert_uint_eq(
+        co_od_write(&drive.node, 0x6040, 0, (const uint8_t *)"\x0F\x00", 2, CO_OD_ORIGIN_SDO), 0);
+    loop.now = 3000000;
+    drive_process(&drive, loop.now);
+    ck_assert_int_eq((int16_t)co_od_value(&drive.node, 0x6044, 0), 750);
+
+    start_model(&atv31_profile);
+    ck_assert_str_eq(execute("pot 4 50.5"), "ok node 4: AIP 50.5 %");
+    atv312d_format_state(&node, true, line, sizeof line);
+    ck_assert_ptr_nonnull(
+        strstr(line, "\"analog\":{\"AI1\":0.000,\"AI2\":0.000,\"AI3\":0.000,\"AIP\":50.5}"));
+    ck_assert_str_eq(execute("analog 4 AIP 20"), "ok node 4: AIP 20.0 %");
+    ck_assert_str_eq(execute("pot 4 101"), "error: pot AIP 101: give a percentage of 0..100");
+    ck_assert_str_eq(execute("analog 4 AI1 -1"), "error: analog AI1 -1: give a voltage of 0..10 V");
+    start_model(&atv58_profile);
+    ck_assert_str_eq(execute("analog 4 AI1 5"), "error: node 4 has no analogue inputs");
+}
+END_TEST
+
+/* Under terminal control (CHCF = SEP, Cd1 = terminals) LI1 is the forward run input. */
+START_TEST(input_runs_the_drive_from_the_terminals)
+{
+    start_canopen();
+    ck_assert_uint_eq(
+        co_od_write(&drive.node, 0x2036, 2, (const uint8_t *)"\x02\x00", 2, CO_OD_ORIGIN_SDO), 0);
+    ck_assert_uint_eq(
+        co_od_write(&drive.node, 0x2036, 24, (const uint8_t *)"\x01\x00", 2, CO_OD_ORIGIN_SDO), 0);
+    ck_assert_str_eq(execute("input 4 LI1 on"), "ok node 4: LI1 on");
+    ck_assert_str_eq(drive_state_name(&drive), "Operation enabled");
+    ck_assert_str_eq(execute("input 4 LI1 off"), "ok node 4: LI1 off");
+    ck_assert_str_eq(drive_state_name(&drive), "Switch on disabled");
+}
+END_TEST
+
 /* The state line ends with the device's frame counts and the card's counters (then the logic
- * inputs that are on: none here). */
+ * inputs that are on and the analogue inputs not at 0: none here; in JSON every analogue input). */
 START_TEST(devicenet_state_shows_the_card_counters)
 {
     start_devicenet();
@@ -144,9 +236,11 @@ START_TEST(devicenet_state_shows_the_card_counters)
                        "error responses 2, I/O messages 40, fragments 3, timeouts 1";
     ck_assert_str_eq(line + strlen(line) - strlen(text), text);
     atv312d_format_state(&node, true, line, sizeof line);
-    const char *json = ",\"fault\":null,\"frames\":{\"received\":52,\"sent\":50,\"dropped\":1,"
-                       "\"explicit_requests\":7,\"error_responses\":2,\"io_messages\":40,"
-                       "\"fragments\":3,\"timeouts\":1},\"inputs\":[]}";
+    const char *json =
+        ",\"fault\":null,\"comm_loss\":null,\"frames\":{\"received\":52,\"sent\":50,\"dropped\":1,"
+        "\"explicit_requests\":7,\"error_responses\":2,\"io_messages\":40,"
+        "\"fragments\":3,\"timeouts\":1},\"inputs\":[],"
+        "\"analog\":{\"AI2\":0.000,\"AI3\":0.000}}";
     ck_assert_str_eq(line + strlen(line) - strlen(json), json);
 }
 END_TEST
@@ -179,6 +273,9 @@ int main(void)
     tcase_add_test(tc, canopen_fault_is_its_emcy);
     tcase_add_test(tc, devicenet_fault_is_the_supervisor_and_identity);
     tcase_add_test(tc, run_key_refused_under_network_control);
+    tcase_add_test(tc, stop_key_resets_a_fault_where_the_manual_says);
+    tcase_add_test(tc, analog_inputs_in_their_units);
+    tcase_add_test(tc, input_runs_the_drive_from_the_terminals);
     tcase_add_test(tc, devicenet_state_shows_the_card_counters);
     tcase_add_test(tc, canopen_state_shows_the_models_leds);
     suite_add_tcase(s, tc);

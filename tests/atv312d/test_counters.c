@@ -84,8 +84,10 @@ START_TEST(state_shows_the_counters)
                        "SDO aborts 2, EMCY 3";
     ck_assert_str_eq(line + strlen(line) - strlen(text), text);
     atv312d_format_state(&node, true, line, sizeof line);
-    const char *json = ",\"fault\":null,\"frames\":{\"received\":12,\"sent\":9,\"dropped\":1,"
-                       "\"sdo_requests\":7,\"sdo_aborts\":2,\"emcy\":3},\"inputs\":[]}";
+    const char *json =
+        ",\"fault\":null,\"comm_loss\":null,\"frames\":{\"received\":12,\"sent\":9,\"dropped\":1,"
+        "\"sdo_requests\":7,\"sdo_aborts\":2,\"emcy\":3},\"inputs\":[],"
+        "\"analog\":{\"AI2\":0.000,\"AI3\":0.000}}";
     ck_assert_str_eq(line + strlen(line) - strlen(json), json);
 }
 END_TEST

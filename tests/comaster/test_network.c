@@ -214,6 +214,26 @@ START_TEST(node_options)
 }
 END_TEST
 
+/* The master's own heartbeat: [Master] heartbeat and node_id, which no slave may have. */
+START_TEST(master_heartbeat_and_node_id)
+{
+    ck_assert_int_eq(load_with("node_id = 1\nheartbeat = 50\n"), 0);
+    ck_assert_uint_eq(net.config.node_id, 1);
+    ck_assert_uint_eq(net.config.heartbeat_ms, 50);
+    ck_assert_int_eq(load_with(""), 0);
+    ck_assert_uint_eq(net.config.heartbeat_ms, 0);
+    ck_assert_int_eq(load_with("heartbeat = 50\n"), EX_DATAERR);
+    ck_assert_ptr_nonnull(strstr(err, "/net.ini: [Master] heartbeat = 50 needs node_id = N, the "
+                                      "master's own node-id"));
+    ck_assert_int_eq(load_with("node_id = 4\nheartbeat = 50\n"), EX_DATAERR);
+    ck_assert_ptr_nonnull(strstr(err, "/net.ini: [Master] node_id = 4 is the node-id of a slave"));
+    ck_assert_int_eq(load_with("node_id = 128\n"), EX_DATAERR);
+    ck_assert_ptr_nonnull(strstr(err, "node_id"));
+    ck_assert_int_eq(load_with("heartbeat = 65536\nnode_id = 1\n"), EX_DATAERR);
+    ck_assert_ptr_nonnull(strstr(err, "heartbeat"));
+}
+END_TEST
+
 START_TEST(bad_files_are_refused)
 {
     ck_assert_int_eq(comaster_network_load(&net, "/nonexistent/net.ini", err, sizeof err),
@@ -429,6 +449,11 @@ END_TEST
 #define SUB(index, sub, type, key, value)                                                          \
     "[" index "sub" sub "]\nParameterName=v\nDataType=" type "\nAccessType=rw\n" key "=" value "\n"
 
+/* TPDO1's COB-ID with the slave's default and the DCF's value. */
+#define TPDO1_COB_ID(default_value, value)                                                         \
+    "[1800sub1]\nParameterName=v\nDataType=0x0007\nAccessType=rw\nDefaultValue=" default_value     \
+    "\nParameterValue=" value "\n"
+
 /* TPDO1 of a DCF that changes its transmission type, inhibit time, event timer and mapping, the
  * PDO being valid: CiA 301's procedure as CiA 302 masters follow it, at the place of the PDO's
  * first entry: invalidate, parameters, mapping count 0, entries, count, validate. */
@@ -461,9 +486,33 @@ START_TEST(pdo_configured_invalid_then_valid)
                                   SUB("1800", "5", "0x0006", "ParameterValue", "500")),
                      0);
     ck_assert_str_eq(download_frames(), "604#2300180184010080 604#2B001805F4010000");
-    /* Only a COB-ID: written alone, as before. */
+    /* Only a COB-ID, the PDO invalid by default: written alone. */
     ck_assert_int_eq(load_dcf(SUB("1800", "1", "0x0007", "ParameterValue", "$NODEID+0x190")), 0);
     ck_assert_str_eq(download_frames(), "604#2300180194010000");
+    ck_assert_int_eq(load_dcf(TPDO1_COB_ID("0x80000184", "$NODEID+0x190")), 0);
+    ck_assert_str_eq(download_frames(), "604#2300180194010000");
+    /* Only a COB-ID, same CAN-ID as the default: written alone. */
+    ck_assert_int_eq(load_dcf(TPDO1_COB_ID("$NODEID+0x180", "0x40000184")), 0);
+    ck_assert_str_eq(download_frames(), "604#2300180184010040");
+}
+END_TEST
+
+/* A DCF that changes only the CAN-ID of a PDO valid on the slave: the slave refuses a new CAN-ID
+ * of a valid PDO (0x06090030), so the master first invalidates it on its old COB-ID (the DCF's
+ * DefaultValue, which the slave holds after its reset) and then writes the new one. */
+START_TEST(pdo_can_id_changed_on_a_valid_pdo)
+{
+    ck_assert_int_eq(load_dcf(TPDO1_COB_ID("$NODEID+0x180", "$NODEID+0x190")), 0);
+    ck_assert_str_eq(download_frames(), "604#2300180184010080 604#2300180194010000");
+    /* A new COB-ID that leaves the PDO invalid needs no invalidation first. */
+    ck_assert_int_eq(load_dcf(TPDO1_COB_ID("$NODEID+0x180", "0x80000194")), 0);
+    ck_assert_str_eq(download_frames(), "604#2300180194010080");
+    /* A whole PDO whose CAN-ID changes is invalidated on its old COB-ID too. */
+    ck_assert_int_eq(load_dcf(TPDO1_COB_ID("$NODEID+0x180", "$NODEID+0x190")
+                                  SUB("1800", "5", "0x0006", "ParameterValue", "500")),
+                     0);
+    ck_assert_str_eq(download_frames(),
+                     "604#2300180184010080 604#2B001805F4010000 604#2300180194010000");
     /* Without a COB-ID to invalidate and validate the PDO with, the DCF is refused. */
     ck_assert_int_eq(load_dcf(SUB("1A00", "0", "0x0005", "ParameterValue", "1")), EX_DATAERR);
     ck_assert_ptr_nonnull(strstr(err, "/slave.dcf: [1800sub1] has no value (ParameterValue or "
@@ -482,12 +531,14 @@ static Suite *network_suite(void)
     tcase_add_test(tc, unknown_variables_are_told);
     tcase_add_test(tc, one_slave_for_boot);
     tcase_add_test(tc, node_options);
+    tcase_add_test(tc, master_heartbeat_and_node_id);
     tcase_add_test(tc, bad_files_are_refused);
     tcase_add_test(tc, option_file_and_nodelist_syntax);
     tcase_add_test(tc, option_file_and_nodelist_syntax_errors);
     tcase_add_test(tc, every_numeric_form_of_every_type);
     tcase_add_test(tc, values_out_of_their_type_are_refused);
     tcase_add_test(tc, pdo_configured_invalid_then_valid);
+    tcase_add_test(tc, pdo_can_id_changed_on_a_valid_pdo);
     suite_add_tcase(s, tc);
     return s;
 }

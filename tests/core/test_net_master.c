@@ -882,6 +882,353 @@ START_TEST(texts)
 }
 END_TEST
 
+/* The times (ms from `from`) of the master's frames equal to `text` among those logged. */
+static size_t master_frame_times(const char *text, co_time_t from, co_time_t *ms, size_t max)
+{
+    char want[32], got[32];
+    co_frame_t f = test_frame(text);
+    test_format(&f, want);
+    size_t n = 0;
+    for (size_t i = 0; i < bus.count && n < max; i++) {
+        if (bus.sender[i] == SLAVES && strcmp(want, test_format(&bus.log[i], got)) == 0)
+            ms[n++] = (bus.at[i] - from) / MS;
+    }
+    return n;
+}
+
+/* How many frames the master sent from position `from` of the log on. */
+static size_t master_frames_since(size_t from)
+{
+    size_t n = 0;
+    for (size_t i = from; i < bus.count; i++)
+        n += bus.sender[i] == SLAVES;
+    return n;
+}
+
+/* The PLC300's own heartbeat (its 1017h): 700h + its node-id, Operational, from the start on the
+ * grid of its producer time, so that slaves consuming it (1016h) supervise the master. */
+START_TEST(master_heartbeat_on_its_grid)
+{
+    config.node_id = 1;
+    config.heartbeat_ms = 50;
+    start_master();
+    expect("000#8200");
+    expect("701#05");
+    co_time_t from = bus.now;
+    ck_assert_uint_eq(co_net_master_process(&master, bus.now), from + 50 * MS);
+    advance(200 * MS);
+    co_time_t at[8];
+    ck_assert_uint_eq(master_frame_times("701#05", from, at, 8), 5);
+    for (size_t k = 0; k < 5; k++)
+        ck_assert_uint_eq(at[k], 50 * k);
+    /* Woken late, it beats once and keeps the period from then on. */
+    bus.now += 130 * MS;
+    size_t before = bus.count;
+    co_net_master_process(&master, bus.now);
+    ck_assert_uint_eq(master_frames_since(before), 1);
+    ck_assert_uint_eq(co_net_master_process(&master, bus.now), bus.now + 50 * MS);
+}
+END_TEST
+
+START_TEST(master_heartbeat_needs_a_node_id_of_its_own)
+{
+    config.heartbeat_ms = 50;
+    ck_assert(!co_net_master_init(&master, &config)); /* node-id 0 */
+    config.node_id = 128;
+    ck_assert(!co_net_master_init(&master, &config));
+    config.node_id = 5; /* a slave's */
+    ck_assert(!co_net_master_init(&master, &config));
+    config.node_id = 127;
+    ck_assert(co_net_master_init(&master, &config));
+    config.heartbeat_ms = 0;
+    config.node_id = 5; /* no heartbeat: the node-id is not used */
+    ck_assert(co_net_master_init(&master, &config));
+}
+END_TEST
+
+/* Disabling communication (the PLC300's DisableComm): no frame out, none taken, the status words
+ * and the last SDO error and EMCY cleared, bit 15 set; enabling boots the network again. */
+START_TEST(disable_stops_every_frame_and_enable_boots_again)
+{
+    config.node_id = 1;
+    config.heartbeat_ms = 50;
+    config.sync_period_us = 20 * MS;
+    for (size_t i = 0; i < SLAVES; i++)
+        table[i].heartbeat_ms = 150;
+    start_master();
+    advance(100 * MS);
+    ck_assert_uint_eq(co_net_master_status(&master), 0x000F);
+    master.last_sdo_error.node_id = 4;
+    co_net_master_disable(&master, bus.now);
+    ck_assert_uint_eq(co_net_master_status(&master), CO_NET_MASTER_DISABLED);
+    ck_assert_uint_eq(master.last_sdo_error.node_id, 0);
+    for (uint8_t id = 4; id <= 6; id++) {
+        ck_assert_uint_eq(co_net_master_slave_status(&master, id), 0);
+        ck_assert_uint_eq(co_net_master_slave(&master, id)->step, CO_NET_STEP_IDLE);
+    }
+    ck_assert_uint_eq(co_net_master_process(&master, bus.now), CO_TIME_NEVER);
+    size_t before = bus.count;
+    advance(1000 * MS); /* the slaves beat on, heard by nobody */
+    ck_assert_uint_eq(master_frames_since(before), 0);
+    ck_assert_uint_gt(bus.count, before);
+    ck_assert_uint_eq(co_net_master_status(&master), CO_NET_MASTER_DISABLED);
+    ck_assert(!co_net_master_nmt(&master, CO_NMT_CS_START, 4, 100, bus.now));
+    bus.next = bus.count;
+    co_net_master_enable(&master, bus.now);
+    advance(0);
+    expect("000#8200");
+    expect("701#05");
+    expect("704#00");
+    expect("705#00");
+    expect("706#00");
+    expect_boot(4);
+    ck_assert_uint_eq(co_net_master_status(&master), 0x000F);
+}
+END_TEST
+
+/* Bits 13 and 14 as the runtime tells the controller's state; either sets bit 15 too (the
+ * PLC300's CommDisabled "also on loss of CAN interface power or bus-off"). */
+START_TEST(bus_off_and_bus_power_bits)
+{
+    start_master();
+    ck_assert_uint_eq(co_net_master_status(&master), 0x000F);
+    co_net_master_set_bus(&master, CO_NET_MASTER_BUS_OFF);
+    ck_assert_uint_eq(co_net_master_status(&master), 0xA00F);
+    co_net_master_set_bus(&master, CO_NET_MASTER_NO_BUS_POWER);
+    ck_assert_uint_eq(co_net_master_status(&master), 0xC00F);
+    co_net_master_set_bus(&master, 0xFFFF);
+    ck_assert_uint_eq(co_net_master_status(&master), 0xE00F);
+    co_net_master_set_bus(&master, 0);
+    ck_assert_uint_eq(co_net_master_status(&master), 0x000F);
+}
+END_TEST
+
+static size_t nmt_done_events(void)
+{
+    size_t n = 0;
+    for (size_t e = 0; e < event_count; e++)
+        n += events[e].kind == CO_NET_EVENT_NMT_DONE;
+    return n;
+}
+
+/* An NMT command of the application, confirmed by the state the node reports next: here its
+ * heartbeat (the master does not consume it, so it also asks once by a guarding request, which
+ * a node producing heartbeats does not answer). Status bit 8 flips with each command. */
+START_TEST(nmt_command_confirmed_by_the_next_heartbeat)
+{
+    start_master();
+    bus.next = bus.count;
+    ck_assert(co_net_master_nmt(&master, CO_NMT_CS_STOP, 5, 500, bus.now));
+    ck_assert(!co_net_master_nmt(&master, CO_NMT_CS_START, 5, 500, bus.now)); /* one at a time */
+    ck_assert_uint_eq(co_net_master_status(&master), 0x010F);
+    expect("000#0205");
+    expect("705#R1");
+    ck_assert(co_net_master_nmt_awaited(&master, 5));
+    advance(99 * MS);
+    ck_assert(co_net_master_nmt_awaited(&master, 5));
+    advance(1 * MS); /* the slave's next heartbeat (1017h = 100 ms) */
+    ck_assert(!co_net_master_nmt_awaited(&master, 5));
+    ck_assert_uint_eq(nmt_done_events(), 1);
+    ck_assert(!master.nmt_request.pending);
+    ck_assert_uint_eq(slaves[1].node.nmt_state, CO_NMT_STOPPED);
+    /* To all: every slave of the table confirms; bit 8 flips back. */
+    ck_assert(co_net_master_nmt(&master, CO_NMT_CS_ENTER_PRE_OPERATIONAL, 0, 500, bus.now));
+    ck_assert_uint_eq(co_net_master_status(&master), 0x000F);
+    expect("000#8000");
+    expect("704#R1");
+    expect("705#R1");
+    expect("706#R1");
+    advance(100 * MS);
+    ck_assert_uint_eq(nmt_done_events(), 2);
+    for (uint8_t id = 4; id <= 6; id++)
+        ck_assert(!co_net_master_nmt_awaited(&master, id));
+}
+END_TEST
+
+/* A node that produces no heartbeat confirms by its reply to the guarding request (its toggle
+ * bit set aside), at once. */
+START_TEST(nmt_command_confirmed_by_a_guarding_reply)
+{
+    for (size_t i = 0; i < SLAVES; i++) {
+        table[i].writes = &writes[1]; /* no 1017h: the slaves send no heartbeat */
+        table[i].write_count = 1;
+    }
+    start_master();
+    bus.next = bus.count;
+    ck_assert(co_net_master_nmt(&master, CO_NMT_CS_ENTER_PRE_OPERATIONAL, 6, 500, bus.now));
+    advance(0);
+    expect("000#8006");
+    expect("706#R1");
+    ck_assert(sent_later("706#7F")); /* the reply: Pre-operational */
+    ck_assert_uint_eq(nmt_done_events(), 1);
+    ck_assert(!co_net_master_nmt_awaited(&master, 6));
+    ck_assert(co_net_master_nmt(&master, CO_NMT_CS_START, 6, 500, bus.now));
+    advance(0);
+    expect("000#0106");
+    expect("706#R1");
+    ck_assert(sent_later("706#85")); /* Operational, toggle bit set */
+    ck_assert_uint_eq(nmt_done_events(), 2);
+}
+END_TEST
+
+/* A node that never answers is still awaited when the deadline ends the command, exactly then;
+ * a node the master consumes the heartbeat of is not asked by a guarding request. */
+START_TEST(nmt_command_unconfirmed_at_its_deadline)
+{
+    for (size_t i = 0; i < SLAVES; i++)
+        table[i].heartbeat_ms = 150;
+    start_master();
+    bus.next = bus.count;
+    co_time_t from = bus.now;
+    ck_assert(co_net_master_nmt(&master, CO_NMT_CS_START, 9, 300, bus.now));
+    expect("000#0109");
+    expect("709#R1");
+    ck_assert(co_net_master_nmt(&master, CO_NMT_CS_STOP, 4, 300, bus.now) == false);
+    advance(299 * MS);
+    ck_assert_uint_eq(nmt_done_events(), 0);
+    ck_assert_uint_le(co_net_master_process(&master, bus.now), from + 300 * MS);
+    advance(1 * MS);
+    ck_assert_uint_eq(nmt_done_events(), 1);
+    ck_assert(co_net_master_nmt_awaited(&master, 9));
+    bus.next = bus.count;
+    ck_assert(co_net_master_nmt(&master, CO_NMT_CS_STOP, 4, 300, bus.now));
+    expect("000#0204");
+    ck_assert(!sent_later("704#R1"));
+    ck_assert(!co_net_master_nmt(&master, 0x03, 4, 300, bus.now)); /* no such command here */
+    ck_assert(!co_net_master_nmt(&master, CO_NMT_CS_START, 128, 300, bus.now));
+}
+END_TEST
+
+/* A reset is confirmed by the node's boot-up, after which the master boots the slave again. */
+START_TEST(nmt_reset_confirmed_by_the_boot_up)
+{
+    start_master();
+    bus.next = bus.count;
+    ck_assert(co_net_master_nmt(&master, CO_NMT_CS_RESET_NODE, 4, 300, bus.now));
+    advance(0);
+    expect("000#8104");
+    expect("704#00");
+    ck_assert_uint_eq(nmt_done_events(), 1);
+    ck_assert(!co_net_master_nmt_awaited(&master, 4));
+    expect_boot(4);
+    ck_assert_uint_eq(co_net_master_slave_status(&master, 4), 0x000F);
+}
+END_TEST
+
+static struct {
+    co_net_request_t request;
+    co_sdo_client_result_t result;
+    size_t count;
+} done_log[8];
+static size_t done_count;
+
+static void request_done(void *user, const co_net_request_t *request,
+                         const co_sdo_client_result_t *result)
+{
+    ck_assert_ptr_eq(user, &bus);
+    ck_assert_uint_lt(done_count, 8);
+    done_log[done_count].request = *request;
+    done_log[done_count].result = *result;
+    done_log[done_count++].count = bus.count;
+}
+
+/* SDO requests of the application wait for the master's own client until the boot of the slaves
+ * that are ready leaves it free, and run one at a time in the order asked; an abort is the last
+ * SDO error; the queue holds CO_NET_REQUEST_MAX. */
+START_TEST(sdo_requests_queued_behind_the_boot)
+{
+    static uint8_t vendor[4], abort_buf[4];
+    static uint8_t value[] = {0x44, 0x33, 0x22, 0x11};
+    done_count = 0;
+    ck_assert(co_net_master_init(&master, &config));
+    co_net_request_t read = {.node_id = 4,
+                             .index = 0x1018,
+                             .subindex = 1,
+                             .data = vendor,
+                             .len = sizeof vendor,
+                             .done = request_done,
+                             .user = &bus};
+    co_net_request_t write = {.node_id = 5,
+                              .index = 0x2000,
+                              .subindex = 7,
+                              .write = true,
+                              .data = value,
+                              .len = sizeof value,
+                              .done = request_done,
+                              .user = &bus};
+    co_net_request_t missing = read;
+    missing.index = 0x1234;
+    missing.subindex = 0;
+    missing.data = abort_buf;
+    ck_assert(co_net_master_sdo(&master, &read, bus.now));
+    ck_assert(co_net_master_sdo(&master, &write, bus.now));
+    ck_assert(co_net_master_sdo(&master, &missing, bus.now));
+    ck_assert(co_net_master_sdo(&master, &read, bus.now));
+    ck_assert(!co_net_master_sdo(&master, &read, bus.now)); /* full */
+    co_net_master_start(&master, bus.now);
+    advance(0);
+    expect("000#8200");
+    expect("704#00");
+    expect("705#00");
+    expect("706#00");
+    expect_boot(4);
+    expect_boot(5);
+    expect_boot(6);
+    expect("604#4018100100000000");
+    expect("584#431810015F000000");
+    expect("605#2300200744332211");
+    expect("585#6000200700000000");
+    expect("604#4034120000000000");
+    expect("584#8034120000000206");
+    expect("604#4018100100000000");
+    expect("584#431810015F000000");
+    ck_assert_uint_eq(done_count, 4);
+    ck_assert_uint_eq(done_log[0].result.status, CO_SDO_CLIENT_OK);
+    ck_assert_mem_eq(vendor, "\x5F\x00\x00\x00", 4);
+    ck_assert(done_log[1].request.write);
+    ck_assert_uint_eq(done_log[1].result.status, CO_SDO_CLIENT_OK);
+    ck_assert_uint_eq(slave_u32(5, 0x2000, 7), 0x11223344);
+    ck_assert_uint_eq(done_log[2].result.status, CO_SDO_CLIENT_SERVER_ABORT);
+    ck_assert_uint_eq(done_log[2].result.abort_code, 0x06020000);
+    ck_assert_uint_eq(master.last_sdo_error.node_id, 4);
+    ck_assert_uint_eq(master.last_sdo_error.index, 0x1234);
+    ck_assert_uint_eq(master.last_sdo_error.access, CO_NET_ACCESS_READ);
+    ck_assert_uint_eq(master.last_sdo_error.abort_code, 0x06020000);
+    ck_assert_uint_eq(co_net_master_status(&master), 0x000F);
+}
+END_TEST
+
+/* Disabling the master ends the request under way and those queued with 0x05040000, no frame. */
+START_TEST(disable_ends_the_sdo_requests)
+{
+    static uint8_t buf[4];
+    done_count = 0;
+    start_master();
+    slaves[0].present = false; /* node 4 does not answer */
+    co_net_request_t read = {.node_id = 4,
+                             .index = 0x1018,
+                             .subindex = 1,
+                             .data = buf,
+                             .len = sizeof buf,
+                             .done = request_done,
+                             .user = &bus};
+    ck_assert(co_net_master_sdo(&master, &read, bus.now));
+    ck_assert(co_net_master_sdo(&master, &read, bus.now));
+    bus.next = bus.count;
+    advance(0);
+    expect("604#4018100100000000");
+    size_t before = bus.count;
+    co_net_master_disable(&master, bus.now);
+    ck_assert_uint_eq(master_frames_since(before), 0);
+    ck_assert_uint_eq(done_count, 2);
+    for (size_t k = 0; k < 2; k++) {
+        ck_assert_uint_eq(done_log[k].result.status, CO_SDO_CLIENT_CLIENT_ABORT);
+        ck_assert_uint_eq(done_log[k].result.abort_code, 0x05040000);
+    }
+    ck_assert(!co_net_master_sdo(&master, &read, bus.now));
+}
+END_TEST
+
 static Suite *net_master_suite(void)
 {
     Suite *s = suite_create("net_master");
@@ -913,6 +1260,16 @@ static Suite *net_master_suite(void)
     tcase_add_test(tc, process_image_out_on_sync);
     tcase_add_test(tc, configuration_is_checked);
     tcase_add_test(tc, texts);
+    tcase_add_test(tc, master_heartbeat_on_its_grid);
+    tcase_add_test(tc, master_heartbeat_needs_a_node_id_of_its_own);
+    tcase_add_test(tc, disable_stops_every_frame_and_enable_boots_again);
+    tcase_add_test(tc, bus_off_and_bus_power_bits);
+    tcase_add_test(tc, nmt_command_confirmed_by_the_next_heartbeat);
+    tcase_add_test(tc, nmt_command_confirmed_by_a_guarding_reply);
+    tcase_add_test(tc, nmt_command_unconfirmed_at_its_deadline);
+    tcase_add_test(tc, nmt_reset_confirmed_by_the_boot_up);
+    tcase_add_test(tc, sdo_requests_queued_behind_the_boot);
+    tcase_add_test(tc, disable_ends_the_sdo_requests);
     suite_add_tcase(s, tc);
     return s;
 }

@@ -29,10 +29,14 @@ START_TEST(heartbeat_loss_is_a_network_fault)
     ck_assert_uint_eq(bench_read(&b, 0x1001, 0), 0x11);
     ck_assert_uint_eq(bench_read(&b, 0x1003, 0), 1);
     ck_assert_uint_eq(bench_read(&b, 0x1003, 1), 0x8130);
+    ck_assert_int_eq(b.drive.comm_loss.source, DRIVE_COMM_LOSS_HEARTBEAT);
+    ck_assert_uint_eq(b.drive.comm_loss.node, 1);
     /* The producer coming back does not clear the latched fault. */
     bench_rx(&b, "701#05");
     ck_assert_uint_eq(bench_read(&b, 0x6041, 0), 0x0608);
+    ck_assert_int_eq(b.drive.comm_loss.source, DRIVE_COMM_LOSS_HEARTBEAT);
     ck_assert_uint_eq(bench_command(&b, 0x0080), 0x0640);
+    ck_assert_int_eq(b.drive.comm_loss.source, DRIVE_COMM_LOSS_NONE); /* the fault reset */
     bench_expect(&b, "084#0000000000000000");
     ck_assert_uint_eq(bench_read(&b, 0x603F, 0), 0);
     ck_assert_uint_eq(bench_read(&b, 0x1001, 0), 0);
@@ -55,6 +59,10 @@ START_TEST(life_guarding_loss_is_a_network_fault)
     bench_expect(&b, "084#3081110000000000");
     ck_assert_uint_eq(bench_read(&b, 0x6041, 0), 0x0608);
     ck_assert_str_eq(drive_state_name(&b.drive), "Fault");
+    ck_assert_int_eq(b.drive.comm_loss.source, DRIVE_COMM_LOSS_GUARDING);
+    ck_assert_uint_eq(b.drive.comm_loss.node, 0);
+    bench_rx(&b, "000#8104"); /* a reset node forgets it */
+    ck_assert_int_eq(b.drive.comm_loss.source, DRIVE_COMM_LOSS_NONE);
 }
 END_TEST
 

@@ -71,6 +71,28 @@ START_TEST(err_led_shows_the_worst_error)
 }
 END_TEST
 
+/* CiA 303-3's single flash: an error counter at the warning level, which error passive is above;
+ * frames lost (overrun) have no pattern, their EMCY tells the master (D-ERR-LED). */
+START_TEST(err_led_single_flash_is_the_warning_level)
+{
+    bench_t b;
+    bench_start(&b);
+    drive_bus_warning(&b.drive, true);
+    ck_assert_int_eq(drive_panel_err_led(&b.drive), DRIVE_LED_SINGLE_FLASH);
+    bench_expect_none(&b); /* CiA 301 has no EMCY for the warning level */
+    ck_assert_uint_eq(bench_read(&b, 0x1001, 0), 0);
+    drive_bus_warning(&b.drive, false);
+    ck_assert_int_eq(drive_panel_err_led(&b.drive), DRIVE_LED_OFF);
+    drive_bus_event(&b.drive, 0x8110, true);
+    bench_expect(&b, "084#1081110000000000");
+    ck_assert_int_eq(drive_panel_err_led(&b.drive), DRIVE_LED_OFF);
+    /* The warning level outlives a reset node, as the controller's state does. */
+    drive_bus_warning(&b.drive, true);
+    bench_rx(&b, "000#8104");
+    ck_assert_int_eq(drive_panel_err_led(&b.drive), DRIVE_LED_SINGLE_FLASH);
+}
+END_TEST
+
 int main(void)
 {
     Suite *s = suite_create("drive_panel");
@@ -78,6 +100,7 @@ int main(void)
     tcase_add_test(tc, display_follows_the_state);
     tcase_add_test(tc, run_led_follows_nmt);
     tcase_add_test(tc, err_led_shows_the_worst_error);
+    tcase_add_test(tc, err_led_single_flash_is_the_warning_level);
     suite_add_tcase(s, tc);
     return check_run_suite(s);
 }

@@ -116,7 +116,7 @@ static bool finish(probe_t *p)
 
 static bool setup(probe_t *p, const dn_scanner_config_t *sc)
 {
-    drive_config_t dc = {.profile = &atv312_profile,
+    drive_config_t dc = {.profile = atv312_devicenet_profile.drive,
                          .od_data = p->od_data,
                          .node_id = 1,
                          .send = drive_dn_drop_frame};

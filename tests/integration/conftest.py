@@ -417,15 +417,34 @@ PERIODIC_LATENESS = 0.020
 
 
 def assert_periodic(frames, period, what):
-    """Frame k is due at t0 + k x period (the core schedules from the previous due time, never
-    from the late send): after removing that schedule, the frames may differ only by wake-up
-    lateness. A wrong period drifts out of the band (1 % over 10 periods is 10 ms); one frame
+    """Frame k is due at t0 + k x period (a heartbeat producer schedules from the previous due
+    time, never from the late send): after removing that schedule, the frames may differ only by
+    wake-up lateness. A wrong period drifts out of the band (1 % over 10 periods is 10 ms); one frame
     early or late by more than the band fails too."""
     offsets = [f.timestamp - k * period for k, f in enumerate(frames)]
     spread = max(offsets) - min(offsets)
     assert spread <= PERIODIC_LATENESS, (
         f"{what}: {len(frames)} frames drift or jitter {spread * 1000:.1f} ms from a {period * 1000:.0f} ms "
         f"schedule; intervals {[round(i, 4) for i in intervals(frames)]}")
+
+
+# How much earlier than its send a frame may be stamped: the kernel stamps it when its write
+# completes, and the write of the frame before may have been the slower one.
+STAMP_SLACK = 0.002
+
+
+def assert_restarting_timer(frames, period, what):
+    """A timer that restarts at each transmission (a TPDO's event timer, CiA 301 7.5.2.35): each
+    interval is at least the period and at most one wake-up lateness over it. Lateness does not
+    add up across frames, unlike a fixed schedule's (assert_periodic). A shorter period fails at
+    once; a longer one fails when even the least late interval is past its lateness budget."""
+    gaps = intervals(frames)
+    assert min(gaps) >= period - STAMP_SLACK and max(gaps) <= period + PERIODIC_LATENESS, (
+        f"{what}: intervals {[round(i, 4) for i in gaps]} for a {period * 1000:.0f} ms timer "
+        f"that restarts at each transmission")
+    assert min(gaps) <= period + PERIODIC_LATENESS / 4, (
+        f"{what}: even the shortest interval {min(gaps) * 1000:.1f} ms is late: the period is "
+        f"longer than {period * 1000:.0f} ms")
 
 
 # ---- DeviceNet drives ---------------------------------------------------------------------------

@@ -6,7 +6,7 @@ numbered in docs/manuals.md), CiA 301 and CiA 402."""
 
 import pytest
 
-from conftest import Frame, assert_periodic, cansend
+from conftest import Frame, assert_periodic, assert_restarting_timer, cansend
 
 NODE = 4
 BOOTUP = "704#00"
@@ -99,7 +99,7 @@ def test_tpdo1_event_timer_100ms(dump, drive):
     start_node(dump)
     frames = dump.collect_n(0x184, 8, timeout=2.0)
     assert {f.data for f in frames} == {bytes.fromhex("4006")}  # 0x0640 switch on disabled
-    assert_periodic(frames[1:], 0.100, "TPDO1")
+    assert_restarting_timer(frames[1:], 0.100, "TPDO1")
 
 
 def test_tpdo1_sent_on_status_change_after_inhibit_time(dump, drive, bus):

@@ -109,7 +109,7 @@ def test_usage_errors():
         EX_USAGE, "comaster: '128' is not a node-id: give a number 1..127\n")
     assert comaster("frobnicate")[0::2] == (
         EX_USAGE, "comaster: unknown command 'frobnicate': give one of read, write, nmt, scan, monitor, drive, "
-        "boot, run, set, get, status (see comaster --help)\n")
+        "boot, run, set, get, status, disable, enable, can (see comaster --help)\n")
     assert comaster("read", 4, "0x1000", "u7")[0] == EX_USAGE
     # An object the EDS does not have: no data type to write VALUE as (read would guess by size).
     assert comaster("--eds", EDS, "write", 4, "0x1234:1", "5")[0::2] == (

@@ -8,7 +8,7 @@ import subprocess
 
 import pytest
 
-from conftest import NMT_START, REPLY_TIMEOUT, daemon_path
+from conftest import NMT_START, REPLY_TIMEOUT, Frame, daemon_path
 
 NODE = 4
 EX_DATAERR = 65
@@ -83,7 +83,7 @@ def test_fault_stops_the_running_motor_on_tpdo1(bus, control):
 
 
 def test_fault_reaction_ramps_down_in_tpdos_before_the_fault(bus, control):
-    """COL = 2 (ramp stop): CnF injected into the running drive stops the motor on the DEC ramp
+    """COL = 2 (ramp stop): COF injected into the running drive stops the motor on the DEC ramp
     (2.0 s here) in Fault reaction active: TPDO6 (ETAD, RFRD) shows ETAD 0x020F with the speed
     falling frame after frame, then ETAD 0x0608 at speed 0 (Fault). The speed is whole rpm of a
     motor modelled in milli-rpm: when a 10 ms step leaves it under 1 rpm, the last reaction frame
@@ -97,10 +97,10 @@ def test_fault_reaction_ramps_down_in_tpdos_before_the_fault(bus, control):
     bus.sdo_write(NODE, 0x6040, 0, 0x000F, 2)
     bus.expect(0x284, "2706DC05", timeout=5.0)
     mark = bus.mark()
-    status, reply = ctl(control, "fault", NODE, "CnF")
-    assert status == 0 and reply.startswith("ok node 4: CnF"), reply
+    status, reply = ctl(control, "fault", NODE, "COF")
+    assert status == 0 and reply.startswith("ok node 4: COF"), reply
     s = state(control)
-    assert (s["cia402"], s["display"], s["statusword"]) == ("Fault reaction active", "CnF", 0x020F)
+    assert (s["cia402"], s["display"], s["statusword"]) == ("Fault reaction active", "COF", 0x020F)
     reaction = []
     while True:
         frame = bus.expect(0x284, timeout=5.0)
@@ -170,13 +170,13 @@ def test_frame_counters_of_each_of_two_drives(bus, start_daemon, tmp_path):
 @pytest.mark.parametrize(
     "words, error",
     [
-        (["fault", 4, "XYZ"], "error: unknown fault 'XYZ': node 4 knows CnF, ILF, SLF, OCF, SCF, OSF, USF, PHF, ObF, OPF, OHF, OtF, OLF, SOF, CrF, EEF, InF, CFF, CFI, LFF, EPF"),
+        (["fault", 4, "XYZ"], "error: unknown fault 'XYZ': node 4 knows COF, ILF, SLF, OCF, SCF, OSF, USF, PHF, ObF, OPF, OHF, OtF, OLF, SOF, CrF, EEF, InF, CFF, CFI, LFF, EPF"),
         (["fault", 9, "OHF"], "error: node 9 is not present: this daemon runs node-id 4"),
         (["fault", 4], "error: usage: fault NODE CODE (e.g. fault 4 OHF)"),
         (["clear", 4, "OHF"], "error: node 4: no cause of OHF is present"),
         (["mains", 4, "low"], "error: usage: mains NODE undervoltage|normal"),
         (["state", "x"], "error: node x is not present: this daemon runs node-id 4"),
-        (["reboot", 4], "error: unknown command 'reboot': the commands are fault, clear, mains, stop-key, run-key, local, load, input, state"),
+        (["reboot", 4], "error: unknown command 'reboot': the commands are fault, clear, mains, stop-key, run-key, local, load, input, analog, pot, state"),
         (["run-key", 4], "error: node 4 is under network control: the RUN key works under local control (local 4 on, or a command channel other than CANopen)"),
         (["local", 4, "off"], "error: node 4 is under network control already"),
         (["load", 4, "151"], "error: load 151: give a percentage of nominal torque, 0..150"),
@@ -252,6 +252,46 @@ def test_load_raises_torque_and_current(bus, control):
     assert (s["torque_percent"], s["current_a"], s["speed_rpm"]) == (70, 3.1, 1500)
 
 
+def test_analog_input_and_terminal_run(bus, control):
+    """CHCF = SIM, Fr1 = AI2: reference and command from the terminals. `analog 4 AI2 5` and
+    `input 4 LI1 on` run the drive to 750 rpm (TPDO6: ETAD 0x0427, RFRD 750); -5 V reverses it
+    (0x8427, -750); LI1 off stops it to Switch on disabled (0x0440)."""
+    bus.sdo_write(NODE, 0x2036, 0x0E, 2, 2)  # Fr1 = AI2
+    bus.sdo_write(NODE, 0x1805, 1, 0x284, 4)  # TPDO6 valid: ETAD + RFRD
+    bus.nmt(NMT_START, NODE)
+    bus.expect(0x284, "40040000", timeout=REPLY_TIMEOUT)
+    assert ctl(control, "analog", NODE, "AI2", 5) == (0, "ok node 4: AI2 5.000 V")
+    assert ctl(control, "input", NODE, "LI1", "on") == (0, "ok node 4: LI1 on")
+    bus.expect(0x284, "2704EE02", timeout=5.0)
+    assert ctl(control, "analog", NODE, "AI2", -5) == (0, "ok node 4: AI2 -5.000 V")
+    bus.expect(0x284, "278412FD", timeout=5.0)
+    assert ctl(control, "input", NODE, "LI1", "off") == (0, "ok node 4: LI1 off")
+    bus.expect(0x284, "40040000", timeout=5.0)
+    assert ctl(control, "pot", NODE, 50) == (EX_DATAERR, "error: node 4 has no reference potentiometer")
+
+
+def test_atv31_potentiometer_and_stop_reset_key(bus, start_daemon, tmp_path):
+    """The ATV31's potentiometer (Fr1 = 7) gives the reference: 50 % is 750 rpm (TPDO6); its
+    STOP/RESET key resets OHF once the cause is gone (EMCY 0000, status word 0x4640)."""
+    sock = tmp_path / "atv31.sock"
+    start_daemon(bus, "--node-id", NODE, "--model", "atv31", "--control", sock)
+    bus.sdo_write(NODE, 0x2036, 2, 2, 2)  # CHCF = SEP: the network commands
+    bus.sdo_write(NODE, 0x2036, 0x0E, 7, 2)  # Fr1 = AIP
+    bus.sdo_write(NODE, 0x1805, 1, 0x284, 4)  # TPDO6 valid: ETAD + RFRD
+    bus.nmt(NMT_START, NODE)
+    assert ctl(sock, "pot", NODE, 50) == (0, "ok node 4: AIP 50.0 %")
+    bus.sdo_write(NODE, 0x6040, 0, 0x0006, 2)
+    bus.sdo_write(NODE, 0x6040, 0, 0x000F, 2)
+    bus.expect(0x284, "2706EE02", timeout=5.0)
+    assert ctl(sock, "fault", NODE, "OHF")[0] == 0
+    bus.expect(0x84, "1042010000000000")
+    assert ctl(sock, "clear", NODE, "OHF")[0] == 0
+    mark = bus.mark()
+    assert ctl(sock, "stop-key", NODE) == (0, "ok node 4: STOP/RESET key: fault OHF reset (status word bit 14)")
+    bus.expect(0x84, "0000000000000000", since=mark)
+    assert bus.sdo_read(NODE, 0x6041, 0) == 0x4640
+
+
 def test_state_of_a_full_bench(bus, start_daemon, tmp_path):
     """127 drives: `state` answers every one on one line, whole (text and JSON)."""
     sock = tmp_path / "bench.sock"
@@ -264,3 +304,27 @@ def test_state_of_a_full_bench(bus, start_daemon, tmp_path):
     status, reply = ctl(sock, "state")
     assert status == 0 and reply.count("; node ") == 126 and reply.endswith("node 127: nmt Pre-operational, cia402 Switch on disabled, statusword 0640, speed 0 rpm, current 0.0 A, torque 0 %, display nSt, RUN blinking, ERR off, fault none, frames received 0, sent 1, dropped 0, SDO requests 0, SDO aborts 0, EMCY 0")
     assert len(reply) < 65536
+
+
+def test_state_and_log_tell_a_heartbeat_loss_from_a_guarding_loss(bus, start_daemon, tmp_path):
+    sock = tmp_path / "atv312d.sock"
+    d = start_daemon(bus, "--node-id", "4-5", "--control", sock)
+    # Node 4 consumes node 1's heartbeat (1016h:01, 100 ms); node 5 is life guarded (100 ms x 2).
+    bus.sdo_write(4, 0x1016, 1, (1 << 16) | 100, 4)
+    bus.sdo_write(5, 0x100C, 0, 100, 2)
+    bus.sdo_write(5, 0x100D, 0, 2, 1)
+    bus.send(Frame(0x701, b"\x05"))
+    bus.request(Frame(0x705, b"", rtr=True), 0x705)
+    bus.expect(0x084, "3081010000000000", timeout=1.0)
+    bus.expect(0x085, "3081010000000000", timeout=1.0)
+    status, reply = ctl(sock, "state")
+    assert status == 0, reply
+    assert ", ERR double flash, fault COF, comm-loss heartbeat node 1, frames " in reply, reply
+    assert ", ERR double flash, fault COF, comm-loss guarding, frames " in reply, reply
+    assert state(sock, 4)["comm_loss"] == {"by": "heartbeat", "node": 1}
+    assert state(sock, 5)["comm_loss"] == {"by": "guarding"}
+    log = d.log()
+    assert "node 4: communication loss (EMCY 8130, error register 01): heartbeat of node 1 timed out" in log, log
+    assert "node 5: communication loss (EMCY 8130, error register 01): life guarding timed out" in log, log
+    bus.sdo_write(4, 0x6040, 0, 0x0080, 2)  # fault reset: the loss is over
+    assert state(sock, 4)["comm_loss"] is None

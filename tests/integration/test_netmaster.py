@@ -4,6 +4,7 @@ read back with python canopen, an output set from another comaster reaching the 
 drive killed (SIGKILL) and started again that the master boots and reconfigures, an identity
 mismatch. Every wait is deadline based."""
 
+import json
 import os
 import queue
 import re
@@ -15,7 +16,7 @@ import time
 import canopen
 import pytest
 
-from conftest import BOOT_TIMEOUT, EDS, IFACE, ROOT
+from conftest import BOOT_TIMEOUT, EDS, IFACE, PERIODIC_LATENESS, ROOT, assert_periodic
 
 COMASTER = os.environ.get("COMASTER") or str(ROOT / "build" / "apps" / "comaster" / "comaster")
 NET = ROOT / "examples" / "netmaster"
@@ -106,7 +107,8 @@ def run(tmp_path):
     yield start
     for r in runs:
         assert r.stop() == 0, "comaster run did not exit 0 on SIGTERM"
-        assert not [line for line in r.seen if line.startswith("comaster: ") and "control socket" not in line], \
+        assert not [line for line in r.seen if line.startswith("comaster: ") and "control socket" not in line
+                    and not line.startswith(f"comaster: warn: interface {IFACE} is down")], \
             "SIGTERM, the normal end of a run, was reported as an error"
         assert not os.path.exists(r.control), "the control socket was left behind"
         print("--- comaster run ---\n" + "\n".join(r.seen))
@@ -161,6 +163,13 @@ def test_run_boots_drives_4_to_6_from_their_dcfs(bus, start_daemon, run, remote)
         "master 0x000F all-contacted all-configured all-error-control-started init-finished",
         "node 4 drive4 0x000F operational", "node 5 drive5 0x000F operational",
         "node 6 drive6 0x000F operational", "last SDO error: none", "last EMCY: none"]
+    rc, out, _ = r.request("--json", "status")
+    assert rc == 0
+    assert json.loads(out) == {
+        "status": "0x000F",
+        "slaves": [{"node": n, "name": f"drive{n}", "status": "0x000F", "step": "operational", "failure": None}
+                   for n in (4, 5, 6)],
+        "last_sdo_error": None, "last_emcy": None}
 
 
 def test_set_speed_reaches_the_drive_by_rpdo(bus, start_daemon, run, remote):
@@ -184,6 +193,8 @@ def test_set_speed_reaches_the_drive_by_rpdo(bus, start_daemon, run, remote):
     assert r.request("get", 4, "actual_speed") == (0, "1200\n", "")
     assert r.request("get", 4, "status")[1] == "1575\n"  # 0x0627: operation enabled, at speed
     assert r.request("get", 4, "speed") == (0, "1200\n", "")
+    assert r.request("--json", "get", 4, "actual_speed") == (0, '{"node": 4, "name": "actual_speed", "value": 1200}\n', "")
+    assert r.request("--json", "set", 5, "speed", "0x10") == (0, '{"node": 5, "name": "speed", "value": 16}\n', "")
     assert r.request("get", 5, "actual_speed") == (0, "0\n", "")
 
 
@@ -272,3 +283,141 @@ def test_boot_one_slave(bus, start_daemon, remote):
     rc, out, err = comaster("boot", 7, NET / "drive4.dcf")
     assert rc == EXIT_TIMEOUT, out + err
     assert "SDO error: node 7 read 1000h:00 abort 0x05040000 (SDO protocol timed out)" in out.splitlines(), out
+
+
+def test_boot_new_can_id_of_a_valid_pdo(bus, start_daemon, remote, tmp_path):
+    """A DCF that changes only the COB-ID of TPDO1, valid on the drive (issue 19): the drive refuses
+    a new CAN-ID of a valid PDO (0x06090030), so the master writes the old COB-ID (the DCF's
+    DefaultValue) with bit 31 set first, then the new one."""
+    text = (NET / "drive4.dcf").read_text()
+    text = text.replace("[1800sub1]\n", "[1800sub1]\nParameterValue=$NODEID+0x190\n", 1)
+    dcf = tmp_path / "drive4.dcf"
+    dcf.write_text(text)
+    start_daemon(bus, "--node-id", "4")
+    rc, out, err = comaster("boot", 4, dcf)
+    assert rc == 0, out + err
+    bus.expect(0x604, "2300180184010080")
+    bus.expect(0x604, "2300180194010000")
+    assert remote(4).sdo[0x1800][1].raw == 0x194
+
+
+# ---- the master's own heartbeat and the requests of comaster run's control socket --------------
+
+MASTER_HEARTBEAT_MS = 100
+DRIVE4_CONSUMES_MS = 300  # drive 4's 1016h:01 consumes node 1's heartbeat
+
+
+def supervised_bench(tmp_path):
+    """The bench with the master's heartbeat (node 1, 100 ms) and drive 4 consuming it (1016h:01 =
+    node 1, 300 ms), as a PLC300 network whose drives supervise the master."""
+    for name in ("bench.cpj", "drive5.dcf", "drive6.dcf"):
+        (tmp_path / name).write_text((NET / name).read_text())
+    dcf = (NET / "drive4.dcf").read_text()
+    dcf = dcf.replace("[1016sub1]\n", f"[1016sub1]\nParameterValue=0x{(1 << 16) | DRIVE4_CONSUMES_MS:08X}\n", 1)
+    (tmp_path / "drive4.dcf").write_text(dcf)
+    ini = (NET / "bench.ini").read_text().replace("[Master]\n", f"[Master]\nnode_id = 1\nheartbeat = {MASTER_HEARTBEAT_MS}\n", 1)
+    (tmp_path / "bench.ini").write_text(ini)
+    return tmp_path / "bench.ini"
+
+
+def test_drive_supervises_the_master_heartbeat_until_it_stops(bus, start_daemon, run, tmp_path):
+    """The PLC300 produces a heartbeat (its 1017h, [Master] heartbeat): drive 4, configured to consume
+    it, does not fault while the master beats, and does (EMCY 8130h) once the master's
+    communication is disabled and its heartbeat stops."""
+    start_daemon(bus, "--node-id", "4-6")
+    r = run(supervised_bench(tmp_path))
+    expect_booted(r)
+    beats = bus.collect_n(0x701, 10, timeout=2.0)
+    assert all(f.data == bytes([0x05]) for f in beats)
+    assert_periodic(beats, MASTER_HEARTBEAT_MS / 1000, "the master's heartbeat")
+    bus.expect_none(0x084, 0.5)  # several consumer times: drive 4 is content
+    rc, out, _ = r.request("disable")
+    assert (rc, out) == (0, "master 0x8000 disabled\n")
+    stopped = time.monotonic()
+    bus.expect(0x084, "3081010000000000", timeout=1.0)  # heartbeat error, error register 01
+    assert time.monotonic() - stopped >= DRIVE4_CONSUMES_MS / 1000 - 0.1 - PERIODIC_LATENESS
+    bus.expect_none(0x701, 0.3)
+
+
+def test_nmt_through_the_run_is_confirmed_by_the_state(bus, start_daemon, run):
+    start_daemon(bus, "--node-id", "4-6")
+    r = run()
+    expect_booted(r)
+    mark = bus.mark()
+    assert r.request("nmt", "stop", 5, "--run") == (0, "node 5: Stopped\n", "")
+    bus.expect(0x000, "0205", since=mark)
+    bus.expect(0x705, "04")
+    rc, out, _ = r.request("--json", "nmt", "preop", "all", "--run")
+    assert rc == 0
+    assert json.loads(out) == {"node": "all", "command": "preop", "state": "Pre-operational",
+                               "confirmed": [4, 5, 6]}
+    assert r.request("nmt", "start", "all", "--run") == (0, "all: Operational (nodes 4 5 6)\n", "")
+    rc, out, err = r.request("--timeout", 300, "nmt", "start", 9, "--run")
+    assert (rc, out) == (EXIT_TIMEOUT, "")
+    assert err == "comaster: node 9: no Operational reported within 300 ms after start: is the node on vcan0?\n"
+    assert r.request("nmt", "reset-node", 6, "--run") == (0, "node 6: boot-up\n", "")
+    r.expect(f"node 6 drive6: {BOOTED}")  # booted again by the master
+    rc, out, _ = r.request("status")  # five commands: bit 8 (the NMT toggle feedback) is set
+    assert out.splitlines()[0] == ("master 0x010F all-contacted all-configured all-error-control-started "
+                                   "init-finished nmt-toggle")
+
+
+def test_sdo_through_the_run_shares_its_client(bus, start_daemon, run, remote):
+    start_daemon(bus, "--node-id", "4-6")
+    r = run()
+    expect_booted(r)
+    assert r.request("read", 4, "ACC", "--run") == (0, "20\n", "")
+    bus.expect(0x604, "403C200200000000")  # the master's own client: 604h, the only one
+    assert r.request("write", 4, "ACC", 50, "--run") == (0, "ok\n", "")
+    assert remote(4).sdo[0x203C][2].raw == 50
+    rc, out, _ = r.request("--json", "read", 5, "0x1008", "string", "--run")
+    assert rc == 0
+    assert json.loads(out) == {"node": 5, "index": "0x1008", "subindex": 0, "name": "Manufacturer device name",
+                               "type": "VISIBLE_STRING", "value": "ATV312"}
+    rc, _, err = r.request("read", 4, "0x1234:0", "u8", "--run")
+    assert (rc, err) == (1, "comaster: node 4, 1234:00: SDO abort 0x06020000: object does not exist in the "
+                            "object dictionary\n")
+    rc, _, err = r.request("read", 9, "0x1000", "u32", "--run")
+    assert (rc, err) == (EXIT_TIMEOUT, "comaster: node 9, 1000:00: no answer within 500 ms (the run's sdo_timeout)\n")
+    rc, out, _ = r.request("status")
+    assert "last SDO error: node 9 read 1000h:00 abort 0x05040000 (SDO protocol timed out)" in out.splitlines()
+
+
+def test_disable_stops_the_master_and_enable_boots_the_network_again(bus, start_daemon, run):
+    start_daemon(bus, "--node-id", "4-6")
+    r = run()
+    expect_booted(r)
+    assert r.request("disable") == (0, "master 0x8000 disabled\n", "")
+    disabled = time.time()
+    r.expect("master: status 0x8000 disabled")
+    frames = [f for f in bus.collect(0.5) if f.timestamp > disabled]
+    assert [f for f in frames if f.can_id == 0x000 or 0x600 <= f.can_id <= 0x67F] == []
+    assert frames, "the drives beat on"
+    rc, out, _ = r.request("status")
+    assert out.splitlines()[:2] == ["master 0x8000 disabled", "node 4 drive4 0x0000 idle"]
+    rc, _, err = r.request("nmt", "start", 4, "--run")
+    assert (rc, err) == (EX_DATAERR, "comaster: the communication of the run is disabled: comaster enable\n")
+    assert r.request("--json", "enable") == (0, '{"status": "0x0000", "disabled": false}\n', "")
+    bus.expect(0x000, "8200")
+    expect_booted(r)
+
+
+def test_can_tells_the_controller_state_and_counters(bus, start_daemon, run):
+    start_daemon(bus, "--node-id", "4-6")
+    r = run()
+    expect_booted(r)
+    rc, out, _ = r.request("can")
+    assert rc == 0
+    assert re.fullmatch(r"can vcan0: error-active, rx \d+, tx \d+, tx-dropped 0, error-frames 0, bus-off 0\n", out), out
+    rc, out, _ = r.request("--json", "can")
+    state = json.loads(out)
+    assert state["state"] == "error-active" and state["bus_power"] is True and state["tx"] > 10
+    try:
+        subprocess.run(["ip", "link", "set", IFACE, "down"], check=True, timeout=5)
+        deadline = time.monotonic() + 2.0
+        while (out := r.request("can")[1]).split(",")[0] != "can vcan0: no bus power":
+            assert time.monotonic() < deadline, out
+        rc, out, _ = r.request("status")  # bits 14 and 15 (the slaves are lost meanwhile)
+        assert re.fullmatch(r"master 0xC0[0-9A-F]{2} .*no-bus-power disabled", out.splitlines()[0]), out
+    finally:
+        subprocess.run(["ip", "link", "set", IFACE, "up"], check=True, timeout=5)

@@ -243,7 +243,7 @@ def test_store_keeps_each_drive_of_a_bench_apart(bus, start_daemon, tmp_path):
 # as if a controller driver had reported it: the daemon cannot tell the difference.
 CAN_ERR_FLAG = 0x20000000
 CAN_ERR_CRTL, CAN_ERR_BUSOFF, CAN_ERR_RESTARTED = 0x004, 0x040, 0x100  # linux/can/error.h classes
-CRTL_RX_OVERFLOW, CRTL_RX_WARNING, CRTL_TX_PASSIVE, CRTL_ACTIVE = 0x01, 0x04, 0x20, 0x40  # data[1]
+CRTL_RX_OVERFLOW, CRTL_RX_WARNING, CRTL_TX_WARNING, CRTL_TX_PASSIVE, CRTL_ACTIVE = 0x01, 0x04, 0x08, 0x20, 0x40  # data[1]
 EMCY = 0x080 + NODE
 COMMUNICATION_ERROR_REGISTER = 0x01  # 1001h: the ATV312 manual's "=1 (error)", no class bit
 
@@ -349,3 +349,45 @@ def test_warning_level_is_logged_without_an_emergency(bus, drive):
     assert bus.sdo_read(NODE, 0x1001, 0) == 0
     assert drive.stop() == EX_OK
     assert "error warning level" in drive.log()
+
+
+def status_line(daemon, expected_start, timeout=BOOT_TIMEOUT):
+    """The status surface's first line as SIGUSR1 logs it, once it starts with expected_start."""
+    deadline = time.monotonic() + timeout
+    while True:
+        daemon.proc.send_signal(signal.SIGUSR1)
+        time.sleep(0.05)
+        lines = [l for l in daemon.log().splitlines() if f"status: {IFACE}: CAN" in l]
+        if lines and lines[-1].split("status: ", 1)[1].startswith(expected_start):
+            return lines[-1].split("status: ", 1)[1]
+        assert time.monotonic() < deadline, f"no status line starting {expected_start!r}:\n{daemon.log()}"
+
+
+def test_status_tells_warning_from_passive_and_counts_bus_offs(bus, start_daemon, tmp_path):
+    sock = tmp_path / "ctl"
+    d = start_daemon(bus, "--node-id", NODE, "--control", sock)
+    send_error_frame(CAN_ERR_CRTL, CRTL_TX_WARNING)
+    line = status_line(d, "vcan0: CAN error-warning;")
+    assert ", error frames 1, bus-offs 0;" in line, line
+    send_error_frame(CAN_ERR_CRTL, CRTL_TX_PASSIVE)
+    bus.expect(EMCY, emcy(0x8120, COMMUNICATION_ERROR_REGISTER))
+    status_line(d, "vcan0: CAN error-passive;")
+    send_error_frame(CAN_ERR_CRTL, CRTL_TX_WARNING)  # back under the passive limit
+    bus.expect(EMCY, emcy(0x0000, 0x00))
+    status_line(d, "vcan0: CAN error-warning;")
+    for _ in range(2):
+        send_error_frame(CAN_ERR_BUSOFF)
+        bus.expect(EMCY, emcy(0x8140, COMMUNICATION_ERROR_REGISTER))
+        send_error_frame(CAN_ERR_RESTARTED)
+        bus.expect(EMCY, emcy(0x0000, 0x00))
+    line = status_line(d, "vcan0: CAN error-active;")
+    assert ", error frames 7, bus-offs 2;" in line, line
+    send_error_frame(CAN_ERR_CRTL, CRTL_RX_WARNING)
+    status_line(d, "vcan0: CAN error-warning;")
+    reply = subprocess.run([daemon_path(), "ctl", str(sock), "--json", "state"],
+                           capture_output=True, text=True, timeout=5)
+    assert reply.returncode == 0, reply
+    assert reply.stdout.startswith('{"ok":true,"can":{"state":"error-warning","bus_offs":2},"nodes":[{"node":4,'), reply.stdout
+    assert '"err_led":"single flash"' in reply.stdout, reply.stdout
+    send_error_frame(CAN_ERR_CRTL, CRTL_ACTIVE)
+    status_line(d, "vcan0: CAN error-active;")

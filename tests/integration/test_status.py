@@ -12,7 +12,7 @@ NODE = 4
 
 COUNTERS = re.compile(
     r"^vcan0: CAN error-active; frames received (\d+), sent (\d+), dropped 0, lost while down 0, "
-    r"error frames 0; wake-ups (\d+), sendmmsg calls (\d+)$"
+    r"error frames 0, bus-offs 0; wake-ups (\d+), sendmmsg calls (\d+)$"
 )
 
 

@@ -226,23 +226,23 @@ def test_canopen_bench_started_by_a_master_and_a_fault_by_click(bus, dump, start
                        ["Ready to switch on", "NMT Operational", "Operation enabled"]), markers
     page.screenshot("web-bench.png")
 
-    # A fault by a click on the drive's page: the communication-loss fault CnF, once the page has
+    # A fault by a click on the drive's page: the communication-loss fault COF, once the page has
     # the token it asks for.
     page.open_drive(NODE)
     assert browser.find_element(By.ID, "drive-title").text == "Node 4 · ATV312"
     assert browser.find_element(By.ID, "control-fields").get_property("disabled") is False
     page.give_token(TOKEN)
     mark = dump.mark()
-    page.click_fault("CnF")
+    page.click_fault("COF")
     dump.expect(0x80 + NODE, "3081010000000000", timeout=PAGE_TIMEOUT, since=mark)
-    assert page.reply() == "ok node 4: CnF (network fault (life guarding, heartbeat)), EMCY 8130"
-    assert browser.find_element(By.ID, "command").text == "fault 4 CnF"
+    assert page.reply() == "ok node 4: COF (CANopen communication fault (life guarding, heartbeat)), EMCY 8130"
+    assert browser.find_element(By.ID, "command").text == "fault 4 COF"
     drive_tile = page.drive_tile()
-    page.wait_tile(drive_tile, display="CnF", fault="CnF", cia402="Fault")
-    assert page.segments(drive_tile) == ["", "adef", "ceg", "aefg"]  # C n F
-    page.wait_tile(tile, display="CnF", fault="CnF", cia402="Fault")  # the bench's tile, behind
+    page.wait_tile(drive_tile, display="COF", fault="COF", cia402="Fault")
+    assert page.segments(drive_tile) == ["", "adef", "abcdef", "aefg"]  # C O F
+    page.wait_tile(tile, display="COF", fault="COF", cia402="Fault")  # the bench's tile, behind
     assert page.led(drive_tile, "ERR") == ("ERR double flash", "led-double-flash", "1.6s")
-    assert page.field(drive_tile, "fault").startswith("CnF (")
+    assert page.field(drive_tile, "fault").startswith("COF (")
     page.wait(lambda _: any(m["label"] == "Fault" for m in page.trend(NODE)["markers"]), what="a Fault marker")
     page.screenshot("web-drive.png")
     assert page.console_errors() == []

@@ -2,8 +2,9 @@
  * each line on one connection, one request is answered (also without its newline) and closed, an
  * overlong line reaches the program cut and flagged, a stale socket file is replaced while a
  * socket a server answers on and a file of another kind are not, silent clients hold up no one
- * and the one too many is told so, and the client tells a missing server and a path too long. The
- * server runs in a loop on a socketpair that carries no frame. */
+ * and the one too many is told so, a deferred reply comes by its ticket, and the client tells a
+ * missing server and a path too long. The server runs in a loop on a socketpair that carries no
+ * frame. */
 #include "check_main.h"
 #include "co_linux/line_socket.h"
 
@@ -134,6 +135,52 @@ START_TEST(one_request_without_newline_is_answered_and_closed)
 }
 END_TEST
 
+/* An answer deferred by its ticket: the connection waits, a reply under a ticket no connection
+ * has is refused, the reply comes when the program sends it and ends the connection. */
+static co_line_server_t *deferring_server;
+static uint32_t deferred_ticket;
+
+static size_t defer(void *ctx, const char *line, bool cut, char *reply, size_t cap)
+{
+    (void)ctx;
+    (void)line;
+    (void)cut;
+    (void)reply;
+    (void)cap;
+    deferred_ticket = co_line_server_defer(deferring_server);
+    co_linux_loop_stop(&loop, 0);
+    return CO_LINE_DEFERRED;
+}
+
+START_TEST(a_deferred_reply_comes_by_its_ticket)
+{
+    co_line_server_t server;
+    co_line_server_config_t config = {.mode = CO_LINE_ONE_REQUEST,
+                                      .answer = defer,
+                                      .reply = reply_buf,
+                                      .reply_cap = sizeof reply_buf};
+    const char *call = NULL;
+    ck_assert_int_eq(co_line_server_open(&server, &loop, path, &config, &call), CO_LINE_OK);
+    deferring_server = &server;
+    ck_assert_uint_eq(co_line_server_defer(&server), 0); /* outside an answer */
+    int fd = connect_client();
+    ck_assert_int_eq(send(fd, "nmt\tstart\t4\n", 13, 0), 13);
+    ck_assert_int_eq(co_linux_loop_run(&loop), 0);
+    ck_assert_uint_ne(deferred_ticket, 0);
+    char buf[128];
+    ck_assert_int_eq(recv(fd, buf, sizeof buf, MSG_DONTWAIT), -1);
+    ck_assert_int_eq(errno, EAGAIN); /* open, no reply yet */
+    ck_assert(!co_line_server_reply(&server, deferred_ticket + 1, "x\n", 2));
+    ck_assert(co_line_server_reply(&server, deferred_ticket, "node 4: Operational\n", 20));
+    read_all(fd, buf, sizeof buf);
+    ck_assert_str_eq(buf, "node 4: Operational\n");
+    ck_assert_int_eq(recv(fd, buf, sizeof buf, MSG_DONTWAIT), 0); /* closed */
+    ck_assert(!co_line_server_reply(&server, deferred_ticket, "x\n", 2));
+    close(fd);
+    co_line_server_close(&server);
+}
+END_TEST
+
 START_TEST(an_overlong_line_is_cut_and_flagged)
 {
     co_line_server_t server;
@@ -241,6 +288,7 @@ int main(void)
     tcase_add_checked_fixture(tc, setup, teardown);
     tcase_add_test(tc, a_session_answers_each_line_and_stays_open);
     tcase_add_test(tc, one_request_without_newline_is_answered_and_closed);
+    tcase_add_test(tc, a_deferred_reply_comes_by_its_ticket);
     tcase_add_test(tc, an_overlong_line_is_cut_and_flagged);
     tcase_add_test(tc, a_stale_socket_is_replaced_a_live_one_and_a_file_are_not);
     tcase_add_test(tc, silent_clients_block_no_one_and_the_one_too_many_is_told);

@@ -5,12 +5,14 @@
 #include "check_main.h"
 #include "co_linux/loop.h"
 #include "drive/drive.h"
+#include "drive/panel.h"
 #include "models.h"
 
 #include <check.h>
 #include <errno.h>
 #include <fcntl.h>
 #include <linux/can.h>
+#include <linux/can/error.h>
 #include <stdlib.h>
 #include <string.h>
 #include <sys/eventfd.h>
@@ -65,13 +67,22 @@ static co_time_t process(void *ctx, co_time_t now)
     return drive_process(&((test_drive_t *)ctx)->drive, now);
 }
 
+static void bus_warning(void *ctx, bool active)
+{
+    drive_bus_warning(&((test_drive_t *)ctx)->drive, active);
+}
+
 static const co_node_t *node_of(void *ctx)
 {
     return &((test_drive_t *)ctx)->drive.node;
 }
 
-static const co_linux_device_ops_t ops = {
-    .start = start, .restart = restart, .receive = receive, .process = process, .node = node_of};
+static const co_linux_device_ops_t ops = {.start = start,
+                                          .restart = restart,
+                                          .receive = receive,
+                                          .process = process,
+                                          .bus_warning = bus_warning,
+                                          .node = node_of};
 
 static void setup(void)
 {
@@ -185,6 +196,57 @@ START_TEST(hang_up_after_a_burst_loses_no_frame)
 }
 END_TEST
 
+/* An error frame as a controller driver reports a change of state (linux/can/error.h). */
+static void write_error_frame(canid_t error_class, uint8_t controller)
+{
+    struct can_frame frame = {.can_id = CAN_ERR_FLAG | error_class, .can_dlc = CAN_ERR_DLC};
+    frame.data[1] = controller;
+    write_datagram(&frame, sizeof frame);
+}
+
+static bool condition(co_linux_condition_kind_t which)
+{
+    return loop.bus.conditions.items[which].wanted;
+}
+
+/* The kernel's can_change_state names the state entered: from error passive back to the warning
+ * level the frame has the warning bits alone, which end error passive and keep the warning. Bus
+ * off counts once per entry; the restart ends every state. */
+START_TEST(error_frames_track_the_controller_state)
+{
+    write_error_frame(CAN_ERR_CRTL, CAN_ERR_CRTL_TX_PASSIVE);
+    write_error_frame(CAN_ERR_CRTL, CAN_ERR_CRTL_TX_WARNING);
+    write_error_frame(CAN_ERR_BUSOFF, 0);
+    write_error_frame(CAN_ERR_BUSOFF, 0);
+    write_error_frame(CAN_ERR_RESTARTED, 0);
+    write_error_frame(CAN_ERR_BUSOFF, 0);
+    write_error_frame(CAN_ERR_RESTARTED, 0);
+    write_error_frame(CAN_ERR_CRTL, CAN_ERR_CRTL_RX_WARNING);
+    ck_assert_int_eq(shutdown(bus[1], SHUT_WR), 0);
+    ck_assert_int_eq(co_linux_loop_run(&loop), 0);
+    ck_assert_uint_eq(loop.stats.error_frames, 8);
+    ck_assert_uint_eq(loop.bus.conditions.bus_offs, 2);
+    ck_assert(condition(CO_LINUX_COND_WARNING));
+    ck_assert(!condition(CO_LINUX_COND_PASSIVE));
+    ck_assert(!condition(CO_LINUX_COND_BUS_OFF));
+    ck_assert_int_eq(drive_panel_err_led(&slot.drive), DRIVE_LED_SINGLE_FLASH);
+}
+END_TEST
+
+/* Error passive is above the warning limit; error active ends both. */
+START_TEST(error_active_ends_warning_and_passive)
+{
+    write_error_frame(CAN_ERR_CRTL, CAN_ERR_CRTL_RX_PASSIVE);
+    write_error_frame(CAN_ERR_CRTL, CAN_ERR_CRTL_ACTIVE);
+    ck_assert_int_eq(shutdown(bus[1], SHUT_WR), 0);
+    ck_assert_int_eq(co_linux_loop_run(&loop), 0);
+    ck_assert(!condition(CO_LINUX_COND_WARNING));
+    ck_assert(!condition(CO_LINUX_COND_PASSIVE));
+    ck_assert_uint_eq(loop.bus.conditions.bus_offs, 0);
+    ck_assert_int_eq(drive_panel_err_led(&slot.drive), DRIVE_LED_OFF);
+}
+END_TEST
+
 static void write_burst(void *ctx, int fd);
 
 /* Requests of the burst after the lone frame: more than the reads one by one take. */
@@ -276,6 +338,8 @@ int main(void)
     tcase_add_test(tc, hang_up_after_a_burst_loses_no_frame);
     tcase_add_test(tc, burst_after_a_lone_frame_is_read_in_a_batch_again);
     tcase_add_test(tc, peer_gone_ends_the_loop);
+    tcase_add_test(tc, error_frames_track_the_controller_state);
+    tcase_add_test(tc, error_active_ends_warning_and_passive);
     tcase_add_test(tc, descriptors_without_frame_boundaries_are_refused);
     suite_add_tcase(s, tc);
     return check_run_suite(s);

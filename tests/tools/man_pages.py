@@ -22,7 +22,8 @@ ATV312D, COMASTER, DNSCAN, COTRACE, COMMANDS = None, None, None, None, []
 # atv312d's control commands as its help writes their synopses (docs/atv312d.md).
 CONTROL_COMMANDS = ["fault NODE CODE", "clear NODE CODE|all", "mains NODE undervoltage|normal",
                     "stop-key NODE", "run-key NODE", "local NODE on|off", "load NODE PERCENT",
-                    "input NODE LIn on|off", "state [NODE]"]
+                    "input NODE LIn on|off", "analog NODE AIn VALUE", "pot NODE PERCENT",
+                    "state [NODE]"]
 
 
 def man_page(name, program):

@@ -128,6 +128,10 @@ static bool config_valid(const co_net_master_config_t *config)
         config->sdo_timeout_ms < CO_NET_SDO_TIMEOUT_MIN_MS ||
         config->sdo_timeout_ms > CO_NET_SDO_TIMEOUT_MAX_MS || config->start > CO_NET_START_NONE)
         return false;
+    if (config->heartbeat_ms != 0 &&
+        (config->node_id < 1 || config->node_id > CO_NMT_MASTER_NODE_ID_MAX ||
+         config_index(config, config->node_id) != config->slave_count))
+        return false;
     for (size_t i = 0; i < config->slave_count; i++) {
         if (!slave_valid(config, i))
             return false;
@@ -139,15 +143,17 @@ static bool config_valid(const co_net_master_config_t *config)
 }
 
 static void fail(co_net_master_t *m, size_t i, co_net_failure_t failure);
+static void finish_request(co_net_master_t *m, const co_sdo_client_result_t *result);
+static bool ready(const co_net_master_t *m, const co_net_slave_t *s);
 static void forward_send(void *user, const co_frame_t *frame);
 static void sdo_done(void *user, const co_sdo_client_result_t *result);
 static void begin_identity(co_net_master_t *m, size_t i);
 static void begin_download(co_net_master_t *m, size_t i);
 
-static void record_sdo_error(co_net_master_t *m, size_t i, const co_sdo_client_result_t *r,
+static void record_sdo_error(co_net_master_t *m, uint8_t node_id, const co_sdo_client_result_t *r,
                              uint8_t access, uint32_t value)
 {
-    m->last_sdo_error = (co_net_sdo_error_t){.node_id = slave_config(m, i)->node_id,
+    m->last_sdo_error = (co_net_sdo_error_t){.node_id = node_id,
                                              .index = r->index,
                                              .subindex = r->subindex,
                                              .access = access,
@@ -156,10 +162,11 @@ static void record_sdo_error(co_net_master_t *m, size_t i, const co_sdo_client_r
     report(m, CO_NET_EVENT_SDO_ERROR, m->last_sdo_error.node_id, 0);
 }
 
-static uint32_t write_value(const co_net_write_t *w)
+/* The first 4 bytes of a written value, little-endian (the PLC300's record of a write). */
+static uint32_t written_value(const uint8_t *data, uint32_t len)
 {
     uint8_t b[4] = {0};
-    memcpy(b, w->data, w->len < 4 ? w->len : 4);
+    memcpy(b, data, len < 4 ? len : 4);
     return le32(b);
 }
 
@@ -344,16 +351,22 @@ static void device_type_read(co_net_master_t *m, size_t i, uint32_t value)
 static void sdo_done(void *user, const co_sdo_client_result_t *result)
 {
     co_net_master_t *m = user;
+    if (m->serving) {
+        finish_request(m, result);
+        return;
+    }
     size_t i = m->current;
     if (i == m->config.slave_count)
         return;
     co_net_slave_t *s = slave_at(m, i);
     if (result->status != CO_SDO_CLIENT_OK) {
+        uint8_t node_id = slave_config(m, i)->node_id;
         if (s->step == CO_NET_STEP_DOWNLOAD) {
             const co_net_write_t *w = &slave_config(m, i)->writes[s->write_pos];
-            record_sdo_error(m, i, result, CO_NET_ACCESS_WRITE, write_value(w));
+            record_sdo_error(m, node_id, result, CO_NET_ACCESS_WRITE,
+                             written_value(w->data, w->len));
         } else {
-            record_sdo_error(m, i, result, CO_NET_ACCESS_READ, 0);
+            record_sdo_error(m, node_id, result, CO_NET_ACCESS_READ, 0);
         }
         fail(m, i, CO_NET_FAIL_SDO);
         return;
@@ -520,6 +533,7 @@ bool co_net_master_init(co_net_master_t *master, const co_net_master_config_t *c
         co_emcy_consumer_watch(&master->emcy, config->slaves[i].node_id, true);
     }
     master->sync.next = CO_TIME_NEVER;
+    master->next_heartbeat = CO_TIME_NEVER;
     if (config->sync_period_us != 0)
         co_sync_producer_init(&master->sync, CO_CAN_ID_SYNC, config->sync_period_us, 0);
     release(master);
@@ -531,6 +545,8 @@ void co_net_master_start(co_net_master_t *master, co_time_t now)
     master->now = now;
     master->started = true;
     master->started_all = false;
+    if (master->config.heartbeat_ms != 0)
+        master->next_heartbeat = now;
     if (master->config.reset_all)
         co_nmt_master_command(&master->nmt, CO_NMT_CS_RESET_COMMUNICATION, CO_NMT_MASTER_ALL_NODES);
     for (size_t i = 0; i < master->config.slave_count; i++) {
@@ -541,6 +557,232 @@ void co_net_master_start(co_net_master_t *master, co_time_t now)
         else
             reset_slave(master, i, CO_NMT_CS_RESET_COMMUNICATION);
     }
+}
+
+/* ---- NMT commands of the application, confirmed by the state the nodes report -------------- */
+
+/* Node-id n is bit n % 32 of awaited[n / 32]. */
+static uint32_t awaited_bit(uint8_t node_id)
+{
+    return 1u << (node_id % 32u);
+}
+
+static bool nmt_awaits(const co_net_nmt_request_t *r, uint8_t node_id)
+{
+    return r->pending && (r->awaited[node_id / 32u] & awaited_bit(node_id)) != 0;
+}
+
+static void nmt_await(co_net_nmt_request_t *r, uint8_t node_id)
+{
+    r->awaited[node_id / 32u] |= awaited_bit(node_id);
+}
+
+static bool nmt_awaits_any(const co_net_nmt_request_t *r)
+{
+    return (r->awaited[0] | r->awaited[1] | r->awaited[2] | r->awaited[3]) != 0;
+}
+
+static void finish_nmt(co_net_master_t *m)
+{
+    m->nmt_request.pending = false;
+    report(m, CO_NET_EVENT_NMT_DONE, m->nmt_request.node_id, 0);
+}
+
+static void confirm_nmt(co_net_master_t *m, uint8_t node_id, uint8_t state)
+{
+    co_net_nmt_request_t *r = &m->nmt_request;
+    if (!nmt_awaits(r, node_id) || state != r->expected)
+        return;
+    r->awaited[node_id / 32u] &= ~awaited_bit(node_id);
+    if (!nmt_awaits_any(r))
+        finish_nmt(m);
+}
+
+/* The state a node reports after the command: a reset ends with its boot-up. */
+static bool nmt_expected_state(uint8_t command, uint8_t *state)
+{
+    switch (command) {
+    case CO_NMT_CS_START:
+        *state = CO_NMT_OPERATIONAL;
+        return true;
+    case CO_NMT_CS_STOP:
+        *state = CO_NMT_STOPPED;
+        return true;
+    case CO_NMT_CS_ENTER_PRE_OPERATIONAL:
+        *state = CO_NMT_PRE_OPERATIONAL;
+        return true;
+    case CO_NMT_CS_RESET_NODE:
+    case CO_NMT_CS_RESET_COMMUNICATION:
+        *state = CO_NMT_INITIALISING;
+        return true;
+    default:
+        return false;
+    }
+}
+
+/* A node whose heartbeat the master consumes, or which it guards, tells its state by itself; any
+ * other is asked once by a guarding request (its reply carries the state). */
+static void ask_state(co_net_master_t *m, uint8_t node_id)
+{
+    const co_nmt_master_slave_t *n = &m->nmt.slave[node_id - 1u];
+    if (n->heartbeat.time_us != 0 || n->guard_us != 0)
+        return;
+    co_frame_t rtr = {.id = CO_CAN_ID_ERROR_CONTROL + node_id, .len = 1, .flags = CO_FRAME_RTR};
+    send(m, &rtr);
+}
+
+bool co_net_master_nmt(co_net_master_t *master, uint8_t command, uint8_t node_id,
+                       uint32_t timeout_ms, co_time_t now)
+{
+    co_net_nmt_request_t *r = &master->nmt_request;
+    uint8_t expected;
+    if (master->disabled || r->pending || node_id > CO_NMT_MASTER_NODE_ID_MAX ||
+        !nmt_expected_state(command, &expected))
+        return false;
+    master->now = now;
+    *r = (co_net_nmt_request_t){.pending = true,
+                                .command = command,
+                                .node_id = node_id,
+                                .expected = expected,
+                                .deadline = after_ms(now, timeout_ms)};
+    if (node_id != CO_NMT_MASTER_ALL_NODES)
+        nmt_await(r, node_id);
+    for (size_t i = 0; node_id == CO_NMT_MASTER_ALL_NODES && i < master->config.slave_count; i++)
+        nmt_await(r, slave_config(master, i)->node_id);
+    co_nmt_master_command(&master->nmt, command, node_id);
+    master->nmt_toggle ^= CO_NET_MASTER_NMT_TOGGLE;
+    for (unsigned id = 1; expected != CO_NMT_INITIALISING && id <= CO_NMT_MASTER_NODE_ID_MAX;
+         id++) {
+        if (nmt_awaits(r, (uint8_t)id))
+            ask_state(master, (uint8_t)id);
+    }
+    return true;
+}
+
+bool co_net_master_nmt_awaited(const co_net_master_t *master, uint8_t node_id)
+{
+    return node_id <= CO_NMT_MASTER_NODE_ID_MAX &&
+           (master->nmt_request.awaited[node_id / 32u] & awaited_bit(node_id)) != 0;
+}
+
+/* ---- SDO requests of the application on the master's client --------------------------------- */
+
+static bool client_free(const co_net_master_t *m)
+{
+    return m->current == m->config.slave_count && !m->serving;
+}
+
+/* Ends the first request (under way, or dropped before it started) with `result`. */
+static void finish_request(co_net_master_t *m, const co_sdo_client_result_t *result)
+{
+    co_net_request_t request = m->requests[0];
+    m->request_count--;
+    memmove(&m->requests[0], &m->requests[1], m->request_count * sizeof m->requests[0]);
+    m->serving = false;
+    if (result->status != CO_SDO_CLIENT_OK)
+        record_sdo_error(m, request.node_id, result,
+                         request.write ? CO_NET_ACCESS_WRITE : CO_NET_ACCESS_READ,
+                         request.write ? written_value(request.data, request.len) : 0);
+    request.done(request.user, &request, result);
+}
+
+static co_sdo_client_result_t request_failed(const co_net_request_t *r, uint32_t abort_code)
+{
+    return (co_sdo_client_result_t){.status = CO_SDO_CLIENT_CLIENT_ABORT,
+                                    .abort_code = abort_code,
+                                    .index = r->index,
+                                    .subindex = r->subindex};
+}
+
+/* A slave of the table that was reset and whose boot-up has not come yet (nor its boot time
+ * ended) would not answer, or answer after its reset: a request to it waits. */
+static bool resetting(const co_net_master_t *m, uint8_t node_id)
+{
+    size_t i = slave_index(m, node_id);
+    if (i == m->config.slave_count)
+        return false;
+    const co_net_slave_t *s = &m->config.slave_state[i];
+    return s->step == CO_NET_STEP_WAIT_BOOT && !ready(m, s);
+}
+
+/* Starts the first request waiting, when no slave's boot holds the client. */
+static void serve_request(co_net_master_t *m)
+{
+    if (!client_free(m) || m->request_count == 0 || resetting(m, m->requests[0].node_id))
+        return;
+    const co_net_request_t *r = &m->requests[0];
+    co_sdo_client_config_t sdo = {
+        .server_node_id = r->node_id, .send = forward_send, .user = m, .done = sdo_done};
+    m->serving = true;
+    int rc = co_sdo_client_init(&m->sdo, &sdo);
+    if (rc == 0 && r->write)
+        rc = co_sdo_client_download(&m->sdo, r->index, r->subindex, r->data, r->len,
+                                    CO_SDO_CLIENT_AUTO, m->config.sdo_timeout_ms, m->now);
+    else if (rc == 0)
+        rc = co_sdo_client_upload(&m->sdo, r->index, r->subindex, r->data, r->len,
+                                  CO_SDO_CLIENT_AUTO, m->config.sdo_timeout_ms, m->now);
+    if (rc != 0) {
+        co_sdo_client_result_t result = request_failed(r, CO_SDO_ABORT_GENERAL);
+        finish_request(m, &result);
+    }
+}
+
+bool co_net_master_sdo(co_net_master_t *master, const co_net_request_t *request, co_time_t now)
+{
+    if (master->disabled || master->request_count == CO_NET_REQUEST_MAX || request == NULL ||
+        request->node_id < 1 || request->node_id > CO_NMT_MASTER_NODE_ID_MAX ||
+        request->data == NULL || request->len == 0 || request->done == NULL)
+        return false;
+    master->now = now;
+    master->requests[master->request_count++] = *request;
+    return true;
+}
+
+/* ---- disabling communication, the controller's state --------------------------------------- */
+
+void co_net_master_disable(co_net_master_t *master, co_time_t now)
+{
+    if (master->disabled)
+        return;
+    master->now = now;
+    master->disabled = true;
+    master->started = false;
+    master->started_all = false;
+    master->next_heartbeat = CO_TIME_NEVER;
+    master->sync.next = CO_TIME_NEVER;
+    if (master->serving)
+        co_sdo_client_cancel(&master->sdo);
+    for (size_t i = 0; i < master->config.slave_count; i++) {
+        co_net_slave_t *s = slave_at(master, i);
+        abandon_transfer(master, i);
+        stop_error_control(master, i);
+        s->booted = false;
+        s->tried = false;
+        set_status(master, i, 0);
+        set_step(master, i, CO_NET_STEP_IDLE);
+    }
+    while (master->request_count > 0) {
+        co_sdo_client_result_t result = request_failed(&master->requests[0], CO_SDO_ABORT_TIMEOUT);
+        finish_request(master, &result);
+    }
+    master->last_sdo_error = (co_net_sdo_error_t){0};
+    master->last_emcy = (co_emcy_message_t){0};
+    master->nmt_toggle = 0;
+    if (master->nmt_request.pending)
+        finish_nmt(master);
+}
+
+void co_net_master_enable(co_net_master_t *master, co_time_t now)
+{
+    if (!master->disabled)
+        return;
+    master->disabled = false;
+    co_net_master_start(master, now);
+}
+
+void co_net_master_set_bus(co_net_master_t *master, uint16_t bus)
+{
+    master->bus = bus & (CO_NET_MASTER_BUS_OFF | CO_NET_MASTER_NO_BUS_POWER);
 }
 
 static bool receive_input(co_net_master_t *m, const co_frame_t *frame)
@@ -562,11 +804,15 @@ static bool receive_input(co_net_master_t *m, const co_frame_t *frame)
 bool co_net_master_receive(co_net_master_t *master, const co_frame_t *frame, co_time_t now)
 {
     master->now = now;
-    /* A master consumes no remote or 29-bit frame (CiA 301 uses neither for what it receives). */
-    if ((frame->flags & (CO_FRAME_EFF | CO_FRAME_RTR)) != 0)
+    /* A master consumes no remote or 29-bit frame (CiA 301 uses neither for what it receives);
+     * a disabled one none at all. */
+    if ((frame->flags & (CO_FRAME_EFF | CO_FRAME_RTR)) != 0 || master->disabled)
         return false;
-    if (co_nmt_master_receive(&master->nmt, frame, now))
+    if (co_nmt_master_receive(&master->nmt, frame, now)) {
+        confirm_nmt(master, (uint8_t)(frame->id - CO_CAN_ID_ERROR_CONTROL),
+                    (uint8_t)(frame->data[0] & CO_NMT_STATE_MASK));
         return true;
+    }
     if (co_sdo_client_busy(&master->sdo) && co_sdo_client_receive(&master->sdo, frame, now))
         return true;
     if (co_emcy_consumer_receive(&master->emcy, frame, now))
@@ -654,15 +900,45 @@ static co_time_t slave_deadline(const co_net_master_t *m)
     return next;
 }
 
+/* The master's own heartbeat: Operational (it runs the network), on the grid of its start. */
+static co_time_t produce_heartbeat(co_net_master_t *m)
+{
+    if (m->next_heartbeat > m->now)
+        return m->next_heartbeat;
+    co_frame_t beat = {
+        .id = CO_CAN_ID_ERROR_CONTROL + m->config.node_id, .len = 1, .data = {CO_NMT_OPERATIONAL}};
+    send(m, &beat);
+    co_time_t period = (co_time_t)m->config.heartbeat_ms * US_PER_MS;
+    m->next_heartbeat += period;
+    if (m->next_heartbeat <= m->now) /* woken late: the grid moves rather than beat in a burst */
+        m->next_heartbeat = m->now + period;
+    return m->next_heartbeat;
+}
+
+static co_time_t nmt_deadline(co_net_master_t *m)
+{
+    if (!m->nmt_request.pending)
+        return CO_TIME_NEVER;
+    if (m->now >= m->nmt_request.deadline)
+        finish_nmt(m);
+    return m->nmt_request.pending ? m->nmt_request.deadline : CO_TIME_NEVER;
+}
+
 co_time_t co_net_master_process(co_net_master_t *master, co_time_t now)
 {
     master->now = now;
+    if (master->disabled)
+        return CO_TIME_NEVER;
     co_time_t next = co_nmt_master_process(&master->nmt, now);
     next = co_time_min(next, co_sdo_client_process(&master->sdo, now));
-    if (!master->started)
-        return next;
+    next = co_time_min(next, nmt_deadline(master));
+    if (!master->started) {
+        serve_request(master);
+        return co_time_min(next, co_sdo_client_process(&master->sdo, now));
+    }
+    next = co_time_min(next, produce_heartbeat(master));
     retry_failed(master);
-    while (master->current == master->config.slave_count) {
+    while (client_free(master)) {
         size_t i = next_ready(master);
         if (i == master->config.slave_count)
             break;
@@ -676,7 +952,8 @@ co_time_t co_net_master_process(co_net_master_t *master, co_time_t now)
         produce_sync(master);
         next = co_time_min(next, master->sync.next);
     }
-    if (master->current != master->config.slave_count)
+    serve_request(master);
+    if (!client_free(master))
         next = co_time_min(next, co_sdo_client_process(&master->sdo, now));
     return co_time_min(next, slave_deadline(master));
 }
@@ -717,6 +994,9 @@ bool co_net_master_write_output(co_net_master_t *master, size_t offset, const ui
 
 uint16_t co_net_master_status(const co_net_master_t *master)
 {
+    uint16_t own = master->nmt_toggle | master->bus;
+    if (master->disabled || master->bus != 0)
+        own |= CO_NET_MASTER_DISABLED;
     uint16_t all = CO_NET_MASTER_ALL_CONTACTED | CO_NET_MASTER_ALL_CONFIGURED |
                    CO_NET_MASTER_ALL_EC_STARTED | CO_NET_MASTER_INIT_FINISHED;
     uint16_t some = 0;
@@ -731,7 +1011,7 @@ uint16_t co_net_master_status(const co_net_master_t *master)
         if (master->config.slaves[i].mandatory && (s->status & CO_NET_SLAVE_INIT_ERROR) != 0)
             some |= CO_NET_MASTER_MANDATORY_ERROR;
     }
-    return all | some;
+    return all | some | own;
 }
 
 const co_net_slave_t *co_net_master_slave(const co_net_master_t *master, uint8_t node_id)

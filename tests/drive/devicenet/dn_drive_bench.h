@@ -46,7 +46,7 @@ static bool db_store(void *user, const dn_stored_t *stored)
 /* Initialised and started at the bench's time with the stored selection b->stored. */
 static inline void db_start(dn_drive_bench_t *b)
 {
-    drive_config_t dc = {.profile = &atv312_profile,
+    drive_config_t dc = {.profile = atv312_devicenet_profile.drive,
                          .od_data = b->od_data,
                          .node_id = 1,
                          .send = drive_dn_drop_frame};

@@ -13,9 +13,11 @@
 
 /* The faults of the Altivar 312 and of the Altivar 31, their EMCY codes and reset classes
  * (src/drive/models/atv312/faults.c, docs/atv312.md): the same but for the name of the
- * communication-loss fault, CnF on the ATV312, COF on the ATV31. */
+ * communication-loss fault, COF on CANopen (both CANopen manuals), CnF behind the ATV312's
+ * DeviceNet card (its DeviceNet manual). */
 extern const drive_fault_table_t atv312_family_faults;
 extern const drive_fault_table_t atv31_family_faults;
+extern const drive_fault_table_t atv312_devicenet_faults;
 
 /* Codes of the channel parameters (the project's, docs/atv312.md): CHCF 1 not separate, 2
  * separate, 3 I/O; rFC 1 Fr1, 2 Fr2; CCS 1 Cd1, 2 Cd2; Fr1/Fr2 1 AI1, 2 AI2, 3 AI3, 4 keypad, 5
@@ -26,6 +28,7 @@ extern const drive_fault_table_t atv31_family_faults;
 #define ATV312_CCS_CD2 2
 #define ATV312_FR_CANOPEN 6
 #define ATV312_CD_CANOPEN 4
+#define ATV312_CD_TERMINALS 1
 
 /* The access level (LAC): 1 L1, 2 L2, 3 L3, the project's codes; L3 allows separate channels and
  * control word bits as switching sources. */
@@ -34,12 +37,26 @@ extern const drive_fault_table_t atv31_family_faults;
  * the base terminal card (ATV312 CANopen manual, "Control terminals characteristics"). */
 #define ATV312_LOGIC_INPUTS 3
 
+/* The reference channel codes of the analogue inputs (Fr1/Fr2: 1 AI1, 2 AI2, 3 AI3; the ATV31's
+ * potentiometer 7) and the AI3 scaling parameters CrL3 and CrH3, 0.1 mA (ADL 4602, 4603: the
+ * project's addresses, docs/atv312.md). */
+#define ATV312_FR_AI1 1
+#define ATV312_FR_AI2 2
+#define ATV312_FR_AI3 3
+#define ATV312_FR_AIP 7
+#define ATV312_AI3_LOW DRIVE_PARAM(0x2010, 3)
+#define ATV312_AI3_HIGH DRIVE_PARAM(0x2010, 4)
+
 /* 1001h in the family's EMCYs, CAN bus conditions too: the manuals' byte 2, "=0 (no error) =1
  * (error)", the generic bit alone (docs/decisions.md, D-ERROR-REGISTER). */
 #define ATV312_ERROR_REGISTER CO_ERR_REG_GENERIC
 
-/* The profile of an Altivar 31/312 on the dictionary `dictionary`, with `inputs` logic inputs and
- * the faults of `fault_table`. The
+/* The profile of an Altivar 31/312 on the dictionary `dictionary`, with `inputs` logic inputs (LI1
+ * forward and LI2 reverse in 2-wire control while the terminals command, the factory assignment
+ * the project takes, docs/decisions.md D-TERMINAL-RUN), the
+ * analogue inputs of the array `analog` (drive_analog_input_t, as reference channels), the
+ * faults of `fault_table` and a STOP key that resets faults when `stop_key_resets` (the ATV31's
+ * STOP/RESET key; the ATV312 CANopen manual gives its key no reset). The
  * family's default assignment of control word bits 11-14 (DeviceNet manual, "CMD control word":
  * "CMD = 16#080F: reverse operation" ...): bit 11 reverses, bit 12 stops on the ramp (Stt), bits 13
  * (DC injection stop, modelled as the fast stop) and 14 stop on the fast ramp, DEC / 4 (dCF's
@@ -53,7 +70,7 @@ extern const drive_fault_table_t atv31_family_faults;
  * with "Data length = 4 bytes" (docs/decisions.md, D-ATV312-LONG-EXPEDITED). A macro, not a
  * function, so that each model's profile stays a constant initialiser (in flash on a
  * microcontroller); the ATV31 (atv31/atv31.h) is the same drive under another name. */
-#define ATV312_FAMILY_PROFILE(dictionary, inputs, fault_table)                                     \
+#define ATV312_FAMILY_PROFILE(dictionary, inputs, analog, fault_table, stop_key_resets)            \
     {                                                                                              \
         .od = (dictionary), .node_options = CO_NODE_SDO_LONG_EXPEDITED,                            \
         .bus_error_register = ATV312_ERROR_REGISTER, .node_options_code = &co_node_options,        \
@@ -76,10 +93,16 @@ extern const drive_fault_table_t atv31_family_faults;
         .output_frequency = DRIVE_PARAM(0x2002, 3), .frequency_reference = DRIVE_PARAM(0x2037, 3), \
         .auto_tune = DRIVE_PARAM(0x2042, 9), .ramp_switch = DRIVE_PARAM(0x203C, 11),               \
         .acceleration_2 = DRIVE_PARAM(0x203C, 13), .deceleration_2 = DRIVE_PARAM(0x203C, 14),      \
-        .logic_inputs = (inputs), .access_level = DRIVE_PARAM(0x2036, 1),                          \
-        .access_level_full = ATV312_LAC_L3,                                                        \
+        .logic_inputs = (inputs), .analog_inputs = (analog), .terminals = ATV312_CD_TERMINALS,     \
+        .run_forward = 1, .run_reverse = 2,                                                        \
+        .analog_input_count = sizeof(analog) / sizeof((analog)[0]),                                \
+        .access_level = DRIVE_PARAM(0x2036, 1), .access_level_full = ATV312_LAC_L3,                \
+        .stop_key_resets_faults = (stop_key_resets),                                               \
     }
 
 extern const drive_profile_t atv312_profile;
+/* The same drive behind its DeviceNet card (atv312_devicenet.h): the faults of its DeviceNet
+ * manual. */
+extern const drive_profile_t atv312_devicenet_drive_profile;
 
 #endif

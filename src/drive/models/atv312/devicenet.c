@@ -5,7 +5,10 @@
  * (index 2000h + (ADL - 3000) / 100, sub-index ADL mod 100 + 1). */
 #include "atv312/atv312_devicenet.h"
 
+#include "atv312/atv312.h"
+
 const drive_dn_profile_t atv312_devicenet_profile = {
+    .drive = &atv312_devicenet_drive_profile,
     .vendor_id = 0x00F3,   /* Schneider Electric */
     .device_type = 0x0002, /* AC drive */
     .product_code = 6153,

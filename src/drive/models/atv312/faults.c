@@ -5,8 +5,8 @@
  * bit to 1001h: the manuals' EMCY byte 2 is "=0 (no error) =1 (error)" (docs/decisions.md,
  * D-ERROR-REGISTER). Reset classes after the Altivar 31/312 programming manual's three lists (not
  * among docs/manuals.md: the project's reading). Every fault freewheels: the manuals give a stop
- * to CnF alone, chosen by COL (the profile's communication_loss_mode), and nothing for the others
- * (the project's choice, docs/atv312.md). */
+ * to the communication loss alone, chosen by COL (the profile's communication_loss_mode), and
+ * nothing for the others (the project's choice, docs/atv312.md). */
 #include "atv312/atv312.h"
 
 #define COMMAND DRIVE_FAULT_RESET_COMMAND
@@ -15,14 +15,23 @@
 #define FREEWHEEL DRIVE_FAULT_FREEWHEEL
 
 /* The communication-loss fault (life guarding or heartbeat consumer timeout) is entry 0, EMCY
- * 0x8130 (docs/decisions.md, D-COMM-LOSS-CNF). The ATV312's is CnF, the network fault as its
- * DeviceNet manual names it (its CANopen manual shows the life guarding fault as COF); the
- * ATV31's is COF, the name its manual gives ("goes to COF fault"). */
+ * 0x8130 (docs/decisions.md, D-COMM-LOSS-CNF), named as the manual of the bus the drive is on
+ * names it (D-ATV312-COF): on CANopen COF, the ATV312 CANopen manual's life guarding fault ("the
+ * drive will display COF (CANopen communication fault)"), as the ATV31's ("goes to COF fault");
+ * behind the DeviceNet card CnF, the DeviceNet manual's "communication between the master ... and
+ * the drive is broken: ... (CnF)". */
 static const drive_fault_def_t atv312_faults[] = {
-    {"CnF", "network fault (life guarding, heartbeat)", 0x8130, 0, COMMAND, FREEWHEEL},
+    {"COF", "CANopen communication fault (life guarding, heartbeat)", 0x8130, 0, COMMAND,
+     FREEWHEEL},
 #include "family_faults.inc"
 };
 
+static const drive_fault_def_t atv312_devicenet_faults_defs[] = {
+    {"CnF", "network fault (I/O connection time out)", 0x8130, 0, COMMAND, FREEWHEEL},
+#include "family_faults.inc"
+};
+
+/* The ATV31's CANopen port is built in: the same fault, the same name. */
 static const drive_fault_def_t atv31_faults[] = {
     {"COF", "CANopen communication fault (life guarding, heartbeat)", 0x8130, 0, COMMAND,
      FREEWHEEL},
@@ -38,5 +47,11 @@ const drive_fault_table_t atv312_family_faults = {
 const drive_fault_table_t atv31_family_faults = {
     .faults = atv31_faults,
     .count = sizeof atv31_faults / sizeof atv31_faults[0],
+    .communication_loss = 0,
+};
+
+const drive_fault_table_t atv312_devicenet_faults = {
+    .faults = atv312_devicenet_faults_defs,
+    .count = sizeof atv312_devicenet_faults_defs / sizeof atv312_devicenet_faults_defs[0],
     .communication_loss = 0,
 };

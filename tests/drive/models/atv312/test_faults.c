@@ -1,11 +1,13 @@
 /* The ATV312's faults: every code of its table faults the drive with the EMCY code of the
  * manuals (the ATV58 table, the manuals' only one), 603Fh, ETA 2002h:02, 1001h and 1003h, and is
  * reset by its class: the mains undervoltage USF by itself, OHF by a fault reset once the cause
- * is gone, OCF only by a reset node; the communication loss follows COL (ignore, freewheel, ramp
- * or fast stop) and latches CnF. Every fault freewheels (the project's choice where the manuals
- * give no stop) but CnF with COL = 2 or 3. */
+ * is gone, OCF only by a reset node; the communication loss is COF, as the CANopen manual names
+ * the life guarding fault, follows COL (ignore, freewheel, ramp or fast stop) and latches the
+ * network fault code CnF. Every fault freewheels (the project's choice where the manuals give no
+ * stop) but COF with COL = 2 or 3. */
 #include "atv312_bench.h"
 #include "check_main.h"
+#include "drive/panel.h"
 
 /* Code, EMCY frame of node 4 (code, 1001h), reset class. */
 static const struct {
@@ -13,7 +15,7 @@ static const struct {
     const char *emcy;
     drive_fault_reset_t reset;
 } expected[] = {
-    {"CnF", "084#3081010000000000", DRIVE_FAULT_RESET_COMMAND},
+    {"COF", "084#3081010000000000", DRIVE_FAULT_RESET_COMMAND},
     {"ILF", "084#2075010000000000", DRIVE_FAULT_RESET_POWER_CYCLE},
     {"SLF", "084#1075010000000000", DRIVE_FAULT_RESET_COMMAND},
     {"OCF", "084#1023010000000000", DRIVE_FAULT_RESET_POWER_CYCLE},
@@ -61,7 +63,7 @@ START_TEST(table_is_the_manuals)
 {
     ck_assert_uint_eq(atv312_family_faults.count, EXPECTED_COUNT);
     ck_assert_str_eq(atv312_family_faults.faults[atv312_family_faults.communication_loss].code,
-                     "CnF");
+                     "COF");
 }
 END_TEST
 
@@ -199,8 +201,9 @@ static void lose_heartbeat(bench_t *b)
     bench_advance(b, 3000000);
 }
 
-/* COL = 1 (the default): the communication loss is the CnF fault; 2022:03 latches the time out
- * until a reset node, also across the fault reset. */
+/* COL = 1 (the default): the communication loss is the COF fault, on the display too ("the drive
+ * will display COF", the CANopen manual's life guarding); 2022:03 (CnF) latches the time out until
+ * a reset node, also across the fault reset. */
 START_TEST(communication_loss_faults_by_default)
 {
     bench_t b;
@@ -210,6 +213,8 @@ START_TEST(communication_loss_faults_by_default)
     lose_heartbeat(&b);
     bench_expect(&b, "084#3081010000000000");
     ck_assert_uint_eq(bench_read(&b, 0x6041, 0), 0x0608);
+    ck_assert_str_eq(drive_fault_latched(&b.drive)->code, "COF");
+    ck_assert_str_eq(drive_panel_display(&b.drive).code, "COF");
     ck_assert_uint_eq(bench_read(&b, 0x2022, 3), 1);
     ck_assert_uint_eq(bench_command(&b, 0x0080), 0x0640);
     bench_expect(&b, "084#0000000000000000");
@@ -220,7 +225,7 @@ START_TEST(communication_loss_faults_by_default)
 }
 END_TEST
 
-/* COL = 0: the drive ignores the loss and keeps running; CnF still says it happened. */
+/* COL = 0: the drive ignores the loss and keeps running; the CnF code still says it happened. */
 START_TEST(communication_loss_ignored_with_col_0)
 {
     bench_t b;
@@ -235,7 +240,7 @@ START_TEST(communication_loss_ignored_with_col_0)
 END_TEST
 
 /* Running at 1500 rpm with COL = `col` and a heartbeat consumer of 100 ms on node 1 whose
- * producer then stops: the loss 100 ms after its last heartbeat, the CnF EMCY. */
+ * producer then stops: the loss 100 ms after its last heartbeat, the COF EMCY. */
 static void lose_heartbeat_at_speed(bench_t *b, uint16_t col)
 {
     ck_assert_uint_eq(bench_sdo_write(b, 0x2022, 2, col, 2), 0);
@@ -258,7 +263,7 @@ static void expect_status(bench_t *b, uint16_t status)
     ck_assert_uint_eq(bench_read(b, 0x2002, 2), status);
 }
 
-/* COL = 2: CnF stops on the DEC ramp (3.0 s from 1500 rpm) in Fault reaction active, the output
+/* COL = 2: COF stops on the DEC ramp (3.0 s from 1500 rpm) in Fault reaction active, the output
  * on, then the drive is in Fault. */
 START_TEST(communication_loss_ramp_stop_with_col_2)
 {
@@ -282,7 +287,7 @@ START_TEST(communication_loss_ramp_stop_with_col_2)
 }
 END_TEST
 
-/* COL = 3: CnF stops on the fast ramp, DEC / 4 = 0.7 s (in 0.1 s, rounded down) from 1500
+/* COL = 3: COF stops on the fast ramp, DEC / 4 = 0.7 s (in 0.1 s, rounded down) from 1500
  * rpm. */
 START_TEST(communication_loss_fast_stop_with_col_3)
 {
@@ -299,7 +304,7 @@ START_TEST(communication_loss_fast_stop_with_col_3)
 }
 END_TEST
 
-/* An injected CnF stops as COL says too (atv312d's control surface injects it). */
+/* An injected COF stops as COL says too (atv312d's control surface injects it). */
 START_TEST(injected_communication_loss_follows_col)
 {
     bench_t b;
@@ -309,7 +314,7 @@ START_TEST(injected_communication_loss_follows_col)
     bench_command(&b, 0x0006);
     bench_command(&b, 0x000F);
     bench_advance(&b, 3000000);
-    inject(&b, "CnF");
+    inject(&b, "COF");
     bench_expect(&b, "084#3081010000000000");
     expect_status(&b, 0x020F);
     bench_advance(&b, 3000000);

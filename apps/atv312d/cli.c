@@ -158,6 +158,9 @@ typedef enum {
     OPT_TRACE,
     OPT_CONTROL,
     OPT_STATUS,
+    OPT_HTTP,
+    OPT_HTTP_ACTIONS,
+    OPT_HTTP_TOKEN,
     OPT_LOG_LEVEL,
     OPT_HELP,
     OPT_VERSION
@@ -168,13 +171,23 @@ static const struct {
     opt_t opt;
     bool has_value;
 } options[] = {
-    {"--node-id", OPT_NODE_ID, true},      {"--mac-id", OPT_MAC_ID, true},
-    {"--devicenet", OPT_DEVICENET, false}, {"--baud", OPT_BAUD, true},
-    {"--model", OPT_MODEL, true},          {"--store", OPT_STORE, true},
-    {"--trace", OPT_TRACE, true},          {"--control", OPT_CONTROL, true},
-    {"--status", OPT_STATUS, true},        {"--log-level", OPT_LOG_LEVEL, true},
-    {"--help", OPT_HELP, false},           {"-h", OPT_HELP, false},
-    {"--version", OPT_VERSION, false},     {"-V", OPT_VERSION, false},
+    {"--node-id", OPT_NODE_ID, true},
+    {"--mac-id", OPT_MAC_ID, true},
+    {"--devicenet", OPT_DEVICENET, false},
+    {"--baud", OPT_BAUD, true},
+    {"--model", OPT_MODEL, true},
+    {"--store", OPT_STORE, true},
+    {"--trace", OPT_TRACE, true},
+    {"--control", OPT_CONTROL, true},
+    {"--status", OPT_STATUS, true},
+    {"--http-actions", OPT_HTTP_ACTIONS, false},
+    {"--http-token", OPT_HTTP_TOKEN, true},
+    {"--http", OPT_HTTP, true},
+    {"--log-level", OPT_LOG_LEVEL, true},
+    {"--help", OPT_HELP, false},
+    {"-h", OPT_HELP, false},
+    {"--version", OPT_VERSION, false},
+    {"-V", OPT_VERSION, false},
 };
 
 /* Finds the option of "--name" or "--name=value"; *inline_value points after '='. */
@@ -247,6 +260,15 @@ static int apply_option(opt_t opt, const char *value, atv312d_options_t *opts,
     case OPT_STATUS:
         opts->status_path = value;
         return 0;
+    case OPT_HTTP:
+        opts->http = value;
+        return atv312d_http_parse_address(value, &opts->http_address, err, err_len);
+    case OPT_HTTP_ACTIONS:
+        opts->http_actions = true;
+        return 0;
+    case OPT_HTTP_TOKEN:
+        opts->http_token_path = value;
+        return 0;
     case OPT_LOG_LEVEL:
         if (!co_log_level_parse(value, &opts->log_level))
             return usage_error(err, err_len,
@@ -314,6 +336,28 @@ static int check_bus(atv312d_options_t *opts, node_groups_t *groups, char *err, 
     return 0;
 }
 
+/* The web surface's options go with --http; its actions, when anything but this machine can
+ * connect, with a token (docs/web.md). */
+static int check_http(const atv312d_options_t *opts, char *err, size_t err_len)
+{
+    if (!opts->http && (opts->http_actions || opts->http_token_path))
+        return usage_error(err, err_len,
+                           "%s: no --http: the web surface's options need it, e.g. --http 8080",
+                           opts->http_actions ? "--http-actions" : "--http-token");
+    if (opts->http_token_path && !opts->http_actions)
+        return usage_error(err, err_len,
+                           "--http-token %s: the token guards the actions: give --http-actions "
+                           "too",
+                           opts->http_token_path);
+    if (opts->http_actions && !opts->http_address.loopback && !opts->http_token_path)
+        return usage_error(err, err_len,
+                           "--http %s --http-actions: anyone who reaches %s could drive the "
+                           "drives: give --http-token FILE (a secret) or listen on loopback "
+                           "(--http 127.0.0.1:PORT)",
+                           opts->http, opts->http_address.text);
+    return 0;
+}
+
 static int check_complete(atv312d_options_t *opts, node_groups_t *groups, char *err, size_t err_len)
 {
     if (!opts->iface)
@@ -325,6 +369,8 @@ static int check_complete(atv312d_options_t *opts, node_groups_t *groups, char *
                            "interface name '%s' is too long: Linux allows at most %d characters",
                            opts->iface, IFNAMSIZ - 1);
     int rc = check_bus(opts, groups, err, err_len);
+    if (rc == 0)
+        rc = check_http(opts, err, err_len);
     if (rc)
         return rc;
     for (int id = 0; id <= ATV312D_NODE_ID_MAX; id++) {
@@ -422,11 +468,20 @@ void atv312d_print_usage(FILE *out)
           "  --status FILE       rewrite FILE once a second with the CAN controller state,\n"
           "                      the frame counters and the state of every drive; SIGUSR1\n"
           "                      writes the same to the log (also without --status)\n"
+          "  --http [ADDRESS:]PORT\n"
+          "                      serve a live view of the bench to a browser and its JSON\n"
+          "                      API at ADDRESS (default 127.0.0.1; 0.0.0.0, [::1]); read\n"
+          "                      only unless --http-actions\n"
+          "  --http-actions      let the page (POST /api/command) run the control commands\n"
+          "  --http-token FILE   the secret (FILE's first line) a request must send in the\n"
+          "                      header X-Atv312d-Token to run a command; required with\n"
+          "                      --http-actions when ADDRESS is not loopback\n"
           "  --log-level LEVEL   error, warn, info (default) or debug, on standard error\n"
           "  -h, --help          show this help\n"
           "  -V, --version       show the version\n"
-          "\n"
-          "Example: atv312d vcan0 --node-id 4-5 --model atv312 --node-id 6\n"
+          "\n",
+          out);
+    fputs("Example: atv312d vcan0 --node-id 4-5 --model atv312 --node-id 6\n"
           "         atv312d vcan1 --devicenet --mac-id 25,63\n"
           "\n"
           "Control commands, for testing a master: atv312d ctl PATH COMMAND sends one to the\n"
@@ -470,6 +525,8 @@ void atv312d_print_usage(FILE *out)
           "\n"
           "Exit status: 0 after SIGINT/SIGTERM, 64 usage error, 69 interface or CAN support\n"
           "missing, 70 internal error, 71 system error, 73 cannot create the trace or store\n"
-          "file, 74 I/O error on the store file. See docs/atv312d.md.\n",
+          "file or listen at the --http address, 74 I/O error on the store file, 65 or 66\n"
+          "a --http-token file without a secret or unreadable. See docs/atv312d.md and\n"
+          "docs/web.md.\n",
           out);
 }

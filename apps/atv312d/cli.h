@@ -5,6 +5,7 @@
 #define ATV312D_CLI_H
 
 #include "co_linux/log.h"
+#include "http.h"
 #include "models.h"
 
 #include <stdbool.h>
@@ -41,6 +42,10 @@ typedef struct atv312d_options {
     const char *trace_path;   /* NULL: no trace; "-": stdout */
     const char *control_path; /* NULL: no control socket */
     const char *status_path;  /* NULL: no status file (SIGUSR1 still logs the status) */
+    const char *http;         /* --http's value; NULL: no web surface */
+    atv312d_http_address_t http_address;
+    bool http_actions;           /* --http-actions: POST /api/command runs commands */
+    const char *http_token_path; /* --http-token FILE; NULL: no token */
     co_log_level_t log_level;
     bool help;
     bool version;

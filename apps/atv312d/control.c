@@ -17,6 +17,7 @@
 #define WORDS_MAX 4
 #define JSON_PREFIX "json "
 #define STATUSWORD_INDEX 0x6041
+#define TARGET_VELOCITY_INDEX 0x6042
 #define VELOCITY_ACTUAL_INDEX 0x6044
 
 /* A reply being written: "ok ..." / "error: ..." or the JSON object. */
@@ -664,6 +665,7 @@ static void put_state(const atv312d_control_node_t *node, reply_t *r)
     const co_node_t *co = &drive->node;
     drive_param_t lcr = drive->profile->motor_current;
     drive_param_t otr = drive->profile->motor_torque;
+    int16_t reference = (int16_t)co_od_value(co, TARGET_VELOCITY_INDEX, 0);
     int16_t speed = (int16_t)co_od_value(co, VELOCITY_ACTUAL_INDEX, 0);
     unsigned current = (unsigned)co_od_value(co, lcr.index, lcr.subindex);
     int16_t torque = (int16_t)co_od_value(co, otr.index, otr.subindex);
@@ -678,9 +680,10 @@ static void put_state(const atv312d_control_node_t *node, reply_t *r)
     put_bus_state(node, r);
     if (r->json)
         put(r,
-            "\"cia402\":\"%s\",\"statusword\":%u,\"speed_rpm\":%d,\"current_a\":%u.%u,"
-            "\"torque_percent\":%d,\"display\":\"%s\",",
-            drive_state_name(drive), status, speed, current / 10, current % 10, torque, shows);
+            "\"cia402\":\"%s\",\"statusword\":%u,\"reference_rpm\":%d,\"speed_rpm\":%d,"
+            "\"current_a\":%u.%u,\"torque_percent\":%d,\"display\":\"%s\",",
+            drive_state_name(drive), status, reference, speed, current / 10, current % 10, torque,
+            shows);
     else
         put(r,
             "cia402 %s, statusword %04X, speed %d rpm, current %u.%u A, torque %d %%, display %s, ",

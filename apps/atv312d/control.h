@@ -23,7 +23,8 @@
 #define ATV312D_CONTROL_REPLY_MAX 65536
 
 typedef struct atv312d_control_node {
-    uint8_t id; /* what NODE names: the node-id on CANopen, the MAC ID on DeviceNet */
+    uint8_t id;        /* what NODE names: the node-id on CANopen, the MAC ID on DeviceNet */
+    const char *model; /* its --model name, "atv312" */
     drive_t *drive;
     const drive_dn_t *devicenet; /* its DeviceNet card; NULL on CANopen */
     co_linux_device_t *device;   /* processed after a command changed the drive; its frame counts */

@@ -10,6 +10,7 @@
 #include "counters.h"
 #include "drive/drive.h"
 #include "drive/drive_devicenet.h"
+#include "http.h"
 #include "leds.h"
 #include "notify.h"
 #include "status.h"
@@ -535,20 +536,42 @@ static int init_drives(drive_slot_t *slots, const atv312d_options_t *opts, co_fi
     return 0;
 }
 
-/* The control surface (--control) and the status surface (--status, SIGUSR1) on the drives. */
-static int open_surfaces(atv312d_control_t *control, atv312d_status_t *status,
+/* The web surface's settings: --http's address, --http-actions and the secret of --http-token. */
+static int http_settings(const atv312d_options_t *opts, atv312d_http_settings_t *settings)
+{
+    *settings =
+        (atv312d_http_settings_t){.address = opts->http_address, .actions = opts->http_actions};
+    if (!opts->http_token_path)
+        return 0;
+    char err[512];
+    int rc = atv312d_http_read_token(opts->http_token_path, settings->token, sizeof settings->token,
+                                     err, sizeof err);
+    if (rc != 0)
+        co_log(CO_LOG_ERROR, "%s", err);
+    return rc;
+}
+
+/* The surfaces on the drives: control (--control; its commands also serve the web's actions),
+ * status (--status, SIGUSR1) and web (--http). */
+static int open_surfaces(atv312d_control_t *control, atv312d_status_t *status, atv312d_http_t *http,
                          co_linux_loop_t *loop, const atv312d_options_t *opts, drive_slot_t *slots,
                          atv312d_control_node_t *nodes)
 {
     for (size_t i = 0; i < opts->node_count; i++)
         nodes[i] = (atv312d_control_node_t){.id = slots[i].id,
+                                            .model = opts->models[i]->name,
                                             .drive = &slots[i].drive,
                                             .devicenet = slots[i].dn,
                                             .device = &slots[i].device,
                                             .counters = &slots[i].counters};
+    control->nodes = nodes;
+    control->count = opts->node_count;
     int rc = atv312d_status_open(status, loop, opts->status_path, nodes, opts->node_count);
     if (rc == 0 && opts->control_path)
         rc = atv312d_control_open(control, loop, opts->control_path, nodes, opts->node_count);
+    atv312d_http_settings_t settings;
+    if (rc == 0 && opts->http && (rc = http_settings(opts, &settings)) == 0)
+        rc = atv312d_http_open(http, loop, &settings, control);
     return rc;
 }
 
@@ -599,6 +622,7 @@ static int run(const atv312d_options_t *opts, FILE *trace, co_file_store_t *stor
 {
     static atv312d_control_t control = {.server.listen_fd = -1};
     static atv312d_status_t status = {.timer_fd = -1, .signal_fd = -1};
+    static atv312d_http_t http = {.mhd_fd = -1, .timer_fd = -1};
     static atv312d_control_node_t control_nodes[ATV312D_NODE_ID_MAX];
     static co_linux_loop_t loop;
     co_linux_loop_config_t config = {.iface = opts->iface, .trace = trace};
@@ -608,7 +632,7 @@ static int run(const atv312d_options_t *opts, FILE *trace, co_file_store_t *stor
     drive_slot_t *slots = calloc(opts->node_count, sizeof *slots);
     int rc = slots ? init_drives(slots, opts, store, &loop) : EX_OSERR;
     if (rc == 0)
-        rc = open_surfaces(&control, &status, &loop, opts, slots, control_nodes);
+        rc = open_surfaces(&control, &status, &http, &loop, opts, slots, control_nodes);
     if (rc == 0) {
         char ids[2048];
         format_node_ids(opts, ids, sizeof ids);
@@ -631,6 +655,7 @@ static int run(const atv312d_options_t *opts, FILE *trace, co_file_store_t *stor
                loop.stats.down_dropped, loop.stats.error_frames, loop.stats.unrouted,
                loop.stats.tx_calls, loop.stats.filters);
     }
+    atv312d_http_close(&http);
     atv312d_control_close(&control);
     atv312d_status_close(&status);
     co_linux_loop_close(&loop);

@@ -1,0 +1,126 @@
+/* atv312d's web surface (--http): a page showing the bench live, its JSON API, the events it
+ * pushes and, with --http-actions, the control commands, served by GNU libmicrohttpd inside the
+ * daemon's one epoll loop (no thread). MHD's own epoll descriptor is one watched descriptor of the
+ * loop and one timerfd holds both MHD's connection timeouts and the next event of the event
+ * streams; it is armed only while a connection exists, so an unwatched daemon never wakes up for
+ * the web. The API, the security rules and the limits: docs/web.md. */
+#ifndef ATV312D_HTTP_H
+#define ATV312D_HTTP_H
+
+#include "control.h"
+
+#include <netinet/in.h>
+#include <stdbool.h>
+#include <stddef.h>
+#include <sys/socket.h>
+
+/* Connections served at once; a connection past them gets 503 on its request and is closed. */
+#define ATV312D_HTTP_CLIENTS_MAX 16
+/* Connections held at once, those refused with 503 included; past them a connection is closed at
+ * once by the library. */
+#define ATV312D_HTTP_CONNECTIONS_MAX 128
+/* Memory of one connection's request and response headers (the library's pool). */
+#define ATV312D_HTTP_CONNECTION_MEMORY (32 * 1024)
+/* A connection that makes no progress for this long is closed (a client that stopped reading). */
+#define ATV312D_HTTP_TIMEOUT_S 10
+/* Longest body of POST /api/command; a longer one gets 413. */
+#define ATV312D_HTTP_BODY_MAX 1024
+/* The event streams' period: at most 4 states a second. */
+#define ATV312D_HTTP_EVENT_PERIOD_MS 250
+/* Longest secret of --http-token. */
+#define ATV312D_HTTP_TOKEN_MAX 256
+/* Longest JSON of the bench's state: 127 drives of about 600 bytes. */
+#define ATV312D_HTTP_STATE_MAX (128 * 1024)
+
+/* Where --http listens: "8080" (127.0.0.1), "0.0.0.0:8080", "[::1]:8080". */
+typedef struct atv312d_http_address {
+    struct sockaddr_storage addr;
+    socklen_t len;
+    bool loopback; /* 127.0.0.0/8 or ::1: only this machine can connect */
+    char text[80]; /* "127.0.0.1:8080", "[::1]:8080" */
+} atv312d_http_address_t;
+
+/* Parses --http's value; 0, or EX_USAGE with a message in err saying what would be right. */
+int atv312d_http_parse_address(const char *text, atv312d_http_address_t *address, char *err,
+                               size_t err_len);
+
+/* Reads the secret of --http-token from the file at path: its first line, of 1 to
+ * ATV312D_HTTP_TOKEN_MAX characters. 0, or an exit status with a message in err. */
+int atv312d_http_read_token(const char *path, char *token, size_t token_len, char *err,
+                            size_t err_len);
+
+typedef struct atv312d_http_settings {
+    atv312d_http_address_t address;
+    bool actions;                           /* --http-actions: POST /api/command runs */
+    char token[ATV312D_HTTP_TOKEN_MAX + 1]; /* --http-token's secret; "": none required */
+} atv312d_http_settings_t;
+
+/* A request as the handler sees it: the parts of the HTTP request it looks at (NULL when a header
+ * is absent) and, for a POST, its body. */
+typedef struct atv312d_http_request {
+    const char *method, *path;
+    const char *host, *origin, *fetch_site, *content_type, *content_length, *token, *if_none_match;
+    const char *body; /* NULL: the body is not read yet (the checks on the headers only) */
+    size_t body_len;
+    bool body_too_long; /* more than ATV312D_HTTP_BODY_MAX bytes came */
+    const char *peer;   /* "127.0.0.1:40422", for the log */
+} atv312d_http_request_t;
+
+/* What the handler answers: a status, a body and the headers that go with it. */
+typedef struct atv312d_http_answer {
+    unsigned status;
+    const char *content_type;
+    const void *body; /* the asset's bytes, or the handler's buffer */
+    size_t body_len;
+    const char *cache_control;
+    const char *etag;  /* an asset's, or NULL */
+    const char *allow; /* with 405 */
+    bool events;       /* 200 for GET /api/events: the event stream starts */
+} atv312d_http_answer_t;
+
+/* One connection waiting for or writing an event (http.c). */
+typedef struct atv312d_http_stream atv312d_http_stream_t;
+
+typedef struct atv312d_http {
+    co_linux_loop_t *loop;
+    const atv312d_control_t *control;
+    atv312d_http_settings_t settings;
+    uint16_t port;                  /* the port bound (the one asked, or the kernel's for port 0) */
+    struct MHD_Daemon *daemon;      /* NULL: not open */
+    int mhd_fd;                     /* the library's epoll descriptor, watched by the loop */
+    int timer_fd;                   /* MHD's timeouts and the next event; armed only when needed */
+    size_t served;                  /* connections admitted (at most ATV312D_HTTP_CLIENTS_MAX) */
+    atv312d_http_stream_t *streams; /* the event streams */
+    size_t stream_count;
+    uint64_t event_sequence; /* counts the events formatted */
+    co_time_t next_event;    /* when the next event is due; CO_TIME_NEVER: no stream */
+    char *event;             /* the latest event, "event: state\ndata: {...}\n\n" */
+    size_t event_len;
+    char *buf;   /* the handler's answers, ATV312D_HTTP_STATE_MAX bytes */
+    char *reply; /* a command's reply line, ATV312D_CONTROL_REPLY_MAX bytes */
+    /* frames_per_second: the bus's frame count at a time, the rate since the one before. */
+    co_time_t rate_time;
+    unsigned long long rate_frames;
+    double rate;
+} atv312d_http_t;
+
+/* Answers one request (no socket involved: the unit tests call it as the server does). Returns
+ * true, with no answer, only for a POST /api/command that passed the checks of its headers while
+ * request->body is NULL: call again with the body. Otherwise the answer is in *answer. */
+bool atv312d_http_handle(atv312d_http_t *http, const atv312d_http_request_t *request,
+                         atv312d_http_answer_t *answer);
+
+/* Prepares the handler without a server (the unit tests): buffers, settings, the drives. 0 or
+ * EX_OSERR. */
+int atv312d_http_init(atv312d_http_t *http, co_linux_loop_t *loop,
+                      const atv312d_http_settings_t *settings, const atv312d_control_t *control);
+
+/* atv312d_http_init, then listens at the settings' address in the loop. 0, or an exit status
+ * after logging why (EX_CANTCREAT: the address cannot be bound). */
+int atv312d_http_open(atv312d_http_t *http, co_linux_loop_t *loop,
+                      const atv312d_http_settings_t *settings, const atv312d_control_t *control);
+
+/* Closes every connection and the listening socket; frees the buffers. Safe when not open. */
+void atv312d_http_close(atv312d_http_t *http);
+
+#endif

@@ -1,0 +1,329 @@
+/* The web surface's server on a loopback TCP port, in the runtime's loop as the daemon runs it:
+ * one ATV312 at node 4 on a bus that is a socketpair (co_linux_loop_open_fd), the server on
+ * 127.0.0.1 at a free port, and a client in a child process that makes its requests, writes what
+ * it saw to a pipe and exits, which hangs up the bus and ends the loop. Checked here what the
+ * handler's tests (test_http.c) cannot see: keep-alive, the event stream's first event and its
+ * period, the 503 past the cap of clients and a place freed, the wrong method of a POST answered
+ * before its body. */
+#include "atv312/atv312.h"
+#include "check_main.h"
+#include "http.h"
+
+#include <arpa/inet.h>
+#include <check.h>
+#include <errno.h>
+#include <stdarg.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/socket.h>
+#include <sys/timerfd.h>
+#include <sys/wait.h>
+#include <time.h>
+#include <unistd.h>
+
+#define NODE 4
+
+static co_linux_loop_t loop;
+static uint8_t od_data[ATV312_OD_DATA_SIZE];
+static drive_t drive;
+static co_linux_device_t device;
+static atv312d_counters_t counters;
+static atv312d_control_node_t node;
+static atv312d_control_t control;
+static atv312d_http_t http;
+
+static void slot_start(void *ctx, co_time_t now)
+{
+    drive_start(ctx, now);
+}
+
+static void slot_receive(void *ctx, const co_frame_t *frame, co_time_t now)
+{
+    drive_receive(ctx, frame, now);
+}
+
+static co_time_t slot_process(void *ctx, co_time_t now)
+{
+    return drive_process(ctx, now);
+}
+
+static const co_node_t *slot_node(void *ctx)
+{
+    return &((drive_t *)ctx)->node;
+}
+
+static const co_linux_device_ops_t ops = {
+    .start = slot_start, .receive = slot_receive, .process = slot_process, .node = slot_node};
+
+/* ---- the client, in the child ---- */
+
+static FILE *report;
+static uint16_t port;
+static bool ipv6; /* the server listens on [::1] */
+
+static double seconds(void)
+{
+    struct timespec t;
+    clock_gettime(CLOCK_MONOTONIC, &t);
+    return (double)t.tv_sec + (double)t.tv_nsec / 1e9;
+}
+
+static int connect_server(void)
+{
+    int fd = socket(ipv6 ? AF_INET6 : AF_INET, SOCK_STREAM, 0);
+    struct sockaddr_in addr = {.sin_family = AF_INET, .sin_port = htons(port)};
+    struct sockaddr_in6 addr6 = {.sin6_family = AF_INET6, .sin6_port = htons(port)};
+    addr.sin_addr.s_addr = htonl(INADDR_LOOPBACK);
+    addr6.sin6_addr = in6addr_loopback;
+    int rc = ipv6 ? connect(fd, (struct sockaddr *)&addr6, sizeof addr6)
+                  : connect(fd, (struct sockaddr *)&addr, sizeof addr);
+    if (fd < 0 || rc != 0)
+        exit(2);
+    struct timeval timeout = {.tv_sec = 5};
+    setsockopt(fd, SOL_SOCKET, SO_RCVTIMEO, &timeout, sizeof timeout);
+    return fd;
+}
+
+static void send_text(int fd, const char *text)
+{
+    if (write(fd, text, strlen(text)) != (ssize_t)strlen(text))
+        exit(3);
+}
+
+/* Reads into buf until `until` is in it, the peer closes, or 5 s pass; the bytes read. */
+static size_t read_until(int fd, char *buf, size_t cap, const char *until)
+{
+    size_t used = 0;
+    buf[0] = '\0';
+    while (used + 1 < cap && !(until && strstr(buf, until))) {
+        ssize_t n = read(fd, buf + used, cap - 1 - used);
+        if (n <= 0)
+            break;
+        used += (size_t)n;
+        buf[used] = '\0';
+    }
+    return used;
+}
+
+/* One answer of known length on a kept connection: its status line. */
+static void get_status(int fd, const char *path, char *status, size_t len)
+{
+    char request[256], answer[8192];
+    snprintf(request, sizeof request, "GET %s HTTP/1.1\r\nHost: 127.0.0.1\r\n\r\n", path);
+    send_text(fd, request);
+    read_until(fd, answer, sizeof answer, "\r\n\r\n");
+    const char *length = strstr(answer, "Content-Length: ");
+    const char *body = strstr(answer, "\r\n\r\n");
+    if (length && body) {
+        size_t want = (size_t)(body + 4 - answer) + strtoul(length + 16, NULL, 10);
+        size_t have = strlen(answer);
+        while (have < want) {
+            ssize_t n = read(fd, answer + have, sizeof answer - 1 - have);
+            if (n <= 0)
+                break;
+            have += (size_t)n;
+        }
+    }
+    snprintf(status, len, "%.*s", (int)strcspn(answer, "\r"), answer);
+}
+
+static void client_keep_alive(void)
+{
+    int fd = connect_server();
+    char first[64], second[64];
+    get_status(fd, "/api/bench", first, sizeof first);
+    get_status(fd, "/api/state", second, sizeof second);
+    fprintf(report, "keep-alive: %s; %s\n", first, second);
+    close(fd);
+}
+
+static void client_events(void)
+{
+    int fd = connect_server();
+    static char text[256 * 1024];
+    double start = seconds();
+    send_text(fd, "GET /api/events HTTP/1.1\r\nHost: 127.0.0.1\r\n\r\n");
+    read_until(fd, text, sizeof text, "\n\n");
+    double first = seconds() - start;
+    bool stream = strstr(text, "Content-Type: text/event-stream") != NULL;
+    bool event = strstr(text, "event: state\ndata: {\"ok\":true,\"time_ms\":") != NULL;
+    read_until(fd, text, sizeof text, "\n\n");
+    double second = seconds() - start;
+    fprintf(report, "events: %s, first %s, second after %s\n",
+            stream && event ? "a state stream" : "no stream", first < 0.15 ? "at once" : "late",
+            second > 0.2 && second < 1.0 ? "a period" : "?");
+    close(fd);
+}
+
+static void client_cap(void)
+{
+    int served[ATV312D_HTTP_CLIENTS_MAX];
+    char status[64], answer[4096];
+    for (int i = 0; i < ATV312D_HTTP_CLIENTS_MAX; i++) {
+        served[i] = connect_server();
+        get_status(served[i], "/api/bench", status, sizeof status);
+    }
+    int refused = connect_server();
+    send_text(refused, "GET /api/bench HTTP/1.1\r\nHost: 127.0.0.1\r\n\r\n");
+    read_until(refused, answer, sizeof answer, NULL); /* to the server's close */
+    close(refused);
+    const char *body = strstr(answer, "\r\n\r\n");
+    fprintf(report, "past the cap: %.*s; %s; %s\n", (int)strcspn(answer, "\r"), answer,
+            strstr(answer, "\r\nConnection: close\r\n") ? "closed" : "kept",
+            body ? body + 4 : "no body");
+    close(served[0]);
+    double deadline = seconds() + 2.0;
+    do {
+        served[0] = connect_server();
+        get_status(served[0], "/api/bench", status, sizeof status);
+        if (strstr(status, " 200 "))
+            break;
+        close(served[0]);
+        served[0] = -1;
+    } while (seconds() < deadline);
+    fprintf(report, "a place freed: %s\n", status);
+    for (int i = 0; i < ATV312D_HTTP_CLIENTS_MAX; i++)
+        if (served[i] >= 0)
+            close(served[i]);
+}
+
+/* A POST refused on its headers is answered before its body is sent. */
+static void client_refused_post(void)
+{
+    int fd = connect_server();
+    char answer[4096];
+    send_text(fd, "POST /api/command HTTP/1.1\r\nHost: 127.0.0.1\r\nContent-Type: "
+                  "application/json\r\nContent-Length: 25\r\n\r\n");
+    read_until(fd, answer, sizeof answer, "}");
+    const char *body = strstr(answer, "\r\n\r\n");
+    fprintf(report, "refused post: %.*s; %s\n", (int)strcspn(answer, "\r"), answer,
+            body ? body + 4 : "no body");
+    close(fd);
+}
+
+/* On [::1], with its name as Host. */
+static void client_ipv6(void)
+{
+    int fd = connect_server();
+    char answer[8192];
+    send_text(fd, "GET /api/bench HTTP/1.1\r\nHost: [::1]\r\nConnection: close\r\n\r\n");
+    read_until(fd, answer, sizeof answer, NULL);
+    fprintf(report, "ipv6: %.*s\n", (int)strcspn(answer, "\r"), answer);
+    close(fd);
+}
+
+/* ---- the server, in the parent ---- */
+
+/* Runs the loop with the server until the child, running `client`, exits; returns its report. */
+static const char *serve_at(const char *address, void (*client)(void))
+{
+    int bus[2], pipe_fds[2];
+    ck_assert_int_eq(socketpair(AF_UNIX, SOCK_SEQPACKET, 0, bus), 0);
+    ck_assert_int_eq(pipe(pipe_fds), 0);
+    co_linux_loop_config_t config = {.iface = "pair"};
+    ck_assert_int_eq(co_linux_loop_open_fd(&loop, &config, bus[0]), CO_LINUX_OPEN_OK);
+    drive_config_t drive_config = {.profile = &atv312_profile,
+                                   .od_data = od_data,
+                                   .node_id = NODE,
+                                   .send = co_linux_device_send,
+                                   .send_user = &device};
+    ck_assert_int_eq(drive_init(&drive, &drive_config), 0);
+    co_linux_loop_add(&loop, &device, &ops, &drive);
+    node = (atv312d_control_node_t){
+        .id = NODE, .model = "atv312", .drive = &drive, .device = &device, .counters = &counters};
+    control = (atv312d_control_t){.nodes = &node, .count = 1};
+    atv312d_http_settings_t settings = {0};
+    char err[256];
+    ck_assert_int_eq(atv312d_http_parse_address(address, &settings.address, err, sizeof err), 0);
+    ipv6 = settings.address.addr.ss_family == AF_INET6;
+    ck_assert_int_eq(atv312d_http_open(&http, &loop, &settings, &control), 0);
+    port = http.port;
+    ck_assert_uint_ne(port, 0);
+    /* No client yet: nothing armed. */
+    struct itimerspec armed;
+    ck_assert_int_eq(timerfd_gettime(http.timer_fd, &armed), 0);
+    ck_assert(armed.it_value.tv_sec == 0 && armed.it_value.tv_nsec == 0);
+    pid_t pid = fork();
+    ck_assert_int_ge(pid, 0);
+    if (pid == 0) {
+        close(bus[0]);
+        close(pipe_fds[0]);
+        report = fdopen(pipe_fds[1], "w");
+        client();
+        fclose(report);
+        _exit(0);
+    }
+    close(bus[1]);
+    close(pipe_fds[1]);
+    ck_assert_int_eq(co_linux_loop_run(&loop), 0);
+    static char text[4096];
+    size_t used = 0;
+    ssize_t n;
+    while ((n = read(pipe_fds[0], text + used, sizeof text - 1 - used)) > 0)
+        used += (size_t)n;
+    text[used] = '\0';
+    close(pipe_fds[0]);
+    int status;
+    ck_assert_int_eq(waitpid(pid, &status, 0), pid);
+    ck_assert_msg(WIFEXITED(status) && WEXITSTATUS(status) == 0, "the client failed: %d", status);
+    atv312d_http_close(&http);
+    co_linux_loop_close(&loop);
+    return text;
+}
+
+static const char *serve(void (*client)(void))
+{
+    return serve_at("127.0.0.1:0", client);
+}
+
+START_TEST(connections_are_kept)
+{
+    ck_assert_str_eq(serve(client_keep_alive), "keep-alive: HTTP/1.1 200 OK; HTTP/1.1 200 OK\n");
+}
+END_TEST
+
+START_TEST(events_first_at_once_then_each_period)
+{
+    ck_assert_str_eq(serve(client_events),
+                     "events: a state stream, first at once, second after a period\n");
+}
+END_TEST
+
+START_TEST(past_the_cap_503_then_a_place_freed)
+{
+    ck_assert_str_eq(serve(client_cap),
+                     "past the cap: HTTP/1.1 503 Service Unavailable; closed; {\"ok\":false,"
+                     "\"error\":\"busy: 16 clients are served at once, try again in a few "
+                     "seconds\"}\n"
+                     "a place freed: HTTP/1.1 200 OK\n");
+}
+END_TEST
+
+START_TEST(refused_post_answered_before_its_body)
+{
+    ck_assert_str_eq(serve(client_refused_post),
+                     "refused post: HTTP/1.1 403 Forbidden; {\"ok\":false,\"error\":\"actions are "
+                     "off: start atv312d with --http-actions to allow them\"}\n");
+}
+END_TEST
+
+START_TEST(listens_on_ipv6)
+{
+    ck_assert_str_eq(serve_at("[::1]:0", client_ipv6), "ipv6: HTTP/1.1 200 OK\n");
+}
+END_TEST
+
+int main(void)
+{
+    Suite *s = suite_create("atv312d_http_server");
+    TCase *tc = tcase_create("server");
+    tcase_set_timeout(tc, 30);
+    tcase_add_test(tc, connections_are_kept);
+    tcase_add_test(tc, events_first_at_once_then_each_period);
+    tcase_add_test(tc, past_the_cap_503_then_a_place_freed);
+    tcase_add_test(tc, refused_post_answered_before_its_body);
+    tcase_add_test(tc, listens_on_ipv6);
+    suite_add_tcase(s, tc);
+    return check_run_suite(s);
+}

@@ -1,9 +1,11 @@
 #include "cli.h"
 
+#include <arpa/inet.h>
 #include <ctype.h>
 #include <errno.h>
 #include <net/if.h>
 #include <stdarg.h>
+#include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 #include <sysexits.h>
@@ -18,6 +20,91 @@ static int usage_error(char *err, size_t err_len, const char *format, ...)
     vsnprintf(err, err_len, format, args);
     va_end(args);
     return EX_USAGE;
+}
+
+/* --http's host when it names only a port: loopback, so that nothing but this machine connects. */
+#define HTTP_DEFAULT_HOST "127.0.0.1"
+
+static bool parse_port(const char *text, uint16_t *port)
+{
+    if (!isdigit((unsigned char)text[0]))
+        return false;
+    char *end;
+    errno = 0;
+    unsigned long value = strtoul(text, &end, 10);
+    if (errno != 0 || *end != '\0' || value > 65535)
+        return false;
+    *port = (uint16_t)value;
+    return true;
+}
+
+/* The host part, an IPv4 or IPv6 literal ("localhost" is 127.0.0.1: names are not resolved). */
+static bool parse_host(const char *host, uint16_t port, atv312d_http_address_t *address)
+{
+    struct sockaddr_in *v4 = (struct sockaddr_in *)&address->addr;
+    struct sockaddr_in6 *v6 = (struct sockaddr_in6 *)&address->addr;
+    if (strcmp(host, "localhost") == 0)
+        host = HTTP_DEFAULT_HOST;
+    if (inet_pton(AF_INET, host, &v4->sin_addr) == 1) {
+        v4->sin_family = AF_INET;
+        v4->sin_port = htons(port);
+        address->len = sizeof *v4;
+        address->loopback = (ntohl(v4->sin_addr.s_addr) >> 24) == 127;
+        snprintf(address->text, sizeof address->text, "%s:%u", host, port);
+        return true;
+    }
+    if (inet_pton(AF_INET6, host, &v6->sin6_addr) == 1) {
+        v6->sin6_family = AF_INET6;
+        v6->sin6_port = htons(port);
+        address->len = sizeof *v6;
+        address->loopback = IN6_IS_ADDR_LOOPBACK(&v6->sin6_addr);
+        snprintf(address->text, sizeof address->text, "[%s]:%u", host, port);
+        return true;
+    }
+    return false;
+}
+
+int atv312d_parse_http_address(const char *text, atv312d_http_address_t *address, char *err,
+                               size_t err_len)
+{
+    memset(address, 0, sizeof *address);
+    char host[INET6_ADDRSTRLEN + 16];
+    const char *port_text;
+    if (text[0] == '[') {
+        const char *close = strchr(text, ']');
+        if (!close || close[1] != ':' || (size_t)(close - text - 1) >= sizeof host)
+            return usage_error(err, err_len,
+                               "--http %s: write an IPv6 address in brackets with its port, "
+                               "e.g. [::1]:8080",
+                               text);
+        snprintf(host, sizeof host, "%.*s", (int)(close - text - 1), text + 1);
+        port_text = close + 2;
+    } else {
+        const char *colon = strrchr(text, ':');
+        if (colon && (size_t)(colon - text) >= sizeof host)
+            colon = NULL;
+        snprintf(host, sizeof host, "%.*s", colon ? (int)(colon - text) : 0, text);
+        if (!colon)
+            snprintf(host, sizeof host, HTTP_DEFAULT_HOST);
+        port_text = colon ? colon + 1 : text;
+        if (strchr(host, ':'))
+            return usage_error(err, err_len,
+                               "--http %s: write an IPv6 address in brackets with its port, "
+                               "e.g. [::1]:8080",
+                               text);
+    }
+    uint16_t port;
+    if (!parse_port(port_text, &port))
+        return usage_error(err, err_len,
+                           "--http %s: '%s' is not a port: give [ADDRESS:]PORT with PORT 0..65535, "
+                           "e.g. --http 8080 (127.0.0.1) or --http 0.0.0.0:8080",
+                           text, port_text);
+    if (!parse_host(host, port, address))
+        return usage_error(err, err_len,
+                           "--http %s: '%s' is not an IPv4 or IPv6 address: give one such as "
+                           "127.0.0.1, 0.0.0.0, [::1] or [::] (names are not resolved)",
+                           text, host);
+    return 0;
 }
 
 /* Decimal, or hexadecimal with 0x (CANopen people write both); no sign, no trailing text. */
@@ -262,7 +349,7 @@ static int apply_option(opt_t opt, const char *value, atv312d_options_t *opts,
         return 0;
     case OPT_HTTP:
         opts->http = value;
-        return atv312d_http_parse_address(value, &opts->http_address, err, err_len);
+        return atv312d_parse_http_address(value, &opts->http_address, err, err_len);
     case OPT_HTTP_ACTIONS:
         opts->http_actions = true;
         return 0;

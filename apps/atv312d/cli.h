@@ -56,6 +56,10 @@ typedef struct atv312d_options {
 int atv312d_parse_args(int argc, char *const argv[], atv312d_options_t *opts, char *err,
                        size_t err_len);
 
+/* Parses --http's value; 0, or EX_USAGE with a message in err saying what would be right. */
+int atv312d_parse_http_address(const char *text, atv312d_http_address_t *address, char *err,
+                               size_t err_len);
+
 void atv312d_print_usage(FILE *out);
 
 #endif

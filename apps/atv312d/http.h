@@ -40,10 +40,6 @@ typedef struct atv312d_http_address {
     char text[80]; /* "127.0.0.1:8080", "[::1]:8080" */
 } atv312d_http_address_t;
 
-/* Parses --http's value; 0, or EX_USAGE with a message in err saying what would be right. */
-int atv312d_http_parse_address(const char *text, atv312d_http_address_t *address, char *err,
-                               size_t err_len);
-
 /* Reads the secret of --http-token from the file at path: its first line, of 1 to
  * ATV312D_HTTP_TOKEN_MAX characters. 0, or an exit status with a message in err. */
 int atv312d_http_read_token(const char *path, char *token, size_t token_len, char *err,

@@ -58,7 +58,7 @@ static void start_at(const char *address, bool actions, const char *token)
     control = (atv312d_control_t){.nodes = &node, .count = 1};
     atv312d_http_settings_t settings = {.actions = actions};
     char err[256];
-    ck_assert_int_eq(atv312d_http_parse_address(address, &settings.address, err, sizeof err), 0);
+    ck_assert_int_eq(atv312d_parse_http_address(address, &settings.address, err, sizeof err), 0);
     snprintf(settings.token, sizeof settings.token, "%s", token ? token : "");
     ck_assert_int_eq(atv312d_http_init(&http, &loop, &settings, &control), 0);
 }
@@ -487,7 +487,7 @@ END_TEST
 static int parse_address(const char *text, atv312d_http_address_t *address)
 {
     char err[256];
-    return atv312d_http_parse_address(text, address, err, sizeof err);
+    return atv312d_parse_http_address(text, address, err, sizeof err);
 }
 
 START_TEST(addresses)
@@ -510,19 +510,19 @@ START_TEST(addresses)
     ck_assert_int_eq(parse_address("127.0.0.2:1", &a), 0);
     ck_assert(a.loopback);
     char err[256];
-    ck_assert_int_eq(atv312d_http_parse_address("65536", &a, err, sizeof err), EX_USAGE);
+    ck_assert_int_eq(atv312d_parse_http_address("65536", &a, err, sizeof err), EX_USAGE);
     ck_assert_str_eq(err, "--http 65536: '65536' is not a port: give [ADDRESS:]PORT with PORT "
                           "0..65535, e.g. --http 8080 (127.0.0.1) or --http 0.0.0.0:8080");
-    ck_assert_int_eq(atv312d_http_parse_address("example.com:80", &a, err, sizeof err), EX_USAGE);
+    ck_assert_int_eq(atv312d_parse_http_address("example.com:80", &a, err, sizeof err), EX_USAGE);
     ck_assert_str_eq(err, "--http example.com:80: 'example.com' is not an IPv4 or IPv6 address: "
                           "give one such as 127.0.0.1, 0.0.0.0, [::1] or [::] (names are not "
                           "resolved)");
-    ck_assert_int_eq(atv312d_http_parse_address("::1:80", &a, err, sizeof err), EX_USAGE);
-    ck_assert_int_eq(atv312d_http_parse_address("[::1]80", &a, err, sizeof err), EX_USAGE);
+    ck_assert_int_eq(atv312d_parse_http_address("::1:80", &a, err, sizeof err), EX_USAGE);
+    ck_assert_int_eq(atv312d_parse_http_address("[::1]80", &a, err, sizeof err), EX_USAGE);
     ck_assert_str_eq(err, "--http [::1]80: write an IPv6 address in brackets with its port, e.g. "
                           "[::1]:8080");
-    ck_assert_int_eq(atv312d_http_parse_address("127.0.0.1:", &a, err, sizeof err), EX_USAGE);
-    ck_assert_int_eq(atv312d_http_parse_address("-1", &a, err, sizeof err), EX_USAGE);
+    ck_assert_int_eq(atv312d_parse_http_address("127.0.0.1:", &a, err, sizeof err), EX_USAGE);
+    ck_assert_int_eq(atv312d_parse_http_address("-1", &a, err, sizeof err), EX_USAGE);
 }
 END_TEST
 

@@ -7,6 +7,7 @@
  * before its body. */
 #include "atv312/atv312.h"
 #include "check_main.h"
+#include "cli.h"
 #include "http.h"
 
 #include <arpa/inet.h>
@@ -235,7 +236,7 @@ static const char *serve_at(const char *address, void (*client)(void))
     control = (atv312d_control_t){.nodes = &node, .count = 1};
     atv312d_http_settings_t settings = {0};
     char err[256];
-    ck_assert_int_eq(atv312d_http_parse_address(address, &settings.address, err, sizeof err), 0);
+    ck_assert_int_eq(atv312d_parse_http_address(address, &settings.address, err, sizeof err), 0);
     ipv6 = settings.address.addr.ss_family == AF_INET6;
     ck_assert_int_eq(atv312d_http_open(&http, &loop, &settings, &control), 0);
     port = http.port;

@@ -22,6 +22,14 @@ static inline co_time_t co_time_min(co_time_t a, co_time_t b)
     return a < b ? a : b;
 }
 
+/* The next due time of a periodic frame sent at `now` for the one `due`: one period after `due`,
+ * so the period stays exact; when the call came so late that this has passed too, one period
+ * after `now`, so that a late wake-up moves the schedule rather than send a burst. */
+static inline co_time_t co_time_next_period(co_time_t due, co_time_t period, co_time_t now)
+{
+    return due + period > now ? due + period : now + period;
+}
+
 /* A classic CAN frame. Only 11-bit identifiers are used by the stack; 29-bit frames are ignored. */
 #define CO_FRAME_RTR 0x01u /* remote transmission request */
 #define CO_FRAME_EFF 0x02u /* 29-bit (extended) identifier */

@@ -48,9 +48,7 @@ bool co_sync_producer_take(co_sync_producer_t *producer, co_time_t now, co_frame
         frame->len = 1;
         frame->data[0] = producer->counter;
     }
-    producer->next += producer->period_us;
-    if (producer->next <= now)
-        producer->next = now + producer->period_us;
+    producer->next = co_time_next_period(producer->next, producer->period_us, now);
     return true;
 }
 

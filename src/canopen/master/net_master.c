@@ -908,10 +908,8 @@ static co_time_t produce_heartbeat(co_net_master_t *m)
     co_frame_t beat = {
         .id = CO_CAN_ID_ERROR_CONTROL + m->config.node_id, .len = 1, .data = {CO_NMT_OPERATIONAL}};
     send(m, &beat);
-    co_time_t period = (co_time_t)m->config.heartbeat_ms * US_PER_MS;
-    m->next_heartbeat += period;
-    if (m->next_heartbeat <= m->now) /* woken late: the grid moves rather than beat in a burst */
-        m->next_heartbeat = m->now + period;
+    m->next_heartbeat = co_time_next_period(m->next_heartbeat,
+                                            (co_time_t)m->config.heartbeat_ms * US_PER_MS, m->now);
     return m->next_heartbeat;
 }
 

@@ -1,6 +1,8 @@
 /* The Altivar 31's profiles: the family's (ATV312_FAMILY_PROFILE) on the dictionaries generated
  * from eds/ATV31.eds, with and without the heartbeat objects of firmware V1.2. Its STOP/RESET key
- * (the ATV31...A's front panel) is "used to stop the motor and to reset the current faults". */
+ * (the ATV31...A's front panel) is "used to stop the motor and to reset the current faults". Its
+ * faults are the ATV312's on CANopen: its built-in CANopen port names the communication loss COF
+ * too ("goes to COF fault"). */
 #include "atv31/atv31.h"
 
 /* Its analogue inputs, the project's choice where the manual names none but the potentiometer
@@ -15,6 +17,6 @@ static const drive_analog_input_t atv31_analog_inputs[] = {
 };
 
 const drive_profile_t atv31_profile = ATV312_FAMILY_PROFILE(
-    &atv31_od, ATV31_LOGIC_INPUTS, atv31_analog_inputs, &atv31_family_faults, true);
+    &atv31_od, ATV31_LOGIC_INPUTS, atv31_analog_inputs, &atv312_family_faults, true);
 const drive_profile_t atv31_v11_profile = ATV312_FAMILY_PROFILE(
-    &atv31_v11_od, ATV31_LOGIC_INPUTS, atv31_analog_inputs, &atv31_family_faults, true);
+    &atv31_v11_od, ATV31_LOGIC_INPUTS, atv31_analog_inputs, &atv312_family_faults, true);

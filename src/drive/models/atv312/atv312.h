@@ -16,7 +16,6 @@
  * communication-loss fault, COF on CANopen (both CANopen manuals), CnF behind the ATV312's
  * DeviceNet card (its DeviceNet manual). */
 extern const drive_fault_table_t atv312_family_faults;
-extern const drive_fault_table_t atv31_family_faults;
 extern const drive_fault_table_t atv312_devicenet_faults;
 
 /* Codes of the channel parameters (the project's, docs/atv312.md): CHCF 1 not separate, 2

@@ -31,22 +31,9 @@ static const drive_fault_def_t atv312_devicenet_faults_defs[] = {
 #include "family_faults.inc"
 };
 
-/* The ATV31's CANopen port is built in: the same fault, the same name. */
-static const drive_fault_def_t atv31_faults[] = {
-    {"COF", "CANopen communication fault (life guarding, heartbeat)", 0x8130, 0, COMMAND,
-     FREEWHEEL},
-#include "family_faults.inc"
-};
-
 const drive_fault_table_t atv312_family_faults = {
     .faults = atv312_faults,
     .count = sizeof atv312_faults / sizeof atv312_faults[0],
-    .communication_loss = 0,
-};
-
-const drive_fault_table_t atv31_family_faults = {
-    .faults = atv31_faults,
-    .count = sizeof atv31_faults / sizeof atv31_faults[0],
     .communication_loss = 0,
 };
 

@@ -22,15 +22,14 @@ static bool condition(const co_linux_loop_t *loop, uint16_t emcy_code)
 
 const char *atv312d_can_state(const co_linux_loop_t *loop)
 {
-    if (!loop->bus.link_up)
-        return "down";
-    if (condition(loop, CO_LINUX_EMCY_BUS_OFF))
-        return "bus-off";
-    if (condition(loop, CO_LINUX_EMCY_CAN_PASSIVE))
-        return "error-passive";
-    if (co_linux_conditions_warning(&loop->bus.conditions))
-        return "error-warning";
-    return "error-active";
+    static const char *const names[] = {
+        [CO_LINUX_CAN_DOWN] = "down",
+        [CO_LINUX_CAN_BUS_OFF] = "bus-off",
+        [CO_LINUX_CAN_ERROR_PASSIVE] = "error-passive",
+        [CO_LINUX_CAN_ERROR_WARNING] = "error-warning",
+        [CO_LINUX_CAN_ERROR_ACTIVE] = "error-active",
+    };
+    return names[co_linux_bus_can_state(&loop->bus)];
 }
 
 size_t atv312d_status_format(const atv312d_status_t *status, char *buf, size_t len)

@@ -339,18 +339,15 @@ static void reply_master_status(runner_t *r, bool json, char *reply, size_t cap)
         snprintf(reply, cap, "%s\n", text);
 }
 
+/* The controller's state in the PLC300's words: an interface that is down has no bus power. */
 static const char *controller_state(const runner_t *r)
 {
-    const co_linux_bus_t *bus = &r->bus.loop.bus;
-    if (!bus->link_up)
-        return "no bus power";
-    if (co_linux_conditions_active(&bus->conditions, CO_LINUX_EMCY_BUS_OFF))
-        return "bus-off";
-    if (co_linux_conditions_active(&bus->conditions, CO_LINUX_EMCY_CAN_PASSIVE))
-        return "error-passive";
-    if (co_linux_conditions_warning(&bus->conditions))
-        return "warning";
-    return "error-active";
+    static const char *const names[] = {
+        [CO_LINUX_CAN_DOWN] = "no bus power",           [CO_LINUX_CAN_BUS_OFF] = "bus-off",
+        [CO_LINUX_CAN_ERROR_PASSIVE] = "error-passive", [CO_LINUX_CAN_ERROR_WARNING] = "warning",
+        [CO_LINUX_CAN_ERROR_ACTIVE] = "error-active",
+    };
+    return names[co_linux_bus_can_state(&r->bus.loop.bus)];
 }
 
 static void reply_can(const runner_t *r, bool json, char *reply, size_t cap)

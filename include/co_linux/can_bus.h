@@ -102,6 +102,18 @@ typedef struct co_linux_bus {
     co_linux_bus_tx_t tx;
 } co_linux_bus_t;
 
+/* The CAN controller's state as the bus knows it, the worst that holds: the interface down, bus
+ * off, error passive, an error counter at the warning level (96), or error active. */
+typedef enum co_linux_can_state {
+    CO_LINUX_CAN_DOWN,
+    CO_LINUX_CAN_BUS_OFF,
+    CO_LINUX_CAN_ERROR_PASSIVE,
+    CO_LINUX_CAN_ERROR_WARNING,
+    CO_LINUX_CAN_ERROR_ACTIVE
+} co_linux_can_state_t;
+
+co_linux_can_state_t co_linux_bus_can_state(const co_linux_bus_t *bus);
+
 /* Nothing open; frames wait in a transmit queue of txq_capacity (0: CO_TXQ_MAX). */
 void co_linux_bus_init(co_linux_bus_t *bus, const co_linux_bus_host_t *host, const char *iface,
                        FILE *trace, size_t txq_capacity);

@@ -37,6 +37,19 @@ static void init_batches(co_linux_bus_t *bus)
     }
 }
 
+co_linux_can_state_t co_linux_bus_can_state(const co_linux_bus_t *bus)
+{
+    if (!bus->link_up)
+        return CO_LINUX_CAN_DOWN;
+    if (co_linux_conditions_active(&bus->conditions, CO_LINUX_EMCY_BUS_OFF))
+        return CO_LINUX_CAN_BUS_OFF;
+    if (co_linux_conditions_active(&bus->conditions, CO_LINUX_EMCY_CAN_PASSIVE))
+        return CO_LINUX_CAN_ERROR_PASSIVE;
+    if (co_linux_conditions_warning(&bus->conditions))
+        return CO_LINUX_CAN_ERROR_WARNING;
+    return CO_LINUX_CAN_ERROR_ACTIVE;
+}
+
 void co_linux_bus_init(co_linux_bus_t *bus, const co_linux_bus_host_t *host, const char *iface,
                        FILE *trace, size_t txq_capacity)
 {

@@ -70,6 +70,12 @@ install(FILES ${PROJECT_BINARY_DIR}/canopenConfig.cmake
 install(TARGETS atv312d cotrace comaster dnscan RUNTIME DESTINATION ${CMAKE_INSTALL_BINDIR})
 install(PROGRAMS ${CO_EDSTOOL} DESTINATION ${CMAKE_INSTALL_BINDIR} RENAME co-edstool)
 install(PROGRAMS ${PROJECT_SOURCE_DIR}/tools/vcan-run DESTINATION ${CMAKE_INSTALL_BINDIR})
+# vcan-run's helpers, which it finds as ../libexec/vcan-run/ from its own place (tools/vcan-run).
+install(PROGRAMS ${PROJECT_SOURCE_DIR}/tools/vcan-run-relay.py
+        DESTINATION ${CMAKE_INSTALL_LIBEXECDIR}/vcan-run)
+if(TARGET uml_xstate)
+  install(TARGETS uml_xstate LIBRARY DESTINATION ${CMAKE_INSTALL_LIBEXECDIR}/vcan-run)
+endif()
 
 file(GLOB CO_INSTALL_EDS CONFIGURE_DEPENDS ${PROJECT_SOURCE_DIR}/eds/*.eds)
 install(FILES ${CO_INSTALL_EDS} DESTINATION ${CO_INSTALL_EDSDIR})

@@ -105,7 +105,11 @@ int co_node_init(co_node_t *node, const co_node_config_t *config)
     node->sdo.buffer = config->sdo_buffer;
 #if CO_CONFIG_SDO_BUFFER > 0
     if (node->sdo.buffer == NULL) {
-        node->sdo.own = (co_sdo_buffer_t){.data = node->sdo.own_data, .size = CO_CONFIG_SDO_BUFFER};
+        /* Member by member on the zeroed node: a compound literal copied in would bring its
+         * padding from the stack (clang -O0), and the node's bytes would depend on what the
+         * stack held (tests/drive/test_init.c). */
+        node->sdo.own.data = node->sdo.own_data;
+        node->sdo.own.size = CO_CONFIG_SDO_BUFFER;
         node->sdo.buffer = &node->sdo.own;
     }
 #endif

@@ -13,7 +13,9 @@ COLUMNS=80 and turns the text into roff (man(7)):
   - an indented line `TERM  description` (two spaces or more between them), with continuation
     lines aligned on the description: a tagged paragraph (.TP); a term alone on its line may go
     on over lines indented deeper than it, its description on lines deeper still;
-  - a paragraph starting `Exit status:` or `Exit codes:`: the EXIT STATUS section;
+  - a paragraph starting `Exit status:` or `Exit codes:`: the EXIT STATUS section; the heading
+    alone on its line followed by indented `STATUS  meaning` lines: each status a tagged paragraph
+    of that section;
   - any other paragraph: a paragraph, its lines joined.
 The rest of the top-level help is DESCRIPTION; each subcommand's help (after its usage) is a
 section `NAME SUB`. Python 3 standard library only. Exits 1 when PROGRAM fails, 2 on usage errors.
@@ -121,8 +123,11 @@ def render_body(lines):
     """Returns (body roff lines, exit status roff lines)."""
     body, exit_status = [], []
     for block in paragraphs(lines):
-        if not block[0].startswith(" ") and block[0].endswith(":") and len(block) > 1 \
-                and all(l.startswith(" ") for l in block[1:]):
+        is_list = not block[0].startswith(" ") and block[0].endswith(":") and len(block) > 1 \
+            and all(l.startswith(" ") for l in block[1:])
+        if is_list and EXIT_STATUS.fullmatch(block[0]):
+            exit_status += render_items(block[1:])
+        elif is_list:
             body += [".SS %s" % roff_text(block[0][:-1].capitalize())] + render_items(block[1:])
         elif all(l.startswith(" ") for l in block) and ITEM.match(block[0]).group(3):
             body += render_items(block)

@@ -253,28 +253,29 @@ typedef enum {
     OPT_VERSION
 } opt_t;
 
+/* Each option, and the name of its value in --help (NULL: it takes none). */
 static const struct {
     const char *name;
     opt_t opt;
-    bool has_value;
+    const char *value;
 } options[] = {
-    {"--node-id", OPT_NODE_ID, true},
-    {"--mac-id", OPT_MAC_ID, true},
-    {"--devicenet", OPT_DEVICENET, false},
-    {"--baud", OPT_BAUD, true},
-    {"--model", OPT_MODEL, true},
-    {"--store", OPT_STORE, true},
-    {"--trace", OPT_TRACE, true},
-    {"--control", OPT_CONTROL, true},
-    {"--status", OPT_STATUS, true},
-    {"--http-actions", OPT_HTTP_ACTIONS, false},
-    {"--http-token", OPT_HTTP_TOKEN, true},
-    {"--http", OPT_HTTP, true},
-    {"--log-level", OPT_LOG_LEVEL, true},
-    {"--help", OPT_HELP, false},
-    {"-h", OPT_HELP, false},
-    {"--version", OPT_VERSION, false},
-    {"-V", OPT_VERSION, false},
+    {"--node-id", OPT_NODE_ID, "N"},
+    {"--mac-id", OPT_MAC_ID, "N"},
+    {"--devicenet", OPT_DEVICENET, NULL},
+    {"--baud", OPT_BAUD, "RATE"},
+    {"--model", OPT_MODEL, "M"},
+    {"--store", OPT_STORE, "FILE"},
+    {"--trace", OPT_TRACE, "FILE"},
+    {"--control", OPT_CONTROL, "PATH"},
+    {"--status", OPT_STATUS, "FILE"},
+    {"--http-actions", OPT_HTTP_ACTIONS, NULL},
+    {"--http-token", OPT_HTTP_TOKEN, "FILE"},
+    {"--http", OPT_HTTP, "[ADDRESS:]PORT"},
+    {"--log-level", OPT_LOG_LEVEL, "LEVEL"},
+    {"--help", OPT_HELP, NULL},
+    {"-h", OPT_HELP, NULL},
+    {"--version", OPT_VERSION, NULL},
+    {"-V", OPT_VERSION, NULL},
 };
 
 /* Finds the option of "--name" or "--name=value"; *inline_value points after '='. */
@@ -288,7 +289,7 @@ static int find_option(const char *arg, const char **inline_value)
             *inline_value = NULL;
             return (int)i;
         }
-        if (arg[n] == '=' && options[i].has_value) {
+        if (arg[n] == '=' && options[i].value) {
             *inline_value = arg + n + 1;
             return (int)i;
         }
@@ -498,15 +499,12 @@ int atv312d_parse_args(int argc, char *const argv[], atv312d_options_t *opts, ch
         const char *value;
         int k = find_option(arg, &value);
         if (k < 0)
-            return usage_error(err, err_len, "unknown option '%s' (see atv312d --help)", arg);
-        if (options[k].has_value && !value) {
-            if (i + 1 >= argc)
-                return usage_error(err, err_len, "option %s needs a value (see atv312d --help)",
-                                   options[k].name);
+            return usage_error(err, err_len, "unknown option '%s'", arg);
+        if (options[k].value && !value && i + 1 < argc)
             value = argv[++i];
-        }
-        if (options[k].has_value && value[0] == '\0')
-            return usage_error(err, err_len, "option %s needs a non-empty value", options[k].name);
+        if (options[k].value && (!value || value[0] == '\0'))
+            return usage_error(err, err_len, "option %s needs a value: give %s %s", options[k].name,
+                               options[k].name, options[k].value);
         int rc = apply_option(options[k].opt, value, opts, &groups, err, err_len);
         if (rc)
             return rc;
@@ -571,10 +569,10 @@ void atv312d_print_usage(FILE *out)
     fputs("Example: atv312d vcan0 --node-id 4-5 --model atv312 --node-id 6\n"
           "         atv312d vcan1 --devicenet --mac-id 25,63\n"
           "\n"
-          "Control commands, for testing a master: atv312d ctl PATH COMMAND sends one to the\n"
-          "daemon started with --control PATH and prints its one-line reply, 'ok ...' (exit 0)\n"
-          "or 'error: ...' (exit 65); with --json the reply is a JSON object. On DeviceNet NODE\n"
-          "is the MAC ID.\n"
+          "Control commands, for testing a master: atv312d ctl PATH COMMAND sends one to\n"
+          "the daemon started with --control PATH and prints its one-line reply, 'ok ...'\n"
+          "(exit 0), or its refusal as an error (exit 1); with --json the reply is a JSON\n"
+          "object. On DeviceNet NODE is the MAC ID.\n"
           "\n"
           "Control commands:\n"
           "  fault NODE CODE     the fault CODE (OHF, OCF, USF, COF, ...) happens: EMCY, 603Fh,\n"
@@ -610,10 +608,24 @@ void atv312d_print_usage(FILE *out)
           "\n"
           "Example: atv312d ctl /tmp/atv312d.sock fault 4 OHF\n"
           "\n"
-          "Exit status: 0 after SIGINT/SIGTERM, 64 usage error, 69 interface or CAN support\n"
-          "missing, 70 internal error, 71 system error, 73 cannot create the trace or store\n"
-          "file or listen at the --http address, 74 I/O error on the store file, 65 or 66\n"
-          "a --http-token file without a secret or unreadable. See docs/atv312d.md and\n"
-          "docs/web.md.\n",
+          "An error is one line on stderr, 'atv312d: error: ' then what is wrong and what\n"
+          "would be right, as the daemon logs (its levels error, warn, info, debug); after\n"
+          "wrong arguments a second line names the --help to read. See docs/atv312d.md and\n"
+          "docs/web.md.\n"
+          "\n"
+          "Exit status:\n"
+          "  0   stopped by SIGINT or SIGTERM; ctl: the daemon answered ok\n"
+          "  1   ctl: the daemon refused the command\n"
+          "  64  wrong arguments: an unknown option or model, a bad node-id, MAC ID or\n"
+          "      address, options that do not go together\n"
+          "  65  bad data: the --http-token file has no secret on its first line\n"
+          "  66  the store file or the --http-token file cannot be read\n"
+          "  69  no such interface or no SocketCAN, or (--http) no GNU libmicrohttpd;\n"
+          "      ctl: no daemon answers at PATH\n"
+          "  70  internal error (a drive could not be initialised)\n"
+          "  71  system error\n"
+          "  73  the trace file, the store's directory or the control socket cannot be\n"
+          "      created, or the --http address cannot be listened at\n"
+          "  76  ctl: the daemon closed the connection without a reply\n",
           out);
 }

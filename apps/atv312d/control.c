@@ -3,6 +3,7 @@
 #include "control.h"
 #include "status.h"
 
+#include "co_cli.h"
 #include "co_linux/log.h"
 #include "drive/panel.h"
 
@@ -804,11 +805,10 @@ int atv312d_control_open(atv312d_control_t *control, co_linux_loop_t *loop, cons
                                       .reply_cap = sizeof reply};
     const char *call = NULL;
     co_line_result_t result = co_line_server_open(&control->server, loop, path, &config, &call);
-    if (result == CO_LINE_TOO_LONG) {
-        co_log(CO_LOG_ERROR, "--control %s: the path is longer than %zu characters", path,
-               CO_LINE_PATH_MAX - 1);
-        return EX_USAGE;
-    }
+    if (result == CO_LINE_TOO_LONG)
+        return cli_fail(NULL, EX_USAGE,
+                        "--control %s: the path is longer than %zu characters: give a shorter one",
+                        path, CO_LINE_PATH_MAX - 1);
     if (result != CO_LINE_OK) {
         /* Another daemon answers there, or the path is a file of another kind. */
         if (errno == EADDRINUSE)
@@ -829,9 +829,9 @@ void atv312d_control_close(atv312d_control_t *control)
 
 static int client_usage(void)
 {
-    fprintf(stderr, "usage: atv312d ctl PATH [--json] COMMAND... (e.g. atv312d ctl "
-                    "/tmp/atv312d.sock fault 4 OHF; see atv312d --help)\n");
-    return EX_USAGE;
+    return cli_fail(NULL, EX_USAGE,
+                    "ctl: give the daemon's socket and a command: atv312d ctl PATH [--json] "
+                    "COMMAND..., e.g. atv312d ctl /tmp/atv312d.sock fault 4 OHF");
 }
 
 int atv312d_control_client(int argc, char *const argv[])
@@ -851,27 +851,34 @@ int atv312d_control_client(int argc, char *const argv[])
     for (int i = first; i < argc && used < sizeof line; i++)
         used += (size_t)snprintf(line + used, sizeof line - used, "%s%s", i > first ? " " : "",
                                  argv[i]);
-    if (used + 1 >= sizeof line || strchr(line, '\n')) {
-        fprintf(stderr, "atv312d ctl: the command is too long or has a newline\n");
-        return EX_USAGE;
-    }
+    if (used + 1 >= sizeof line || strchr(line, '\n'))
+        return cli_fail(NULL, EX_USAGE,
+                        "ctl: the command has a newline or is longer than %d characters: give "
+                        "one command of one line",
+                        ATV312D_CONTROL_LINE_MAX - 1);
     static char reply[ATV312D_CONTROL_REPLY_MAX];
     switch (co_line_request(path, CO_LINE_SESSION, line, reply, sizeof reply)) {
     case CO_LINE_OK:
         break;
     case CO_LINE_TOO_LONG:
-        fprintf(stderr, "atv312d ctl: the path %s is too long\n", path);
-        return EX_UNAVAILABLE;
+        return cli_fail(NULL, EX_USAGE,
+                        "ctl: the path %s is longer than %zu characters: give a shorter one", path,
+                        CO_LINE_PATH_MAX - 1);
     case CO_LINE_NO_SERVER:
-        fprintf(stderr,
-                "atv312d ctl: cannot connect to %s: %s (is atv312d running with --control %s?)\n",
-                path, strerror(errno), path);
-        return EX_UNAVAILABLE;
+        return cli_fail(NULL, EX_UNAVAILABLE,
+                        "ctl: cannot connect to %s: %s: is atv312d running with --control %s?",
+                        path, strerror(errno), path);
     default:
-        fprintf(stderr, "atv312d ctl: no reply from %s\n", path);
-        return EX_UNAVAILABLE;
+        return cli_fail(NULL, EX_PROTOCOL,
+                        "ctl: no reply from %s: the daemon closed the connection", path);
     }
-    fputs(reply, stdout);
+    bool json = first == 2;
     bool ok = strncmp(reply, "ok", 2) == 0 || strncmp(reply, "{\"ok\":true", 10) == 0;
-    return ok ? 0 : EX_DATAERR;
+    if (ok || json) {
+        fputs(reply, stdout);
+        return ok ? 0 : CLI_EXIT_REFUSED;
+    }
+    /* The daemon refused: "error: WHY" is the program's error. */
+    const char *why = strncmp(reply, "error: ", 7) == 0 ? reply + 7 : reply;
+    return cli_fail(NULL, CLI_EXIT_REFUSED, "%.*s", (int)strcspn(why, "\n"), why);
 }

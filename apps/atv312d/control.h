@@ -53,8 +53,10 @@ int atv312d_control_open(atv312d_control_t *control, co_linux_loop_t *loop, cons
 /* Closes the connections and the socket and removes PATH. */
 void atv312d_control_close(atv312d_control_t *control);
 
-/* `atv312d ctl PATH [--json] COMMAND...`: sends the command, prints the reply. Exit status 0
- * for "ok", EX_DATAERR for "error: ...", EX_USAGE, EX_UNAVAILABLE when no daemon listens. */
+/* `atv312d ctl PATH [--json] COMMAND...`: sends the command and prints the reply: "ok ..." on
+ * stdout, exit 0; "error: ..." as the program's error line on stderr (with --json the reply on
+ * stdout), exit CLI_EXIT_REFUSED; EX_USAGE, EX_UNAVAILABLE when no daemon listens, EX_PROTOCOL
+ * when it closed without a reply (co_cli.h). */
 int atv312d_control_client(int argc, char *const argv[]);
 
 #endif

@@ -2,6 +2,7 @@
  * loop, one socket for all of them. Usage and behaviour: docs/atv312d.md. */
 #include "cli.h"
 #include "co/co_store.h"
+#include "co_cli.h"
 #include "co_linux/conditions.h"
 #include "co_linux/file_store.h"
 #include "co_linux/log.h"
@@ -420,7 +421,7 @@ static int open_store(const char *path, co_file_store_t *store)
     }
     co_log(CO_LOG_ERROR, "store %s: cannot be read: %s", path, store->reason);
     co_file_store_close(store);
-    return EX_IOERR;
+    return EX_NOINPUT;
 }
 
 static const char *baud_text(atv312d_baud_t baud)
@@ -674,14 +675,12 @@ int main(int argc, char *argv[])
 {
     atv312d_options_t opts;
     char err[256];
-    co_log_setup("atv312d", CO_LOG_INFO);
+    cli_setup("atv312d", CO_LOG_INFO);
     if (argc >= 2 && strcmp(argv[1], "ctl") == 0)
         return atv312d_control_client(argc - 2, argv + 2);
     int rc = atv312d_parse_args(argc, argv, &opts, err, sizeof err);
-    if (rc != 0) {
-        co_log(CO_LOG_ERROR, "%s", err);
-        return rc;
-    }
+    if (rc != 0)
+        return cli_fail(NULL, rc, "%s", err);
     if (opts.help) {
         atv312d_print_usage(stdout);
         return 0;

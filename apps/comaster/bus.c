@@ -3,9 +3,7 @@
  * come from the core's process calls, so nothing sleeps. */
 #include "comaster.h"
 
-#include "cli.h"
-
-#include "co_linux/log.h"
+#include "co_cli.h"
 
 #include <stddef.h>
 #include <stdio.h>
@@ -47,15 +45,13 @@ static int report_open_error(const comaster_bus_t *bus, const comaster_options_t
                              co_linux_open_result_t result)
 {
     char message[512];
-    int status = cli_open_error_text(&bus->loop, result, "comaster", "COMASTER_IFACE", message,
-                                     sizeof message);
+    int status = cli_open_error_text(&bus->loop, result, "COMASTER_IFACE", message, sizeof message);
     return comaster_fail(opts, status, "%s", message);
 }
 
 int comaster_bus_open(comaster_bus_t *bus, const comaster_options_t *opts)
 {
     memset(bus, 0, sizeof *bus);
-    co_log_setup("comaster", CO_LOG_WARN);
     co_linux_loop_config_t config = {.iface = opts->iface};
     co_linux_open_result_t opened = co_linux_loop_open(&bus->loop, &config);
     if (opened != CO_LINUX_OPEN_OK)
@@ -83,9 +79,9 @@ int comaster_bus_run(comaster_bus_t *bus, const comaster_job_t *job)
     if (rc != 0)
         return rc;
     if (!bus->signal_is_the_end)
-        comaster_fail(bus->opts, COMASTER_EXIT_INTERRUPTED,
+        comaster_fail(bus->opts, CLI_EXIT_INTERRUPTED,
                       "interrupted by a signal before the command finished");
-    return COMASTER_EXIT_INTERRUPTED;
+    return CLI_EXIT_INTERRUPTED;
 }
 
 void comaster_bus_finish(comaster_bus_t *bus, int status)
@@ -172,7 +168,9 @@ static void sdo_job_init(sdo_job_t *s, comaster_bus_t *bus, uint8_t node,
 static int sdo_run(sdo_job_t *s, int started)
 {
     if (started != 0)
-        return EX_SOFTWARE;
+        return comaster_fail(s->bus->opts, EX_SOFTWARE,
+                             "internal error: the SDO client did not start the transfer (%d)",
+                             started);
     comaster_job_t job = {.receive = sdo_receive, .process = sdo_process, .ctx = s};
     return comaster_bus_run(s->bus, &job);
 }
@@ -201,14 +199,14 @@ int comaster_sdo_status(const comaster_options_t *opts, uint8_t node,
                         const co_sdo_client_result_t *result)
 {
     if (result->status == CO_SDO_CLIENT_OK)
-        return COMASTER_EXIT_OK;
+        return CLI_EXIT_OK;
     if (result->status == CO_SDO_CLIENT_CLIENT_ABORT && result->abort_code == CO_SDO_ABORT_TIMEOUT)
-        return comaster_fail(opts, COMASTER_EXIT_TIMEOUT,
+        return comaster_fail(opts, CLI_EXIT_TIMEOUT,
                              "node %u, %04X:%02X: no answer within %u ms: is the node on %s and "
                              "its node-id %u? (--timeout MS waits longer)",
                              node, result->index, result->subindex, opts->timeout_ms, opts->iface,
                              node);
-    return comaster_fail(opts, COMASTER_EXIT_ABORT, "node %u, %04X:%02X: %s abort 0x%08X: %s", node,
+    return comaster_fail(opts, CLI_EXIT_REFUSED, "node %u, %04X:%02X: %s abort 0x%08X: %s", node,
                          result->index, result->subindex,
                          result->status == CO_SDO_CLIENT_SERVER_ABORT ? "SDO" : "client",
                          result->abort_code, co_sdo_abort_text(result->abort_code));

@@ -1,24 +1,18 @@
-/* comaster: what its commands share. The table of commands (main.c), the common options, the exit
- * codes scripts rely on, the one-line errors and --json output, and the bus: one epoll loop of the
- * Linux runtime on which each command runs its jobs (SDO transfers, waits for frames) one after
- * the other, each until it finishes or its deadline passes (docs/comaster.md). */
+/* comaster: what its commands share. The table of commands (main.c), the common options, the
+ * errors and --json output with the exit statuses scripts rely on (co_cli.h), and the bus: one
+ * epoll loop of the Linux runtime on which each command runs its jobs (SDO transfers, waits for
+ * frames) one after the other, each until it finishes or its deadline passes
+ * (docs/comaster.md). */
 #ifndef COMASTER_H
 #define COMASTER_H
 
 #include "co/co_sdo_client.h"
+#include "co_cli.h"
 #include "co_linux/loop.h"
 #include "eds_reader.h"
 
 #include <stdbool.h>
 #include <stdint.h>
-#include <sysexits.h>
-
-/* Exit codes (docs/comaster.md): the sysexits.h ones for usage, data, files and the interface. */
-#define COMASTER_EXIT_OK 0
-#define COMASTER_EXIT_ABORT 1       /* the server aborted an SDO transfer */
-#define COMASTER_EXIT_TIMEOUT 2     /* no answer, or the state awaited not reached, in time */
-#define COMASTER_EXIT_INTERRUPTED 3 /* SIGINT or SIGTERM before the command finished */
-#define COMASTER_EXIT_FAULT 4       /* the drive is in Fault: only fault-reset leaves it */
 
 #define COMASTER_DEFAULT_IFACE "can0"
 #define COMASTER_DEFAULT_TIMEOUT_MS 1000u
@@ -26,6 +20,7 @@
 
 /* The options every command takes, before the command or among its arguments. */
 typedef struct comaster_options {
+    const char *command; /* the command running, for the hint after a usage error; NULL before */
     const char *iface;
     uint32_t timeout_ms;
     bool json;
@@ -73,10 +68,14 @@ int comaster_can_main(comaster_options_t *opts, int argc, char **argv);
 int comaster_parse_args(comaster_options_t *opts, comaster_args_t *args, int argc, char **argv,
                         const char *help, const char *flags, int min_args, int max_args);
 
-/* A one-line error on stderr ("comaster: ...") and, with --json, {"error": ...} on stdout;
- * returns `status`. */
+/* An error on stderr ("comaster: error: ...", then "Try 'comaster COMMAND --help'." after a
+ * usage error) and, with --json, {"error": ...} on stdout (co_cli.h); returns `status`. */
 int comaster_fail(const comaster_options_t *opts, int status, const char *format, ...)
     __attribute__((format(printf, 3, 4)));
+
+/* The usage error of an option given without its value, naming what the value is
+ * ("--timeout MS"); returns EX_USAGE. */
+int comaster_missing_value(const comaster_options_t *opts, const char *option);
 
 /* A node-id 1..127 (or "all" when allow_all: *node = 0). False after a usage error message. */
 bool comaster_parse_node(const comaster_options_t *opts, const char *text, bool allow_all,
@@ -112,7 +111,7 @@ int comaster_bus_open(comaster_bus_t *bus, const comaster_options_t *opts);
 void comaster_bus_close(comaster_bus_t *bus);
 
 /* Runs `job` until it calls comaster_bus_finish (returns its status), a signal
- * (COMASTER_EXIT_INTERRUPTED, after a one-line error unless signal_is_the_end) or a failure of
+ * (CLI_EXIT_INTERRUPTED, after a one-line error unless signal_is_the_end) or a failure of
  * the loop (EX_OSERR). */
 int comaster_bus_run(comaster_bus_t *bus, const comaster_job_t *job);
 void comaster_bus_finish(comaster_bus_t *bus, int status);
@@ -124,7 +123,7 @@ void comaster_bus_send(void *bus, const co_frame_t *frame);
 int comaster_bus_pause(comaster_bus_t *bus, uint32_t ms);
 
 /* One SDO transfer to `node` on the default channel (600h/580h + node), run to its end. Returns
- * 0 with *result filled (which may be an abort), or COMASTER_EXIT_INTERRUPTED / EX_OSERR. */
+ * 0 with *result filled (which may be an abort), or CLI_EXIT_INTERRUPTED / EX_OSERR. */
 int comaster_sdo_upload(comaster_bus_t *bus, uint8_t node, uint16_t index, uint8_t sub,
                         uint8_t *buf, uint32_t cap, co_sdo_client_mode_t mode, uint32_t timeout_ms,
                         co_sdo_client_result_t *result);
@@ -133,7 +132,7 @@ int comaster_sdo_download(comaster_bus_t *bus, uint8_t node, uint16_t index, uin
                           uint32_t timeout_ms, co_sdo_client_result_t *result);
 
 /* The exit status of a transfer's result, after a one-line error naming node and object when it
- * failed: 0, COMASTER_EXIT_ABORT (the server's abort) or COMASTER_EXIT_TIMEOUT (no answer). */
+ * failed: 0, CLI_EXIT_REFUSED (the server's abort) or CLI_EXIT_TIMEOUT (no answer). */
 int comaster_sdo_status(const comaster_options_t *opts, uint8_t node,
                         const co_sdo_client_result_t *result);
 

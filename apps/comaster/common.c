@@ -2,7 +2,7 @@
  * src/cli; the EDS of a node is node_eds.c). */
 #include "comaster.h"
 
-#include "cli.h"
+#include "co_cli.h"
 
 #include <errno.h>
 #include <stdarg.h>
@@ -14,7 +14,7 @@ int comaster_fail(const comaster_options_t *opts, int status, const char *format
 {
     va_list ap;
     va_start(ap, format);
-    status = cli_vfail("comaster", opts && opts->json, status, format, ap);
+    status = cli_vfail(opts ? opts->command : NULL, opts && opts->json, status, format, ap);
     va_end(ap);
     return status;
 }
@@ -63,11 +63,26 @@ static bool is_flag(const char *flags, const char *arg)
     return false;
 }
 
+/* The options that take a value, and what --help calls it. */
+static const cli_valued_option_t valued[] = {
+    {"-i", "IFACE"},      {"--interface", "IFACE"}, {"--timeout", "MS"},   {"--eds", "FILE"},
+    {"--eds-dir", "DIR"}, {"--output", "FILE"},     {"--heartbeat", "MS"}, {"--control", "PATH"}};
+
+int comaster_missing_value(const comaster_options_t *opts, const char *option)
+{
+    return comaster_fail(opts, EX_USAGE, "%s%soption %s needs a value: give %s %s",
+                         opts->command ? opts->command : "", opts->command ? ": " : "", option,
+                         option, cli_value_name(valued, sizeof valued / sizeof valued[0], option));
+}
+
 int comaster_parse_args(comaster_options_t *opts, comaster_args_t *args, int argc, char **argv,
                         const char *help, const char *flags, int min_args, int max_args)
 {
     memset(args, 0, sizeof *args);
     const char *command = argv[0];
+    /* The usage line of the help, "comaster read NODE OBJECT ...", for the argument errors. */
+    const char *usage = strstr(help, "comaster");
+    int usage_len = usage ? (int)strcspn(usage, "\n") : 0;
     bool options_done = false;
     for (int i = 1; i < argc; i++) {
         const char *arg = argv[i];
@@ -77,8 +92,8 @@ int comaster_parse_args(comaster_options_t *opts, comaster_args_t *args, int arg
         if (!is_option) {
             if (args->count == max_args || args->count == COMASTER_MAX_ARGS)
                 return comaster_fail(opts, EX_USAGE,
-                                     "%s: too many arguments from '%s' (see comaster %s --help)",
-                                     command, arg, command);
+                                     "%s: too many arguments from '%s': usage: %.*s", command, arg,
+                                     usage_len, usage ? usage : "");
             args->positional[args->count++] = arg;
             continue;
         }
@@ -99,7 +114,7 @@ int comaster_parse_args(comaster_options_t *opts, comaster_args_t *args, int arg
                    (strcmp(arg, "--output") == 0 && is_flag(flags, arg)) ||
                    (strcmp(arg, "--heartbeat") == 0 && is_flag(flags, arg))) {
             if (!value || value[0] == '\0')
-                return comaster_fail(opts, EX_USAGE, "%s: option %s needs a value", command, arg);
+                return comaster_missing_value(opts, arg);
             i++;
             if (strcmp(arg, "--timeout") == 0) {
                 if (!parse_ms(value, TIMEOUT_MAX_MS, &opts->timeout_ms))
@@ -125,15 +140,11 @@ int comaster_parse_args(comaster_options_t *opts, comaster_args_t *args, int arg
                 opts->iface = value;
             }
         } else {
-            return comaster_fail(opts, EX_USAGE, "%s: unknown option '%s' (see comaster %s --help)",
-                                 command, arg, command);
+            return comaster_fail(opts, EX_USAGE, "%s: unknown option '%s'", command, arg);
         }
     }
-    if (args->count < min_args) {
-        const char *usage = strstr(help, "comaster");
-        int len = usage ? (int)strcspn(usage, "\n") : 0;
-        return comaster_fail(opts, EX_USAGE, "%s: missing arguments: usage: %.*s", command, len,
-                             usage ? usage : "");
-    }
+    if (args->count < min_args)
+        return comaster_fail(opts, EX_USAGE, "%s: missing arguments: usage: %.*s", command,
+                             usage_len, usage ? usage : "");
     return -1;
 }

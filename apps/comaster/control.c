@@ -58,7 +58,7 @@ int comaster_control_open(comaster_control_t *control, co_linux_loop_t *loop, co
     case CO_LINE_ANSWERED:
         snprintf(err, err_len,
                  "another comaster run answers on %s: stop it, or give --control PATH", path);
-        return EX_UNAVAILABLE;
+        return EX_CANTCREAT;
     default:
         snprintf(err, err_len, "cannot listen on %s: %s", path, strerror(errno));
         return EX_CANTCREAT;

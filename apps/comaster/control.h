@@ -54,8 +54,8 @@ int comaster_control_request(const char *path, const char *request, char *reply,
 
 /* Sends the request of `count` fields (joined by tabs, "json" first with --json) to the run on
  * `path` (NULL: the default path of the interface) and prints its reply: 0; a reply
- * "error: ..." exits 65, "abort: ..." 1 (the SDO abort), "timeout: ..." 2, each with the message
- * as comaster's one-line error. */
+ * "error: ..." (the run refused) or "abort: ..." (the SDO abort) exits 1, "timeout: ..." 2, each
+ * with the message as comaster's error. */
 int comaster_control_forward(comaster_options_t *opts, const char *path, const char *const *fields,
                              size_t count);
 

@@ -69,16 +69,16 @@ static int reply_status(const char *reply, size_t *prefix)
     static const struct {
         const char *word;
         int status;
-    } words[] = {{"error: ", EX_DATAERR},
-                 {"abort: ", COMASTER_EXIT_ABORT},
-                 {"timeout: ", COMASTER_EXIT_TIMEOUT}};
+    } words[] = {{"error: ", CLI_EXIT_REFUSED},
+                 {"abort: ", CLI_EXIT_REFUSED},
+                 {"timeout: ", CLI_EXIT_TIMEOUT}};
     for (size_t i = 0; i < sizeof words / sizeof words[0]; i++) {
         *prefix = strlen(words[i].word);
         if (strncmp(reply, words[i].word, *prefix) == 0)
             return words[i].status;
     }
     *prefix = 0;
-    return COMASTER_EXIT_OK;
+    return CLI_EXIT_OK;
 }
 
 int comaster_control_forward(comaster_options_t *opts, const char *path, const char *const *fields,
@@ -106,10 +106,10 @@ int comaster_control_forward(comaster_options_t *opts, const char *path, const c
         return comaster_fail(opts, rc, "%s", err);
     size_t prefix;
     rc = reply_status(reply, &prefix);
-    if (rc != COMASTER_EXIT_OK)
+    if (rc != CLI_EXIT_OK)
         return comaster_fail(opts, rc, "%.*s", (int)strcspn(reply + prefix, "\n"), reply + prefix);
     fputs(reply, stdout);
-    return COMASTER_EXIT_OK;
+    return CLI_EXIT_OK;
 }
 
 bool comaster_run_option(int *argc, char **argv, bool *via_run, const char **path)
@@ -137,7 +137,7 @@ static int request(comaster_options_t *opts, int argc, char **argv, const char *
 {
     const char *control = NULL;
     if (!comaster_control_take_option(&argc, argv, &control))
-        return comaster_fail(opts, EX_USAGE, "%s: option --control needs a value", argv[0]);
+        return comaster_missing_value(opts, "--control");
     comaster_args_t args;
     int rc = comaster_parse_args(opts, &args, argc, argv, help, "", args_n, args_n);
     if (rc >= 0)

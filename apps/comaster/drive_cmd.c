@@ -160,7 +160,7 @@ static int command(drive_session_t *d, uint16_t control, const char *state)
         if (rc != 0 || state_is(d->status, state))
             return rc;
         if (co_linux_now() >= deadline)
-            return comaster_fail(d->opts, COMASTER_EXIT_TIMEOUT,
+            return comaster_fail(d->opts, CLI_EXIT_TIMEOUT,
                                  "node %u: control word 0x%04X: no %s within %u ms (6041h = "
                                  "0x%04X)%s (--timeout MS waits longer)",
                                  d->node, control, state, d->opts->timeout_ms, d->status,
@@ -174,7 +174,7 @@ static int command(drive_session_t *d, uint16_t control, const char *state)
 
 static int refuse_fault(drive_session_t *d)
 {
-    return comaster_fail(d->opts, COMASTER_EXIT_FAULT,
+    return comaster_fail(d->opts, CLI_EXIT_DRIVE_FAULT,
                          "node %u is in Fault (6041h = 0x%04X): reset it first: comaster drive "
                          "%u fault-reset",
                          d->node, d->status, d->node);

@@ -51,6 +51,7 @@ static void print_usage(void)
            "Options (before the command or among its arguments):\n"
            "  -i, --interface IFACE\n"
            "                 the SocketCAN interface; default $COMASTER_IFACE, else can0\n"
+           "                 (a real bus: the examples give -i vcan0, a virtual one)\n"
            "  --timeout MS   how long to wait for each answer (default 1000)\n"
            "  --json         one JSON object per result line, for scripts\n"
            "  --eds FILE     the EDS or DCF of the node: objects by name, their types\n"
@@ -62,11 +63,26 @@ static void print_usage(void)
            "\n"
            "Example: comaster -i vcan0 read 4 ACC\n"
            "\n"
-           "Exit status: 0 done, 1 the node aborted the SDO transfer, 2 no answer in time (or\n"
-           "the drive did not reach the state), 3 interrupted by SIGINT or SIGTERM, 4 the\n"
-           "drive is in Fault (drive NODE fault-reset clears it), 64 usage\n"
-           "error, 65 bad data (a value that does not fit its type, a malformed EDS), 66 a\n"
-           "file cannot be read, 69 interface or CAN support missing, 71 system error.\n");
+           "An error is one line on stderr, 'comaster: error: ' then what is wrong and what\n"
+           "would be right; after wrong arguments a second line names the --help to read.\n"
+           "\n"
+           "Exit status:\n"
+           "  0   done\n"
+           "  1   refused: the node aborted the SDO transfer, or the run answered an error\n"
+           "  2   no answer in time, or the drive did not reach the state\n"
+           "  3   interrupted by SIGINT or SIGTERM before the command finished\n"
+           "  4   the drive is in Fault (comaster drive NODE fault-reset clears it)\n"
+           "  64  wrong arguments: an unknown command or option, a bad node-id, object or\n"
+           "      type\n"
+           "  65  bad data: a value that does not fit its type (given, or read from the\n"
+           "      node), a malformed EDS, DCF or network description, a node that is not the\n"
+           "      device its DCF describes\n"
+           "  66  a file (EDS, DCF, domain) cannot be read\n"
+           "  69  no such interface or no SocketCAN, or no run answers on the control socket\n"
+           "  70  internal error\n"
+           "  71  system error (out of memory, a system call failed)\n"
+           "  73  the --output file or the control socket cannot be created\n"
+           "  76  the run closed the control socket without a reply\n");
 }
 
 /* "read, write, ...": the commands of the table, for error messages. */
@@ -109,23 +125,20 @@ static int parse_global(comaster_options_t *opts, int argc, char **argv)
                    strcmp(arg, "--timeout") == 0 || strcmp(arg, "--eds") == 0 ||
                    strcmp(arg, "--eds-dir") == 0) {
             if (!value)
-                return -comaster_fail(opts, EX_USAGE, "option %s needs a value", arg) - 1;
+                return -comaster_missing_value(opts, arg) - 1;
             i++; /* the command's parser reads them (main hands them over) */
         } else {
-            return -comaster_fail(opts, EX_USAGE, "unknown option '%s' (see comaster --help)",
-                                  arg) -
-                   1;
+            return -comaster_fail(opts, EX_USAGE, "unknown option '%s'", arg) - 1;
         }
     }
     if (i == argc)
-        return -comaster_fail(opts, EX_USAGE, "no command: give one of %s (see comaster --help)",
-                              command_names()) -
-               1;
+        return -comaster_fail(opts, EX_USAGE, "no command: give one of %s", command_names()) - 1;
     return i;
 }
 
 int main(int argc, char **argv)
 {
+    cli_setup("comaster", CO_LOG_WARN);
     comaster_options_t opts = {
         .iface = getenv("COMASTER_IFACE") && getenv("COMASTER_IFACE")[0] ? getenv("COMASTER_IFACE")
                                                                          : COMASTER_DEFAULT_IFACE,
@@ -136,14 +149,14 @@ int main(int argc, char **argv)
         return -at - 1;
     const comaster_command_t *command = find_command(argv[at]);
     if (!command)
-        return comaster_fail(&opts, EX_USAGE,
-                             "unknown command '%s': give one of %s (see comaster --help)", argv[at],
+        return comaster_fail(&opts, EX_USAGE, "unknown command '%s': give one of %s", argv[at],
                              command_names());
+    opts.command = command->name;
     /* The command's argv: its name, the global options (its parser reads them like its own),
      * then its arguments. */
     char **args = calloc((size_t)argc + 1, sizeof *args);
     if (!args)
-        return EX_OSERR;
+        return comaster_fail(&opts, EX_OSERR, "out of memory");
     int n = 0;
     args[n++] = argv[at];
     for (int i = 1; i < argc; i++) {

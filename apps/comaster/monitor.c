@@ -1,10 +1,10 @@
 /* comaster monitor: what happens on the bus, as it arrives: NMT state changes told by boot-ups
  * and heartbeats, emergencies decoded, SYNC, and PDOs decoded by name through each watched node's
  * mapping, read over SDO (with the names of its EDS). Runs until SIGINT or SIGTERM. */
-#include "cli.h"
 #include "co/co_emcy_consumer.h"
 #include "co/co_nmt.h"
 #include "co/co_nmt_master.h"
+#include "co_cli.h"
 #include "comaster.h"
 #include "decoder.h"
 
@@ -251,7 +251,7 @@ static int run_monitor(monitor_t *m)
     m->bus->signal_is_the_end = true;
     comaster_job_t job = {.receive = monitor_receive, .process = monitor_process, .ctx = m};
     int rc = comaster_bus_run(m->bus, &job);
-    return rc == COMASTER_EXIT_INTERRUPTED ? 0 : rc;
+    return rc == CLI_EXIT_INTERRUPTED ? 0 : rc;
 }
 
 int comaster_monitor_main(comaster_options_t *opts, int argc, char **argv)

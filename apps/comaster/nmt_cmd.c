@@ -51,7 +51,7 @@ static void boot_event(void *user, const co_nmt_master_event_t *event)
 {
     boot_wait_t *w = user;
     if (event->kind == CO_NMT_MASTER_BOOT_UP && event->node_id == w->node)
-        comaster_bus_finish(w->bus, COMASTER_EXIT_OK);
+        comaster_bus_finish(w->bus, CLI_EXIT_OK);
 }
 
 static void boot_send(void *user, const co_frame_t *frame)
@@ -70,7 +70,7 @@ static co_time_t boot_process(void *ctx, co_time_t now)
 {
     boot_wait_t *w = ctx;
     if (now >= w->deadline) {
-        comaster_bus_finish(w->bus, COMASTER_EXIT_TIMEOUT);
+        comaster_bus_finish(w->bus, CLI_EXIT_TIMEOUT);
         return CO_TIME_NEVER;
     }
     return w->deadline;
@@ -100,7 +100,7 @@ static int send_command(comaster_bus_t *bus, const comaster_options_t *opts, con
     wait.deadline = co_linux_now() + (co_time_t)opts->timeout_ms * 1000u;
     comaster_job_t job = {.receive = boot_receive, .process = boot_process, .ctx = &wait};
     int rc = comaster_bus_run(bus, &job);
-    if (rc == COMASTER_EXIT_TIMEOUT)
+    if (rc == CLI_EXIT_TIMEOUT)
         return comaster_fail(opts, rc,
                              "node %u: no boot-up within %u ms after %s: is the node on %s? "
                              "(--timeout MS waits longer)",
@@ -157,7 +157,7 @@ int comaster_nmt_main(comaster_options_t *opts, int argc, char **argv)
     const char *control = NULL;
     bool via_run = false;
     if (!comaster_run_option(&argc, argv, &via_run, &control))
-        return comaster_fail(opts, EX_USAGE, "nmt: option --control needs a value");
+        return comaster_missing_value(opts, "--control");
     comaster_args_t args;
     int rc = comaster_parse_args(opts, &args, argc, argv, nmt_help, "", 2, 2);
     if (rc >= 0)

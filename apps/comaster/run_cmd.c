@@ -32,8 +32,9 @@ static const char boot_help[] =
     "Boots one slave as comaster run would: reset communication, identify (1000h and\n"
     "1018h against the DCF), download the DCF's ParameterValue entries, NMT start.\n"
     "\n"
-    "Exit status: 0 the slave is operational, 1 it aborted an SDO transfer, 2 it did\n"
-    "not answer in time, 65 it is not the device the DCF describes.\n"
+    "Exit status: boot exits 0 once the slave is operational, 1 when it aborted an SDO\n"
+    "transfer, 2 when it did not answer in time, 65 when it is not the device the DCF\n"
+    "describes.\n"
     "\n"
     "Example: comaster -i vcan0 boot 4 examples/netmaster/drive4.dcf\n";
 
@@ -132,13 +133,12 @@ static void format_emcy(const co_emcy_message_t *m, char *out, size_t cap)
 static void finish_boot(runner_t *r, const co_net_slave_t *s)
 {
     if (s->step == CO_NET_STEP_OPERATIONAL) {
-        comaster_bus_finish(&r->bus, COMASTER_EXIT_OK);
+        comaster_bus_finish(&r->bus, CLI_EXIT_OK);
     } else if (s->step == CO_NET_STEP_FAILED) {
         int status = EX_DATAERR;
         if (s->failure == CO_NET_FAIL_SDO)
-            status = r->master.last_sdo_error.abort_code == CO_SDO_ABORT_TIMEOUT
-                         ? COMASTER_EXIT_TIMEOUT
-                         : COMASTER_EXIT_ABORT;
+            status = r->master.last_sdo_error.abort_code == CO_SDO_ABORT_TIMEOUT ? CLI_EXIT_TIMEOUT
+                                                                                 : CLI_EXIT_REFUSED;
         comaster_bus_finish(&r->bus, status);
     }
 }
@@ -484,7 +484,7 @@ int comaster_run_main(comaster_options_t *opts, int argc, char **argv)
 {
     const char *control = NULL;
     if (!comaster_control_take_option(&argc, argv, &control))
-        return comaster_fail(opts, EX_USAGE, "run: option --control needs a value");
+        return comaster_missing_value(opts, "--control");
     comaster_args_t args;
     const char *iface = opts->iface;
     int rc = comaster_parse_args(opts, &args, argc, argv, run_help, "", 1, 1);
@@ -509,7 +509,7 @@ int comaster_run_main(comaster_options_t *opts, int argc, char **argv)
     runner = (runner_t){.net = &net};
     rc = run_master(&runner, opts, control);
     comaster_network_free(&net);
-    return rc == COMASTER_EXIT_INTERRUPTED ? COMASTER_EXIT_OK : rc;
+    return rc == CLI_EXIT_INTERRUPTED ? CLI_EXIT_OK : rc;
 }
 
 int comaster_boot_main(comaster_options_t *opts, int argc, char **argv)

@@ -6,7 +6,7 @@
  * of the line socket); the others at once. Each reply is one line, or one JSON object. */
 #include "run.h"
 
-#include "cli.h"
+#include "co_cli.h"
 #include "co_linux/conditions.h"
 
 #include <stdio.h>

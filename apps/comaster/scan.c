@@ -3,9 +3,9 @@
  * their identity (1018h:01..03) and name (1008h), and their NMT state is taken from their
  * heartbeat (the NMT master follows them while the scan runs) or asked by a node guarding
  * request. */
-#include "cli.h"
 #include "co/co_nmt.h"
 #include "co/co_nmt_master.h"
+#include "co_cli.h"
 #include "comaster.h"
 
 #include <stdio.h>
@@ -259,7 +259,7 @@ static int report(scan_t *s, const comaster_options_t *opts)
         print_node(opts, node, p, &id, s->state[node - 1]);
     }
     if (found == 0)
-        return comaster_fail(opts, COMASTER_EXIT_TIMEOUT,
+        return comaster_fail(opts, CLI_EXIT_TIMEOUT,
                              "no node answered on %s within %u ms (--timeout MS waits longer)",
                              opts->iface, opts->timeout_ms);
     return 0;

@@ -1,6 +1,6 @@
 /* comaster read and write: one SDO upload or download, the value printed or parsed by its data
  * type (given, from the EDS, or guessed from the size). */
-#include "cli.h"
+#include "co_cli.h"
 #include "comaster.h"
 #include "control.h"
 #include "value.h"
@@ -268,7 +268,7 @@ static int run_sdo_command(const sdo_command_t *command, comaster_options_t *opt
     const char *control = NULL;
     bool via_run = false;
     if (!comaster_run_option(&argc, argv, &via_run, &control))
-        return comaster_fail(opts, EX_USAGE, "%s: option --control needs a value", argv[0]);
+        return comaster_missing_value(opts, "--control");
     comaster_args_t args;
     int rc = comaster_parse_args(opts, &args, argc, argv, command->help, command->flags,
                                  command->min_args, command->max_args);

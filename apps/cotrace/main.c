@@ -1,6 +1,7 @@
 /* cotrace: says what every frame of a candump -L log or a live SocketCAN interface means in
  * CANopen terms, or with --devicenet in DeviceNet terms, one line per frame (docs/cotrace.md). */
 #include "atv58/emcy.h"
+#include "co_cli.h"
 #include "co_linux/can_frame.h"
 #include "co_linux/candump.h"
 #include "co_linux/log.h"
@@ -13,7 +14,6 @@
 #include <stdlib.h>
 #include <string.h>
 #include <sys/stat.h>
-#include <sysexits.h>
 #include <time.h>
 
 /* The ID#DATA field is padded to this width so that the meanings line up (11-bit frames). */
@@ -54,10 +54,20 @@ static const char usage_text[] =
     "\n"
     "Example: atv312d vcan0 --node-id 4 --trace - | cotrace --eds eds/ATV312.eds --node 4\n"
     "\n"
-    "Exit status: 0 every line decoded (or SIGINT/SIGTERM with -i), 64 usage error, 65\n"
-    "a line was not a candump -L line (skipped, or --strict stopped there) or the EDS\n"
-    "is malformed, 66 a FILE or the EDS cannot be read, 69 interface or CAN support\n"
-    "missing, 71 system error. See docs/cotrace.md.\n";
+    "An error is one line on stderr, 'cotrace: error: ' then what is wrong and what\n"
+    "would be right; after wrong arguments a second line names the --help to read.\n"
+    "See docs/cotrace.md.\n"
+    "\n"
+    "Exit status:\n"
+    "  0   every line decoded (with -i: stopped by SIGINT or SIGTERM)\n"
+    "  64  wrong arguments: an unknown option, a bad node-id or assemblies, options\n"
+    "      that do not go together\n"
+    "  65  bad data: a line was not a candump -L line (skipped, or --strict stopped\n"
+    "      there), or the EDS is malformed\n"
+    "  66  a FILE or the EDS cannot be read\n"
+    "  69  no such interface, or no SocketCAN\n"
+    "  71  system error\n"
+    "  74  the output could not be written\n";
 
 typedef struct options {
     const char *iface;
@@ -72,13 +82,10 @@ typedef struct options {
     int file_count;
 } options_t;
 
-static int usage_error(const char *format, const char *arg)
-{
-    fprintf(stderr, "cotrace: ");
-    fprintf(stderr, format, arg);
-    fprintf(stderr, " (see cotrace --help)\n");
-    return EX_USAGE;
-}
+/* The options that take a value, and what --help calls it. */
+static const cli_valued_option_t valued[] = {{"-i", "IFACE"},       {"--interface", "IFACE"},
+                                             {"--eds", "FILE"},     {"--node", "N"},
+                                             {"--emcy-table", "T"}, {"--assemblies", "OUT,IN"}};
 
 /* --assemblies OUT,IN: an output (consumed) and an input (produced) assembly of the card. */
 static bool parse_assemblies(const char *value, options_t *opts)
@@ -102,7 +109,7 @@ static int parse_args(int argc, char **argv, options_t *opts)
     memset(opts, 0, sizeof *opts);
     opts->files = calloc((size_t)argc, sizeof *opts->files);
     if (!opts->files)
-        return EX_OSERR;
+        return cli_fail(NULL, EX_OSERR, "out of memory");
     for (int i = 1; i < argc; i++) {
         const char *arg = argv[i];
         bool has_value = i + 1 < argc;
@@ -116,11 +123,10 @@ static int parse_args(int argc, char **argv, options_t *opts)
             opts->strict = true;
         } else if (strcmp(arg, "--devicenet") == 0) {
             opts->devicenet = true;
-        } else if (strcmp(arg, "-i") == 0 || strcmp(arg, "--interface") == 0 ||
-                   strcmp(arg, "--eds") == 0 || strcmp(arg, "--node") == 0 ||
-                   strcmp(arg, "--emcy-table") == 0 || strcmp(arg, "--assemblies") == 0) {
+        } else if (cli_value_name(valued, sizeof valued / sizeof valued[0], arg)) {
             if (!has_value || argv[i + 1][0] == '\0')
-                return usage_error("option %s needs a value", arg);
+                return cli_fail(NULL, EX_USAGE, "option %s needs a value: give %s %s", arg, arg,
+                                cli_value_name(valued, sizeof valued / sizeof valued[0], arg));
             const char *value = argv[++i];
             if (arg[1] == 'i' || strcmp(arg, "--interface") == 0)
                 opts->iface = value;
@@ -130,39 +136,43 @@ static int parse_args(int argc, char **argv, options_t *opts)
                 opts->emcy_table = value;
             else if (strcmp(arg, "--assemblies") == 0) {
                 if (!parse_assemblies(value, opts))
-                    return usage_error("--assemblies: '%s' is not OUT,IN: OUT 20, 21 or 100, IN "
-                                       "70, 71 or 101, e.g. 100,101",
-                                       value);
+                    return cli_fail(NULL, EX_USAGE,
+                                    "--assemblies: '%s' is not OUT,IN: OUT 20, 21 or 100, IN 70, "
+                                    "71 or 101, e.g. 100,101",
+                                    value);
             } else {
                 char *end;
                 errno = 0;
                 opts->node = strtoul(value, &end, 0);
                 if (errno || *end || end == value || opts->node < 1 || opts->node > 127)
-                    return usage_error("--node: '%s' is not a node-id: use a number 1..127", value);
+                    return cli_fail(NULL, EX_USAGE,
+                                    "--node: '%s' is not a node-id: use a number 1..127", value);
             }
         } else if (arg[0] == '-' && arg[1] != '\0') {
-            return usage_error("unknown option '%s'", arg);
+            return cli_fail(NULL, EX_USAGE, "unknown option '%s'", arg);
         } else {
             opts->files[opts->file_count++] = argv[i];
         }
     }
     if (opts->iface && opts->file_count)
-        return usage_error("give either files or -i %s, not both", opts->iface);
+        return cli_fail(NULL, EX_USAGE, "give either files or -i %s, not both", opts->iface);
     if (opts->eds_path && !opts->node)
-        return usage_error("--eds %s needs --node N: the node-id the EDS describes",
-                           opts->eds_path);
+        return cli_fail(NULL, EX_USAGE, "--eds %s needs --node N: the node-id the EDS describes",
+                        opts->eds_path);
     if (opts->node && !opts->eds_path)
-        return usage_error("--node %s needs --eds FILE: without an EDS there is nothing to "
-                           "apply it to",
-                           argv[argc - 1]);
+        return cli_fail(NULL, EX_USAGE,
+                        "--node %lu needs --eds FILE: without an EDS there is nothing to apply it "
+                        "to",
+                        opts->node);
     if (opts->devicenet && (opts->eds_path || opts->emcy_table))
-        return usage_error("%s: an EDS and an EMCY table are CANopen's, not DeviceNet's",
-                           "--devicenet");
+        return cli_fail(NULL, EX_USAGE,
+                        "--devicenet: an EDS and an EMCY table are CANopen's, not DeviceNet's");
     if (opts->consumed_assembly && !opts->devicenet)
-        return usage_error("%s needs --devicenet: assemblies are DeviceNet's", "--assemblies");
+        return cli_fail(NULL, EX_USAGE,
+                        "--assemblies needs --devicenet: assemblies are DeviceNet's");
     if (opts->emcy_table && strcmp(opts->emcy_table, "atv58") != 0)
-        return usage_error("--emcy-table: unknown table '%s': the tables are atv58",
-                           opts->emcy_table);
+        return cli_fail(NULL, EX_USAGE, "--emcy-table: unknown table '%s': the tables are atv58",
+                        opts->emcy_table);
     return -1;
 }
 
@@ -216,11 +226,10 @@ static int decode_stream(decoder_t *dec, FILE *in, const char *name, bool strict
         }
         if (line[n - 1] == '\n')
             line[n - 1] = '\0';
-        fprintf(stderr,
-                "cotrace: %s:%lu: not a candump -L line: '%.80s': expected '(SECONDS.FRACTION) "
-                "IFACE ID#DATA', e.g. (1700000000.000100) vcan0 604#4008100000000000\n",
-                name, number, line);
-        rc = EX_DATAERR;
+        rc = cli_fail(NULL, EX_DATAERR,
+                      "%s:%lu: not a candump -L line: '%.80s': expected '(SECONDS.FRACTION) IFACE "
+                      "ID#DATA', e.g. (1700000000.000100) vcan0 604#4008100000000000",
+                      name, number, line);
         if (strict)
             break;
     }
@@ -252,10 +261,8 @@ static int decode_files(decoder_t *dec, const options_t *opts)
         const char *path = opts->files[i];
         bool is_stdin = strcmp(path, "-") == 0;
         FILE *in = is_stdin ? stdin : fopen(path, "re");
-        if (!in) {
-            fprintf(stderr, "cotrace: cannot read '%s': %s\n", path, strerror(errno));
-            return EX_NOINPUT;
-        }
+        if (!in)
+            return cli_fail(NULL, EX_NOINPUT, "cannot read '%s': %s", path, strerror(errno));
         int file_rc = decode_stream(dec, in, is_stdin ? "<stdin>" : path, opts->strict);
         if (!is_stdin)
             fclose(in);
@@ -330,39 +337,15 @@ static const co_linux_device_ops_t monitor_ops = {
 
 static int report_open_error(const co_linux_loop_t *loop, co_linux_open_result_t result)
 {
-    const char *why = strerror(loop->open_errno);
-    switch (result) {
-    case CO_LINUX_OPEN_NO_CAN:
-        fprintf(stderr,
-                "cotrace: this kernel has no SocketCAN support (%s: %s): load it with modprobe "
-                "can-raw vcan, or run inside the sandbox: tools/vcan-run cotrace -i vcan0\n",
-                loop->open_call, why);
-        return EX_UNAVAILABLE;
-    case CO_LINUX_OPEN_NO_IFACE:
-        fprintf(stderr,
-                "cotrace: no network interface '%s': list the CAN interfaces with: ip link show "
-                "type can (or type vcan)\n",
-                loop->iface);
-        return EX_UNAVAILABLE;
-    case CO_LINUX_OPEN_NOT_CAN:
-        fprintf(stderr,
-                "cotrace: '%s' is not a CAN interface (%s: %s): give a SocketCAN interface such "
-                "as can0 or vcan0\n",
-                loop->iface, loop->open_call, why);
-        return EX_UNAVAILABLE;
-    case CO_LINUX_OPEN_OS_ERROR:
-    case CO_LINUX_OPEN_OK:
-        break;
-    }
-    fprintf(stderr, "cotrace: %s on %s failed: %s\n", loop->open_call, loop->iface, why);
-    return EX_OSERR;
+    char message[512];
+    int status = cli_open_error_text(loop, result, NULL, message, sizeof message);
+    return cli_fail(NULL, status, "%s", message);
 }
 
 static int decode_live(decoder_t *dec, const char *iface)
 {
     static co_linux_loop_t loop;
     static monitor_t monitor;
-    co_log_setup("cotrace", CO_LOG_WARN);
     co_linux_loop_config_t config = {.iface = iface};
     co_linux_open_result_t opened = co_linux_loop_open(&loop, &config);
     if (opened != CO_LINUX_OPEN_OK)
@@ -378,6 +361,7 @@ static int decode_live(decoder_t *dec, const char *iface)
 
 int main(int argc, char **argv)
 {
+    cli_setup("cotrace", CO_LOG_WARN);
     options_t opts;
     int rc = parse_args(argc, argv, &opts);
     if (rc >= 0) {
@@ -393,9 +377,8 @@ int main(int argc, char **argv)
     if (opts.eds_path)
         loaded = eds_load(&eds, opts.eds_path, (uint8_t)opts.node, err, sizeof err);
     if (loaded != EDS_OK) {
-        fprintf(stderr, "cotrace: %s\n", err);
         free(opts.files);
-        return loaded == EDS_CANNOT_READ ? EX_NOINPUT : EX_DATAERR;
+        return cli_fail(NULL, loaded == EDS_CANNOT_READ ? EX_NOINPUT : EX_DATAERR, "%s", err);
     }
     if (opts.devicenet) {
         cotrace_dn_decoder_init(&devicenet, (uint16_t)opts.consumed_assembly,
@@ -407,7 +390,7 @@ int main(int argc, char **argv)
     }
     rc = opts.iface ? decode_live(&dec, opts.iface) : decode_files(&dec, &opts);
     if (fflush(stdout) != 0 && rc == 0)
-        rc = EX_IOERR;
+        rc = cli_fail(NULL, EX_IOERR, "cannot write the output: %s", strerror(errno));
     eds_free(&eds);
     free(opts.files);
     return rc;

@@ -2,7 +2,7 @@
  * decides the exit status (docs/dnscan.md). */
 #include "cip_assembly.h"
 #include "cip_text.h"
-#include "cli.h"
+#include "co_cli.h"
 #include "run.h"
 
 #include <ctype.h>
@@ -85,7 +85,7 @@ static int step_error(dnscan_run_t *run, const dnscan_sequence_t *seq, const cha
     switch (r->status) {
     case DN_RESULT_CIP_ERROR:
         status = dnscan_fail(
-            opts, DNSCAN_EXIT_CIP_ERROR,
+            opts, CLI_EXIT_REFUSED,
             "MAC ID %u, %s: CIP error 0x%02X (%s), additional code 0x%02X%s", seq->mac_id, what,
             r->general, cip_general_status_text(r->general), r->additional,
             r->general == DN_GS_OBJECT_STATE_CONFLICT && r->additional == DN_AC_ALLOCATION_CONFLICT
@@ -93,13 +93,13 @@ static int step_error(dnscan_run_t *run, const dnscan_sequence_t *seq, const cha
                 : "");
         break;
     case DN_RESULT_TIMEOUT:
-        status = dnscan_fail(opts, DNSCAN_EXIT_TIMEOUT,
+        status = dnscan_fail(opts, CLI_EXIT_TIMEOUT,
                              "MAC ID %u, %s: no answer within %u ms: is the slave on %s with "
                              "MAC ID %u? (--timeout MS waits longer)",
                              seq->mac_id, what, opts->timeout_ms, opts->iface, seq->mac_id);
         break;
     default:
-        status = dnscan_fail(opts, DNSCAN_EXIT_CIP_ERROR, "MAC ID %u, %s: %s", seq->mac_id, what,
+        status = dnscan_fail(opts, CLI_EXIT_REFUSED, "MAC ID %u, %s: %s", seq->mac_id, what,
                              r->status == DN_RESULT_FRAGMENT_LOST ? "a response fragment was lost"
                              : r->status == DN_RESULT_FRAGMENT_ERROR ? "a fragment was refused"
                                                                      : "a malformed response");
@@ -434,7 +434,7 @@ int dnscan_scan(dnscan_options_t *opts)
         }
     }
     if (found == 0)
-        return dnscan_fail(opts, DNSCAN_EXIT_TIMEOUT, "no slave answered on %s", opts->iface);
+        return dnscan_fail(opts, CLI_EXIT_TIMEOUT, "no slave answered on %s", opts->iface);
     return 0;
 }
 
@@ -480,9 +480,9 @@ static void poll_io(dnscan_run_t *run, dnscan_sequence_t *seq, dn_io_kind_t kind
                     const uint8_t *data, uint8_t len)
 {
     if (kind == DN_IO_POLL_MISSED) {
-        run->status = dnscan_fail(run->opts, DNSCAN_EXIT_TIMEOUT,
-                                  "MAC ID %u: no answer to a poll within %u ms", seq->mac_id,
-                                  run->opts->timeout_ms);
+        run->status =
+            dnscan_fail(run->opts, CLI_EXIT_TIMEOUT, "MAC ID %u: no answer to a poll within %u ms",
+                        seq->mac_id, run->opts->timeout_ms);
         if (!run->every_us)
             dnscan_poll_done(run, seq, run->now);
         return;

@@ -1,19 +1,13 @@
-/* dnscan: what its files share: the options, the exit codes, one-line errors and --json. */
+/* dnscan: what its files share: the options, the errors and --json with the exit statuses
+ * (co_cli.h). */
 #ifndef DNSCAN_H
 #define DNSCAN_H
 
+#include "co_cli.h"
 #include "dn/dn_scanner.h"
 
 #include <stdbool.h>
 #include <stdint.h>
-#include <sysexits.h>
-
-/* Exit codes (docs/dnscan.md): the sysexits.h ones for usage, data and the interface. */
-#define DNSCAN_EXIT_OK 0
-#define DNSCAN_EXIT_CIP_ERROR 1   /* the slave answered with an error response */
-#define DNSCAN_EXIT_TIMEOUT 2     /* no answer in time */
-#define DNSCAN_EXIT_INTERRUPTED 3 /* SIGINT or SIGTERM before the command finished */
-#define DNSCAN_EXIT_DUPLICATE 4   /* the scanner's MAC ID is in use */
 
 #define DNSCAN_DEFAULT_IFACE "can0"
 #define DNSCAN_DEFAULT_TIMEOUT_MS 1000u

@@ -4,7 +4,7 @@
  * the Linux runtime's loop with the portable scanner (src/devicenet/scanner) as its device. */
 #include "dnscan.h"
 
-#include "cli.h"
+#include "co_cli.h"
 
 #include <errno.h>
 #include <stdarg.h>
@@ -39,6 +39,7 @@ static const char usage_text[] =
     "\n"
     "Options:\n"
     "  -i, --interface IFACE  the SocketCAN interface; default $DNSCAN_IFACE, else can0\n"
+    "                         (a real bus: the examples give -i vcan0, a virtual one)\n"
     "  --mac-id N     the scanner's own MAC ID (default 0)\n"
     "  --timeout MS   how long to wait for each answer (default 1000)\n"
     "  --no-check     skip the duplicate MAC ID check (2 s) of the scanner's MAC ID\n"
@@ -54,15 +55,28 @@ static const char usage_text[] =
     "\n"
     "Example: dnscan -i vcan0 get 63 1 1 7 --type string\n"
     "\n"
-    "Exit status: 0 done, 1 the slave answered with a CIP error, 2 no answer in time, 3\n"
-    "interrupted by SIGINT or SIGTERM, 4 the scanner's MAC ID is in use on the bus, 64\n"
-    "usage error, 65 bad data, 69 interface or CAN support missing, 71 system error.\n";
+    "An error is one line on stderr, 'dnscan: error: ' then what is wrong and what\n"
+    "would be right; after wrong arguments a second line names the --help to read.\n"
+    "\n"
+    "Exit status:\n"
+    "  0   done\n"
+    "  1   refused: the slave answered with a CIP error, or a fragment was refused\n"
+    "      or lost\n"
+    "  2   no answer in time\n"
+    "  3   interrupted by SIGINT or SIGTERM before the command finished\n"
+    "  5   the scanner's MAC ID is in use on the bus (give another with --mac-id)\n"
+    "  64  wrong arguments: an unknown command or option, a bad MAC ID, class,\n"
+    "      instance, attribute, type or assembly\n"
+    "  65  bad data: a value, --output or a --set value that does not fit\n"
+    "  69  no such interface, or no SocketCAN\n"
+    "  70  internal error\n"
+    "  71  system error\n";
 
 int dnscan_fail(const dnscan_options_t *opts, int status, const char *format, ...)
 {
     va_list ap;
     va_start(ap, format);
-    status = cli_vfail("dnscan", opts->json, status, format, ap);
+    status = cli_vfail(NULL, opts->json, status, format, ap);
     va_end(ap);
     return status;
 }
@@ -78,17 +92,15 @@ bool dnscan_parse_number(const char *text, unsigned long max, unsigned long *val
     return true;
 }
 
-/* Options that take a value. */
-static const char *const valued[] = {"-i",      "--interface", "--mac-id", "--timeout",
-                                     "--type",  "--assembly",  "--output", "--set",
-                                     "--every", "--count"};
+/* Options that take a value, and what --help calls it. */
+static const cli_valued_option_t valued[] = {
+    {"-i", "IFACE"},   {"--interface", "IFACE"}, {"--mac-id", "N"},   {"--timeout", "MS"},
+    {"--type", "T"},   {"--assembly", "OUT/IN"}, {"--output", "HEX"}, {"--set", "NAME=VALUE"},
+    {"--every", "MS"}, {"--count", "N"}};
 
-static bool takes_value(const char *arg)
+static const char *value_name(const char *arg)
 {
-    for (size_t i = 0; i < sizeof valued / sizeof valued[0]; i++)
-        if (strcmp(arg, valued[i]) == 0)
-            return true;
-    return false;
+    return cli_value_name(valued, sizeof valued / sizeof valued[0], arg);
 }
 
 static int option_value(dnscan_options_t *opts, const char *arg, const char *value)
@@ -139,7 +151,8 @@ static int parse(dnscan_options_t *opts, int argc, char **argv)
         if (!is_option) {
             if (opts->arg_count == DNSCAN_MAX_ARGS)
                 return dnscan_fail(opts, EX_USAGE,
-                                   "too many arguments from '%s' (see dnscan --help)", arg);
+                                   "too many arguments from '%s': a command takes at most %d", arg,
+                                   DNSCAN_MAX_ARGS - 1);
             opts->args[opts->arg_count++] = arg;
         } else if (strcmp(arg, "--") == 0) {
             options_done = true;
@@ -153,14 +166,15 @@ static int parse(dnscan_options_t *opts, int argc, char **argv)
             opts->json = true;
         } else if (strcmp(arg, "--no-check") == 0) {
             opts->no_check = true;
-        } else if (takes_value(arg)) {
+        } else if (value_name(arg)) {
             if (i + 1 == argc || argv[i + 1][0] == '\0')
-                return dnscan_fail(opts, EX_USAGE, "option %s needs a value", arg);
+                return dnscan_fail(opts, EX_USAGE, "option %s needs a value: give %s %s", arg, arg,
+                                   value_name(arg));
             int rc = option_value(opts, arg, argv[++i]);
             if (rc >= 0)
                 return rc;
         } else {
-            return dnscan_fail(opts, EX_USAGE, "unknown option '%s' (see dnscan --help)", arg);
+            return dnscan_fail(opts, EX_USAGE, "unknown option '%s'", arg);
         }
     }
     return -1;
@@ -189,6 +203,7 @@ static const command_t commands[] = {
 
 int main(int argc, char **argv)
 {
+    cli_setup("dnscan", CO_LOG_WARN);
     const char *iface = getenv("DNSCAN_IFACE");
     dnscan_options_t opts = {
         .iface = iface && iface[0] ? iface : DNSCAN_DEFAULT_IFACE,
@@ -199,8 +214,7 @@ int main(int argc, char **argv)
     if (rc >= 0)
         return rc;
     if (opts.arg_count == 0)
-        return dnscan_fail(&opts, EX_USAGE, "no command: give one of %s (see dnscan --help)",
-                           COMMAND_NAMES);
+        return dnscan_fail(&opts, EX_USAGE, "no command: give one of %s", COMMAND_NAMES);
     const char *name = opts.args[0];
     for (size_t i = 0; i < sizeof commands / sizeof commands[0]; i++) {
         const command_t *c = &commands[i];
@@ -216,6 +230,6 @@ int main(int argc, char **argv)
                                opts.args[c->max_args + 1], c->usage);
         return c->run(&opts);
     }
-    return dnscan_fail(&opts, EX_USAGE, "unknown command '%s': give one of %s (see dnscan --help)",
-                       name, COMMAND_NAMES);
+    return dnscan_fail(&opts, EX_USAGE, "unknown command '%s': give one of %s", name,
+                       COMMAND_NAMES);
 }

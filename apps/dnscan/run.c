@@ -3,9 +3,7 @@
  * other, all slaves at once, and the command ends when every sequence has. */
 #include "run.h"
 
-#include "cli.h"
-
-#include "co_linux/log.h"
+#include "co_cli.h"
 
 #include <stdio.h>
 #include <string.h>
@@ -58,7 +56,10 @@ static void start_step(dnscan_run_t *run, dnscan_sequence_t *seq, co_time_t now)
         break;
     }
     if (!started)
-        dnscan_finish(run, EX_SOFTWARE);
+        dnscan_finish(run, dnscan_fail(run->opts, EX_SOFTWARE,
+                                       "internal error: MAC ID %u: the scanner did not start the "
+                                       "request",
+                                       seq->mac_id));
 }
 
 void dnscan_skip_to_release(dnscan_run_t *run, dnscan_sequence_t *seq)
@@ -143,7 +144,7 @@ static co_time_t device_process(void *ctx, co_time_t now)
     }
     co_time_t next = dn_scanner_process(&run->scanner, now);
     if (run->scanner.link == DN_SCANNER_DUPLICATE) {
-        dnscan_finish(run, dnscan_fail(run->opts, DNSCAN_EXIT_DUPLICATE,
+        dnscan_finish(run, dnscan_fail(run->opts, CLI_EXIT_MAC_ID_IN_USE,
                                        "MAC ID %u is in use on %s: give the scanner another "
                                        "with --mac-id N",
                                        run->opts->mac_id, run->opts->iface));
@@ -168,8 +169,7 @@ static const co_linux_device_ops_t device_ops = {
 static int open_error(const dnscan_run_t *run, co_linux_open_result_t result)
 {
     char message[512];
-    int status =
-        cli_open_error_text(&run->loop, result, "dnscan", "DNSCAN_IFACE", message, sizeof message);
+    int status = cli_open_error_text(&run->loop, result, "DNSCAN_IFACE", message, sizeof message);
     return dnscan_fail(run->opts, status, "%s", message);
 }
 
@@ -199,7 +199,6 @@ dnscan_step_t *dnscan_add_step(dnscan_sequence_t *seq, dnscan_step_kind_t kind)
 
 int dnscan_run(dnscan_run_t *run)
 {
-    co_log_setup("dnscan", CO_LOG_WARN);
     run->config = (dn_scanner_config_t){run->opts->mac_id,
                                         DNSCAN_VENDOR_ID,
                                         DNSCAN_SERIAL_NUMBER,
@@ -208,7 +207,8 @@ int dnscan_run(dnscan_run_t *run)
                                         run->config.slave_count,
                                         &run->app};
     if (dn_scanner_init(&run->scanner, &run->config) != DN_SCANNER_INIT_OK)
-        return EX_SOFTWARE;
+        return dnscan_fail(run->opts, EX_SOFTWARE,
+                           "internal error: the scanner refused its configuration");
     co_linux_loop_config_t config = {.iface = run->opts->iface};
     co_linux_open_result_t opened = co_linux_loop_open(&run->loop, &config);
     if (opened != CO_LINUX_OPEN_OK)
@@ -222,7 +222,7 @@ int dnscan_run(dnscan_run_t *run)
         return rc;
     if (run->signal_is_the_end)
         return run->status;
-    return dnscan_fail(run->opts, DNSCAN_EXIT_INTERRUPTED,
+    return dnscan_fail(run->opts, CLI_EXIT_INTERRUPTED,
                        "interrupted by a signal before the command finished");
 }
 

@@ -1,8 +1,25 @@
-/* The command-line tools' output conventions (cli.h). */
-#include "cli.h"
+/* The programs' messages and exit statuses (co_cli.h). */
+#include "co_cli.h"
 
 #include <string.h>
-#include <sysexits.h>
+
+/* One program per process, as the runtime's log has one ident. */
+static const char *program_name = "co";
+
+void cli_setup(const char *program, co_log_level_t level)
+{
+    program_name = program;
+    co_log_setup(program, level);
+}
+
+const char *cli_value_name(const cli_valued_option_t *table, size_t count, const char *option)
+{
+    for (size_t i = 0; i < count; i++) {
+        if (strcmp(table[i].option, option) == 0)
+            return table[i].value;
+    }
+    return NULL;
+}
 
 void cli_json_string(FILE *out, const char *text)
 {
@@ -18,11 +35,14 @@ void cli_json_string(FILE *out, const char *text)
     fputc('"', out);
 }
 
-int cli_vfail(const char *program, bool json, int status, const char *format, va_list ap)
+int cli_vfail(const char *command, bool json, int status, const char *format, va_list ap)
 {
     char message[1024];
     vsnprintf(message, sizeof message, format, ap);
-    fprintf(stderr, "%s: %s\n", program, message);
+    co_log(CO_LOG_ERROR, "%s", message);
+    if (status == EX_USAGE)
+        fprintf(stderr, "Try '%s%s%s --help'.\n", program_name, command ? " " : "",
+                command ? command : "");
     if (json) {
         printf("{\"error\": ");
         cli_json_string(stdout, message);
@@ -31,8 +51,17 @@ int cli_vfail(const char *program, bool json, int status, const char *format, va
     return status;
 }
 
+int cli_fail(const char *command, int status, const char *format, ...)
+{
+    va_list ap;
+    va_start(ap, format);
+    status = cli_vfail(command, false, status, format, ap);
+    va_end(ap);
+    return status;
+}
+
 int cli_open_error_text(const co_linux_loop_t *loop, co_linux_open_result_t result,
-                        const char *program, const char *iface_env, char *out, size_t cap)
+                        const char *iface_env, char *out, size_t cap)
 {
     const char *why = strerror(loop->open_errno);
     switch (result) {
@@ -40,13 +69,13 @@ int cli_open_error_text(const co_linux_loop_t *loop, co_linux_open_result_t resu
         snprintf(out, cap,
                  "this kernel has no SocketCAN support (%s: %s): load it with modprobe can-raw "
                  "vcan, or run inside the sandbox: tools/vcan-run %s ...",
-                 loop->open_call, why, program);
+                 loop->open_call, why, program_name);
         return EX_UNAVAILABLE;
     case CO_LINUX_OPEN_NO_IFACE:
         snprintf(out, cap,
-                 "no network interface '%s': give one with -i IFACE or $%s (list them: ip link "
+                 "no network interface '%s': give one with -i IFACE%s%s (list them: ip link "
                  "show type can, or type vcan)",
-                 loop->iface, iface_env);
+                 loop->iface, iface_env ? " or $" : "", iface_env ? iface_env : "");
         return EX_UNAVAILABLE;
     case CO_LINUX_OPEN_NOT_CAN:
         snprintf(out, cap,

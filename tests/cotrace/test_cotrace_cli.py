@@ -1,5 +1,7 @@
 """cotrace, the installed program: a trace recorded from atv312d decoded byte for byte as
-expected, malformed lines reported with their line number, usage errors, exit codes."""
+expected, malformed lines reported with their line number, usage errors, exit codes: every error
+is `cotrace: error: WHAT`, followed by `Try 'cotrace --help'.` after wrong arguments
+(docs/architecture.md, "Messages and exit statuses")."""
 
 import os
 import select
@@ -14,6 +16,7 @@ HERE = Path(__file__).resolve().parent
 EDS = ROOT / "eds" / "ATV312.eds"
 
 EX_USAGE, EX_DATAERR, EX_NOINPUT = 64, 65, 66
+HINT = "Try 'cotrace --help'.\n"
 
 
 def cotrace(*args, stdin=None):
@@ -65,7 +68,7 @@ class MalformedLines(unittest.TestCase):
         self.assertEqual(result.returncode, EX_DATAERR)
         self.assertEqual(result.stdout, GOOD_OUT + GOOD_OUT)
         self.assertEqual(result.stderr,
-                         "cotrace: <stdin>:2: not a candump -L line: 'garbage': expected "
+                         "cotrace: error: <stdin>:2: not a candump -L line: 'garbage': expected "
                          "'(SECONDS.FRACTION) IFACE ID#DATA', e.g. (1700000000.000100) vcan0 "
                          "604#4008100000000000\n")
 
@@ -76,7 +79,7 @@ class MalformedLines(unittest.TestCase):
             result = cotrace("--strict", f.name)
         self.assertEqual(result.returncode, EX_DATAERR)
         self.assertEqual(result.stdout, GOOD_OUT)
-        self.assertTrue(result.stderr.startswith(f"cotrace: {f.name}:2: not a candump -L line: "
+        self.assertTrue(result.stderr.startswith(f"cotrace: error: {f.name}:2: not a candump -L line: "
                                                  "'(1700000000.000200) vcan0 604#12345'"))
 
     def test_every_timestamp_canplayer_reads(self):
@@ -96,7 +99,7 @@ class MalformedLines(unittest.TestCase):
             result = cotrace(stdin=f"{stamp} vcan0 000#0104\n")
             self.assertEqual(result.returncode, EX_DATAERR, stamp)
             self.assertEqual(result.stderr,
-                             f"cotrace: <stdin>:1: not a candump -L line: '{stamp} vcan0 000#0104': "
+                             f"cotrace: error: <stdin>:1: not a candump -L line: '{stamp} vcan0 000#0104': "
                              "expected '(SECONDS.FRACTION) IFACE ID#DATA', e.g. (1700000000.000100) "
                              "vcan0 604#4008100000000000\n")
 
@@ -109,12 +112,14 @@ class CommandLine(unittest.TestCase):
     def check_usage_error(self, args, message):
         result = cotrace(*args)
         self.assertEqual(result.returncode, EX_USAGE)
-        self.assertEqual(result.stderr, f"cotrace: {message} (see cotrace --help)\n")
+        self.assertEqual(result.stderr, f"cotrace: error: {message}\n{HINT}")
         self.assertEqual(result.stdout, "")
 
     def test_usage_errors(self):
         self.check_usage_error(["--bogus"], "unknown option '--bogus'")
-        self.check_usage_error(["--eds"], "option --eds needs a value")
+        self.check_usage_error(["--eds"], "option --eds needs a value: give --eds FILE")
+        self.check_usage_error(["--assemblies", ""],
+                               "option --assemblies needs a value: give --assemblies OUT,IN")
         self.check_usage_error(["--eds", EDS], f"--eds {EDS} needs --node N: the node-id the EDS "
                                                "describes")
         self.check_usage_error(["--eds", EDS, "--node", "128"],
@@ -125,16 +130,25 @@ class CommandLine(unittest.TestCase):
         self.check_usage_error(["--emcy-table", "atv71"],
                                "--emcy-table: unknown table 'atv71': the tables are atv58")
         self.check_usage_error(["-i", "vcan0", "x.log"], "give either files or -i vcan0, not both")
+        self.check_usage_error(["--devicenet", "--emcy-table", "atv58"],
+                               "--devicenet: an EDS and an EMCY table are CANopen's, not "
+                               "DeviceNet's")
+        self.check_usage_error(["--assemblies", "100,101"],
+                               "--assemblies needs --devicenet: assemblies are DeviceNet's")
+        self.check_usage_error(["--devicenet", "--assemblies", "100,70,1"],
+                               "--assemblies: '100,70,1' is not OUT,IN: OUT 20, 21 or 100, IN "
+                               "70, 71 or 101, e.g. 100,101")
 
     def test_missing_files(self):
         result = cotrace("/nonexistent.log")
         self.assertEqual(result.returncode, EX_NOINPUT)
         self.assertEqual(result.stderr,
-                         "cotrace: cannot read '/nonexistent.log': No such file or directory\n")
+                         "cotrace: error: cannot read '/nonexistent.log': No such file or "
+                         "directory\n")
         result = cotrace("--eds", "/nonexistent.eds", "--node", "4", stdin="")
         self.assertEqual(result.returncode, EX_NOINPUT)
-        self.assertEqual(result.stderr, "cotrace: cannot read the EDS '/nonexistent.eds': No such "
-                                        "file or directory\n")
+        self.assertEqual(result.stderr, "cotrace: error: cannot read the EDS '/nonexistent.eds': "
+                                        "No such file or directory\n")
 
     def test_malformed_eds(self):
         with tempfile.NamedTemporaryFile("w", suffix=".eds") as f:
@@ -142,8 +156,16 @@ class CommandLine(unittest.TestCase):
             f.flush()
             result = cotrace("--eds", f.name, "--node", "4", stdin="")
         self.assertEqual(result.returncode, EX_DATAERR)
-        self.assertEqual(result.stderr, f"cotrace: {f.name}:2: 'no equals sign' is neither a "
-                                        "[section] nor a key=value line\n")
+        self.assertEqual(result.stderr, f"cotrace: error: {f.name}:2: 'no equals sign' is neither "
+                                        "a [section] nor a key=value line\n")
+
+    def test_output_that_cannot_be_written_is_74(self):
+        with open("/dev/full", "w") as full:
+            result = subprocess.run([COTRACE, HERE / "atv312.log"], stdout=full,
+                                    stderr=subprocess.PIPE, text=True, timeout=30)
+        self.assertEqual(result.returncode, 74)
+        self.assertEqual(result.stderr, "cotrace: error: cannot write the output: No space left on "
+                                        "device\n")
 
     def test_vendor_emcy_table(self):
         result = cotrace("--emcy-table", "atv58",
@@ -155,7 +177,10 @@ class CommandLine(unittest.TestCase):
         result = cotrace("--help")
         self.assertEqual(result.returncode, 0)
         self.assertTrue(result.stdout.startswith("usage: cotrace [FILE... | -i IFACE] "))
-        self.assertIn("Exit status: 0", result.stdout)
+        statuses = result.stdout.split("\nExit status:\n")[1]
+        self.assertEqual([line.split()[0] for line in statuses.splitlines()
+                          if not line.startswith("      ")],
+                         ["0", "64", "65", "66", "69", "71", "74"])
         result = cotrace("--version")
         self.assertEqual(result.returncode, 0)
         self.assertRegex(result.stdout, r"^cotrace \d+\.\d+\.\d+\n$")

@@ -1,6 +1,7 @@
-"""dnscan's command line without a bus: every argument error is one line on stderr with its
-exit status (64 usage, 65 data), --json adds {"error", "exit"} on stdout, and a missing
-interface or CAN support is 69 (docs/dnscan.md)."""
+"""dnscan's command line without a bus: every argument error is `dnscan: error: WHAT` on stderr
+with its exit status (64 wrong arguments, followed by `Try 'dnscan --help'.`; 65 data), --json
+adds {"error", "exit"} on stdout, and a missing interface or CAN support is 69 (docs/dnscan.md,
+docs/architecture.md "Messages and exit statuses")."""
 
 import json
 import os
@@ -21,22 +22,25 @@ class ArgumentErrors(unittest.TestCase):
     def check(self, args, status, message):
         result = run(*args)
         self.assertEqual(result.returncode, status, result.stderr)
-        self.assertEqual(result.stderr, "dnscan: " + message + "\n")
+        hint = "Try 'dnscan --help'.\n" if status == 64 else ""
+        self.assertEqual(result.stderr, "dnscan: error: " + message + "\n" + hint)
         self.assertEqual(result.stdout, "")
 
     def test_no_command(self):
         self.check([], 64, "no command: give one of scan, get, set, allocate, release, poll, "
-                   "monitor (see dnscan --help)")
+                   "monitor")
 
     def test_unknown_command(self):
         self.check(["frob"], 64, "unknown command 'frob': give one of scan, get, set, allocate, "
-                   "release, poll, monitor (see dnscan --help)")
+                   "release, poll, monitor")
 
     def test_unknown_option(self):
-        self.check(["--frob", "scan"], 64, "unknown option '--frob' (see dnscan --help)")
+        self.check(["--frob", "scan"], 64, "unknown option '--frob'")
 
     def test_option_without_value(self):
-        self.check(["scan", "--timeout"], 64, "option --timeout needs a value")
+        self.check(["scan", "--timeout"], 64, "option --timeout needs a value: give --timeout MS")
+        self.check(["poll", "63", "--assembly", ""], 64,
+                   "option --assembly needs a value: give --assembly OUT/IN")
 
     def test_bad_timeout(self):
         self.check(["--timeout", "0", "scan"], 64,
@@ -104,13 +108,17 @@ class Json(unittest.TestCase):
         self.assertEqual(result.returncode, 64)
         self.assertEqual(json.loads(result.stdout),
                          {"error": "'64' is not a MAC ID: give a number 0..63", "exit": 64})
+        self.assertEqual(result.stderr, "dnscan: error: '64' is not a MAC ID: give a number 0..63\n"
+                                        "Try 'dnscan --help'.\n")
 
 
 class Interface(unittest.TestCase):
     def test_missing_interface_is_69(self):
+        """No such interface, or (this kernel) no SocketCAN at all: both are 69, in one line."""
         result = run("-i", "nosuch0", "--no-check", "get", "63", "1", "1", "1")
         self.assertEqual(result.returncode, 69, result.stderr)
-        self.assertEqual(len(result.stderr.splitlines()), 1)
+        self.assertRegex(result.stderr, r"^dnscan: error: (no network interface 'nosuch0'|this "
+                                        r"kernel has no SocketCAN support)[^\n]*\n$")
 
 
 class Help(unittest.TestCase):
@@ -118,8 +126,13 @@ class Help(unittest.TestCase):
         result = run("--help")
         self.assertEqual(result.returncode, 0)
         for word in ("scan", "get MAC", "set MAC", "allocate MAC", "release MAC", "poll MAC",
-                     "monitor", "64\nusage error"):
+                     "monitor", "else can0\n"
+                     "                         (a real bus: the examples give -i vcan0"):
             self.assertIn(word, result.stdout)
+        statuses = result.stdout.split("\nExit status:\n")[1]
+        self.assertEqual([line.split()[0] for line in statuses.splitlines()
+                          if not line.startswith("      ")],
+                         ["0", "1", "2", "3", "5", "64", "65", "69", "70", "71"])
 
     def test_version(self):
         result = run("--version")

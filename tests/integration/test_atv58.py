@@ -107,7 +107,7 @@ def test_node_ids_above_63_refused():
                             capture_output=True, text=True, timeout=BOOT_TIMEOUT)
     assert result.returncode == EX_USAGE, result.stderr
     assert result.stderr == ("atv312d: error: --node-id 64: the atv58 takes node-ids 1..63, "
-                             "give it one of those\n")
+                             "give it one of those\nTry 'atv312d --help'.\n")
 
 
 def test_every_object_of_the_eds_equals_the_running_drive(network, atv58):

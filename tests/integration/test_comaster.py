@@ -79,11 +79,11 @@ def test_segmented_and_block_transfers_against_atv312d(drives):
 def test_abort_timeout_and_data_errors(drives):
     rc, out, err = comaster("read", 4, "0x1234:1")
     assert (rc, out) == (EXIT_ABORT, "")
-    assert err == ("comaster: node 4, 1234:01: SDO abort 0x06020000: object does not exist in the "
+    assert err == ("comaster: error: node 4, 1234:01: SDO abort 0x06020000: object does not exist in the "
                    "object dictionary\n")
     rc, out, err = comaster("--timeout", "100", "read", 9, "0x1000", "u32")
     assert rc == EXIT_TIMEOUT
-    assert err == ("comaster: node 9, 1000:00: no answer within 100 ms: is the node on vcan0 and "
+    assert err == ("comaster: error: node 9, 1000:00: no answer within 100 ms: is the node on vcan0 and "
                    "its node-id 9? (--timeout MS waits longer)\n")
     rc, out, err = comaster("--json", "write", 4, "0x1008", "string", "X")
     assert rc == EXIT_ABORT
@@ -92,7 +92,7 @@ def test_abort_timeout_and_data_errors(drives):
         "exit": 1}
     rc, _, err = comaster("write", 4, "ACC", "u16", "70000")
     assert rc == EX_DATAERR
-    assert err == "comaster: node 4, 203C:02: 70000 is out of range for UNSIGNED16 (0..65535)\n"
+    assert err == "comaster: error: node 4, 203C:02: 70000 is out of range for UNSIGNED16 (0..65535)\n"
 
 
 def test_signal_ends_a_command_with_exit_3(dump):
@@ -101,26 +101,27 @@ def test_signal_ends_a_command_with_exit_3(dump):
     dump.expect(0x609, "4000100000000000")  # its request is out: it waits for the answer
     p.send_signal(signal.SIGTERM)
     assert p.wait(timeout=5) == 3
-    assert p.stderr.read() == "comaster: interrupted by a signal before the command finished\n"
+    assert p.stderr.read() == "comaster: error: interrupted by a signal before the command finished\n"
 
 
 def test_usage_errors():
     assert comaster("read", 128, "0x1000")[0::2] == (
-        EX_USAGE, "comaster: '128' is not a node-id: give a number 1..127\n")
+        EX_USAGE, "comaster: error: '128' is not a node-id: give a number 1..127\n"
+        "Try 'comaster read --help'.\n")
     assert comaster("frobnicate")[0::2] == (
-        EX_USAGE, "comaster: unknown command 'frobnicate': give one of read, write, nmt, scan, monitor, drive, "
-        "boot, run, set, get, status, disable, enable, can (see comaster --help)\n")
+        EX_USAGE, "comaster: error: unknown command 'frobnicate': give one of read, write, nmt, scan, monitor, "
+        "drive, boot, run, set, get, status, disable, enable, can\nTry 'comaster --help'.\n")
     assert comaster("read", 4, "0x1000", "u7")[0] == EX_USAGE
     # An object the EDS does not have: no data type to write VALUE as (read would guess by size).
     assert comaster("--eds", EDS, "write", 4, "0x1234:1", "5")[0::2] == (
-        EX_USAGE, "comaster: write 4 0x1234:1: give the TYPE of the value (no EDS names its data "
+        EX_USAGE, "comaster: error: write 4 0x1234:1: give the TYPE of the value (no EDS names its data "
         "type): one of bool i8 i16 i32 i64 u8 u16 u32 u64 f32 f64 string octets domain (or the "
-        "CiA 301 names: UNSIGNED16, REAL32, VISIBLE_STRING ...)\n")
+        "CiA 301 names: UNSIGNED16, REAL32, VISIBLE_STRING ...)\nTry 'comaster write --help'.\n")
     assert comaster("write", 4, "0x1000")[0] == EX_USAGE  # no VALUE
     p = subprocess.run([COMASTER, "-i", "nosuchcan0", "read", "4", "0x1000"], capture_output=True,
                        text=True, timeout=30)
     assert p.returncode == EX_UNAVAILABLE
-    assert p.stderr.startswith("comaster: no network interface 'nosuchcan0'")
+    assert p.stderr.startswith("comaster: error: no network interface 'nosuchcan0'")
 
 
 def test_nmt_commands_frames_and_boot_up(drives, dump):
@@ -134,7 +135,7 @@ def test_nmt_commands_frames_and_boot_up(drives, dump):
     dump.expect(0x705, "00", since=mark)
     rc, out, err = comaster("--timeout", "200", "nmt", "reset-comm", 9)
     assert rc == EXIT_TIMEOUT
-    assert err == ("comaster: node 9: no boot-up within 200 ms after reset-comm: is the node on "
+    assert err == ("comaster: error: node 9: no boot-up within 200 ms after reset-comm: is the node on "
                    "vcan0? (--timeout MS waits longer)\n")
     assert comaster("nmt", "go", 4)[0] == EX_USAGE
 
@@ -181,7 +182,7 @@ def test_block_transfers_against_local_node(local_node):
     client follows: the value arrives segmented."""
     rc, _, err = comaster("write", LOCAL_NODE, "0x2001", "string", "block", "--block")
     assert rc == EXIT_ABORT
-    assert err == ("comaster: node 10, 2001:00: SDO abort 0x05040001: client/server command "
+    assert err == ("comaster: error: node 10, 2001:00: SDO abort 0x05040001: client/server command "
                    "specifier not valid or unknown\n")
     assert comaster("read", LOCAL_NODE, "0x2001", "string", "--block") == (
         0, "LocalNode label\n", "")
@@ -300,7 +301,7 @@ def test_drive_in_fault_needs_fault_reset(drives, bus):
     rc, out, err = comaster("drive", 4, "enable")
     assert rc == 4
     assert out == "node 4: Fault (6041h = 0x0608)\n"
-    assert err == ("comaster: node 4 is in Fault (6041h = 0x0608): reset it first: comaster drive "
+    assert err == ("comaster: error: node 4 is in Fault (6041h = 0x0608): reset it first: comaster drive "
                    "4 fault-reset\n")
     assert comaster("drive", 4, "fault-reset") == (
         0, "node 4: Fault (6041h = 0x0608)\nnode 4: Switch on disabled (6041h = 0x0640)\n", "")
@@ -308,7 +309,8 @@ def test_drive_in_fault_needs_fault_reset(drives, bus):
 
 def test_drive_usage_errors():
     assert comaster("drive", 4, "speed", "99999")[0::2] == (
-        EX_USAGE, "comaster: drive: speed '99999' is not a velocity: give rpm -32768..32767\n")
+        EX_USAGE, "comaster: error: drive: speed '99999' is not a velocity: give rpm -32768..32767\n"
+        "Try 'comaster drive --help'.\n")
     assert comaster("drive", 4, "fly")[0] == EX_USAGE
     assert comaster("drive", 4, "speed")[0] == EX_USAGE
 
@@ -340,7 +342,7 @@ def test_scan_lists_every_model_with_its_state(bus, start_daemon, dump):
 
 def test_scan_of_an_empty_bus():
     assert comaster("--timeout", "100", "scan")[0::2] == (
-        EXIT_TIMEOUT, "comaster: no node answered on vcan0 within 100 ms (--timeout MS waits "
+        EXIT_TIMEOUT, "comaster: error: no node answered on vcan0 within 100 ms (--timeout MS waits "
         "longer)\n")
 
 
@@ -419,7 +421,7 @@ def test_monitor_json_lines(drives, bus):
 def test_drive_by_the_mapped_rpdo(drives, dump):
     rc, out, err = comaster("--timeout", "300", "drive", 4, "enable", "--rpdo")
     assert (rc, out) == (EXIT_TIMEOUT, "node 4: Switch on disabled (6041h = 0x0640)\n")
-    assert err == ("comaster: node 4: control word 0x0006: no Ready to switch on within 300 ms "
+    assert err == ("comaster: error: node 4: control word 0x0006: no Ready to switch on within 300 ms "
                    "(6041h = 0x0640): RPDOs count only in Operational: comaster nmt start NODE "
                    "(--timeout MS waits longer)\n")
     dump.expect(0x204, "0600")  # sent, and ignored in Pre-operational
@@ -448,7 +450,7 @@ def test_drive_by_the_mapped_rpdo(drives, dump):
 def test_drive_rpdo_without_a_mapped_control_word(drives):
     assert comaster("write", 4, "0x1400:1", "u32", "0x80000204")[0] == 0
     assert comaster("drive", 4, "enable", "--rpdo")[0::2] == (
-        EX_DATAERR, "comaster: node 4: --rpdo: no valid RPDO (1400h-1407h) maps the control word "
+        EX_DATAERR, "comaster: error: node 4: --rpdo: no valid RPDO (1400h-1407h) maps the control word "
         "6040h: make one valid (e.g. comaster write 4 0x1405:1 u32 0x304), or drive by SDO "
         "without --rpdo\n")
 
@@ -468,7 +470,8 @@ def test_monitor_heartbeat_lost_and_heard_again(drives):
 
 def test_eds_dir_is_the_only_place_looked_in(drives, tmp_path):
     assert comaster("--eds-dir", tmp_path, "read", 4, "ACC")[0::2] == (
-        EX_USAGE, "comaster: 'ACC' is not an object: give INDEX:SUB such as 0x203C:2, or a name "
-        "with --eds FILE (or an EDS for the node's identity in the EDS directory)\n")
+        EX_USAGE, "comaster: error: 'ACC' is not an object: give INDEX:SUB such as 0x203C:2, or a name "
+        "with --eds FILE (or an EDS for the node's identity in the EDS directory)\n"
+        "Try 'comaster read --help'.\n")
     (tmp_path / "ATV312.eds").write_text(EDS.read_text())
     assert comaster("--eds-dir", tmp_path, "read", 4, "ACC") == (0, "30\n", "")

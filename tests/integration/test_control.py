@@ -11,12 +11,12 @@ import pytest
 from conftest import NMT_START, REPLY_TIMEOUT, Frame, daemon_path
 
 NODE = 4
-EX_DATAERR = 65
+EXIT_REFUSED = 1  # the daemon's "error: ..." reply, which ctl prints as its own error on stderr
 EX_UNAVAILABLE = 69
 
 
 def ctl(sock, *words):
-    """Runs `atv312d ctl SOCK WORDS...`; returns (exit status, reply line)."""
+    """Runs `atv312d ctl SOCK WORDS...`; returns (exit status, reply line or error line)."""
     done = subprocess.run([daemon_path(), "ctl", str(sock), *map(str, words)], capture_output=True, text=True, timeout=10)
     return done.returncode, (done.stdout + done.stderr).strip()
 
@@ -184,9 +184,9 @@ def test_frame_counters_of_each_of_two_drives(bus, start_daemon, tmp_path):
     ],
 )
 def test_refused_commands_say_why_and_send_nothing(bus, control, words, error):
-    assert ctl(control, *words) == (EX_DATAERR, error)
+    assert ctl(control, *words) == (EXIT_REFUSED, "atv312d: " + error)
     status, reply = ctl(control, "--json", *words)
-    assert (status, json.loads(reply)) == (EX_DATAERR, {"ok": False, "error": error[len("error: "):]})
+    assert (status, json.loads(reply)) == (EXIT_REFUSED, {"ok": False, "error": error[len("error: "):]})
     bus.expect_none(0x84, 0.2)
     assert bus.sdo_read(NODE, 0x6041, 0) == 0x0640
 
@@ -194,14 +194,14 @@ def test_refused_commands_say_why_and_send_nothing(bus, control, words, error):
 def test_fault_injected_twice_is_refused(bus, control):
     assert ctl(control, "fault", NODE, "ohf")[0] == 0
     bus.expect(0x84, "1042010000000000")
-    assert ctl(control, "fault", NODE, "OHF") == (EX_DATAERR, "error: node 4: the cause of OHF is present already")
+    assert ctl(control, "fault", NODE, "OHF") == (EXIT_REFUSED, "atv312d: error: node 4: the cause of OHF is present already")
     bus.expect_none(0x84, 0.2)
 
 
 def test_no_daemon_is_a_clear_error(tmp_path):
     status, reply = ctl(tmp_path / "none.sock", "state")
     assert status == EX_UNAVAILABLE
-    assert "cannot connect" in reply and "--control" in reply
+    assert reply.startswith("atv312d: error: ctl: cannot connect") and "--control" in reply
 
 
 def run_fast(bus):
@@ -267,7 +267,7 @@ def test_analog_input_and_terminal_run(bus, control):
     bus.expect(0x284, "278412FD", timeout=5.0)
     assert ctl(control, "input", NODE, "LI1", "off") == (0, "ok node 4: LI1 off")
     bus.expect(0x284, "40040000", timeout=5.0)
-    assert ctl(control, "pot", NODE, 50) == (EX_DATAERR, "error: node 4 has no reference potentiometer")
+    assert ctl(control, "pot", NODE, 50) == (EXIT_REFUSED, "atv312d: error: node 4 has no reference potentiometer")
 
 
 def test_atv31_potentiometer_and_stop_reset_key(bus, start_daemon, tmp_path):

@@ -97,5 +97,5 @@ def test_missing_interface():
     result = subprocess.run([COTRACE, "-i", "nosuch0"], capture_output=True, text=True, timeout=10)
     assert result.returncode == EX_UNAVAILABLE
     assert result.stdout == ""
-    assert result.stderr == ("cotrace: no network interface 'nosuch0': list the CAN interfaces with: "
-                             "ip link show type can (or type vcan)\n")
+    assert result.stderr == ("cotrace: error: no network interface 'nosuch0': give one with -i IFACE (list "
+                             "them: ip link show type can, or type vcan)\n")

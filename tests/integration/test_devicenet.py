@@ -132,7 +132,7 @@ def test_explicit_get_and_set_with_a_fragmented_response(start_dn, dump):
     assert dnscan("get", 25, "0x8E", 1, 2, "--type", "u16") == (0, "50\n", "")
     status, out, err = dnscan("get", 25, 1, 1, 99)
     assert (status, out) == (1, "")
-    assert err == "dnscan: MAC ID 25, get 1/1/99: CIP error 0x14 (attribute not supported), additional code 0xFF\n"
+    assert err == "dnscan: error: MAC ID 25, get 1/1/99: CIP error 0x14 (attribute not supported), additional code 0xFF\n"
     status, _, err = dnscan("set", 25, "0x8E", 1, 2, "u16:65535")
     assert status == 1 and "CIP error" in err, err
 
@@ -246,6 +246,16 @@ def test_a_killed_drive_checks_its_mac_id_again_and_is_allocated_again(start_dn,
     assert dnscan("release", 25) == (0, "MAC ID 25: released 0x33\n", "")
 
 
+def test_scanner_on_a_mac_id_in_use_exits_5(start_dn):
+    """The scanner's own duplicate MAC ID check (no --no-check) answered by the drive on its MAC
+    ID: exit 5, which means nothing else in any of the four programs."""
+    start_dn([25])
+    p = subprocess.run([DNSCAN, "-i", IFACE, "--mac-id", "25", "get", "63", "1", "1", "1"], capture_output=True,
+                       text=True, timeout=30)
+    assert (p.returncode, p.stdout, p.stderr) == (
+        5, "", "dnscan: error: MAC ID 25 is in use on vcan0: give the scanner another with --mac-id N\n")
+
+
 @pytest.mark.parametrize("args, message", [
     (["--devicenet", "--node-id", "4"],
      "--node-id 4: --devicenet makes vcan0 a DeviceNet bus, whose drives have MAC IDs: give --mac-id 0..63 "
@@ -258,7 +268,7 @@ def test_a_killed_drive_checks_its_mac_id_again_and_is_allocated_again(start_dn,
 ])
 def test_mixing_canopen_and_devicenet_is_refused(args, message, dump):
     p = subprocess.run([daemon_path(), IFACE, *args], capture_output=True, text=True, timeout=10)
-    assert (p.returncode, p.stdout, p.stderr) == (EX_USAGE, "", f"atv312d: error: {message}\n")
+    assert (p.returncode, p.stdout, p.stderr) == (EX_USAGE, "", f"atv312d: error: {message}\nTry 'atv312d --help'.\n")
     dump.expect_none(0x4CF, 0.2)
 
 
@@ -305,4 +315,4 @@ def test_control_surface_faults_and_keys_by_mac_id(start_dn):
     # The card's Stop after the reset is a Shutdown: Ready to switch on.
     wait_state(sock, 25, fault=None, supervisor="ready", cia402="Ready to switch on")
     assert ctl(sock, "load", 25, 50) == (0, "ok node 25: load 50 %")
-    assert ctl(sock, "fault", 4, "OHF") == (65, "error: node 4 is not present: this daemon runs MAC ID 25")
+    assert ctl(sock, "fault", 4, "OHF") == (1, "atv312d: error: node 4 is not present: this daemon runs MAC ID 25")

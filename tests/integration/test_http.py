@@ -173,7 +173,23 @@ def test_actions_off_loopback_need_a_token():
     assert done.returncode == EX_USAGE
     assert done.stderr == (
         "atv312d: error: --http 0.0.0.0:8080 --http-actions: anyone who reaches 0.0.0.0:8080 could drive "
-        "the drives: give --http-token FILE (a secret) or listen on loopback (--http 127.0.0.1:PORT)\n")
+        "the drives: give --http-token FILE (a secret) or listen on loopback (--http 127.0.0.1:PORT)\n"
+        "Try 'atv312d --help'.\n")
+
+
+@pytest.mark.parametrize("secret, status, why", [
+    ("\n", 65, "the secret must be the file's first line, 1..256 characters"),  # bad data: 65 alone
+    (None, 66, "cannot be read: No such file or directory"),
+])
+def test_token_file_without_a_secret_or_unreadable(bus, tmp_path, secret, status, why):
+    """Each its own exit status, with one error line; nothing goes on the bus."""
+    token = tmp_path / "token"
+    if secret is not None:
+        token.write_text(secret)
+    done = subprocess.run([daemon_path(), "vcan0", "--node-id", "4", "--http", "0", "--http-actions",
+                           "--http-token", token], capture_output=True, text=True, timeout=10)
+    assert (done.returncode, done.stdout, done.stderr) == (status, "", f"atv312d: error: --http-token {token}: {why}\n")
+    bus.expect_none(0x704, 0.3)
 
 
 def test_cross_origin_post_refused(bus, web):

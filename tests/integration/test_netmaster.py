@@ -20,8 +20,8 @@ from conftest import BOOT_TIMEOUT, EDS, IFACE, PERIODIC_LATENESS, ROOT, assert_p
 
 COMASTER = os.environ.get("COMASTER") or str(ROOT / "build" / "apps" / "comaster" / "comaster")
 NET = ROOT / "examples" / "netmaster"
-EX_DATAERR, EX_UNAVAILABLE = 65, 69
-EXIT_TIMEOUT = 2
+EX_UNAVAILABLE, EX_CANTCREAT = 69, 73
+EXIT_REFUSED, EXIT_TIMEOUT = 1, 2  # the run's refusal (its "error:" reply) is 1, as an SDO abort
 
 BOOTED = "status 0x000F contacted configured error-control-started initialised"
 MASTER_BOOTED = "master: status 0x000F all-contacted all-configured all-error-control-started init-finished"
@@ -203,15 +203,21 @@ def test_bad_requests_are_refused(bus, start_daemon, run):
     r = run()
     expect_booted(r)
     rc, _, err = r.request("set", 4, "status", 5)
-    assert rc == EX_DATAERR and "is an input" in err, err
+    assert rc == EXIT_REFUSED and "is an input" in err, err
     rc, _, err = r.request("set", 4, "ACC", 5)
-    assert (rc, err) == (EX_DATAERR, "comaster: node 4: 203Ch:02 (ACC) is in none of its PDOs\n")
+    assert (rc, err) == (EXIT_REFUSED, "comaster: error: node 4: 203Ch:02 (ACC) is in none of its PDOs\n")
     rc, _, err = r.request("set", 4, "speed", 40000)
-    assert rc == EX_DATAERR and "speed" in err, err
+    assert rc == EXIT_REFUSED and "speed" in err, err
     rc, _, err = r.request("get", 9, "speed")
-    assert (rc, err) == (EX_DATAERR, "comaster: node 9 is not a slave of the network\n")
+    assert (rc, err) == (EXIT_REFUSED, "comaster: error: node 9 is not a slave of the network\n")
     rc, _, err = comaster("status", "--control", "/nonexistent/control.sock")
-    assert rc == EX_UNAVAILABLE and "no comaster run answers" in err, err
+    assert rc == EX_UNAVAILABLE and err.startswith("comaster: error: no comaster run answers"), err
+    # A second run on the socket of the first: it cannot have it, and sends nothing.
+    mark = time.time()
+    assert comaster("run", NET / "bench.ini", "--control", r.control) == (
+        EX_CANTCREAT, "", f"comaster: error: another comaster run answers on {r.control}: stop it, or give "
+        "--control PATH\n")
+    assert [f for f in bus.collect(0.3) if f.timestamp > mark and f.can_id == 0x000] == []
 
 
 def test_drive_killed_and_restarted_is_rebooted_and_reconfigured(bus, start_daemon, run, remote):
@@ -354,7 +360,7 @@ def test_nmt_through_the_run_is_confirmed_by_the_state(bus, start_daemon, run):
     assert r.request("nmt", "start", "all", "--run") == (0, "all: Operational (nodes 4 5 6)\n", "")
     rc, out, err = r.request("--timeout", 300, "nmt", "start", 9, "--run")
     assert (rc, out) == (EXIT_TIMEOUT, "")
-    assert err == "comaster: node 9: no Operational reported within 300 ms after start: is the node on vcan0?\n"
+    assert err == "comaster: error: node 9: no Operational reported within 300 ms after start: is the node on vcan0?\n"
     assert r.request("nmt", "reset-node", 6, "--run") == (0, "node 6: boot-up\n", "")
     r.expect(f"node 6 drive6: {BOOTED}")  # booted again by the master
     rc, out, _ = r.request("status")  # five commands: bit 8 (the NMT toggle feedback) is set
@@ -375,10 +381,10 @@ def test_sdo_through_the_run_shares_its_client(bus, start_daemon, run, remote):
     assert json.loads(out) == {"node": 5, "index": "0x1008", "subindex": 0, "name": "Manufacturer device name",
                                "type": "VISIBLE_STRING", "value": "ATV312"}
     rc, _, err = r.request("read", 4, "0x1234:0", "u8", "--run")
-    assert (rc, err) == (1, "comaster: node 4, 1234:00: SDO abort 0x06020000: object does not exist in the "
+    assert (rc, err) == (EXIT_REFUSED, "comaster: error: node 4, 1234:00: SDO abort 0x06020000: object does not exist in the "
                             "object dictionary\n")
     rc, _, err = r.request("read", 9, "0x1000", "u32", "--run")
-    assert (rc, err) == (EXIT_TIMEOUT, "comaster: node 9, 1000:00: no answer within 500 ms (the run's sdo_timeout)\n")
+    assert (rc, err) == (EXIT_TIMEOUT, "comaster: error: node 9, 1000:00: no answer within 500 ms (the run's sdo_timeout)\n")
     rc, out, _ = r.request("status")
     assert "last SDO error: node 9 read 1000h:00 abort 0x05040000 (SDO protocol timed out)" in out.splitlines()
 
@@ -396,7 +402,7 @@ def test_disable_stops_the_master_and_enable_boots_the_network_again(bus, start_
     rc, out, _ = r.request("status")
     assert out.splitlines()[:2] == ["master 0x8000 disabled", "node 4 drive4 0x0000 idle"]
     rc, _, err = r.request("nmt", "start", 4, "--run")
-    assert (rc, err) == (EX_DATAERR, "comaster: the communication of the run is disabled: comaster enable\n")
+    assert (rc, err) == (EXIT_REFUSED, "comaster: error: the communication of the run is disabled: comaster enable\n")
     assert r.request("--json", "enable") == (0, '{"status": "0x0000", "disabled": false}\n', "")
     bus.expect(0x000, "8200")
     expect_booted(r)

@@ -54,7 +54,7 @@ class ManPagesTest(unittest.TestCase):
     def test_every_model_of_atv312d_is_a_term(self):
         p = subprocess.run([ATV312D, "vcan0", "--node-id", "4", "--model", "none"], capture_output=True,
                            text=True)
-        models = re.search(r"the models are (.*)$", p.stderr.strip()).group(1).split(", ")
+        models = re.search(r"the models are (.*)$", p.stderr.splitlines()[0]).group(1).split(", ")
         self.assertIn("atv31-v1.1", models)
         page = terms(man_page("atv312d", ATV312D))
         for model in models:
@@ -75,6 +75,20 @@ class ManPagesTest(unittest.TestCase):
             for line in page:
                 if not line.startswith("."):
                     self.assertNotIn("   ", line, "%s: a list run into a paragraph" % name)
+
+    def test_exit_statuses_are_terms_of_exit_status(self):
+        """Each program's --help ends with its exit statuses, one a line: the EXIT STATUS section
+        is their list, each number a term with its meaning, 0 and 64 (usage) in every one."""
+        for name, program in ("atv312d", ATV312D), ("comaster", COMASTER), ("dnscan", DNSCAN), \
+                ("cotrace", COTRACE):
+            page = man_page(name, program)
+            section = page[page.index('.SH "EXIT STATUS"') + 1:page.index('.SH "SEE ALSO"')
+                           if '.SH "SEE ALSO"' in page else len(page)]
+            statuses = terms(section)
+            self.assertTrue({"0", "64"} <= set(statuses), "%s: %s" % (name, statuses))
+            for status, meaning in statuses.items():
+                self.assertRegex(status, r"^\d+$", "%s: %r is no exit status" % (name, status))
+                self.assertTrue(meaning, "%s: exit status %s has no meaning" % (name, status))
 
     def test_every_command_of_comaster_is_a_term(self):
         page = terms(man_page("comaster", COMASTER))

@@ -91,6 +91,19 @@ class ManFromHelpTest(unittest.TestCase):
                          [".PP", "0 success, 64 usage error."])
         self.assertEqual(page[-1], "other(1)")
 
+    def test_exit_status_list(self):
+        """`Exit status:` alone on its line over indented statuses: each status a tagged
+        paragraph of EXIT STATUS, not a subsection of DESCRIPTION."""
+        listed = HELP.replace("Exit status: 0 success,\n64 usage error.\n",
+                              "Exit status:\n  0   success\n  64  usage error: an unknown\n"
+                              "      option\n")
+        status, page, _ = self.run_tool(self.program({"": listed}))
+        self.assertEqual(status, 0)
+        self.assertNotIn(".SS Exit status", page)
+        self.assertEqual(page[page.index('.SH "EXIT STATUS"') + 1:], [
+            ".TP", "\\fB0\\fR", "success",
+            ".TP", "\\fB64\\fR", "usage error: an unknown option"])
+
     def test_subcommand(self):
         status, page, _ = self.run_tool(self.program({"": HELP, "gen": SUB_HELP}),
                                         "--subcommand", "gen")

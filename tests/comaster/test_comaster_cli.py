@@ -1,0 +1,145 @@
+# SPDX-License-Identifier: Apache-2.0
+"""comaster's command line without a bus: its errors as the convention of the four programs says
+(docs/architecture.md, "Messages and exit statuses"): `comaster: error: WHAT` on stderr, after
+wrong arguments the line naming the --help to read (the command's own when the command was
+known), {"error", "exit"} on stdout with --json, and the exit status of each failure. The client
+of a run's control socket talks to a stand-in here, so that each answer it can get is tested."""
+
+import json
+import os
+import subprocess
+import sys
+import tempfile
+import unittest
+from pathlib import Path
+
+sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "support"))
+from control_stand_in import StandIn  # noqa: E402
+
+COMASTER = os.environ["COMASTER"]
+EX_USAGE, EX_UNAVAILABLE, EX_PROTOCOL = 64, 69, 76
+EXIT_REFUSED, EXIT_TIMEOUT = 1, 2
+COMMANDS = "read, write, nmt, scan, monitor, drive, boot, run, set, get, status, disable, enable, can"
+
+
+def run(*args):
+    return subprocess.run([COMASTER, *map(str, args)], capture_output=True, text=True, timeout=30,
+                          check=False)
+
+
+class WrongArguments(unittest.TestCase):
+    def check(self, args, message, command=None):
+        result = run(*args)
+        self.assertEqual((result.returncode, result.stdout), (EX_USAGE, ""), result.stderr)
+        helped = f"comaster {command}" if command else "comaster"
+        self.assertEqual(result.stderr, f"comaster: error: {message}\nTry '{helped} --help'.\n")
+
+    def test_unknown_option(self):
+        self.check(["--frob", "scan"], "unknown option '--frob'")
+        self.check(["read", "4", "ACC", "--frob"], "read: unknown option '--frob'", "read")
+
+    def test_option_without_its_value(self):
+        self.check(["--timeout"], "option --timeout needs a value: give --timeout MS")
+        self.check(["monitor", "4", "--heartbeat"],
+                   "monitor: option --heartbeat needs a value: give --heartbeat MS", "monitor")
+        self.check(["set", "4", "speed", "1", "--control"],
+                   "set: option --control needs a value: give --control PATH", "set")
+
+    def test_missing_and_extra_arguments(self):
+        self.check([], f"no command: give one of {COMMANDS}")
+        self.check(["frob"], f"unknown command 'frob': give one of {COMMANDS}")
+        self.check(["write", "4", "ACC"], "write: missing arguments: usage: comaster write NODE "
+                   "OBJECT [TYPE] VALUE [--block]", "write")
+        self.check(["get", "4", "speed", "x"], "get: too many arguments from 'x': usage: comaster "
+                   "get NODE NAME [--control PATH]", "get")
+
+    def test_bad_values(self):
+        self.check(["read", "128", "ACC"], "'128' is not a node-id: give a number 1..127", "read")
+        self.check(["--timeout", "0", "scan"],
+                   "--timeout: '0' is not a time: give milliseconds 1..600000", "scan")
+        self.check(["drive", "4", "speed", "99999"],
+                   "drive: speed '99999' is not a velocity: give rpm -32768..32767", "drive")
+
+    def test_json_twin(self):
+        result = run("--json", "read", "128", "ACC")
+        self.assertEqual(result.returncode, EX_USAGE)
+        message = "'128' is not a node-id: give a number 1..127"
+        self.assertEqual(json.loads(result.stdout), {"error": message, "exit": EX_USAGE})
+        self.assertEqual(result.stderr, f"comaster: error: {message}\nTry 'comaster read --help'.\n")
+
+
+class Interface(unittest.TestCase):
+    def test_missing_interface_is_69(self):
+        """No such interface, or (this kernel) no SocketCAN at all: both are 69, in one line."""
+        result = run("-i", "nosuch0", "read", "4", "0x1000", "u32")
+        self.assertEqual((result.returncode, result.stdout), (EX_UNAVAILABLE, ""), result.stderr)
+        self.assertRegex(result.stderr, r"^comaster: error: (no network interface 'nosuch0'|this "
+                                        r"kernel has no SocketCAN support)[^\n]*\n$")
+
+
+class ControlSocket(unittest.TestCase):
+    """Each reply of a run: ok on stdout; its refusal and an SDO abort are 1, no answer in time
+    2, as comaster's own errors; a run that closed without a reply 76, none listening 69."""
+
+    def setUp(self):
+        self.tmp = tempfile.TemporaryDirectory()
+        self.path = os.path.join(self.tmp.name, "run.sock")
+
+    def tearDown(self):
+        self.tmp.cleanup()
+
+    def set_speed(self, reply):
+        stand_in = StandIn(self.path, reply)
+        try:
+            return run("set", 4, "speed", 1200, "--control", self.path)
+        finally:
+            stand_in.close()
+            self.assertEqual(stand_in.requests, ["set\t4\tspeed\t1200\n"])
+
+    def test_ok(self):
+        result = self.set_speed("ok\n")
+        self.assertEqual((result.returncode, result.stdout, result.stderr), (0, "ok\n", ""))
+
+    def test_refused_is_1(self):
+        result = self.set_speed("error: node 4: 6040h:00 (control) is an input\n")
+        self.assertEqual((result.returncode, result.stdout, result.stderr), (
+            EXIT_REFUSED, "", "comaster: error: node 4: 6040h:00 (control) is an input\n"))
+
+    def test_abort_is_1_and_timeout_2(self):
+        result = self.set_speed("abort: node 4, 6042:00: SDO abort 0x06090030: value range of "
+                                "parameter exceeded\n")
+        self.assertEqual((result.returncode, result.stderr), (
+            EXIT_REFUSED, "comaster: error: node 4, 6042:00: SDO abort 0x06090030: value range of "
+                          "parameter exceeded\n"))
+        result = self.set_speed("timeout: node 4, 6042:00: no answer within 500 ms\n")
+        self.assertEqual((result.returncode, result.stderr), (
+            EXIT_TIMEOUT, "comaster: error: node 4, 6042:00: no answer within 500 ms\n"))
+
+    def test_no_reply_is_76(self):
+        result = self.set_speed(None)
+        self.assertEqual((result.returncode, result.stdout, result.stderr), (
+            EX_PROTOCOL, "", f"comaster: error: the comaster run on {self.path} closed without a "
+                             "reply\n"))
+
+    def test_no_run_is_69(self):
+        result = run("status", "--control", self.path)
+        self.assertEqual((result.returncode, result.stdout, result.stderr), (
+            EX_UNAVAILABLE, "", f"comaster: error: no comaster run answers on {self.path} (No "
+                                "such file or directory): start one with comaster run NETWORK, "
+                                "or give its --control PATH\n"))
+
+
+class Help(unittest.TestCase):
+    def test_help_ends_with_the_exit_statuses(self):
+        result = run("--help")
+        self.assertEqual(result.returncode, 0)
+        self.assertIn("else can0\n                 (a real bus: the examples give -i vcan0",
+                      result.stdout)
+        statuses = result.stdout.split("\nExit status:\n")[1]
+        self.assertEqual([line.split()[0] for line in statuses.splitlines()
+                          if not line.startswith("      ")],
+                         ["0", "1", "2", "3", "4", "64", "65", "66", "69", "70", "71", "73", "76"])
+
+
+if __name__ == "__main__":
+    unittest.main()

@@ -220,6 +220,9 @@ set(CPACK_DEBIAN_PACKAGE_SECTION devel)
 # libc from the daemon's own dependencies (dpkg-shlibdeps); python3 for co-edstool.
 set(CPACK_DEBIAN_PACKAGE_SHLIBDEPS ON)
 set(CPACK_DEBIAN_PACKAGE_DEPENDS "python3")
-set(CPACK_DEBIAN_PACKAGE_RECOMMENDS "can-utils")
+# libmicrohttpd for atv312d --http: loaded only then, so dpkg-shlibdeps does not see it, and a
+# recommendation, not a dependency, since the daemon runs without it (apps/atv312d/CMakeLists.txt
+# names its package).
+set(CPACK_DEBIAN_PACKAGE_RECOMMENDS "can-utils, ${ATV312D_MHD_PACKAGE}")
 set(CPACK_DEBIAN_PACKAGE_SUGGESTS "cmake, pkg-config, user-mode-linux, kmod, iproute2")
 include(CPack)

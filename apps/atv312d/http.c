@@ -1,6 +1,6 @@
 /* The web surface (http.h): the address and token of the command line, the handler of requests
  * (the bench, its state, the assets, the commands and their checks) and its server on
- * libmicrohttpd in the daemon's loop. */
+ * libmicrohttpd in the daemon's loop, whose functions it calls through http->mhd (mhd_load.h). */
 #include "http.h"
 
 #include "co_linux/log.h"
@@ -562,7 +562,7 @@ static ssize_t stream_read(void *cls, uint64_t pos, char *buf, size_t max)
     atv312d_http_t *http = stream->http;
     if (stream->sent == stream->len) {
         if (stream->sequence == http->event_sequence) {
-            MHD_suspend_connection(stream->connection);
+            http->mhd.suspend_connection(stream->connection);
             stream->suspended = true;
             return 0;
         }
@@ -600,8 +600,8 @@ static struct MHD_Response *stream_start(atv312d_http_t *http, struct MHD_Connec
     atv312d_http_stream_t *stream = calloc(1, sizeof *stream);
     char *text = malloc(EVENT_MAX);
     struct MHD_Response *response =
-        stream && text ? MHD_create_response_from_callback(MHD_SIZE_UNKNOWN, EVENT_BLOCK,
-                                                           stream_read, stream, stream_free)
+        stream && text ? http->mhd.create_response_from_callback(MHD_SIZE_UNKNOWN, EVENT_BLOCK,
+                                                                 stream_read, stream, stream_free)
                        : NULL;
     if (!response) {
         free(text);
@@ -629,7 +629,7 @@ static void publish_event(atv312d_http_t *http, co_time_t now)
     for (atv312d_http_stream_t *s = http->streams; s; s = s->next) {
         if (s->suspended) {
             s->suspended = false;
-            MHD_resume_connection(s->connection);
+            http->mhd.resume_connection(s->connection);
         }
     }
     http->next_event += ATV312D_HTTP_EVENT_PERIOD_MS * US_PER_MS;
@@ -677,10 +677,11 @@ static void on_completed(void *cls, struct MHD_Connection *connection, void **re
     *req_cls = NULL;
 }
 
-static void format_peer(struct MHD_Connection *connection, char *peer, size_t len)
+static void format_peer(const atv312d_http_t *http, struct MHD_Connection *connection, char *peer,
+                        size_t len)
 {
     const union MHD_ConnectionInfo *info =
-        MHD_get_connection_info(connection, MHD_CONNECTION_INFO_CLIENT_ADDRESS);
+        http->mhd.get_connection_info(connection, MHD_CONNECTION_INFO_CLIENT_ADDRESS);
     char host[INET6_ADDRSTRLEN] = "?";
     unsigned port = 0;
     if (info && info->client_addr->sa_family == AF_INET) {
@@ -696,29 +697,32 @@ static void format_peer(struct MHD_Connection *connection, char *peer, size_t le
     snprintf(peer, len, "%s:%u", host, port);
 }
 
-static const char *header(struct MHD_Connection *connection, const char *name)
+static const char *header(const atv312d_http_t *http, struct MHD_Connection *connection,
+                          const char *name)
 {
-    return MHD_lookup_connection_value(connection, MHD_HEADER_KIND, name);
+    return http->mhd.lookup_connection_value(connection, MHD_HEADER_KIND, name);
 }
 
 /* Headers every answer carries: no sniffing, no framing, no referrer. A page is held to its own
  * origin's scripts, styles and images (inline styles allowed), and may connect only there. */
-static void add_common_headers(struct MHD_Response *response, const atv312d_http_answer_t *answer)
+static void add_common_headers(const atv312d_http_t *http, struct MHD_Response *response,
+                               const atv312d_http_answer_t *answer)
 {
-    MHD_add_response_header(response, "X-Content-Type-Options", "nosniff");
-    MHD_add_response_header(response, "X-Frame-Options", "DENY");
-    MHD_add_response_header(response, "Referrer-Policy", "no-referrer");
-    MHD_add_response_header(response, "Content-Security-Policy",
-                            "default-src 'self'; style-src 'self' 'unsafe-inline'; img-src "
-                            "'self' data:; frame-ancestors 'none'");
+    const atv312d_mhd_t *mhd = &http->mhd;
+    mhd->add_response_header(response, "X-Content-Type-Options", "nosniff");
+    mhd->add_response_header(response, "X-Frame-Options", "DENY");
+    mhd->add_response_header(response, "Referrer-Policy", "no-referrer");
+    mhd->add_response_header(response, "Content-Security-Policy",
+                             "default-src 'self'; style-src 'self' 'unsafe-inline'; img-src "
+                             "'self' data:; frame-ancestors 'none'");
     if (answer->content_type)
-        MHD_add_response_header(response, MHD_HTTP_HEADER_CONTENT_TYPE, answer->content_type);
+        mhd->add_response_header(response, MHD_HTTP_HEADER_CONTENT_TYPE, answer->content_type);
     if (answer->cache_control)
-        MHD_add_response_header(response, MHD_HTTP_HEADER_CACHE_CONTROL, answer->cache_control);
+        mhd->add_response_header(response, MHD_HTTP_HEADER_CACHE_CONTROL, answer->cache_control);
     if (answer->etag)
-        MHD_add_response_header(response, MHD_HTTP_HEADER_ETAG, answer->etag);
+        mhd->add_response_header(response, MHD_HTTP_HEADER_ETAG, answer->etag);
     if (answer->allow)
-        MHD_add_response_header(response, MHD_HTTP_HEADER_ALLOW, answer->allow);
+        mhd->add_response_header(response, MHD_HTTP_HEADER_ALLOW, answer->allow);
 }
 
 static enum MHD_Result queue_answer(atv312d_http_t *http, struct MHD_Connection *connection,
@@ -728,27 +732,27 @@ static enum MHD_Result queue_answer(atv312d_http_t *http, struct MHD_Connection 
     if (answer->events)
         response = stream_start(http, connection);
     else if (answer->body == http->buf)
-        response =
-            MHD_create_response_from_buffer(answer->body_len, http->buf, MHD_RESPMEM_MUST_COPY);
+        response = http->mhd.create_response_from_buffer(answer->body_len, http->buf,
+                                                         MHD_RESPMEM_MUST_COPY);
     else
-        response = MHD_create_response_from_buffer(answer->body_len, (void *)answer->body,
-                                                   MHD_RESPMEM_PERSISTENT);
+        response = http->mhd.create_response_from_buffer(answer->body_len, (void *)answer->body,
+                                                         MHD_RESPMEM_PERSISTENT);
     if (!response)
         return MHD_NO;
-    add_common_headers(response, answer);
+    add_common_headers(http, response, answer);
     if (answer->status == 503) {
-        MHD_add_response_header(response, MHD_HTTP_HEADER_CONNECTION, "close");
-        MHD_add_response_header(response, MHD_HTTP_HEADER_RETRY_AFTER, "5");
+        http->mhd.add_response_header(response, MHD_HTTP_HEADER_CONNECTION, "close");
+        http->mhd.add_response_header(response, MHD_HTTP_HEADER_RETRY_AFTER, "5");
     }
-    enum MHD_Result result = MHD_queue_response(connection, answer->status, response);
-    MHD_destroy_response(response);
+    enum MHD_Result result = http->mhd.queue_response(connection, answer->status, response);
+    http->mhd.destroy_response(response);
     return result;
 }
 
-static bool is_admitted(struct MHD_Connection *connection)
+static bool is_admitted(const atv312d_http_t *http, struct MHD_Connection *connection)
 {
     const union MHD_ConnectionInfo *info =
-        MHD_get_connection_info(connection, MHD_CONNECTION_INFO_SOCKET_CONTEXT);
+        http->mhd.get_connection_info(connection, MHD_CONNECTION_INFO_SOCKET_CONTEXT);
     return info && info->socket_context == &admitted;
 }
 
@@ -760,7 +764,7 @@ static enum MHD_Result on_request(void *cls, struct MHD_Connection *connection, 
     atv312d_http_t *http = cls;
     atv312d_http_answer_t answer;
     bool first = *req_cls == NULL;
-    if (first && !is_admitted(connection)) {
+    if (first && !is_admitted(http, connection)) {
         answer_error(http, &answer, 503,
                      "busy: %d clients are served at once, try again in a few seconds",
                      ATV312D_HTTP_CLIENTS_MAX);
@@ -783,17 +787,17 @@ static enum MHD_Result on_request(void *cls, struct MHD_Connection *connection, 
         return MHD_YES;
     }
     char peer[INET6_ADDRSTRLEN + 8];
-    format_peer(connection, peer, sizeof peer);
+    format_peer(http, connection, peer, sizeof peer);
     atv312d_http_request_t request = {
         .method = method,
         .path = url,
-        .host = header(connection, MHD_HTTP_HEADER_HOST),
-        .origin = header(connection, "Origin"),
-        .fetch_site = header(connection, "Sec-Fetch-Site"),
-        .content_type = header(connection, MHD_HTTP_HEADER_CONTENT_TYPE),
-        .content_length = header(connection, MHD_HTTP_HEADER_CONTENT_LENGTH),
-        .token = header(connection, TOKEN_HEADER),
-        .if_none_match = header(connection, MHD_HTTP_HEADER_IF_NONE_MATCH),
+        .host = header(http, connection, MHD_HTTP_HEADER_HOST),
+        .origin = header(http, connection, "Origin"),
+        .fetch_site = header(http, connection, "Sec-Fetch-Site"),
+        .content_type = header(http, connection, MHD_HTTP_HEADER_CONTENT_TYPE),
+        .content_length = header(http, connection, MHD_HTTP_HEADER_CONTENT_LENGTH),
+        .token = header(http, connection, TOKEN_HEADER),
+        .if_none_match = header(http, connection, MHD_HTTP_HEADER_IF_NONE_MATCH),
         .body = body ? body->data : NULL,
         .body_len = body ? body->len : 0,
         .body_too_long = body && body->too_long,
@@ -823,7 +827,7 @@ static void arm_timer(atv312d_http_t *http)
 {
     co_time_t deadline = http->next_event;
     MHD_UNSIGNED_LONG_LONG timeout_ms;
-    if (MHD_get_timeout(http->daemon, &timeout_ms) == MHD_YES) {
+    if (http->mhd.get_timeout(http->daemon, &timeout_ms) == MHD_YES) {
         co_time_t due = co_linux_now() + (co_time_t)timeout_ms * US_PER_MS;
         if (due < deadline)
             deadline = due;
@@ -840,7 +844,7 @@ static void arm_timer(atv312d_http_t *http)
 
 static void run_library(atv312d_http_t *http)
 {
-    MHD_run(http->daemon);
+    http->mhd.run(http->daemon);
     arm_timer(http);
 }
 
@@ -895,12 +899,19 @@ int atv312d_http_open(atv312d_http_t *http, co_linux_loop_t *loop,
     int rc = atv312d_http_init(http, loop, settings, control);
     if (rc != 0)
         return rc;
+    char err[512];
+    rc = atv312d_mhd_load(&http->mhd, err, sizeof err);
+    if (rc != 0) {
+        co_log(CO_LOG_ERROR, "--http: %s", err);
+        atv312d_http_close(http);
+        return rc;
+    }
     const atv312d_http_address_t *address = &settings->address;
     unsigned flags = MHD_USE_EPOLL | MHD_ALLOW_SUSPEND_RESUME | MHD_USE_ERROR_LOG;
     if (address->addr.ss_family == AF_INET6)
         flags |= MHD_USE_IPv6;
     uint16_t port = ntohs(((const struct sockaddr_in *)(const void *)&address->addr)->sin_port);
-    http->daemon = MHD_start_daemon(
+    http->daemon = http->mhd.start_daemon(
         flags, port, NULL, NULL, on_request, http, MHD_OPTION_EXTERNAL_LOGGER, log_library, http,
         MHD_OPTION_SOCK_ADDR, &address->addr, MHD_OPTION_CONNECTION_LIMIT,
         (unsigned)ATV312D_HTTP_CONNECTIONS_MAX, MHD_OPTION_CONNECTION_MEMORY_LIMIT,
@@ -911,9 +922,10 @@ int atv312d_http_open(atv312d_http_t *http, co_linux_loop_t *loop,
     if (!http->daemon)
         return open_failed(http, "cannot listen (in use, or not an address of this machine?)",
                            EX_CANTCREAT);
-    const union MHD_DaemonInfo *info = MHD_get_daemon_info(http->daemon, MHD_DAEMON_INFO_EPOLL_FD);
+    const union MHD_DaemonInfo *info =
+        http->mhd.get_daemon_info(http->daemon, MHD_DAEMON_INFO_EPOLL_FD);
     http->mhd_fd = info ? info->epoll_fd : -1;
-    info = MHD_get_daemon_info(http->daemon, MHD_DAEMON_INFO_BIND_PORT);
+    info = http->mhd.get_daemon_info(http->daemon, MHD_DAEMON_INFO_BIND_PORT);
     http->port = info ? info->port : port;
     http->timer_fd = timerfd_create(CLOCK_MONOTONIC, TFD_NONBLOCK | TFD_CLOEXEC);
     if (http->mhd_fd < 0 || co_linux_loop_watch(loop, http->mhd_fd, on_ready, http) != 0)
@@ -941,12 +953,13 @@ void atv312d_http_close(atv312d_http_t *http)
         /* Suspended streams must be resumed for the library to close them. */
         for (atv312d_http_stream_t *s = http->streams; s; s = s->next) {
             if (s->suspended)
-                MHD_resume_connection(s->connection);
+                http->mhd.resume_connection(s->connection);
             s->suspended = false;
         }
-        MHD_stop_daemon(http->daemon);
+        http->mhd.stop_daemon(http->daemon);
         http->daemon = NULL;
     }
+    atv312d_mhd_unload(&http->mhd);
     if (http->timer_fd >= 0) {
         co_linux_loop_unwatch(http->loop, http->timer_fd);
         close(http->timer_fd);

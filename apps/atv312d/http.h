@@ -3,11 +3,13 @@
  * daemon's one epoll loop (no thread). MHD's own epoll descriptor is one watched descriptor of the
  * loop and one timerfd holds both MHD's connection timeouts and the next event of the event
  * streams; it is armed only while a connection exists, so an unwatched daemon never wakes up for
- * the web. The API, the security rules and the limits: docs/web.md. */
+ * the web. The library is loaded when the server opens (mhd_load.h), so a daemon without --http
+ * does not map it. The API, the security rules and the limits: docs/web.md. */
 #ifndef ATV312D_HTTP_H
 #define ATV312D_HTTP_H
 
 #include "control.h"
+#include "mhd_load.h"
 
 #include <netinet/in.h>
 #include <stdbool.h>
@@ -82,6 +84,7 @@ typedef struct atv312d_http {
     const atv312d_control_t *control;
     atv312d_http_settings_t settings;
     uint16_t port;                  /* the port bound (the one asked, or the kernel's for port 0) */
+    atv312d_mhd_t mhd;              /* the library's functions, loaded by atv312d_http_open */
     struct MHD_Daemon *daemon;      /* NULL: not open */
     int mhd_fd;                     /* the library's epoll descriptor, watched by the loop */
     int timer_fd;                   /* MHD's timeouts and the next event; armed only when needed */
@@ -111,12 +114,14 @@ bool atv312d_http_handle(atv312d_http_t *http, const atv312d_http_request_t *req
 int atv312d_http_init(atv312d_http_t *http, co_linux_loop_t *loop,
                       const atv312d_http_settings_t *settings, const atv312d_control_t *control);
 
-/* atv312d_http_init, then listens at the settings' address in the loop. 0, or an exit status
- * after logging why (EX_CANTCREAT: the address cannot be bound). */
+/* atv312d_http_init, then loads the library and listens at the settings' address in the loop. 0,
+ * or an exit status after logging why (EX_UNAVAILABLE: the library cannot be loaded;
+ * EX_CANTCREAT: the address cannot be bound). */
 int atv312d_http_open(atv312d_http_t *http, co_linux_loop_t *loop,
                       const atv312d_http_settings_t *settings, const atv312d_control_t *control);
 
-/* Closes every connection and the listening socket; frees the buffers. Safe when not open. */
+/* Closes every connection and the listening socket, unloads the library, frees the buffers. Safe
+ * when not open. */
 void atv312d_http_close(atv312d_http_t *http);
 
 #endif

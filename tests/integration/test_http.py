@@ -2,16 +2,20 @@
 puts the exact frame on the bus, and who may do what (docs/web.md): actions refused without
 --http-actions, without the token, from another origin; a client that never reads does not delay
 the drives' heartbeats; past the cap of clients every connection gets a 503; no client, no
-wake-up."""
+wake-up; the web server's library mapped only with --http, and a library that cannot be loaded
+refused at start."""
 
+import ctypes.util
 import http.client
 import json
+import os
 import re
 import signal
 import socket
 import subprocess
 import statistics
 import time
+from pathlib import Path
 
 import pytest
 
@@ -318,3 +322,59 @@ def test_no_client_no_wakeup(bus, start_daemon):
     before = wakeups(d)
     time.sleep(1.0)
     assert wakeups(d) - before == 1
+
+
+# GNU libmicrohttpd and the libraries it maps: GnuTLS and GnuTLS's own (issue 27: 2.5 MB of the
+# 4.9 MB that 127 drives took when the daemon linked it).
+WEB_LIBRARIES = ("libmicrohttpd.", "libgnutls.", "libnettle.", "libhogweed.", "libgmp.", "libp11-kit.")
+
+
+def web_libraries(pid):
+    """The web server's libraries among the files a process maps (/proc/PID/maps)."""
+    mapped = {Path(line.split()[5]).name for line in Path(f"/proc/{pid}/maps").read_text().splitlines()
+              if len(line.split()) >= 6}
+    return sorted(name for name in mapped if name.startswith(WEB_LIBRARIES))
+
+
+def test_web_library_mapped_only_with_http(bus, start_daemon):
+    """Without --http the daemon maps none of the web server's libraries; with it, it loads them
+    and serves the page."""
+    plain = start_daemon(bus, "--node-id", NODE)
+    assert web_libraries(plain.pid) == []
+    web = start_daemon(bus, "--node-id", 5, "--http", "0")
+    port = http_port(web)
+    assert [name for name in web_libraries(web.pid) if name.startswith("libmicrohttpd.")], web_libraries(web.pid)
+    status, headers, body = request(port, "GET", "/")
+    assert (status, headers["Content-Type"]) == (200, "text/html; charset=utf-8"), (status, headers)
+    assert body.startswith("<!DOCTYPE html>")
+    assert web_libraries(plain.pid) == []
+
+
+EX_UNAVAILABLE = 69
+
+
+@pytest.mark.parametrize("stand_in", ["empty file", "libc"])
+def test_http_refused_when_the_library_cannot_be_loaded(tmp_path, stand_in):
+    """The dynamic loader finds a stand-in for libmicrohttpd first (LD_LIBRARY_PATH): an empty
+    file, which is no library, or the C library under its name, which has no MHD_ function. The
+    daemon names the library, the loader's reason and what to do, and exits 69."""
+    soname = ctypes.util.find_library("microhttpd")  # the name the daemon loads: libmicrohttpd.so.12
+    assert soname and soname.startswith("libmicrohttpd.so."), soname
+    fake = tmp_path / soname
+    if stand_in == "empty file":
+        fake.write_bytes(b"")
+        reason = f"{fake}: file too short"
+    else:
+        libc = next(line.split()[5] for line in Path("/proc/self/maps").read_text().splitlines()
+                    if line.endswith("/libc.so.6"))
+        fake.symlink_to(libc)
+        reason = "undefined symbol: MHD_"
+    done = subprocess.run([daemon_path(), "vcan0", "--node-id", "4", "--http", "0"], capture_output=True,
+                          text=True, timeout=10, env={**os.environ, "LD_LIBRARY_PATH": str(tmp_path)})
+    package = soname.replace(".so.", "")  # Debian's name for it: libmicrohttpd12
+    assert done.returncode == EX_UNAVAILABLE, done.stderr
+    assert done.stderr.startswith(f"atv312d: error: --http: {soname} (GNU libmicrohttpd, the web server) "
+                                  "cannot be loaded: "), done.stderr
+    assert reason in done.stderr, done.stderr
+    assert done.stderr.endswith(f"; install {package} or run without --http\n"), done.stderr
+    assert done.stderr.count("\n") == 1, done.stderr

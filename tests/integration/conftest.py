@@ -3,8 +3,8 @@
 These tests run where a `vcan0` interface is up: ctest starts them through `tools/vcan-run`, which
 boots User-Mode Linux once for the whole run when the host kernel has no vcan. The daemon under test
 is `$ATV312D`: ctest sets it to the `atv312d` of the build it runs in (scripts/run-tests runs these
-tests against build/ and build-matrix/gcc-Release/); by hand it defaults to build/'s. The session's
-header names it.
+tests against build/, --full also against build-matrix/gcc-Release/); by hand it defaults to
+build/'s. The session's header names it.
 
 Every wait here is deadline based: a test waits for the frame it expects, never sleeps and hopes.
 """
@@ -42,7 +42,7 @@ EX_USAGE = 64
 
 
 # Without ATV312D: build/'s daemon. One build's, never "the newest of build*/": after
-# scripts/run-tests that would be build-asan/'s, which cannot run inside User-Mode Linux.
+# scripts/run-tests --full that would be build-asan/'s, which cannot run inside User-Mode Linux.
 DEFAULT_DAEMON = ROOT / "build" / "apps" / "atv312d" / "atv312d"
 
 

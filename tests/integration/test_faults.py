@@ -3,7 +3,7 @@ middle of parameter saves, and a storm of random frames on the node's own COB-ID
 down and up is in test_runtime.py, bus-off and error passive are the error-frame tests there.)
 
 ATV312_KILL_CYCLES sets how many kill/restart cycles the SIGKILL test makes: 200 by default (130 to
-165 ms each inside User-Mode Linux, so 26 to 33 s; the suite runs twice in scripts/run-tests), the
+165 ms each inside User-Mode Linux, so 26 to 33 s; the suite runs twice in scripts/run-tests --full), the
 1000 of the issue with ATV312_KILL_CYCLES=1000 (measured 2 min 45 s)."""
 
 import os

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* Measures the core's cost per protocol operation on the ATV312 dictionary, in one process with no
  * bus: the time per operation and its ratio to the cheapest operation measured in the same run
  * (these machines are shared and noisy: the ratios hold, single absolute times do not).

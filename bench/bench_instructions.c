@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* Counts the instructions the core executes per frame, under callgrind (deterministic, unlike
  * times on a shared machine): bench/instructions runs it as
  *   valgrind --tool=callgrind --collect-atstart=no bench_instructions [iterations]

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 """Helpers the benchmarks inside User-Mode Linux share (bench/scale.py, bench/socketcan.py): the
 daemon's CPU time, wake-ups and system calls read from inside the guest, and SDO requests from a
 python-can client."""

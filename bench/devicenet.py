@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 """DeviceNet over SocketCAN (issue 18): run inside tools/vcan-run by bench/devicenet.
 
     devicenet.py RESPONDER DAEMON GENERATOR DNSCAN POLL_BUS [--rounds 5] [--count 5000]

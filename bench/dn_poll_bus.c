@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* The scanner of bench/devicenet: a bus of DeviceNet drives polled at a period, as a PLC's
  * scanner polls its scan list, on the portable scanner library and the Linux runtime's loop.
  *

@@ -1,4 +1,5 @@
 #!/usr/bin/env python3
+# SPDX-License-Identifier: Apache-2.0
 """Timing of the firmware on the emulated board (examples/cortex-m4, mps2-an386 in QEMU), printed as
 the section "## The firmware on the emulated board" of docs/benchmarks.md (bench/firmware runs it).
 

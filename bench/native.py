@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 """SDO round trips on the native kernel, the daemon's node against the floor (issue 10 section 3):
 what User-Mode Linux cannot show (a vDSO clock, the native cost of a system call). Run by
 bench/native.

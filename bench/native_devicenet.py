@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 """DeviceNet on the native kernel (issue 18): what bench/devicenet measures inside User-Mode Linux,
 with a vDSO clock and native system calls. Run by bench/native-devicenet.
 

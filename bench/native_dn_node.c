@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* The daemon's side of bench/native-devicenet: atv312d's ATV312 drives behind their DeviceNet
  * cards (drive_devicenet.h), hosted as `atv312d --devicenet` hosts them (one device of the runtime
  * loop per card, routed by the CAN-IDs the card consumes), on co_linux_loop_run over a socket it

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* The daemon's side of bench/native: one emulated drive of atv312d's (the ATV312 model) on the
  * runtime loop, co_linux_loop_run, over a socket it inherits (one end of an AF_UNIX
  * SOCK_SEQPACKET socketpair carrying struct can_frame: co_linux_loop_open_fd), so that the loop

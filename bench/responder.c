@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* The floor of a round trip over SocketCAN (issue 10 section 3, issue 18): the least a program
  * must do to answer a request, so that bench/socketcan and bench/devicenet can compare the daemon
  * with it.

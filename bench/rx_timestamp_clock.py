@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 """Which clock the kernel's receive timestamp of a CAN frame (SO_TIMESTAMPNS) follows, before and
 after a step of the wall clock (clock_settime + 1 h, put back at the end): the evidence of
 docs/runtime.md, "Why the clock is read per wake-up". Needs root and vcan0:

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 """The cost of many drives in one atv312d (issue 10): run inside tools/vcan-run by bench/scale.
 
     scale.py DAEMON LABEL [--nodes 127] [--seconds 20] [--round-trips 300]

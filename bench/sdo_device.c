@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* The device of the SDO throughput bench (bench/sdo-throughput): one node on a SocketCAN interface
  * through the Linux runtime, its dictionary bench/sdo_device.eds with two streamed DOMAINs that
  * live in this program's memory (bench/sdo_device.hooks): 2100h of up to 102400 bytes and 2101h

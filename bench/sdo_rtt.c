@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* Load generator of bench/socketcan, bench/native and bench/devicenet on raw SocketCAN (python
  * is too slow to measure the floor).
  *

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 """The report of bench/sdo-throughput: durations of the SDO transfers in a candump -L log, each
 delimited by a marker frame on 7FFh and named by a line of the labels file, as a markdown section;
 or (--replace FILE) that section, read from standard input, put into FILE between its markers.

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 """SDO round trips over SocketCAN, the daemon against the floor (issue 10 section 3): run inside
 tools/vcan-run by bench/socketcan.
 

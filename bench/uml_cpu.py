@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 """The host's view of the CPU time a User-Mode Linux guest spends between marks the guest sets:
 
     uml_cpu.py MARK_DIR COMMAND...

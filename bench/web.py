@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 """The cost of the web surface (issue 20): run inside tools/vcan-run by bench/web.
 
     web.py DAEMON [--nodes 127] [--seconds 20]

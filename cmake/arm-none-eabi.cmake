@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 # Toolchain file for building the portable core for a Cortex-M with Debian's gcc-arm-none-eabi:
 #   cmake -S . -B build-m4 -DCMAKE_TOOLCHAIN_FILE=cmake/arm-none-eabi.cmake -DCO_CORE_ONLY=ON
 # CO_CORTEX_CPU picks the core (a -mcpu value): cortex-m4 by default, cortex-m0 for the smallest

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 # What `cmake --install` puts where (GNUInstallDirs; relative to the prefix, /usr/local by default,
 # /usr in the Debian package), and the Debian package itself (`cpack -G DEB`). README.md, Install.
 #
@@ -23,7 +24,9 @@
 #                                          tools/edstool.py, tools/vcan-run
 #   share/man/man1/<program>.1             their man pages, written from their --help text
 #   share/canopen-atv312/eds/*.eds         the EDS files of eds/
-#   share/doc/canopen-atv312/              README.md, docs/*.md, examples/atv312d.service
+#   share/doc/canopen-atv312/              README.md, docs/*.md, examples/atv312d.service, LICENSE
+#                                          (Apache-2.0) and copyright (Debian's machine-readable
+#                                          form, cmake/copyright; the package's copyright file)
 
 include(GNUInstallDirs)
 include(CMakePackageConfigHelpers)
@@ -82,6 +85,10 @@ install(FILES ${CO_INSTALL_EDS} DESTINATION ${CO_INSTALL_EDSDIR})
 install(FILES ${PROJECT_SOURCE_DIR}/eds/00F3000218090100.EDS DESTINATION ${CO_INSTALL_EDSDIR})
 file(GLOB CO_INSTALL_DOCS CONFIGURE_DEPENDS ${PROJECT_SOURCE_DIR}/docs/*.md)
 install(FILES ${PROJECT_SOURCE_DIR}/README.md ${CO_INSTALL_DOCS}
+        DESTINATION ${CMAKE_INSTALL_DOCDIR})
+# The licence: its text, and the copyright file Debian's policy wants in /usr/share/doc/<package>/
+# (the same in both installations, so that the package holds the files `cmake --install` does).
+install(FILES ${PROJECT_SOURCE_DIR}/LICENSE ${PROJECT_SOURCE_DIR}/cmake/copyright
         DESTINATION ${CMAKE_INSTALL_DOCDIR})
 
 # co_install_configured(<template> <destination>): installs <template> without its .in into
@@ -225,4 +232,8 @@ set(CPACK_DEBIAN_PACKAGE_DEPENDS "python3")
 # names its package).
 set(CPACK_DEBIAN_PACKAGE_RECOMMENDS "can-utils, ${ATV312D_MHD_PACKAGE}")
 set(CPACK_DEBIAN_PACKAGE_SUGGESTS "cmake, pkg-config, user-mode-linux, kmod, iproute2")
+# The licence, for the generators that show or record one (the Debian package has no licence
+# field: its copyright file is installed above). RPM's field, FreeBSD's falls back to it.
+set(CPACK_RESOURCE_FILE_LICENSE ${PROJECT_SOURCE_DIR}/LICENSE)
+set(CPACK_RPM_PACKAGE_LICENSE "Apache-2.0")
 include(CPack)

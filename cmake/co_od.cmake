@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 # co_generate_od(<target> EDS <file> PREFIX <name> [HOOKS <file>] [OMIT <index>...])
 #
 # Generates the object dictionary <name>_od (edstool generate) from an EDS at build time, without

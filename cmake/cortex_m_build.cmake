@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 # ctest script: configures and builds the portable core, the DeviceNet slave and scanner with
 # arm-none-eabi-gcc for one Cortex-M (-Os, -Wall -Wextra -pedantic and, whatever the calling
 # build's CO_WERROR, -Werror) and prints their size: text / data / bss of each module, then the

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 # ctest script: configures, builds and links the bare-metal example examples/cortex-m4 (-Os,
 # -Werror) with arm-none-eabi-gcc and prints its footprint (examples/cortex-m4/footprint.py):
 # the core's flash after --gc-sections file by file, and the RAM of the node beside its

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 """What tools/edstool.py must hold for any input file, whatever its bytes: the invariants of the
 EDS parser's fuzzing, shared by the atheris harness (fuzz/fuzz_eds.py) and the deterministic
 mutation test (tests/tools/test_edstool.py). A broken invariant raises AssertionError."""

@@ -1,4 +1,5 @@
 #!/usr/bin/env python3
+# SPDX-License-Identifier: Apache-2.0
 """atheris harness of the EDS parser and generator (tools/edstool.py, docs/fuzzing.md): the input
 is a whole EDS file, run through check --strict, generate and dump in this process and held to
 the invariants of fuzz/eds_invariants.py. Arguments are libFuzzer's:

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* libFuzzer harness of the C EDS/DCF reader (src/eds/eds_reader.c on src/eds/ini_reader.c, what
  * comaster reads DCFs and cotrace EDS files with): the input is a whole file, read by eds_load
  * from memory (a memfd) for node 5. The harness reads the text's lines itself, the way CiA 306

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* libFuzzer harness of the frame path: an ATV312 drive (node 4, with in-memory storage behind
  * 1010h / 1011h) fed a sequence of frames and time steps decoded from the input (steps.h has the
  * format), then reset by NMT and compared with a fresh drive (rig.h has the invariants). */

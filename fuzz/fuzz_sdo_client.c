@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* libFuzzer harness of the SDO client (src/canopen/master/sdo_client.c): a client of server 5
  * (requests on 605h, answers on 585h) runs the transfers the input asks for, and the input plays
  * the server: its frames and time steps (steps.h) are the server's answers, right or wrong. The

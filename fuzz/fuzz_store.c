@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* libFuzzer harness of the storage file loader: the input is a whole `--store` file. It goes
  * through co_file_store_parse; a file that passes is bound as the storage of an ATV312 drive of
  * the first record's node-id, whose boot applies the images (co_store_apply through the file

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* The fuzzing rig: one ATV312 drive (the real dictionary and profile) driven the way the Linux
  * runtime drives it, frame by frame and deadline by deadline, with the invariants of issue 10
  * checked as it runs. A broken invariant prints what broke and aborts, so libFuzzer keeps the

@@ -1,4 +1,5 @@
 #!/usr/bin/env python3
+# SPDX-License-Identifier: Apache-2.0
 """Writes the seed corpus of the harnesses, fuzz/corpus/<harness>/<name>, from readable frames,
 time steps and commands (the encoding is in fuzz/steps.h, the commands in each harness), storage
 files (docs/atv312d.md, "Storage file") and EDS/DCF text. The committed corpus is these seeds

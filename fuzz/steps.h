@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* The input of the harnesses fed frames and time (fuzz_frames, fuzz_sdo_client, fuzz_net_master):
  * a sequence of steps, each a tag byte and what follows it, to the input's end:
  *

@@ -1,4 +1,5 @@
 #!/usr/bin/env python3
+# SPDX-License-Identifier: Apache-2.0
 """edstool: turns a CiA 306 EDS into the object dictionary table of the CANopen core, and checks
 EDS files against the rules of CiA 306 that real tools (python canopen among them) rely on.
 

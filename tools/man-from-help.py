@@ -1,4 +1,5 @@
 #!/usr/bin/env python3
+# SPDX-License-Identifier: Apache-2.0
 """man-from-help: writes a program's man page from its --help text, so that the options are
 written once, in the program, and the man page cannot drift from them.
 

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* The command line of atv312d: `atv312d IFACE --node-id N [--model M] [options]`, or on a
  * DeviceNet bus `atv312d IFACE --devicenet [--mac-id N [--model M]...] [--baud RATE]`. Parsing is
  * separate from main() so the unit tests can check every error and its exit code. */

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* The control surface: command execution on the drives, its session on the runtime's line socket
  * in the daemon's loop, and the `atv312d ctl` client (control.h). */
 #include "control.h"

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* atv312d's control surface for people testing masters: a UNIX stream socket (--control PATH)
  * in the daemon's epoll loop that takes one command per line and answers one line, "ok ..." or
  * "error: ..." (or a JSON object when the line starts with "json "): inject a fault and remove

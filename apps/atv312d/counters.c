@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* Per-drive service counters (counters.h). */
 #include "counters.h"
 

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* atv312d's per-drive counters of the CANopen services a person testing a master looks at first:
  * the SDO requests a drive received, the SDO aborts and EMCYs it sent. They stand beside the
  * runtime's frame counts of the drive's device (co_linux_device_stats_t) in the control and

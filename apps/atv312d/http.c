@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* The web surface (http.h): the address and token of the command line, the handler of requests
  * (the bench, its state, the assets, the commands and their checks) and its server on
  * libmicrohttpd in the daemon's loop, whose functions it calls through http->mhd (mhd_load.h). */

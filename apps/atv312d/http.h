@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* atv312d's web surface (--http): a page showing the bench live, its JSON API, the events it
  * pushes and, with --http-actions, the control commands, served by GNU libmicrohttpd inside the
  * daemon's one epoll loop (no thread). MHD's own epoll descriptor is one watched descriptor of the

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* The log level of a DeviceNet card's LED change (leds.h). */
 #include "leds.h"
 

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* How loud a DeviceNet card's LED change is in the daemon's log (docs/atv312d.md, "Messages"):
  * the levels follow what CANopen logs, not how often a LED changes. */
 #ifndef ATV312D_LEDS_H

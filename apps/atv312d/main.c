@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* atv312d: emulated Schneider Altivar drives on a SocketCAN interface, one process, one epoll
  * loop, one socket for all of them. Usage and behaviour: docs/atv312d.md. */
 #include "cli.h"

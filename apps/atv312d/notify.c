@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* The service manager's notification socket (notify.h). */
 #include "notify.h"
 

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* systemd's service notification (sd_notify(3)) without libsystemd: the daemon tells a service
  * manager that it is ready, what it is doing and that it is stopping. docs/atv312d.md, "systemd".
  */

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* atv312d's status surface: what every emulated drive is doing at a glance. The CAN controller
  * state and the loop's frame counters, then one line per drive as the control surface's `state`
  * gives it; written to a file once a second (--status FILE, replaced atomically: a reader never

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 # Writes OUTPUT, a C file holding every file of the directory WEB as an array (web_assets.h):
 #   cmake -DWEB=<dir> -DOUTPUT=<file.c> -P web_assets.cmake
 # The Content-Type comes from the extension; the ETag is the start of the file's SHA-1, so that a

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* The page's files (apps/atv312d/web/), built into the daemon: web_assets.c is generated at build
  * time by web_assets.cmake, one array per file, so that the page needs neither a build step nor
  * files beside the binary. */

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* The bus of comaster: the runtime's epoll loop with one device, on which the commands run their
  * jobs one after the other. Each job ends the loop's run with comaster_bus_finish; the deadlines
  * come from the core's process calls, so nothing sleeps. */

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* comaster: what its commands share. The table of commands (main.c), the common options, the
  * errors and --json output with the exit statuses scripts rely on (co_cli.h), and the bus: one
  * epoll loop of the Linux runtime on which each command runs its jobs (SDO transfers, waits for

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* The control socket of comaster run: its requests on the runtime's line socket, one per
  * connection, and the client side. */
 #include "control.h"

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* The control socket of comaster run: a UNIX stream socket on which another comaster (set, get,
  * status) sends one request line and reads the reply until the run closes the connection. The
  * requests and their replies are in docs/comaster.md "run and its control socket". */

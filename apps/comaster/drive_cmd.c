@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* comaster drive: runs the CiA 402 power state machine of a drive by SDO writes of the control
  * word 6040h, or with --rpdo through the drive's RPDO that maps it, and waits (deadline) for the
  * status word 6041h to show each state on the way, printing every state it sees. */

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* comaster: a CANopen master on a SocketCAN interface, for people and scripts: SDO read and
  * write, NMT, scan, monitor, a CiA 402 drive helper (docs/comaster.md). This file holds the
  * global options and the table of commands; each command lives in its own file. */

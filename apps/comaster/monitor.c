@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* comaster monitor: what happens on the bus, as it arrives: NMT state changes told by boot-ups
  * and heartbeats, emergencies decoded, SYNC, and PDOs decoded by name through each watched node's
  * mapping, read over SDO (with the names of its EDS). Runs until SIGINT or SIGTERM. */

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* The network description: [Master] and [NodeN] of the INI file, [Topology] of the CiA 306-3
  * nodelist, the DCFs (docs/comaster.md "Network description"). */
 #include "network.h"

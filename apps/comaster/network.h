@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* The network description of comaster run and boot (docs/comaster.md "Network description"): the
  * master's options from an INI file ([Master], [NodeN]), the slaves from the CiA 306-3 nodelist
  * (.cpj) it names, and from each slave's DCF its configuration (ParameterValue entries), its

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* comaster nmt: an NMT command to one node or to all; after a reset of one node, its boot-up is
  * awaited. */
 #include "co/co_nmt_master.h"

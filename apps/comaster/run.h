@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* comaster run: the network master on the bus (run_cmd.c) and the requests of its control socket
  * that act on the bus (run_requests.c: NMT commands, SDO through the master's client, disable and
  * enable, the controller's state). docs/comaster.md "run and its control socket". */

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* comaster boot and run: the network master of the core (co_net_master_t, docs/net-master.md) on
  * the bus, printing each step and status change; run also serves its process image and status on
  * the control socket (control.c) to comaster set, get and status, and the requests of

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* The requests of comaster run's control socket that act on the bus through the network master
  * (docs/comaster.md "run and its control socket"): an NMT command confirmed by the state the
  * nodes report, an SDO read or write queued on the master's own client behind the boot of its

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* comaster scan: the nodes present. Every node-id 1..127 is asked for its device type (1000h) at
  * once, one SDO client each; the nodes that answer (even with an abort) are then asked for
  * their identity (1018h:01..03) and name (1008h), and their NMT state is taken from their

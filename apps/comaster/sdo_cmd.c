@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* comaster read and write: one SDO upload or download, the value printed or parsed by its data
  * type (given, from the EDS, or guessed from the size). */
 #include "co_cli.h"

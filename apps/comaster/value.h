@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* comaster's values: the CiA 301 data types by name, a value's text parsed into the bytes of an
  * SDO download and an upload's bytes printed, per data type; an object named on the command
  * line (0x203C:2, or a ParameterName of an EDS). Pure functions: tests/comaster tests them. */

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* cotrace: says what every frame of a candump -L log or a live SocketCAN interface means in
  * CANopen terms, or with --devicenet in DeviceNet terms, one line per frame (docs/cotrace.md). */
 #include "atv58/emcy.h"

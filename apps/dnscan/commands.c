@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* dnscan's commands: each builds the slaves' sequences of steps, prints their results and
  * decides the exit status (docs/dnscan.md). */
 #include "cip_assembly.h"

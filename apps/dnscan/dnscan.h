@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* dnscan: what its files share: the options, the errors and --json with the exit statuses
  * (co_cli.h). */
 #ifndef DNSCAN_H

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* dnscan: a DeviceNet scanner on a SocketCAN interface, for people and scripts: scan the bus,
  * allocate and release a slave's connections, get and set any attribute, poll I/O by the
  * assembly's names, monitor (docs/dnscan.md). The command line and output are here; the bus is

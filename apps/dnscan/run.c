@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* dnscan's bus and sequences: the Linux runtime's loop with the scanner as its one device; each
  * slave of a command runs a sequence of steps (allocate, requests, polls, release) one after the
  * other, all slaves at once, and the command ends when every sequence has. */

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* dnscan's bus: the runtime's loop with the scanner as its device, and per slave a sequence of
  * steps run one after the other (run.c). */
 #ifndef DNSCAN_RUN_H

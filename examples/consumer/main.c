@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* A consumer of the installed canopen package: one node on the dictionary of counter.eds (its
  * table generated at build time by co-edstool), driven in-process with injected time the way a
  * runtime drives it. Each step hands the node a frame, or only lets time pass, and checks the one

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* What the porter writes for a board: the CAN transport, a microsecond clock, the wait for the
  * next event, and flash pages. Two boards implement it: board_stub.c, stubs for a generic
  * STM32F4-like Cortex-M4 (the example links, it drives no real controller: replace their bodies

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* The board of the firmware that runs: Arm's MPS2 with the AN386 image (a Cortex-M4 at 25 MHz) as
  * QEMU emulates it (qemu-system-arm -M mps2-an386; tools/slcan-node starts it). It has no CAN
  * controller, so its frames travel over UART0 in the serial-line CAN protocol (src/slcan), which

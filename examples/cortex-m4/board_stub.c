@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* Board stubs: the CAN controller, the clock and the flash controller of a generic Cortex-M4
  * (STM32F4-like, cortex-m4.ld). They link; they drive no real controller. */
 #include "board.h"

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* Flash pages as the co_storage_t of a node. Areas 2..4 (CO_STORE_AREA_*) each own two pages;
  * each page starts with a header (magic, sequence, length, CRC) and holds one image after it. A
  * save erases the page that is not in force, programs the image, then the header: a power cut

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* co_storage_t on flash pages: two pages per storage area, so that a save never touches the image
  * in force. An image is complete only once its header is programmed, last. */
 #ifndef FLASH_STORAGE_H

@@ -1,4 +1,5 @@
 #!/usr/bin/env python3
+# SPDX-License-Identifier: Apache-2.0
 """Prints the footprint of the linked example from its linker map and symbols: the flash (text and
 read-only data) each part of the firmware keeps after --gc-sections, file by file for the core,
 and the RAM of the node beside its dictionary's variables and the SDO buffer.

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* A bare-metal CANopen node on a Cortex-M4: the integration a porter writes (docs/porting.md,
  * "The bare-metal example"). One node on the dictionary of blinky.eds, its SDO transfer buffer
  * given by the application (the core is built with CO_CONFIG_SDO_BUFFER=0 and tables sized to the

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* Startup of a Cortex-M4 (ARMv7-M): the system part of the vector table the hardware reads at
  * reset, and the reset handler that sets up C (.data copied from flash, .bss zeroed) before
  * main(). The MCU's interrupts follow in the board's file (section .isr_vector.irq, which

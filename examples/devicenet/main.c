@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* A consumer of the installed DeviceNet libraries: a slave (dn_node_t, one 4-byte assembly each
  * way) and a scanner (dn_scanner_t) on an in-process bus. The scanner allocates the explicit and
  * polled connections, reads the slave's product name (Identity 1/1/7, fragmented: 8 bytes), sets

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* A drive of your own on the installed package's generic CiA 402 velocity drive (canopen::drive):
  * the conveyor of conveyor.eds, its table generated at build time by co-edstool with the drive
  * layer's hooks (conveyor.hooks), and a drive_profile_t saying where its parameters are. It runs

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* The CiA 301 wire vocabulary in one place: the predefined connection set, the indexes of the
  * communication area, the SDO command layout and the SDO abort codes (CiA 301 v4.2, "CANopen
  * application layer and communication profile"). The core, the master, the frame decoder, the

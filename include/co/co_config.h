@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* Compile-time sizes of the core. Every array in a node is sized here, so a node's RAM is known at
  * build time; override any of them with -D on the compiler command line, for instance to the PDOs
  * of a firmware's one dictionary (co_node_init refuses a dictionary with more: CO_NODE_ERR_TABLES).

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* The COB-IDs a node consumes: what a runtime needs to hand a node only the frames it acts on
  * (routing among several nodes, a receive filter in the CAN controller or the kernel). The set
  * follows the node's configuration: NMT 000h, the SYNC COB-ID (1005h), the SDO server's request

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* EMCY producer (CiA 301 section 7.2.7): 1014h COB-ID, 1015h inhibit time, 1001h error register,
  * 1003h pre-defined error field (history), and the application API to raise and clear errors.
  *

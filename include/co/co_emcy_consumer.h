@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* EMCY consumer (CiA 301 section 7.2.7): decodes the emergency frames of other nodes (COB-ID
  * 080h + node-id, node-id 1..127) into node-id, error code, error register and the five
  * manufacturer-specific bytes, hands those of the watched nodes to a callback, and says what an

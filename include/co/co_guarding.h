@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* Node guarding and life guarding (CiA 301 section 7.2.8.3.1).
  *
  * A remote frame (DLC 0 or 1) on the guarding COB-ID is answered on the same CAN-ID with the NMT

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* Heartbeat (CiA 301 section 7.2.8.3.2): the producer (1017h, ms) and the consumers (1016h,
  * node-id << 16 | ms).
  *

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* Network master (the PLC300's master mode, its manual section 7.3; the "boot slave" process of
  * CiA 302-2): boots a table of slaves (reset communication, identify by 1000h and 1018h, download
  * the configuration, start error control, NMT start), retries a failed slave after the others,

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* NMT slave: the node's state machine (Initialising, Pre-operational, Operational, Stopped), the
  * NMT commands addressed to this node or broadcast, the boot-up frame and the scope of each reset
  * (CiA 301 section 7.3.2). */

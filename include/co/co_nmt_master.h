@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* NMT master (CiA 301 sections 7.2.8.2 and 7.2.8.3): NMT commands to one node or to all, the NMT
  * state of every node 1..127 as its boot-up, heartbeat and guarding frames tell it, a heartbeat
  * consumer per node, and node guarding of the nodes that have no heartbeat. Independent of

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* A CANopen node: one instance of the portable core. The application owns the co_node_t and its
  * object dictionary data block, feeds received frames and the current monotonic time in, and gets
  * frames out through its send callback. co_node_process() runs what is due and returns the next

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* The object dictionary: a const table of entries sorted by (index, sub-index), found by binary
  * search, whose values live in a per-node data block. The table is shared by every node built from
  * the same EDS; the data block belongs to one node, so several nodes can run in one process.

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* PDO engine: RPDOs and TPDOs configured by 1400h/1600h/1800h/1A00h, their transmission types,
  * inhibit and event timers, SYNC start value, change-of-state detection and the CiA 301 dynamic
  * mapping procedure (CiA 301 section 7.2.2).

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* SDO server: expedited, segmented and block transfers (CiA 301 section 7.2.4) on the default SDO
  * channel 0x600+id / 0x580+id, with the protocol timeout and the complete set of abort codes.
  * Segmented and block transfers go through the transfer buffer, except those of a streamed DOMAIN

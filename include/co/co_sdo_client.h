@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* SDO client (CiA 301 section 7.2.4, client side): one channel to one SDO server, expedited,
  * segmented and block upload and download of any size up to a buffer the application gives. A
  * passive state machine that needs no co_node_t: the application feeds it the frames of its

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* SYNC consumer and producer: 1005h COB-ID (bit 30 = produce), 1006h period, 1007h window and the
  * 1019h counter (CiA 301 section 7.2.5). */
 #ifndef CO_SYNC_H

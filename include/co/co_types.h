@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* Basic types shared by every module of the portable core: CAN frames, time, CiA 301 data types;
  * the wire vocabulary (COB-IDs, indexes, SDO layout, abort codes) is in co_cia301.h, which this
  * header includes. No OS headers, no globals. */

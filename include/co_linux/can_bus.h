@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* The runtime's CAN bus: the socket (SocketCAN CAN_RAW on an interface, or a socket of the
  * caller's carrying one struct can_frame per datagram), frames read and written in batches, the
  * transmit queue and its back-pressure, error frames and the conditions they raise, the netlink

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* Conversions between the core's co_frame_t and SocketCAN's struct can_frame. */
 #ifndef CO_LINUX_CAN_FRAME_H
 #define CO_LINUX_CAN_FRAME_H

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* The `candump -L` log format, one frame per line:
  *   (1700000000.123456) vcan0 604#4000100000000000
  * 3 hex digits for an 11-bit identifier, 8 for a 29-bit one (error frames: 8 digits including

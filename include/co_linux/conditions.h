@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* The CAN communication conditions the runtime reports to its devices, as EMCYs where CiA 301
  * table 21 has a code: frames lost (overrun), error passive, bus off; and the controller's error
  * warning level, which has none (an indicator's: CiA 303-3's ERR single flash). The bus says what

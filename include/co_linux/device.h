@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* A device of the runtime: anything built on the portable core (a co_node_t, a drive wrapping
  * one) that the loop starts, hands frames to, processes at its deadline and tells of bus
  * conditions, through the operations it gives (co_linux/loop.h attaches it). */

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* The runtime's event loop, after Redis's ae.c: one epoll instance, the descriptors it watches
  * with a function each to run when one is ready, a timerfd armed to one absolute deadline on
  * CLOCK_MONOTONIC, and a signalfd that stops the loop on SIGINT or SIGTERM. It knows nothing of

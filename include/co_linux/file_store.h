@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* The storage file behind `--store FILE`: the stored images of every node of the process, one
  * record per (node-id, area), in one file that is replaced atomically (temporary file in the same
  * directory, fsync, rename, fsync of the directory) and verified completely (magic, version,

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* A line-socket server and client for the programs' control sockets: a UNIX stream socket on a
  * path, requests one line each, replies written as the program formats them. The server runs in
  * a co_linux loop and never waits for a client; the programs keep only their commands and their

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* A small leveled logger for the Linux runtime and the daemon: one line per message on stderr,
  * "<ident>: <level>: <message>", written with a single write so lines of concurrent processes
  * never interleave. When stderr is the systemd journal ($JOURNAL_STREAM) each line starts with

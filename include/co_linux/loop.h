@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* The Linux runtime: one loop, the composition of an event loop (co_linux/events.h: epoll, a
  * timerfd armed to the earliest deadline of its devices, a signalfd for SIGINT and SIGTERM), a CAN
  * bus (co_linux/can_bus.h: a SocketCAN socket, PF_CAN, SOCK_RAW, CAN_RAW, and a netlink socket

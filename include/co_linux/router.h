@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* The runtime's router: the devices of a loop, which of them consumes which COB-ID (from their
  * nodes' consumed sets, co_consumers.h), the frames one device sent on their way to the others,
  * and the socket's receive filter (CAN_RAW_FILTER) that keeps a frame for nobody from waking the

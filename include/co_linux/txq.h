@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* A bounded FIFO of CAN frames. The runtime keeps frames the socket could not take yet (and frames
  * waiting for delivery to the other local devices) in it; a full queue refuses the frame and counts
  * it instead of growing or blocking. */

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* The DeviceNet and CIP wire vocabulary the slave library, its tests and later the scanner and the
  * trace decoder name instead of keeping copies: message groups and message IDs of the predefined
  * master/slave connection set, explicit message header and fragmentation bits, CIP services,

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* The explicit messaging fragmentation protocol, both ways, as the slave (src/devicenet) and the
  * scanner (src/devicenet/scanner) share it: a fragment is [header|0x80][type|count][up to 6
  * bytes]; first (0x00), middle (0x40) and last (0x80) fragments each wait for an acknowledgement

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* DeviceNet identifiers: the message groups 1-3 (and 4's range) of the 11-bit CAN identifier,
  * composed and decomposed, and the CAN-IDs of the predefined master/slave connection set for a
  * slave's MAC ID 0..63. No OS headers, no state. */

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* A DeviceNet slave (Group 2 only server of the predefined master/slave connection set), portable
  * like the CANopen core: no malloc, no OS calls, no globals; frames and time (microseconds, the
  * core's co_time_t) are passed in, frames leave through a send callback, and dn_node_process

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* A DeviceNet scanner (the master side of the predefined master/slave connection set), portable
  * like the slave library: no malloc, no OS calls, no globals; frames and time (microseconds) are
  * passed in, frames leave through a send callback, and dn_scanner_process returns the next

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* The CiA 402 power state machine of a drive (CiA 402 "device control"), as the Drivecom profile
  * of the Altivar drives applies it (ATV312 DeviceNet manual, "CMD control word", "ETA status word",
  * "IEC 61800-7 status chart"; docs/decisions.md, D-STATE-MACHINE): the states, the commands of

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* A device-side CiA 402 velocity drive on the portable CANopen core: a node whose control word
  * 6040h drives the power state machine (cia402.h), whose reference 6042h and ramps drive a motor
  * model (motor.h), and which publishes the status word 6041h, the speeds 6043h/6044h, current and

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* A drive on DeviceNet: the drive (drive.h) behind a DeviceNet slave (dn/dn_node.h), as the
  * Altivar 312's DeviceNet card puts it (Altivar 312 DeviceNet manual): the card talks to the drive
  * through the drive's own dictionary (6040h, 6041h, 6042h, 6044h and the parameters by their

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* The faults of a drive: a model's table of the faults its manuals list (front panel code, EMCY
  * code, error register class, how the fault may be reset, how it stops the motor), and the drive
  * layer's handling of them: a fault injected by a test or raised by the drive (communication

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* Motor model of a velocity drive: the speed follows its target on linear ramps (the acceleration
  * ramp away from zero, the deceleration or the fast ramp towards zero; times in 0.1 s from 0 to
  * nominal speed), with plausible torque. Time is passed in; no dictionary, no state machine. */

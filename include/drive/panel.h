@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* What the drive's front panel shows: the 4-digit display (a state code, a fault code, or the
  * output frequency) and the LEDs of the model's card: by default the two CANopen LEDs of the
  * ATV312 manual's signalling table (CiA 303-3 RUN: the NMT state; ERR: the worst communication

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* The serial-line CAN protocol (slcan, the Lawicel CAN232/CANUSB ASCII protocol) that Linux's
  * `slcan` line discipline and can-utils' `slcand` speak: CAN frames as text lines over a UART,
  * so that a board without a CAN controller, or an emulated one, is an ordinary SocketCAN

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* The programs' messages and exit statuses (co_cli.h). */
 #include "co_cli.h"
 

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* The predefined master/slave connection set: Allocate and Release, the Connection object's
  * instances 1 (explicit), 2 (polled, or the master's COS/cyclic data) and 4 (the slave's
  * COS/cyclic data) with their states and watchdogs, the I/O messages and the acknowledge

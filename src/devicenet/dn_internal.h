@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* What the files of the DeviceNet slave library call in one another; not installed. */
 #ifndef DN_INTERNAL_H
 #define DN_INTERNAL_H

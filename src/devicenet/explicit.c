@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* Explicit messaging: the requests of the explicit connection (instance 1, group 2 message 4)
  * and of the group 2 only unconnected port (message 6), their responses (message 3), and the
  * fragmentation protocol both ways with its acknowledgements (fragment.c, shared with the scanner).

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* The explicit messaging fragmentation protocol both ways (include/dn/dn_fragment.h), shared by
  * the slave's explicit server and the scanner's explicit client. */
 #include "dn/dn_fragment.h"

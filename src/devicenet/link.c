@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* DeviceNet identifiers: the message groups taken apart, the predefined set of a MAC ID. */
 #include "dn/dn_link.h"
 

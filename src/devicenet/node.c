@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* The composition root of a DeviceNet slave: configuration, the duplicate MAC ID check, frame
  * routing by identifier, the earliest deadline, the Identity status and the LEDs. */
 #include <string.h>

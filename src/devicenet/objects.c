@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* The library's CIP objects as the Altivar 312 DeviceNet manual lists them: Identity (0x01),
  * Message router (0x02), DeviceNet (0x03), Assembly (0x04), Acknowledge handler (0x2B), and the
  * table of the Connection object (0x05), whose handler is in connection.c. */

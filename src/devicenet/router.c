@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* The message router: finds the object of a request among the library's classes and then the
  * application's table, checks the instance and, for Get/Set_Attribute_Single, the attribute
  * against the object's table, then hands the request to the object's handler. */

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* Where the commands and the reference come from (include/drive/drive.h, the profile's channel
  * fields), and which ramp pair runs: the network, or a channel at the drive, chosen by switches
  * whose sources are logic inputs or control word bits. An update says whether the command channel

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* CiA 402 / Drivecom power state machine: the command table and the state table of the ATV312
  * DeviceNet manual ("CMD control word", "ETA status word"), the transition numbers of CiA 402. */
 #include "drive/cia402.h"

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* The drive: a CANopen node on a model's dictionary whose control word drives the CiA 402 state
  * machine and whose motor model publishes status, speed, current and torque. Communication loss
  * (heartbeat consumer or life guarding) is the network fault. The composition root of the layer:

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* Internal interface of the drive layer, for its own files and never a model's: the CiA 402
  * indexes every model has, then a section per file from the ground floor up. A file calls only
  * the sections above its own (and cia402.c, motor.c, which need none of this); drive.c, the

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* The drive's faults: injection and removal of a cause, the latch in state Fault, the EMCY,
  * 603Fh and the reset rules of each fault's class (include/drive/faults.h). The model supplies
  * the table; nothing here knows a fault by name. A raise or an end says whether it changed the

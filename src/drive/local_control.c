@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* What happens at the drive rather than on the network (include/drive/drive.h, "At the drive"):
  * the keypad's STOP and RUN keys, forced local control, the load on the motor, the logic inputs,
  * and whether local control holds. Each event brings the motor to its time and changes the state;

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* Motor model. The speed is kept in milli-rpm and every ramp division carries its remainder to
  * the next interval, so a ramp reaches the same speed at the same time however often it is
  * sampled (ACC = 3.0 s to 1500 rpm gives exactly 1200 rpm at 2.4 s). */

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* The drive's output: the target and ramp the power state, the control word and the channels
  * steer the motor to, whether the output is on (it drives current and torque, and a fault
  * reaction can stop it on a ramp), and what the drive publishes of it: the status word, speeds,

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* The front panel's display and LEDs (include/drive/panel.h), derived from the drive's state. */
 #include "drive/panel.h"
 

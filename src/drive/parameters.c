@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* Dictionary hooks a model's hooks file names on the entries its profile points at: the rules of
  * the drive's own parameters, and the CiA 402 objects that are views of them (6046h of the speed
  * limits, 6048h/6049h of the ramps). */

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* The ground floor of the drive layer: the profile's parameters read through the model's
  * dictionary (the entries found once at init, a parameter's value) and the units they convert
  * between (0.1 Hz and rpm, through the nominal frequency and speed). Every other file of the layer

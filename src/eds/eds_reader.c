@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 #include "eds_reader.h"
 
 #include "ini_reader.h"

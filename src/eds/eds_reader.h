@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* A small reader of EDS and DCF files (CiA 306 INI format) shared by the installed tools (cotrace,
  * comaster): object names, data types and values (DCF ParameterValue, else DefaultValue, with
  * $NODEID resolved), enough to name SDO objects, to find an object by its name and to decode PDOs

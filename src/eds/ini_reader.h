@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* The INI line reader of the installed tools' files: the CiA 306 EDS and DCF (eds_reader.c), the
  * CiA 306-3 nodelist and comaster's option file (apps/comaster/network.c). It owns the syntax:
  * [section] headers, key = value lines, comments, blanks, line numbers and the errors of a line

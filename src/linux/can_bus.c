@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 #include "co_linux/can_bus.h"
 #include "co_linux/can_frame.h"
 #include "co_linux/candump.h"

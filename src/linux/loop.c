@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* The runtime's composition root: the event loop, the CAN bus and the router put together, and
  * what a wake-up owes the devices after its handlers ran (co_linux/loop.h). */
 #include "co_linux/loop.h"

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 #include "co_linux/router.h"
 #include "co/co_consumers.h"
 #include "co/co_node.h"

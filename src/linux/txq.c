@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 #include "co_linux/txq.h"
 
 void co_txq_init(co_txq_t *q, size_t capacity)

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* The serial-line CAN protocol: frames to lines and lines to frames (include/slcan/slcan.h). */
 #include "slcan/slcan.h"
 

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* The I/O assemblies of the Altivar 312 DeviceNet card by the names of its manual's tables:
  * 20, 21, 100 (consumed) and 70, 71, 101 (produced), 4 bytes each, little-endian. One table for
  * every program that shows or sets I/O data by name (cotrace's DeviceNet decoder, dnscan poll);

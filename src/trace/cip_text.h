@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* The texts of the CIP vocabulary of include/dn/dn_cip.h, for the programs that show DeviceNet
  * traffic (cotrace's DeviceNet decoder, a scanner's command line); a separate small library so
  * that the portable slave library does not carry them. */

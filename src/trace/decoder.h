@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* cotrace's decoder: says what one CAN frame means in CANopen terms, one line per frame (the
  * format is documented in docs/cotrace.md and is stable: scripts and tests compare it).
  *

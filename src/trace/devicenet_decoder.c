@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* cotrace's DeviceNet decoder (devicenet_decoder.h): identifiers by dn_link.h, services, classes
  * and status texts by cip_text.h, I/O data by the Altivar 312 card's assemblies. */
 #include "devicenet_decoder.h"

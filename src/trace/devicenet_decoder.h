@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* cotrace's DeviceNet decoder: says what one CAN frame means on a DeviceNet bus, one line per
  * frame (docs/cotrace.md, "DeviceNet"): its message group, message ID and MAC ID, then the
  * message of the predefined master/slave connection set it carries.

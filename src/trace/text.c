@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* The decoders' shared line helpers (text.h). */
 #include "text.h"
 

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* The line a decoder writes: a bounded text buffer and the ways of putting bytes and values in
  * it that the CANopen and DeviceNet decoders share, and the meaning of a CAN error frame. */
 #ifndef COTRACE_TEXT_H

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* What atv312d says of CAN errors: the controller's state (error-active, error-warning,
  * error-passive, bus-off) and the bus-off count in the status line and the `state` JSON, and
  * which error control protocol lost the master in a drive's `state` line and JSON. */

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* The atv312d command line: node-id forms, duplicates and ranges, the model of each --node-id,
  * every usage error with its exit code and a message naming what would be right. */
 #include "atv31/atv31.h"

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* The control surface's replies where a CANopen and a DeviceNet drive differ: a fault happening
  * (its EMCY on CANopen; on DeviceNet, where EMCYs stay on the card's internal link, the Control
  * supervisor's state and the Identity's fault), the RUN key refused under network control, and the

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* atv312d's per-drive counters: which frames are SDO requests of the drive, SDO aborts and EMCYs
  * it sent (a node's own COB-IDs only, data frames only), and the counters in the `state` line and
  * its JSON object beside the runtime's frame counts of the drive's device. */

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* The web surface's handler, request by request, as the server calls it: the status, the headers
  * and the exact JSON of every answer; who may run a command (the option, the token, the origin,
  * the content type, the body's size and shape); the page's files; --http's address and the token

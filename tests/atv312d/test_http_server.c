@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* The web surface's server on a loopback TCP port, in the runtime's loop as the daemon runs it:
  * one ATV312 at node 4 on a bus that is a socketpair (co_linux_loop_open_fd), the server on
  * 127.0.0.1 at a free port, and a client in a child process that makes its requests, writes what

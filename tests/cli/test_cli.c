@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* src/cli: the programs' error line, the hint after a usage error and the --json twin, byte for
  * byte with the status returned; the exit statuses' one meaning each; what comaster, cotrace and
  * dnscan print when the interface does not open, word for word with its exit status; the value

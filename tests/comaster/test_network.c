@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* The network description of comaster run: the example bench (examples/netmaster: bench.ini, its
  * CiA 306-3 nodelist and three ATV312 DCFs) read into the master's configuration (slaves, options,
  * identity checks, the configuration writes byte by byte, the PDOs and the named variables of the

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* comaster's values and object names: every data type parsed from text into the bytes of a
  * download and printed from the bytes of an upload, range errors, objects by index and by name
  * through the project's EDS, and the EDS found for a node's identity. */

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* The COB-IDs a node consumes (co_consumers.h): the set after start, its changes on writes of
  * COB-ID objects and resets with the generation number, and that the node ignores every frame
  * outside the set (so a runtime may drop those frames unseen). */

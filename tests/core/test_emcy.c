@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* EMCY producer: frame bytes, 1001h bits, 1003h history (order, cap, clear, bad value), the
  * error reset frame, the inhibit time queue with exact times, 1014h validity and CAN-ID rules,
  * states in which EMCY is sent. */

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* The EMCY consumer: exact decoding of 080h + node-id frames, malformed frames reported and never
  * read past, watched nodes only, and the meaning of error codes, most specific first. */
 #include "check_main.h"

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* Node guarding (toggle sequence, state bytes, DLC 0 or 1), life guarding (one event per loss,
  * resume, restart on 100Ch/100Dh writes) and the exclusion by the heartbeat producer. */
 #include "check_main.h"

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* Heartbeat producer (exact period, restart on write; on the time grid with
  * CO_NODE_HEARTBEAT_GRID) and consumers (start on the first frame, one loss report per loss,
  * re-arm, duplicate entries, unused entries). */

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* Network master against the project's own slave nodes (three nodes 4, 5, 6 on the test
  * dictionary) on an in-process bus that delivers every frame to every party in order, and can
  * disconnect a slave: the full boot of the PLC300's section 7.3 frame by frame, the status words

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* The network master's boot manager, every event in every situation of a slave: one row per
  * (situation, event) gives the step, the status word, the frames the master sends and the deadline
  * it returns after the event (docs/net-master.md, "Every event in every step", says why each

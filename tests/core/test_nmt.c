@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* NMT slave: every command to this node, to another node and broadcast, with the state seen in
  * the heartbeat and guarding replies; the boot-up frame; the scope of reset node and reset
  * communication; malformed commands; the application hooks. */

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* NMT master: exact command frames, node states from boot-up, heartbeat and guarding frames, the
  * heartbeat consumer of 127 nodes (lost exactly at the consumer time, resumed; the first heartbeat
  * awaited from the consumer's start), node guarding

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* co_node_init's check of the dictionary against the node's tables: a dictionary with one RPDO or
  * TPDO more than co_config.h gives a node is refused (CO_NODE_ERR_TABLES), so that a firmware
  * sizing the tables to its dictionary cannot lose a PDO silently. */

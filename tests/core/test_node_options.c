@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* The per-node options of an older profile (CO_NODE_*, co_node.h), each on the test dictionary
  * with and without it: 8-byte frames out and the lengths accepted in, the expedited-only SDO
  * server, long expedited writes, the DS301 V3 abort layout, NMT Disconnect remote node. */

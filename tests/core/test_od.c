@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* Object dictionary: table validation, binary search, type and limit checks of the write path,
  * defaults with node-id terms. */
 #include "test_od.h"

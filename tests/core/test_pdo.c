@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* PDO engine: ATV312 manual vectors T31-02..T31-07, transmission types, inhibit and event timers,
  * SYNC start value, RTR, the dynamic mapping procedure and every abort of it, RPDO length and
  * deadline emergencies, NMT gating. Frame-exact on the in-process bus, with injected time. */

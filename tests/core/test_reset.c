@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* The rule of docs/error-control.md, "Errors and resets", for every service whose error has an
  * EMCY, after every scope: reset node, reset communication, enter Pre-operational, stop (and
  * start again). After each, the service's error state and the EMCY producer's active errors

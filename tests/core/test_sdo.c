@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* SDO server, frame by frame on the in-process bus with the test dictionary, node-id 4: expedited,
  * segmented and block transfers of every type in 2000h, every abort code a request can provoke,
  * the protocol timeout, client aborts, NMT states, short frames and the ATV312 manual's frames. */

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* Every CiA 301 abort code has its own meaning for logs and tools; anything else is unknown. */
 #include "check_main.h"
 #include "co/co_types.h"

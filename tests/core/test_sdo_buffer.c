@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* An SDO transfer buffer given by the application (co_node_config_t.sdo_buffer) and shared by two
  * nodes of the test dictionary, node-ids 4 and 5, each on its own in-process bus: a segmented or
  * block transfer holds it until it ends, the other node's transfers that need it are refused

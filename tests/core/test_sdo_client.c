@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* SDO client against the core's own SDO server, frame by frame with injected time: two server
  * nodes (4 and 5) and a master node (1) whose 1280h/1281h configure the clients, on one in-process
  * bus that delivers every frame to every party in order and can drop or repeat chosen frames.

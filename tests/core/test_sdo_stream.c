@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* Streamed DOMAIN entries (co_od_stream_t): the core's SDO client against the core's SDO server on
  * an in-process bus, frame by frame with injected time. The server (node 4) holds a 100 kB value
  * in its application, not in the dictionary, and has a transfer buffer of 16 bytes only: every

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* Store and restore (1010h / 1011h) with an in-memory storage double: save then reset restores,
  * "load" then reset gives defaults, wrong signatures, no storage, storage failures, damaged or
  * malformed images, images from another dictionary version, process data never stored, stored

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* SYNC: producer period and counter wrap, production only in Pre-operational and Operational,
  * 1005h/1019h parameter rules, the consumer's counter and its wrong-length emergency, and the
  * SYNC driving synchronous TPDOs. Frame-exact with injected time. */

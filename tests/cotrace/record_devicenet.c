@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* Records tests/cotrace/devicenet.log: the portable DeviceNet slave (src/devicenet) at MAC ID 25
  * with the Altivar 312 card's assemblies, driven by a scripted scanner at MAC ID 1 with injected
  * time, every frame of both written as candump -L prints it. The same program gives the same

@@ -1,4 +1,5 @@
 #!/usr/bin/env python3
+# SPDX-License-Identifier: Apache-2.0
 """Records tests/cotrace/atv312.log, the trace cotrace's tool test decodes: atv312d --trace while
 a master plays every kind of frame cotrace knows at node 4. Run it where vcan0 exists:
 

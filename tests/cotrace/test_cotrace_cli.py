@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 """cotrace, the installed program: a trace recorded from atv312d decoded byte for byte as
 expected, malformed lines reported with their line number, usage errors, exit codes: every error
 is `cotrace: error: WHAT`, followed by `Try 'cotrace --help'.` after wrong arguments

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* cotrace's decoder on lists of frames, each with the exact line it must give: every service,
  * SDO transfers followed across frames, PDOs decoded through an EDS, malformed frames. */
 #include "atv58/emcy.h"

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 """cotrace --devicenet on a trace of the DeviceNet slave library: the trace made again byte for
 byte by its recorder, decoded as expected, and decoded alike by Wireshark's DeviceNet dissector
 (tshark): for every frame the message group, message ID and MAC ID, and every field the

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* cotrace's DeviceNet decoder on lists of frames, each with the exact line it must give: the
  * groups and message IDs, the duplicate MAC ID check, explicit requests and responses with their
  * errors, fragments reassembled both ways, allocation and release, polled and COS I/O by the

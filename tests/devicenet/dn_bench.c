@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* The DeviceNet slave tests' bench (dn_bench.h). */
 #include "dn_bench.h"
 

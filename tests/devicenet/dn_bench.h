@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* The bench of the DeviceNet slave tests: one node on a recorded bus with injected time, the
  * ATV312's assembly table (20, 21, 100 consumed; 70, 71, 101 produced; 4 bytes each) in memory,
  * a store, the I/O events and resets the node reports, and two application classes (a table

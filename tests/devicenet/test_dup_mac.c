@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* The duplicate MAC ID check at start-up: two requests a second apart, online after two quiet
  * seconds; another node's request or response with this MAC ID keeps the node offline with the
  * Identity's minor recoverable fault and the NS LED solid red; online, other nodes' checks are

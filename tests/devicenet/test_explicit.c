@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* Explicit messaging on connection instance 1 and the group 2 only unconnected port: Allocate
  * and Release (also by another master), every standard object's attributes and refusals, the
  * application's classes through the registry, Identity Reset, the explicit watchdog. Frames in

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* The explicit fragmentation protocol both ways: requests reassembled with every fragment
  * acknowledged, a repeated fragment acknowledged again and dropped, a lost fragment dropping the
  * message, too much data refused; responses sent fragment by fragment on the master's

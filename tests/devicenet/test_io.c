@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* The I/O connections: polled (instance 2) and COS/cyclic (instance 4, and instance 2 consuming
  * the master's COS/cyclic data) with their attributes, states and watchdogs, the zero-length
  * (idle) message, the acknowledge handler's retries and the events the application gets. */

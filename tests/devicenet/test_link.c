@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* DeviceNet identifiers: the groups composed and taken apart, and the predefined master/slave
  * connection set's CAN-IDs, the manual's worked table for MAC ID 25 and the default 63. */
 #include "check_main.h"

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* The node's configuration checks, the Identity status bits the application and the switches
  * set, and the MS LED. */
 #include "check_main.h"

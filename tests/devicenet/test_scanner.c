@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* The scanner (src/devicenet/scanner): its duplicate MAC ID check; wired to a slave of the
  * bench (MAC ID 63), allocation, Get and Set with fragmentation both ways, the expected packet
  * rate, polls once and at a period, COS data acknowledged; with scripted frames instead of the

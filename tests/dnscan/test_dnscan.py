@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 """dnscan's command line without a bus: every argument error is `dnscan: error: WHAT` on stderr
 with its exit status (64 wrong arguments, followed by `Try 'dnscan --help'.`; 65 data), --json
 adds {"error", "exit"} on stdout, and a missing interface or CAN support is 69 (docs/dnscan.md,

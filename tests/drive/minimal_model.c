@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 #include "minimal_model.h"
 
 #include "co/co_emcy.h"

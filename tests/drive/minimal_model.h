@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* A minimal model of the CiA 402 velocity drive, for the drive layer's tests: the dictionary of
  * minimal_model.eds (parameters at 3000h, outputs at 3001h, no manufacturer copies of the CiA 402
  * words) and a profile whose control word bits and fast ramp differ from every Altivar's, so that

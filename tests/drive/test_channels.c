@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* Channels, stop type and frequencies on the minimal model: a command channel other than the
  * network is local control (bit 9 clear, the network's control word recorded and not obeyed), a
  * reference channel other than the network gives a zero reference, "not separate" makes the

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* The CiA 402 / Drivecom power state machine and the stop types of the drive layer: every cell of
  * the command table on the state machine alone, then on the minimal model every command, every
  * status value, quick stop vs fast stop, freewheel, the profile's reverse and ramp stop bits, the

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* The drive's faults on the minimal model's table (one fault of each reset class, one of each
  * reaction): injection faults the drive with its EMCY, 603Fh, 1001h and 1003h entry and the stop
  * of its reaction (freewheel at once; a ramp or fast stop in Fault reaction active, then Fault);

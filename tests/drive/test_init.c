@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* drive_init sets every field of the drive_t it is given (issue 22): a caller need not zero its
  * memory. A drive initialised over zeroes and again over a pattern is the same drive, byte for
  * byte, and its channels are those of the dictionary's defaults from the start (a drive booted

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* At the drive, on the minimal model: the keypad's STOP key (a freewheel stop under network
  * control, the profile's status bit until the next run command), forced local control (status
  * word bit 9 = 0, the network's control word ignored, the RUN and STOP keys run the drive), and

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* The motor model of the drive layer: alone, ramps that do not depend on how often they are
  * sampled and the torque limit; on the minimal model, ramps with exact times, the reference
  * reached bit, the speed limits and their CiA 402 views, configuration parameters refused while

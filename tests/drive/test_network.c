@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* What the network does to the drive, on the minimal model: communication loss (heartbeat
  * consumer, life guarding) is the network fault with its EMCY, 603Fh and 1003h entry; CAN bus
  * events are emergencies only, raised again after a reset node while they last; reset node

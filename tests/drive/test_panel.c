@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* The front panel on the minimal model: the display code of every state, the output frequency
  * while running, the latched fault's code; the RUN LED of every NMT state and the ERR LED of
  * every communication error of the ATV312 manual's signalling table. */

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* drive_process works only when something changed (issue 10): a steady drive neither runs its
  * motor model nor touches its dictionary, a reset or a moving motor makes it settle. Observed by
  * changing the published status word behind the drive's back: a settle would publish it again. */

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* Switching sources, the second ramp and the access level on the minimal model: a switch on a
  * control word bit or a logic input selects channel 2 while it is 1, live; an assigned bit loses
  * its profile meaning; the ramp switch selects the second ramp pair; below the full access level

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* The emulated ATV312 on DeviceNet asked what its EDS (eds/00F3000218090100.EDS) says, for
  * tests/eds/test_devicenet_eds.py: the drive behind its DeviceNet adapter at MAC ID 25 and the
  * project's scanner at MAC ID 1, wired to each other in memory with injected time. After the

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 """The DeviceNet EDS of the Altivar 312 (eds/00F3000218090100.EDS): eds-pie, an EDS parser the
 project did not write, reads it; its identity, I/O and parameters are those the drive implements;
 its application-object parameters are those of the drive's dictionary eds/ATV312.eds at the

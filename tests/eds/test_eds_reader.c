@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* The EDS/DCF reader's CiA 306 syntax, file by file through eds_load: comments only on lines of
  * their own, blanks and carriage returns around everything, keys and sections of any case, keys
  * outside object sections ignored, a repeated key's last value (but a ParameterValue wins over a

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* The INI line reader on its own: what each callback is handed (section, key, value, line
  * number), a key before any header in the section "", and the reading stopped by a callback's
  * false, its error kept. The dialects of its two users are tested through them

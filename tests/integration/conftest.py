@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 """Shared helpers for the integration tests on real SocketCAN.
 
 These tests run where a `vcan0` interface is up: ctest starts them through `tools/vcan-run`, which

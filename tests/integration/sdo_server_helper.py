@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 """A CANopen SDO server the project did not write: python canopen's LocalNode on SocketCAN, in a
 process of its own, for comaster's SDO client (test_comaster.py).
 

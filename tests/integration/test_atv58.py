@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 """The ATV58 with its VW3-A58308 card (atv312d --model atv58, docs/atv58.md) on real SocketCAN: its
 8-byte frames, its SDO error layout, the padded guarding reply and the life guarding EMCY, NMT
 Disconnect, node-ids 1..63, python canopen scanning every object of eds/ATV58.eds against the running

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 """The programs of bench/socketcan (docs/benchmarks.md, "SDO over SocketCAN"): the floor
 bench/responder.c answers exactly an expedited upload, and the load generator bench/sdo_rtt.c
 measures what it claims (every transaction answered, a synchronous TPDO really configured) and

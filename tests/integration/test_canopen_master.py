@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 """The drive against python `canopen` as the master (the yardstick, docs/decisions.md,
 D-EDS-SOURCE): SDO transfers of every kind, PDO configuration through its `pdo` API, its CiA 402
 state machine, and every object of each model's EDS checked against the running daemon of that

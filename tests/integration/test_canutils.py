@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 """The drive on real SocketCAN, driven with can-utils: `cansend` for the master's frames, `candump -L`
 for what is on the bus (with the kernel's receive timestamps, used for every timing check).
 

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 """The checks of a plain CiA 301 node, run against each target on real SocketCAN:
 
 - "daemon": atv312d, an ATV312 at node 4 on vcan0;

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 """comaster against atv312d (two drives) and against python canopen's LocalNode, a server the
 project did not write: the exact output lines, JSON fields, exit codes and, where it matters, the
 frames on the bus."""

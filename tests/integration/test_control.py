@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 """The control surface on real SocketCAN: `atv312d --control PATH` and `atv312d ctl PATH COMMAND`,
 each command with the frames it causes on the bus (fault -> EMCY, 603Fh, status word; the fault
 reset once the cause is gone -> the EMCY error reset), and every refusal with its one-line error

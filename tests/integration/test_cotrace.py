@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 """cotrace -i on a live vcan: frames sent on the bus come out as the same lines as from a log
 (after the timestamp), it stops cleanly on SIGTERM, and a missing interface is a clear error."""
 

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 """atv312d --devicenet on real SocketCAN against the project's scanner, dnscan: the duplicate MAC ID
 check of several drives on one bus, scan, explicit get/set with a fragmented response, polled I/O
 to 1200 rpm, the transparent assemblies after selecting them and an Identity Reset, the stored

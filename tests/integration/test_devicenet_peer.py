@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 """atv312d --devicenet on real SocketCAN against a DeviceNet master the project did not write:
 devicenet-py 0.0.1 (PyPI, on python-can; scripts/setup installs it). Its duplicate MAC ID check
 beside a drive and against one, the allocation of the predefined master/slave connection set,

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 """What a PLC relies on, on the running daemon over SocketCAN: how the motor stops on each way out
 of Operation enabled and Quick stop active, and what storage keeps across a restart
 (docs/decisions.md, D-STOPS and D-STORE-PARAMETERS)."""

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 """Fault injection on real SocketCAN (issue 10 section 5): the daemon killed with SIGKILL in the
 middle of parameter saves, and a storm of random frames on the node's own COB-IDs. (The interface
 down and up is in test_runtime.py, bus-off and error passive are the error-frame tests there.)

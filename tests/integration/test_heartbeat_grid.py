@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 """The daemon's drives beat on one time grid (CO_NODE_HEARTBEAT_GRID, docs/atv312d.md): the heartbeats
 of drives whose 1017h were written at different times leave in the same wake-up, each drive stays
 periodic, and a drive's first beat comes no later than one period after its write. The wake-up is

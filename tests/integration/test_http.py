@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 """The web surface on real SocketCAN: `atv312d --http`. Its state is the bus's, an action by POST
 puts the exact frame on the bus, and who may do what (docs/web.md): actions refused without
 --http-actions, without the token, from another origin; a client that never reads does not delay

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 """Several drives in one atv312d process (one loop, one socket): each boots and answers on its own
 node-id, as a bench of drives for testing a master (docs/decisions.md, D-SEVERAL-DRIVES)."""
 

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 """comaster run and boot, the network master, against atv312d drives 4-6 configured by the DCFs of
 examples/netmaster: the exact step and status lines (the PLC300's status bits), the configuration
 read back with python canopen, an output set from another comaster reaching the drive by RPDO, a

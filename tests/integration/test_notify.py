@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 """atv312d under a service manager (systemd's Type=notify, sd_notify(3)): READY=1 on $NOTIFY_SOCKET
 only once every drive's boot-up is on the bus (on DeviceNet: the duplicate MAC ID checks over),
 never when the interface cannot be opened, and STOPPING=1 on SIGTERM (docs/atv312d.md, "systemd")."""

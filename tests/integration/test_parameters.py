@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 """The ATV312's configuration parameters a PLC writes, seen on the bus (docs/atv312.md, "Channels,
 stop type, frequencies" and "Communication fault management"): the command channel and status
 word bit 9 with the network's commands ignored, what Stt makes CMD bit 12 do, COL's two modes,

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 """Routing and the receive filter (docs/runtime.md, "Routing and the receive filter"): a frame no
 drive consumes never wakes the daemon, a changed COB-ID object changes what reaches the drives, and
 the frames of one wake-up leave in one sendmmsg. The counters come from the daemon's last log line."""

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 """The daemon as a Linux process: trace file, signals, tickless idle, interface down/up, command-line
 errors (sysexits.h) and parameter storage (docs/decisions.md, D-ERRORS, D-STORE-FILE)."""
 

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 """The status surface on real SocketCAN: `atv312d --status FILE` rewrites FILE once a second with the
 CAN controller state, the frame counters and one line per drive, replaced atomically (every read is
 a whole file); SIGUSR1 writes the same to the log."""

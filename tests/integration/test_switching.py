@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 """The ATV312's switching on the bus (docs/atv312.md, "Access level, switching sources, ramp
 switching"): the DeviceNet manual's configuration CCS = C212, rFC = C213 set by SDO, then CMD bits
 12 and 13 seen in TPDO1 (status word) and TPDO6 (status word, speed); a logic input set by the

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 """The bench page of atv312d (docs/web.md) in a real browser: Debian's chromium, headless, driven by
 selenium, against the daemon's own HTTP server (`--http`, `--http-actions`) on real SocketCAN.
 

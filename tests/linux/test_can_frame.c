@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* co_frame_t <-> struct can_frame: the data bytes past the length (and all of a remote frame's)
  * arrive zero whatever the source holds there, the length is clamped to 8, the flags map. */
 #include "check_main.h"

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* The candump -L trace format: exact lines for data, RTR, 29-bit and error frames, and parsing
  * back what it writes; malformed lines are refused. */
 #include "check_main.h"

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* The event loop's timer (co_linux/events.h): armed to the earliest deadline, with as few
  * timerfd_settime calls as the deadlines allow. A deadline that only moves later, as an I/O
  * connection's watchdog does at every poll, leaves the timer where it is until it fires; an

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* The storage file: save/load round trip through the co_storage_t callbacks, several nodes in
  * one file, atomic replacement, and files that fail a check (truncated, bad CRC, wrong magic,
  * unknown version, bad record, an image the core would refuse) ignored as a whole with the

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* The line socket of the programs' control sockets (co_linux/line_socket.h): a session answers
  * each line on one connection, one request is answered (also without its newline) and closed, an
  * overlong line reaches the program cut and flagged, a stale socket file is replaced while a

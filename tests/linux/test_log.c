@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* The runtime's logger (co_linux/log.h): "<ident>: <level>: <message>" on stderr, and when stderr
  * is the journal ($JOURNAL_STREAM names its device and inode, as systemd sets it) each line starts
  * with its syslog priority, <3> error, <4> warning, <6> info, <7> debug, which journald reads as

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* The runtime loop on a socket the caller gives (co_linux_loop_open_fd): an ATV312 drive answers
  * over an AF_UNIX SOCK_SEQPACKET socketpair frame for frame, datagrams that are not a CAN frame
  * are ignored, the peer's hang-up ends the loop (also when the peer is gone before the replies

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* The bounded transmit queue: order, capacity, drops counted, wrap-around, reading by position. */
 #include "check_main.h"
 #include "co_linux/txq.h"

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* The serial-line CAN protocol, byte for byte: frames encoded to the exact lines Linux's slcan
  * driver writes and reads, lines decoded, commands answered, and every malformed line refused
  * without leaving a frame behind or disturbing the next line. */

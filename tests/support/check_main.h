@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* The end of every Check test program's main(): runs the suite and turns its result into the
  * exit status ctest reads. Header-only so that test programs without the test bus use it too. */
 #ifndef CHECK_MAIN_H

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 #include "drive_bench.h"
 
 #include "test_bus.h"

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* A test bench around one drive_t of any model: every frame the drive sends is recorded with its
  * time, frames are injected as text ("604#40..."), time advances deadline by deadline. No sleeps.
  */

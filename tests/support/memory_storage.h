@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* An in-memory co_storage_t for tests: one committed image per area, a staging image for the
  * save in progress, failures on demand, the stored values and the images the node refused. */
 #ifndef MEMORY_STORAGE_H

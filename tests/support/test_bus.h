@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* An in-process CAN bus for frame-exact tests with injected time: a node under test whose sent
  * frames are recorded with their timestamps, helpers to inject frames written as text
  * ("604#4000100000000000", "704#R") and to advance time deadline by deadline. No sleeps. */

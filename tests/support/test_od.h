@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* A test object dictionary shaped like the Altivar 312's (its communication objects, PDO1/PDO6,
  * the CiA 402 words, ACC/DEC, LCR/OTR), plus 2000h: one test object of every data type, limits,
  * a write-only entry and long strings for segmented and block transfers; 6040h and 6042h are

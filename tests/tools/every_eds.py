@@ -1,4 +1,5 @@
 #!/usr/bin/env python3
+# SPDX-License-Identifier: Apache-2.0
 """Runs one check on every *.eds of a directory, found when the test runs so a new EDS is never
 skipped; fails when there is none.
 

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 """The man pages of the built programs, written by tools/man-from-help.py from their --help: every
 item of a list in the help is one term of the page. A term and its description are told apart by
 two spaces or more, so a name one space short of its description swallows it (`atv31-v1.1

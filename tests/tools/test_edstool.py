@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 """Unit tests of tools/edstool.py: the tables the generator writes, its refusals, the hooks file,
 every rule of the checker, and deterministic output. Standard library only; runs the tool with
 the interpreter running the tests."""

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* The hooks that fixtures/device.hooks names, in their own file of a static library so the test
  * proves co_generate_od() resolves hooks no other code refers to. */
 #include "co/co_od.h"

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* The table edstool.py generates from fixtures/device.eds, used by a real node: it validates,
  * loads the EDS defaults with node-id terms added, enforces the EDS limits and the hooks file,
  * answers SDO uploads with the EDS values and maps the dummies of [DummyUsage]. */

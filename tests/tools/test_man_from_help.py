@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 """Unit tests of tools/man-from-help.py: the roff it writes from a program's --help text (usage,
 tagged options with continuation lines, headings, exit status, subcommands, escapes) and its
 errors. Standard library only; the programs documented are small Python scripts."""

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* The bench page of atv312d (docs/web.md): one tile per drive from /api/bench, kept live by the
  * state events of /api/events; a drive's page (#drive/N) with its trend, its frame counters and
  * the control surface, whose buttons post the same commands as `atv312d ctl`. */

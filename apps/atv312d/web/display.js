@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* The drive's front-panel display: four seven-segment digits with decimal points, drawn in SVG
  * from the text the daemon reports ("nSt", "rdY", "50.0", "OHF"). Only the characters a seven-
  * segment display can show exist; an Altivar code uses nothing else. */

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* A drive's trend of the last minute on a canvas: speed (reference and actual, rpm) above,
  * current (A, left scale) and torque (%, right scale) below, the state changes as marked lines.
  * Plain canvas rather than a charting library: four series on a fixed 60 s window are a few

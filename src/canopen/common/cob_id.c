@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* The COB-ID rules of CiA 301 that PDO, SYNC and EMCY share, with the restricted CAN-IDs as a
  * table (7.3.5). */
 #include "co/co_types.h"

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* Every frame a node sends, through the application's callback: the services' frames, the SYNC
  * producer's, and the one-byte error control frames. Below the services, so that none of them
  * calls the node. */

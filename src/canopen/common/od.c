@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* Object dictionary access: binary search over the const table and the generic SDO read and write
  * checks of CiA 301. The rules of the communication parameters are the services', which the node
  * hands in (co_node_t.parameter_write): the dictionary is the ground floor and calls no service. */

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* Streamed DOMAIN entries (co_od_stream_t): their validation, their write in one piece and their
  * part of the SDO server, reached only through the dictionary's co_od_t.streaming =
  * &co_od_streaming, which the EDS generator sets when the dictionary has a streamed entry. A

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* The meaning of each SDO abort code (CiA 301 section 7.2.4.3.17, table 22). */
 #include "co/co_types.h"
 

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* The CRC of SDO block transfers, computed by the server and the client alike. */
 #include "co/co_sdo.h"
 

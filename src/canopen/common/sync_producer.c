@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* The SYNC producer (CiA 301 7.2.5: 1005h bit 30, period 1006h, counter 1019h), of a node and
  * of a master program without one (co_sync_producer_t). A node reaches it only through its
  * dictionary's co_od_t.sync_producer = co_sync_produce, which the generator sets when the

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* EMCY consumer: decoding the emergencies of other nodes and the meaning of their error codes. */
 #include "co/co_emcy_consumer.h"
 

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* Network master: the boot of slaves after the PLC300's section 7.3, their status words, the last
  * SDO error and EMCY, and the process image (docs/net-master.md). */
 #include "co/co_net_master.h"

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* NMT master: commands, the state of nodes 1..127, heartbeat consumers and node guarding (CiA 301
  * sections 7.2.8.2.1 and 7.2.8.3). */
 #include "co/co_nmt_master.h"

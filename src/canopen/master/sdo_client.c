@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* SDO client (CiA 301 section 7.2.4, client side): expedited, segmented and block upload and
  * download between the application's buffer and one server. Uploads are written straight into
  * the application's buffer, downloads are sent from the application's data, so the client needs

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* The COB-IDs a node consumes, read from the services' decoded state (the same fields their
  * receive functions compare a frame with), and the generation number that tells a runtime when
  * to read them again. Named for what it lists, not "consumers": it is none of CiA 301's consumer

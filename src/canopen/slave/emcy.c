@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* EMCY producer, CiA 301 section 7.2.7 and objects 1001h, 1003h, 1014h, 1015h (7.5.2). */
 #include "co/co_node.h"
 

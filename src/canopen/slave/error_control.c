@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* Error control, the two protocols of CiA 301 section 7.2.8.3 that a node answers or produces:
  * node guarding and life guarding (7.2.8.3.1; 100Ch, 100Dh, 100Eh: the toggle starts at 0 and
  * only Reset_Communication resets it), and the heartbeat

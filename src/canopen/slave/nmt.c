@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* NMT slave state machine (CiA 301 section 7.3.2.2, figure 48). */
 #include "co/co_consumers.h"
 #include "co/co_node.h"

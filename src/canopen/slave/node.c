@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* The node, the composition root of the slave services: initialisation, the routing of received
  * frames to the services that the current NMT state allows (CiA 301 table 74), the owner of each
  * communication parameter, the SYNC handed from its service to the PDOs and the application

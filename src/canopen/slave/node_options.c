@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* The code of the per-node options (CO_NODE_*, co_node.h), reached only through
  * co_node_config_t.options_code = &co_node_options: a firmware that names none of them links none
  * of this (docs/footprint.md). The rules that are a test of the flag alone (the DLC accepted by

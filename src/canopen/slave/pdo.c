@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* PDO engine (CiA 301 section 7.2.2; parameters 7.5.2.35-7.5.2.38). RPDO n+1 is configured by
  * 1400h+n / 1600h+n, TPDO n+1 by 1800h+n / 1A00h+n, for every such record in the dictionary.
  * PDOs run only in Operational: node.c routes frames here only then, and co_pdo_process() and

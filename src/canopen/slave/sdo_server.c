@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* SDO server of the default channel (CiA 301 section 7.2.4): expedited, segmented and block
  * transfers. Downloads other than expedited are collected in the transfer buffer and written to
  * the dictionary in one co_od_write() when complete; uploads other than expedited take a snapshot

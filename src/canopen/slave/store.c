@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* Store and restore parameters: 1010h / 1011h (CiA 301 sections 7.5.2.13-14), the
  * self-describing images described in co_store.h, and their application at a reset through the
  * dictionary's write path. */

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* SYNC consumer and the producer's parameters (CiA 301 section 7.2.5; parameters 7.5.2.5-7.5.2.7
  * and 7.5.2.41); the producer itself is in sync_producer.c. Every SYNC, received or produced, goes
  * through co_sync_t.deliver to the node, which hands it to the PDO engine and to the

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* The DeviceNet scanner (include/dn/dn_scanner.h): its duplicate MAC ID check, the slaves'
  * requests on the unconnected port and the explicit connection with fragmentation both ways,
  * the polled connection and the slaves' COS/cyclic data. */

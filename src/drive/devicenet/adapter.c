@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* The drive on DeviceNet (drive_devicenet.h): the slave's configuration from the model's data,
  * the assemblies read from and written to the drive's dictionary, the I/O events (a timeout is
  * the communication-loss fault), the Identity status of the drive's faults and the Identity

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* Internal interface of the drive on DeviceNet (drive_devicenet.h): the ODVA translation
  * (odva.c) and the drive's CIP classes (objects.c), which the adapter (adapter.c) puts together. */
 #ifndef DRIVE_DN_INTERNAL_H

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* The drive's CIP classes, as the Altivar 312 DeviceNet manual lists them ("Supported CIP
  * objects"): Motor data 0x28, Control supervisor 0x29, AC/DC drive 0x2A and the application
  * objects that reach every parameter by its address. Each reads and writes the drive's

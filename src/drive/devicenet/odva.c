@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* The ODVA AC drive profile translated to the drive's Drivecom profile, as the Altivar 312
  * DeviceNet manual's tables say ("Run/Stop event triggers", "DRIVECOM status to State
  * translation"): the card writes the drive's control word and reference and reads its status

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 #include "models.h"
 
 #include "atv31/atv31.h"

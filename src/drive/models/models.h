@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* The table of drive models by name, as a program's --model takes it (atv312d), with what its
  * --help says of each. Adding a model is adding its library (its dictionary, hooks and
  * drive_profile_t, docs/drive.md) and one entry to the table of models.c. */

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* The bench of the drive on DeviceNet: an ATV312 behind its DeviceNet adapter at MAC ID 25, the
  * frames it sends recorded with their times, a store in memory, time injected. A scanner at MAC
  * ID 1 allocates the explicit and polled connections (request 4CC, response 4CB, poll 4CD,

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* The drive's CIP classes on the ATV312: Motor data 0x28, Control supervisor 0x29, AC/DC drive
  * 0x2A attribute by attribute with their refusals; the application objects by the manual's
  * address formula (read, write, refusals with their CIP codes); the assemblies 20/70 and 100/101

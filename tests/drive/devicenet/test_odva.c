@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* The ODVA AC drive profile on the drive's Drivecom profile (Altivar 312 DeviceNet manual, "Run/
  * Stop event triggers", "DRIVECOM status to State translation"), through the default assemblies
  * 21 (consumed) and 71 (produced): the worked example run forward at 1200 rpm, the Run/Stop

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* A model's communication profile area (1000h-1FFFh) against the table its manual prints: every
  * row is an entry of the generated dictionary with the type and access the table gives, the
  * number of entries of each record or array (its sub-index 0) reads as printed, a row the model

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* What every model reports stays within its objects' limits (issue 22; docs/decisions.md,
  * D-VIEW-LIMITS). For each model of the table (models.c) and the minimal test model, each
  * combination of the ends of the ranges of the parameters the views and the published values

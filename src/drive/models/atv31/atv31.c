@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* The Altivar 31's profiles: the family's (ATV312_FAMILY_PROFILE) on the dictionaries generated
  * from eds/ATV31.eds, with and without the heartbeat objects of firmware V1.2. Its STOP/RESET key
  * (the ATV31...A's front panel) is "used to stop the motor and to reset the current faults". Its

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* The Schneider Altivar 31 model of the CiA 402 velocity drive (drive/drive.h). The ATV31 is the
  * ATV312 under another name (its manual's tables are the ATV312's but for 1008h "ATV31"), so its
  * profiles are the family's (atv312/atv312.h) on its own dictionaries, both generated from

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* The Altivar 312's profiles: the family's (ATV312_FAMILY_PROFILE) on the dictionary generated
  * from eds/ATV312.eds, on CANopen and behind the DeviceNet card, whose manuals name the
  * communication loss differently (COF, CnF). */

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* The Schneider Altivar 312 model of the CiA 402 velocity drive (drive/drive.h): its object
  * dictionary atv312_od (generated from eds/ATV312.eds with the hooks of
  * src/drive/models/atv312/atv312.hooks; a node's data block is ATV312_OD_DATA_SIZE bytes) and its

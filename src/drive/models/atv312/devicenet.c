@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* The Altivar 312 behind its DeviceNet card VW3A312 09 (Altivar 312 DeviceNet manual): the
  * Identity the manual gives, the motor data it lists and the application objects' address formula
  * ("Explicit Messaging": class ((ADL - 3000) / 200) + 70h, attribute ADL mod 200 + 1, instance 1,

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* The faults of the Altivar 31/312 family (docs/atv312.md, "Faults"). Codes as the front panel
  * shows them; EMCY codes from the manuals' only code table, the Altivar 58 CANopen card manual's
  * (the ATV31/312 manuals: "the Emergency Error Code is the same as the variable Fault code

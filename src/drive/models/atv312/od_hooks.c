@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* Hooks of the ATV312's own, named in atv312.hooks (which the ATV31's dictionary is generated with
  * too, src/drive/models/atv31/CMakeLists.txt): the transmission types its PDO6 accepts
  * (docs/decisions.md, D-TRANSMISSION-TYPES). The drive's parameter hooks are the drive layer's

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* The Altivar 58's profile. The card's manual names ACC (5FE5h:03) alone among the drive's
  * parameters; the others are the drive's own settings, fixed here (docs/atv58.md): 50 Hz is
  * 1500 rpm, the manual's "1500 rpm, the terminal displays 50 Hz (motor 4 poles)", and the high

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* The Schneider Altivar 58 with its VW3-A58308 CANopen card, a model of the CiA 402 velocity drive
  * (drive/drive.h): its dictionary atv58_od (generated from eds/ATV58.eds without 1018h, with the
  * hooks of src/drive/models/atv58/atv58.hooks; ATV58_OD_DATA_SIZE bytes a node) and its profile.

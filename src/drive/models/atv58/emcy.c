@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* The Altivar 58 CANopen card manual's EMCY code table (VW3-A58308, "Emergency Error Codes"),
  * mnemonic and meaning, for an EMCY consumer (co_emcy_code_text_in: cotrace --emcy-table atv58).
  * The same codes the model sends for its faults (faults.c); the manual lists several faults under

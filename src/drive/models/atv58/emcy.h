@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* The Altivar 58 CANopen card manual's EMCY code table, on its own so that a master or a trace
  * decoder can read the drive's emergencies without the drive (cotrace --emcy-table atv58). */
 #ifndef ATV58_EMCY_H

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* The faults of the Altivar 58 (docs/atv58.md, "Faults"): its CANopen card manual's EMCY code
  * table, the manuals' only one (docs/manuals.md), code for code (a code printed in brackets is the
  * project's reading). The card's error register is "=0 no fault, =1 fault": 1001h bit 0 alone, so

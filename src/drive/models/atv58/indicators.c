@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* The two LEDs of the VW3-A58308 card (its manual, section 1.4, "Signalling LEDs"), hooks of the
  * drive layer's panel (drive/panel.h): a green "OK", steady with no fault and flashing on
  * "Communication fault (CNF)" or "Internal failure (ILF)" ("Address 0", the third cause, cannot

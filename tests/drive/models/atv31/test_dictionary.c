@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* The Altivar 31's communication profile area as its manual's object dictionary table prints it
  * (*Altivar 31 CANopen user's manual*, "Object dictionary"), transcribed row by row: the sub-index
  * 0 of every record and array, every sub-index, type and access. The reserved sub-index 4 of

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* The ATV31's front panel (the ATV31...A of its manual's front view): the STOP/RESET key, "used to
  * stop the motor and to reset the current faults", resets a fault whose cause is gone, as the
  * fault reset edge would; the ATV312, whose manual gives its STOP key no reset, stays in Fault. */

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* The ATV31 on the bus: what differs from the ATV312 (its name, heartbeat only from firmware
  * V1.2) and every example frame of the ATV31 manual (T31-01..17 of
  * docs/manuals.md), frame for frame, on the real generated dictionaries. */

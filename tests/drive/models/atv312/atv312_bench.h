@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* The drive bench on the ATV312 model. */
 #ifndef ATV312_BENCH_H
 #define ATV312_BENCH_H

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* The analogue inputs as reference channels, on the real dictionaries: the ATV312's AI2 (+/-10 V)
  * and AI3 (X-Y mA between CrL3 and CrH3, 2010:03/04) of its option card, the ATV31's AI1 (0-10 V)
  * and its front panel's potentiometer AIP (Fr = 7). With Fr1 on an input (CHCF = SEP, Cd1 =

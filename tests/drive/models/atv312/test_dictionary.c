@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* The Altivar 312's communication profile area as its manual's object dictionary table prints it
  * (*Altivar 312 CANopen communication manual*, "Object dictionary"), transcribed row by row: the
  * sub-index 0 of every record and array, every sub-index, type and access. The reserved sub-index 4

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* The ATV312's faults: every code of its table faults the drive with the EMCY code of the
  * manuals (the ATV58 table, the manuals' only one), 603Fh, ETA 2002h:02, 1001h and 1003h, and is
  * reset by its class: the mains undervoltage USF by itself, OHF by a fault reset once the cause

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* The manufacturer parameters in PDO6, as the manual allows: its variables "can also be replaced
  * with any two other variables", from the "Mapable Objects from EDS file". Every parameter of
  * 2000h-5FFFh of the ATV312 and ATV31 dictionaries is mappable, a read-only one into TPDO6, a

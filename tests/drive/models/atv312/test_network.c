@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* The ATV312 on the bus: its dictionary as the manual tables it, the CiA 301 rules that depend on
  * it, the manual's frame vectors (T31-02..15) on the real dictionary, TPDO1 following the status
  * word. What the network does to any drive (communication loss, bus events, reset node) is tested

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* The ATV312's configuration parameters a PLC writes (docs/atv312.md, "Channels, stop type,
  * frequencies"): each at its Schneider address with its range and default, and what the drive
  * layer does with it through atv312_profile: CHCF, rFC, Fr1, Fr2, CCS, Cd1, Cd2 choose where the

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* The ATV312's profile on its real dictionary: the status words of the manual on 6041h and ETA,
  * CMD and CMDD one word, what control word bits 11-14 do (ATV312 DeviceNet manual, "CMD control
  * word"), the fast ramp DEC / 4, and the parameters the drive layer reads at their Schneider

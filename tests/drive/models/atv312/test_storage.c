@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* What storage keeps of the drive (docs/decisions.md, D-STORE-PARAMETERS): parameters, never
  * process data; the values the CiA 402 views stand for; every stored value checked like an SDO
  * write. Reset node (000#8104) reloads the dictionary as a restart of the daemon does. */

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* The ATV312's [COMMAND] menu beyond the channels (docs/atv312.md, "Access level, switching, ramp
  * switching"): LAC at 2036:01, the switching sources of rFC (2036:0C) and CCS (2036:16), rPS
  * (203C:0B) with AC2 (203C:0D) and dE2 (203C:0E), frame for frame at their addresses: the DeviceNet

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* The terminals' run inputs, 2-wire control (docs/decisions.md, D-TERMINAL-RUN): while the
  * command comes from the terminals (CHCF = SEP with Cd1 = terminals, or CHCF = SIM with the
  * reference on an analogue input), LI1 switched on runs forward, LI2 in reverse, off stops on

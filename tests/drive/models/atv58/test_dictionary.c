@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* The Altivar 58 card's communication profile area as its manual prints it (*Altivar 58 CANopen
  * communication card VW3-A58308 user manual*, "Communication profile area" and the PDO and
  * SDO objects), transcribed row by row: every object and sub-index, the types where the table

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* The Altivar 58's EMCY code table (atv58_emcy_table, its card manual's) as an EMCY consumer
  * reads it: each code's text, the standard meaning where the manual lists nothing, and every
  * fault the model sends (atv58_faults) explained by the table under the fault's own code. */

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* The ATV58 card's two LEDs as its manual prints them (section 1.4, "Signalling LEDs"): a green
  * "OK", steady with no fault, flashing on a communication fault (CNF) or an internal failure
  * (ILF); a yellow "COM", flashing while PDOs or SDOs are received, off when none is

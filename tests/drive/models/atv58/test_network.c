@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* The ATV58 with its VW3-A58308 card on the bus: every example frame of the card's manual
  * (T58-01..15, docs/manuals.md), frame for frame, on the real generated
  * dictionary; its dictionary (what it has, and "object does not exist" for the rest); its SDO

@@ -676,7 +676,7 @@ int main(int argc, char *argv[])
 {
     atv312d_options_t opts;
     char err[256];
-    cli_setup("atv312d", CO_LOG_INFO);
+    co_log_setup("atv312d", CO_LOG_INFO);
     if (argc >= 2 && strcmp(argv[1], "ctl") == 0)
         return atv312d_control_client(argc - 2, argv + 2);
     int rc = atv312d_parse_args(argc, argv, &opts, err, sizeof err);

@@ -139,7 +139,7 @@ static int parse_global(comaster_options_t *opts, int argc, char **argv)
 
 int main(int argc, char **argv)
 {
-    cli_setup("comaster", CO_LOG_WARN);
+    co_log_setup("comaster", CO_LOG_WARN);
     comaster_options_t opts = {
         .iface = getenv("COMASTER_IFACE") && getenv("COMASTER_IFACE")[0] ? getenv("COMASTER_IFACE")
                                                                          : COMASTER_DEFAULT_IFACE,

@@ -362,7 +362,7 @@ static int decode_live(decoder_t *dec, const char *iface)
 
 int main(int argc, char **argv)
 {
-    cli_setup("cotrace", CO_LOG_WARN);
+    co_log_setup("cotrace", CO_LOG_WARN);
     options_t opts;
     int rc = parse_args(argc, argv, &opts);
     if (rc >= 0) {

@@ -204,7 +204,7 @@ static const command_t commands[] = {
 
 int main(int argc, char **argv)
 {
-    cli_setup("dnscan", CO_LOG_WARN);
+    co_log_setup("dnscan", CO_LOG_WARN);
     const char *iface = getenv("DNSCAN_IFACE");
     dnscan_options_t opts = {
         .iface = iface && iface[0] ? iface : DNSCAN_DEFAULT_IFACE,

@@ -15,6 +15,9 @@ typedef enum co_log_level { CO_LOG_ERROR, CO_LOG_WARN, CO_LOG_INFO, CO_LOG_DEBUG
  * looks whether stderr is the journal. */
 void co_log_setup(const char *ident, co_log_level_t level);
 
+/* The program name co_log_setup set ("co" before it was called). */
+const char *co_log_ident(void);
+
 /* True when messages of this level are printed (to skip formatting work otherwise). */
 bool co_log_enabled(co_log_level_t level);
 

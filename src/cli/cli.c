@@ -4,15 +4,6 @@
 
 #include <string.h>
 
-/* One program per process, as the runtime's log has one ident. */
-static const char *program_name = "co";
-
-void cli_setup(const char *program, co_log_level_t level)
-{
-    program_name = program;
-    co_log_setup(program, level);
-}
-
 const char *cli_value_name(const cli_valued_option_t *table, size_t count, const char *option)
 {
     for (size_t i = 0; i < count; i++) {
@@ -42,7 +33,7 @@ int cli_vfail(const char *command, bool json, int status, const char *format, va
     vsnprintf(message, sizeof message, format, ap);
     co_log(CO_LOG_ERROR, "%s", message);
     if (status == EX_USAGE)
-        fprintf(stderr, "Try '%s%s%s --help'.\n", program_name, command ? " " : "",
+        fprintf(stderr, "Try '%s%s%s --help'.\n", co_log_ident(), command ? " " : "",
                 command ? command : "");
     if (json) {
         printf("{\"error\": ");
@@ -70,7 +61,7 @@ int cli_open_error_text(const co_linux_loop_t *loop, co_linux_open_result_t resu
         snprintf(out, cap,
                  "this kernel has no SocketCAN support (%s: %s): load it with modprobe can-raw "
                  "vcan, or run inside the sandbox: tools/vcan-run %s ...",
-                 loop->open_call, why, program_name);
+                 loop->open_call, why, co_log_ident());
         return EX_UNAVAILABLE;
     case CO_LINUX_OPEN_NO_IFACE:
         snprintf(out, cap,

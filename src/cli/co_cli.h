@@ -24,10 +24,6 @@
 #define CLI_EXIT_DRIVE_FAULT 4   /* comaster drive: the drive is in Fault */
 #define CLI_EXIT_MAC_ID_IN_USE 5 /* dnscan: the scanner's MAC ID is in use on the bus */
 
-/* Names the program on every line it writes to stderr and sets the level of the runtime's log
- * (co_log_setup): main's first call. */
-void cli_setup(const char *program, co_log_level_t level);
-
 /* An option that takes a value, and the value's name in --help: {"--timeout", "MS"}. */
 typedef struct cli_valued_option {
     const char *option;
@@ -42,10 +38,10 @@ const char *cli_value_name(const cli_valued_option_t *table, size_t count, const
  * \u00XX. */
 void cli_json_string(FILE *out, const char *text);
 
-/* An error: "<program>: error: <message>" on stderr (co_log's line at CO_LOG_ERROR); after a
- * usage error (EX_USAGE) the line "Try '<program> [<command>] --help'." (`command`: the
- * subcommand whose arguments were wrong, or NULL); when json, also {"error": "<message>",
- * "exit": <status>} on stdout. Returns `status`. */
+/* An error: "<program>: error: <message>" on stderr (co_log's line at CO_LOG_ERROR, <program>
+ * the ident of co_log_setup); after a usage error (EX_USAGE) the line "Try '<program> [<command>]
+ * --help'." (`command`: the subcommand whose arguments were wrong, or NULL); when json, also
+ * {"error": "<message>", "exit": <status>} on stdout. Returns `status`. */
 int cli_vfail(const char *command, bool json, int status, const char *format, va_list ap)
     __attribute__((format(printf, 4, 0)));
 int cli_fail(const char *command, int status, const char *format, ...)

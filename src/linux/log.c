@@ -39,6 +39,11 @@ void co_log_setup(const char *ident, co_log_level_t level)
     to_journal = stderr_is_journal();
 }
 
+const char *co_log_ident(void)
+{
+    return log_ident;
+}
+
 bool co_log_enabled(co_log_level_t level)
 {
     return level <= log_level;

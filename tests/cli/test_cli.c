@@ -68,7 +68,7 @@ static void setup(void)
 /* An error is "PROGRAM: error: WHAT" and its status; nothing on stdout without --json. */
 START_TEST(error_line_and_status)
 {
-    cli_setup("dnscan", CO_LOG_WARN);
+    co_log_setup("dnscan", CO_LOG_WARN);
     ck_assert_int_eq(fail_captured(NULL, false, CLI_EXIT_TIMEOUT, "MAC ID %u: no answer", 63u),
                      CLI_EXIT_TIMEOUT);
     ck_assert_str_eq(err_text, "dnscan: error: MAC ID 63: no answer\n");
@@ -79,12 +79,12 @@ END_TEST
 /* After a usage error, the help to read: the program's, or its command's. */
 START_TEST(usage_error_names_the_help)
 {
-    cli_setup("atv312d", CO_LOG_INFO);
+    co_log_setup("atv312d", CO_LOG_INFO);
     ck_assert_int_eq(fail_captured(NULL, false, EX_USAGE, "unknown option '%s'", "--bitrate"),
                      EX_USAGE);
     ck_assert_str_eq(err_text, "atv312d: error: unknown option '--bitrate'\n"
                                "Try 'atv312d --help'.\n");
-    cli_setup("comaster", CO_LOG_WARN);
+    co_log_setup("comaster", CO_LOG_WARN);
     ck_assert_int_eq(fail_captured("read", false, EX_USAGE, "read: unknown option '--x'"),
                      EX_USAGE);
     ck_assert_str_eq(err_text, "comaster: error: read: unknown option '--x'\n"
@@ -98,7 +98,7 @@ END_TEST
 /* With --json the same message and status as one JSON object on stdout. */
 START_TEST(json_twin)
 {
-    cli_setup("comaster", CO_LOG_WARN);
+    co_log_setup("comaster", CO_LOG_WARN);
     ck_assert_int_eq(fail_captured("write", true, EX_USAGE, "'%s' is not a node-id", "0\"x"),
                      EX_USAGE);
     ck_assert_str_eq(err_text, "comaster: error: '0\"x' is not a node-id\n"
@@ -122,7 +122,7 @@ END_TEST
 
 START_TEST(interface_errors)
 {
-    cli_setup("dnscan", CO_LOG_WARN);
+    co_log_setup("dnscan", CO_LOG_WARN);
     failed("socket(PF_CAN, SOCK_RAW, CAN_RAW)", EAFNOSUPPORT);
     ck_assert_int_eq(
         cli_open_error_text(&loop, CO_LINUX_OPEN_NO_CAN, "DNSCAN_IFACE", text, sizeof text),
@@ -132,7 +132,7 @@ START_TEST(interface_errors)
                            "modprobe can-raw vcan, or run inside the sandbox: tools/vcan-run "
                            "dnscan ...");
 
-    cli_setup("comaster", CO_LOG_WARN);
+    co_log_setup("comaster", CO_LOG_WARN);
     failed("if_nametoindex", ENODEV);
     ck_assert_int_eq(
         cli_open_error_text(&loop, CO_LINUX_OPEN_NO_IFACE, "COMASTER_IFACE", text, sizeof text),
@@ -141,13 +141,13 @@ START_TEST(interface_errors)
                            "$COMASTER_IFACE (list them: ip link show type can, or type vcan)");
 
     /* cotrace has no variable for its interface. */
-    cli_setup("cotrace", CO_LOG_WARN);
+    co_log_setup("cotrace", CO_LOG_WARN);
     ck_assert_int_eq(cli_open_error_text(&loop, CO_LINUX_OPEN_NO_IFACE, NULL, text, sizeof text),
                      EX_UNAVAILABLE);
     ck_assert_str_eq(text, "no network interface 'vcan9': give one with -i IFACE (list them: ip "
                            "link show type can, or type vcan)");
 
-    cli_setup("dnscan", CO_LOG_WARN);
+    co_log_setup("dnscan", CO_LOG_WARN);
     failed("bind", ENODEV);
     ck_assert_int_eq(
         cli_open_error_text(&loop, CO_LINUX_OPEN_NOT_CAN, "DNSCAN_IFACE", text, sizeof text),

@@ -3,7 +3,8 @@
 exit status and vcan0; the caller's stdin, piped (byte for byte, to its end) and typed on a
 terminal (an interactive shell with ^C and job control); --forward from the host's loopback to a
 server in the guest; and a host made to look like one whose XSAVE area is larger than User-Mode
-Linux's, as the CPUs with AMX that CI runs on, where the sandbox must boot all the same and say how.
+Linux's, as the CPUs with AMX that CI runs on, where the sandbox must boot all the same and say how,
+or, where the wrapper that makes that possible cannot be had, say why it cannot.
 
 On a host with vcan of its own the command runs there and the sandbox's own checks do not apply.
 Each test boots the sandbox once (3-5 s)."""
@@ -22,9 +23,11 @@ VCAN_RUN = str(ROOT / "tools" / "vcan-run")
 UML = ["--mode", "uml"]
 
 
-def vcan_run(*args, stdin=subprocess.DEVNULL, env=None, timeout=120):
-    return subprocess.run([VCAN_RUN, *args], stdin=stdin, capture_output=True, timeout=timeout,
-                          env=env)
+def vcan_run(*args, input=None, env=None):
+    """vcan-run with ARGS; its stdin is `input` (bytes, piped), or /dev/null."""
+    return subprocess.run([VCAN_RUN, *args], input=input,
+                          stdin=subprocess.DEVNULL if input is None else None, capture_output=True,
+                          timeout=120, env=env)
 
 
 def test_exit_status_and_vcan0():
@@ -35,22 +38,19 @@ def test_exit_status_and_vcan0():
 
 def test_piped_stdin_arrives_byte_for_byte_to_its_end():
     data = bytes(range(256)) * 64 + b"\r\n\x03\x04\x1a\x00 last line without newline"
-    proc = subprocess.run([VCAN_RUN, *UML, "sh", "-c", "od -An -v -tx1 | tr -d ' \\n'"],
-                          input=data, capture_output=True, timeout=120)
+    proc = vcan_run(*UML, "sh", "-c", "od -An -v -tx1 | tr -d ' \\n'", input=data)
     assert proc.returncode == 0, proc.stderr
     assert proc.stdout.decode() == data.hex()
 
 
 def test_piped_script_runs_in_a_shell():
-    proc = subprocess.run([VCAN_RUN, *UML, "bash"], input=b"ip -br link show vcan1\nexit 3\n",
-                          capture_output=True, timeout=120)
+    proc = vcan_run(*UML, "bash", input=b"ip -br link show vcan1\nexit 3\n")
     assert proc.returncode == 3, proc.stderr
     assert proc.stdout.startswith(b"vcan1 ")
 
 
 def test_empty_stdin_ends_at_once():
-    proc = subprocess.run([VCAN_RUN, *UML, "--timeout", "60", "cat"], input=b"",
-                          capture_output=True, timeout=120)
+    proc = vcan_run(*UML, "--timeout", "60", "cat", input=b"")
     assert (proc.returncode, proc.stdout) == (0, b""), proc.stderr
 
 
@@ -165,13 +165,19 @@ def test_forward_port_in_use_is_refused_before_the_boot():
     assert f"cannot listen on 127.0.0.1:{port}: Address already in use".encode() in result.stderr
 
 
-def test_host_whose_xsave_area_is_larger_than_umls():
-    """SHORT_XSTATE shortens every write of UML's FPU state below this host's XSAVE area, which
-    the host kernel refuses (EFAULT): UML panics at boot without uml-xstate. vcan-run boots all the
-    same and says once what it did."""
+def host_with_a_larger_xsave_area(**more):
+    """The environment that makes this host look like one whose XSAVE area is larger than UML's:
+    SHORT_XSTATE shortens every write of UML's FPU state below this host's area, which the host
+    kernel refuses (EFAULT), as it refuses UML's 2,696 bytes on hosts with AMX."""
     shim = os.environ.get("SHORT_XSTATE")
     assert shim, "SHORT_XSTATE names tests/tools/short_xstate.c's module (ctest sets it)"
-    env = dict(os.environ, LD_PRELOAD=shim)
+    return dict(os.environ, LD_PRELOAD=shim, **more)
+
+
+def test_host_whose_xsave_area_is_larger_than_umls():
+    """UML panics at boot there without uml-xstate: vcan-run boots all the same and says once what
+    it did."""
+    env = host_with_a_larger_xsave_area()
     result = vcan_run(*UML, "sh", "-c", "ip -br link show vcan0 >/dev/null && echo booted", env=env)
     assert (result.returncode, result.stdout) == (0, b"booted\n"), result.stderr
     notes = re.findall(rb"vcan-run: this host's XSAVE area is (\d+) bytes and User-Mode Linux writes "
@@ -180,3 +186,20 @@ def test_host_whose_xsave_area_is_larger_than_umls():
     assert len(notes) == 1, result.stderr
     area, rest = (int(n) for n in notes[0])
     assert area - 832 == rest
+
+
+def test_without_the_wrapper_the_cause_is_named(tmp_path):
+    """Where uml-xstate cannot be had (here: no cache of it, and a `cc` that fails to build it),
+    UML panics at its first FPU state write: vcan-run exits 125 and says why, and what to do."""
+    (tmp_path / "bin").mkdir()
+    failing_cc = tmp_path / "bin" / "cc"
+    failing_cc.write_text("#!/bin/sh\necho 'cc: not here' >&2\nexit 1\n")
+    failing_cc.chmod(0o755)
+    env = host_with_a_larger_xsave_area(XDG_CACHE_HOME=str(tmp_path / "cache"),
+                                        PATH=f"{tmp_path / 'bin'}:{os.environ['PATH']}")
+    result = vcan_run(*UML, "echo", "not run", env=env)
+    assert (result.returncode, result.stdout) == (125, b""), result.stderr
+    assert (b"vcan-run: User-Mode Linux could not restore a process's FPU state: this host's XSAVE "
+            b"area is larger than UML's, and the wrapper that makes up for it (uml-xstate, "
+            b"D-TEST-UML-XSTATE) could not be had: install a C compiler (cc) for vcan-run to build "
+            b"it, or vcan-run's package\n") in result.stderr, result.stderr

@@ -414,13 +414,38 @@ STORES = {
 }
 
 
+# The drive on DeviceNet at MAC ID 25, the scanner at 1: Allocate on 4CE, explicit requests on
+# 4CC, polls on 4CD; commands E0 (bus off) and E1 (the interface back).
+DN_CONNECT = ["4CE#014B03010301", "4CC#41100502096400"]
+DN_RUN = "4CD#6100B004"  # Run forward, NetCtrl, NetRef, 1200 rpm
+DN_BUS_OFF, DN_INTERFACE_BACK = b"\xE0", b"\xE1"
+DN_DRIVE = {
+    "online": ["+2000ms"],
+    "poll-run-bus-off": ["+2000ms", *DN_CONNECT, DN_RUN, "+50ms", DN_BUS_OFF, "+1000ms"],
+    "poll-run-boi-bus-off": ["+2000ms", *DN_CONNECT, "4CC#011003010301", DN_RUN, "+50ms", DN_BUS_OFF,
+                             "+2500ms"],
+    "poll-run-interface-back": ["+2000ms", *DN_CONNECT, DN_RUN, "+50ms", DN_INTERFACE_BACK, "+2500ms"],
+    "poll-run-timeout": ["+2000ms", *DN_CONNECT, DN_RUN, "+100ms", DN_RUN, "+1000ms"],
+    "poll-run-release": ["+2000ms", *DN_CONNECT, DN_RUN, "+50ms", "4CE#014C030102", "+1000ms"],
+    "explicit-run-watchdog": ["+2000ms", "4CE#014B03010101", "4CC#01102A0108B004", "4CC#011029010301",
+                              "+11000ms"],
+    "explicit-run-release": ["+2000ms", "4CE#014B03010101", "4CC#01102A0108B004", "4CC#011029010301",
+                             "+100ms", "4CE#014C030101"],
+    "transparent-run": ["+2000ms", "4CC#01100500646400", "4CC#01050101", "+2000ms", *DN_CONNECT,
+                        "4CD#0600B004", "4CD#0700B004", "4CD#0F00B004", "+500ms", DN_BUS_OFF],
+    "col-ignore": ["+2000ms", *DN_CONNECT, "4CC#01108101020000", DN_RUN, "+50ms",
+                   DN_BUS_OFF],
+}
+
+
 def main():
     for harness, seeds in (
             ("frames", {k: frames_input(v) for k, v in FRAMES.items()}),
             ("store", STORES),
             ("sdo_client", {k: h + frames_input(v) for k, (h, v) in SDO_CLIENT.items()}),
             ("net_master", {k: h + frames_input(v) for k, (h, v) in NET_MASTER.items()}),
-            ("eds_reader", EDS_READER)):
+            ("eds_reader", EDS_READER),
+            ("dn_drive", {k: frames_input(v) for k, v in DN_DRIVE.items()})):
         folder = CORPUS / harness
         folder.mkdir(parents=True, exist_ok=True)
         for name, data in seeds.items():

@@ -210,7 +210,8 @@ static void dn_slot_start(void *ctx, co_time_t now)
 }
 
 /* After the interface was down the card goes on the bus again as after power-up: a new duplicate
- * MAC ID check, its connections gone; the drive keeps its state. */
+ * MAC ID check, its connections gone; a drive that ran on their commands takes CnF, any other
+ * keeps its state (docs/decisions.md, D-DEVICENET-CONNECTION-END). */
 static void dn_slot_restart(void *ctx, co_time_t now)
 {
     drive_slot_t *slot = ctx;

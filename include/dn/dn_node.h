@@ -110,19 +110,23 @@ typedef struct dn_stored {
     bool quick_connect;         /* DeviceNet attribute 10 */
 } dn_stored_t;
 
-/* What happens to the I/O connections, for the application (a drive maps DN_IO_TIMEOUT, and
- * DN_IO_CLOSED while it runs, to its communication fault). */
+/* What happens to the I/O connections, for the application; how a connection ends is
+ * dn_connection_ended, below. */
 typedef enum dn_io_event {
     DN_IO_ESTABLISHED, /* an I/O connection entered Established */
     DN_IO_RUN,         /* data after idle: the master is in run mode */
     DN_IO_IDLE,        /* a zero-length poll or COS message: the master is idle */
-    DN_IO_TIMEOUT,     /* an I/O connection's watchdog expired: Timed out */
     DN_IO_ACK_FAILED,  /* the COS/cyclic data were not acknowledged after the retries */
-    /* The master released the connection its data came on (instance 2) while it was Established:
-     * the data stop as after a timeout, without one. Before DN_IO_RELEASED when that follows. */
-    DN_IO_CLOSED,
-    DN_IO_RELEASED /* the last I/O connection was released or deleted */
+    DN_IO_RELEASED     /* the last I/O connection was released */
 } dn_io_event_t;
+
+/* Why an Established connection stopped carrying the master's messages. */
+typedef enum dn_end_cause {
+    DN_END_TIMEOUT,  /* its inactivity watchdog expired: Timed out, deferred delete or deleted */
+    DN_END_RELEASED, /* the master released it (Release Master/Slave Connection Set) */
+    DN_END_BUS_OFF,  /* the controller went bus off, with or without BOI */
+    DN_END_OFFLINE   /* the node left the bus or started again (dn_node_stop, dn_node_start) */
+} dn_end_cause_t;
 
 /* What the node counts of its traffic, each where it happens. The application keeps the counters
  * (dn_app_t.stats), so that they outlive a restart of the node (an Identity Reset, the bus
@@ -146,6 +150,11 @@ typedef struct dn_app {
     /* New data for a consumed assembly, from an I/O message or a Set of attribute 3. */
     void (*write_assembly)(void *user, uint16_t instance, const uint8_t *data);
     void (*io_event)(void *user, dn_io_event_t event); /* optional */
+    /* An Established connection ended: instance 1 (explicit), 2 (polled, or the master's
+     * COS/cyclic data) or 4 (the slave's COS/cyclic data), told once whatever ended it, after
+     * the connection left Established; the I/O connections before the explicit one when several
+     * end at once (docs/devicenet.md, "How a connection ends"). Optional. */
+    void (*connection_ended)(void *user, uint8_t instance, dn_end_cause_t cause);
     /* Keeps these values across restarts; false when it could not (the Set is refused with
      * 0x19). NULL: the values are not stored and the Sets are refused. */
     bool (*store)(void *user, const dn_stored_t *stored);
@@ -266,8 +275,12 @@ struct dn_node {
  * to the default) and leaves the node offline. The node keeps `config` (and what it points at):
  * it must outlive the node. An Identity Reset is the application's init and start again. */
 int dn_node_init(dn_node_t *node, const dn_config_t *config);
-/* Goes on the bus: the duplicate MAC ID check's first request. */
+/* Goes on the bus: the duplicate MAC ID check's first request. On a node already started, its
+ * connections end first (DN_END_OFFLINE). */
 void dn_node_start(dn_node_t *node, co_time_t now);
+/* Leaves the bus (the interface is gone, or the node is about to be initialised again): its
+ * connections end (DN_END_OFFLINE) and it sends nothing until dn_node_start. */
+void dn_node_stop(dn_node_t *node, co_time_t now);
 /* The CAN-IDs of the frames dn_node_receive acts on: group 2 with the node's MAC ID, messages
  * 2, 4, 5, 6 and 7 (the predefined set's master-to-slave messages and the duplicate MAC ID check).
  * They depend on the MAC ID only, so a runtime can route by them once: the others are no
@@ -278,8 +291,8 @@ size_t dn_node_consumed_ids(const dn_node_t *node, uint16_t ids[DN_NODE_CONSUMED
 void dn_node_receive(dn_node_t *node, const co_frame_t *frame, co_time_t now);
 /* Runs what is due; returns the next deadline or CO_TIME_NEVER. Call it after every frame. */
 co_time_t dn_node_process(dn_node_t *node, co_time_t now);
-/* The CAN controller went bus off: counted (attribute 4); with BOI set the node starts again
- * (a new duplicate MAC ID check), else it stays faulted. */
+/* The CAN controller went bus off: counted (attribute 4), its connections end (DN_END_BUS_OFF);
+ * with BOI set the node starts again (a new duplicate MAC ID check), else it stays faulted. */
 void dn_node_bus_off(dn_node_t *node, co_time_t now);
 /* The application's faults for the Identity status (DN_STATUS_MINOR_... / MAJOR_... bits). */
 void dn_node_set_faults(dn_node_t *node, uint16_t faults);
@@ -287,6 +300,8 @@ void dn_node_set_faults(dn_node_t *node, uint16_t faults);
 uint16_t dn_node_identity_status(const dn_node_t *node);
 dn_led_t dn_node_ms_led(const dn_node_t *node);
 dn_led_t dn_node_ns_led(const dn_node_t *node);
+/* The state (dn_conn_state_t) of connection instance 1, 2 or 4; Non-existent for another. */
+uint8_t dn_node_connection_state(const dn_node_t *node, uint8_t instance);
 /* The assembly table's entry of an instance, or NULL. */
 const dn_assembly_t *dn_node_assembly(const dn_node_t *node, uint16_t instance);
 

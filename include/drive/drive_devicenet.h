@@ -7,8 +7,9 @@
  * Control supervisor 0x29, AC/DC drive 0x2A, the application objects (0x70.. on the ATV312) that
  * reach every parameter by its address, and the assemblies 20, 21, 70, 71 (the ODVA AC drive
  * profile, translated to the drive's Drivecom/CiA 402 control word) and 100, 101 (6040h/6042h
- * and 6041h/6044h as they are). An I/O connection timeout is the drive's communication-loss fault
- * (CnF on an Altivar). The drive's CANopen node sends nothing on the bus: its frames are the
+ * and 6041h/6044h as they are). An I/O connection timeout, and any end of the connection that
+ * carries the drive's commands while it runs on them, is the drive's communication-loss fault (CnF
+ * on an Altivar). The drive's CANopen node sends nothing on the bus: its frames are the
  * card's internal link, dropped. Portable like the core: no malloc, no OS calls, no globals.
  * docs/devicenet.md, "The drive on DeviceNet". */
 #ifndef DRIVE_DRIVE_DEVICENET_H
@@ -120,9 +121,10 @@ void drive_dn_receive(drive_dn_t *dn, const co_frame_t *frame, co_time_t now);
 /* The drive and the DeviceNet node; the earlier of their deadlines. */
 co_time_t drive_dn_process(drive_dn_t *dn, co_time_t now);
 /* The interface came back after being down: the node goes on the bus again (a new duplicate MAC
- * ID check); the drive keeps its state. */
+ * ID check), its connections gone; a drive running on their commands takes its communication-loss
+ * reaction, any other keeps its state. */
 void drive_dn_restart(drive_dn_t *dn, co_time_t now);
-/* The CAN controller went bus off. */
+/* The CAN controller went bus off: the connections end as at a restart. */
 void drive_dn_bus_off(drive_dn_t *dn, co_time_t now);
 
 /* What the scanner sees. */

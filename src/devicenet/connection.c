@@ -50,6 +50,36 @@ static void clear(dn_connection_t *c)
     c->watchdog = CO_TIME_NEVER;
 }
 
+/* conn[] positions to instances; the order in which the ends of several are told. */
+static const uint8_t instance_of[DN_CONN_COUNT] = {DN_CONN_EXPLICIT, DN_CONN_POLL,
+                                                   DN_CONN_COS_CYCLIC};
+static const unsigned end_order[DN_CONN_COUNT] = {DN_IO_CONSUMER, DN_IO_PRODUCER, DN_EXPLICIT};
+
+static void tell_ended(dn_node_t *node, unsigned index, dn_end_cause_t cause)
+{
+    const dn_app_t *app = node->config->app;
+    if (app->connection_ended)
+        app->connection_ended(app->user, instance_of[index], cause);
+}
+
+static void record_states(const dn_node_t *node, uint8_t states[DN_CONN_COUNT])
+{
+    for (unsigned i = 0; i < DN_CONN_COUNT; i++)
+        states[i] = node->conn[i].state;
+}
+
+/* Each connection that was Established and no longer is ended now: the application is told, the
+ * I/O connections first, so that it judges the explicit one knowing what is left. */
+static void tell_ended_since(dn_node_t *node, const uint8_t before[DN_CONN_COUNT],
+                             dn_end_cause_t cause)
+{
+    for (unsigned i = 0; i < DN_CONN_COUNT; i++) {
+        unsigned index = end_order[i];
+        if (before[index] == DN_CONN_ESTABLISHED && node->conn[index].state != DN_CONN_ESTABLISHED)
+            tell_ended(node, index, cause);
+    }
+}
+
 void dn_connections_reset(dn_node_t *node)
 {
     for (unsigned i = 0; i < DN_CONN_COUNT; i++)
@@ -63,6 +93,22 @@ void dn_connections_reset(dn_node_t *node)
     node->idle = true;
     node->rx.active = false;
     node->tx.active = false;
+}
+
+void dn_connections_end(dn_node_t *node, dn_end_cause_t cause)
+{
+    uint8_t before[DN_CONN_COUNT];
+    record_states(node, before);
+    dn_connections_reset(node);
+    tell_ended_since(node, before, cause);
+}
+
+uint8_t dn_node_connection_state(const dn_node_t *node, uint8_t instance)
+{
+    for (unsigned i = 0; i < DN_CONN_COUNT; i++)
+        if (instance_of[i] == instance)
+            return node->conn[i].state;
+    return DN_CONN_NON_EXISTENT;
 }
 
 /* Inactivity: the expected packet rate times the multiplier (x4 << attribute 18); none at 0. */
@@ -209,7 +255,8 @@ dn_status_t dn_release(dn_node_t *node, const dn_request_t *request)
     if (choice & ~SUPPORTED_CHOICE)
         return DN_STATUS(DN_GS_INVALID_PARAMETER, DN_AC_INVALID_CHOICE);
     bool had_io = io_allocated(node);
-    bool consuming = node->conn[DN_IO_CONSUMER].state == DN_CONN_ESTABLISHED;
+    uint8_t states[DN_CONN_COUNT];
+    record_states(node, states);
     uint8_t before = node->allocation;
     uint8_t remaining = (uint8_t)(before & ~choice);
     if (!(remaining & (DN_ALLOC_COS | DN_ALLOC_CYCLIC)))
@@ -225,8 +272,7 @@ dn_status_t dn_release(dn_node_t *node, const dn_request_t *request)
         open_consumer(node); /* instance 2 goes on consuming the master's COS/cyclic data */
     if (before & choice & DN_ALLOC_EXPLICIT)
         delete_explicit(node);
-    if (consuming && node->conn[DN_IO_CONSUMER].state != DN_CONN_ESTABLISHED)
-        dn_io_event(node, DN_IO_CLOSED);
+    tell_ended_since(node, states, DN_END_RELEASED);
     if (had_io && !io_allocated(node)) {
         if (node->conn[DN_EXPLICIT].state == DN_CONN_DEFERRED_DELETE)
             delete_explicit(node);
@@ -374,7 +420,7 @@ static co_time_t io_watchdog(dn_node_t *node, unsigned index)
         if (index == DN_IO_PRODUCER)
             node->awaiting_ack = false;
         DN_COUNT(node, timeouts);
-        dn_io_event(node, DN_IO_TIMEOUT);
+        tell_ended(node, index, DN_END_TIMEOUT);
     }
     return c->watchdog;
 }
@@ -397,6 +443,7 @@ static co_time_t explicit_watchdog(dn_node_t *node)
     } else {
         delete_explicit(node);
     }
+    tell_ended(node, DN_EXPLICIT, DN_END_TIMEOUT);
     return CO_TIME_NEVER;
 }
 

@@ -41,6 +41,8 @@ co_time_t dn_explicit_process(dn_node_t *node);
 
 /* connection.c */
 void dn_connections_reset(dn_node_t *node);
+/* Every connection goes, as at a restart; the Established ones are told with this cause. */
+void dn_connections_end(dn_node_t *node, dn_end_cause_t cause);
 dn_status_t dn_allocate(dn_node_t *node, const dn_request_t *request, dn_reply_t *reply);
 dn_status_t dn_release(dn_node_t *node, const dn_request_t *request);
 void dn_explicit_activity(dn_node_t *node);

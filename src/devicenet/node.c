@@ -101,7 +101,7 @@ void dn_node_start(dn_node_t *node, co_time_t now)
 {
     node->now = now;
     node->duplicate_mac = false;
-    dn_connections_reset(node);
+    dn_connections_end(node, DN_END_OFFLINE);
     node->link = DN_LINK_DUP_CHECK_1;
     node->link_deadline = now + DN_DUP_MAC_WAIT_US;
     send_duplicate_mac(node, 0);
@@ -190,16 +190,24 @@ co_time_t dn_node_process(dn_node_t *node, co_time_t now)
     return co_time_min(next, dn_connections_process(node));
 }
 
+void dn_node_stop(dn_node_t *node, co_time_t now)
+{
+    node->now = now;
+    dn_connections_end(node, DN_END_OFFLINE);
+    node->link = DN_LINK_OFF;
+    node->link_deadline = CO_TIME_NEVER;
+}
+
 void dn_node_bus_off(dn_node_t *node, co_time_t now)
 {
+    node->now = now;
     if (node->bus_off_counter < UINT8_MAX)
         node->bus_off_counter++;
+    dn_connections_end(node, DN_END_BUS_OFF);
     if (node->bus_off_interrupt) {
         dn_node_start(node, now);
         return;
     }
-    node->now = now;
-    dn_connections_reset(node);
     node->link = DN_LINK_FAULTED;
     node->link_deadline = CO_TIME_NEVER;
 }

@@ -108,7 +108,12 @@ static void setup(recorder_t *r)
 {
     memset(r, 0, sizeof *r);
     r->reset_type = -1;
-    r->app = (dn_app_t){r, on_send, on_read, on_write, NULL, on_store, on_reset, NULL};
+    r->app = (dn_app_t){.user = r,
+                        .send = on_send,
+                        .read_assembly = on_read,
+                        .write_assembly = on_write,
+                        .store = on_store,
+                        .reset = on_reset};
     dn_config_t *c = &r->config;
     c->mac_id = SLAVE_MAC;
     c->baud_rate = 2;

@@ -44,6 +44,25 @@ static void on_event(void *user, dn_io_event_t event)
     b->events[b->event_count++] = event;
 }
 
+static void on_connection_ended(void *user, uint8_t instance, dn_end_cause_t cause)
+{
+    dn_bench_t *b = user;
+    ck_assert_uint_lt(b->end_count, BENCH_EVENTS);
+    b->ends[b->end_count++] = (bench_end_t){instance, cause};
+}
+
+void bench_expect_ends_at(dn_bench_t *b, const bench_end_t *want, size_t count, const char *file,
+                          int line)
+{
+    ck_assert_msg(b->end_count == count, "%s:%d: %zu connection ends, not %zu", file, line,
+                  b->end_count, count);
+    for (size_t i = 0; i < count; i++)
+        ck_assert_msg(b->ends[i].instance == want[i].instance && b->ends[i].cause == want[i].cause,
+                      "%s:%d: end %zu: instance %u cause %d, not instance %u cause %d", file, line,
+                      i, b->ends[i].instance, b->ends[i].cause, want[i].instance, want[i].cause);
+    b->end_count = 0;
+}
+
 static bool on_store(void *user, const dn_stored_t *stored)
 {
     dn_bench_t *b = user;
@@ -129,6 +148,7 @@ void bench_init(dn_bench_t *b, uint8_t mac_id, dn_stored_t stored)
     b->app.read_assembly = on_read;
     b->app.write_assembly = on_write;
     b->app.io_event = on_event;
+    b->app.connection_ended = on_connection_ended;
     b->app.store = on_store;
     b->app.reset = on_reset;
     b->app.stats = &b->stats;

@@ -1,8 +1,9 @@
 /* SPDX-License-Identifier: Apache-2.0 */
 /* The bench of the DeviceNet slave tests: one node on a recorded bus with injected time, the
  * ATV312's assembly table (20, 21, 100 consumed; 70, 71, 101 produced; 4 bytes each) in memory,
- * a store, the I/O events and resets the node reports, and two application classes (a table
- * driven one at 0x29, a range 0x70..0xA8 answered by its handler) that exercise the registry. */
+ * a store, the I/O events, connection ends and resets the node reports, and two application classes
+ * (a table driven one at 0x29, a range 0x70..0xA8 answered by its handler) that exercise the
+ * registry. */
 #ifndef DN_BENCH_H
 #define DN_BENCH_H
 
@@ -15,6 +16,11 @@
 #define BENCH_ASSEMBLIES 6
 #define BENCH_MASTER 1u /* the scanner's MAC ID in the tests */
 #define BENCH_SERIAL 0x12345678u
+
+typedef struct bench_end {
+    uint8_t instance;
+    dn_end_cause_t cause;
+} bench_end_t;
 
 typedef struct dn_bench {
     dn_node_t node;
@@ -29,6 +35,8 @@ typedef struct dn_bench {
     uint8_t data[BENCH_ASSEMBLIES][DN_IO_MAX]; /* by position in the assembly table */
     dn_io_event_t events[BENCH_EVENTS];
     size_t event_count;
+    bench_end_t ends[BENCH_EVENTS]; /* the connections' ends, as told */
+    size_t end_count;
     dn_stats_t stats; /* what the node counted */
     dn_stored_t stored;
     bool store_fails;
@@ -60,6 +68,15 @@ void bench_expect_none_at(dn_bench_t *b, const char *file, int line);
         bench_expect_none(b);                                                                      \
     } while (0)
 uint8_t *bench_assembly(dn_bench_t *b, uint16_t instance);
+/* The connections' ends told since the last call, exactly these, in this order. */
+void bench_expect_ends_at(dn_bench_t *b, const bench_end_t *want, size_t count, const char *file,
+                          int line);
+#define bench_expect_ends(b, ...)                                                                  \
+    do {                                                                                           \
+        const bench_end_t want_[] = {__VA_ARGS__};                                                 \
+        bench_expect_ends_at((b), want_, sizeof want_ / sizeof want_[0], __FILE__, __LINE__);      \
+    } while (0)
+#define bench_expect_no_end(b) bench_expect_ends_at((b), NULL, 0, __FILE__, __LINE__)
 /* The node's counters, all five. */
 void bench_expect_stats_at(const dn_bench_t *b, dn_stats_t want, const char *file, int line);
 #define bench_expect_stats(b, ...)                                                                 \

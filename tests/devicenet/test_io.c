@@ -87,8 +87,9 @@ START_TEST(poll_exchange_idle_and_timeout)
     ck_assert_int_eq(b.node.conn[1].state, DN_CONN_ESTABLISHED);
     bench_advance(&b, 1);
     ck_assert_int_eq(b.node.conn[1].state, DN_CONN_TIMED_OUT);
-    dn_io_event_t want[] = {DN_IO_ESTABLISHED, DN_IO_RUN, DN_IO_IDLE, DN_IO_TIMEOUT};
-    expect_events(want, 4);
+    dn_io_event_t want[] = {DN_IO_ESTABLISHED, DN_IO_RUN, DN_IO_IDLE};
+    expect_events(want, 3);
+    bench_expect_ends(&b, {DN_CONN_POLL, DN_END_TIMEOUT});
     ck_assert_int_eq(dn_node_ns_led(&b.node), DN_LED_FLASHING_RED);
     ck_assert_uint_eq(dn_node_identity_status(&b.node), 0x0021); /* faulted I/O connection */
     bench_rx(&b, "5FD#0100DC05");
@@ -99,9 +100,10 @@ START_TEST(poll_exchange_idle_and_timeout)
     bench_exchange(&b, "5FD#0100DC05", "3FF#6403DC05");
     ck_assert_int_eq(dn_node_ns_led(&b.node), DN_LED_GREEN);
     bench_exchange(&b, "5FE#014C030102", "5FB#01CC");
-    dn_io_event_t released[] = {DN_IO_ESTABLISHED, DN_IO_RUN, DN_IO_IDLE,   DN_IO_TIMEOUT,
-                                DN_IO_ESTABLISHED, DN_IO_RUN, DN_IO_CLOSED, DN_IO_RELEASED};
-    expect_events(released, 8);
+    dn_io_event_t released[] = {DN_IO_ESTABLISHED, DN_IO_RUN, DN_IO_IDLE,
+                                DN_IO_ESTABLISHED, DN_IO_RUN, DN_IO_RELEASED};
+    expect_events(released, 6);
+    bench_expect_ends(&b, {DN_CONN_POLL, DN_END_RELEASED});
     bench_rx(&b, "5FD#0100DC05");
     bench_expect_none(&b);
     /* Consumed: a poll, two idle ones and a poll after the timeout; not the one of the
@@ -218,7 +220,7 @@ START_TEST(cos_producer_timeout)
     bench_advance(&b, 1);
     ck_assert_int_eq(b.node.conn[2].state, DN_CONN_TIMED_OUT);
     ck_assert_uint_eq(b.now, established + 4000000);
-    ck_assert_int_eq(b.events[b.event_count - 1], DN_IO_TIMEOUT);
+    bench_expect_ends(&b, {DN_CONN_COS_CYCLIC, DN_END_TIMEOUT});
     ck_assert_int_eq(dn_node_ns_led(&b.node), DN_LED_FLASHING_RED);
     b.next = b.count;
     bench_advance(&b, 5000000);
@@ -287,17 +289,18 @@ START_TEST(poll_and_cos_together)
     bench_exchange(&b, "5FC#01100502090000", "5FB#01900000");
     bench_exchange(&b, "5FD#0100DC05", "3FF#6403DC05");
     /* The poll released: instance 2 goes on with the master's COS data, configuring again, so
-     * the master's data stopped (closed). */
+     * the master's data stopped: instance 2 ended. */
     size_t before = b.event_count;
     bench_exchange(&b, "5FE#014C030102", "5FB#01CC");
-    ck_assert_uint_eq(b.event_count, before + 1);
-    ck_assert_int_eq(b.events[before], DN_IO_CLOSED);
+    ck_assert_uint_eq(b.event_count, before);
+    bench_expect_ends(&b, {DN_CONN_POLL, DN_END_RELEASED});
     bench_exchange(&b, "5FC#010E050201", "5FB#018E01");
     bench_exchange(&b, "5FC#010E050207", "5FB#018E0000");
     /* COS released too: no I/O left; instance 2 was configuring, nothing closed. */
     bench_exchange(&b, "5FE#014C030110", "5FB#01CC");
     bench_exchange(&b, "5FC#010E050201", "5FB#019416FF");
-    ck_assert_uint_eq(b.event_count, before + 2);
+    bench_expect_no_end(&b);
+    ck_assert_uint_eq(b.event_count, before + 1);
     ck_assert_int_eq(b.events[b.event_count - 1], DN_IO_RELEASED);
     ck_assert_uint_eq(b.node.allocation, DN_ALLOC_EXPLICIT);
 }

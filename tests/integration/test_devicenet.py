@@ -3,8 +3,8 @@
 check of several drives on one bus, scan, explicit get/set with a fragmented response, polled I/O
 to 1200 rpm, the transparent assemblies after selecting them and an Identity Reset, the stored
 selection across a restart, an I/O timeout faulting the drive with CnF and the scanner's fault
-reset, the connections released while the drive runs as the same CnF, a drive killed and
-restarted, and the command lines that mix CANopen and DeviceNet.
+reset, the connections released while the drive runs, bus off and the interface coming back as
+the same CnF, a drive killed and restarted, and the command lines that mix CANopen and DeviceNet.
 
 Frames are DeviceNet's predefined master/slave connection set (docs/devicenet.md): for MAC ID 25
 the check is 4CF, the explicit response 4CB, the scanner's explicit request 4CC, its unconnected
@@ -292,6 +292,50 @@ def test_bus_off_goes_to_the_card_with_and_without_boi(start_dn, dump):
     state = wait_state(sock, 63, ns="red")
     assert state["ms"] == "green"
     assert dnscan("--timeout", 300, "get", 63, 1, 1, 1)[0] == 2
+
+
+def run_at_600_rpm(every_ms):
+    """dnscan polling MAC ID 25 Run forward at 600 rpm, every_ms apart (its expected packet rate,
+    a watchdog of four times that); returns the poller once the drive runs on those commands."""
+    poller = Poller(25, "--assembly", "21/71", "--set", "NetCtrl=1", "--set", "NetRef=1", "--set", "Run_fwd=1",
+                    "--set", "Speed_reference=600", "--every", every_ms)
+    poller.expect("Running1=1", timeout=5)
+    return poller
+
+
+def test_bus_off_while_running_is_cnf(start_dn, dump):
+    """Bus off takes every connection of the card (no BOI: it stays off the bus); the drive that ran
+    on the polls takes the communication loss at once, not at a watchdog (docs/decisions.md,
+    D-DEVICENET-CONNECTION-END)."""
+    _, sock = start_dn([25])
+    poller = run_at_600_rpm(1000)  # a watchdog of 4 s: not what ends the connection here
+    try:
+        wait_state(sock, 25, ns="green", supervisor="enabled", fault=None)
+        send_bus_off()
+        state = wait_state(sock, 25, timeout=1.0, fault="CnF", ns="red")
+        assert (state["cia402"], state["frames"]["timeouts"]) == ("Fault", 0)
+    finally:
+        poller.proc.kill()
+        poller.proc.wait(timeout=5)
+
+
+def test_interface_back_while_running_is_cnf(start_dn, bus):
+    """The interface down and up again within the poll's watchdog: the card goes on the bus again
+    with a new check and no connection, and the drive that ran on them takes CnF. (candump ends
+    with its interface; the test's own socket stays.)"""
+    _, sock = start_dn([25])
+    poller = run_at_600_rpm(1000)
+    try:
+        wait_state(sock, 25, ns="green", supervisor="enabled", fault=None)
+        mark = bus.mark()
+        subprocess.run(["ip", "link", "set", IFACE, "down"], check=True, timeout=5)
+        subprocess.run(["ip", "link", "set", IFACE, "up"], check=True, timeout=5)
+        bus.expect(*CHECK_25, timeout=2.0, since=mark)
+        state = wait_state(sock, 25, timeout=1.0, fault="CnF")
+        assert (state["cia402"], state["frames"]["timeouts"]) == ("Fault", 0)
+    finally:
+        poller.proc.kill()
+        poller.proc.wait(timeout=5)
 
 
 def ctl(sock, *words):

@@ -1,8 +1,7 @@
 /* SPDX-License-Identifier: Apache-2.0 */
 /* The drive on DeviceNet (drive_devicenet.h): the slave's configuration from the model's data,
- * the assemblies read from and written to the drive's dictionary, the I/O events (a timeout is
- * the communication-loss fault), the Identity status of the drive's faults and the Identity
- * Reset. */
+ * the assemblies read from and written to the drive's dictionary, the ends of the connections (the
+ * communication-loss fault), the Identity status of the drive's faults and the Identity Reset. */
 #include "drive_dn_internal.h"
 
 #include <string.h>
@@ -126,18 +125,30 @@ static bool runs_on_network_command(const drive_dn_t *dn)
     return drive_dn_state(dn) == DRIVE_DN_ENABLED && drive_dn_control_from_net(dn->drive);
 }
 
-/* An I/O connection timed out: the periodic data stopped, the drive's communication loss (CnF on
- * an Altivar, with the reaction of its COL). The scanner releasing the connection its data came
- * on while the drive runs on them stops those data too, without a timeout: the same loss, rather
- * than a motor left at the last command that the network can no longer stop; a standing or
- * stopping drive is released as it is (docs/decisions.md, D-DEVICENET-RELEASE). Idle keeps the
- * last command (D-DEVICENET-DRIVE-IDLE). */
-static void on_io_event(void *user, dn_io_event_t event)
+/* Whether a connection carried the commands the drive runs on: the I/O connection of instance 2
+ * while it is Established (each of its messages carries the whole command), else the explicit
+ * connection (docs/decisions.md, D-DEVICENET-CONNECTION-END). */
+static bool carried_the_commands(const drive_dn_t *dn, uint8_t instance)
+{
+    if (instance == DN_CONN_POLL)
+        return true;
+    return instance == DN_CONN_EXPLICIT &&
+           dn_node_connection_state(&dn->node, DN_CONN_POLL) != DN_CONN_ESTABLISHED;
+}
+
+/* A connection ended. An I/O connection timed out: the periodic data stopped, the drive's
+ * communication loss (CnF on an Altivar, with the reaction of its COL) whatever it does. Any
+ * other end (a release, a deletion, bus off, the interface lost, a restart) of the connection
+ * that carried the commands while the drive runs on them stops them as surely: the same loss,
+ * rather than a motor left at the last command that the network can no longer stop; a standing
+ * or stopping drive keeps its state (D-DEVICENET-CONNECTION-END). Idle keeps the last command
+ * (D-DEVICENET-DRIVE-IDLE). */
+static void on_connection_ended(void *user, uint8_t instance, dn_end_cause_t cause)
 {
     drive_dn_t *dn = user;
-    if (event == DN_IO_CLOSED)
-        (void)drive_process(dn->drive, dn->now); /* the state at the frame's time */
-    if (event == DN_IO_TIMEOUT || (event == DN_IO_CLOSED && runs_on_network_command(dn)))
+    (void)drive_process(dn->drive, dn->now); /* the state at the frame's time */
+    bool io_timeout = cause == DN_END_TIMEOUT && instance != DN_CONN_EXPLICIT;
+    if (io_timeout || (carried_the_commands(dn, instance) && runs_on_network_command(dn)))
         drive_communication_loss(dn->drive, dn->now);
 }
 
@@ -184,7 +195,7 @@ int drive_dn_init(drive_dn_t *dn, const drive_dn_config_t *config)
                          .send = on_send,
                          .read_assembly = on_read_assembly,
                          .write_assembly = on_write_assembly,
-                         .io_event = on_io_event,
+                         .connection_ended = on_connection_ended,
                          .store = config->store ? on_store : NULL,
                          .reset = on_reset,
                          .stats = &dn->stats};
@@ -248,6 +259,7 @@ static void carry_out_reset(drive_dn_t *dn, co_time_t now)
     drive_dn_command_t start = {.net_ctrl = true, .net_ref = true};
     dn->command = start;
     dn->reverse = false;
+    dn_node_stop(&dn->node, now); /* its connections end on a drive that no longer runs */
     (void)dn_node_init(&dn->node, &dn->config);
     dn_node_start(&dn->node, now);
 }
@@ -275,15 +287,20 @@ co_time_t drive_dn_process(drive_dn_t *dn, co_time_t now)
     return co_time_min(next, drive_next);
 }
 
+/* The connections end before the node is built again: a drive running on their commands takes
+ * its communication-loss reaction. */
 void drive_dn_restart(drive_dn_t *dn, co_time_t now)
 {
     dn->now = now;
+    dn_node_stop(&dn->node, now);
     (void)dn_node_init(&dn->node, &dn->config);
     dn_node_start(&dn->node, now);
+    report_faults(dn);
 }
 
 void drive_dn_bus_off(drive_dn_t *dn, co_time_t now)
 {
     dn->now = now;
     dn_node_bus_off(&dn->node, now);
+    report_faults(dn);
 }

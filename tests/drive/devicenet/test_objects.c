@@ -129,7 +129,7 @@ static void run_at_1200_rpm(void)
 
 /* The scanner releases the polled connection while the drive runs on its commands: the data stop
  * as after a timeout, and it is the same CnF with COL's reaction (docs/decisions.md,
- * D-DEVICENET-RELEASE); COL = 1 (the default) freewheels into Fault at once. The explicit
+ * D-DEVICENET-CONNECTION-END); COL = 1 (the default) freewheels into Fault at once. The explicit
  * connection stays: NS green, the Identity owned, without I/O, major recoverable fault. */
 START_TEST(release_while_running_is_cnf)
 {

@@ -1,0 +1,207 @@
+/* SPDX-License-Identifier: Apache-2.0 */
+/* The drive never runs on the network's command without a live connection carrying it: every
+ * way the connection that carried the commands ends (bus off with and without BOI, the interface
+ * coming back, the explicit connection's watchdog or release) while the drive runs on them is
+ * CnF with COL's reaction (docs/decisions.md, D-DEVICENET-CONNECTION-END); a standing drive, or
+ * one whose commands another live connection carries, keeps its state. The ATV312 behind its
+ * card at MAC ID 25, the scanner at 1. */
+#include "check_main.h"
+#include "dn_drive_bench.h"
+
+static dn_drive_bench_t b;
+
+static void setup(void)
+{
+    memset(&b, 0, sizeof b);
+    db_online(&b);
+}
+
+/* COL = 1 (the default) freewheels into Fault: CnF latched with code 1, 6041h Fault, and the
+ * motor coasts to a stop. */
+static void expect_cnf(void)
+{
+    ck_assert_ptr_nonnull(drive_fault_latched(&b.drive));
+    ck_assert_str_eq(drive_fault_latched(&b.drive)->code, "CnF");
+    ck_assert_int_eq(db_value(&b, 0x2022, 3), 1);
+    ck_assert_int_eq(db_value(&b, 0x6041, 0), 0x0608);
+    ck_assert_int_eq(drive_dn_state(&b.dn), DRIVE_DN_FAULTED);
+    db_advance(&b, 10000000);
+    ck_assert_int_eq(db_value(&b, 0x6044, 0), 0);
+}
+
+/* Operation enabled (6041h & 006Fh = 0027h), turning forward. */
+static void expect_running(void)
+{
+    ck_assert_ptr_null(drive_fault_latched(&b.drive));
+    ck_assert_int_eq(db_value(&b, 0x6041, 0) & 0x006F, 0x0027);
+    ck_assert_int_eq(drive_dn_state(&b.dn), DRIVE_DN_ENABLED);
+    ck_assert_int_gt(db_value(&b, 0x6044, 0), 0);
+}
+
+/* The fuzzer's reproducer: explicit and polled allocated, an expected packet rate of 100 ms
+ * (104 ms in use, a watchdog of 416 ms), one poll Run forward, NetCtrl and NetRef at 1200 rpm;
+ * 50 ms later the drive runs. */
+static void run_on_one_poll(void)
+{
+    db_exchange(&b, "4CE#014B03010301", "4CB#01CB00");
+    db_exchange(&b, "4CC#41100502096400", "4CB#41906800");
+    db_exchange(&b, "4CD#6100B004", "3D9#74040000");
+    db_advance(&b, 50000);
+    expect_running();
+}
+
+START_TEST(bus_off_while_running_is_cnf)
+{
+    run_on_one_poll();
+    drive_dn_bus_off(&b.dn, b.now);
+    db_expect_none(&b); /* faulted off the bus: no check, no frame */
+    ck_assert_uint_eq(dn_node_identity_status(&b.dn.node) & 0x0F00u, 0x0400u); /* major rec. */
+    expect_cnf();
+    db_expect_none(&b);
+}
+END_TEST
+
+START_TEST(bus_off_with_boi_while_running_is_cnf)
+{
+    run_on_one_poll();
+    db_exchange(&b, "4CC#011003010301", "4CB#0190"); /* BOI = 1 */
+    drive_dn_bus_off(&b.dn, b.now);
+    db_expect(&b, "4CF#00F30078563412"); /* on the bus again, no connection */
+    expect_cnf();
+    db_expect(&b, "4CF#00F30078563412");
+    db_expect_none(&b);
+}
+END_TEST
+
+/* In atv312d: an interface outage shorter than the I/O watchdog. */
+START_TEST(interface_back_while_running_is_cnf)
+{
+    run_on_one_poll();
+    drive_dn_restart(&b.dn, b.now);
+    db_expect(&b, "4CF#00F30078563412");
+    expect_cnf();
+    db_expect(&b, "4CF#00F30078563412");
+    db_expect_none(&b);
+    /* Major recoverable fault, no I/O connection. */
+    ck_assert_uint_eq(dn_node_identity_status(&b.dn.node), 0x0430);
+}
+END_TEST
+
+/* A standing drive keeps its state through bus off and the interface coming back. */
+START_TEST(bus_off_of_a_standing_drive_keeps_it)
+{
+    db_connected(&b);
+    db_exchange(&b, "4CD#00000000", "3D9#F0030000"); /* Ready */
+    drive_dn_bus_off(&b.dn, b.now);
+    drive_dn_restart(&b.dn, b.now);
+    ck_assert_ptr_null(drive_fault_latched(&b.drive));
+    ck_assert_int_eq(drive_dn_state(&b.dn), DRIVE_DN_READY);
+}
+END_TEST
+
+/* Explicit connection only: NetRef and NetCtrl stay 1 (the network), the speed reference 1200
+ * rpm and Run1 through the Control supervisor, the last request 50 ms ago. */
+static void run_by_explicit_messages(const char *allocate)
+{
+    db_exchange(&b, allocate, "4CB#01CB00");
+    db_exchange(&b, "4CC#01102A0108B004", "4CB#0190");
+    db_exchange(&b, "4CC#011029010301", "4CB#0190");
+    db_advance(&b, 50000);
+    expect_running();
+}
+
+/* The explicit connection's watchdog, 2504 ms x 4 after the last request, deletes it (auto
+ * delete): the commands it carried stop. */
+START_TEST(explicit_watchdog_while_running_is_cnf)
+{
+    run_by_explicit_messages("4CE#014B03010101");
+    db_advance(&b, 10015999 - 50000);
+    expect_running();
+    db_advance(&b, 1);
+    expect_cnf();
+}
+END_TEST
+
+START_TEST(explicit_release_while_running_is_cnf)
+{
+    run_by_explicit_messages("4CE#014B03010101");
+    db_exchange(&b, "4CE#014C030101", "4CB#01CC");
+    expect_cnf();
+}
+END_TEST
+
+/* The polled connection allocated but still configuring carries nothing: bus off ends the
+ * explicit connection the commands came on. */
+START_TEST(bus_off_with_a_configuring_poll_is_cnf)
+{
+    run_by_explicit_messages("4CE#014B03010301");
+    drive_dn_bus_off(&b.dn, b.now);
+    expect_cnf();
+}
+END_TEST
+
+/* A live polled connection carries the commands (each poll the whole of them): the explicit
+ * connection's end takes nothing away, the drive runs on the polls. */
+START_TEST(explicit_end_while_polls_carry_keeps_running)
+{
+    db_connected(&b);
+    db_exchange(&b, "4CD#0100B004", "3D9#74040000");
+    for (int second = 1; second <= 12; second++) {
+        db_advance(&b, 1000000);
+        db_rx(&b, "4CD#0100B004");
+        b.next = b.count;
+    }
+    ck_assert_int_eq(dn_node_connection_state(&b.dn.node, DN_CONN_EXPLICIT), DN_CONN_NON_EXISTENT);
+    expect_running();
+}
+END_TEST
+
+START_TEST(explicit_end_of_a_standing_drive_keeps_it)
+{
+    db_exchange(&b, "4CE#014B03010101", "4CB#01CB00");
+    db_exchange(&b, "4CC#01102A0108B004", "4CB#0190");
+    drive_dn_state_t before = drive_dn_state(&b.dn);
+    db_advance(&b, 10016000);
+    ck_assert_int_eq(dn_node_connection_state(&b.dn.node, DN_CONN_EXPLICIT), DN_CONN_NON_EXISTENT);
+    ck_assert_ptr_null(drive_fault_latched(&b.drive));
+    ck_assert_int_eq(drive_dn_state(&b.dn), before);
+}
+END_TEST
+
+/* An Identity Reset restarts the drive first: it no longer runs when the connections end, and
+ * comes back without a fault. */
+START_TEST(identity_reset_while_running_is_no_fault)
+{
+    run_on_one_poll();
+    db_rx(&b, "4CC#41050101");
+    db_expect(&b, "4CB#4185");
+    db_expect(&b, "4CF#00F30078563412");
+    ck_assert_ptr_null(drive_fault_latched(&b.drive));
+    ck_assert_int_eq(db_value(&b, 0x2022, 3), 0);
+    ck_assert_int_eq(db_value(&b, 0x6041, 0), 0x0640); /* Switch on disabled */
+}
+END_TEST
+
+static Suite *suite(void)
+{
+    Suite *s = suite_create("drive_devicenet_connection_loss");
+    TCase *tc = tcase_create("connection_loss");
+    tcase_add_checked_fixture(tc, setup, NULL);
+    tcase_add_test(tc, bus_off_while_running_is_cnf);
+    tcase_add_test(tc, bus_off_with_boi_while_running_is_cnf);
+    tcase_add_test(tc, interface_back_while_running_is_cnf);
+    tcase_add_test(tc, bus_off_of_a_standing_drive_keeps_it);
+    tcase_add_test(tc, explicit_watchdog_while_running_is_cnf);
+    tcase_add_test(tc, explicit_release_while_running_is_cnf);
+    tcase_add_test(tc, bus_off_with_a_configuring_poll_is_cnf);
+    tcase_add_test(tc, explicit_end_while_polls_carry_keeps_running);
+    tcase_add_test(tc, explicit_end_of_a_standing_drive_keeps_it);
+    tcase_add_test(tc, identity_reset_while_running_is_no_fault);
+    suite_add_tcase(s, tc);
+    return s;
+}
+
+int main(void)
+{
+    return check_run_suite(suite());
+}

@@ -24,6 +24,10 @@
 #define CONN_CLASS_PRODUCED_ASSEMBLY 101u
 #define ASSEMBLY_DATA_ATTRIBUTE 3u
 #define BODY_FORMAT_8_8 0u
+/* The data of Allocate (the allocation choice, the allocator's MAC ID) and of Release (the
+ * choice). */
+#define ALLOCATE_DATA_LEN 2u
+#define RELEASE_DATA_LEN 1u
 
 typedef enum explicit_kind { EXPLICIT_REQUEST, UNCONNECTED_REQUEST, EXPLICIT_RESPONSE } kind_t;
 
@@ -161,14 +165,14 @@ static void request_body(cotrace_dn_node_t *n, const uint8_t *body, size_t len, 
     rq->attribute = attribute ? body[3] : 0;
     const uint8_t *data = &body[path];
     size_t dlen = len - path;
-    rq->len = (uint8_t)(dlen < sizeof rq->data ? dlen : sizeof rq->data);
-    memcpy(rq->data, data, rq->len);
+    rq->len = (uint8_t)dlen;
+    memcpy(rq->data, data, dlen < sizeof rq->data ? dlen : sizeof rq->data);
     say_request(t, rq);
-    if (service == DN_SVC_ALLOCATE && dlen == 2) {
+    if (service == DN_SVC_ALLOCATE && dlen == ALLOCATE_DATA_LEN) {
         say(t, ", ");
         say_choice(t, data[0]);
         say(t, ", allocator %u", data[1]);
-    } else if (service == DN_SVC_RELEASE && dlen == 1) {
+    } else if (service == DN_SVC_RELEASE && dlen == RELEASE_DATA_LEN) {
         say(t, ", ");
         say_choice(t, data[0]);
     } else if (dlen) {
@@ -190,16 +194,21 @@ static void note_selection(cotrace_dn_node_t *n, const cotrace_dn_request_t *rq,
         n->stored_produced = co_get_u16(value);
 }
 
-/* What a success response changes of what the trace knows of the slave. */
+/* What a success response changes of what the trace knows of the slave: only what a request of
+ * the service's form asked for (a choice and the allocator's MAC ID for Allocate, a choice for
+ * Release, a UINT for a Set of an assembly selection), which its line showed as such; the slave
+ * library refuses any other length (src/devicenet/connection.c). */
 static void apply_success(cotrace_dn_node_t *n, const cotrace_dn_request_t *rq, const uint8_t *data,
                           size_t len)
 {
     switch (rq->service) {
     case DN_SVC_ALLOCATE:
-        n->allocation |= rq->len ? rq->data[0] : 0;
+        if (rq->len == ALLOCATE_DATA_LEN)
+            n->allocation |= rq->data[0];
         return;
     case DN_SVC_RELEASE:
-        n->allocation &= (uint8_t) ~(rq->len ? rq->data[0] : 0);
+        if (rq->len == RELEASE_DATA_LEN)
+            n->allocation &= (uint8_t)~rq->data[0];
         return;
     case DN_SVC_SET_ATTRIBUTE_SINGLE:
         note_selection(n, rq, rq->data, rq->len);
@@ -258,12 +267,26 @@ static void response_body(cotrace_dn_node_t *n, const uint8_t *body, size_t len,
     }
 }
 
-static void message_body(cotrace_dn_node_t *n, const uint8_t *body, size_t len, text_t *t)
+/* The master's identifiers carry its requests, the slave's its responses; the service code's
+ * response bit says which a body is. A body of the other kind is said as it is and changes nothing
+ * the trace knows: a response on the master's identifier is no answer of the slave's. */
+static void message_body(cotrace_dn_node_t *n, kind_t kind, const uint8_t *body, size_t len,
+                         text_t *t)
 {
-    if (body[0] & DN_SERVICE_RESPONSE)
+    bool response = body[0] & DN_SERVICE_RESPONSE;
+    if (response != (kind == EXPLICIT_RESPONSE)) {
+        say_service(t, body[0] & DN_SERVICE_CODE);
+        say(t,
+            response ? " response on a request identifier" : " request on a response identifier");
+        if (len > 1) {
+            say(t, ": ");
+            say_bytes(t, &body[1], len - 1);
+        }
+    } else if (response) {
         response_body(n, body, len, t);
-    else
+    } else {
         request_body(n, body, len, t);
+    }
 }
 
 static const char *fragment_type_name(uint8_t type)
@@ -274,8 +297,9 @@ static const char *fragment_type_name(uint8_t type)
 /* A fragment of an explicit message (either direction), or an acknowledgement of one; the
  * message is reassembled by the slave's and scanner's own rules (dn_fragment.h) and decoded
  * whole at its last fragment. */
-static void fragment(cotrace_dn_node_t *n, dn_fragments_t *m, const struct can_frame *f, text_t *t)
+static void fragment(cotrace_dn_node_t *n, kind_t kind, const struct can_frame *f, text_t *t)
 {
+    dn_fragments_t *m = kind == EXPLICIT_RESPONSE ? &n->response : &n->request;
     uint8_t type = f->data[1] & DN_FRAG_TYPE;
     uint8_t count = f->data[1] & DN_FRAG_COUNT;
     if (type == DN_FRAG_ACK) {
@@ -316,7 +340,7 @@ static void fragment(cotrace_dn_node_t *n, dn_fragments_t *m, const struct can_f
     if (m->len == 0)
         say(t, "empty");
     else
-        message_body(n, m->body, m->len, t);
+        message_body(n, kind, m->body, m->len, t);
 }
 
 static void explicit_frame(cotrace_dn_node_t *n, const struct can_frame *f, kind_t kind, text_t *t)
@@ -330,10 +354,10 @@ static void explicit_frame(cotrace_dn_node_t *n, const struct can_frame *f, kind
     }
     say(t, "%s %u: ", names[kind], f->data[0] & DN_HDR_MAC);
     if (f->data[0] & DN_HDR_FRAG) {
-        fragment(n, kind == EXPLICIT_RESPONSE ? &n->response : &n->request, f, t);
+        fragment(n, kind, f, t);
         return;
     }
-    message_body(n, &f->data[1], f->len - 1u, t);
+    message_body(n, kind, &f->data[1], f->len - 1u, t);
 }
 
 /* ---- link: duplicate MAC ID check -------------------------------------------------------- */

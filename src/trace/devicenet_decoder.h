@@ -27,7 +27,7 @@ typedef struct cotrace_dn_request {
     uint8_t service, class_id, instance, attribute;
     bool has_attribute;
     uint8_t data[2]; /* the first bytes of its data: the choice of Allocate/Release, a UINT */
-    uint8_t len;
+    uint8_t len;     /* the length of its whole data, which data holds only the start of */
 } cotrace_dn_request_t;
 
 /* What the trace showed of one slave. */

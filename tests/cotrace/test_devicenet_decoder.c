@@ -250,6 +250,78 @@ START_TEST(assembly_selection_applies_at_restart)
 }
 END_TEST
 
+/* Only a request of the service's form changes what the trace knows at its success: Allocate
+ * with one byte, or a selection Set with three, is shown as bytes and allocates or selects
+ * nothing (the slave library refuses both). */
+START_TEST(an_allocate_of_one_byte_allocates_nothing)
+{
+    static const step_t steps[] = {
+        {"5FE#014B030110", "G2 msg 6 to 63: unconnected request from 1: "
+                           "Allocate_Master/Slave_Connection_Set DeviceNet (0x03) instance 1 = "
+                           "10 (16)"},
+        {"5FB#01CB00", "G2 msg 3 from 63: explicit response to 1: "
+                       "Allocate_Master/Slave_Connection_Set DeviceNet (0x03) instance 1: "
+                       "message body format 8/8"},
+        {"5FD#0100B004", "G2 msg 5 to 63: poll command: assembly 21: Run fwd, Speed reference "
+                         "1200 rpm"},
+    };
+    PLAY(&dec, steps);
+}
+END_TEST
+
+START_TEST(a_selection_of_three_bytes_selects_nothing)
+{
+    static const step_t steps[] = {
+        {"5FC#0110050064140001", "G2 msg 4 to 63: explicit request from 1: Set_Attribute_Single "
+                                 "Connection (0x05) instance 0 attribute 100 = 14 00 01 (65556)"},
+        {"5FB#0190", "G2 msg 3 from 63: explicit response to 1: Set_Attribute_Single Connection "
+                     "(0x05) instance 0 attribute 100: done"},
+        {"5FF#00F30078563412", "G2 msg 7 from 63: duplicate MAC ID check request, port 0, vendor "
+                               "0x00F3, serial number 0x12345678"},
+        {"5FD#0F00B004", "G2 msg 5 to 63: poll command: assembly 21: Run fwd, Run rev, Fault "
+                         "reset, Speed reference 1200 rpm"},
+    };
+    PLAY(&dec, steps);
+}
+END_TEST
+
+/* The master's identifiers carry requests, the slave's responses: a body of the other kind is
+ * shown as such and neither answers nor replaces the request awaiting its response. */
+START_TEST(a_response_on_a_request_identifier_answers_nothing)
+{
+    static const step_t steps[] = {
+        {"5FC#01100500646400", "G2 msg 4 to 63: explicit request from 1: Set_Attribute_Single "
+                               "Connection (0x05) instance 0 attribute 100 = 64 00 (100)"},
+        {"5FC#0190", "G2 msg 4 to 63: explicit request from 1: Set_Attribute_Single response on "
+                     "a request identifier"},
+        {"5FF#00F30078563412", "G2 msg 7 from 63: duplicate MAC ID check request, port 0, vendor "
+                               "0x00F3, serial number 0x12345678"},
+        {"5FD#0F00B004", "G2 msg 5 to 63: poll command: assembly 21: Run fwd, Run rev, Fault "
+                         "reset, Speed reference 1200 rpm"},
+    };
+    PLAY(&dec, steps);
+}
+END_TEST
+
+START_TEST(a_request_on_a_response_identifier_replaces_nothing)
+{
+    static const step_t steps[] = {
+        {"5FE#014B03011001", "G2 msg 6 to 63: unconnected request from 1: "
+                             "Allocate_Master/Slave_Connection_Set DeviceNet (0x03) instance 1, "
+                             "choice 0x10 (change of state), allocator 1"},
+        {"5FB#014C030110", "G2 msg 3 from 63: explicit response to 1: "
+                           "Release_Group_2_Identifier_Set request on a response identifier: 03 "
+                           "01 10"},
+        {"5FB#01CB00", "G2 msg 3 from 63: explicit response to 1: "
+                       "Allocate_Master/Slave_Connection_Set DeviceNet (0x03) instance 1: "
+                       "message body format 8/8"},
+        {"5FD#0100B004",
+         "G2 msg 5 to 63: COS data: assembly 21: Run fwd, Speed reference 1200 rpm"},
+    };
+    PLAY(&dec, steps);
+}
+END_TEST
+
 START_TEST(assemblies_given)
 {
     cotrace_dn_decoder_init(&dec, 20, 70);
@@ -301,6 +373,10 @@ int main(void)
     tcase_add_test(tc, fragments_over_the_message_size_dropped);
     tcase_add_test(tc, io_by_allocation_and_assembly);
     tcase_add_test(tc, assembly_selection_applies_at_restart);
+    tcase_add_test(tc, an_allocate_of_one_byte_allocates_nothing);
+    tcase_add_test(tc, a_selection_of_three_bytes_selects_nothing);
+    tcase_add_test(tc, a_response_on_a_request_identifier_answers_nothing);
+    tcase_add_test(tc, a_request_on_a_response_identifier_replaces_nothing);
     tcase_add_test(tc, assemblies_given);
     tcase_add_test(tc, ucmm);
     tcase_add_test(tc, output_truncated_safely);

@@ -14,8 +14,10 @@
 #include <stddef.h>
 #include <time.h>
 
-/* Longest line including the newline and the terminating NUL. */
-#define CO_CANDUMP_LINE_MAX (22 + IFNAMSIZ + 1 + 8 + 1 + 2 * CAN_MAX_DLEN + 2)
+/* Longest line including the newline and the terminating NUL: '(', the seconds (any long long
+ * co_candump_parse reads: up to 19 digits), '.', 6 fraction digits, ") ", the interface's name (up
+ * to IFNAMSIZ - 1 characters), ' ', 8 identifier digits, '#', the data. */
+#define CO_CANDUMP_LINE_MAX (1 + 19 + 1 + 6 + 2 + (IFNAMSIZ - 1) + 1 + 8 + 1 + 2 * CAN_MAX_DLEN + 2)
 
 /* Writes one line ending in '\n' into buf (cap >= CO_CANDUMP_LINE_MAX) and returns its length. */
 size_t co_candump_format(char *buf, size_t cap, const struct timespec *wall, const char *iface,

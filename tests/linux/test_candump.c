@@ -64,6 +64,29 @@ START_TEST(refuses_too_small_buffer)
 }
 END_TEST
 
+/* The longest line co_candump_parse reads back (19-digit seconds, a 15-character interface, an
+ * error frame's 8 digits and 8 bytes) fits CO_CANDUMP_LINE_MAX: cotrace prints every line it
+ * reads. */
+START_TEST(formats_the_longest_line)
+{
+    struct timespec latest = {.tv_sec = 9223372036854775807LL, .tv_nsec = 999999999};
+    struct can_frame f = {.can_id = CAN_ERR_FLAG | CAN_ERR_MASK, .len = 8};
+    memset(f.data, 0xFF, sizeof f.data);
+    char line[CO_CANDUMP_LINE_MAX];
+    size_t n = co_candump_format(line, sizeof line, &latest, "abcdefghijklmno", &f);
+    ck_assert_str_eq(line,
+                     "(9223372036854775807.999999) abcdefghijklmno 3FFFFFFF#FFFFFFFFFFFFFFFF\n");
+    ck_assert_uint_eq(n, sizeof line - 1);
+    struct timespec ts;
+    char iface[IFNAMSIZ];
+    struct can_frame back;
+    ck_assert(co_candump_parse(line, &ts, iface, &back));
+    ck_assert_int_eq(ts.tv_sec, latest.tv_sec);
+    ck_assert_str_eq(iface, "abcdefghijklmno");
+    ck_assert_uint_eq(back.can_id, f.can_id);
+}
+END_TEST
+
 START_TEST(parses_what_it_formats)
 {
     const struct can_frame frames[] = {
@@ -167,6 +190,7 @@ int main(void)
     tcase_add_test(tc, formats_empty_extended_and_error_frames);
     tcase_add_test(tc, formats_small_timestamps_zero_padded);
     tcase_add_test(tc, refuses_too_small_buffer);
+    tcase_add_test(tc, formats_the_longest_line);
     tcase_add_test(tc, parses_what_it_formats);
     tcase_add_test(tc, parses_lower_case_and_no_newline);
     tcase_add_test(tc, parses_any_number_of_timestamp_digits);

@@ -385,6 +385,90 @@ DefaultValue=3
 }
 
 
+# The slcan codec's seeds: the bytes a host's slcand and kernel driver write on the serial link
+# (lines end in CR), and frame records (fuzz_slcan.c: CAN-ID, length, flags, data, a case
+# pattern) that the harness encodes and decodes; each input is both, so a record's bytes are junk
+# on the link too.
+def slcan_record(can_id, data=b"", flags=0, length=None, case=0):
+    length = len(data) if length is None else length
+    return struct.pack("<IBB8sB", can_id, length, flags, data, case)
+
+
+RTR, EFF = 1, 2
+SLCAN = {
+    "frames": b"t12380011223344556677\rt0800\rt7FF2CAFE\rT1ABCDEF03010203\r",
+    "remote-frames": b"r7100\rr7101\rR1FFFFFFF8\r",
+    "longest-line": b"T1FFFFFFF8FFFFFFFFFFFFFFFF\r",
+    "small-letters": b"t6012cafe\rT1abcdef03a0b0c0\r",
+    "slcand-start": b"C\rS8\rO\r",  # slcand -o -c -s8
+    "bitrates-and-flush": b"S0\rS4\rS6\r\r\rC\r",
+    "malformed": b"t\rt1239\rt1231A\rt1231AAB\rt800\rT200000000\rr71001\rS9\rO1\rZ\r"
+                 b"t1239112233445566778899\rT0000000090011223344556677889\r",
+    "overlong-then-frame": b"t6048400010000000000000000000000\rt0801AA\r",
+    "junk-then-frame": b"\x00\xff\x07garbage\nt7101" + b"05\r",
+    "line-without-cr": b"O\rt12380011",
+    "records": b"".join([
+        slcan_record(0x604, bytes.fromhex("4000100000000000")),
+        slcan_record(0x1ABCDEF0, b"\x01\x02\x03", EFF, case=0xFF),
+        slcan_record(0x710, b"\xAA", RTR),
+        slcan_record(0x1FFFFFFF, b"\xFF" * 8, EFF, case=0x55),
+        slcan_record(0x800),                    # 11-bit identifier too large: refused
+        slcan_record(0x20000000, flags=EFF),    # 29-bit identifier too large: refused
+        slcan_record(0x123, b"\x00" * 8, length=9),  # DLC 9: refused
+    ]),
+}
+
+
+# cotrace's DeviceNet decoder's seeds: a header byte (fuzz_dn_trace.c: the assemblies in use
+# and a small buffer's size) and candump -L lines; the log recorded from the slave library and
+# traces of the decoder's tests (tests/cotrace/test_devicenet_decoder.c).
+def dn_header(consumed=None, produced=None, small_cap=41):
+    return bytes([[None, 20, 21, 100].index(consumed) | [None, 70, 71, 101].index(produced) << 2
+                  | (small_cap - 1) // 5 << 4])
+
+
+def dn_trace(frames, seconds=1700000000.0):
+    return "".join("(%.6f) vcan0 %s\n" % (seconds + i / 1000, f)
+                   for i, f in enumerate(frames)).encode()
+
+
+DN_LOG = (pathlib.Path(__file__).resolve().parent.parent / "tests" / "cotrace"
+          / "devicenet.log").read_bytes()
+DN_TRACE = {
+    "devicenet-log": dn_header() + DN_LOG,
+    "devicenet-log-assemblies-20-70": dn_header(20, 70, small_cap=1) + DN_LOG,
+    "groups": dn_header() + dn_trace([
+        "3FF#", "37F#01020304", "3BF#01", "33F#", "07F#AA", "5F8#0102", "5F9#", "5FA#", "605#01",
+        "7C1#", "7ED#00CC", "7F0#", "5FC#R", "12345678#00", "20000004#0010000000000000"]),
+    "explicit-errors": dn_header() + dn_trace([
+        "5FE#014B03010301", "5FB#01CB00", "5FC#4110050209E803", "5FB#4190E803",
+        "5FC#010E7001C8", "5FB#019414FF", "5FE#014C03", "5FB#019408", "5FB#0194", "5FB#0185",
+        "5FC#01", "5FC#0132990203"]),
+    "fragments": dn_header() + dn_trace([
+        "5FC#010E010107", "5FB#81008E0641545633", "5FC#81C000", "5FB#81008E0641545633",
+        "5FB#81413132", "5FB#81413132", "5FB#8182", "5FB#81C101", "5FB#81C107",
+        "5FC#8181B004", "5FC#8100100415036100", "5FC#8182B004", "5FC#8100100415036100",
+        "5FC#8181B004"]),
+    "fragments-too-much": dn_header() + dn_trace(
+        ["5FC#8100000000000000"] + ["5FC#81%02X000000000000" % (0x40 | i) for i in range(1, 12)]),
+    "io-allocation": dn_header(small_cap=16) + dn_trace([
+        "5FD#6100B004", "5FD#", "5FD#0102", "3FF#FF074FFB", "5FE#014B03011001", "5FB#01CB00",
+        "5FD#0100B004", "3FF#", "37F#70030000", "5FA#", "5FE#014C030110", "5FB#01CC",
+        "5FE#014B03012001", "5FB#01CB00", "37F#70030000"]),
+    "assembly-selection-restart": dn_header() + dn_trace([
+        "5FC#01100500646400", "5FB#0190", "5FC#01100500651400", "5FB#019409FF", "5FD#0F00B004",
+        "5FF#00F30078563412", "5FD#0F00B004", "3FF#2706B004", "5FC#010E046503",
+        "5FB#018E2706B004"]),
+    "assemblies-given": dn_header(20, 70) + dn_trace(["5FD#0500F6FF", "3FF#FF00F6FF",
+                                                      "3FF#00000000"]),
+    "ucmm": dn_header() + dn_trace(["781#194B0031", "759#01CB00", "759#01CC", "781#19"]),
+    # cotrace reads any number of timestamp digits, and interfaces of up to 15 characters.
+    "timestamps-and-interfaces": dn_header() + (
+        b"(1.0) can0 4CC#010E010101\n(0.5) x 4CB#018EF300\nnot a line\n\n"
+        b"(9223372036854775807.999999999) abcdefghijklmno 4CF#00F30078563412\n"),
+}
+
+
 def image(sequence, kind, records):
     body = b"COS\x02" + struct.pack("<IB", sequence, kind)
     for index, sub, value in records:
@@ -445,7 +529,9 @@ def main():
             ("sdo_client", {k: h + frames_input(v) for k, (h, v) in SDO_CLIENT.items()}),
             ("net_master", {k: h + frames_input(v) for k, (h, v) in NET_MASTER.items()}),
             ("eds_reader", EDS_READER),
-            ("dn_drive", {k: frames_input(v) for k, v in DN_DRIVE.items()})):
+            ("dn_drive", {k: frames_input(v) for k, v in DN_DRIVE.items()}),
+            ("slcan", SLCAN),
+            ("dn_trace", DN_TRACE)):
         folder = CORPUS / harness
         folder.mkdir(parents=True, exist_ok=True)
         for name, data in seeds.items():

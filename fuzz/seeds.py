@@ -522,6 +522,65 @@ DN_DRIVE = {
 }
 
 
+# The DeviceNet scanner's seeds: a scanner of MAC ID 0 and slaves 1, 2, 63 (fuzz_scanner.c).
+# Slave 1 answers on 40B (explicit response), hears 40E (unconnected) and 40D (polls), and
+# answers polls on 3C1; its COS data come on 341. A request's header carries the XID, toggled
+# from 00 to 40 at each request of the slave.
+def scanner_command(number, slave=0, a=0, b=0):
+    return bytes([0xE0 | number, slave, a, b])
+
+
+def allocate(choice=0x03):
+    return scanner_command(0, a=choice)
+
+
+def release(choice=0x03):
+    return scanner_command(1, a=choice)
+
+
+def keep_polling(period_ms=25, rate_ms=25):
+    return scanner_command(4, a=period_ms - 1, b=rate_ms)
+
+
+def poll_every(period_ms):
+    return scanner_command(5, a=period_ms)
+
+
+POLL_ANSWER = "3C1#01020304"
+SCANNER = {
+    "allocate-get-release": [allocate(), "40B#00CB00", scanner_command(2, a=1, b=1),
+                             "40B#408EF300", release(), "40B#00CC"],
+    "allocate-refused": [allocate(), "40B#00940C01", allocate(0x02), "+1s"],
+    "get-fragmented": [allocate(0x01), "40B#00CB00", scanner_command(2, a=1, b=1),
+                       "40B#C0008E0641545633", "40B#C0813132"],
+    "get-fragment-lost": [allocate(0x01), "40B#00CB00", scanner_command(2, a=1, b=1),
+                          "40B#C0008E0641545633", "40B#C0823132"],
+    "set-fragmented": [allocate(0x01), "40B#00CB00", scanner_command(3, a=14), "40B#C0C000",
+                       "40B#C0C100", "40B#C0C200", "40B#409415FF"],
+    "set-fragment-unacknowledged": [allocate(0x01), "40B#00CB00", scanner_command(3, a=20),
+                                    "+1s", "+1s"],
+    "poll-once": [allocate(), "40B#00CB00", scanner_command(7, a=4), scanner_command(6),
+                  POLL_ANSWER, scanner_command(6), "+1s"],
+    "keep-polling-lost-restored": [allocate(), "40B#00CB00", keep_polling(), POLL_ANSWER, "+25ms",
+                                   POLL_ANSWER, "+125ms", "40B#40CC", "40B#00CB00",
+                                   "40B#40902000", "+25ms", POLL_ANSWER],
+    "keep-polling-bounded-retry": [allocate(), "40B#00CB00", keep_polling(), "+100ms", "+5s",
+                                   "+10s", "+10s", "40B#40CC", "40B#00940C01", "+10s"],
+    "keep-polling-stopped-in-a-try": [allocate(), "40B#00CB00", keep_polling(), "+100ms",
+                                      "40B#40CC", poll_every(0), release(), "40B#00CB00",
+                                      "40B#40CC"],
+    "late-answer": [allocate(), "40B#00CB00", poll_every(200), "+1000ms", POLL_ANSWER,
+                    POLL_ANSWER],
+    "cos-acknowledged": [allocate(0x11), "40B#00CB00", "341#01020304", "341#"],
+    "three-slaves": [allocate(), scanner_command(0, slave=1, a=3), scanner_command(0, slave=2, a=3),
+                     "40B#00CB00", "413#00CB00", "5FB#00CB00", keep_polling(),
+                     scanner_command(4, slave=1, a=24, b=25), scanner_command(4, slave=2, a=24, b=25),
+                     POLL_ANSWER, "3C2#01020304", "3FF#01020304", "+25ms", "3FF#01020304"],
+    "duplicate-mac": [scanner_command(9), "407#800100FFFFFFFF", "+3s"],
+    "check-then-online": [scanner_command(9), "+1s", "+1s", "407#000100FFFFFFFF"],
+}
+
+
 def main():
     for harness, seeds in (
             ("frames", {k: frames_input(v) for k, v in FRAMES.items()}),
@@ -531,7 +590,8 @@ def main():
             ("eds_reader", EDS_READER),
             ("dn_drive", {k: frames_input(v) for k, v in DN_DRIVE.items()}),
             ("slcan", SLCAN),
-            ("dn_trace", DN_TRACE)):
+            ("dn_trace", DN_TRACE),
+            ("scanner", {k: frames_input(v) for k, v in SCANNER.items()})):
         folder = CORPUS / harness
         folder.mkdir(parents=True, exist_ok=True)
         for name, data in seeds.items():

@@ -36,6 +36,50 @@ static bool parse_mac(const dnscan_options_t *opts, const char *text, uint8_t *m
     return true;
 }
 
+/* poll's MAC IDs: one, a list and ranges (5,7,10-20), each once; false after the usage error. */
+static bool parse_mac_list(const dnscan_options_t *opts, const char *text, bool chosen[64])
+{
+    memset(chosen, 0, 64 * sizeof chosen[0]);
+    const char *item = text;
+    for (;;) {
+        size_t len = strcspn(item, ",");
+        char part[16];
+        unsigned long first, last;
+        char *dash = NULL;
+        bool ok = len > 0 && len < sizeof part;
+        if (ok) {
+            snprintf(part, sizeof part, "%.*s", (int)len, item);
+            dash = strchr(part, '-');
+            if (dash)
+                *dash = '\0';
+            ok = dnscan_parse_number(part, DN_MAC_ID_MAX, &first);
+            last = first;
+            if (ok && dash)
+                ok = dnscan_parse_number(dash + 1, DN_MAC_ID_MAX, &last) && last >= first;
+        }
+        if (!ok) {
+            dnscan_fail(opts, EX_USAGE,
+                        "'%s' is not a MAC ID or a list of them: give 0..63, a range like 1-63 or "
+                        "a list like 5,7",
+                        text);
+            return false;
+        }
+        for (unsigned long n = first; n <= last; n++) {
+            if (n == opts->mac_id) {
+                dnscan_fail(opts, EX_USAGE,
+                            "MAC ID %lu is the scanner's own: give the scanner another with "
+                            "--mac-id N",
+                            n);
+                return false;
+            }
+            chosen[n] = true;
+        }
+        if (item[len] == '\0')
+            return true;
+        item += len + 1;
+    }
+}
+
 static bool parse_byte(const dnscan_options_t *opts, const char *what, const char *text,
                        unsigned long min, uint8_t *value)
 {
@@ -443,8 +487,8 @@ int dnscan_scan(dnscan_options_t *opts)
 
 typedef struct poll_command {
     const cip_assembly_t *out;
-    const cip_assembly_t *in;
-    uint32_t count; /* polls before the end; 0: until interrupted */
+    const cip_assembly_t *in; /* --assembly's; else each slave's from its connection path */
+    uint32_t count;           /* polls before the end; 0: until interrupted */
 } poll_command_t;
 
 static poll_command_t poll_state;
@@ -452,7 +496,7 @@ static poll_command_t poll_state;
 static void print_input(const dnscan_run_t *run, const dnscan_sequence_t *seq, const uint8_t *data,
                         uint8_t len)
 {
-    const cip_assembly_t *in = poll_state.in;
+    const cip_assembly_t *in = cip_assembly(seq->in_assembly);
     char hex[17];
     hex_text(data, len, hex);
     if (run->opts->json)
@@ -477,6 +521,7 @@ static void print_input(const dnscan_run_t *run, const dnscan_sequence_t *seq, c
     fflush(stdout);
 }
 
+/* A line per answer; a late answer (its poll already reported missed) is only counted. */
 static void poll_io(dnscan_run_t *run, dnscan_sequence_t *seq, dn_io_kind_t kind,
                     const uint8_t *data, uint8_t len)
 {
@@ -526,13 +571,76 @@ static bool poll_result(dnscan_run_t *run, dnscan_sequence_t *seq, const dnscan_
         return true;
     }
     if (step->service == DN_SVC_GET_ATTRIBUTE_SINGLE) {
-        const cip_assembly_t *a = cip_assembly(path_instance(r->data, r->len));
+        uint16_t instance = path_instance(r->data, r->len);
         if (step->data[0] == DN_CONN_ATTR_PRODUCED_PATH)
-            poll_state.in = a;
+            seq->in_assembly = instance;
         else
-            poll_state.out = a;
+            poll_state.out = cip_assembly(instance);
     }
     return true;
+}
+
+/* A kept polled connection (--every): lost and re-established are warnings, a failed round of
+ * tries an error (the exit status at the end); --json adds an object on stdout. */
+static void poll_connection(dnscan_run_t *run, dnscan_sequence_t *seq, dn_connection_event_t event,
+                            const dn_result_t *r)
+{
+    const dnscan_options_t *opts = run->opts;
+    const dn_slave_t *slave = dn_scanner_slave(&run->scanner, seq->mac_id);
+    if (event == DN_CONNECTION_FAILED) {
+        char why[96];
+        if (r->status == DN_RESULT_CIP_ERROR)
+            snprintf(why, sizeof why, "CIP error 0x%02X (%s), additional code 0x%02X", r->general,
+                     cip_general_status_text(r->general), r->additional);
+        else
+            snprintf(why, sizeof why, "%s",
+                     r->status == DN_RESULT_TIMEOUT ? "no answer in time" : "a malformed answer");
+        run->status = dnscan_fail(
+            opts, r->status == DN_RESULT_CIP_ERROR ? CLI_EXIT_REFUSED : CLI_EXIT_TIMEOUT,
+            "MAC ID %u: the polled connection is not re-established after %u tries %u s apart "
+            "(%s: %s): trying again every %u s",
+            seq->mac_id, DN_SCANNER_RECONNECT_TRIES, DN_SCANNER_RECONNECT_INTERVAL_US / 1000000u,
+            r->service == DN_SVC_RELEASE    ? "release"
+            : r->service == DN_SVC_ALLOCATE ? "allocate"
+                                            : "expected packet rate",
+            why, DN_SCANNER_RECONNECT_SLOW_US / 1000000u);
+        return;
+    }
+    bool lost = event == DN_CONNECTION_LOST;
+    if (lost)
+        co_log(CO_LOG_WARN,
+               "MAC ID %u: the polled connection is lost (%u polls in a row unanswered): "
+               "re-establishing it",
+               seq->mac_id, DN_SCANNER_LOST_AFTER_MISSED);
+    else
+        co_log(CO_LOG_WARN, "MAC ID %u: the polled connection is re-established (try %u)",
+               seq->mac_id, slave->tries);
+    if (opts->json) {
+        printf("{\"mac_id\": %u, \"connection\": \"%s\"}\n", seq->mac_id,
+               lost ? "lost" : "re-established");
+        fflush(stdout);
+    }
+}
+
+/* poll --every's last lines: each slave's polls, each answered or missed once or still awaiting
+ * its answer (a slave that answered its Release but not the last poll before it), and the late
+ * answers apart (D-DEVICENET-LATE-POLL). */
+static void print_poll_summary(const dnscan_run_t *run)
+{
+    for (uint8_t i = 0; i < run->config.slave_count; i++) {
+        const dn_slave_t *s = &run->slaves[i];
+        unsigned awaiting = s->poll_deadline != CO_TIME_NEVER;
+        if (run->opts->json)
+            printf("{\"mac_id\": %u, \"polls\": %u, \"answered\": %u, \"missed\": %u, "
+                   "\"awaiting\": %u, \"late\": %u, \"lost\": %u, \"reestablished\": %u}\n",
+                   s->mac_id, s->polls, s->responses, s->missed, awaiting, s->late, s->lost,
+                   s->restored);
+        else
+            printf("MAC ID %u: polls %u, answered %u, missed %u, awaiting %u, late %u, lost %u, "
+                   "re-established %u\n",
+                   s->mac_id, s->polls, s->responses, s->missed, awaiting, s->late, s->lost,
+                   s->restored);
+    }
 }
 
 /* OUT/IN of --assembly, and the output data of --output and --set. */
@@ -582,25 +690,15 @@ static int poll_output(dnscan_options_t *opts, dnscan_run_t *run)
     return -1;
 }
 
-int dnscan_poll(dnscan_options_t *opts)
+/* A slave's poll: Allocate, the assemblies unless --assembly gave them, the expected packet
+ * rate, the polls, Release. */
+static void add_poll_sequence(const dnscan_options_t *opts, dnscan_run_t *run, uint8_t mac_id)
 {
-    uint8_t mac_id;
-    if (!parse_mac(opts, opts->args[1], &mac_id))
-        return EX_USAGE;
-    static dnscan_run_t run;
-    dnscan_run_init(&run, opts);
-    memset(&poll_state, 0, sizeof poll_state);
-    int rc = poll_output(opts, &run);
-    if (rc >= 0)
-        return rc;
-    run.on_result = poll_result;
-    run.on_io = poll_io;
-    run.every_us = dnscan_ms(opts->every_ms);
-    poll_state.count = opts->every_ms ? opts->count : 1;
-    run.signal_is_the_end = poll_state.count == 0;
-    dnscan_sequence_t *seq = dnscan_add_slave(&run, mac_id);
+    dnscan_sequence_t *seq = dnscan_add_slave(run, mac_id);
     dnscan_add_step(seq, DNSCAN_ALLOCATE)->choice = CHOICE_IO;
-    if (!opts->assembly) {
+    if (opts->assembly) {
+        seq->in_assembly = poll_state.in->instance;
+    } else {
         static const uint8_t paths[] = {DN_CONN_ATTR_CONSUMED_PATH, DN_CONN_ATTR_PRODUCED_PATH};
         for (size_t i = 0; i < sizeof paths; i++) {
             dnscan_step_t *step = dnscan_add_step(seq, DNSCAN_REQUEST);
@@ -611,20 +709,45 @@ int dnscan_poll(dnscan_options_t *opts)
             step->len = 1;
         }
     }
-    /* The expected packet rate: the period, or the timeout for a single poll. */
-    uint16_t rate = (uint16_t)(opts->every_ms                  ? opts->every_ms
-                               : opts->timeout_ms > UINT16_MAX ? UINT16_MAX
-                                                               : opts->timeout_ms);
     dnscan_step_t *epr = dnscan_add_step(seq, DNSCAN_REQUEST);
     epr->service = DN_SVC_SET_ATTRIBUTE_SINGLE;
     epr->class_id = DN_CLASS_CONNECTION;
     epr->instance = DN_CONN_POLL;
     epr->data[0] = DN_CONN_ATTR_EXPECTED_PACKET_RATE;
-    co_put_u16(&epr->data[1], rate);
+    co_put_u16(&epr->data[1], run->rate_ms);
     epr->len = 3;
     dnscan_add_step(seq, DNSCAN_POLL);
     dnscan_add_step(seq, DNSCAN_RELEASE)->choice = CHOICE_IO;
-    return dnscan_run(&run);
+}
+
+int dnscan_poll(dnscan_options_t *opts)
+{
+    bool chosen[DN_MAC_ID_MAX + 1];
+    if (!parse_mac_list(opts, opts->args[1], chosen))
+        return EX_USAGE;
+    static dnscan_run_t run;
+    dnscan_run_init(&run, opts);
+    memset(&poll_state, 0, sizeof poll_state);
+    int rc = poll_output(opts, &run);
+    if (rc >= 0)
+        return rc;
+    run.on_result = poll_result;
+    run.on_io = poll_io;
+    run.on_connection = poll_connection;
+    run.every_us = dnscan_ms(opts->every_ms);
+    poll_state.count = opts->every_ms ? opts->count : 1;
+    run.signal_is_the_end = poll_state.count == 0;
+    /* The expected packet rate: the period, or the timeout for a single poll. */
+    run.rate_ms = (uint16_t)(opts->every_ms                  ? opts->every_ms
+                             : opts->timeout_ms > UINT16_MAX ? UINT16_MAX
+                                                             : opts->timeout_ms);
+    for (uint8_t mac_id = 0; mac_id <= DN_MAC_ID_MAX; mac_id++)
+        if (chosen[mac_id])
+            add_poll_sequence(opts, &run, mac_id);
+    int status = dnscan_run(&run);
+    if (opts->every_ms && run.started)
+        print_poll_summary(&run);
+    return status;
 }
 
 /* ---- monitor ------------------------------------------------------------------------------ */

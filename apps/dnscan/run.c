@@ -52,8 +52,9 @@ static void start_step(dnscan_run_t *run, dnscan_sequence_t *seq, co_time_t now)
         break;
     case DNSCAN_POLL:
         dn_scanner_set_output(s, seq->mac_id, run->output, run->output_len);
-        started = run->every_us ? dn_scanner_poll_every(s, seq->mac_id, run->every_us, now)
-                                : dn_scanner_poll(s, seq->mac_id, now);
+        started = run->every_us
+                      ? dn_scanner_keep_polling(s, seq->mac_id, run->every_us, run->rate_ms, now)
+                      : dn_scanner_poll(s, seq->mac_id, now);
         break;
     }
     if (!started)
@@ -72,6 +73,8 @@ void dnscan_skip_to_release(dnscan_run_t *run, dnscan_sequence_t *seq)
 
 void dnscan_poll_done(dnscan_run_t *run, dnscan_sequence_t *seq, co_time_t now)
 {
+    if (seq->done || seq->steps[seq->next].kind != DNSCAN_POLL)
+        return; /* a signal sent the sequence to its release: the last poll's end changes nothing */
     dn_scanner_poll_every(&run->scanner, seq->mac_id, 0, now);
     next_step(run, seq, now);
 }
@@ -111,12 +114,21 @@ static void on_io(void *user, uint8_t mac_id, dn_io_kind_t kind, const uint8_t *
         run->on_io(run, seq, kind, data, len);
 }
 
+static void on_connection(void *user, uint8_t mac_id, dn_connection_event_t event,
+                          const dn_result_t *result)
+{
+    dnscan_run_t *run = user;
+    dnscan_sequence_t *seq = sequence_of(run, mac_id);
+    if (seq && run->on_connection)
+        run->on_connection(run, seq, event, result);
+}
+
 static void device_start(void *ctx, co_time_t now)
 {
     dnscan_run_t *run = ctx;
     run->now = now;
-    if (run->passive)
-        return;
+    if (run->passive || run->releasing)
+        return; /* the loop runs again for the releases: the scanner goes on as it is */
     if (run->opts->no_check)
         dn_scanner_start_online(&run->scanner, now);
     else
@@ -179,7 +191,7 @@ void dnscan_run_init(dnscan_run_t *run, dnscan_options_t *opts)
     memset(run, 0, sizeof *run);
     run->opts = opts;
     run->end = CO_TIME_NEVER;
-    run->app = (dn_scanner_app_t){run, on_send, on_done, on_io};
+    run->app = (dn_scanner_app_t){run, on_send, on_done, on_io, on_connection};
 }
 
 dnscan_sequence_t *dnscan_add_slave(dnscan_run_t *run, uint8_t mac_id)
@@ -196,6 +208,47 @@ dnscan_step_t *dnscan_add_step(dnscan_sequence_t *seq, dnscan_step_kind_t kind)
     memset(step, 0, sizeof *step);
     step->kind = kind;
     return step;
+}
+
+/* The release step still ahead of a sequence that allocated or is allocating, or -1. */
+static int release_ahead(const dnscan_sequence_t *seq)
+{
+    for (int i = seq->next; i < seq->count; i++)
+        if (seq->steps[i].kind == DNSCAN_RELEASE)
+            return i;
+    return -1;
+}
+
+/* SIGINT or SIGTERM: each sequence not done stops (polls, a request in progress dropped) and
+ * goes to its release at once, or ends when it has none (what `allocate` leaves allocated);
+ * true when a release is under way. */
+static bool release_on_signal(dnscan_run_t *run)
+{
+    if (!run->started)
+        return false;
+    co_time_t now = co_linux_now();
+    run->now = now;
+    bool any = false;
+    for (uint8_t i = 0; i < run->config.slave_count; i++) {
+        dnscan_sequence_t *seq = &run->sequences[i];
+        if (seq->done)
+            continue;
+        int release = release_ahead(seq);
+        if (release == seq->next) {
+            any = true; /* already on its way */
+            continue;
+        }
+        dn_scanner_poll_every(&run->scanner, seq->mac_id, 0, now);
+        dn_scanner_abandon(&run->scanner, seq->mac_id);
+        if (release < 0) {
+            seq->done = true;
+            continue;
+        }
+        any = true;
+        seq->next = (uint8_t)release;
+        start_step(run, seq, now);
+    }
+    return any;
 }
 
 int dnscan_run(dnscan_run_t *run)
@@ -216,6 +269,12 @@ int dnscan_run(dnscan_run_t *run)
         return open_error(run, opened);
     co_linux_loop_add(&run->loop, &run->device, &device_ops, run);
     int rc = co_linux_loop_run(&run->loop);
+    if (rc == 0 && release_on_signal(run)) {
+        run->releasing = true;
+        int released = co_linux_loop_run(&run->loop);
+        if (released != 0 && released < FINISHED)
+            rc = released; /* the loop failed */
+    }
     co_linux_loop_close(&run->loop);
     if (rc >= FINISHED)
         return rc - FINISHED;

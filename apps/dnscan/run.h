@@ -16,7 +16,7 @@ typedef enum dnscan_step_kind {
     DNSCAN_ALLOCATE,
     DNSCAN_RELEASE,
     DNSCAN_REQUEST,
-    DNSCAN_POLL /* ends when the command calls dnscan_poll_done */
+    DNSCAN_POLL /* ends when the command calls dnscan_poll_done; kept with --every */
 } dnscan_step_kind_t;
 
 typedef struct dnscan_step {
@@ -40,8 +40,7 @@ typedef struct dnscan_sequence {
     /* the command's own */
     bool we_allocated;
     uint32_t polls;
-    uint8_t in_data[8];
-    uint8_t in_len;
+    uint16_t in_assembly; /* poll: the produced assembly the answers carry, 0 unknown */
     uint16_t vendor, device_type, product_code, serial_low, serial_high;
     uint8_t revision[2];
     char name[33];
@@ -62,10 +61,12 @@ struct dnscan_run {
     bool started;
     bool passive;           /* monitor: the scanner stays off, nothing is sent */
     bool signal_is_the_end; /* poll without --count, monitor: SIGINT ends it, no error */
+    bool releasing;         /* after SIGINT or SIGTERM: the releases of what was allocated */
     int status;
     co_time_t now;
     co_time_t end; /* the command's own deadline (CO_TIME_NEVER) */
     co_time_t every_us;
+    uint16_t rate_ms; /* poll: the expected packet rate set, and set again on a reconnection */
     uint8_t output[8];
     uint8_t output_len;
     /* A step's result: false stops the slave's sequence. */
@@ -74,13 +75,17 @@ struct dnscan_run {
     void (*on_io)(dnscan_run_t *run, dnscan_sequence_t *seq, dn_io_kind_t kind, const uint8_t *data,
                   uint8_t len);
     void (*on_frame)(dnscan_run_t *run, const co_frame_t *frame);
+    void (*on_connection)(dnscan_run_t *run, dnscan_sequence_t *seq, dn_connection_event_t event,
+                          const dn_result_t *result);
     const void *command; /* the command's context */
 };
 
 void dnscan_run_init(dnscan_run_t *run, dnscan_options_t *opts);
 dnscan_sequence_t *dnscan_add_slave(dnscan_run_t *run, uint8_t mac_id);
 dnscan_step_t *dnscan_add_step(dnscan_sequence_t *seq, dnscan_step_kind_t kind);
-/* Opens the interface and runs until the command finishes; its exit status. */
+/* Opens the interface and runs until the command finishes; its exit status. SIGINT or SIGTERM
+ * first sends each slave whose sequence allocated (or was allocating) its release step, and
+ * waits for them (each within the timeout; a second signal does not wait). */
 int dnscan_run(dnscan_run_t *run);
 void dnscan_finish(dnscan_run_t *run, int status);
 /* Leaves out the steps before the sequence's release (after an error). */

@@ -11,7 +11,9 @@
  * explicit connection with fragmentation both ways, polls the polled connection (instance 2)
  * once or at a period, and takes and acknowledges the slave's COS/cyclic data (instance 4).
  * Every request ends in one result: success, the CIP error response (general status and
- * additional code), or a timeout (docs/devicenet.md, "The scanner"). */
+ * additional code), or a timeout (docs/devicenet.md, "The scanner"). A polled connection kept
+ * with dn_scanner_keep_polling is re-established when the slave stops answering
+ * (docs/decisions.md, D-DEVICENET-RECONNECT). */
 #ifndef DN_SCANNER_H
 #define DN_SCANNER_H
 
@@ -28,6 +30,17 @@
 #define DN_SCANNER_MAC_DEFAULT 0u
 /* How long a request waits for its response, or a fragment for its acknowledgement. */
 #define DN_SCANNER_TIMEOUT_DEFAULT_US 1000000u
+
+/* The supervision of a kept polled connection (dn_scanner_keep_polling, D-DEVICENET-RECONNECT):
+ * this many polls in a row unanswered, the time the slave's own watchdog takes (4 x the expected
+ * packet rate), and the connection is lost; ... */
+#define DN_SCANNER_LOST_AFTER_MISSED 4u
+/* ... re-established by tries of Release, Allocate and the expected packet rate: this many, one
+ * second apart, then (reported as DN_CONNECTION_FAILED) one every ten seconds until one succeeds
+ * or polling stops. */
+#define DN_SCANNER_RECONNECT_TRIES 3u
+#define DN_SCANNER_RECONNECT_INTERVAL_US 1000000u
+#define DN_SCANNER_RECONNECT_SLOW_US 10000000u
 
 /* How a request ended. */
 typedef enum dn_result_status {
@@ -52,10 +65,29 @@ typedef struct dn_result {
 
 /* What the polled connection or the COS/cyclic connection brought. */
 typedef enum dn_io_kind {
-    DN_IO_POLL_RESPONSE, /* the answer to a poll command */
+    DN_IO_POLL_RESPONSE, /* the answer to the poll command awaiting one */
     DN_IO_POLL_MISSED,   /* no answer to a poll command before its timeout or the next poll */
+    DN_IO_POLL_LATE,     /* an answer while no poll awaits one: its poll was counted missed */
     DN_IO_COS_DATA       /* the slave's COS/cyclic data (acknowledged unless suppressed) */
 } dn_io_kind_t;
+
+/* What became of a kept polled connection (dn_scanner_keep_polling). */
+typedef enum dn_connection_event {
+    DN_CONNECTION_LOST,     /* DN_SCANNER_LOST_AFTER_MISSED polls in a row unanswered: polls stop,
+                             * the first try starts */
+    DN_CONNECTION_RESTORED, /* a try went through: polling goes on */
+    DN_CONNECTION_FAILED    /* the DN_SCANNER_RECONNECT_TRIES quick tries failed, the last as
+                             * `result` says: one try every DN_SCANNER_RECONNECT_SLOW_US now */
+} dn_connection_event_t;
+
+/* The steps of a try to re-establish a polled connection. */
+typedef enum dn_recovery {
+    DN_RECOVERY_NONE,     /* the connection is up (or not kept) */
+    DN_RECOVERY_WAITING,  /* the next try at next_try, once no request is in progress */
+    DN_RECOVERY_RELEASE,  /* what is left of the old connections released */
+    DN_RECOVERY_ALLOCATE, /* the set allocated again */
+    DN_RECOVERY_RATE      /* the expected packet rate of instance 2: Established again */
+} dn_recovery_t;
 
 typedef struct dn_scanner_app {
     void *user;
@@ -64,6 +96,10 @@ typedef struct dn_scanner_app {
     void (*done)(void *user, const dn_result_t *result);
     /* I/O data of a slave (len 0 for DN_IO_POLL_MISSED). Optional. */
     void (*io)(void *user, uint8_t mac_id, dn_io_kind_t kind, const uint8_t *data, uint8_t len);
+    /* A kept polled connection lost, re-established, or not re-established in its quick tries
+     * (`result`: the failed step's, NULL for the other events). Optional. */
+    void (*connection)(void *user, uint8_t mac_id, dn_connection_event_t event,
+                       const dn_result_t *result);
 } dn_scanner_app_t;
 
 /* One slave the scanner talks to. */
@@ -86,9 +122,22 @@ typedef struct dn_slave {
     co_time_t poll_period; /* microseconds; 0: on demand only */
     co_time_t next_poll;
     co_time_t poll_deadline; /* CO_TIME_NEVER: no poll awaiting its response */
+    /* Each poll sent is answered or missed, once: polls = responses + missed + (1 while one
+     * awaits its answer). An answer while none awaits is late, counted apart. */
     uint32_t polls;
     uint32_t responses;
     uint32_t missed;
+    uint32_t late;
+    uint8_t missed_in_row;
+    /* The supervision of a kept polled connection (dn_scanner_keep_polling). */
+    uint8_t keep_choice; /* the connections re-allocated; 0: not kept */
+    uint16_t keep_rate_ms;
+    dn_recovery_t recovery;
+    bool recovering_request; /* the request in progress is a step of the recovery's */
+    uint8_t tries;           /* since the connection was lost */
+    co_time_t next_try;
+    uint32_t lost;     /* times the connection was found lost */
+    uint32_t restored; /* times it was re-established */
 } dn_slave_t;
 
 /* The scanner's duplicate MAC ID check. */
@@ -160,8 +209,19 @@ bool dn_scanner_set_expected_packet_rate(dn_scanner_t *scanner, uint8_t mac_id, 
 bool dn_scanner_set_output(dn_scanner_t *scanner, uint8_t mac_id, const uint8_t *data, uint8_t len);
 /* One poll command now (the polled connection must be allocated and established). */
 bool dn_scanner_poll(dn_scanner_t *scanner, uint8_t mac_id, co_time_t now);
-/* Poll commands every `period_us` from now on (0 stops them). */
+/* Poll commands every `period_us` from now on (0 stops them, and the supervision of
+ * dn_scanner_keep_polling with any try in progress). */
 bool dn_scanner_poll_every(dn_scanner_t *scanner, uint8_t mac_id, co_time_t period_us,
                            co_time_t now);
+/* Poll commands every `period_us`, and the connection kept: DN_SCANNER_LOST_AFTER_MISSED polls
+ * in a row unanswered, it is re-established (D-DEVICENET-RECONNECT): Release and Allocate of the
+ * connections allocated now (explicit and polled at least, else false), then the expected packet
+ * rate `rate_ms` of instance 2, the tries as DN_SCANNER_RECONNECT_* say; the `connection`
+ * callback tells. Requests of the application's wait for no try, and a try waits for them. */
+bool dn_scanner_keep_polling(dn_scanner_t *scanner, uint8_t mac_id, co_time_t period_us,
+                             uint16_t rate_ms, co_time_t now);
+/* Drops the request in progress without a result (its late answer is ignored): a program that
+ * stops sends its Release at once. */
+void dn_scanner_abandon(dn_scanner_t *scanner, uint8_t mac_id);
 
 #endif

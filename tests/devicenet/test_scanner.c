@@ -4,7 +4,9 @@
  * rate, polls once and at a period, COS data acknowledged; with scripted frames instead of the
  * slave, the error paths: a CIP error, another master owning the set, timeouts, a lost and a
  * repeated response fragment, a request fragment unacknowledged or refused, missed polls, and
- * 63 slaves polled every 25 ms. Frames in candump text, time injected. */
+ * 63 slaves polled every 25 ms; a kept polled connection lost and re-established (against the
+ * slave, and scripted: the sequence, the bounded retry, a refusal), a late answer counted once,
+ * and the Release of a program that stops during a try. Frames in candump text, time injected. */
 #include "check_main.h"
 #include "dn/dn_scanner.h"
 #include "dn_bench.h"
@@ -17,7 +19,9 @@
 #define FRAMES 512
 #define RESULTS 16
 #define IOS 16
+#define EVENTS 8
 #define MS 1000u
+#define POLL_CONNECTION 1u /* the slave's conn[] of instance 2 (dn_node.h) */
 
 typedef struct wire {
     dn_bench_t bench; /* the slave, first: its send callback finds the wire from it */
@@ -42,6 +46,10 @@ typedef struct wire {
     uint8_t io_data[IOS][8];
     uint8_t io_len[IOS];
     size_t io_count;
+    dn_connection_event_t events[EVENTS];
+    dn_result_t event_results[EVENTS]; /* status NONE-like (OK) when the event has none */
+    co_time_t event_at[EVENTS];
+    size_t event_count;
 } wire_t;
 
 static wire_t w;
@@ -88,6 +96,19 @@ static void scanner_io(void *user, uint8_t mac_id, dn_io_kind_t kind, const uint
     wire->io_len[i] = len;
     if (len)
         memcpy(wire->io_data[i], data, len);
+}
+
+static void scanner_connection(void *user, uint8_t mac_id, dn_connection_event_t event,
+                               const dn_result_t *r)
+{
+    wire_t *wire = user;
+    (void)mac_id;
+    ck_assert_uint_lt(wire->event_count, EVENTS);
+    size_t i = wire->event_count++;
+    wire->events[i] = event;
+    wire->event_results[i] = r ? *r : (dn_result_t){0};
+    wire->event_results[i].data = NULL;
+    wire->event_at[i] = wire->now;
 }
 
 /* Hands every frame not yet delivered to the other side, then runs both. */
@@ -194,7 +215,7 @@ static void wire_setup(const uint8_t *macs, uint8_t count, bool connected)
     w.bench.app.send = slave_send;
     w.now = w.bench.now;
     w.connected = connected;
-    w.app = (dn_scanner_app_t){&w, scanner_send, scanner_done, scanner_io};
+    w.app = (dn_scanner_app_t){&w, scanner_send, scanner_done, scanner_io, scanner_connection};
     for (uint8_t i = 0; i < count; i++)
         w.slaves[i].mac_id = macs[i];
     w.config = (dn_scanner_config_t){
@@ -591,6 +612,208 @@ START_TEST(sixty_three_slaves)
 }
 END_TEST
 
+/* ---- a kept polled connection ------------------------------------------------------------- */
+
+/* Polls every 25 ms, kept, as a program does once the set is allocated and the rate set. */
+static void keep_polling_scripted(void)
+{
+    setup_scripted();
+    w.slaves[0].allocated = DN_ALLOC_EXPLICIT | DN_ALLOC_POLLED;
+    ck_assert(dn_scanner_keep_polling(&w.scanner, SLAVE, 25 * MS, 25, w.now));
+}
+
+static void expect_counts(uint32_t polls, uint32_t responses, uint32_t missed, uint32_t late)
+{
+    const dn_slave_t *s = &w.slaves[0];
+    ck_assert_uint_eq(s->polls, polls);
+    ck_assert_uint_eq(s->responses, responses);
+    ck_assert_uint_eq(s->missed, missed);
+    ck_assert_uint_eq(s->late, late);
+}
+
+/* Four polls in a row unanswered (the 4th is missed at the 5th's time, which is not sent): lost;
+ * Release, Allocate and the expected packet rate, each on its answer; polls go on at the next
+ * period; no done result for the scanner's own requests. */
+START_TEST(kept_connection_reestablished)
+{
+    keep_polling_scripted();
+    co_time_t t0 = w.now;
+    advance(&w, 0);
+    ck_assert_uint_eq(expect("5FD#"), t0);
+    rx(&w, "3FF#01020304");
+    advance(&w, 125 * MS - 1);
+    for (unsigned i = 1; i <= 4; i++)
+        ck_assert_uint_eq(expect("5FD#"), t0 + i * 25 * MS);
+    expect_none();
+    ck_assert_uint_eq(w.event_count, 0);
+    advance(&w, 1);
+    ck_assert_uint_eq(expect("5FE#004C030103"), t0 + 125 * MS);
+    expect_none();
+    ck_assert_uint_eq(w.event_count, 1);
+    ck_assert_int_eq(w.events[0], DN_CONNECTION_LOST);
+    ck_assert_int_eq(w.slaves[0].recovery, DN_RECOVERY_RELEASE);
+    expect_counts(5, 1, 4, 0);
+    ck_assert(!dn_scanner_poll(&w.scanner, SLAVE, w.now)); /* not while it is re-established */
+    rx(&w, "5FB#00CC");
+    expect("5FE#404B03010300");
+    ck_assert_uint_eq(w.slaves[0].allocated, 0);
+    rx(&w, "5FB#40CB00");
+    expect("5FC#00100502091900");
+    ck_assert_uint_eq(w.slaves[0].allocated, DN_ALLOC_EXPLICIT | DN_ALLOC_POLLED);
+    ck_assert_int_eq(w.slaves[0].recovery, DN_RECOVERY_RATE); /* allocated, not yet polled */
+    expect_none();
+    rx(&w, "5FB#00902000");
+    ck_assert_uint_eq(w.event_count, 2);
+    ck_assert_int_eq(w.events[1], DN_CONNECTION_RESTORED);
+    ck_assert_uint_eq(w.result_count, 0);
+    advance(&w, 25 * MS);
+    ck_assert_uint_eq(expect("5FD#"), t0 + 150 * MS);
+    rx(&w, "3FF#01020304");
+    expect_none();
+    expect_counts(6, 2, 4, 0);
+    ck_assert_uint_eq(w.slaves[0].lost, 1);
+    ck_assert_uint_eq(w.slaves[0].restored, 1);
+    ck_assert_uint_eq(w.slaves[0].missed_in_row, 0);
+}
+END_TEST
+
+/* No answer at all: three tries a second apart (each Release waits the 1 s timeout), reported
+ * as failed once with the last step's result, then one try every 10 s until one goes through;
+ * an Allocate refused by another master fails its try as a timeout does. */
+START_TEST(kept_connection_bounded_retry)
+{
+    keep_polling_scripted();
+    advance(&w, 100 * MS);
+    for (unsigned i = 0; i < 4; i++)
+        expect("5FD#");
+    co_time_t lost = expect("5FE#004C030103");
+    const co_time_t s = 1000 * MS;
+    advance(&w, 4 * s);
+    ck_assert_uint_eq(expect("5FE#404C030103"), lost + 2 * s);
+    ck_assert_uint_eq(expect("5FE#004C030103"), lost + 4 * s);
+    ck_assert_uint_eq(w.event_count, 1);
+    advance(&w, 1 * s - 1);
+    ck_assert_uint_eq(w.event_count, 1);
+    advance(&w, 1);
+    ck_assert_uint_eq(w.event_count, 2);
+    ck_assert_int_eq(w.events[1], DN_CONNECTION_FAILED);
+    ck_assert_uint_eq(w.event_at[1], lost + 5 * s);
+    ck_assert_int_eq(w.event_results[1].status, DN_RESULT_TIMEOUT);
+    ck_assert_uint_eq(w.event_results[1].service, DN_SVC_RELEASE);
+    advance(&w, 21 * s);
+    ck_assert_uint_eq(expect("5FE#404C030103"), lost + 15 * s);
+    ck_assert_uint_eq(expect("5FE#004C030103"), lost + 26 * s);
+    expect_none();
+    ck_assert_uint_eq(w.event_count, 2); /* FAILED once */
+    ck_assert_uint_eq(w.slaves[0].tries, 5);
+    /* the fifth try: released, then another master answers the Allocate */
+    rx(&w, "5FB#00CC");
+    expect("5FE#404B03010300");
+    rx(&w, "5FB#40940C01");
+    ck_assert_int_eq(w.slaves[0].recovery, DN_RECOVERY_WAITING);
+    ck_assert_uint_eq(w.slaves[0].next_try, w.now + 10 * s);
+    advance(&w, 10 * s);
+    ck_assert_uint_eq(expect("5FE#004C030103"), w.now);
+    rx(&w, "5FB#00CC");
+    expect("5FE#404B03010300");
+    rx(&w, "5FB#40CB00");
+    expect("5FC#00100502091900");
+    rx(&w, "5FB#00902000");
+    ck_assert_uint_eq(w.event_count, 3);
+    ck_assert_int_eq(w.events[2], DN_CONNECTION_RESTORED);
+    ck_assert_uint_eq(w.slaves[0].tries, 6);
+    expect_counts(4, 0, 4, 0);
+    ck_assert_uint_eq(w.result_count, 0);
+}
+END_TEST
+
+/* A poll missed at its timeout (1 s, the period being 2 s), then its answer: late, not answered
+ * too; a poll answered in time is answered once. sent = answered + missed. */
+START_TEST(late_answer_counted_once)
+{
+    setup_scripted();
+    w.slaves[0].allocated = DN_ALLOC_EXPLICIT | DN_ALLOC_POLLED;
+    ck_assert(dn_scanner_poll_every(&w.scanner, SLAVE, 2000 * MS, w.now));
+    advance(&w, 1000 * MS);
+    expect("5FD#");
+    expect_counts(1, 0, 1, 0);
+    advance(&w, 500 * MS);
+    rx(&w, "3FF#01020304");
+    expect_counts(1, 0, 1, 1);
+    ck_assert_uint_eq(w.io_count, 2);
+    ck_assert_int_eq(w.io_kind[0], DN_IO_POLL_MISSED);
+    ck_assert_int_eq(w.io_kind[1], DN_IO_POLL_LATE);
+    ck_assert_uint_eq(w.io_len[1], 4);
+    advance(&w, 500 * MS);
+    expect("5FD#");
+    rx(&w, "3FF#01020304");
+    rx(&w, "3FF#01020304"); /* a second answer to the same poll */
+    expect_counts(2, 1, 1, 2);
+    ck_assert_int_eq(w.io_kind[2], DN_IO_POLL_RESPONSE);
+    ck_assert_int_eq(w.io_kind[3], DN_IO_POLL_LATE);
+}
+END_TEST
+
+/* A program stopping during a try (the Allocate awaiting its answer): polling and the
+ * supervision stop, the try is dropped, its Release goes out at once with the next XID; the
+ * Allocate's late answer is ignored, the Release's is the program's result. */
+START_TEST(release_while_reestablishing)
+{
+    keep_polling_scripted();
+    advance(&w, 100 * MS);
+    for (unsigned i = 0; i < 4; i++)
+        expect("5FD#");
+    expect("5FE#004C030103");
+    rx(&w, "5FB#00CC");
+    expect("5FE#404B03010300");
+    ck_assert(!dn_scanner_release(&w.scanner, SLAVE, DN_ALLOC_EXPLICIT | DN_ALLOC_POLLED, w.now));
+    ck_assert(dn_scanner_poll_every(&w.scanner, SLAVE, 0, w.now));
+    ck_assert(!w.slaves[0].busy);
+    ck_assert(dn_scanner_release(&w.scanner, SLAVE, DN_ALLOC_EXPLICIT | DN_ALLOC_POLLED, w.now));
+    expect("5FE#004C030103");
+    rx(&w, "5FB#40CB00"); /* the Allocate's answer: dropped */
+    ck_assert_uint_eq(w.result_count, 0);
+    rx(&w, "5FB#00CC");
+    expect_result(0, DN_RESULT_OK, 0, 0, "");
+    ck_assert_uint_eq(result(0)->service, DN_SVC_RELEASE);
+    ck_assert_uint_eq(w.slaves[0].allocated, 0);
+    ck_assert_int_eq(w.slaves[0].recovery, DN_RECOVERY_NONE);
+    advance(&w, 30000 * MS);
+    expect_none();
+}
+END_TEST
+
+/* Against the slave: polls every 25 ms at an expected packet rate of 25 ms (32 in use); the
+ * slave hears nothing for 300 ms and times the connection out (4 x 32 ms); the scanner finds it
+ * lost, and its Release, Allocate and rate make it Established again, its polls answered. */
+START_TEST(kept_connection_against_the_slave)
+{
+    setup_wired();
+    allocate(DN_ALLOC_EXPLICIT | DN_ALLOC_POLLED);
+    ck_assert(dn_scanner_set_expected_packet_rate(&w.scanner, SLAVE, DN_CONN_POLL, 25, w.now));
+    advance(&w, 0);
+    ck_assert(dn_scanner_keep_polling(&w.scanner, SLAVE, 25 * MS, 25, w.now));
+    advance(&w, 100 * MS);
+    ck_assert_uint_eq(w.slaves[0].responses, 5);
+    w.connected = false;
+    advance(&w, 300 * MS);
+    dn_node_process(&w.bench.node, w.now); /* the slave's time goes on too */
+    ck_assert_int_eq(w.bench.node.conn[POLL_CONNECTION].state, DN_CONN_TIMED_OUT);
+    ck_assert_uint_eq(w.slaves[0].lost, 1);
+    ck_assert_int_eq(w.slaves[0].recovery, DN_RECOVERY_RELEASE); /* unanswered: it times out */
+    w.connected = true;
+    advance(&w, 2000 * MS);
+    ck_assert_uint_eq(w.slaves[0].restored, 1);
+    ck_assert_int_eq(w.bench.node.conn[POLL_CONNECTION].state, DN_CONN_ESTABLISHED);
+    uint32_t answered = w.slaves[0].responses;
+    advance(&w, 100 * MS);
+    ck_assert_uint_eq(w.slaves[0].responses, answered + 4);
+    const dn_slave_t *s = &w.slaves[0];
+    ck_assert_uint_eq(s->polls, s->responses + s->missed + (s->poll_deadline != CO_TIME_NEVER));
+    ck_assert_uint_eq(s->late, 0);
+}
+END_TEST
+
 static Suite *suite(void)
 {
     Suite *s = suite_create("devicenet scanner");
@@ -611,6 +834,11 @@ static Suite *suite(void)
     tcase_add_test(tc, request_fragment_refused);
     tcase_add_test(tc, missed_polls);
     tcase_add_test(tc, sixty_three_slaves);
+    tcase_add_test(tc, kept_connection_reestablished);
+    tcase_add_test(tc, kept_connection_bounded_retry);
+    tcase_add_test(tc, late_answer_counted_once);
+    tcase_add_test(tc, release_while_reestablishing);
+    tcase_add_test(tc, kept_connection_against_the_slave);
     suite_add_tcase(s, tc);
     return s;
 }

@@ -1,7 +1,7 @@
 /* SPDX-License-Identifier: Apache-2.0 */
 /* The DeviceNet scanner (include/dn/dn_scanner.h): its duplicate MAC ID check, the slaves'
  * requests on the unconnected port and the explicit connection with fragmentation both ways,
- * the polled connection and the slaves' COS/cyclic data. */
+ * the polled connection, kept and re-established when lost, and the slaves' COS/cyclic data. */
 #include "dn/dn_scanner.h"
 
 #include <string.h>
@@ -121,6 +121,8 @@ static void link_process(dn_scanner_t *scanner)
 
 /* ---- requests --------------------------------------------------------------------------- */
 
+static void recovery_result(dn_scanner_t *scanner, dn_slave_t *slave, const dn_result_t *result);
+
 static void finish(dn_scanner_t *scanner, dn_slave_t *slave, dn_result_status_t status,
                    uint8_t general, uint8_t additional, const uint8_t *data, uint8_t len)
 {
@@ -129,6 +131,11 @@ static void finish(dn_scanner_t *scanner, dn_slave_t *slave, dn_result_status_t 
     slave->rx.active = false;
     slave->deadline = CO_TIME_NEVER;
     dn_result_t result = {slave->mac_id, slave->service, status, general, additional, len, data};
+    if (slave->recovering_request) {
+        slave->recovering_request = false;
+        recovery_result(scanner, slave, &result);
+        return;
+    }
     const dn_scanner_app_t *app = scanner->config->app;
     app->done(app->user, &result);
 }
@@ -159,6 +166,7 @@ static bool start_request(dn_scanner_t *scanner, uint8_t mac_id, const uint8_t *
     if (slave == NULL || len > DN_MESSAGE_MAX || (unconnected && len > DN_FRAME_BODY))
         return false;
     slave->busy = true;
+    slave->recovering_request = false;
     slave->service = body[0];
     slave->xid ^= DN_HDR_XID;
     slave->rx.active = false;
@@ -344,6 +352,20 @@ static co_time_t request_process(dn_scanner_t *scanner, dn_slave_t *slave)
     return slave->deadline; /* the callback may have started the next request */
 }
 
+void dn_scanner_abandon(dn_scanner_t *scanner, uint8_t mac_id)
+{
+    dn_slave_t *slave = dn_scanner_slave(scanner, mac_id);
+    if (slave == NULL)
+        return;
+    if (slave->recovering_request)
+        slave->recovery = DN_RECOVERY_WAITING; /* the try starts over when due */
+    slave->busy = false;
+    slave->recovering_request = false;
+    slave->tx.active = false;
+    slave->rx.active = false;
+    slave->deadline = CO_TIME_NEVER;
+}
+
 /* ---- I/O ------------------------------------------------------------------------------- */
 
 static void io_report(dn_scanner_t *scanner, const dn_slave_t *slave, dn_io_kind_t kind,
@@ -365,17 +387,48 @@ bool dn_scanner_set_output(dn_scanner_t *scanner, uint8_t mac_id, const uint8_t 
     return true;
 }
 
+static void connection_report(dn_scanner_t *scanner, const dn_slave_t *slave,
+                              dn_connection_event_t event, const dn_result_t *result)
+{
+    const dn_scanner_app_t *app = scanner->config->app;
+    if (app->connection)
+        app->connection(app->user, slave->mac_id, event, result);
+}
+
+/* A kept connection whose polls went unanswered too often: polls stop, the first try is due. */
+static void connection_lost(dn_scanner_t *scanner, dn_slave_t *slave)
+{
+    slave->recovery = DN_RECOVERY_WAITING;
+    slave->tries = 0;
+    slave->next_try = scanner->now;
+    slave->lost++;
+    connection_report(scanner, slave, DN_CONNECTION_LOST, NULL);
+}
+
 static void missed(dn_scanner_t *scanner, dn_slave_t *slave)
 {
     slave->poll_deadline = CO_TIME_NEVER;
     slave->missed++;
+    if (slave->missed_in_row < UINT8_MAX)
+        slave->missed_in_row++;
     io_report(scanner, slave, DN_IO_POLL_MISSED, NULL, 0);
+    if (slave->keep_choice && slave->recovery == DN_RECOVERY_NONE &&
+        slave->missed_in_row >= DN_SCANNER_LOST_AFTER_MISSED)
+        connection_lost(scanner, slave);
+}
+
+/* Polls go to an allocated polled connection that no try is re-establishing. */
+static bool pollable(const dn_slave_t *slave)
+{
+    return (slave->allocated & DN_ALLOC_POLLED) && slave->recovery == DN_RECOVERY_NONE;
 }
 
 static void send_poll(dn_scanner_t *scanner, dn_slave_t *slave)
 {
     if (slave->poll_deadline != CO_TIME_NEVER)
         missed(scanner, slave); /* the previous poll is still unanswered */
+    if (!pollable(slave))
+        return; /* that miss lost the connection */
     send_frame(scanner, slave->ids.poll_command, slave->output, slave->output_len);
     slave->polls++;
     slave->poll_deadline = scanner->now + scanner->timeout;
@@ -385,8 +438,7 @@ bool dn_scanner_poll(dn_scanner_t *scanner, uint8_t mac_id, co_time_t now)
 {
     scanner->now = now;
     dn_slave_t *slave = dn_scanner_slave(scanner, mac_id);
-    if (scanner->link != DN_SCANNER_ONLINE || slave == NULL ||
-        !(slave->allocated & DN_ALLOC_POLLED))
+    if (scanner->link != DN_SCANNER_ONLINE || slave == NULL || !pollable(slave))
         return false;
     send_poll(scanner, slave);
     return true;
@@ -401,7 +453,100 @@ bool dn_scanner_poll_every(dn_scanner_t *scanner, uint8_t mac_id, co_time_t peri
         return false;
     slave->poll_period = period_us;
     slave->next_poll = period_us ? now : CO_TIME_NEVER;
+    if (slave->recovering_request)
+        dn_scanner_abandon(scanner, mac_id);
+    slave->keep_choice = 0;
+    slave->recovery = DN_RECOVERY_NONE;
     return true;
+}
+
+bool dn_scanner_keep_polling(dn_scanner_t *scanner, uint8_t mac_id, co_time_t period_us,
+                             uint16_t rate_ms, co_time_t now)
+{
+    const uint8_t needed = DN_ALLOC_EXPLICIT | DN_ALLOC_POLLED;
+    dn_slave_t *slave = dn_scanner_slave(scanner, mac_id);
+    if (slave == NULL || period_us == 0 || (slave->allocated & needed) != needed ||
+        !dn_scanner_poll_every(scanner, mac_id, period_us, now))
+        return false;
+    slave->keep_choice = slave->allocated;
+    slave->keep_rate_ms = rate_ms;
+    slave->missed_in_row = 0;
+    return true;
+}
+
+/* ---- re-establishing a kept polled connection (D-DEVICENET-RECONNECT) ---------------------- */
+
+static bool start_recovery_step(dn_scanner_t *scanner, dn_slave_t *slave, dn_recovery_t step)
+{
+    bool started;
+    uint8_t mac_id = slave->mac_id;
+    co_time_t now = scanner->now;
+    switch (step) {
+    case DN_RECOVERY_RELEASE:
+        started = dn_scanner_release(scanner, mac_id, slave->keep_choice, now);
+        break;
+    case DN_RECOVERY_ALLOCATE:
+        started = dn_scanner_allocate(scanner, mac_id, slave->keep_choice, now);
+        break;
+    default:
+        started = dn_scanner_set_expected_packet_rate(scanner, mac_id, DN_CONN_POLL,
+                                                      slave->keep_rate_ms, now);
+        break;
+    }
+    if (started) {
+        slave->recovering_request = true;
+        slave->recovery = step;
+    }
+    return started;
+}
+
+/* A try failed: the next one a second later, or, once the quick tries are spent (reported
+ * once), ten seconds later. */
+static void try_failed(dn_scanner_t *scanner, dn_slave_t *slave, const dn_result_t *result)
+{
+    slave->recovery = DN_RECOVERY_WAITING;
+    if (slave->tries < DN_SCANNER_RECONNECT_TRIES) {
+        slave->next_try = scanner->now + DN_SCANNER_RECONNECT_INTERVAL_US;
+        return;
+    }
+    slave->next_try = scanner->now + DN_SCANNER_RECONNECT_SLOW_US;
+    if (slave->tries == DN_SCANNER_RECONNECT_TRIES)
+        connection_report(scanner, slave, DN_CONNECTION_FAILED, result);
+}
+
+/* The end of a step: the next step, the connection up again, or the try failed. */
+static void recovery_result(dn_scanner_t *scanner, dn_slave_t *slave, const dn_result_t *result)
+{
+    if (result->status != DN_RESULT_OK) {
+        try_failed(scanner, slave, result);
+        return;
+    }
+    if (slave->recovery == DN_RECOVERY_RELEASE || slave->recovery == DN_RECOVERY_ALLOCATE) {
+        dn_recovery_t next =
+            slave->recovery == DN_RECOVERY_RELEASE ? DN_RECOVERY_ALLOCATE : DN_RECOVERY_RATE;
+        if (!start_recovery_step(scanner, slave, next))
+            try_failed(scanner, slave, result);
+        return;
+    }
+    slave->recovery = DN_RECOVERY_NONE;
+    slave->missed_in_row = 0;
+    slave->restored++;
+    connection_report(scanner, slave, DN_CONNECTION_RESTORED, NULL);
+}
+
+/* A try is due and the slave free of requests: its first step. */
+static co_time_t recovery_process(dn_scanner_t *scanner, dn_slave_t *slave)
+{
+    if (slave->recovery != DN_RECOVERY_WAITING)
+        return CO_TIME_NEVER;
+    if (scanner->now < slave->next_try)
+        return slave->next_try;
+    if (slave->busy)
+        return CO_TIME_NEVER; /* the application's request ends first: processed again then */
+    if (slave->tries < UINT8_MAX)
+        slave->tries++;
+    start_recovery_step(scanner, slave, DN_RECOVERY_RELEASE);
+    return CO_TIME_NEVER;
 }
 
 static co_time_t poll_process(dn_scanner_t *scanner, dn_slave_t *slave)
@@ -409,7 +554,7 @@ static co_time_t poll_process(dn_scanner_t *scanner, dn_slave_t *slave)
     if (scanner->now >= slave->poll_deadline)
         missed(scanner, slave);
     if (slave->poll_period && scanner->now >= slave->next_poll) {
-        if (slave->allocated & DN_ALLOC_POLLED)
+        if (pollable(slave))
             send_poll(scanner, slave);
         /* the next period from the one due, so that a late call does not shift the schedule */
         slave->next_poll += slave->poll_period;
@@ -425,8 +570,14 @@ static void io_receive(dn_scanner_t *scanner, dn_slave_t *slave, uint8_t message
                        const co_frame_t *frame)
 {
     if (message_id == DN_G1_SLAVE_POLL_RESPONSE && (slave->allocated & DN_ALLOC_POLLED)) {
+        if (slave->poll_deadline == CO_TIME_NEVER) {
+            slave->late++;
+            io_report(scanner, slave, DN_IO_POLL_LATE, frame->data, frame->len);
+            return;
+        }
         slave->poll_deadline = CO_TIME_NEVER;
         slave->responses++;
+        slave->missed_in_row = 0;
         io_report(scanner, slave, DN_IO_POLL_RESPONSE, frame->data, frame->len);
     } else if (message_id == DN_G1_SLAVE_COS_CYCLIC &&
                (slave->allocated & (DN_ALLOC_COS | DN_ALLOC_CYCLIC))) {
@@ -473,6 +624,7 @@ co_time_t dn_scanner_process(dn_scanner_t *scanner, co_time_t now)
         dn_slave_t *slave = &config->slaves[i];
         next = co_time_min(next, request_process(scanner, slave));
         next = co_time_min(next, poll_process(scanner, slave));
+        next = co_time_min(next, recovery_process(scanner, slave));
     }
     return next;
 }

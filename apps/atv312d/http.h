@@ -17,13 +17,26 @@
 #include <stddef.h>
 #include <sys/socket.h>
 
-/* Connections served at once; a connection past them gets 503 on its request and is closed. */
-#define ATV312D_HTTP_CLIENTS_MAX 16
-/* Connections held at once, those refused with 503 included; past them a connection is closed at
- * once by the library. */
+/* Connections held at once; past them a new connection is closed at once, logged. */
 #define ATV312D_HTTP_CONNECTIONS_MAX 128
+/* Connections held at once from one client address (IPv4, or IPv6 whole); past them a new one
+ * from that address is closed at once, logged: one machine cannot take every place. */
+#define ATV312D_HTTP_PER_ADDRESS_MAX 16
+/* Event streams open at once, counted apart from the connections that load the page or send
+ * commands; past them a new stream is answered 503. */
+#define ATV312D_HTTP_STREAMS_MAX 16
+/* Each request must arrive whole, its head and its body, within this long of the connection
+ * being ready for it (accepted, or its previous answer sent), however steadily its bytes come;
+ * past it the connection is closed, logged. */
+#define ATV312D_HTTP_REQUEST_DEADLINE_S 5
 /* Memory of one connection's request and response headers (the library's pool). */
 #define ATV312D_HTTP_CONNECTION_MEMORY (32 * 1024)
+/* Longest request target (path and query); a longer one gets 414. */
+#define ATV312D_HTTP_TARGET_MAX 2048
+/* Longest request head, as sent: the request line and the headers with the empty line that ends
+ * them; a longer one gets 431. Both limits lie well inside the library's pool, so that the server
+ * answers them, as JSON, before the library would (docs/web.md, "Limits"). */
+#define ATV312D_HTTP_HEAD_MAX (8 * 1024)
 /* A connection that makes no progress for this long is closed (a client that stopped reading). */
 #define ATV312D_HTTP_TIMEOUT_S 10
 /* Longest body of POST /api/command; a longer one gets 413. */
@@ -62,6 +75,8 @@ typedef struct atv312d_http_request {
     const char *body; /* NULL: the body is not read yet (the checks on the headers only) */
     size_t body_len;
     bool body_too_long; /* more than ATV312D_HTTP_BODY_MAX bytes came */
+    size_t target_len;  /* the request target's length as sent, path and query; 0: unknown */
+    size_t head_len;    /* the head's length as sent (ATV312D_HTTP_HEAD_MAX); 0: unknown */
     const char *peer;   /* "127.0.0.1:40422", for the log */
 } atv312d_http_request_t;
 
@@ -79,6 +94,8 @@ typedef struct atv312d_http_answer {
 
 /* One connection waiting for or writing an event (http.c). */
 typedef struct atv312d_http_stream atv312d_http_stream_t;
+/* One connection held: its address and its request's deadline (http.c). */
+typedef struct atv312d_http_client atv312d_http_client_t;
 
 typedef struct atv312d_http {
     co_linux_loop_t *loop;
@@ -89,12 +106,13 @@ typedef struct atv312d_http {
     struct MHD_Daemon *daemon;      /* NULL: not open */
     int mhd_fd;                     /* the library's epoll descriptor, watched by the loop */
     int timer_fd;                   /* MHD's timeouts and the next event; armed only when needed */
-    size_t served;                  /* connections admitted (at most ATV312D_HTTP_CLIENTS_MAX) */
+    atv312d_http_client_t *clients; /* the connections held */
+    size_t client_count;            /* at most ATV312D_HTTP_CONNECTIONS_MAX */
     atv312d_http_stream_t *streams; /* the event streams */
-    size_t stream_count;
-    uint64_t event_sequence; /* counts the events formatted */
-    co_time_t next_event;    /* when the next event is due; CO_TIME_NEVER: no stream */
-    char *event;             /* the latest event, "event: state\ndata: {...}\n\n" */
+    size_t stream_count;            /* at most ATV312D_HTTP_STREAMS_MAX */
+    uint64_t event_sequence;        /* counts the events formatted */
+    co_time_t next_event;           /* when the next event is due; CO_TIME_NEVER: no stream */
+    char *event;                    /* the latest event, "event: state\ndata: {...}\n\n" */
     size_t event_len;
     char *buf;   /* the handler's answers, ATV312D_HTTP_STATE_MAX bytes */
     char *reply; /* a command's reply line, ATV312D_CONTROL_REPLY_MAX bytes */
@@ -106,7 +124,9 @@ typedef struct atv312d_http {
 
 /* Answers one request (no socket involved: the unit tests call it as the server does). Returns
  * true, with no answer, only for a POST /api/command that passed the checks of its headers while
- * request->body is NULL: call again with the body. Otherwise the answer is in *answer. */
+ * request->body is NULL: call again with the body. Otherwise the answer is in *answer. Every
+ * refusal (an answer of 400 or more that is not a command's own reply) is logged once at warn
+ * with the client, the request and the reason. */
 bool atv312d_http_handle(atv312d_http_t *http, const atv312d_http_request_t *request,
                          atv312d_http_answer_t *answer);
 

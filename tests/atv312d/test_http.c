@@ -8,6 +8,7 @@
 #include "atv312/atv312_devicenet.h"
 #include "check_main.h"
 #include "cli.h"
+#include "co_linux/log.h"
 #include "http.h"
 
 #include <check.h>
@@ -491,6 +492,120 @@ static int parse_address(const char *text, atv312d_http_address_t *address)
     return atv312d_parse_http_address(text, address, err, sizeof err);
 }
 
+/* ---- refusals: each logged once at warn ---- */
+
+static char logged[4096];
+
+/* Handles the request with the log going to `logged`; the answer's body. */
+static const char *handle_logged(const atv312d_http_request_t *request)
+{
+    FILE *log = tmpfile();
+    ck_assert_ptr_nonnull(log);
+    fflush(stderr);
+    int saved_err = dup(STDERR_FILENO);
+    dup2(fileno(log), STDERR_FILENO);
+    co_log_setup("atv312d", CO_LOG_WARN);
+    atv312d_http_request_t headers_only = *request;
+    headers_only.body = NULL;
+    bool wants_body = atv312d_http_handle(&http, &headers_only, &answer);
+    if (wants_body)
+        ck_assert(!atv312d_http_handle(&http, request, &answer));
+    dup2(saved_err, STDERR_FILENO);
+    close(saved_err);
+    rewind(log);
+    size_t len = fread(logged, 1, sizeof logged - 1, log);
+    logged[len] = '\0';
+    fclose(log);
+    return answer_body();
+}
+
+/* A request target or head longer than the server takes: 414, 431, before anything else. */
+START_TEST(long_target_414_long_head_431)
+{
+    start(true, NULL);
+    atv312d_http_request_t request = {.method = "GET",
+                                      .path = "/api/state",
+                                      .host = "evil.example",
+                                      .target_len = ATV312D_HTTP_TARGET_MAX + 1,
+                                      .peer = "127.0.0.1:40422"};
+    ck_assert_str_eq(handle_logged(&request),
+                     "{\"ok\":false,\"error\":\"the request target is 2049 bytes, longer than "
+                     "2048: no path of this server is\"}");
+    ck_assert_uint_eq(answer.status, 414);
+    ck_assert_str_eq(answer.content_type, "application/json");
+    ck_assert_str_eq(logged, "atv312d: warn: http 127.0.0.1:40422: GET /api/state: refused, 414: "
+                             "the request target is 2049 bytes, longer than 2048: no path of this "
+                             "server is\n");
+    request.target_len = ATV312D_HTTP_TARGET_MAX;
+    request.head_len = ATV312D_HTTP_HEAD_MAX + 1;
+    ck_assert_str_eq(handle_logged(&request),
+                     "{\"ok\":false,\"error\":\"the request head is 8193 bytes, longer than 8192: "
+                     "send fewer or shorter headers (cookies?)\"}");
+    ck_assert_uint_eq(answer.status, 431);
+    /* At the limits: the next check (the Host) answers. */
+    request.head_len = ATV312D_HTTP_HEAD_MAX;
+    handle_logged(&request);
+    ck_assert_uint_eq(answer.status, 403);
+    stop();
+}
+END_TEST
+
+/* The event streams have their own budget: past it a stream is 503, the rest still answers. */
+START_TEST(streams_past_their_budget_503)
+{
+    start(false, NULL);
+    http.stream_count = ATV312D_HTTP_STREAMS_MAX;
+    atv312d_http_request_t events = {
+        .method = "GET", .path = "/api/events", .host = "127.0.0.1:8080", .peer = "[::1]:5000"};
+    ck_assert_str_eq(handle_logged(&events),
+                     "{\"ok\":false,\"error\":\"busy: 16 event streams are open, the most at once; "
+                     "try again in a few seconds (the page and the API still answer)\"}");
+    ck_assert_uint_eq(answer.status, 503);
+    ck_assert(!answer.events);
+    ck_assert_str_eq(logged, "atv312d: warn: http [::1]:5000: GET /api/events: refused, 503: busy: "
+                             "16 event streams are open, the most at once; try again in a few "
+                             "seconds (the page and the API still answer)\n");
+    atv312d_http_request_t page = {.method = "GET", .path = "/", .host = "127.0.0.1:8080"};
+    handle_logged(&page);
+    ck_assert_uint_eq(answer.status, 200);
+    ck_assert_str_eq(logged, "");
+    http.stream_count = ATV312D_HTTP_STREAMS_MAX - 1;
+    handle_logged(&events);
+    ck_assert(answer.events);
+    http.stream_count = 0;
+    stop();
+}
+END_TEST
+
+/* A foreign Host and a malformed body are logged, once each; a command's own refusal is the
+ * command's line (info), not a second one. */
+START_TEST(refusals_logged_once)
+{
+    start(true, NULL);
+    atv312d_http_request_t request = command_request("{\"command\":\"local 4 on\"}");
+    request.host = "evil.example:8080";
+    request.origin = NULL;
+    request.peer = "10.0.0.9:33000";
+    handle_logged(&request);
+    ck_assert_uint_eq(answer.status, 403);
+    ck_assert_str_eq(logged, "atv312d: warn: http 10.0.0.9:33000: POST /api/command: refused, "
+                             "403: Host evil.example:8080 is not this server: it answers on "
+                             "loopback as http://127.0.0.1:8080/\n");
+    request = command_request("{\"command\":");
+    request.peer = "127.0.0.1:33001";
+    handle_logged(&request);
+    ck_assert_uint_eq(answer.status, 400);
+    ck_assert_str_eq(logged, "atv312d: warn: http 127.0.0.1:33001: POST /api/command: refused, "
+                             "400: the body must be {\"command\":\"...\"}: one command line of "
+                             "printable characters, at most 255\n");
+    request = command_request("{\"command\":\"fault 9 OHF\"}");
+    handle_logged(&request);
+    ck_assert_uint_eq(answer.status, 400);
+    ck_assert_str_eq(logged, "");
+    stop();
+}
+END_TEST
+
 START_TEST(addresses)
 {
     atv312d_http_address_t a;
@@ -620,6 +735,9 @@ int main(void)
     tcase_add_test(tc, foreign_host_on_loopback_is_403);
     tcase_add_test(tc, other_content_type_is_415);
     tcase_add_test(tc, long_body_is_413);
+    tcase_add_test(tc, long_target_414_long_head_431);
+    tcase_add_test(tc, streams_past_their_budget_503);
+    tcase_add_test(tc, refusals_logged_once);
     tcase_add_test(tc, addresses);
     tcase_add_test(tc, token_files);
     tcase_add_test(tc, http_options);

@@ -4,16 +4,21 @@
  * 127.0.0.1 at a free port, and a client in a child process that makes its requests, writes what
  * it saw to a pipe and exits, which hangs up the bus and ends the loop. Checked here what the
  * handler's tests (test_http.c) cannot see: keep-alive, the event stream's first event and its
- * period, the 503 past the cap of clients and a place freed, the wrong method of a POST answered
- * before its body. */
+ * period, the limit of connections per address, the budget of event streams apart from the
+ * requests, the deadline of a request that trickles in or never comes, 414 and 431 as JSON before
+ * the library's own, the wrong method of a POST answered before its body; and the lines the
+ * server logs at warn for each refusal. */
 #include "atv312/atv312.h"
 #include "check_main.h"
 #include "cli.h"
+#include "co_linux/log.h"
 #include "http.h"
 
 #include <arpa/inet.h>
 #include <check.h>
+#include <ctype.h>
 #include <errno.h>
+#include <poll.h>
 #include <stdarg.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -69,6 +74,21 @@ static double seconds(void)
     struct timespec t;
     clock_gettime(CLOCK_MONOTONIC, &t);
     return (double)t.tv_sec + (double)t.tv_nsec / 1e9;
+}
+
+/* A connection from 127.0.0.<host> (every 127/8 address is this machine's). */
+static int connect_from(unsigned host)
+{
+    int fd = socket(AF_INET, SOCK_STREAM, 0);
+    struct sockaddr_in from = {.sin_family = AF_INET, .sin_addr.s_addr = htonl(0x7F000000 | host)};
+    struct sockaddr_in to = {.sin_family = AF_INET, .sin_port = htons(port)};
+    to.sin_addr.s_addr = htonl(INADDR_LOOPBACK);
+    if (fd < 0 || bind(fd, (struct sockaddr *)&from, sizeof from) != 0 ||
+        connect(fd, (struct sockaddr *)&to, sizeof to) != 0)
+        exit(2);
+    struct timeval timeout = {.tv_sec = 8};
+    setsockopt(fd, SOL_SOCKET, SO_RCVTIMEO, &timeout, sizeof timeout);
+    return fd;
 }
 
 static int connect_server(void)
@@ -158,36 +178,117 @@ static void client_events(void)
     close(fd);
 }
 
-static void client_cap(void)
+/* An answer read to the server's close: "<status line>; <body>". */
+static void report_answer(const char *what, int fd)
 {
-    int served[ATV312D_HTTP_CLIENTS_MAX];
-    char status[64], answer[4096];
-    for (int i = 0; i < ATV312D_HTTP_CLIENTS_MAX; i++) {
-        served[i] = connect_server();
-        get_status(served[i], "/api/bench", status, sizeof status);
-    }
-    int refused = connect_server();
-    send_text(refused, "GET /api/bench HTTP/1.1\r\nHost: 127.0.0.1\r\n\r\n");
-    read_until(refused, answer, sizeof answer, NULL); /* to the server's close */
-    close(refused);
+    static char answer[16384];
+    read_until(fd, answer, sizeof answer, NULL);
     const char *body = strstr(answer, "\r\n\r\n");
-    fprintf(report, "past the cap: %.*s; %s; %s\n", (int)strcspn(answer, "\r"), answer,
-            strstr(answer, "\r\nConnection: close\r\n") ? "closed" : "kept",
+    fprintf(report, "%s: %.*s; %s\n", what, (int)strcspn(answer, "\r"), answer,
             body ? body + 4 : "no body");
-    close(served[0]);
-    double deadline = seconds() + 2.0;
-    do {
-        served[0] = connect_server();
-        get_status(served[0], "/api/bench", status, sizeof status);
-        if (strstr(status, " 200 "))
-            break;
-        close(served[0]);
-        served[0] = -1;
-    } while (seconds() < deadline);
-    fprintf(report, "a place freed: %s\n", status);
-    for (int i = 0; i < ATV312D_HTTP_CLIENTS_MAX; i++)
-        if (served[i] >= 0)
-            close(served[i]);
+}
+
+/* Whether the server closed the connection without a byte. */
+static const char *closed_unanswered(int fd)
+{
+    char c;
+    return read(fd, &c, 1) == 0 ? "closed unanswered" : "answered or still open";
+}
+
+/* 16 connections from 127.0.0.1 are served; a 17th from it is closed at once, one from
+ * 127.0.0.2 is served. */
+static void client_per_address(void)
+{
+    int held[ATV312D_HTTP_PER_ADDRESS_MAX];
+    char status[64];
+    for (int i = 0; i < ATV312D_HTTP_PER_ADDRESS_MAX; i++) {
+        held[i] = connect_from(1);
+        get_status(held[i], "/api/bench", status, sizeof status);
+    }
+    fprintf(report, "16th from 127.0.0.1: %s\n", status);
+    int refused = connect_from(1);
+    fprintf(report, "17th from 127.0.0.1: %s\n", closed_unanswered(refused));
+    close(refused);
+    int other = connect_from(2);
+    get_status(other, "/api/bench", status, sizeof status);
+    fprintf(report, "1st from 127.0.0.2: %s\n", status);
+    close(other);
+    for (int i = 0; i < ATV312D_HTTP_PER_ADDRESS_MAX; i++)
+        close(held[i]);
+}
+
+/* 16 streams from 127.0.0.1; a 17th from 127.0.0.2 is refused while its page loads. */
+static void client_streams(void)
+{
+    int streams[ATV312D_HTTP_STREAMS_MAX];
+    char text[16384], status[64];
+    for (int i = 0; i < ATV312D_HTTP_STREAMS_MAX; i++) {
+        streams[i] = connect_from(1);
+        send_text(streams[i], "GET /api/events HTTP/1.1\r\nHost: 127.0.0.1\r\n\r\n");
+        read_until(streams[i], text, sizeof text, "\n\n");
+    }
+    int refused = connect_from(2);
+    send_text(refused, "GET /api/events HTTP/1.1\r\nHost: 127.0.0.1\r\n\r\n");
+    report_answer("17th stream", refused);
+    close(refused);
+    int page = connect_from(2);
+    get_status(page, "/", status, sizeof status);
+    fprintf(report, "the page meanwhile: %s\n", status);
+    close(page);
+    for (int i = 0; i < ATV312D_HTTP_STREAMS_MAX; i++)
+        close(streams[i]);
+}
+
+/* A request trickling in a byte every 250 ms and a connection that sends nothing: both closed
+ * by the deadline (5 s), before the silence limit (10 s) would close the idle one, which the
+ * trickle never reaches. */
+static void client_deadline(void)
+{
+    int trickler = connect_from(1), idle = connect_from(2);
+    double start = seconds();
+    send_text(trickler, "GET /api/bench HTTP/1.1\r\nHost: 127.0.0.1\r\nX-Slow: ");
+    double trickler_closed = 0, idle_closed = 0;
+    while ((!trickler_closed || !idle_closed) && seconds() - start < 8.0) {
+        struct pollfd fds[2] = {{.fd = trickler, .events = POLLIN}, {.fd = idle, .events = POLLIN}};
+        poll(fds, 2, 250);
+        char c;
+        if (!trickler_closed && fds[0].revents && read(trickler, &c, 1) <= 0)
+            trickler_closed = seconds() - start;
+        else if (!trickler_closed && write(trickler, "x", 1) != 1)
+            trickler_closed = seconds() - start;
+        if (!idle_closed && fds[1].revents && read(idle, &c, 1) <= 0)
+            idle_closed = seconds() - start;
+    }
+    fprintf(report, "trickler: %s; idle: %s\n",
+            trickler_closed > 4.8 && trickler_closed < 6.0 ? "closed at the deadline" : "?",
+            idle_closed > 4.8 && idle_closed < 6.0 ? "closed at the deadline" : "?");
+    close(trickler);
+    close(idle);
+}
+
+/* A target and a head too long for the server, well inside the library's pool: JSON. */
+static void client_too_long(void)
+{
+    static char request[16384];
+    char target[3001];
+    memset(target, 'a', sizeof target - 1);
+    target[0] = '/';
+    target[sizeof target - 1] = '\0';
+    snprintf(request, sizeof request, "GET %s HTTP/1.1\r\nHost: 127.0.0.1\r\n\r\n", target);
+    int fd = connect_from(1);
+    send_text(fd, request);
+    report_answer("long target", fd);
+    close(fd);
+    char cookie[9001];
+    memset(cookie, 'c', sizeof cookie - 1);
+    cookie[sizeof cookie - 1] = '\0';
+    snprintf(request, sizeof request,
+             "GET / HTTP/1.1\r\nHost: 127.0.0.1\r\nCookie: %s\r\nConnection: close\r\n\r\n",
+             cookie);
+    fd = connect_from(1);
+    send_text(fd, request);
+    report_answer("long head", fd);
+    close(fd);
 }
 
 /* A POST refused on its headers is answered before its body is sent. */
@@ -217,9 +318,46 @@ static void client_ipv6(void)
 
 /* ---- the server, in the parent ---- */
 
-/* Runs the loop with the server until the child, running `client`, exits; returns its report. */
+/* What the web server logged at warn during the last serve, each client's port as PORT (the
+ * bus's hang-up at the end is not the server's). */
+static char logged[8192];
+
+/* "... http 127.0.0.1:40422: ..." as "... http 127.0.0.1:PORT: ...", the server's lines only. */
+static void keep_server_lines(char *text)
+{
+    char *out = text;
+    for (const char *in = text; *in;) {
+        const char *end = strchr(in, '\n');
+        size_t n = end ? (size_t)(end + 1 - in) : strlen(in);
+        const char *peer = strstr(in, "http ");
+        if (!peer || peer >= in + n) {
+            in += n;
+            continue;
+        }
+        const char *colon = strstr(peer, ": ");
+        const char *digits = colon;
+        while (digits && digits > peer && isdigit((unsigned char)digits[-1]))
+            digits--;
+        if (colon && colon < in + n && digits != colon && digits[-1] == ':') {
+            size_t head = (size_t)(digits - in);
+            memmove(out, in, head);
+            memcpy(out + head, "PORT", 4);
+            out += head + 4;
+            n -= (size_t)(colon - in);
+            in = colon;
+        }
+        memmove(out, in, n);
+        out += n;
+        in += n;
+    }
+    *out = '\0';
+}
+
+/* Runs the loop with the server until the child, running `client`, exits; returns its report.
+ * The server's log at warn goes to `logged`. */
 static const char *serve_at(const char *address, void (*client)(void))
 {
+
     int bus[2], pipe_fds[2];
     ck_assert_int_eq(socketpair(AF_UNIX, SOCK_SEQPACKET, 0, bus), 0);
     ck_assert_int_eq(pipe(pipe_fds), 0);
@@ -258,7 +396,19 @@ static const char *serve_at(const char *address, void (*client)(void))
     }
     close(bus[1]);
     close(pipe_fds[1]);
+    FILE *log = tmpfile();
+    ck_assert_ptr_nonnull(log);
+    int saved_err = dup(STDERR_FILENO);
+    dup2(fileno(log), STDERR_FILENO);
+    co_log_setup("atv312d", CO_LOG_WARN);
     ck_assert_int_eq(co_linux_loop_run(&loop), 0);
+    dup2(saved_err, STDERR_FILENO);
+    close(saved_err);
+    rewind(log);
+    size_t logged_len = fread(logged, 1, sizeof logged - 1, log);
+    logged[logged_len] = '\0';
+    fclose(log);
+    keep_server_lines(logged);
     static char text[4096];
     size_t used = 0;
     ssize_t n;
@@ -292,13 +442,60 @@ START_TEST(events_first_at_once_then_each_period)
 }
 END_TEST
 
-START_TEST(past_the_cap_503_then_a_place_freed)
+START_TEST(sixteen_connections_per_address)
 {
-    ck_assert_str_eq(serve(client_cap),
-                     "past the cap: HTTP/1.1 503 Service Unavailable; closed; {\"ok\":false,"
-                     "\"error\":\"busy: 16 clients are served at once, try again in a few "
-                     "seconds\"}\n"
-                     "a place freed: HTTP/1.1 200 OK\n");
+    ck_assert_str_eq(serve(client_per_address), "16th from 127.0.0.1: HTTP/1.1 200 OK\n"
+                                                "17th from 127.0.0.1: closed unanswered\n"
+                                                "1st from 127.0.0.2: HTTP/1.1 200 OK\n");
+    ck_assert_str_eq(logged, "atv312d: warn: http 127.0.0.1:PORT: refused, closed: 16 "
+                             "connections from its address, the most for one\n");
+}
+END_TEST
+
+START_TEST(streams_apart_from_requests)
+{
+    ck_assert_str_eq(serve(client_streams),
+                     "17th stream: HTTP/1.1 503 Service Unavailable; {\"ok\":false,\"error\":"
+                     "\"busy: 16 event streams are open, the most at once; try again in a few "
+                     "seconds (the page and the API still answer)\"}\n"
+                     "the page meanwhile: HTTP/1.1 200 OK\n");
+    ck_assert_str_eq(logged, "atv312d: warn: http 127.0.0.2:PORT: GET /api/events: refused, 503: "
+                             "busy: 16 event streams are open, the most at once; try again in a "
+                             "few seconds (the page and the API still answer)\n");
+}
+END_TEST
+
+START_TEST(request_deadline_whatever_the_trickle)
+{
+    ck_assert_str_eq(serve(client_deadline),
+                     "trickler: closed at the deadline; idle: closed at the deadline\n");
+    /* Each once. They expire at one timer wake-up or at two a few milliseconds apart, so in
+     * either order. */
+    static const char trickler[] = "atv312d: warn: http 127.0.0.1:PORT: refused, closed: its "
+                                   "request did not arrive whole within 5 s\n";
+    static const char idle[] = "atv312d: warn: http 127.0.0.2:PORT: refused, closed: no request "
+                               "came within 5 s\n";
+    ck_assert_ptr_nonnull(strstr(logged, trickler));
+    ck_assert_ptr_nonnull(strstr(logged, idle));
+    ck_assert_uint_eq(strlen(logged), strlen(trickler) + strlen(idle));
+}
+END_TEST
+
+START_TEST(too_long_answered_as_json)
+{
+    ck_assert_str_eq(serve(client_too_long),
+                     "long target: HTTP/1.1 414 URI Too Long; {\"ok\":false,\"error\":\"the "
+                     "request target is 3000 bytes, longer than 2048: no path of this server "
+                     "is\"}\n"
+                     "long head: HTTP/1.1 431 Request Header Fields Too Large; {\"ok\":false,"
+                     "\"error\":\"the request head is 9064 bytes, longer than 8192: send fewer "
+                     "or shorter headers (cookies?)\"}\n");
+    ck_assert_str_eq(logged, "atv312d: warn: http 127.0.0.1:PORT: GET (too long): refused, 414: "
+                             "the request target is 3000 bytes, longer than 2048: no path of this "
+                             "server is\n"
+                             "atv312d: warn: http 127.0.0.1:PORT: GET /: refused, 431: the "
+                             "request head is 9064 bytes, longer than 8192: send fewer or shorter "
+                             "headers (cookies?)\n");
 }
 END_TEST
 
@@ -323,7 +520,10 @@ int main(void)
     tcase_set_timeout(tc, 30);
     tcase_add_test(tc, connections_are_kept);
     tcase_add_test(tc, events_first_at_once_then_each_period);
-    tcase_add_test(tc, past_the_cap_503_then_a_place_freed);
+    tcase_add_test(tc, sixteen_connections_per_address);
+    tcase_add_test(tc, streams_apart_from_requests);
+    tcase_add_test(tc, request_deadline_whatever_the_trickle);
+    tcase_add_test(tc, too_long_answered_as_json);
     tcase_add_test(tc, refused_post_answered_before_its_body);
     tcase_add_test(tc, listens_on_ipv6);
     suite_add_tcase(s, tc);

@@ -581,6 +581,54 @@ SCANNER = {
 }
 
 
+ACTIONS, TOKEN, ANY_ADDRESS, STREAMS_FULL = 1, 2, 4, 8  # fuzz_web.c's first byte
+
+
+def web(flags, head, body=b""):
+    """A request to the web handler: the server's flags, then the request as text."""
+    return bytes([flags]) + head.replace(b"\n", b"\r\n") + b"\r\n" + body
+
+
+def command(line, flags=ACTIONS, headers=b""):
+    body = b'{"command":"' + line + b'"}'
+    return web(flags, b"POST /api/command HTTP/1.1\nHost: 127.0.0.1:8080\n"
+               b"Content-Type: application/json\nContent-Length: %d\n" % len(body) + headers, body)
+
+
+WEB = {
+    "page": web(0, b"GET / HTTP/1.1\nHost: 127.0.0.1:8080\n"),
+    "page-fresh": web(0, b"GET /index.html HTTP/1.1\nHost: localhost\nIf-None-Match: \"x\"\n"),
+    "bench": web(0, b"GET /api/bench?x=1 HTTP/1.1\nHost: [::1]:8080\n"),
+    "state-head": web(0, b"HEAD /api/state HTTP/1.1\nHost: 127.0.0.1\n"),
+    "events": web(0, b"GET /api/events HTTP/1.1\nHost: 127.0.0.1:8080\n"),
+    "events-full": web(STREAMS_FULL, b"GET /api/events HTTP/1.1\nHost: 127.0.0.1:8080\n"),
+    "not-found": web(0, b"GET /api/nothing HTTP/1.1\nHost: 127.0.0.1:8080\n"),
+    "wrong-method": web(0, b"DELETE /api/state HTTP/1.1\nHost: 127.0.0.1:8080\n"),
+    "rebinding": web(0, b"GET / HTTP/1.1\nHost: evil.example\n"),
+    "long-target": web(0, b"GET /" + b"a" * 2100 + b" HTTP/1.1\nHost: 127.0.0.1\n"),
+    "long-head": web(0, b"GET / HTTP/1.1\nHost: 127.0.0.1\nCookie: " + b"c" * 8200 + b"\n"),
+    "command": command(b"fault 4 OHF"),
+    "command-escaped": command(b"input 4 \\u004cI3 on"),
+    "command-state": command(b"state"),
+    "command-refused": command(b"fault 9 OHF"),
+    "command-actions-off": command(b"fault 4 OHF", flags=0),
+    "command-token": command(b"fault 4 OHF", ACTIONS | TOKEN | ANY_ADDRESS,
+                             b"X-Atv312d-Token: s3cret\n"),
+    "command-wrong-token": command(b"fault 4 OHF", ACTIONS | TOKEN, b"X-Atv312d-Token: s3cre\n"),
+    "command-cross-site": command(b"fault 4 OHF", headers=b"Origin: http://evil.example\n"
+                                  b"Sec-Fetch-Site: cross-site\n"),
+    "command-same-origin": command(b"local 4 on", headers=b"Origin: http://127.0.0.1:8080\n"
+                                   b"Sec-Fetch-Site: same-origin\n"),
+    "command-text": web(ACTIONS, b"POST /api/command HTTP/1.1\nHost: 127.0.0.1\n"
+                        b"Content-Type: text/plain\n", b"fault 4 OHF"),
+    "command-too-long": web(ACTIONS, b"POST /api/command HTTP/1.1\nHost: 127.0.0.1\n"
+                            b"Content-Type: application/json\nContent-Length: 2000\n",
+                            b'{"command":"' + b"x" * 1990 + b'"}'),
+    "command-malformed": web(ACTIONS, b"POST /api/command HTTP/1.1\nHost: 127.0.0.1\n"
+                             b"Content-Type: application/json; charset=utf-8\n", b'{"command": '),
+}
+
+
 def main():
     for harness, seeds in (
             ("frames", {k: frames_input(v) for k, v in FRAMES.items()}),
@@ -591,7 +639,8 @@ def main():
             ("dn_drive", {k: frames_input(v) for k, v in DN_DRIVE.items()}),
             ("slcan", SLCAN),
             ("dn_trace", DN_TRACE),
-            ("scanner", {k: frames_input(v) for k, v in SCANNER.items()})):
+            ("scanner", {k: frames_input(v) for k, v in SCANNER.items()}),
+            ("web", WEB)):
         folder = CORPUS / harness
         folder.mkdir(parents=True, exist_ok=True)
         for name, data in seeds.items():

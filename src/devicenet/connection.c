@@ -50,7 +50,7 @@ static void clear(dn_connection_t *c)
     c->watchdog = CO_TIME_NEVER;
 }
 
-/* conn[] positions to instances; the order in which the ends of several are told. */
+/* The instance at each conn[] position; the order in which the ends of several are told. */
 static const uint8_t instance_of[DN_CONN_COUNT] = {DN_CONN_EXPLICIT, DN_CONN_POLL,
                                                    DN_CONN_COS_CYCLIC};
 static const unsigned end_order[DN_CONN_COUNT] = {DN_IO_CONSUMER, DN_IO_PRODUCER, DN_EXPLICIT};
@@ -103,12 +103,19 @@ void dn_connections_end(dn_node_t *node, dn_end_cause_t cause)
     tell_ended_since(node, before, cause);
 }
 
-uint8_t dn_node_connection_state(const dn_node_t *node, uint8_t instance)
+/* The conn[] position of instance 1, 2 or 4, or -1. */
+static int conn_index(uint8_t instance)
 {
     for (unsigned i = 0; i < DN_CONN_COUNT; i++)
         if (instance_of[i] == instance)
-            return node->conn[i].state;
-    return DN_CONN_NON_EXISTENT;
+            return (int)i;
+    return -1;
+}
+
+uint8_t dn_node_connection_state(const dn_node_t *node, uint8_t instance)
+{
+    int index = conn_index(instance);
+    return index < 0 ? DN_CONN_NON_EXISTENT : node->conn[index].state;
 }
 
 /* Inactivity: the expected packet rate times the multiplier (x4 << attribute 18); none at 0. */
@@ -456,20 +463,6 @@ co_time_t dn_connections_process(dn_node_t *node)
 }
 
 /* The Connection object's attributes. */
-
-static int conn_index(uint8_t instance)
-{
-    switch (instance) {
-    case DN_CONN_EXPLICIT:
-        return DN_EXPLICIT;
-    case DN_CONN_POLL:
-        return DN_IO_CONSUMER;
-    case DN_CONN_COS_CYCLIC:
-        return DN_IO_PRODUCER;
-    default:
-        return -1;
-    }
-}
 
 /* The packed EPATH of an assembly's data attribute: class 4, 16-bit instance, attribute 3. */
 static void reply_assembly_path(dn_reply_t *reply, uint16_t instance)

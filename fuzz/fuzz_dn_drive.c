@@ -13,6 +13,7 @@
  * fuzz/seeds.py writes the seeds from readable frames, time steps and these commands. */
 #include "atv312/atv312.h"
 #include "atv312/atv312_devicenet.h"
+#include "dn/dn_link.h"
 #include "rig.h"
 #include "steps.h"
 
@@ -29,9 +30,14 @@ static drive_dn_t dn;
 
 int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size);
 
+/* The card speaks only as itself: 11-bit data frames of its own MAC ID, in group 1 or 2. */
 static void drop(void *user, const co_frame_t *frame)
 {
     (void)user;
+    dn_can_id_t id = dn_can_id_decode(frame->id);
+    rig_check(!(frame->flags & (CO_FRAME_RTR | CO_FRAME_EFF)), "a remote or 29-bit frame");
+    rig_check((id.group == 1 || id.group == 2) && id.mac_id == MAC_ID,
+              "a frame on another MAC ID's identifiers");
     rig_check(frame->len <= CO_FRAME_DLC_MAX, "a frame longer than 8 bytes");
 }
 

@@ -197,7 +197,7 @@ static void note_selection(cotrace_dn_node_t *n, const cotrace_dn_request_t *rq,
 /* What a success response changes of what the trace knows of the slave: only what a request of
  * the service's form asked for (a choice and the allocator's MAC ID for Allocate, a choice for
  * Release, a UINT for a Set of an assembly selection), which its line showed as such; the slave
- * library refuses any other length (src/devicenet/connection.c). */
+ * library refuses any other length (src/devicenet/slave/connection.c). */
 static void apply_success(cotrace_dn_node_t *n, const cotrace_dn_request_t *rq, const uint8_t *data,
                           size_t len)
 {

@@ -6,6 +6,8 @@
 
 #include <string.h>
 
+#include "devicenet/common/frame_send.h"
+
 #define NO_SLAVE 0xFFu
 /* A fragment of a request waits `timeout` for its acknowledgement, and is sent once more
  * before the request is given up (as the slave does with its responses). */
@@ -15,14 +17,8 @@
 
 static void send_frame(dn_scanner_t *scanner, uint16_t can_id, const uint8_t *data, uint8_t len)
 {
-    co_frame_t frame;
-    memset(&frame, 0, sizeof(frame));
-    frame.id = can_id;
-    frame.len = len;
-    if (len)
-        memcpy(frame.data, data, len);
     const dn_scanner_app_t *app = scanner->config->app;
-    app->send(app->user, &frame);
+    dn_frame_send(app->send, app->user, can_id, data, len);
 }
 
 int dn_scanner_init(dn_scanner_t *scanner, const dn_scanner_config_t *config)

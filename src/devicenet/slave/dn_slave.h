@@ -1,7 +1,9 @@
 /* SPDX-License-Identifier: Apache-2.0 */
-/* What the files of the DeviceNet slave library call in one another; not installed. */
-#ifndef DN_INTERNAL_H
-#define DN_INTERNAL_H
+/* What the files of the DeviceNet slave call in one another, floor by floor from the ground up;
+ * a file calls only the floors below its own (dn_node.c, the composition root, is the top). Not
+ * installed. */
+#ifndef DN_SLAVE_H
+#define DN_SLAVE_H
 
 #include "dn/dn_node.h"
 
@@ -20,26 +22,19 @@
             stats_->counter++;                                                                     \
     } while (0)
 
-/* node.c */
+/* Whether either I/O connection (instance 2 or 4) is in this state. */
+static inline bool dn_io_in_state(const dn_node_t *node, uint8_t state)
+{
+    return node->conn[DN_IO_CONSUMER].state == state || node->conn[DN_IO_PRODUCER].state == state;
+}
+
+/* application.c: what several floors reach of the application (dn_node_assembly is public). */
 void dn_send(dn_node_t *node, uint16_t can_id, const uint8_t *data, uint8_t len);
 void dn_io_event(dn_node_t *node, dn_io_event_t event);
-
-/* router.c: the message router, the library's classes and then the application's. */
-dn_status_t dn_route(dn_node_t *node, const dn_request_t *request, dn_reply_t *reply);
-
-/* objects.c: Identity, Message router, DeviceNet, Assembly, Acknowledge handler; connection.c
- * adds the Connection object. */
-const dn_object_t *dn_standard_object(uint8_t class_id);
 /* Keeps new stored values through the application, or refuses them (0x19). */
 dn_status_t dn_store(dn_node_t *node, const dn_stored_t *stored);
-dn_status_t dn_connection_handler(dn_node_t *node, const dn_object_t *object,
-                                  const dn_request_t *request, dn_reply_t *reply);
 
-/* explicit.c */
-void dn_explicit_receive(dn_node_t *node, const co_frame_t *frame, bool unconnected);
-co_time_t dn_explicit_process(dn_node_t *node);
-
-/* connection.c */
+/* connection.c: the predefined connection set and the Connection object's handler. */
 void dn_connections_reset(dn_node_t *node);
 /* Every connection goes, as at a restart; the Established ones are told with this cause. */
 void dn_connections_end(dn_node_t *node, dn_end_cause_t cause);
@@ -50,5 +45,18 @@ void dn_io_receive(dn_node_t *node, const co_frame_t *frame);
 void dn_cos_ack_receive(dn_node_t *node);
 co_time_t dn_connections_process(dn_node_t *node);
 bool dn_io_consuming(const dn_node_t *node);
+dn_status_t dn_connection_handler(dn_node_t *node, const dn_object_t *object,
+                                  const dn_request_t *request, dn_reply_t *reply);
+
+/* standard_objects.c: Identity (with dn_node_identity_status, public), Message router,
+ * DeviceNet, Assembly, Acknowledge handler, and the Connection object's table. */
+const dn_object_t *dn_standard_object(uint8_t class_id);
+
+/* message_router.c: the library's classes and then the application's. */
+dn_status_t dn_route(dn_node_t *node, const dn_request_t *request, dn_reply_t *reply);
+
+/* explicit.c */
+void dn_explicit_receive(dn_node_t *node, const co_frame_t *frame, bool unconnected);
+co_time_t dn_explicit_process(dn_node_t *node);
 
 #endif

@@ -2,45 +2,7 @@
 /* The message router: finds the object of a request among the library's classes and then the
  * application's table, checks the instance and, for Get/Set_Attribute_Single, the attribute
  * against the object's table, then hands the request to the object's handler. */
-#include <string.h>
-
-#include "dn_internal.h"
-
-void dn_reply_bytes(dn_reply_t *reply, const void *data, size_t len)
-{
-    if (len > sizeof(reply->data) - reply->len) {
-        reply->overflow = true;
-        return;
-    }
-    memcpy(&reply->data[reply->len], data, len);
-    reply->len = (uint8_t)(reply->len + len);
-}
-
-void dn_reply_u8(dn_reply_t *reply, uint8_t value)
-{
-    dn_reply_bytes(reply, &value, 1);
-}
-
-void dn_reply_u16(dn_reply_t *reply, uint16_t value)
-{
-    uint8_t le[2];
-    co_put_u16(le, value);
-    dn_reply_bytes(reply, le, sizeof(le));
-}
-
-void dn_reply_u32(dn_reply_t *reply, uint32_t value)
-{
-    uint8_t le[4];
-    co_put_u32(le, value);
-    dn_reply_bytes(reply, le, sizeof(le));
-}
-
-void dn_reply_short_string(dn_reply_t *reply, const char *text)
-{
-    size_t len = text ? strlen(text) : 0;
-    dn_reply_u8(reply, (uint8_t)len);
-    dn_reply_bytes(reply, text, len);
-}
+#include "devicenet/slave/dn_slave.h"
 
 /* Binary search of the application's classes, sorted by class_first (dn_node_init checks). */
 static const dn_object_t *application_object(const dn_config_t *config, uint8_t class_id)

@@ -5,7 +5,7 @@
  * handler's retries. */
 #include <string.h>
 
-#include "dn_internal.h"
+#include "devicenet/slave/dn_slave.h"
 
 /* The manual's default expected packet rate of the explicit connection, 0x09C8: 2500 ms rounded
  * up to the 8 ms resolution of the card's timers, which every rate written is rounded to. */

@@ -1,11 +1,11 @@
 /* SPDX-License-Identifier: Apache-2.0 */
 /* Explicit messaging: the requests of the explicit connection (instance 1, group 2 message 4)
  * and of the group 2 only unconnected port (message 6), their responses (message 3), and the
- * fragmentation protocol both ways with its acknowledgements (fragment.c, shared with the scanner).
- */
+ * fragmentation protocol both ways with its acknowledgements (common/fragment.c, which the
+ * scanner shares). */
 #include <string.h>
 
-#include "dn_internal.h"
+#include "devicenet/slave/dn_slave.h"
 
 /* How long a fragment of a response waits for its acknowledgement before it is sent once more,
  * and then before the response is given up (the project's choice: docs/devicenet.md). */

@@ -1,8 +1,9 @@
 /* SPDX-License-Identifier: Apache-2.0 */
-/* The library's CIP objects as the Altivar 312 DeviceNet manual lists them: Identity (0x01),
- * Message router (0x02), DeviceNet (0x03), Assembly (0x04), Acknowledge handler (0x2B), and the
- * table of the Connection object (0x05), whose handler is in connection.c. */
-#include "dn_internal.h"
+/* The library's CIP objects as the Altivar 312 DeviceNet manual lists them: Identity (0x01) with
+ * its status word, Message router (0x02), DeviceNet (0x03), Assembly (0x04), Acknowledge handler
+ * (0x2B), and the table of the Connection object (0x05), whose handler is in connection.c; the
+ * registry of these classes that the message router searches first. */
+#include "devicenet/slave/dn_slave.h"
 
 #define IDENTITY_REVISION 1u
 #define DEVICENET_REVISION 2u
@@ -41,6 +42,32 @@ static dn_status_t identity_reset(dn_node_t *node, const dn_request_t *request)
         return DN_ERROR(DN_GS_INVALID_PARAMETER);
     node->pending_reset = type;
     return DN_OK;
+}
+
+/* The Identity status's extended device status (bits 4-7): the I/O connections' state. */
+static uint16_t extended_status(const dn_node_t *node)
+{
+    if (dn_io_in_state(node, DN_CONN_TIMED_OUT))
+        return DN_EXT_FAULTED_IO;
+    if (dn_io_in_state(node, DN_CONN_ESTABLISHED))
+        return node->idle ? DN_EXT_IDLE : DN_EXT_RUN;
+    return DN_EXT_NO_IO;
+}
+
+uint16_t dn_node_identity_status(const dn_node_t *node)
+{
+    const dn_config_t *config = node->config;
+    uint16_t status = node->faults;
+    if (node->allocation)
+        status |= DN_STATUS_OWNED;
+    if (config->configured || node->stored.quick_connect ||
+        node->stored.consumed_assembly != config->default_consumed_assembly ||
+        node->stored.produced_assembly != config->default_produced_assembly)
+        status |= DN_STATUS_CONFIGURED;
+    status |= (uint16_t)(extended_status(node) << DN_STATUS_EXTENDED_SHIFT);
+    if (node->duplicate_mac || config->mac_switch_changed || config->baud_switch_changed)
+        status |= DN_STATUS_MINOR_RECOVERABLE;
+    return status;
 }
 
 static dn_status_t identity_handler(dn_node_t *node, const dn_object_t *object,
@@ -149,16 +176,6 @@ static dn_status_t devicenet_get(dn_node_t *node, uint8_t attribute, dn_reply_t 
         dn_reply_u8(reply, node->stored.quick_connect);
         break;
     }
-    return DN_OK;
-}
-
-/* Keeps a new value of a stored attribute through the application, or refuses it (0x19). */
-dn_status_t dn_store(dn_node_t *node, const dn_stored_t *stored)
-{
-    const dn_app_t *app = node->config->app;
-    if (app->store == NULL || !app->store(app->user, stored))
-        return DN_ERROR(DN_GS_STORE_OPERATION_FAILURE);
-    node->stored = *stored;
     return DN_OK;
 }
 

@@ -1,35 +1,10 @@
 /* SPDX-License-Identifier: Apache-2.0 */
-/* The composition root of a DeviceNet slave: configuration, the duplicate MAC ID check, frame
- * routing by identifier, the earliest deadline, the Identity status and the LEDs. */
+/* The composition root of a DeviceNet slave, the top of its floors: configuration, the duplicate
+ * MAC ID check, frame routing by identifier to the explicit messages and the connections, the
+ * earliest deadline, bus off and the LEDs. */
 #include <string.h>
 
-#include "dn_internal.h"
-
-void dn_send(dn_node_t *node, uint16_t can_id, const uint8_t *data, uint8_t len)
-{
-    co_frame_t frame;
-    memset(&frame, 0, sizeof(frame));
-    frame.id = can_id;
-    frame.len = len;
-    if (len)
-        memcpy(frame.data, data, len);
-    node->config->app->send(node->config->app->user, &frame);
-}
-
-void dn_io_event(dn_node_t *node, dn_io_event_t event)
-{
-    const dn_app_t *app = node->config->app;
-    if (app->io_event)
-        app->io_event(app->user, event);
-}
-
-const dn_assembly_t *dn_node_assembly(const dn_node_t *node, uint16_t instance)
-{
-    for (uint8_t i = 0; i < node->config->assembly_count; i++)
-        if (node->config->assemblies[i].instance == instance)
-            return &node->config->assemblies[i];
-    return NULL;
-}
+#include "devicenet/slave/dn_slave.h"
 
 /* The stored selection if the table has it in that direction, else the default. */
 static const dn_assembly_t *select_assembly(const dn_node_t *node, uint16_t stored,
@@ -218,36 +193,6 @@ void dn_node_set_faults(dn_node_t *node, uint16_t faults)
                              DN_STATUS_MAJOR_RECOVERABLE | DN_STATUS_MAJOR_UNRECOVERABLE);
 }
 
-static bool io_in_state(const dn_node_t *node, uint8_t state)
-{
-    return node->conn[DN_IO_CONSUMER].state == state || node->conn[DN_IO_PRODUCER].state == state;
-}
-
-static uint16_t extended_status(const dn_node_t *node)
-{
-    if (io_in_state(node, DN_CONN_TIMED_OUT))
-        return DN_EXT_FAULTED_IO;
-    if (io_in_state(node, DN_CONN_ESTABLISHED))
-        return node->idle ? DN_EXT_IDLE : DN_EXT_RUN;
-    return DN_EXT_NO_IO;
-}
-
-uint16_t dn_node_identity_status(const dn_node_t *node)
-{
-    const dn_config_t *config = node->config;
-    uint16_t status = node->faults;
-    if (node->allocation)
-        status |= DN_STATUS_OWNED;
-    if (config->configured || node->stored.quick_connect ||
-        node->stored.consumed_assembly != config->default_consumed_assembly ||
-        node->stored.produced_assembly != config->default_produced_assembly)
-        status |= DN_STATUS_CONFIGURED;
-    status |= (uint16_t)(extended_status(node) << DN_STATUS_EXTENDED_SHIFT);
-    if (node->duplicate_mac || config->mac_switch_changed || config->baud_switch_changed)
-        status |= DN_STATUS_MINOR_RECOVERABLE;
-    return status;
-}
-
 dn_led_t dn_node_ms_led(const dn_node_t *node)
 {
     if (node->link == DN_LINK_OFF)
@@ -263,9 +208,9 @@ dn_led_t dn_node_ns_led(const dn_node_t *node)
     case DN_LINK_FAULTED:
         return DN_LED_RED;
     case DN_LINK_ONLINE:
-        if (io_in_state(node, DN_CONN_TIMED_OUT))
+        if (dn_io_in_state(node, DN_CONN_TIMED_OUT))
             return DN_LED_FLASHING_RED;
-        if (io_in_state(node, DN_CONN_ESTABLISHED) ||
+        if (dn_io_in_state(node, DN_CONN_ESTABLISHED) ||
             node->conn[DN_EXPLICIT].state == DN_CONN_ESTABLISHED)
             return DN_LED_GREEN;
         return DN_LED_FLASHING_GREEN;

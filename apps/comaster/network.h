@@ -1,16 +1,15 @@
 /* SPDX-License-Identifier: Apache-2.0 */
 /* The network description of comaster run and boot (docs/comaster.md "Network description"): the
  * master's options from an INI file ([Master], [NodeN]), the slaves from the CiA 306-3 nodelist
- * (.cpj) it names, and from each slave's DCF its configuration (ParameterValue entries), its
- * identity and its process variables (the names of the objects its PDOs map). Turned into the
- * core's co_net_master_config_t. No bus: tests/comaster tests it on files. */
+ * (.cpj) it names, each read from its DCF (dcf.c: its configuration and identity), and the
+ * process image of their PDOs with its variables (the names of the objects the PDOs map). Turned
+ * into the core's co_net_master_config_t. No bus: tests/comaster tests it on files. */
 #ifndef COMASTER_NETWORK_H
 #define COMASTER_NETWORK_H
 
 #include "co/co_net_master.h"
-#include "eds_reader.h"
+#include "dcf.h"
 
-#include <limits.h>
 #include <net/if.h>
 #include <stdbool.h>
 #include <stddef.h>
@@ -21,7 +20,6 @@
 /* PDOs of one direction: at most one per byte of the image. */
 #define COMASTER_PDO_MAX COMASTER_IMAGE_SIZE
 #define COMASTER_VARIABLE_MAX COMASTER_IMAGE_SIZE
-#define COMASTER_NAME_MAX 64u
 #define COMASTER_CONTROL_PATH_MAX 108u /* sockaddr_un.sun_path */
 
 /* One object a PDO maps, at its place in the input or output image. */
@@ -35,14 +33,6 @@ typedef struct comaster_variable {
     uint16_t offset;
     uint8_t size; /* bytes */
 } comaster_variable_t;
-
-typedef struct comaster_slave {
-    char name[COMASTER_NAME_MAX];
-    char dcf_path[PATH_MAX];
-    eds_t dcf;
-    co_net_write_t *writes; /* the DCF's configuration in file order, a PDO's as one group */
-    uint8_t *write_bytes;   /* the bytes the writes point at */
-} comaster_slave_t;
 
 typedef struct comaster_network {
     char net_name[COMASTER_NAME_MAX];

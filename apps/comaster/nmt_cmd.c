@@ -3,7 +3,7 @@
  * awaited. */
 #include "co/co_nmt_master.h"
 #include "comaster.h"
-#include "control.h"
+#include "run_control.h"
 
 #include <stdio.h>
 #include <string.h>

@@ -1,9 +1,9 @@
 /* SPDX-License-Identifier: Apache-2.0 */
 /* comaster boot and run: the network master of the core (co_net_master_t, docs/net-master.md) on
  * the bus, printing each step and status change; run also serves its process image and status on
- * the control socket (control.c) to comaster set, get and status, and the requests of
+ * the control socket (run_control.c) to comaster set, get and status, and the requests of
  * run_requests.c. */
-#include "run.h"
+#include "runner.h"
 
 #include <stdarg.h>
 #include <stdio.h>
@@ -38,46 +38,6 @@ static const char boot_help[] =
     "describes.\n"
     "\n"
     "Example: comaster -i vcan0 boot 4 examples/netmaster/drive4.dcf\n";
-
-static const char *const slave_bits[] = {"contacted",   "configured", "error-control-started",
-                                         "initialised", "init-error", "error-control-error"};
-/* The PLC300's %SW3200 (bit 6 the project's own); NULL: reserved. */
-static const char *const master_bits[] = {"all-contacted",
-                                          "all-configured",
-                                          "all-error-control-started",
-                                          "init-finished",
-                                          "init-error",
-                                          "error-control-error",
-                                          "mandatory-error",
-                                          NULL,
-                                          "nmt-toggle",
-                                          NULL,
-                                          NULL,
-                                          NULL,
-                                          NULL,
-                                          "bus-off",
-                                          "no-bus-power",
-                                          "disabled"};
-
-/* " contacted configured": the names of the bits set. */
-static void bit_names(uint16_t status, const char *const *names, size_t count, char *out,
-                      size_t cap)
-{
-    size_t used = 0;
-    out[0] = '\0';
-    for (size_t bit = 0; bit < count && used < cap; bit++) {
-        if ((status & (1u << bit)) && names[bit] != NULL)
-            used += (size_t)snprintf(out + used, cap - used, " %s", names[bit]);
-    }
-}
-
-void run_master_status_text(uint16_t status, char *out, size_t cap)
-{
-    int prefix = snprintf(out, cap, "master 0x%04X", status);
-    if (prefix > 0 && (size_t)prefix < cap)
-        bit_names(status, master_bits, sizeof master_bits / sizeof master_bits[0], out + prefix,
-                  cap - (size_t)prefix);
-}
 
 /* The master's status word, printed when it changed. */
 static void print_master_status(runner_t *r)
@@ -159,8 +119,7 @@ static void print_slave_event(runner_t *r, const co_net_event_t *event)
         if (r->boot_only)
             finish_boot(r, s);
     } else {
-        bit_names(s->status, slave_bits, sizeof slave_bits / sizeof slave_bits[0], text,
-                  sizeof text);
+        run_slave_status_text(s->status, text, sizeof text);
         printf("node %u %s: status 0x%04X%s\n", event->node_id, name, s->status, text);
     }
 }

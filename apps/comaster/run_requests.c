@@ -5,10 +5,9 @@
  * slaves, disable and enable communication (the PLC300's DisableComm), and the CAN controller's
  * state and counters. NMT and SDO replies come when the master has the answer (a deferred reply
  * of the line socket); the others at once. Each reply is one line, or one JSON object. */
-#include "run.h"
+#include "runner.h"
 
 #include "co_cli.h"
-#include "co_linux/conditions.h"
 
 #include <stdio.h>
 #include <stdlib.h>
@@ -37,17 +36,6 @@ static bool parse_node(const char *text, bool allow_all, uint8_t *node)
         return false;
     *node = (uint8_t)n;
     return true;
-}
-
-uint16_t run_bus_bits(const runner_t *r)
-{
-    const co_linux_bus_t *bus = &r->bus.loop.bus;
-    uint16_t bits = 0;
-    if (co_linux_conditions_active(&bus->conditions, CO_LINUX_EMCY_BUS_OFF))
-        bits |= CO_NET_MASTER_BUS_OFF;
-    if (!bus->link_up) /* D-NET-MASTER-BUS-POWER */
-        bits |= CO_NET_MASTER_NO_BUS_POWER;
-    return bits;
 }
 
 static const char *disabled_error =

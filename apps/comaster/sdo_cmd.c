@@ -3,7 +3,7 @@
  * type (given, from the EDS, or guessed from the size). */
 #include "co_cli.h"
 #include "comaster.h"
-#include "control.h"
+#include "run_control.h"
 #include "value.h"
 
 #include <errno.h>

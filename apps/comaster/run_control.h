@@ -2,8 +2,8 @@
 /* The control socket of comaster run: a UNIX stream socket on which another comaster (set, get,
  * status) sends one request line and reads the reply until the run closes the connection. The
  * requests and their replies are in docs/comaster.md "run and its control socket". */
-#ifndef COMASTER_CONTROL_H
-#define COMASTER_CONTROL_H
+#ifndef COMASTER_RUN_CONTROL_H
+#define COMASTER_RUN_CONTROL_H
 
 #include "co_linux/line_socket.h"
 #include "co_linux/loop.h"

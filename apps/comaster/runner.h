@@ -1,13 +1,15 @@
 /* SPDX-License-Identifier: Apache-2.0 */
-/* comaster run: the network master on the bus (run_cmd.c) and the requests of its control socket
- * that act on the bus (run_requests.c: NMT commands, SDO through the master's client, disable and
- * enable, the controller's state). docs/comaster.md "run and its control socket". */
-#ifndef COMASTER_RUN_H
-#define COMASTER_RUN_H
+/* comaster run: the runner, its state shared by the network master on the bus (run_cmd.c, the
+ * commands run and boot on top), the requests of its control socket that act on the bus
+ * (run_requests.c: NMT commands, SDO through the master's client, disable and enable, the
+ * controller's state) and, below both, the master's status word (run_status.c).
+ * docs/comaster.md "run and its control socket". */
+#ifndef COMASTER_RUNNER_H
+#define COMASTER_RUNNER_H
 
 #include "comaster.h"
-#include "control.h"
 #include "network.h"
+#include "run_control.h"
 #include "value.h"
 
 #include <stdbool.h>
@@ -56,13 +58,17 @@ bool run_request(runner_t *r, char **field, size_t count, bool json, char *reply
 /* The master's NMT command ended (CO_NET_EVENT_NMT_DONE): its reply to the client. */
 void run_nmt_done(runner_t *r);
 
-/* The controller's state as the master's status bits 13-14 (the runtime's conditions and link). */
-uint16_t run_bus_bits(const runner_t *r);
-
 /* `text` as a JSON string ("..." with its escapes) into out (cap bytes). */
 void run_json_string(const char *text, char *out, size_t cap);
 
+/* The status word of run_status.c. The controller's state as the master's status bits 13-14
+ * (the runtime's conditions and link). */
+uint16_t run_bus_bits(const runner_t *r);
+
 /* "master 0x000F all-contacted ...": the master's status word and its bits by name. */
 void run_master_status_text(uint16_t status, char *out, size_t cap);
+
+/* " contacted configured": the bits of a slave's status word set, by name. */
+void run_slave_status_text(uint16_t status, char *out, size_t cap);
 
 #endif

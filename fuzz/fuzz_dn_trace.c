@@ -14,9 +14,9 @@
  * its restart (its duplicate MAC ID check request), as do the assemblies in use; and the line
  * cotrace prints for the frame reads back as the same frame, interface and time. */
 #include "co_linux/candump.h"
-#include "devicenet_decoder.h"
 #include "dn/dn_link.h"
 #include "rig.h"
+#include "trace/devicenet_decoder.h"
 
 #include <ctype.h>
 #include <stdio.h>

@@ -8,8 +8,8 @@
  * digits); the entries, written back in canonical form and read again, are the same; eds_find,
  * eds_name, eds_find_by_name and eds_set_value agree with the entries; a refused file says why,
  * on one line, naming a line of the file that is wrong and no wrong line before it. */
-#include "eds_reader.h"
-#include "ini_reader.h"
+#include "eds/eds_reader.h"
+#include "eds/ini_reader.h"
 #include "rig.h"
 
 #include <ctype.h>

@@ -2,9 +2,9 @@
 /* The bus of comaster: the runtime's epoll loop with one device, on which the commands run their
  * jobs one after the other. Each job ends the loop's run with comaster_bus_finish; the deadlines
  * come from the core's process calls, so nothing sleeps. */
-#include "comaster.h"
+#include "comaster/comaster.h"
 
-#include "co_cli.h"
+#include "cli/co_cli.h"
 
 #include <stddef.h>
 #include <stdio.h>

@@ -7,10 +7,10 @@
 #ifndef COMASTER_H
 #define COMASTER_H
 
+#include "cli/co_cli.h"
 #include "co/co_sdo_client.h"
-#include "co_cli.h"
 #include "co_linux/loop.h"
-#include "eds_reader.h"
+#include "eds/eds_reader.h"
 
 #include <stdbool.h>
 #include <stdint.h>

@@ -1,9 +1,9 @@
 /* SPDX-License-Identifier: Apache-2.0 */
 /* What the commands share: the common options, node-ids, one-line errors (the conventions of
  * src/cli; the EDS of a node is node_eds.c). */
-#include "comaster.h"
+#include "comaster/comaster.h"
 
-#include "co_cli.h"
+#include "cli/co_cli.h"
 
 #include <errno.h>
 #include <stdarg.h>

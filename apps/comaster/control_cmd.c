@@ -1,7 +1,7 @@
 /* SPDX-License-Identifier: Apache-2.0 */
 /* comaster set, get and status: requests to a comaster run through its control socket. */
-#include "comaster.h"
-#include "run_control.h"
+#include "comaster/comaster.h"
+#include "comaster/run_control.h"
 
 #include <stdio.h>
 #include <string.h>

@@ -2,11 +2,11 @@
 /* A slave of comaster's network from its DCF (docs/comaster.md "Network description"): the
  * identity checks and error control the DCF implies, and its configuration (the ParameterValue
  * entries) as the writes of the boot in file order, a PDO's as one group. */
-#include "dcf.h"
+#include "comaster/dcf.h"
 
 #include "co/co_pdo.h"
-#include "ini_reader.h"
-#include "value.h"
+#include "comaster/value.h"
+#include "eds/ini_reader.h"
 
 #include <stdio.h>
 #include <stdlib.h>

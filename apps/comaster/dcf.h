@@ -8,7 +8,7 @@
 #define COMASTER_DCF_H
 
 #include "co/co_net_master.h"
-#include "eds_reader.h"
+#include "eds/eds_reader.h"
 
 #include <limits.h>
 #include <stdbool.h>

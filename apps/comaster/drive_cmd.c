@@ -3,8 +3,8 @@
  * word 6040h, or with --rpdo through the drive's RPDO that maps it, and waits (deadline) for the
  * status word 6041h to show each state on the way, printing every state it sees. */
 #include "co/co_pdo.h"
-#include "comaster.h"
-#include "decoder.h"
+#include "comaster/comaster.h"
+#include "trace/decoder.h"
 
 #include <errno.h>
 #include <stdio.h>

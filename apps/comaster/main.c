@@ -2,7 +2,7 @@
 /* comaster: a CANopen master on a SocketCAN interface, for people and scripts: SDO read and
  * write, NMT, scan, monitor, a CiA 402 drive helper (docs/comaster.md). This file holds the
  * global options and the table of commands; each command lives in its own file. */
-#include "comaster.h"
+#include "comaster/comaster.h"
 
 #include <stdio.h>
 #include <stdlib.h>

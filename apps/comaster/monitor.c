@@ -2,12 +2,12 @@
 /* comaster monitor: what happens on the bus, as it arrives: NMT state changes told by boot-ups
  * and heartbeats, emergencies decoded, SYNC, and PDOs decoded by name through each watched node's
  * mapping, read over SDO (with the names of its EDS). Runs until SIGINT or SIGTERM. */
+#include "cli/co_cli.h"
 #include "co/co_emcy_consumer.h"
 #include "co/co_nmt.h"
 #include "co/co_nmt_master.h"
-#include "co_cli.h"
-#include "comaster.h"
-#include "decoder.h"
+#include "comaster/comaster.h"
+#include "trace/decoder.h"
 
 #include "co_linux/can_frame.h"
 

@@ -1,11 +1,11 @@
 /* SPDX-License-Identifier: Apache-2.0 */
 /* The network description: [Master] and [NodeN] of the INI file, [Topology] of the CiA 306-3
  * nodelist, the DCFs (docs/comaster.md "Network description"). */
-#include "network.h"
+#include "comaster/network.h"
 
 #include "co/co_pdo.h"
-#include "ini_reader.h"
-#include "value.h"
+#include "comaster/value.h"
+#include "eds/ini_reader.h"
 
 #include <ctype.h>
 #include <errno.h>

@@ -8,7 +8,7 @@
 #define COMASTER_NETWORK_H
 
 #include "co/co_net_master.h"
-#include "dcf.h"
+#include "comaster/dcf.h"
 
 #include <net/if.h>
 #include <stdbool.h>

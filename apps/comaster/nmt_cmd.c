@@ -2,8 +2,8 @@
 /* comaster nmt: an NMT command to one node or to all; after a reset of one node, its boot-up is
  * awaited. */
 #include "co/co_nmt_master.h"
-#include "comaster.h"
-#include "run_control.h"
+#include "comaster/comaster.h"
+#include "comaster/run_control.h"
 
 #include <stdio.h>
 #include <string.h>

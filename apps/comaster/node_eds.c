@@ -2,7 +2,7 @@
 /* The EDS of a node for the commands that name objects: the file of --eds, or the one of
  * --eds-dir, the installed directory or the source tree whose identity (1018h:01, 1018h:02,
  * 1008h) the node reports over SDO. */
-#include "comaster.h"
+#include "comaster/comaster.h"
 
 #include <stdio.h>
 #include <string.h>

@@ -3,7 +3,7 @@
  * the bus, printing each step and status change; run also serves its process image and status on
  * the control socket (run_control.c) to comaster set, get and status, and the requests of
  * run_requests.c. */
-#include "runner.h"
+#include "comaster/runner.h"
 
 #include <stdarg.h>
 #include <stdio.h>

@@ -1,7 +1,7 @@
 /* SPDX-License-Identifier: Apache-2.0 */
 /* The control socket of comaster run: its requests on the runtime's line socket, one per
  * connection, and the client side. */
-#include "run_control.h"
+#include "comaster/run_control.h"
 
 #include <errno.h>
 #include <stdio.h>

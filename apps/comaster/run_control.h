@@ -7,8 +7,8 @@
 
 #include "co_linux/line_socket.h"
 #include "co_linux/loop.h"
-#include "comaster.h"
-#include "network.h" /* COMASTER_CONTROL_PATH_MAX, the callers' path buffers */
+#include "comaster/comaster.h"
+#include "comaster/network.h" /* COMASTER_CONTROL_PATH_MAX, the callers' path buffers */
 
 #include <stdbool.h>
 #include <stddef.h>

@@ -5,9 +5,9 @@
  * slaves, disable and enable communication (the PLC300's DisableComm), and the CAN controller's
  * state and counters. NMT and SDO replies come when the master has the answer (a deferred reply
  * of the line socket); the others at once. Each reply is one line, or one JSON object. */
-#include "runner.h"
+#include "comaster/runner.h"
 
-#include "co_cli.h"
+#include "cli/co_cli.h"
 
 #include <stdio.h>
 #include <stdlib.h>

@@ -2,7 +2,7 @@
 /* The network master's status word in comaster run and boot: its bits 13-14 from the CAN
  * controller, and the names of its bits and of a slave's, which the run prints and its control
  * socket's status, disable and enable answer (docs/comaster.md "run and its control socket"). */
-#include "runner.h"
+#include "comaster/runner.h"
 
 #include "co_linux/conditions.h"
 

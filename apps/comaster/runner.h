@@ -7,10 +7,10 @@
 #ifndef COMASTER_RUNNER_H
 #define COMASTER_RUNNER_H
 
-#include "comaster.h"
-#include "network.h"
-#include "run_control.h"
-#include "value.h"
+#include "comaster/comaster.h"
+#include "comaster/network.h"
+#include "comaster/run_control.h"
+#include "comaster/value.h"
 
 #include <stdbool.h>
 #include <stddef.h>

@@ -4,10 +4,10 @@
  * their identity (1018h:01..03) and name (1008h), and their NMT state is taken from their
  * heartbeat (the NMT master follows them while the scan runs) or asked by a node guarding
  * request. */
+#include "cli/co_cli.h"
 #include "co/co_nmt.h"
 #include "co/co_nmt_master.h"
-#include "co_cli.h"
-#include "comaster.h"
+#include "comaster/comaster.h"
 
 #include <stdio.h>
 #include <string.h>

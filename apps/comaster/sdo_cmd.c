@@ -1,10 +1,10 @@
 /* SPDX-License-Identifier: Apache-2.0 */
 /* comaster read and write: one SDO upload or download, the value printed or parsed by its data
  * type (given, from the EDS, or guessed from the size). */
-#include "co_cli.h"
-#include "comaster.h"
-#include "run_control.h"
-#include "value.h"
+#include "cli/co_cli.h"
+#include "comaster/comaster.h"
+#include "comaster/run_control.h"
+#include "comaster/value.h"
 
 #include <errno.h>
 #include <stdio.h>

@@ -1,5 +1,5 @@
 /* SPDX-License-Identifier: Apache-2.0 */
-#include "value.h"
+#include "comaster/value.h"
 
 #include <ctype.h>
 #include <errno.h>

@@ -6,7 +6,7 @@
 #define COMASTER_VALUE_H
 
 #include "co/co_types.h"
-#include "eds_reader.h"
+#include "eds/eds_reader.h"
 
 #include <stdbool.h>
 #include <stddef.h>

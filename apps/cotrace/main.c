@@ -2,13 +2,13 @@
 /* cotrace: says what every frame of a candump -L log or a live SocketCAN interface means in
  * CANopen terms, or with --devicenet in DeviceNet terms, one line per frame (docs/cotrace.md). */
 #include "atv58/emcy.h"
-#include "co_cli.h"
+#include "cli/co_cli.h"
 #include "co_linux/can_frame.h"
 #include "co_linux/candump.h"
 #include "co_linux/log.h"
 #include "co_linux/loop.h"
-#include "decoder.h"
-#include "devicenet_decoder.h"
+#include "trace/decoder.h"
+#include "trace/devicenet_decoder.h"
 
 #include <errno.h>
 #include <stdio.h>

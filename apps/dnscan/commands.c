@@ -1,10 +1,10 @@
 /* SPDX-License-Identifier: Apache-2.0 */
 /* dnscan's commands: each builds the slaves' sequences of steps, prints their results and
  * decides the exit status (docs/dnscan.md). */
-#include "cip_assembly.h"
-#include "cip_text.h"
-#include "co_cli.h"
-#include "run.h"
+#include "cli/co_cli.h"
+#include "dnscan/run.h"
+#include "trace/cip_assembly.h"
+#include "trace/cip_text.h"
 
 #include <ctype.h>
 #include <stdio.h>

@@ -4,7 +4,7 @@
 #ifndef DNSCAN_H
 #define DNSCAN_H
 
-#include "co_cli.h"
+#include "cli/co_cli.h"
 #include "dn/dn_scanner.h"
 
 #include <stdbool.h>

@@ -3,9 +3,9 @@
  * allocate and release a slave's connections, get and set any attribute, poll I/O by the
  * assembly's names, monitor (docs/dnscan.md). The command line and output are here; the bus is
  * the Linux runtime's loop with the portable scanner (src/devicenet/scanner) as its device. */
-#include "dnscan.h"
+#include "dnscan/dnscan.h"
 
-#include "co_cli.h"
+#include "cli/co_cli.h"
 
 #include <errno.h>
 #include <stdarg.h>

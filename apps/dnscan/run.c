@@ -2,9 +2,9 @@
 /* dnscan's bus and sequences: the Linux runtime's loop with the scanner as its one device; each
  * slave of a command runs a sequence of steps (allocate, requests, polls, release) one after the
  * other, all slaves at once, and the command ends when every sequence has. */
-#include "run.h"
+#include "dnscan/run.h"
 
-#include "co_cli.h"
+#include "cli/co_cli.h"
 
 #include <stdio.h>
 #include <string.h>

@@ -5,7 +5,7 @@
 #define DNSCAN_RUN_H
 
 #include "co_linux/loop.h"
-#include "dnscan.h"
+#include "dnscan/dnscan.h"
 
 /* The scanner's identity in its duplicate MAC ID check: no vendor (0), and a serial number
  * that names the tool ("DNSC"). */

@@ -1,6 +1,6 @@
 /* SPDX-License-Identifier: Apache-2.0 */
 /* The programs' messages and exit statuses (co_cli.h). */
-#include "co_cli.h"
+#include "cli/co_cli.h"
 
 #include <string.h>
 

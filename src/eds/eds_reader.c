@@ -1,7 +1,7 @@
 /* SPDX-License-Identifier: Apache-2.0 */
-#include "eds_reader.h"
+#include "eds/eds_reader.h"
 
-#include "ini_reader.h"
+#include "eds/ini_reader.h"
 
 #include <ctype.h>
 #include <dirent.h>

@@ -1,5 +1,5 @@
 /* SPDX-License-Identifier: Apache-2.0 */
-#include "ini_reader.h"
+#include "eds/ini_reader.h"
 
 #include <ctype.h>
 #include <string.h>

@@ -1,7 +1,7 @@
 /* SPDX-License-Identifier: Apache-2.0 */
 /* The Altivar 312 card's assemblies with the field names of its DeviceNet manual's tables
  * (cip_assembly.h). */
-#include "cip_assembly.h"
+#include "trace/cip_assembly.h"
 
 #include <ctype.h>
 

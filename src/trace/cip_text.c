@@ -1,7 +1,7 @@
 /* SPDX-License-Identifier: Apache-2.0 */
 /* The texts of the CIP vocabulary (cip_text.h): service names as the CIP specification spells
  * them, the general status codes of its appendix, the classes of dn_cip.h. */
-#include "cip_text.h"
+#include "trace/cip_text.h"
 
 #include <stddef.h>
 

@@ -1,6 +1,6 @@
 /* SPDX-License-Identifier: Apache-2.0 */
-#include "decoder.h"
-#include "text.h"
+#include "trace/decoder.h"
+#include "trace/text.h"
 
 #include "co/co_emcy.h"
 #include "co/co_nmt.h"

@@ -10,7 +10,7 @@
 #define COTRACE_DECODER_H
 
 #include "co/co_emcy_consumer.h"
-#include "eds_reader.h"
+#include "eds/eds_reader.h"
 
 #include <linux/can.h>
 

@@ -1,12 +1,12 @@
 /* SPDX-License-Identifier: Apache-2.0 */
 /* cotrace's DeviceNet decoder (devicenet_decoder.h): identifiers by dn_link.h, services, classes
  * and status texts by cip_text.h, I/O data by the Altivar 312 card's assemblies. */
-#include "devicenet_decoder.h"
+#include "trace/devicenet_decoder.h"
 
-#include "cip_assembly.h"
-#include "cip_text.h"
-#include "decoder.h" /* cotrace_control_word_command, cotrace_status_word_state */
-#include "text.h"
+#include "trace/cip_assembly.h"
+#include "trace/cip_text.h"
+#include "trace/decoder.h" /* cotrace_control_word_command, cotrace_status_word_state */
+#include "trace/text.h"
 
 #include <string.h>
 

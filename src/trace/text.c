@@ -1,6 +1,6 @@
 /* SPDX-License-Identifier: Apache-2.0 */
 /* The decoders' shared line helpers (text.h). */
-#include "text.h"
+#include "trace/text.h"
 
 #include <linux/can/error.h>
 #include <stdarg.h>

@@ -4,7 +4,7 @@
  * dnscan print when the interface does not open, word for word with its exit status; the value
  * names of options; JSON strings escaped. */
 #include "check_main.h"
-#include "co_cli.h"
+#include "cli/co_cli.h"
 
 #include <errno.h>
 #include <stdlib.h>

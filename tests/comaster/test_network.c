@@ -4,7 +4,7 @@
  * identity checks, the configuration writes byte by byte, the PDOs and the named variables of the
  * process image), and every kind of bad file refused with a message naming file, line and key. */
 #include "check_main.h"
-#include "network.h"
+#include "comaster/network.h"
 
 #include <stdio.h>
 #include <stdlib.h>

@@ -3,7 +3,7 @@
  * download and printed from the bytes of an upload, range errors, objects by index and by name
  * through the project's EDS, and the EDS found for a node's identity. */
 #include "check_main.h"
-#include "value.h"
+#include "comaster/value.h"
 
 #include <stdio.h>
 #include <string.h>

@@ -4,7 +4,7 @@
 #include "atv58/emcy.h"
 #include "check_main.h"
 #include "co_linux/candump.h"
-#include "decoder.h"
+#include "trace/decoder.h"
 
 #include <stdio.h>
 #include <stdlib.h>

@@ -5,7 +5,7 @@
  * assembly selected, the selection applied at the node's restart, malformed frames. */
 #include "check_main.h"
 #include "co_linux/candump.h"
-#include "devicenet_decoder.h"
+#include "trace/devicenet_decoder.h"
 
 #include <stdio.h>
 #include <string.h>

@@ -6,7 +6,7 @@
  * named exactly as CiA 306 writes them, numbers as it writes them, and each syntax error with the
  * file and the line (counting comments and blank lines). */
 #include "check_main.h"
-#include "eds_reader.h"
+#include "eds/eds_reader.h"
 
 #include <stdio.h>
 #include <stdlib.h>

@@ -4,7 +4,7 @@
  * false, its error kept. The dialects of its two users are tested through them
  * (test_eds_reader.c, tests/comaster/test_network.c). */
 #include "check_main.h"
-#include "ini_reader.h"
+#include "eds/ini_reader.h"
 
 #include <stdio.h>
 #include <string.h>

@@ -1,6 +1,7 @@
 /* SPDX-License-Identifier: Apache-2.0 */
 /* dnscan: what its files share: the options, the errors and --json with the exit statuses
- * (co_cli.h). */
+ * (co_cli.h) and a number of an argument, in dnscan.c; and the commands of commands.c, which the
+ * table in main.c runs. */
 #ifndef DNSCAN_H
 #define DNSCAN_H
 

@@ -7,8 +7,6 @@
 
 #include "cli/co_cli.h"
 
-#include <errno.h>
-#include <stdarg.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -75,26 +73,6 @@ static const char usage_text[] =
     "  69  no such interface, or no SocketCAN\n"
     "  70  internal error\n"
     "  71  system error\n";
-
-int dnscan_fail(const dnscan_options_t *opts, int status, const char *format, ...)
-{
-    va_list ap;
-    va_start(ap, format);
-    status = cli_vfail(NULL, opts->json, status, format, ap);
-    va_end(ap);
-    return status;
-}
-
-bool dnscan_parse_number(const char *text, unsigned long max, unsigned long *value)
-{
-    char *end;
-    errno = 0;
-    unsigned long v = strtoul(text, &end, 0);
-    if (errno || end == text || *end || text[0] == '-' || v > max)
-        return false;
-    *value = v;
-    return true;
-}
 
 /* Options that take a value, and what --help calls it. */
 static const cli_valued_option_t valued[] = {

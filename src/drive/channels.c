@@ -3,7 +3,7 @@
  * fields), and which ramp pair runs: the network, or a channel at the drive, chosen by switches
  * whose sources are logic inputs or control word bits. An update says whether the command channel
  * changed; the composition root (drive.c) has local control react to it. */
-#include "drive_internal.h"
+#include "drive/drive_floors.h"
 
 static bool network_bit(const drive_t *drive, uint32_t bit)
 {

@@ -4,7 +4,7 @@
  * (heartbeat consumer or life guarding) is the network fault. The composition root of the layer:
  * the core's application hooks and every public entry point that changes the drive's state end
  * by settling it; the files below change the state and say what changed, and call none of this. */
-#include "drive_internal.h"
+#include "drive/drive_floors.h"
 
 #include <string.h>
 

@@ -3,7 +3,7 @@
  * 603Fh and the reset rules of each fault's class (include/drive/faults.h). The model supplies
  * the table; nothing here knows a fault by name. A raise or an end says whether it changed the
  * state; the composition root (drive.c) settles the drive on it. */
-#include "drive_internal.h"
+#include "drive/drive_floors.h"
 
 static const drive_fault_def_t *fault_def(const drive_t *drive, uint8_t index)
 {
@@ -124,21 +124,6 @@ bool drive_emcy_code_in_use(const drive_t *drive, uint16_t code)
     }
     for (uint8_t i = 0; i < drive->bus_event_count; i++) {
         if (drive->bus_events[i] == code)
-            return true;
-    }
-    return false;
-}
-
-bool drive_warning_present(const drive_t *drive)
-{
-    const drive_fault_table_t *table = drive->profile->faults;
-    const co_emcy_t *emcy = &drive->node.emcy;
-    for (uint8_t e = 0; e < emcy->active_count; e++) {
-        bool fault = false;
-        for (uint8_t i = 0; i < table->count && !fault; i++)
-            fault = (drive->faults_active & fault_bit(i)) &&
-                    table->faults[i].emcy_code == emcy->active[e].code;
-        if (!fault)
             return true;
     }
     return false;

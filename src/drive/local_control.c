@@ -3,7 +3,7 @@
  * the keypad's STOP and RUN keys, forced local control, the load on the motor, the logic inputs,
  * and whether local control holds. Each event brings the motor to its time and changes the state;
  * the composition root (drive.c) settles the drive on it. */
-#include "drive_internal.h"
+#include "drive/drive_floors.h"
 
 bool drive_local_control(const drive_t *drive)
 {

@@ -3,7 +3,7 @@
  * steer the motor to, whether the output is on (it drives current and torque, and a fault
  * reaction can stop it on a ramp), and what the drive publishes of it: the status word, speeds,
  * current and torque. */
-#include "drive_internal.h"
+#include "drive/drive_floors.h"
 
 /* Magnetising current at standstill, in % of nominal current; 100 % torque needs 100 %. */
 #define MAGNETISING_CURRENT_PERCENT 30
@@ -143,6 +143,23 @@ void drive_output_steer(drive_t *drive)
     drive_motor_steer(&drive->motor, target, fast, &ramp);
 }
 
+/* Status word bit 7 (D-STATUS-ALARM): the node reports an error by EMCY that is not one of the
+ * drive's active faults (a CAN bus condition, an RPDO length or timeout error). */
+static bool warning_present(const drive_t *drive)
+{
+    const drive_fault_table_t *table = drive->profile->faults;
+    const co_emcy_t *emcy = &drive->node.emcy;
+    for (uint8_t e = 0; e < emcy->active_count; e++) {
+        bool fault = false;
+        for (uint8_t i = 0; i < table->count && !fault; i++)
+            fault = (drive->faults_active & ((uint32_t)1u << i)) &&
+                    table->faults[i].emcy_code == emcy->active[e].code;
+        if (!fault)
+            return true;
+    }
+    return false;
+}
+
 static uint16_t status_word(const drive_t *drive)
 {
     const drive_motor_t *motor = &drive->motor;
@@ -151,7 +168,7 @@ static uint16_t status_word(const drive_t *drive)
         status |= CIA402_SW_TARGET_REACHED;
     if (drive->limited)
         status |= CIA402_SW_INTERNAL_LIMIT;
-    if (drive_warning_present(drive))
+    if (warning_present(drive))
         status |= CIA402_SW_WARNING;
     if (drive_motor_reverse(motor))
         status |= drive->profile->status_reverse;

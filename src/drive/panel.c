@@ -3,7 +3,7 @@
 #include "drive/panel.h"
 
 #include "co/co_emcy.h"
-#include "drive_internal.h"
+#include "drive/drive_floors.h"
 
 drive_display_t drive_panel_display(const drive_t *drive)
 {

@@ -2,7 +2,7 @@
 /* Dictionary hooks a model's hooks file names on the entries its profile points at: the rules of
  * the drive's own parameters, and the CiA 402 objects that are views of them (6046h of the speed
  * limits, 6048h/6049h of the ramps). */
-#include "drive_internal.h"
+#include "drive/drive_floors.h"
 
 /* Motor data are configuration parameters (ATV312 DeviceNet manual, drive state machine): they
  * change only with the motor stopped, and a change returns the drive to Switch on disabled. */

@@ -3,7 +3,7 @@
  * dictionary (the entries found once at init, a parameter's value) and the units they convert
  * between (0.1 Hz and rpm, through the nominal frequency and speed). Every other file of the layer
  * reads through it; it calls none of them. */
-#include "drive_internal.h"
+#include "drive/drive_floors.h"
 
 #include <stddef.h>
 

@@ -1,10 +1,12 @@
 /* SPDX-License-Identifier: Apache-2.0 */
-/* Internal interface of the drive layer, for its own files and never a model's: the CiA 402
- * indexes every model has, then a section per file from the ground floor up. A file calls only
- * the sections above its own (and cia402.c, motor.c, which need none of this); drive.c, the
- * composition root, with parameters.c and panel.c, calls any. */
-#ifndef DRIVE_INTERNAL_H
-#define DRIVE_INTERNAL_H
+/* The drive layer's floors: its internal interface, for its own files and never a model's. The
+ * CiA 402 indexes every model has, then a section per file from the ground floor up (profile.c,
+ * local_control.c, channels.c, output.c, faults.c). A file calls only the sections above its own
+ * (and cia402.c, motor.c, which need none of this); drive.c, the composition root, calls any, and
+ * so may parameters.c and panel.c beside it (the dictionary hooks models share, the front panel),
+ * which no file of the layer calls. */
+#ifndef DRIVE_FLOORS_H
+#define DRIVE_FLOORS_H
 
 #include "drive/drive.h"
 
@@ -113,9 +115,6 @@ void drive_faults_acknowledge(drive_t *drive);
  * one active error per code (CiA 301), however many causes share it: the code is cleared only
  * when none does. */
 bool drive_emcy_code_in_use(const drive_t *drive, uint16_t code);
-/* Whether the node reports an error by EMCY that is not one of the drive's active faults (a CAN
- * bus condition, an RPDO length or timeout error): a warning, status word bit 7. */
-bool drive_warning_present(const drive_t *drive);
 /* 603Fh: the latched fault's EMCY code while a fault is active, else the code of a CAN bus
  * condition still present, else 0 (the Altivar manuals: "The Emergency Error Code is the same as
  * the variable Fault code (603F)"; D-ERROR-CODE-EMCY). */

@@ -1,7 +1,7 @@
 /* SPDX-License-Identifier: Apache-2.0 */
 /* cotrace: says what every frame of a candump -L log or a live SocketCAN interface means in
  * CANopen terms, or with --devicenet in DeviceNet terms, one line per frame (docs/cotrace.md). */
-#include "atv58/emcy.h"
+#include "atv58/atv58_emcy.h"
 #include "cli/co_cli.h"
 #include "co_linux/can_frame.h"
 #include "co_linux/candump.h"

@@ -1,7 +1,7 @@
 /* SPDX-License-Identifier: Apache-2.0 */
 /* cotrace's decoder on lists of frames, each with the exact line it must give: every service,
  * SDO transfers followed across frames, PDOs decoded through an EDS, malformed frames. */
-#include "atv58/emcy.h"
+#include "atv58/atv58_emcy.h"
 #include "check_main.h"
 #include "co_linux/candump.h"
 #include "trace/decoder.h"

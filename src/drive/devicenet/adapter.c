@@ -2,7 +2,7 @@
 /* The drive on DeviceNet (drive_devicenet.h): the slave's configuration from the model's data,
  * the assemblies read from and written to the drive's dictionary, the ends of the connections (the
  * communication-loss fault), the Identity status of the drive's faults and the Identity Reset. */
-#include "drive_dn_internal.h"
+#include "drive/devicenet/drive_dn_internal.h"
 
 #include <string.h>
 

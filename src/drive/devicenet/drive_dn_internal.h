@@ -1,6 +1,7 @@
 /* SPDX-License-Identifier: Apache-2.0 */
 /* Internal interface of the drive on DeviceNet (drive_devicenet.h): the ODVA translation
- * (odva.c) and the drive's CIP classes (objects.c), which the adapter (adapter.c) puts together. */
+ * (odva.c) and the drive's CIP classes (cip_objects.c), which the adapter (adapter.c) puts
+ * together. */
 #ifndef DRIVE_DN_INTERNAL_H
 #define DRIVE_DN_INTERNAL_H
 
@@ -32,7 +33,7 @@ bool drive_dn_at_reference(const drive_t *drive);
 bool drive_dn_control_from_net(const drive_t *drive);
 bool drive_dn_reference_from_net(const drive_t *drive);
 
-/* objects.c: the table of the drive's classes, sorted by class. */
+/* cip_objects.c: the table of the drive's classes, sorted by class. */
 #define DRIVE_DN_OBJECT_COUNT 4u
 void drive_dn_objects(drive_dn_t *dn, dn_object_t objects[DRIVE_DN_OBJECT_COUNT]);
 

@@ -3,7 +3,7 @@
  * DeviceNet manual's tables say ("Run/Stop event triggers", "DRIVECOM status to State
  * translation"): the card writes the drive's control word and reference and reads its status
  * word; the drive's state machine does the rest. */
-#include "drive_dn_internal.h"
+#include "drive/devicenet/drive_dn_internal.h"
 
 uint16_t drive_dn_status_word(const drive_t *drive)
 {

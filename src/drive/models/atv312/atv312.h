@@ -13,7 +13,7 @@
 #include "drive/drive.h"
 
 /* The faults of the Altivar 312 and of the Altivar 31, their EMCY codes and reset classes
- * (src/drive/models/atv312/faults.c, docs/atv312.md): the same but for the name of the
+ * (src/drive/models/atv312/atv312_faults.c, docs/atv312.md): the same but for the name of the
  * communication-loss fault, COF on CANopen (both CANopen manuals), CnF behind the ATV312's
  * DeviceNet card (its DeviceNet manual). */
 extern const drive_fault_table_t atv312_family_faults;

@@ -10,7 +10,7 @@
 #ifndef ATV58_H
 #define ATV58_H
 
-#include "atv58/emcy.h"
+#include "atv58/atv58_emcy.h"
 #include "atv58_od.h" /* generated */
 #include "drive/drive.h"
 #include "drive/panel.h"
@@ -19,7 +19,7 @@
 #define ATV58_NODE_ID_MAX 63
 
 extern const drive_profile_t atv58_profile;
-/* The faults of its manual's EMCY table (src/drive/models/atv58/faults.c). */
+/* The faults of its manual's EMCY table (src/drive/models/atv58/atv58_faults.c). */
 extern const drive_fault_table_t atv58_faults;
 /* The card's green OK and yellow COM LEDs (src/drive/models/atv58/indicators.c). */
 #define ATV58_INDICATORS 2

@@ -6,7 +6,7 @@
 
 #include "co/co_emcy_consumer.h"
 
-/* For co_emcy_code_text_in: mnemonic and meaning of each code the card sends (emcy.c). */
+/* For co_emcy_code_text_in: mnemonic and meaning of each code the card sends (atv58_emcy.c). */
 extern const co_emcy_code_table_t atv58_emcy_table;
 
 #endif

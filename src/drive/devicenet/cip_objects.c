@@ -5,7 +5,7 @@
  * dictionary, as the card's requests do; a refusal of the drive is answered with its CIP status
  * (drive_dn_cip_status). */
 #include "co/co_cia301.h"
-#include "drive_dn_internal.h"
+#include "drive/devicenet/drive_dn_internal.h"
 
 #define CLASS_REVISION 1u /* class attribute 1 of 0x28, 0x29 and the application objects */
 #define INSTANCE 1u

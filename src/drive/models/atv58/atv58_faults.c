@@ -3,7 +3,7 @@
  * table, the manuals' only one (docs/manuals.md), code for code (a code printed in brackets is the
  * project's reading). The card's error register is "=0 no fault, =1 fault": 1001h bit 0 alone, so
  * no entry adds a class bit. Reset classes as the Altivar 31/312 family's for the faults they
- * share (src/drive/models/atv312/faults.c), the ATV58's own ones (ANF, TSF, SPF) by command.
+ * share (src/drive/models/atv312/atv312_faults.c), the ATV58's own ones (ANF, TSF, SPF) by command.
  * Every fault freewheels: the card's manual gives no stop (the project's choice, docs/atv58.md). */
 #include "atv58/atv58.h"
 

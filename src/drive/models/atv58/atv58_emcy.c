@@ -1,10 +1,11 @@
 /* SPDX-License-Identifier: Apache-2.0 */
 /* The Altivar 58 CANopen card manual's EMCY code table (VW3-A58308, "Emergency Error Codes"),
  * mnemonic and meaning, for an EMCY consumer (co_emcy_code_text_in: cotrace --emcy-table atv58).
- * The same codes the model sends for its faults (faults.c); the manual lists several faults under
- * one code where its table had merged cells, and they share one text here. tests/drive/models/atv58
- * checks that every fault of faults.c has its meaning in this table. */
-#include "atv58/emcy.h"
+ * The same codes the model sends for its faults (atv58_faults.c); the manual lists several faults
+ * under one code where its table had merged cells, and they share one text here.
+ * tests/drive/models/atv58 checks that every fault of atv58_faults.c has its meaning in this table.
+ */
+#include "atv58/atv58_emcy.h"
 
 #define EXACT CO_EMCY_MASK_EXACT
 #define SUBCLASS CO_EMCY_MASK_SUBCLASS

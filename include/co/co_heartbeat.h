@@ -15,51 +15,8 @@
 #define CO_HEARTBEAT_H
 
 #include "co_config.h"
+#include "co_hb_monitor.h"
 #include "co_od.h"
-
-/* The timer of one heartbeat consumer, shared by a node's consumers (1016h) and the NMT
- * master's (co_nmt_master.h): monitoring starts with the first frame from the producer, the loss
- * is due once when the consumer time passes without a frame, the next frame ends it. */
-typedef struct co_hb_monitor {
-    uint32_t time_us;   /* consumer time; 0 = not monitored */
-    bool monitoring;    /* a frame was received since the consumer was configured */
-    bool lost;          /* the loss was reported and no frame came since */
-    co_time_t deadline; /* CO_TIME_NEVER before the first frame and while lost */
-} co_hb_monitor_t;
-
-/* Sets the consumer time (0 = off); monitoring waits for the next frame. The three functions are
- * inline: each has one caller in a node (error_control.c) and one in the NMT master, where GCC
- * folds them into the caller. */
-static inline void co_hb_monitor_configure(co_hb_monitor_t *monitor, uint32_t time_us)
-{
-    monitor->time_us = time_us;
-    monitor->monitoring = false;
-    monitor->lost = false;
-    monitor->deadline = CO_TIME_NEVER;
-}
-
-/* A heartbeat or boot-up frame from the producer at `now`: restarts the timer of a configured
- * consumer. True when it ends a loss (to report the producer resumed). */
-static inline bool co_hb_monitor_alive(co_hb_monitor_t *monitor, co_time_t now)
-{
-    if (monitor->time_us == 0)
-        return false;
-    monitor->monitoring = true;
-    monitor->deadline = now + monitor->time_us;
-    bool resumed = monitor->lost;
-    monitor->lost = false;
-    return resumed;
-}
-
-/* True once, when the consumer time has passed at `now` (the loss to report). */
-static inline bool co_hb_monitor_expired(co_hb_monitor_t *monitor, co_time_t now)
-{
-    if (now < monitor->deadline)
-        return false;
-    monitor->lost = true;
-    monitor->deadline = CO_TIME_NEVER;
-    return true;
-}
 
 typedef struct co_hb_consumer {
     uint8_t node_id; /* 0: entry unused */
@@ -83,7 +40,7 @@ uint32_t co_heartbeat_od_write(co_node_t *node, const co_od_entry_t *entry, cons
                                size_t len);
 
 /* True while the heartbeat producer runs (1017h != 0): node guarding is then off. Inline: its
- * one caller, the guarding half of error control, folds it in. */
+ * one caller, guarding.c, folds it in and calls nothing of heartbeat.c. */
 static inline bool co_heartbeat_producing(const co_node_t *node)
 {
     return co_od_value(node, CO_IDX_HB_PRODUCER, 0) != 0;

@@ -9,6 +9,7 @@
 #ifndef CO_NMT_MASTER_H
 #define CO_NMT_MASTER_H
 
+#include "co_hb_monitor.h"
 #include "co_node.h"
 
 #define CO_NMT_MASTER_NODE_ID_MAX CO_NODE_ID_MAX /* the nodes an NMT master tracks, 1..127 */
@@ -43,7 +44,7 @@ typedef void (*co_nmt_master_event_fn)(void *user, const co_nmt_master_event_t *
 /* What the master knows and does about one node. */
 typedef struct co_nmt_master_slave {
     uint8_t state; /* CO_NMT_MASTER_STATE_UNKNOWN until a frame came from the node */
-    /* Heartbeat consumer, like a 1016h entry (co_heartbeat.h); time 0 = not monitored. */
+    /* Heartbeat consumer, like a 1016h entry (co_hb_monitor.h); time 0 = not monitored. */
     co_hb_monitor_t heartbeat;
     /* Node guarding: guard time 0 = not guarded. */
     uint32_t guard_us;

@@ -30,12 +30,16 @@ typedef struct co_od_entry co_od_entry_t;
 #define CO_OD_ACCESS_RW (CO_OD_READ | CO_OD_WRITE)
 #define CO_OD_ACCESS_CONST (CO_OD_READ | CO_OD_CONST)
 
-/* Where a write comes from, for hooks that treat them differently. */
+/* Where a write comes from, for hooks that treat them differently. Only the application writes a
+ * read-only entry; every other origin gets the checks of a client's download (co_od_write). */
 typedef enum co_od_origin {
-    CO_OD_ORIGIN_SDO,  /* a client's SDO download */
-    CO_OD_ORIGIN_PDO,  /* a received PDO */
-    CO_OD_ORIGIN_APP,  /* the application or the stack itself */
-    CO_OD_ORIGIN_STORE /* a stored value applied at a reset (1010h / 1011h) */
+    CO_OD_ORIGIN_SDO,   /* a client's SDO download */
+    CO_OD_ORIGIN_PDO,   /* a received PDO */
+    CO_OD_ORIGIN_APP,   /* the application or the stack itself */
+    CO_OD_ORIGIN_STORE, /* a stored value applied at a reset (1010h / 1011h) */
+    /* A communication card of another fieldbus on the same device, writing for its own master
+     * (the drive's DeviceNet card, src/drive/devicenet): checked and hooked as an SDO download. */
+    CO_OD_ORIGIN_CARD
 } co_od_origin_t;
 
 /* Returned by a write hook or a service write handler that stored (or consumed) the value itself:

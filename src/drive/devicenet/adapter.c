@@ -93,9 +93,9 @@ static void write_transparent(drive_dn_t *dn, const uint8_t *data)
     co_node_t *node = &dn->drive->node;
     const drive_entries_t *e = &dn->drive->entries;
     if (co_get_u16(data + 2) != (uint16_t)co_od_get(node, e->target_velocity))
-        (void)co_od_write(node, 0x6042, 0, data + 2, 2, CO_OD_ORIGIN_SDO);
+        (void)co_od_write(node, 0x6042, 0, data + 2, 2, CO_OD_ORIGIN_CARD);
     if (co_get_u16(data) != drive_dn_control_word(dn->drive))
-        (void)co_od_write(node, 0x6040, 0, data, 2, CO_OD_ORIGIN_SDO);
+        (void)co_od_write(node, 0x6040, 0, data, 2, CO_OD_ORIGIN_CARD);
 }
 
 static void on_write_assembly(void *user, uint16_t instance, const uint8_t *data)

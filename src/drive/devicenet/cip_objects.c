@@ -59,7 +59,7 @@ static dn_status_t write_entry(drive_t *drive, uint16_t index, uint8_t subindex,
                                const dn_request_t *request)
 {
     return drive_dn_cip_status(
-        co_od_write(&drive->node, index, subindex, request->data, request->len, CO_OD_ORIGIN_SDO));
+        co_od_write(&drive->node, index, subindex, request->data, request->len, CO_OD_ORIGIN_CARD));
 }
 
 static bool is_get(const dn_request_t *request)

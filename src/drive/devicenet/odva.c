@@ -20,12 +20,13 @@ int16_t drive_dn_speed_actual(const drive_t *drive)
     return (int16_t)co_od_get(&drive->node, drive->entries.velocity_actual);
 }
 
-/* Through the dictionary, as the card's write request: the drive's hooks run as for an SDO. */
+/* Through the dictionary, as the card's write request (CO_OD_ORIGIN_CARD): the checks and the
+ * drive's hooks of an SDO download. */
 static void write_word(drive_dn_t *dn, uint16_t index, uint16_t value)
 {
     uint8_t data[2];
     co_put_u16(data, value);
-    (void)co_od_write(&dn->drive->node, index, 0, data, sizeof data, CO_OD_ORIGIN_SDO);
+    (void)co_od_write(&dn->drive->node, index, 0, data, sizeof data, CO_OD_ORIGIN_CARD);
 }
 
 static void write_control(drive_dn_t *dn, uint16_t word)

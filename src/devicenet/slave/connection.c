@@ -7,6 +7,8 @@
 
 #include "devicenet/slave/dn_slave.h"
 
+#define CONNECTION_REVISION 1u /* the Connection class's revision (class attribute 1) */
+
 /* The manual's default expected packet rate of the explicit connection, 0x09C8: 2500 ms rounded
  * up to the 8 ms resolution of the card's timers, which every rate written is rounded to. */
 #define EXPLICIT_EPR_DEFAULT_MS 2504u
@@ -625,7 +627,7 @@ static dn_status_t connection_class(dn_node_t *node, const dn_request_t *request
     else if (request->attribute == CONN_CLASS_PRODUCED_ASSEMBLY)
         dn_reply_u16(reply, node->stored.produced_assembly);
     else
-        dn_reply_u16(reply, 1); /* class revision */
+        dn_reply_u16(reply, CONNECTION_REVISION);
     return DN_OK;
 }
 

@@ -2,6 +2,8 @@
 /* The programs' messages and exit statuses (co_cli.h). */
 #include "cli/co_cli.h"
 
+#include "cli/json.h"
+
 #include <string.h>
 
 const char *cli_value_name(const cli_valued_option_t *table, size_t count, const char *option)
@@ -17,12 +19,8 @@ void cli_json_string(FILE *out, const char *text)
 {
     fputc('"', out);
     for (const unsigned char *p = (const unsigned char *)text; *p; p++) {
-        if (*p == '"' || *p == '\\')
-            fprintf(out, "\\%c", *p);
-        else if (*p < 0x20)
-            fprintf(out, "\\u%04x", *p);
-        else
-            fputc(*p, out);
+        char escaped[CLI_JSON_ESCAPE_MAX];
+        fwrite(escaped, 1, cli_json_escape(*p, escaped), out);
     }
     fputc('"', out);
 }

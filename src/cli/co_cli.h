@@ -34,8 +34,7 @@ typedef struct cli_valued_option {
  * there: the "give --timeout MS" of an option given without its value. */
 const char *cli_value_name(const cli_valued_option_t *table, size_t count, const char *option);
 
-/* Writes `text` to `out` as a JSON string: quoted, '"' and '\' escaped, control characters as
- * \u00XX. */
+/* Writes `text` to `out` as a JSON string, escaped as the JSON writer does (cli/json.h). */
 void cli_json_string(FILE *out, const char *text);
 
 /* An error: "<program>: error: <message>" on stderr (co_log's line at CO_LOG_ERROR, <program>

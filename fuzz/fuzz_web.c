@@ -10,9 +10,9 @@
  * headers first, then with its body (at most 1024 bytes kept, the rest counted as too long).
  * Invariants: docs/fuzzing.md. Seeds: fuzz/seeds.py. */
 #include "atv312/atv312.h"
+#include "atv312d/control_commands.h"
+#include "atv312d/http.h"
 #include "co_linux/log.h"
-#include "control.h"
-#include "http.h"
 #include "rig.h"
 
 #include <stdlib.h>

@@ -1,5 +1,5 @@
 /* SPDX-License-Identifier: Apache-2.0 */
-#include "cli.h"
+#include "atv312d/cli.h"
 
 #include <arpa/inet.h>
 #include <ctype.h>

@@ -5,8 +5,8 @@
 #ifndef ATV312D_CLI_H
 #define ATV312D_CLI_H
 
+#include "atv312d/http.h"
 #include "co_linux/log.h"
-#include "http.h"
 #include "models.h"
 
 #include <stdbool.h>

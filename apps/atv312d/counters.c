@@ -1,6 +1,6 @@
 /* SPDX-License-Identifier: Apache-2.0 */
 /* Per-drive service counters (counters.h). */
-#include "counters.h"
+#include "atv312d/counters.h"
 
 #include "co/co_emcy_consumer.h"
 

@@ -2,15 +2,13 @@
 /* The web surface (http.h): the address and token of the command line, the handler of requests
  * (the bench, its state, the assets, the commands and their checks) and its server on
  * libmicrohttpd in the daemon's loop, whose functions it calls through http->mhd (mhd_load.h). */
-#include "http.h"
+#include "atv312d/http.h"
 
+#include "atv312d/web_assets.h"
+#include "cli/json.h"
 #include "co_linux/log.h"
-#include "drive/panel.h"
-#include "status.h"
-#include "web_assets.h"
 
 #include <arpa/inet.h>
-#include <ctype.h>
 #include <errno.h>
 #include <microhttpd.h>
 #include <stdarg.h>
@@ -57,49 +55,6 @@ int atv312d_http_read_token(const char *path, char *token, size_t token_len, cha
     return 0;
 }
 
-/* ---- JSON into a buffer ---- */
-
-typedef struct out {
-    char *buf;
-    size_t len, used;
-} out_t;
-
-static void put(out_t *o, const char *format, ...) __attribute__((format(printf, 2, 3)));
-
-static void put(out_t *o, const char *format, ...)
-{
-    if (o->used >= o->len)
-        return;
-    va_list args;
-    va_start(args, format);
-    int n = vsnprintf(o->buf + o->used, o->len - o->used, format, args);
-    va_end(args);
-    if (n > 0)
-        o->used += (size_t)n;
-}
-
-/* A JSON string: quoted, '"' and '\' escaped, control characters as \u00XX. */
-static void put_string(out_t *o, const char *text)
-{
-    put(o, "\"");
-    for (const unsigned char *c = (const unsigned char *)text; *c; c++) {
-        if (*c == '"' || *c == '\\')
-            put(o, "\\%c", *c);
-        else if (*c < 0x20)
-            put(o, "\\u%04x", *c);
-        else
-            put(o, "%c", *c);
-    }
-    put(o, "\"");
-}
-
-/* The output's length, or the buffer's whole length when it was cut (never cut in practice:
- * the buffer holds 127 drives' state). */
-static size_t out_length(const out_t *o)
-{
-    return o->used < o->len ? o->used : o->len - 1;
-}
-
 /* ---- the bench and its state ---- */
 
 static bool devicenet(const atv312d_http_t *http)
@@ -107,53 +62,25 @@ static bool devicenet(const atv312d_http_t *http)
     return http->control->count > 0 && http->control->nodes[0].devicenet != NULL;
 }
 
-/* One drive's static data: node, model, faults, inputs and LEDs. */
-static void put_bench_drive(const atv312d_control_node_t *node, out_t *o)
-{
-    const drive_t *drive = node->drive;
-    put(o, "{\"node\":%u,\"model\":\"", node->id);
-    for (const char *c = node->model; *c; c++)
-        put(o, "%c", toupper((unsigned char)*c));
-    put(o, "\",\"faults\":[");
-    const drive_fault_table_t *faults = drive->profile->faults;
-    for (uint8_t i = 0; i < faults->count; i++) {
-        put(o, "%s{\"code\":", i ? "," : "");
-        put_string(o, faults->faults[i].code);
-        put(o, ",\"name\":");
-        put_string(o, faults->faults[i].meaning);
-        put(o, "}");
-    }
-    put(o, "],\"inputs\":[");
-    for (uint8_t i = 1; i <= drive->profile->logic_inputs; i++)
-        put(o, "%s\"LI%u\"", i > 1 ? "," : "", i);
-    put(o, "],\"leds\":[");
-    if (node->devicenet)
-        put(o, "\"MS\",\"NS\"");
-    else {
-        uint8_t count;
-        const drive_indicator_t *leds = drive_panel_indicators(drive, &count);
-        for (uint8_t i = 0; i < count; i++) {
-            put(o, "%s", i ? "," : "");
-            put_string(o, leds[i].name);
-        }
-    }
-    put(o, "]}");
-}
+/* The JSON answers' lengths are 0 when the answer does not fit in the buffer: never, it holds
+ * 127 drives' state. */
 
+/* GET /api/bench: the interface, the protocol, what the web may do, and each drive's fixed data. */
 static size_t format_bench(const atv312d_http_t *http, char *buf, size_t len)
 {
-    out_t o = {.buf = buf, .len = len};
-    put(&o, "{\"interface\":");
-    put_string(&o, http->loop->iface);
-    put(&o, ",\"protocol\":\"%s\",\"actions\":%s,\"token_required\":%s,\"drives\":[",
-        devicenet(http) ? "devicenet" : "canopen", http->settings.actions ? "true" : "false",
-        http->settings.token[0] ? "true" : "false");
-    for (size_t i = 0; i < http->control->count; i++) {
-        put(&o, "%s", i ? "," : "");
-        put_bench_drive(&http->control->nodes[i], &o);
-    }
-    put(&o, "]}");
-    return out_length(&o);
+    cli_json_t json;
+    cli_json_init(&json, buf, len);
+    cli_json_begin_object(&json, NULL);
+    cli_json_str(&json, "interface", http->loop->iface);
+    cli_json_str(&json, "protocol", devicenet(http) ? "devicenet" : "canopen");
+    cli_json_bool(&json, "actions", http->settings.actions);
+    cli_json_bool(&json, "token_required", http->settings.token[0] != '\0');
+    cli_json_begin_array(&json, "drives");
+    for (size_t i = 0; i < http->control->count; i++)
+        atv312d_bench_drive_json(&json, &http->control->nodes[i]);
+    cli_json_end_array(&json);
+    cli_json_end_object(&json);
+    return cli_json_finish(&json);
 }
 
 /* Frames per second on the bus, received and sent: over the time since the count before,
@@ -170,24 +97,27 @@ static double frame_rate(atv312d_http_t *http, co_time_t now)
     return http->rate;
 }
 
+/* GET /api/state and each event: the bus, then each drive's view as `json state` gives it. */
 static size_t format_state(atv312d_http_t *http, char *buf, size_t len)
 {
     const co_linux_loop_t *loop = http->loop;
-    out_t o = {.buf = buf, .len = len};
-    put(&o,
-        "{\"ok\":true,\"time_ms\":%llu,\"bus\":{\"state\":\"%s\",\"frames_received\":%llu,"
-        "\"frames_sent\":%llu,\"frames_per_second\":%.1f},\"nodes\":[",
-        (unsigned long long)(loop->now / US_PER_MS), atv312d_can_state(loop), loop->stats.rx,
-        loop->stats.tx, frame_rate(http, loop->now));
-    for (size_t i = 0; i < http->control->count && o.used < o.len; i++) {
-        put(&o, "%s", i ? "," : "");
-        if (o.used < o.len) {
-            atv312d_format_state(&http->control->nodes[i], true, o.buf + o.used, o.len - o.used);
-            o.used += strlen(o.buf + o.used);
-        }
-    }
-    put(&o, "]}");
-    return out_length(&o);
+    cli_json_t json;
+    cli_json_init(&json, buf, len);
+    cli_json_begin_object(&json, NULL);
+    cli_json_bool(&json, "ok", true);
+    cli_json_uint(&json, "time_ms", (unsigned long long)(loop->now / US_PER_MS));
+    cli_json_begin_object(&json, "bus");
+    cli_json_str(&json, "state", atv312d_can_state(loop));
+    cli_json_uint(&json, "frames_received", loop->stats.rx);
+    cli_json_uint(&json, "frames_sent", loop->stats.tx);
+    cli_json_number(&json, "frames_per_second", "%.1f", frame_rate(http, loop->now));
+    cli_json_end_object(&json);
+    cli_json_begin_array(&json, "nodes");
+    for (size_t i = 0; i < http->control->count; i++)
+        atv312d_state_json(&json, &http->control->nodes[i]);
+    cli_json_end_array(&json);
+    cli_json_end_object(&json);
+    return cli_json_finish(&json);
 }
 
 /* ---- answers ---- */
@@ -228,11 +158,13 @@ static void answer_error(atv312d_http_t *http, const atv312d_http_request_t *req
     va_start(args, format);
     vsnprintf(message, sizeof message, format, args);
     va_end(args);
-    out_t o = {.buf = http->buf, .len = ATV312D_HTTP_STATE_MAX};
-    put(&o, "{\"ok\":false,\"error\":");
-    put_string(&o, message);
-    put(&o, "}");
-    answer_json(http, answer, status, out_length(&o));
+    cli_json_t json;
+    cli_json_init(&json, http->buf, ATV312D_HTTP_STATE_MAX);
+    cli_json_begin_object(&json, NULL);
+    cli_json_bool(&json, "ok", false);
+    cli_json_str(&json, "error", message);
+    cli_json_end_object(&json);
+    answer_json(http, answer, status, cli_json_finish(&json));
     co_log(CO_LOG_WARN, "http %s: %s %s: refused, %u: %s", request->peer ? request->peer : "?",
            shown(request->method), shown(request->path), status, message);
 }
@@ -410,7 +342,7 @@ static void run_command(atv312d_http_t *http, const atv312d_http_request_t *requ
                      ATV312D_CONTROL_LINE_MAX - 1);
         return;
     }
-    if (strncmp(command, "json ", 5) == 0) {
+    if (strncmp(command, ATV312D_CONTROL_JSON_PREFIX, strlen(ATV312D_CONTROL_JSON_PREFIX)) == 0) {
         answer_error(http, request, answer, 400,
                      "give the command without 'json ': its reply is a line");
         return;
@@ -419,19 +351,18 @@ static void run_command(atv312d_http_t *http, const atv312d_http_request_t *requ
         atv312d_control_execute(http->control, command, http->reply, ATV312D_CONTROL_REPLY_MAX);
     co_log(CO_LOG_INFO, "http %s: %s: %s", request->peer ? request->peer : "?", command,
            http->reply);
-    out_t o = {.buf = http->buf, .len = ATV312D_HTTP_STATE_MAX};
     const char *error = "error: ";
-    if (ok)
-        put(&o, "{\"ok\":true,\"reply\":");
-    else {
-        put(&o, "{\"ok\":false,\"error\":");
-        put_string(&o, strncmp(http->reply, error, strlen(error)) == 0 ? http->reply + strlen(error)
-                                                                       : http->reply);
-        put(&o, ",\"reply\":");
-    }
-    put_string(&o, http->reply);
-    put(&o, "}");
-    answer_json(http, answer, ok ? 200 : 400, out_length(&o));
+    cli_json_t json;
+    cli_json_init(&json, http->buf, ATV312D_HTTP_STATE_MAX);
+    cli_json_begin_object(&json, NULL);
+    cli_json_bool(&json, "ok", ok);
+    if (!ok)
+        cli_json_str(&json, "error",
+                     strncmp(http->reply, error, strlen(error)) == 0 ? http->reply + strlen(error)
+                                                                     : http->reply);
+    cli_json_str(&json, "reply", http->reply);
+    cli_json_end_object(&json);
+    answer_json(http, answer, ok ? 200 : 400, cli_json_finish(&json));
 }
 
 /* ---- routes ---- */

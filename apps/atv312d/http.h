@@ -9,8 +9,8 @@
 #ifndef ATV312D_HTTP_H
 #define ATV312D_HTTP_H
 
-#include "control.h"
-#include "mhd_load.h"
+#include "atv312d/control_commands.h"
+#include "atv312d/mhd_load.h"
 
 #include <netinet/in.h>
 #include <stdbool.h>

@@ -1,6 +1,6 @@
 /* SPDX-License-Identifier: Apache-2.0 */
 /* The log level of a DeviceNet card's LED change (leds.h). */
-#include "leds.h"
+#include "atv312d/leds.h"
 
 static bool green(dn_led_t led)
 {

@@ -1,21 +1,21 @@
 /* SPDX-License-Identifier: Apache-2.0 */
 /* atv312d: emulated Schneider Altivar drives on a SocketCAN interface, one process, one epoll
  * loop, one socket for all of them. Usage and behaviour: docs/atv312d.md. */
-#include "cli.h"
+#include "atv312d/cli.h"
+#include "atv312d/control_socket.h"
+#include "atv312d/counters.h"
+#include "atv312d/http.h"
+#include "atv312d/leds.h"
+#include "atv312d/notify.h"
+#include "atv312d/status.h"
+#include "cli/co_cli.h"
 #include "co/co_store.h"
-#include "co_cli.h"
 #include "co_linux/conditions.h"
 #include "co_linux/file_store.h"
 #include "co_linux/log.h"
 #include "co_linux/loop.h"
-#include "control.h"
-#include "counters.h"
 #include "drive/drive.h"
 #include "drive/drive_devicenet.h"
-#include "http.h"
-#include "leds.h"
-#include "notify.h"
-#include "status.h"
 
 #include <errno.h>
 #include <signal.h>
@@ -556,8 +556,9 @@ static int http_settings(const atv312d_options_t *opts, atv312d_http_settings_t 
 
 /* The surfaces on the drives: control (--control; its commands also serve the web's actions),
  * status (--status, SIGUSR1) and web (--http). */
-static int open_surfaces(atv312d_control_t *control, atv312d_status_t *status, atv312d_http_t *http,
-                         co_linux_loop_t *loop, const atv312d_options_t *opts, drive_slot_t *slots,
+static int open_surfaces(atv312d_control_socket_t *control_socket, atv312d_control_t *control,
+                         atv312d_status_t *status, atv312d_http_t *http, co_linux_loop_t *loop,
+                         const atv312d_options_t *opts, drive_slot_t *slots,
                          atv312d_control_node_t *nodes)
 {
     for (size_t i = 0; i < opts->node_count; i++)
@@ -571,7 +572,7 @@ static int open_surfaces(atv312d_control_t *control, atv312d_status_t *status, a
     control->count = opts->node_count;
     int rc = atv312d_status_open(status, loop, opts->status_path, nodes, opts->node_count);
     if (rc == 0 && opts->control_path)
-        rc = atv312d_control_open(control, loop, opts->control_path, nodes, opts->node_count);
+        rc = atv312d_control_open(control_socket, loop, opts->control_path, control);
     atv312d_http_settings_t settings;
     if (rc == 0 && opts->http && (rc = http_settings(opts, &settings)) == 0)
         rc = atv312d_http_open(http, loop, &settings, control);
@@ -623,7 +624,8 @@ static void tell_when_ready(void *ctx, co_linux_loop_t *loop)
 
 static int run(const atv312d_options_t *opts, FILE *trace, co_file_store_t *store)
 {
-    static atv312d_control_t control = {.server.listen_fd = -1};
+    static atv312d_control_socket_t control_socket = {.server.listen_fd = -1};
+    static atv312d_control_t control;
     static atv312d_status_t status = {.timer_fd = -1, .signal_fd = -1};
     static atv312d_http_t http = {.mhd_fd = -1, .timer_fd = -1};
     static atv312d_control_node_t control_nodes[ATV312D_NODE_ID_MAX];
@@ -635,7 +637,8 @@ static int run(const atv312d_options_t *opts, FILE *trace, co_file_store_t *stor
     drive_slot_t *slots = calloc(opts->node_count, sizeof *slots);
     int rc = slots ? init_drives(slots, opts, store, &loop) : EX_OSERR;
     if (rc == 0)
-        rc = open_surfaces(&control, &status, &http, &loop, opts, slots, control_nodes);
+        rc = open_surfaces(&control_socket, &control, &status, &http, &loop, opts, slots,
+                           control_nodes);
     if (rc == 0) {
         char ids[2048];
         format_node_ids(opts, ids, sizeof ids);
@@ -659,7 +662,7 @@ static int run(const atv312d_options_t *opts, FILE *trace, co_file_store_t *stor
                loop.stats.tx_calls, loop.stats.filters);
     }
     atv312d_http_close(&http);
-    atv312d_control_close(&control);
+    atv312d_control_close(&control_socket);
     atv312d_status_close(&status);
     co_linux_loop_close(&loop);
     if (slots) {

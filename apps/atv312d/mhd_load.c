@@ -2,7 +2,7 @@
 /* Loading GNU libmicrohttpd and resolving the web surface's functions (mhd_load.h). The soname
  * and the Debian package that holds it come from the build (apps/atv312d/CMakeLists.txt):
  * ATV312D_MHD_SONAME, ATV312D_MHD_PACKAGE. */
-#include "mhd_load.h"
+#include "atv312d/mhd_load.h"
 
 #include <dlfcn.h>
 #include <stdio.h>

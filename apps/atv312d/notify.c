@@ -1,6 +1,6 @@
 /* SPDX-License-Identifier: Apache-2.0 */
 /* The service manager's notification socket (notify.h). */
-#include "notify.h"
+#include "atv312d/notify.h"
 
 #include <errno.h>
 #include <stddef.h>

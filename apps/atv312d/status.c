@@ -1,6 +1,6 @@
 /* SPDX-License-Identifier: Apache-2.0 */
 /* The status surface (status.h). */
-#include "status.h"
+#include "atv312d/status.h"
 
 #include "co_linux/log.h"
 
@@ -19,18 +19,6 @@
 static bool condition(const co_linux_loop_t *loop, uint16_t emcy_code)
 {
     return co_linux_conditions_active(&loop->bus.conditions, emcy_code);
-}
-
-const char *atv312d_can_state(const co_linux_loop_t *loop)
-{
-    static const char *const names[] = {
-        [CO_LINUX_CAN_DOWN] = "down",
-        [CO_LINUX_CAN_BUS_OFF] = "bus-off",
-        [CO_LINUX_CAN_ERROR_PASSIVE] = "error-passive",
-        [CO_LINUX_CAN_ERROR_WARNING] = "error-warning",
-        [CO_LINUX_CAN_ERROR_ACTIVE] = "error-active",
-    };
-    return names[co_linux_bus_can_state(&loop->bus)];
 }
 
 size_t atv312d_status_format(const atv312d_status_t *status, char *buf, size_t len)

@@ -1,13 +1,17 @@
 /* SPDX-License-Identifier: Apache-2.0 */
 /* atv312d's status surface: what every emulated drive is doing at a glance. The CAN controller
- * state and the loop's frame counters, then one line per drive as the control surface's `state`
- * gives it; written to a file once a second (--status FILE, replaced atomically: a reader never
- * sees half a file) and to the log on SIGUSR1. Both are descriptors in the daemon's loop (a
- * timerfd, a signalfd), so the loop stays tickless without --status. docs/atv312d.md. */
+ * state and the loop's frame counters, then one line per drive, its view (view.h) as the control
+ * surface's `state` gives it; written to a file once a second (--status FILE, replaced atomically:
+ * a reader never sees half a file) and to the log on SIGUSR1. Both are descriptors in the daemon's
+ * loop (a timerfd, a signalfd), so the loop stays tickless without --status. docs/atv312d.md. */
 #ifndef ATV312D_STATUS_H
 #define ATV312D_STATUS_H
 
-#include "control.h"
+#include "atv312d/view.h"
+#include "co_linux/loop.h"
+
+#include <signal.h>
+#include <stddef.h>
 
 typedef struct atv312d_status {
     co_linux_loop_t *loop;
@@ -17,10 +21,6 @@ typedef struct atv312d_status {
     int timer_fd, signal_fd;
     sigset_t old_mask;
 } atv312d_status_t;
-
-/* The CAN controller as the loop sees it: "down" (the interface), "bus-off", "error-passive",
- * "error-warning" (an error counter at or over the warning limit, 96) or "error-active". */
-const char *atv312d_can_state(const co_linux_loop_t *loop);
 
 /* Writes the status text (one line each, newline-terminated) into buf; returns its length. */
 size_t atv312d_status_format(const atv312d_status_t *status, char *buf, size_t len);

@@ -3,9 +3,9 @@
  * error-passive, bus-off) and the bus-off count in the status line and the `state` JSON, and
  * which error control protocol lost the master in a drive's `state` line and JSON. */
 #include "atv312/atv312.h"
+#include "atv312d/control_commands.h"
+#include "atv312d/status.h"
 #include "check_main.h"
-#include "control.h"
-#include "status.h"
 
 #include <check.h>
 #include <string.h>

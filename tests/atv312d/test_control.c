@@ -8,9 +8,9 @@
 #include "atv31/atv31.h"
 #include "atv312/atv312.h"
 #include "atv312/atv312_devicenet.h"
+#include "atv312d/control_commands.h"
 #include "atv58/atv58.h"
 #include "check_main.h"
-#include "control.h"
 
 #include <check.h>
 #include <string.h>

@@ -3,9 +3,9 @@
  * it sent (a node's own COB-IDs only, data frames only), and the counters in the `state` line and
  * its JSON object beside the runtime's frame counts of the drive's device. */
 #include "atv312/atv312.h"
+#include "atv312d/control_commands.h"
+#include "atv312d/counters.h"
 #include "check_main.h"
-#include "control.h"
-#include "counters.h"
 
 #include <check.h>
 #include <string.h>

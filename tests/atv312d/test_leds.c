@@ -1,8 +1,8 @@
 /* SPDX-License-Identifier: Apache-2.0 */
 /* The log level of every change of a DeviceNet card's MS or NS LED: warn to red and flashing red,
  * debug between green and flashing green (a scanner's allocations and releases), info else. */
+#include "atv312d/leds.h"
 #include "check_main.h"
-#include "leds.h"
 
 #include <check.h>
 

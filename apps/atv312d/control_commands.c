@@ -1,64 +1,51 @@
 /* SPDX-License-Identifier: Apache-2.0 */
-/* The control surface: command execution on the drives, its session on the runtime's line socket
- * in the daemon's loop, and the `atv312d ctl` client (control.h). */
-#include "control.h"
-#include "status.h"
+/* The control commands' interpreter (control_commands.h): the words of a line, the command
+ * they name, its checks, its action on the drive and its reply. */
+#include "atv312d/control_commands.h"
 
-#include "co_cli.h"
 #include "co_linux/log.h"
-#include "drive/panel.h"
 
-#include <ctype.h>
-#include <errno.h>
 #include <stdarg.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
-#include <sysexits.h>
 
 #define WORDS_MAX 4
-#define JSON_PREFIX "json "
-#define STATUSWORD_INDEX 0x6041
-#define TARGET_VELOCITY_INDEX 0x6042
-#define VELOCITY_ACTUAL_INDEX 0x6044
 
 /* A reply being written: "ok ..." / "error: ..." or the JSON object. */
 typedef struct reply {
     char *buf;
-    size_t len, used;
+    size_t len;
     bool json;
 } reply_t;
 
-static void put(reply_t *r, const char *format, ...) __attribute__((format(printf, 2, 3)));
-
-static void put(reply_t *r, const char *format, ...)
+/* The whole reply: "ok MESSAGE", "error: MESSAGE", or {"ok":true,"message":"MESSAGE"},
+ * {"ok":false,"error":"MESSAGE"}. */
+static void reply_with(reply_t *r, bool ok, const char *format, va_list args)
 {
-    if (r->used >= r->len)
+    char message[ATV312D_CONTROL_LINE_MAX * 2];
+    vsnprintf(message, sizeof message, format, args);
+    if (!r->json) {
+        snprintf(r->buf, r->len, "%s%s", ok ? "ok " : "error: ", message);
         return;
-    va_list args;
-    va_start(args, format);
-    int n = vsnprintf(r->buf + r->used, r->len - r->used, format, args);
-    va_end(args);
-    if (n > 0)
-        r->used += (size_t)n;
+    }
+    cli_json_t json;
+    cli_json_init(&json, r->buf, r->len);
+    cli_json_begin_object(&json, NULL);
+    cli_json_bool(&json, "ok", ok);
+    cli_json_str(&json, ok ? "message" : "error", message);
+    cli_json_end_object(&json);
+    cli_json_finish(&json);
 }
 
 static bool fail(reply_t *r, const char *format, ...) __attribute__((format(printf, 2, 3)));
 
-/* Messages never contain quotes or backslashes (codes and node-ids are checked before they
- * are echoed), so they go into JSON as they are. */
 static bool fail(reply_t *r, const char *format, ...)
 {
-    char message[ATV312D_CONTROL_LINE_MAX * 2];
     va_list args;
     va_start(args, format);
-    vsnprintf(message, sizeof message, format, args);
+    reply_with(r, false, format, args);
     va_end(args);
-    r->used = 0;
-    if (r->json)
-        put(r, "{\"ok\":false,\"error\":\"%s\"}", message);
-    else
-        put(r, "error: %s", message);
     return false;
 }
 
@@ -66,15 +53,10 @@ static bool succeed(reply_t *r, const char *format, ...) __attribute__((format(p
 
 static bool succeed(reply_t *r, const char *format, ...)
 {
-    char message[ATV312D_CONTROL_LINE_MAX * 2];
     va_list args;
     va_start(args, format);
-    vsnprintf(message, sizeof message, format, args);
+    reply_with(r, true, format, args);
     va_end(args);
-    if (r->json)
-        put(r, "{\"ok\":true,\"message\":\"%s\"}", message);
-    else
-        put(r, "ok %s", message);
     return true;
 }
 
@@ -346,45 +328,6 @@ static bool command_load(const atv312d_control_t *control, char **words, size_t 
     return succeed(r, "node %u: load %ld %%", node->id, percent);
 }
 
-/* A DeviceNet card's traffic as its slave library counts it (dn_stats_t), where the CANopen
- * services' counters stand. */
-static void put_devicenet_counters(const dn_stats_t *s, reply_t *r)
-{
-    put(r,
-        r->json ? ",\"explicit_requests\":%lu,\"error_responses\":%lu,\"io_messages\":%lu,"
-                  "\"fragments\":%lu,\"timeouts\":%lu}"
-                : ", explicit requests %lu, error responses %lu, I/O messages %lu, fragments %lu, "
-                  "timeouts %lu",
-        (unsigned long)s->explicit_requests, (unsigned long)s->error_responses,
-        (unsigned long)s->io_messages, (unsigned long)s->fragments, (unsigned long)s->timeouts);
-}
-
-/* The drive's traffic: the runtime's counts of its device, then the daemon's of its CANopen
- * services or its DeviceNet card's. */
-static void put_counters(const atv312d_control_node_t *node, reply_t *r)
-{
-    const co_linux_device_stats_t *frames = &node->device->stats;
-    const atv312d_counters_t *services = node->counters;
-    if (node->devicenet) {
-        put(r,
-            r->json ? "\"frames\":{\"received\":%llu,\"sent\":%llu,\"dropped\":%llu"
-                    : "frames received %llu, sent %llu, dropped %llu",
-            frames->rx, frames->tx, frames->tx_dropped);
-        put_devicenet_counters(&node->devicenet->stats, r);
-    } else if (r->json)
-        put(r,
-            "\"frames\":{\"received\":%llu,\"sent\":%llu,\"dropped\":%llu,\"sdo_requests\":%llu,"
-            "\"sdo_aborts\":%llu,\"emcy\":%llu}",
-            frames->rx, frames->tx, frames->tx_dropped, services->sdo_requests,
-            services->sdo_aborts, services->emcy);
-    else
-        put(r,
-            "frames received %llu, sent %llu, dropped %llu, SDO requests %llu, SDO aborts %llu, "
-            "EMCY %llu",
-            frames->rx, frames->tx, frames->tx_dropped, services->sdo_requests,
-            services->sdo_aborts, services->emcy);
-}
-
 /* A logic input's name, "LI3" in any case: its number, or 0. */
 static unsigned input_number(const char *word)
 {
@@ -474,18 +417,6 @@ static const char *analog_range(drive_analog_kind_t kind)
     return "a percentage of 0..100";
 }
 
-/* A value of an input of `kind` in the unit the control surface takes: "-2.500 V", "12.000 mA",
- * "50.5 %". */
-static void format_analog(drive_analog_kind_t kind, int32_t value, char *buf, size_t len)
-{
-    int32_t magnitude = value < 0 ? -value : value;
-    if (kind == DRIVE_ANALOG_POTENTIOMETER)
-        snprintf(buf, len, "%d.%d %%", (int)(value / 10), (int)(value % 10));
-    else
-        snprintf(buf, len, "%s%d.%03d %s", value < 0 ? "-" : "", (int)(magnitude / 1000),
-                 (int)(magnitude % 1000), kind == DRIVE_ANALOG_CURRENT ? "mA" : "V");
-}
-
 /* Input `index` at the value of `word` (V, mA or %): the drive's unit is mV, uA or 0.1 %. */
 static bool set_analog(const atv312d_control_node_t *node, uint8_t index, const char *word,
                        const char *command, reply_t *r)
@@ -502,7 +433,7 @@ static bool set_analog(const atv312d_control_node_t *node, uint8_t index, const 
         return fail(r, "%s %s %s: give %s", command, in->name, shown(word), analog_range(in->kind));
     changed(node);
     char shown_value[32];
-    format_analog(in->kind, value, shown_value, sizeof shown_value);
+    atv312d_format_analog(in->kind, value, shown_value, sizeof shown_value);
     co_log(CO_LOG_INFO, "node %u: control: %s %s", node->id, in->name, shown_value);
     return succeed(r, "node %u: %s %s", node->id, in->name, shown_value);
 }
@@ -544,172 +475,7 @@ static bool command_pot(const atv312d_control_t *control, char **words, size_t n
     return fail(r, "node %u has no reference potentiometer", node->id);
 }
 
-/* The logic inputs that are on: ", inputs LI1 LI3" (nothing when none is), or the JSON list. */
-static void put_inputs(const drive_t *drive, reply_t *r)
-{
-    bool first = true;
-    put(r, "%s", r->json ? ",\"inputs\":[" : "");
-    for (uint8_t i = 1; i <= drive->profile->logic_inputs; i++) {
-        if (!drive_input(drive, i))
-            continue;
-        if (r->json)
-            put(r, "%s\"LI%u\"", first ? "" : ",", i);
-        else
-            put(r, "%sLI%u", first ? ", inputs " : " ", i);
-        first = false;
-    }
-    put(r, "%s", r->json ? "]" : "");
-}
-
-/* The analogue inputs: in text those not at 0 (", analog AI2 5.000 V AI3 12.000 mA", nothing when
- * all are), in JSON every one of the model in its unit ("analog":{"AI2":5.0,"AI3":12.0}). */
-static void put_analog(const drive_t *drive, reply_t *r)
-{
-    const drive_profile_t *profile = drive->profile;
-    bool first = true;
-    put(r, "%s", r->json ? ",\"analog\":{" : "");
-    for (uint8_t i = 0; i < profile->analog_input_count; i++) {
-        const drive_analog_input_t *in = &profile->analog_inputs[i];
-        int32_t value = drive_analog(drive, i);
-        if (r->json) {
-            int32_t per = in->kind == DRIVE_ANALOG_POTENTIOMETER ? 10 : 1000;
-            int32_t magnitude = value < 0 ? -value : value;
-            put(r,
-                in->kind == DRIVE_ANALOG_POTENTIOMETER ? "%s\"%s\":%s%d.%01d"
-                                                       : "%s\"%s\":%s%d.%03d",
-                first ? "" : ",", in->name, value < 0 ? "-" : "", (int)(magnitude / per),
-                (int)(magnitude % per));
-        } else if (value != 0) {
-            char shown_value[32];
-            format_analog(in->kind, value, shown_value, sizeof shown_value);
-            put(r, "%s%s %s", first ? ", analog " : " ", in->name, shown_value);
-        } else
-            continue;
-        first = false;
-    }
-    put(r, "%s", r->json ? "}" : "");
-}
-
-/* What the bus sees of the drive: its NMT state on CANopen; on DeviceNet the card's MS and NS
- * LEDs and the Control supervisor's state. */
-static void put_bus_state(const atv312d_control_node_t *node, reply_t *r)
-{
-    const drive_dn_t *dn = node->devicenet;
-    if (!dn) {
-        const char *nmt = co_nmt_state_name(node->drive->node.nmt_state);
-        put(r, r->json ? "{\"node\":%u,\"nmt\":\"%s\"," : "node %u: nmt %s, ", node->id, nmt);
-        return;
-    }
-    const char *ms = drive_dn_led_name(dn_node_ms_led(&dn->node));
-    const char *ns = drive_dn_led_name(dn_node_ns_led(&dn->node));
-    const char *supervisor = drive_dn_state_name(drive_dn_state(dn));
-    put(r,
-        r->json ? "{\"node\":%u,\"ms\":\"%s\",\"ns\":\"%s\",\"supervisor\":\"%s\","
-                : "node %u: ms %s, ns %s, supervisor %s, ",
-        node->id, ms, ns, supervisor);
-}
-
-/* An LED's JSON key: its name in lower case, then "_led" ("run_led", "ok_led"). */
-static void put_led_key(const char *name, reply_t *r)
-{
-    put(r, "\"");
-    for (const char *c = name; *c != '\0'; c++)
-        put(r, "%c", tolower((unsigned char)*c));
-    put(r, "_led\":");
-}
-
-/* The CANopen card's LEDs as the model's manual names them: RUN and ERR (CiA 303-3), the ATV58
- * card's OK and COM ("OK on, COM flashing"; JSON "ok_led":"on"); a DeviceNet card has MS and NS
- * instead. */
-static void put_canopen_leds(const atv312d_control_node_t *node, reply_t *r)
-{
-    if (node->devicenet)
-        return;
-    uint8_t count;
-    const drive_indicator_t *leds = drive_panel_indicators(node->drive, &count);
-    for (uint8_t i = 0; i < count; i++) {
-        const char *pattern = drive_led_name(leds[i].pattern(node->drive, node->device->loop->now));
-        if (r->json) {
-            put_led_key(leds[i].name, r);
-            put(r, "\"%s\",", pattern);
-        } else
-            put(r, "%s %s, ", leds[i].name, pattern);
-    }
-}
-
-/* The cause of the communication loss the drive reacted to: "comm-loss heartbeat node 1, ",
- * "comm-loss guarding, " (nothing while there is none); JSON "comm_loss":{"by":"heartbeat",
- * "node":1}, {"by":"guarding"} or null. */
-static void put_comm_loss(const drive_t *drive, reply_t *r)
-{
-    static const char *const by[] = {
-        [DRIVE_COMM_LOSS_GUARDING] = "guarding",
-        [DRIVE_COMM_LOSS_HEARTBEAT] = "heartbeat",
-        [DRIVE_COMM_LOSS_NETWORK] = "network",
-    };
-    drive_comm_loss_t loss = drive->comm_loss;
-    bool producer = loss.source == DRIVE_COMM_LOSS_HEARTBEAT;
-    if (r->json && loss.source == DRIVE_COMM_LOSS_NONE)
-        put(r, "\"comm_loss\":null,");
-    else if (r->json && producer)
-        put(r, "\"comm_loss\":{\"by\":\"%s\",\"node\":%u},", by[loss.source], loss.node);
-    else if (r->json)
-        put(r, "\"comm_loss\":{\"by\":\"%s\"},", by[loss.source]);
-    else if (producer)
-        put(r, "comm-loss %s node %u, ", by[loss.source], loss.node);
-    else if (loss.source != DRIVE_COMM_LOSS_NONE)
-        put(r, "comm-loss %s, ", by[loss.source]);
-}
-
-static void put_state(const atv312d_control_node_t *node, reply_t *r)
-{
-    const drive_t *drive = node->drive;
-    const co_node_t *co = &drive->node;
-    drive_param_t lcr = drive->profile->motor_current;
-    drive_param_t otr = drive->profile->motor_torque;
-    int16_t reference = (int16_t)co_od_value(co, TARGET_VELOCITY_INDEX, 0);
-    int16_t speed = (int16_t)co_od_value(co, VELOCITY_ACTUAL_INDEX, 0);
-    unsigned current = (unsigned)co_od_value(co, lcr.index, lcr.subindex);
-    int16_t torque = (int16_t)co_od_value(co, otr.index, otr.subindex);
-    unsigned status = (unsigned)co_od_value(co, STATUSWORD_INDEX, 0);
-    drive_display_t display = drive_panel_display(drive);
-    char shows[16];
-    if (display.code)
-        snprintf(shows, sizeof shows, "%s", display.code);
-    else
-        snprintf(shows, sizeof shows, "%u.%u", display.decihertz / 10, display.decihertz % 10);
-    const drive_fault_def_t *fault = drive_fault_latched(drive);
-    put_bus_state(node, r);
-    if (r->json)
-        put(r,
-            "\"cia402\":\"%s\",\"statusword\":%u,\"reference_rpm\":%d,\"speed_rpm\":%d,"
-            "\"current_a\":%u.%u,\"torque_percent\":%d,\"display\":\"%s\",",
-            drive_state_name(drive), status, reference, speed, current / 10, current % 10, torque,
-            shows);
-    else
-        put(r,
-            "cia402 %s, statusword %04X, speed %d rpm, current %u.%u A, torque %d %%, display %s, ",
-            drive_state_name(drive), status, speed, current / 10, current % 10, torque, shows);
-    put_canopen_leds(node, r);
-    if (r->json)
-        put(r, "\"fault\":%s%s%s,", fault ? "\"" : "", fault ? fault->code : "null",
-            fault ? "\"" : "");
-    else
-        put(r, "fault %s, ", fault ? fault->code : "none");
-    put_comm_loss(drive, r);
-    put_counters(node, r);
-    put_inputs(drive, r);
-    put_analog(drive, r);
-    put(r, "%s", r->json ? "}" : "");
-}
-
-void atv312d_format_state(const atv312d_control_node_t *node, bool json, char *buf, size_t len)
-{
-    reply_t r = {.buf = buf, .len = len, .json = json};
-    buf[0] = '\0';
-    put_state(node, &r);
-}
-
+/* `state [NODE]`: the view of each drive (view.h), after the CAN controller's in JSON. */
 static bool command_state(const atv312d_control_t *control, char **words, size_t n, reply_t *r)
 {
     if (n > 2)
@@ -717,21 +483,35 @@ static bool command_state(const atv312d_control_t *control, char **words, size_t
     const atv312d_control_node_t *only = NULL;
     if (n == 2 && !(only = find_node(control, words[1], r)))
         return false;
-    if (r->json) {
-        const co_linux_loop_t *loop = control->nodes[0].device->loop;
-        put(r, "{\"ok\":true,\"can\":{\"state\":\"%s\",\"bus_offs\":%llu},\"nodes\":[",
-            atv312d_can_state(loop), loop->bus.conditions.bus_offs);
-    } else
-        put(r, "ok ");
-    bool first = true;
-    for (size_t i = 0; i < control->count; i++) {
-        if (only && only != &control->nodes[i])
-            continue;
-        put(r, "%s", first ? "" : r->json ? "," : "; ");
-        put_state(&control->nodes[i], r);
-        first = false;
+    if (!r->json) {
+        atv312d_text_t text = {.buf = r->buf, .len = r->len};
+        atv312d_text_put(&text, "ok ");
+        for (size_t i = 0; i < control->count; i++) {
+            if (only && only != &control->nodes[i])
+                continue;
+            atv312d_text_put(&text, "%s", only || i == 0 ? "" : "; ");
+            atv312d_state_text(&text, &control->nodes[i]);
+        }
+        return true;
     }
-    put(r, "%s", r->json ? "]}" : "");
+    const co_linux_loop_t *loop = control->nodes[0].device->loop;
+    cli_json_t json;
+    cli_json_init(&json, r->buf, r->len);
+    cli_json_begin_object(&json, NULL);
+    cli_json_bool(&json, "ok", true);
+    cli_json_begin_object(&json, "can");
+    cli_json_str(&json, "state", atv312d_can_state(loop));
+    cli_json_uint(&json, "bus_offs", loop->bus.conditions.bus_offs);
+    cli_json_end_object(&json);
+    cli_json_begin_array(&json, "nodes");
+    for (size_t i = 0; i < control->count; i++) {
+        if (!only || only == &control->nodes[i])
+            atv312d_state_json(&json, &control->nodes[i]);
+    }
+    cli_json_end_array(&json);
+    cli_json_end_object(&json);
+    if (cli_json_finish(&json) == 0)
+        return fail(r, "the state is longer than the reply's %zu bytes", r->len);
     return true;
 }
 
@@ -752,10 +532,9 @@ bool atv312d_control_execute(const atv312d_control_t *control, const char *line,
                              size_t reply_len)
 {
     reply_t r = {.buf = reply, .len = reply_len};
-    reply[0] = '\0';
-    if (strncmp(line, JSON_PREFIX, strlen(JSON_PREFIX)) == 0) {
+    if (strncmp(line, ATV312D_CONTROL_JSON_PREFIX, strlen(ATV312D_CONTROL_JSON_PREFIX)) == 0) {
         r.json = true;
-        line += strlen(JSON_PREFIX);
+        line += strlen(ATV312D_CONTROL_JSON_PREFIX);
     }
     char copy[ATV312D_CONTROL_LINE_MAX];
     if (strlen(line) >= sizeof copy)
@@ -776,110 +555,4 @@ bool atv312d_control_execute(const atv312d_control_t *control, const char *line,
             return commands[i].run(control, words, n, &r);
     }
     return fail(&r, "unknown command '%s': the commands are " COMMAND_NAMES, shown(words[0]));
-}
-
-/* ---- the socket in the loop ---- */
-
-static size_t answer(void *ctx, const char *line, bool cut, char *reply, size_t cap)
-{
-    const atv312d_control_t *control = ctx;
-    if (cut)
-        snprintf(reply, cap, "error: command longer than %d characters",
-                 ATV312D_CONTROL_LINE_MAX - 1);
-    else
-        atv312d_control_execute(control, line, reply, cap - 1);
-    size_t len = strlen(reply);
-    reply[len++] = '\n';
-    return len;
-}
-
-int atv312d_control_open(atv312d_control_t *control, co_linux_loop_t *loop, const char *path,
-                         const atv312d_control_node_t *nodes, size_t count)
-{
-    static char reply[ATV312D_CONTROL_REPLY_MAX];
-    control->nodes = nodes;
-    control->count = count;
-    co_line_server_config_t config = {.mode = CO_LINE_SESSION,
-                                      .answer = answer,
-                                      .ctx = control,
-                                      .reply = reply,
-                                      .reply_cap = sizeof reply};
-    const char *call = NULL;
-    co_line_result_t result = co_line_server_open(&control->server, loop, path, &config, &call);
-    if (result == CO_LINE_TOO_LONG)
-        return cli_fail(NULL, EX_USAGE,
-                        "--control %s: the path is longer than %zu characters: give a shorter one",
-                        path, CO_LINE_PATH_MAX - 1);
-    if (result != CO_LINE_OK) {
-        /* Another daemon answers there, or the path is a file of another kind. */
-        if (errno == EADDRINUSE)
-            call = "bind (the path exists: another daemon's socket or a file)";
-        co_log(CO_LOG_ERROR, "control socket %s: %s: %s", path, call, strerror(errno));
-        return EX_CANTCREAT;
-    }
-    co_log(CO_LOG_INFO, "control socket %s: listening (atv312d ctl %s state)", path, path);
-    return 0;
-}
-
-void atv312d_control_close(atv312d_control_t *control)
-{
-    co_line_server_close(&control->server);
-}
-
-/* ---- the client ---- */
-
-static int client_usage(void)
-{
-    return cli_fail(NULL, EX_USAGE,
-                    "ctl: give the daemon's socket and a command: atv312d ctl PATH [--json] "
-                    "COMMAND..., e.g. atv312d ctl /tmp/atv312d.sock fault 4 OHF");
-}
-
-int atv312d_control_client(int argc, char *const argv[])
-{
-    if (argc < 2)
-        return client_usage();
-    const char *path = argv[0];
-    char line[ATV312D_CONTROL_LINE_MAX + sizeof JSON_PREFIX];
-    size_t used = 0;
-    int first = 1;
-    if (strcmp(argv[1], "--json") == 0) {
-        used = (size_t)snprintf(line, sizeof line, "%s", JSON_PREFIX);
-        first = 2;
-    }
-    if (first >= argc)
-        return client_usage();
-    for (int i = first; i < argc && used < sizeof line; i++)
-        used += (size_t)snprintf(line + used, sizeof line - used, "%s%s", i > first ? " " : "",
-                                 argv[i]);
-    if (used + 1 >= sizeof line || strchr(line, '\n'))
-        return cli_fail(NULL, EX_USAGE,
-                        "ctl: the command has a newline or is longer than %d characters: give "
-                        "one command of one line",
-                        ATV312D_CONTROL_LINE_MAX - 1);
-    static char reply[ATV312D_CONTROL_REPLY_MAX];
-    switch (co_line_request(path, CO_LINE_SESSION, line, reply, sizeof reply)) {
-    case CO_LINE_OK:
-        break;
-    case CO_LINE_TOO_LONG:
-        return cli_fail(NULL, EX_USAGE,
-                        "ctl: the path %s is longer than %zu characters: give a shorter one", path,
-                        CO_LINE_PATH_MAX - 1);
-    case CO_LINE_NO_SERVER:
-        return cli_fail(NULL, EX_UNAVAILABLE,
-                        "ctl: cannot connect to %s: %s: is atv312d running with --control %s?",
-                        path, strerror(errno), path);
-    default:
-        return cli_fail(NULL, EX_PROTOCOL,
-                        "ctl: no reply from %s: the daemon closed the connection", path);
-    }
-    bool json = first == 2;
-    bool ok = strncmp(reply, "ok", 2) == 0 || strncmp(reply, "{\"ok\":true", 10) == 0;
-    if (ok || json) {
-        fputs(reply, stdout);
-        return ok ? 0 : CLI_EXIT_REFUSED;
-    }
-    /* The daemon refused: "error: WHY" is the program's error. */
-    const char *why = strncmp(reply, "error: ", 7) == 0 ? reply + 7 : reply;
-    return cli_fail(NULL, CLI_EXIT_REFUSED, "%.*s", (int)strcspn(why, "\n"), why);
 }

@@ -2,12 +2,12 @@
 /* atv312d's drives on the bus as runtime devices: each emulated drive, a CANopen node of its own
  * or behind its DeviceNet card, a device of the daemon's loop (co_linux/device.h) whose
  * callbacks count its frames (counters.h), log its state changes, boot-up, emergencies and LEDs,
- * and keep its parameters in the --store file. Built from the command line (options). */
+ * and keep its parameters in the --store file. Built from the command line (options.h). */
 #ifndef ATV312D_DRIVES_H
 #define ATV312D_DRIVES_H
 
-#include "atv312d/cli.h"
 #include "atv312d/counters.h"
+#include "atv312d/options.h"
 #include "co_linux/file_store.h"
 #include "co_linux/loop.h"
 #include "drive/drive.h"

@@ -3,11 +3,11 @@
  * loop, one socket for all of them. main() parses the options, opens the trace, the store and the
  * loop, builds the drives (drives.h), opens the surfaces on them, runs until a signal and gives
  * the exit status. Usage and behaviour: docs/atv312d.md. */
-#include "atv312d/cli.h"
 #include "atv312d/control_socket.h"
 #include "atv312d/drives.h"
 #include "atv312d/http.h"
 #include "atv312d/notify.h"
+#include "atv312d/options.h"
 #include "atv312d/status.h"
 #include "atv312d/storage.h"
 #include "cli/co_cli.h"

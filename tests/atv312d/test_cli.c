@@ -4,7 +4,7 @@
 #include "atv31/atv31.h"
 #include "atv312/atv312.h"
 #include "atv312/atv312_devicenet.h"
-#include "atv312d/cli.h"
+#include "atv312d/options.h"
 #include "atv58/atv58.h"
 #include "check_main.h"
 

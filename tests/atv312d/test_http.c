@@ -6,8 +6,8 @@
  * server on a socket: test_http_server.c). */
 #include "atv312/atv312.h"
 #include "atv312/atv312_devicenet.h"
-#include "atv312d/cli.h"
 #include "atv312d/http.h"
+#include "atv312d/options.h"
 #include "check_main.h"
 #include "co_linux/log.h"
 

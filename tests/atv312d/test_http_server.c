@@ -9,8 +9,8 @@
  * the library's own, the wrong method of a POST answered before its body; and the lines the
  * server logs at warn for each refusal. */
 #include "atv312/atv312.h"
-#include "atv312d/cli.h"
 #include "atv312d/http.h"
+#include "atv312d/options.h"
 #include "check_main.h"
 #include "co_linux/log.h"
 

@@ -1,5 +1,6 @@
 /* SPDX-License-Identifier: Apache-2.0 */
-#include "atv312d/cli.h"
+/* The daemon's command-line parser and its --help (options.h). */
+#include "atv312d/options.h"
 
 #include <arpa/inet.h>
 #include <ctype.h>

@@ -2,8 +2,8 @@
 /* The command line of atv312d: `atv312d IFACE --node-id N [--model M] [options]`, or on a
  * DeviceNet bus `atv312d IFACE --devicenet [--mac-id N [--model M]...] [--baud RATE]`. Parsing is
  * separate from main() so the unit tests can check every error and its exit code. */
-#ifndef ATV312D_CLI_H
-#define ATV312D_CLI_H
+#ifndef ATV312D_OPTIONS_H
+#define ATV312D_OPTIONS_H
 
 #include "atv312d/http.h"
 #include "co_linux/log.h"

@@ -11,6 +11,7 @@
 
 #include "atv312d/control_commands.h"
 #include "atv312d/mhd_load.h"
+#include "atv312d/options.h"
 
 #include <netinet/in.h>
 #include <stdbool.h>
@@ -47,14 +48,6 @@
 #define ATV312D_HTTP_TOKEN_MAX 256
 /* Longest JSON of the bench's state: 127 drives of about 600 bytes. */
 #define ATV312D_HTTP_STATE_MAX (128 * 1024)
-
-/* Where --http listens: "8080" (127.0.0.1), "0.0.0.0:8080", "[::1]:8080". */
-typedef struct atv312d_http_address {
-    struct sockaddr_storage addr;
-    socklen_t len;
-    bool loopback; /* 127.0.0.0/8 or ::1: only this machine can connect */
-    char text[80]; /* "127.0.0.1:8080", "[::1]:8080" */
-} atv312d_http_address_t;
 
 /* Reads the secret of --http-token from the file at path: its first line, of 1 to
  * ATV312D_HTTP_TOKEN_MAX characters. 0, or an exit status with a message in err. */

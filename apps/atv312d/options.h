@@ -5,14 +5,15 @@
 #ifndef ATV312D_OPTIONS_H
 #define ATV312D_OPTIONS_H
 
-#include "atv312d/http.h"
 #include "co_linux/log.h"
 #include "models.h"
 
+#include <netinet/in.h>
 #include <stdbool.h>
 #include <stddef.h>
 #include <stdint.h>
 #include <stdio.h>
+#include <sys/socket.h>
 
 #define ATV312D_NODE_ID_MIN 1
 #define ATV312D_NODE_ID_MAX ((int)CO_NODE_ID_MAX) /* an int, as the parser counts */
@@ -29,6 +30,15 @@ typedef enum atv312d_baud {
     ATV312D_BAUD_250K = 1,
     ATV312D_BAUD_500K = 2
 } atv312d_baud_t;
+
+/* Where --http listens (the web surface, http.h): "8080" (127.0.0.1), "0.0.0.0:8080", "[::1]:8080".
+ */
+typedef struct atv312d_http_address {
+    struct sockaddr_storage addr;
+    socklen_t len;
+    bool loopback; /* 127.0.0.0/8 or ::1: only this machine can connect */
+    char text[80]; /* "127.0.0.1:8080", "[::1]:8080" */
+} atv312d_http_address_t;
 
 typedef struct atv312d_options {
     const char *iface;

@@ -3,6 +3,7 @@
  * the bus, printing each step and status change; run also serves its process image and status on
  * the control socket (run_control.c) to comaster set, get and status, and the requests of
  * run_requests.c. */
+#include "cli/json.h"
 #include "comaster/runner.h"
 
 #include <stdarg.h>
@@ -203,11 +204,11 @@ static void reply_status_json(runner_t *r, uint16_t status, char *reply, size_t 
     size_t used = append(reply, cap, 0, "{\"status\": \"0x%04X\", \"slaves\": [", status);
     for (size_t i = 0; i < r->net->slave_count; i++) {
         const co_net_slave_t *s = &r->net->slave_state[i];
-        run_json_string(r->net->slave[i].name, name, sizeof name);
+        cli_json_quote(r->net->slave[i].name, name, sizeof name);
         snprintf(failure, sizeof failure, "null");
         if (s->step == CO_NET_STEP_FAILED) {
             format_failure(s, text, sizeof text);
-            run_json_string(text, failure, sizeof failure);
+            cli_json_quote(text, failure, sizeof failure);
         }
         used = append(reply, cap, used,
                       "%s{\"node\": %u, \"name\": %s, \"status\": \"0x%04X\", \"step\": \"%s\", "
@@ -279,9 +280,9 @@ static void variable_json(const comaster_variable_t *v, const char *value, bool 
                           char *reply, size_t cap)
 {
     char name[256], text[256];
-    run_json_string(v->name, name, sizeof name);
+    cli_json_quote(v->name, name, sizeof name);
     if (is_text)
-        run_json_string(value, text, sizeof text);
+        cli_json_quote(value, text, sizeof text);
     snprintf(reply, cap, "{\"node\": %u, \"name\": %s, \"value\": %s}\n", v->node_id, name,
              is_text ? text : value);
 }

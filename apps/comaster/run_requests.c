@@ -7,22 +7,11 @@
  * of the line socket); the others at once. Each reply is one line, or one JSON object. */
 #include "comaster/runner.h"
 
-#include "cli/co_cli.h"
+#include "cli/json.h"
 
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
-
-void run_json_string(const char *text, char *out, size_t cap)
-{
-    FILE *f = fmemopen(out, cap, "w");
-    if (!f) {
-        snprintf(out, cap, "\"\"");
-        return;
-    }
-    cli_json_string(f, text);
-    fclose(f);
-}
 
 static bool parse_node(const char *text, bool allow_all, uint8_t *node)
 {
@@ -163,7 +152,7 @@ static const comaster_type_t *type_by_size(uint32_t size)
 static size_t json_head(const run_sdo_t *s, const comaster_type_t *type, char *out, size_t cap)
 {
     char name[256];
-    run_json_string(s->object.name ? s->object.name : "", name, sizeof name);
+    cli_json_quote(s->object.name ? s->object.name : "", name, sizeof name);
     return (size_t)snprintf(out, cap,
                             "{\"node\": %u, \"index\": \"0x%04X\", \"subindex\": %u, \"name\": "
                             "%s, \"type\": \"%s\"",
@@ -212,7 +201,7 @@ static void format_sdo_reply(const runner_t *r, run_sdo_t *s, const co_net_reque
     size_t used = json_head(s, type, reply, cap);
     char value[sizeof text * 2];
     if (is_text)
-        run_json_string(text, value, sizeof value);
+        cli_json_quote(text, value, sizeof value);
     snprintf(reply + used, cap - used, ", \"value\": %s}\n", is_text ? value : text);
 }
 

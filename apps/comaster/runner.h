@@ -58,9 +58,6 @@ bool run_request(runner_t *r, char **field, size_t count, bool json, char *reply
 /* The master's NMT command ended (CO_NET_EVENT_NMT_DONE): its reply to the client. */
 void run_nmt_done(runner_t *r);
 
-/* `text` as a JSON string ("..." with its escapes) into out (cap bytes). */
-void run_json_string(const char *text, char *out, size_t cap);
-
 /* The status word of run_status.c. The controller's state as the master's status bits 13-14
  * (the runtime's conditions and link). */
 uint16_t run_bus_bits(const runner_t *r);

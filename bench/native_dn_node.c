@@ -17,7 +17,7 @@
 #include "co_linux/loop.h"
 #include "drive/drive.h"
 #include "drive/drive_devicenet.h"
-#include "models.h"
+#include "drive/models/models.h"
 
 #include <stdio.h>
 #include <stdlib.h>

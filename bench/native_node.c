@@ -13,7 +13,7 @@
 #include "co_linux/log.h"
 #include "co_linux/loop.h"
 #include "drive/drive.h"
-#include "models.h"
+#include "drive/models/models.h"
 
 #include <stdio.h>
 #include <stdlib.h>

@@ -6,7 +6,7 @@
 #define ATV312D_OPTIONS_H
 
 #include "co_linux/log.h"
-#include "models.h"
+#include "drive/models/models.h"
 
 #include <netinet/in.h>
 #include <stdbool.h>

@@ -6,8 +6,8 @@
 #include "check_main.h"
 #include "co_linux/loop.h"
 #include "drive/drive.h"
+#include "drive/models/models.h"
 #include "drive/panel.h"
-#include "models.h"
 
 #include <check.h>
 #include <errno.h>

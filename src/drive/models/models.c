@@ -1,5 +1,5 @@
 /* SPDX-License-Identifier: Apache-2.0 */
-#include "models.h"
+#include "drive/models/models.h"
 
 #include "atv31/atv31.h"
 #include "atv312/atv312.h"

@@ -7,8 +7,8 @@
  * object reads within its limits (its LowLimit..HighLimit, else its type's range), and every view
  * takes back the value it reads, leaving the parameters as they were. */
 #include "check_main.h"
+#include "drive/models/models.h"
 #include "minimal_model.h"
-#include "models.h"
 
 /* Time to reach 1638350 rpm (500.0 Hz at 32767 rpm per 10.0 Hz) at the shortest ramp, 0.1 s per
  * 32767 rpm: 5 s. */

@@ -24,12 +24,12 @@
 static const drive_fault_def_t atv312_faults[] = {
     {"COF", "CANopen communication fault (life guarding, heartbeat)", 0x8130, 0, COMMAND,
      FREEWHEEL},
-#include "family_faults.inc"
+#include "atv312/family_faults.inc"
 };
 
 static const drive_fault_def_t atv312_devicenet_faults_defs[] = {
     {"CnF", "network fault (I/O connection time out)", 0x8130, 0, COMMAND, FREEWHEEL},
-#include "family_faults.inc"
+#include "atv312/family_faults.inc"
 };
 
 const drive_fault_table_t atv312_family_faults = {

@@ -8,7 +8,7 @@
  *
  *   native_dn_node FD FIRST-LAST      MAC IDs FIRST..LAST (0..63), one drive each
  *
- * The device operations are the daemon's (apps/atv312d/main.c, dn_slot_ops), with its comparison
+ * The device operations are the daemon's (apps/atv312d/drives.c, dn_slot_ops), with its comparison
  * of the LEDs and the drive state after each call (the log lines it would write are below the
  * warning level here); no store, no control or status surface. Prints "online N" once every card
  * has passed its duplicate MAC ID check; runs until the peer hangs up or SIGTERM, then prints the

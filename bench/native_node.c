@@ -6,7 +6,7 @@
  *
  *   native_node FD NODE-ID
  *
- * The device operations are the daemon's (apps/atv312d/main.c) without its logging: atv312d also
+ * The device operations are the daemon's (apps/atv312d/drives.c) without its logging: atv312d also
  * compares the NMT and CiA 402 states after each call into the drive and looks up 1014h for each
  * frame it sends, to log state changes and emergencies. Runs until the peer hangs up or SIGTERM,
  * then prints the loop's counters as one JSON line on standard output. */

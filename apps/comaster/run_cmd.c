@@ -200,7 +200,8 @@ static size_t append(char *out, size_t cap, size_t used, const char *format, ...
 /* status --json: one object, the records of the PLC300's 5.6.3-5.6.5. */
 static void reply_status_json(runner_t *r, uint16_t status, char *reply, size_t cap)
 {
-    char name[2 * COMASTER_NAME_MAX + 3], failure[300], text[256];
+    char name[CLI_JSON_QUOTED_MAX(COMASTER_NAME_MAX)], text[256];
+    char failure[CLI_JSON_QUOTED_MAX(sizeof text)];
     size_t used = append(reply, cap, 0, "{\"status\": \"0x%04X\", \"slaves\": [", status);
     for (size_t i = 0; i < r->net->slave_count; i++) {
         const co_net_slave_t *s = &r->net->slave_state[i];

@@ -199,7 +199,7 @@ static void format_sdo_reply(const runner_t *r, run_sdo_t *s, const co_net_reque
         return;
     }
     size_t used = json_head(s, type, reply, cap);
-    char value[sizeof text * 2];
+    char value[CLI_JSON_QUOTED_MAX(sizeof text)];
     if (is_text)
         cli_json_quote(text, value, sizeof value);
     snprintf(reply + used, cap - used, ", \"value\": %s}\n", is_text ? value : text);

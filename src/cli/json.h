@@ -16,6 +16,9 @@
 #define CLI_JSON_DEPTH_MAX 16
 /* The longest escape of one byte: "\u001f". */
 #define CLI_JSON_ESCAPE_MAX 6
+/* The room a text of n bytes needs as one JSON string: every byte escaped, two quotes, the NUL.
+ * A buffer of this size always takes cli_json_quote's result. */
+#define CLI_JSON_QUOTED_MAX(n) ((n)*CLI_JSON_ESCAPE_MAX + 3)
 
 typedef struct cli_json {
     char *buf;
@@ -50,7 +53,7 @@ void cli_json_number(cli_json_t *json, const char *key, const char *format, ...)
 size_t cli_json_finish(cli_json_t *json);
 
 /* `text` as one JSON string into out ("\"a \\\"b\\\"\""); false, with out "", when it does not
- * fit in cap bytes. */
+ * fit in cap bytes (never when cap is CLI_JSON_QUOTED_MAX of its length). */
 bool cli_json_quote(const char *text, char *out, size_t cap);
 
 #endif

@@ -60,6 +60,20 @@ START_TEST(quote_into_a_buffer)
 }
 END_TEST
 
+/* CLI_JSON_QUOTED_MAX(n) is the room of the worst text of n bytes, every byte escaped, and no
+ * more than that room. */
+START_TEST(quoted_max_holds_the_worst_text)
+{
+    char text[8], out[CLI_JSON_QUOTED_MAX(sizeof text - 1)];
+    memset(text, 0x01, sizeof text - 1);
+    text[sizeof text - 1] = '\0';
+    ck_assert(cli_json_quote(text, out, sizeof out));
+    ck_assert_uint_eq(strlen(out), sizeof out - 1);
+    ck_assert_str_eq(out, "\"\\u0001\\u0001\\u0001\\u0001\\u0001\\u0001\\u0001\"");
+    ck_assert(!cli_json_quote(text, out, sizeof out - 1));
+}
+END_TEST
+
 static Suite *json_suite(void)
 {
     Suite *s = suite_create("json");
@@ -67,6 +81,7 @@ static Suite *json_suite(void)
     tcase_add_test(tc, members_elements_and_commas);
     tcase_add_test(tc, a_document_that_does_not_fit_is_empty);
     tcase_add_test(tc, quote_into_a_buffer);
+    tcase_add_test(tc, quoted_max_holds_the_worst_text);
     suite_add_tcase(s, tc);
     return s;
 }

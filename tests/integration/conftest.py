@@ -16,6 +16,7 @@ import queue
 import re
 import signal
 import subprocess
+import sys
 import threading
 import time
 from dataclasses import dataclass
@@ -31,6 +32,9 @@ IFACE = os.environ.get("ATV312_IFACE", "vcan0")
 # How long a daemon may take from exec to its boot-up frame. Generous because User-Mode Linux makes
 # every system call slower, and a loaded CI machine slower still; a healthy daemon takes ~10 ms.
 BOOT_TIMEOUT = 5.0
+# python canopen's LocalNode, an SDO server the project did not write (local_node below).
+SDO_SERVER_HELPER = Path(__file__).with_name("sdo_server_helper.py")
+LOCAL_NODE = 10
 # How long a device may take to answer an SDO request or react to a command frame.
 REPLY_TIMEOUT = 1.0
 
@@ -332,6 +336,19 @@ class Daemon:
             if key == field:
                 return int(value.split()[0])
         raise KeyError(field)
+
+
+@pytest.fixture
+def local_node():
+    """python canopen's LocalNode as node LOCAL_NODE (10) in a helper process."""
+    p = subprocess.Popen([sys.executable, str(SDO_SERVER_HELPER), IFACE, str(LOCAL_NODE)],
+                         stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
+    try:
+        assert p.stdout.readline() == "ready\n", p.stderr.read()
+        yield p
+    finally:
+        p.terminate()
+        p.wait(timeout=BOOT_TIMEOUT)
 
 
 @pytest.fixture

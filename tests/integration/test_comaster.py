@@ -9,18 +9,14 @@ import queue
 import re
 import signal
 import subprocess
-import sys
 import threading
 import time
-from pathlib import Path
 
 import pytest
 
-from conftest import BOOT_TIMEOUT, EDS, IFACE, ROOT, Frame
+from conftest import BOOT_TIMEOUT, EDS, IFACE, LOCAL_NODE, ROOT, Frame
 
 COMASTER = os.environ.get("COMASTER") or str(ROOT / "build" / "apps" / "comaster" / "comaster")
-HELPER = Path(__file__).with_name("sdo_server_helper.py")
-LOCAL_NODE = 10
 
 EXIT_ABORT, EXIT_TIMEOUT = 1, 2
 EX_USAGE, EX_DATAERR, EX_UNAVAILABLE = 64, 65, 69
@@ -139,19 +135,6 @@ def test_nmt_commands_frames_and_boot_up(drives, dump):
     assert err == ("comaster: error: node 9: no boot-up within 200 ms after reset-comm: is the node on "
                    "vcan0? (--timeout MS waits longer)\n")
     assert comaster("nmt", "go", 4)[0] == EX_USAGE
-
-
-@pytest.fixture
-def local_node():
-    """python canopen's LocalNode as node 10 in a helper process."""
-    p = subprocess.Popen([sys.executable, str(HELPER), IFACE, str(LOCAL_NODE)],
-                         stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
-    try:
-        assert p.stdout.readline() == "ready\n", p.stderr.read()
-        yield p
-    finally:
-        p.terminate()
-        p.wait(timeout=BOOT_TIMEOUT)
 
 
 def test_expedited_and_segmented_against_local_node(local_node):

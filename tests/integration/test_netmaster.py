@@ -17,7 +17,7 @@ import time
 import canopen
 import pytest
 
-from conftest import BOOT_TIMEOUT, EDS, IFACE, PERIODIC_LATENESS, ROOT, assert_periodic
+from conftest import BOOT_TIMEOUT, EDS, IFACE, LOCAL_NODE, PERIODIC_LATENESS, ROOT, assert_periodic
 
 COMASTER = os.environ.get("COMASTER") or str(ROOT / "build" / "apps" / "comaster" / "comaster")
 NET = ROOT / "examples" / "netmaster"
@@ -388,6 +388,19 @@ def test_sdo_through_the_run_shares_its_client(bus, start_daemon, run, remote):
     assert (rc, err) == (EXIT_TIMEOUT, "comaster: error: node 9, 1000:00: no answer within 500 ms (the run's sdo_timeout)\n")
     rc, out, _ = r.request("status")
     assert "last SDO error: node 9 read 1000h:00 abort 0x05040000 (SDO protocol timed out)" in out.splitlines()
+
+
+def test_sdo_text_of_control_characters_stays_json(bus, start_daemon, run, local_node):
+    """A device's VISIBLE_STRING may hold any byte: the run's JSON reply carries the longest one it
+    reads (256 bytes, RUN_SDO_VALUE_MAX) whole, each control character as \\u00XX (6 bytes)."""
+    start_daemon(bus, "--node-id", "4-6")
+    r = run()
+    expect_booted(r)
+    text = "\x01" * 255 + "\x1f"
+    assert comaster("write", LOCAL_NODE, "0x2001", "string", text)[0] == 0
+    rc, out, err = r.request("--json", "read", LOCAL_NODE, "0x2001", "string", "--run")
+    assert (rc, err) == (0, "")
+    assert json.loads(out)["value"] == text
 
 
 def test_disable_stops_the_master_and_enable_boots_the_network_again(bus, start_daemon, run):

@@ -162,6 +162,23 @@ START_TEST(length_and_access_checks)
 }
 END_TEST
 
+/* A fieldbus card on the same device writes for its own master: the checks of a client's
+ * download, never the application's leave to write a read-only entry (co_od.h). */
+START_TEST(a_card_is_checked_as_a_client)
+{
+    test_node_start(&t, 4, NULL, NULL);
+    uint8_t b[8] = {1, 2, 3, 4, 5, 6, 7, 8};
+    ck_assert_uint_eq(co_od_write(&t.node, 0x1000, 0x00, b, 4, CO_OD_ORIGIN_CARD),
+                      CO_SDO_ABORT_READ_ONLY);
+    ck_assert_uint_eq(co_od_write(&t.node, 0x2000, 0x02, b, 4, CO_OD_ORIGIN_CARD),
+                      CO_SDO_ABORT_LENGTH_HIGH);
+    ck_assert_uint_eq(co_od_write(&t.node, 0x2000, 0x0A, b + 1, 1, CO_OD_ORIGIN_CARD),
+                      CO_SDO_ABORT_VALUE_RANGE);
+    ck_assert_uint_eq(co_od_write(&t.node, 0x2000, 0x08, b, 8, CO_OD_ORIGIN_CARD), 0);
+    ck_assert_int_eq(co_od_value(&t.node, 0x2000, 0x08), 0x0807060504030201);
+}
+END_TEST
+
 START_TEST(strings_store_their_length)
 {
     test_node_start(&t, 4, NULL, NULL);
@@ -201,6 +218,7 @@ int main(void)
     tcase_add_test(tc, zero_allowed_below_low_limit);
     tcase_add_test(tc, saturate_to_limits_or_type_range);
     tcase_add_test(tc, length_and_access_checks);
+    tcase_add_test(tc, a_card_is_checked_as_a_client);
     tcase_add_test(tc, strings_store_their_length);
     tcase_add_test(tc, hook_refuses_and_counts);
     suite_add_tcase(s, tc);

@@ -1,5 +1,5 @@
 /* SPDX-License-Identifier: Apache-2.0 */
-/* libFuzzer harness of the network master (src/canopen/master/net_master.c, with the SDO client
+/* libFuzzer harness of the network master (src/canopen/master/net/, with the SDO client
  * and the NMT master under it): a master of up to three slaves, nodes 1..3, configured by the
  * input's header, fed the slaves' frames (boot-ups, heartbeats, guarding replies, SDO answers,
  * EMCYs, input PDOs) and time steps (steps.h), driven the way a runtime drives it (process after

@@ -27,7 +27,7 @@ def linked_sizes(map_path):
 def main():
     map_path, elf = sys.argv[1:3]
     sizes = linked_sizes(map_path)
-    core = {re.sub(r".*/src/canopen/(\w+/\w+)\.c\.obj$", r"\1.c", o): s
+    core = {re.sub(r".*/src/canopen/([\w/]+)\.c\.obj$", r"\1.c", o): s
             for o, s in sizes.items() if "/src/canopen/" in o}
     print("flash of the core after --gc-sections (text + rodata, bytes):")
     for name in sorted(core):

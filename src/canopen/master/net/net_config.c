@@ -1,0 +1,66 @@
+/* SPDX-License-Identifier: Apache-2.0 */
+/* The network master's description as the application gives it (co_net_master_config_t): what
+ * co_net_master_init refuses before anything is sent (docs/net-master.md, "The application's
+ * description"). */
+#include "canopen/master/net/net_floors.h"
+
+static bool pdo_valid(const co_net_master_config_t *config, const co_net_pdo_t *pdo,
+                      size_t image_size)
+{
+    return pdo->len >= 1 && pdo->len <= CO_FRAME_DLC_MAX &&
+           (size_t)pdo->offset + pdo->len <= image_size && pdo->can_id <= CO_COB_ID_CAN_ID &&
+           !co_can_id_restricted(pdo->can_id) &&
+           co_net_config_index(config, pdo->node_id) < config->slave_count;
+}
+
+static bool pdos_valid(const co_net_master_config_t *config, const co_net_pdo_t *pdos, size_t count,
+                       const uint8_t *image, size_t image_size)
+{
+    if ((count > 0 && pdos == NULL) || (image == NULL && (count > 0 || image_size > 0)))
+        return false;
+    for (size_t i = 0; i < count; i++) {
+        if (!pdo_valid(config, &pdos[i], image_size))
+            return false;
+    }
+    return true;
+}
+
+static bool slave_valid(const co_net_master_config_t *config, size_t i)
+{
+    const co_net_slave_config_t *s = &config->slaves[i];
+    if (s->node_id < 1 || s->node_id > CO_NMT_MASTER_NODE_ID_MAX)
+        return false;
+    for (size_t j = 0; j < i; j++) {
+        if (config->slaves[j].node_id == s->node_id)
+            return false;
+    }
+    if (s->write_count > 0 && s->writes == NULL)
+        return false;
+    for (size_t w = 0; w < s->write_count; w++) {
+        if (s->writes[w].data == NULL || s->writes[w].len == 0)
+            return false;
+    }
+    return true;
+}
+
+bool co_net_config_valid(const co_net_master_config_t *config)
+{
+    if (config == NULL || config->send == NULL || config->slaves == NULL ||
+        config->slave_state == NULL || config->slave_count == 0 ||
+        config->slave_count > CO_NMT_MASTER_NODE_ID_MAX ||
+        config->sdo_timeout_ms < CO_NET_SDO_TIMEOUT_MIN_MS ||
+        config->sdo_timeout_ms > CO_NET_SDO_TIMEOUT_MAX_MS || config->start > CO_NET_START_NONE)
+        return false;
+    if (config->heartbeat_ms != 0 &&
+        (config->node_id < 1 || config->node_id > CO_NMT_MASTER_NODE_ID_MAX ||
+         co_net_config_index(config, config->node_id) != config->slave_count))
+        return false;
+    for (size_t i = 0; i < config->slave_count; i++) {
+        if (!slave_valid(config, i))
+            return false;
+    }
+    return pdos_valid(config, config->inputs, config->input_count, config->input_image,
+                      config->input_size) &&
+           pdos_valid(config, config->outputs, config->output_count, config->output_image,
+                      config->output_size);
+}

@@ -345,6 +345,12 @@ static void check_slave(size_t i)
     }
     rig_check(!h.rebooted[i] || !(st & CO_NET_SLAVE_CONFIGURED),
               "configured without every write since its boot-up");
+    /* Bit 5 says that the slave's error control failed, ec_error which one: its own
+     * (D-NET-MASTER-EC-KIND), and none while the bit is clear. */
+    uint8_t kind =
+        h.error_control[i] == EC_GUARDING ? CO_NET_EC_ERROR_GUARDING : CO_NET_EC_ERROR_HEARTBEAT;
+    rig_check(s->ec_error == ((st & CO_NET_SLAVE_EC_ERROR) ? kind : CO_NET_EC_ERROR_NONE),
+              "the kind of error control failure is not that of the slave's bit 5");
 }
 
 /* A slave under heartbeat whose consumer time passed in silence is not reported healthy. */

@@ -40,16 +40,31 @@ static const char boot_help[] =
     "\n"
     "Example: comaster -i vcan0 boot 4 examples/netmaster/drive4.dcf\n";
 
-/* The master's status word, printed when it changed. */
+/* The master's status word and its protocol state (the PLC300's %SB3180, which tells a node
+ * guarding error from a heartbeat error), each printed when it changed. */
 static void print_master_status(runner_t *r)
 {
     uint16_t status = co_net_master_status(&r->master);
-    if (status == r->master_status)
-        return;
-    r->master_status = status;
-    char text[256];
-    run_master_status_text(status, text, sizeof text);
-    printf("master: status %s\n", text + strlen("master "));
+    if (status != r->master_status) {
+        r->master_status = status;
+        char text[256];
+        run_master_status_text(status, text, sizeof text);
+        printf("master: status %s\n", text + strlen("master "));
+    }
+    uint8_t protocol = co_net_master_protocol_state(&r->master);
+    if (protocol != r->protocol_state) {
+        r->protocol_state = protocol;
+        printf("master: protocol %u %s\n", protocol, co_net_protocol_state_text(protocol));
+    }
+}
+
+/* " (heartbeat error)" after a slave's status whose bit 5 is set, "" otherwise. */
+static const char *ec_error_note(const co_net_slave_t *s, char *out, size_t cap)
+{
+    out[0] = '\0';
+    if (s->ec_error != CO_NET_EC_ERROR_NONE)
+        snprintf(out, cap, " (%s)", co_net_ec_error_text(s->ec_error));
+    return out;
 }
 
 static const char *slave_name(const runner_t *r, uint8_t node_id)
@@ -120,8 +135,10 @@ static void print_slave_event(runner_t *r, const co_net_event_t *event)
         if (r->boot_only)
             finish_boot(r, s);
     } else {
+        char note[64];
         run_slave_status_text(s->status, text, sizeof text);
-        printf("node %u %s: status 0x%04X%s\n", event->node_id, name, s->status, text);
+        printf("node %u %s: status 0x%04X%s%s\n", event->node_id, name, s->status, text,
+               ec_error_note(s, note, sizeof note));
     }
 }
 
@@ -201,8 +218,12 @@ static size_t append(char *out, size_t cap, size_t used, const char *format, ...
 static void reply_status_json(runner_t *r, uint16_t status, char *reply, size_t cap)
 {
     char name[CLI_JSON_QUOTED_MAX(COMASTER_NAME_MAX)], text[256];
-    char failure[CLI_JSON_QUOTED_MAX(sizeof text)];
-    size_t used = append(reply, cap, 0, "{\"status\": \"0x%04X\", \"slaves\": [", status);
+    char failure[CLI_JSON_QUOTED_MAX(sizeof text)], ec_error[32];
+    uint8_t protocol = co_net_master_protocol_state(&r->master);
+    size_t used = append(reply, cap, 0,
+                         "{\"status\": \"0x%04X\", \"protocol_state\": {\"code\": %u, \"text\": "
+                         "\"%s\"}, \"slaves\": [",
+                         status, protocol, co_net_protocol_state_text(protocol));
     for (size_t i = 0; i < r->net->slave_count; i++) {
         const co_net_slave_t *s = &r->net->slave_state[i];
         cli_json_quote(r->net->slave[i].name, name, sizeof name);
@@ -211,11 +232,14 @@ static void reply_status_json(runner_t *r, uint16_t status, char *reply, size_t 
             format_failure(s, text, sizeof text);
             cli_json_quote(text, failure, sizeof failure);
         }
+        snprintf(ec_error, sizeof ec_error, "null");
+        if (s->ec_error != CO_NET_EC_ERROR_NONE)
+            snprintf(ec_error, sizeof ec_error, "\"%s\"", co_net_ec_error_text(s->ec_error));
         used = append(reply, cap, used,
                       "%s{\"node\": %u, \"name\": %s, \"status\": \"0x%04X\", \"step\": \"%s\", "
-                      "\"failure\": %s}",
+                      "\"failure\": %s, \"error_control_error\": %s}",
                       i ? ", " : "", r->net->slave_config[i].node_id, name, s->status,
-                      co_net_step_text(s->step), failure);
+                      co_net_step_text(s->step), failure, ec_error);
     }
     const co_net_sdo_error_t *e = &r->master.last_sdo_error;
     if (e->node_id == 0)
@@ -247,15 +271,19 @@ static void reply_status(runner_t *r, bool json, char *reply, size_t cap)
         return;
     }
     run_master_status_text(status, text, sizeof text);
-    size_t used = (size_t)snprintf(reply, cap, "%s\n", text);
+    uint8_t protocol = co_net_master_protocol_state(&r->master);
+    size_t used = (size_t)snprintf(reply, cap, "%s\nprotocol %u %s\n", text, protocol,
+                                   co_net_protocol_state_text(protocol));
     for (size_t i = 0; i < r->net->slave_count && used < cap; i++) {
         const co_net_slave_t *s = &r->net->slave_state[i];
+        char note[64];
         if (s->step == CO_NET_STEP_FAILED)
             format_failure(s, text, sizeof text);
         used += (size_t)snprintf(
-            reply + used, cap - used, "node %u %s 0x%04X %s%s%s\n", r->net->slave_config[i].node_id,
-            r->net->slave[i].name, s->status, co_net_step_text(s->step),
-            s->step == CO_NET_STEP_FAILED ? ": " : "", s->step == CO_NET_STEP_FAILED ? text : "");
+            reply + used, cap - used, "node %u %s 0x%04X %s%s%s%s\n",
+            r->net->slave_config[i].node_id, r->net->slave[i].name, s->status,
+            co_net_step_text(s->step), s->step == CO_NET_STEP_FAILED ? ": " : "",
+            s->step == CO_NET_STEP_FAILED ? text : "", ec_error_note(s, note, sizeof note));
     }
     format_sdo_error(&r->master.last_sdo_error, text, sizeof text);
     if (used < cap)
@@ -419,6 +447,7 @@ static int run_master(runner_t *r, comaster_options_t *opts, const char *control
         return comaster_fail(opts, EX_DATAERR,
                              "the network master refuses this network (a PDO outside its image "
                              "or twice the same node-id)");
+    r->protocol_state = co_net_master_protocol_state(&r->master);
     int rc = comaster_bus_open(&r->bus, opts);
     if (rc != 0)
         return rc;

@@ -41,6 +41,7 @@ typedef struct runner {
     co_net_master_t master;
     bool started;
     uint16_t master_status; /* as last printed */
+    uint8_t protocol_state; /* co_net_master_protocol_state as last printed */
     bool boot_only;         /* comaster boot: finish when the slave is operational or failed */
     comaster_control_t control;
     uint32_t nmt_ticket; /* the client awaiting the NMT command's confirmation */

@@ -38,6 +38,15 @@
     0x8000u /* bit 15: communication disabled (by the                                              \
              * application, bus off or no bus power) */
 
+/* The CANopen protocol state, the PLC300's %SB3180 (its section 8.1, reading system markers; 1 is
+ * reserved): its two error codes tell a node guarding failure from a heartbeat failure, which the
+ * status words' bit 5 does not (docs/decisions.md, D-NET-MASTER-EC-KIND). */
+#define CO_NET_PROTOCOL_DISABLED 0u        /* communication disabled (status bit 15) */
+#define CO_NET_PROTOCOL_ENABLED 2u         /* CANopen enabled, no slave under error control */
+#define CO_NET_PROTOCOL_EC_ENABLED 3u      /* error control of some slave started */
+#define CO_NET_PROTOCOL_GUARDING_ERROR 4u  /* a slave failed node guarding */
+#define CO_NET_PROTOCOL_HEARTBEAT_ERROR 5u /* a slave's heartbeat failed */
+
 /* Which identity values are compared with the expected ones (co_net_slave_config_t.check). */
 #define CO_NET_CHECK_DEVICE_TYPE 0x01u /* 1000h */
 #define CO_NET_CHECK_VENDOR 0x02u      /* 1018h:01 */
@@ -151,6 +160,13 @@ typedef enum co_net_step {
                               * (bit 3 clear) or OPERATIONAL (bit 3 set) */
 } co_net_step_t;
 
+/* Which error control found a slave silent: what its status bit 5 stands for. */
+typedef enum co_net_ec_error {
+    CO_NET_EC_ERROR_NONE = 0, /* bit 5 clear */
+    CO_NET_EC_ERROR_GUARDING, /* node guarding: no valid reply for life time factor x guard time */
+    CO_NET_EC_ERROR_HEARTBEAT /* no heartbeat within the consumer time (or no first one) */
+} co_net_ec_error_t;
+
 /* Why the last initialisation of a slave failed. */
 typedef enum co_net_failure {
     CO_NET_FAIL_NONE = 0,
@@ -184,6 +200,7 @@ typedef struct co_net_slave {
     uint8_t step;        /* co_net_step_t */
     uint16_t status;     /* CO_NET_SLAVE_* */
     uint8_t failure;     /* co_net_failure_t of the last failed attempt */
+    uint8_t ec_error;    /* co_net_ec_error_t of the last loss while bit 5 is set, else NONE */
     uint32_t read_value; /* the value of the failed identity check (or the last one read) */
     bool booted;         /* the boot-up awaited since its last reset came */
     bool tried;          /* an attempt at its initialisation ended (successfully or not) */
@@ -307,11 +324,19 @@ void co_net_master_set_bus(co_net_master_t *master, uint16_t bus);
  * (CO_NET_SLAVE_*; 0 for a node not in the table). */
 uint16_t co_net_master_status(const co_net_master_t *master);
 uint16_t co_net_master_slave_status(const co_net_master_t *master, uint8_t node_id);
+/* The protocol state (CO_NET_PROTOCOL_*): disabled with status bit 15; else the error of the
+ * first slave of the table whose bit 5 is set, node guarding or heartbeat; else error control
+ * enabled when some slave has bit 2 and an error control configured; else enabled. */
+uint8_t co_net_master_protocol_state(const co_net_master_t *master);
 /* The slave's record, NULL for a node not in the table. */
 const co_net_slave_t *co_net_master_slave(const co_net_master_t *master, uint8_t node_id);
 
 /* "idle", "wait boot-up", ... and "SDO error", "device type mismatch", ... for printing. */
 const char *co_net_step_text(co_net_step_t step);
 const char *co_net_failure_text(co_net_failure_t failure);
+/* "none", "node guarding error", "heartbeat error"; "disabled", "CANopen enabled", "error control
+ * enabled", and the two error texts for a protocol state: the PLC300's words. */
+const char *co_net_ec_error_text(co_net_ec_error_t error);
+const char *co_net_protocol_state_text(uint8_t state);
 
 #endif

@@ -46,8 +46,9 @@ static co_net_master_config_t config;
 static co_net_slave_config_t table[SLAVES];
 static co_net_slave_t state[SLAVES];
 static co_net_event_t events[LOG_MAX];
-static uint8_t event_step[LOG_MAX];    /* the slave's step when the event came */
-static uint16_t event_status[LOG_MAX]; /* and its status word */
+static uint8_t event_step[LOG_MAX];     /* the slave's step when the event came */
+static uint16_t event_status[LOG_MAX];  /* and its status word */
+static uint8_t event_ec_error[LOG_MAX]; /* and its kind of error control failure */
 static size_t event_count;
 
 static const uint8_t heartbeat_100ms[] = {0x64, 0x00};
@@ -92,6 +93,7 @@ static void on_event(void *user, const co_net_event_t *event)
     const co_net_slave_t *s = co_net_master_slave(&master, event->node_id);
     event_step[event_count] = s == NULL ? 0xFF : s->step;
     event_status[event_count] = s == NULL ? 0 : s->status;
+    event_ec_error[event_count] = s == NULL ? 0 : s->ec_error;
     events[event_count++] = *event;
 }
 
@@ -720,6 +722,141 @@ START_TEST(guarding_loss_reboots)
 }
 END_TEST
 
+/* Node 5 guarded every 100 ms, life time factor 3 (its 100Ch and 100Dh written by the boot). */
+static void guard_node_5(co_net_on_error_t on_error)
+{
+    static const uint8_t guard_100ms[] = {0x64, 0x00};
+    static const uint8_t factor_3[] = {3};
+    static const co_net_write_t guard_writes[] = {{0x100C, 0, guard_100ms, 2},
+                                                  {0x100D, 0, factor_3, 1}};
+    table[1].writes = guard_writes;
+    table[1].write_count = 2;
+    table[1].guard_ms = 100;
+    table[1].life_time_factor = 3;
+    table[1].on_error = on_error;
+}
+
+/* The last STATUS event of node `id`: its kind of error control failure then. */
+static uint8_t last_status_ec_error(uint8_t id)
+{
+    for (size_t k = event_count; k-- > 0;) {
+        if (events[k].kind == CO_NET_EVENT_STATUS && events[k].node_id == id)
+            return event_ec_error[k];
+    }
+    ck_abort_msg("no status event of node %u", id);
+    return 0;
+}
+
+/* The PLC300's status bit 5 is one for both error controls; its %SB3180 (4, 5) and the slave's
+ * record tell them apart. Node 5, guarded, stops answering: the master's requests go on, three
+ * guard times pass without a reply, and the third missed request is the loss, a node guarding
+ * error, then its reset. */
+START_TEST(guarded_slave_silent_is_a_node_guarding_error)
+{
+    guard_node_5(CO_NET_ON_ERROR_REBOOT);
+    start_master();
+    advance(500 * MS);
+    ck_assert_uint_eq(co_net_master_protocol_state(&master), CO_NET_PROTOCOL_EC_ENABLED);
+    ck_assert_uint_eq(co_net_master_slave(&master, 5)->ec_error, CO_NET_EC_ERROR_NONE);
+    slaves[1].present = false;
+    bus.next = bus.count;
+    advance(400 * MS);
+    expect("705#R1"); /* answered before node 5 went silent: the last one not missed */
+    co_time_t first = bus.at[bus.next - 1];
+    expect("705#R1");
+    ck_assert_uint_eq(bus.at[bus.next - 1], first + 100 * MS);
+    expect("705#R1");
+    ck_assert_uint_eq(bus.at[bus.next - 1], first + 200 * MS);
+    expect("000#8105");
+    ck_assert_uint_eq(bus.at[bus.next - 1], first + 300 * MS);
+    ck_assert_uint_eq(co_net_master_slave_status(&master, 5), CO_NET_SLAVE_EC_ERROR);
+    ck_assert_uint_eq(co_net_master_slave(&master, 5)->ec_error, CO_NET_EC_ERROR_GUARDING);
+    ck_assert_uint_eq(last_status_ec_error(5), CO_NET_EC_ERROR_GUARDING);
+    ck_assert_uint_eq(co_net_master_protocol_state(&master), CO_NET_PROTOCOL_GUARDING_ERROR);
+    ck_assert_str_eq(co_net_protocol_state_text(co_net_master_protocol_state(&master)),
+                     "node guarding error");
+    /* Back, booted again: bit 5 and its kind cleared together. */
+    slaves[1].present = true;
+    advance(BOOT_TIME_MS * MS + 100 * MS);
+    ck_assert_uint_eq(co_net_master_slave_status(&master, 5), 0x0F);
+    ck_assert_uint_eq(co_net_master_slave(&master, 5)->ec_error, CO_NET_EC_ERROR_NONE);
+    ck_assert_uint_eq(co_net_master_protocol_state(&master), CO_NET_PROTOCOL_EC_ENABLED);
+}
+END_TEST
+
+/* Node 4 produces a heartbeat every 100 ms, the master consumes it for 150 ms: silent after a
+ * heartbeat, it is lost exactly 150 ms later, a heartbeat error, then reset; the master never
+ * sent it a guarding request. */
+START_TEST(heartbeat_producer_silent_is_a_heartbeat_error)
+{
+    table[0].heartbeat_ms = 150;
+    start_master();
+    advance(500 * MS);
+    ck_assert_uint_eq(co_net_master_protocol_state(&master), CO_NET_PROTOCOL_EC_ENABLED);
+    co_time_t last_beat = 0;
+    for (size_t k = 0; k < bus.count; k++) {
+        if (bus.sender[k] == 0 && bus.log[k].id == 0x704 && bus.log[k].len == 1 &&
+            bus.log[k].data[0] == CO_NMT_OPERATIONAL)
+            last_beat = bus.at[k];
+    }
+    ck_assert_uint_eq(last_beat, bus.now); /* on the 100 ms grid: it just beat */
+    slaves[0].present = false;
+    bus.next = bus.count;
+    advance(149 * MS);
+    ck_assert_uint_eq(co_net_master_slave_status(&master, 4), 0x0F);
+    for (size_t k = bus.next; k < bus.count; k++)
+        ck_assert_uint_ne(bus.sender[k], SLAVES); /* the master is silent until the loss */
+    advance(1 * MS);
+    expect("000#8104");
+    ck_assert_uint_eq(bus.at[bus.next - 1], last_beat + 150 * MS);
+    ck_assert_uint_eq(co_net_master_slave_status(&master, 4), CO_NET_SLAVE_EC_ERROR);
+    ck_assert_uint_eq(co_net_master_slave(&master, 4)->ec_error, CO_NET_EC_ERROR_HEARTBEAT);
+    ck_assert_uint_eq(last_status_ec_error(4), CO_NET_EC_ERROR_HEARTBEAT);
+    ck_assert_uint_eq(co_net_master_protocol_state(&master), CO_NET_PROTOCOL_HEARTBEAT_ERROR);
+    ck_assert_str_eq(co_net_protocol_state_text(co_net_master_protocol_state(&master)),
+                     "heartbeat error");
+    for (size_t k = 0; k < bus.count; k++)
+        ck_assert(!(bus.sender[k] == SLAVES && bus.log[k].id == 0x704 &&
+                    (bus.log[k].flags & CO_FRAME_RTR) != 0));
+}
+END_TEST
+
+/* Both at once, reported only: the protocol state gives the first slave of the table with bit 5
+ * (node 4's heartbeat error), then node 5's node guarding error once node 4 is heard again, then
+ * error control enabled; disabled (bit 15) before anything else. */
+START_TEST(protocol_state_gives_the_first_slave_in_error)
+{
+    table[0].heartbeat_ms = 150;
+    table[0].on_error = CO_NET_ON_ERROR_REPORT;
+    guard_node_5(CO_NET_ON_ERROR_REPORT);
+    ck_assert(co_net_master_init(&master, &config));
+    ck_assert_uint_eq(co_net_master_protocol_state(&master), CO_NET_PROTOCOL_ENABLED);
+    co_net_master_start(&master, bus.now);
+    advance(500 * MS);
+    slaves[0].present = false;
+    slaves[1].present = false;
+    advance(500 * MS);
+    ck_assert_uint_eq(co_net_master_slave_status(&master, 4), 0x2F);
+    ck_assert_uint_eq(co_net_master_slave_status(&master, 5), 0x2F);
+    ck_assert_uint_eq(co_net_master_slave(&master, 5)->ec_error, CO_NET_EC_ERROR_GUARDING);
+    ck_assert_uint_eq(co_net_master_protocol_state(&master), CO_NET_PROTOCOL_HEARTBEAT_ERROR);
+    slaves[0].present = true;
+    advance(100 * MS);
+    ck_assert_uint_eq(co_net_master_slave_status(&master, 4), 0x0F);
+    ck_assert_uint_eq(co_net_master_slave(&master, 4)->ec_error, CO_NET_EC_ERROR_NONE);
+    ck_assert_uint_eq(co_net_master_protocol_state(&master), CO_NET_PROTOCOL_GUARDING_ERROR);
+    slaves[1].present = true;
+    advance(100 * MS);
+    ck_assert_uint_eq(co_net_master_slave_status(&master, 5), 0x0F);
+    ck_assert_uint_eq(co_net_master_protocol_state(&master), CO_NET_PROTOCOL_EC_ENABLED);
+    co_net_master_set_bus(&master, CO_NET_MASTER_BUS_OFF);
+    ck_assert_uint_eq(co_net_master_protocol_state(&master), CO_NET_PROTOCOL_DISABLED);
+    co_net_master_set_bus(&master, 0);
+    co_net_master_disable(&master, bus.now);
+    ck_assert_uint_eq(co_net_master_protocol_state(&master), CO_NET_PROTOCOL_DISABLED);
+}
+END_TEST
+
 START_TEST(emcy_is_recorded)
 {
     start_master();
@@ -880,6 +1017,14 @@ START_TEST(texts)
     ck_assert_str_eq(co_net_step_text((co_net_step_t)99), "unknown step");
     ck_assert_str_eq(co_net_failure_text(CO_NET_FAIL_SDO), "SDO error");
     ck_assert_str_eq(co_net_failure_text((co_net_failure_t)99), "unknown failure");
+    ck_assert_str_eq(co_net_ec_error_text(CO_NET_EC_ERROR_NONE), "none");
+    ck_assert_str_eq(co_net_ec_error_text(CO_NET_EC_ERROR_GUARDING), "node guarding error");
+    ck_assert_str_eq(co_net_ec_error_text((co_net_ec_error_t)9), "unknown error control error");
+    ck_assert_str_eq(co_net_protocol_state_text(CO_NET_PROTOCOL_DISABLED), "disabled");
+    ck_assert_str_eq(co_net_protocol_state_text(CO_NET_PROTOCOL_ENABLED), "CANopen enabled");
+    ck_assert_str_eq(co_net_protocol_state_text(CO_NET_PROTOCOL_EC_ENABLED),
+                     "error control enabled");
+    ck_assert_str_eq(co_net_protocol_state_text(1), "reserved");
 }
 END_TEST
 
@@ -1253,6 +1398,9 @@ static Suite *net_master_suite(void)
     tcase_add_test(tc, unexpected_boot_up_reboots);
     tcase_add_test(tc, heartbeat_loss_only_reported);
     tcase_add_test(tc, guarding_loss_reboots);
+    tcase_add_test(tc, guarded_slave_silent_is_a_node_guarding_error);
+    tcase_add_test(tc, heartbeat_producer_silent_is_a_heartbeat_error);
+    tcase_add_test(tc, protocol_state_gives_the_first_slave_in_error);
     tcase_add_test(tc, emcy_is_recorded);
     tcase_add_test(tc, process_image_in);
     tcase_add_test(tc, process_image_out_on_change);

@@ -148,6 +148,7 @@ def test_run_boots_drives_4_to_6_from_their_dcfs(bus, start_daemon, run, remote)
         "node 4 drive4: status 0x0001 contacted",
         "node 4 drive4: download configuration", "node 4 drive4: status 0x0003 contacted configured",
         "node 4 drive4: status 0x0007 contacted configured error-control-started",
+        "master: protocol 3 error control enabled",  # the PLC300's %SB3180: heartbeats consumed
     ], passed
     expect_booted(r, (5, 6))
     for node_id in (4, 5, 6):
@@ -162,14 +163,14 @@ def test_run_boots_drives_4_to_6_from_their_dcfs(bus, start_daemon, run, remote)
     assert rc == 0
     assert out.splitlines() == [
         "master 0x000F all-contacted all-configured all-error-control-started init-finished",
-        "node 4 drive4 0x000F operational", "node 5 drive5 0x000F operational",
+        "protocol 3 error control enabled", "node 4 drive4 0x000F operational", "node 5 drive5 0x000F operational",
         "node 6 drive6 0x000F operational", "last SDO error: none", "last EMCY: none"]
     rc, out, _ = r.request("--json", "status")
     assert rc == 0
     assert json.loads(out) == {
-        "status": "0x000F",
-        "slaves": [{"node": n, "name": f"drive{n}", "status": "0x000F", "step": "operational", "failure": None}
-                   for n in (4, 5, 6)],
+        "status": "0x000F", "protocol_state": {"code": 3, "text": "error control enabled"},
+        "slaves": [{"node": n, "name": f"drive{n}", "status": "0x000F", "step": "operational", "failure": None,
+                    "error_control_error": None} for n in (4, 5, 6)],
         "last_sdo_error": None, "last_emcy": None}
 
 
@@ -228,7 +229,7 @@ def test_drive_killed_and_restarted_is_rebooted_and_reconfigured(bus, start_daem
     expect_booted(r)
     drive4.proc.kill()
     drive4.proc.wait()
-    r.expect("node 4 drive4: status 0x0020 error-control-error", timeout=2.0)
+    r.expect("node 4 drive4: status 0x0020 error-control-error (heartbeat error)", timeout=2.0)
     r.expect("master: status 0x0028 init-finished error-control-error", timeout=1.0)
     start_daemon(bus, "--node-id", "4")
     r.expect(f"node 4 drive4: {BOOTED}", timeout=10.0)
@@ -237,6 +238,73 @@ def test_drive_killed_and_restarted_is_rebooted_and_reconfigured(bus, start_daem
     assert node.sdo[0x203C][2].raw == 20  # the new process started from ACC 30
     assert node.sdo[0x1017].raw == 100
     bus.expect(0x704, "05", timeout=1.0)
+
+
+def guarded_bench(tmp_path):
+    """The bench with drive 5 under node guarding (100 ms, life time factor 3: its 100Ch and 100Dh
+    written by the boot, 1017h left 0 since a heartbeat producer ignores guarding requests) and
+    drives 4 and 6 under heartbeat (300 ms); drives 4 and 5 lost are only reported."""
+    for name in ("bench.cpj", "drive4.dcf", "drive6.dcf"):
+        (tmp_path / name).write_text((NET / name).read_text())
+    dcf = configured(configured((NET / "drive5.dcf").read_text(), "100C", "100"), "100D", "3")
+    start = dcf.index("[1017]\n")
+    end = dcf.index("\n\n", start)
+    dcf = dcf[:start] + dcf[start:end].replace("ParameterValue=100", "ParameterValue=0") + dcf[end:]
+    (tmp_path / "drive5.dcf").write_text(dcf)
+    (tmp_path / "guarded.ini").write_text(
+        "[Master]\ncpj = bench.cpj\nsdo_timeout = 500\nboot_time = 1000\nretry_delay = 1000\n"
+        "[Node4]\nheartbeat = 300\non_error = report\n"
+        "[Node5]\nguard_time = 100\nlife_time_factor = 3\non_error = report\n"
+        "[Node6]\nheartbeat = 300\n")
+    return tmp_path / "guarded.ini"
+
+
+def test_node_guarding_error_told_from_heartbeat_error(bus, start_daemon, run, tmp_path):
+    """The PLC300's status bit 5 is one for both error controls; its CANopen protocol state
+    (%SB3180: 4 node guarding error, 5 heartbeat error) and the slave's record tell them apart:
+    drive 5, guarded, killed, misses the master's guarding requests; drive 4, a heartbeat
+    producer, killed, stops beating."""
+    drive4 = start_daemon(bus, "--node-id", "4")
+    drive5 = start_daemon(bus, "--node-id", "5")
+    start_daemon(bus, "--node-id", "6")
+    r = run(guarded_bench(tmp_path))
+    expect_booted(r)
+    assert r.request("status")[1].splitlines()[1] == "protocol 3 error control enabled"
+    bus.expect(0x705, rtr=True, timeout=1.0)  # the master guards drive 5, which answers
+    assert bus.expect(0x705, timeout=1.0).data in (b"\x05", b"\x85")
+
+    killed = time.time()
+    drive5.proc.kill()
+    drive5.proc.wait()
+    r.expect("node 5 drive5: status 0x002F contacted configured error-control-started initialised "
+             "error-control-error (node guarding error)", timeout=2.0)
+    r.expect("master: protocol 4 node guarding error", timeout=1.0)
+    guarding = [f for f in bus.collect(0.3, 0x705) if f.timestamp > killed]
+    assert len(guarding) >= 4 and all(f.rtr for f in guarding), guarding  # asked on, no reply
+
+    killed = time.time()
+    drive4.proc.kill()
+    drive4.proc.wait()
+    r.expect("node 4 drive4: status 0x002F contacted configured error-control-started initialised "
+             "error-control-error (heartbeat error)", timeout=2.0)
+    r.expect("master: protocol 5 heartbeat error", timeout=1.0)  # node 4 comes first in the table
+    assert [f for f in bus.collect(0.3, 0x704) if f.timestamp > killed] == []  # no beat, no request
+
+    rc, out, _ = r.request("status")
+    assert out.splitlines()[:5] == [
+        "master 0x002F all-contacted all-configured all-error-control-started init-finished "
+        "error-control-error", "protocol 5 heartbeat error",
+        "node 4 drive4 0x002F error control lost (heartbeat error)",
+        "node 5 drive5 0x002F error control lost (node guarding error)", "node 6 drive6 0x000F operational"]
+    state = json.loads(r.request("--json", "status")[1])
+    assert state["protocol_state"] == {"code": 5, "text": "heartbeat error"}
+    assert [s["error_control_error"] for s in state["slaves"]] == ["heartbeat error", "node guarding error", None]
+
+    start_daemon(bus, "--node-id", "5")  # its boot-up: booted again, bit 5 and its kind cleared
+    r.expect(f"node 5 drive5: {BOOTED}", timeout=10.0)
+    state = json.loads(r.request("--json", "status")[1])
+    assert [s["error_control_error"] for s in state["slaves"]] == ["heartbeat error", None, None]
+    assert state["protocol_state"]["code"] == 5
 
 
 def test_identity_mismatch_is_an_init_error(bus, start_daemon, run, tmp_path):
@@ -414,7 +482,7 @@ def test_disable_stops_the_master_and_enable_boots_the_network_again(bus, start_
     assert [f for f in frames if f.can_id == 0x000 or 0x600 <= f.can_id <= 0x67F] == []
     assert frames, "the drives beat on"
     rc, out, _ = r.request("status")
-    assert out.splitlines()[:2] == ["master 0x8000 disabled", "node 4 drive4 0x0000 idle"]
+    assert out.splitlines()[:3] == ["master 0x8000 disabled", "protocol 0 disabled", "node 4 drive4 0x0000 idle"]
     rc, _, err = r.request("nmt", "start", 4, "--run")
     assert (rc, err) == (EXIT_REFUSED, "comaster: error: the communication of the run is disabled: comaster enable\n")
     assert r.request("--json", "enable") == (0, '{"status": "0x0000", "disabled": false}\n', "")

@@ -37,7 +37,8 @@ static inline co_time_t co_net_after_ms(co_time_t now, uint32_t ms)
 size_t co_net_config_index(const co_net_master_config_t *config, uint8_t node_id);
 size_t co_net_slave_index(const co_net_master_t *m, uint8_t node_id);
 void co_net_report(co_net_master_t *m, co_net_event_kind_t kind, uint8_t node_id, size_t pdo);
-/* Each reports its change (CO_NET_EVENT_STEP, _STATUS), nothing when nothing changed. */
+/* Each reports its change (CO_NET_EVENT_STEP, _STATUS), nothing when nothing changed; a status
+ * without bit 5 also clears the slave's ec_error. */
 void co_net_set_step(co_net_master_t *m, size_t i, co_net_step_t step);
 void co_net_set_status(co_net_master_t *m, size_t i, uint16_t status);
 void co_net_add_status(co_net_master_t *m, size_t i, uint16_t bits);

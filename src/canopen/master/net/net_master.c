@@ -159,6 +159,29 @@ uint16_t co_net_master_status(const co_net_master_t *master)
     return all | some | own;
 }
 
+/* Error control is configured for the slave: a heartbeat consumed, or node guarding. */
+static bool supervised(const co_net_slave_config_t *c)
+{
+    return c->heartbeat_ms != 0 || (c->guard_ms != 0 && c->life_time_factor != 0);
+}
+
+uint8_t co_net_master_protocol_state(const co_net_master_t *master)
+{
+    if ((co_net_master_status(master) & CO_NET_MASTER_DISABLED) != 0)
+        return CO_NET_PROTOCOL_DISABLED;
+    uint8_t state = CO_NET_PROTOCOL_ENABLED;
+    for (size_t i = 0; i < master->config.slave_count; i++) {
+        const co_net_slave_t *s = &master->config.slave_state[i];
+        if (s->ec_error == CO_NET_EC_ERROR_GUARDING)
+            return CO_NET_PROTOCOL_GUARDING_ERROR;
+        if (s->ec_error == CO_NET_EC_ERROR_HEARTBEAT)
+            return CO_NET_PROTOCOL_HEARTBEAT_ERROR;
+        if ((s->status & CO_NET_SLAVE_EC_STARTED) != 0 && supervised(&master->config.slaves[i]))
+            state = CO_NET_PROTOCOL_EC_ENABLED;
+    }
+    return state;
+}
+
 const co_net_slave_t *co_net_master_slave(const co_net_master_t *master, uint8_t node_id)
 {
     size_t i = co_net_slave_index(master, node_id);
@@ -209,4 +232,35 @@ const char *co_net_failure_text(co_net_failure_t failure)
         return "identity mismatch";
     }
     return "unknown failure";
+}
+
+const char *co_net_ec_error_text(co_net_ec_error_t error)
+{
+    switch (error) {
+    case CO_NET_EC_ERROR_NONE:
+        return "none";
+    case CO_NET_EC_ERROR_GUARDING:
+        return "node guarding error";
+    case CO_NET_EC_ERROR_HEARTBEAT:
+        return "heartbeat error";
+    }
+    return "unknown error control error";
+}
+
+const char *co_net_protocol_state_text(uint8_t state)
+{
+    switch (state) {
+    case CO_NET_PROTOCOL_DISABLED:
+        return "disabled";
+    case CO_NET_PROTOCOL_ENABLED:
+        return "CANopen enabled";
+    case CO_NET_PROTOCOL_EC_ENABLED:
+        return "error control enabled";
+    case CO_NET_PROTOCOL_GUARDING_ERROR:
+        return co_net_ec_error_text(CO_NET_EC_ERROR_GUARDING);
+    case CO_NET_PROTOCOL_HEARTBEAT_ERROR:
+        return co_net_ec_error_text(CO_NET_EC_ERROR_HEARTBEAT);
+    default:
+        return "reserved";
+    }
 }

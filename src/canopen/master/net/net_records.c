@@ -40,6 +40,9 @@ void co_net_set_step(co_net_master_t *m, size_t i, co_net_step_t step)
 void co_net_set_status(co_net_master_t *m, size_t i, uint16_t status)
 {
     co_net_slave_t *s = co_net_slave_at(m, i);
+    /* The kind of error control failure is what bit 5 stands for: none once it is clear. */
+    if ((status & CO_NET_SLAVE_EC_ERROR) == 0)
+        s->ec_error = CO_NET_EC_ERROR_NONE;
     if (s->status == status)
         return;
     s->status = status;

@@ -5,11 +5,13 @@
  * master's own heartbeat, which lets the slaves supervise it (docs/net-master.md). */
 #include "canopen/master/net/net_floors.h"
 
-static void error_control_lost(co_net_master_t *m, size_t i)
+/* The kind is recorded before bit 5 is set, so that the event of the new status finds it. */
+static void error_control_lost(co_net_master_t *m, size_t i, co_net_ec_error_t kind)
 {
     co_net_slave_t *s = co_net_slave_at(m, i);
     if (s->step != CO_NET_STEP_OPERATIONAL && s->step != CO_NET_STEP_WAIT_START)
         return;
+    s->ec_error = (uint8_t)kind;
     if (co_net_slave_config(m, i)->on_error == CO_NET_ON_ERROR_REPORT) {
         co_net_add_status(m, i, CO_NET_SLAVE_EC_ERROR);
         co_net_set_step(m, i, CO_NET_STEP_LOST);
@@ -70,8 +72,10 @@ void co_net_nmt_event(void *user, const co_nmt_master_event_t *event)
         booted_up(m, i);
         break;
     case CO_NMT_MASTER_HEARTBEAT_LOST:
+        error_control_lost(m, i, CO_NET_EC_ERROR_HEARTBEAT);
+        break;
     case CO_NMT_MASTER_GUARDING_LOST:
-        error_control_lost(m, i);
+        error_control_lost(m, i, CO_NET_EC_ERROR_GUARDING);
         break;
     case CO_NMT_MASTER_RESUMED:
         resumed(m, i);

@@ -290,10 +290,18 @@ static bool master_key(comaster_network_t *net, const ini_line_t *line, char *er
         if (!parse_number(line->value, UINT16_MAX, &v))
             return bad_value(line, "give 0 (none) or 1..65535 ms", err, err_len);
         c->heartbeat_ms = (uint16_t)v;
+    } else if (strcasecmp(k, "bit_rate") == 0) {
+        if (!parse_number(line->value, UINT8_MAX, &v) || co_net_bit_rate((uint8_t)v) == 0)
+            return bad_value(line,
+                             "give the PLC300's code: 0 = 1 Mbit/s, 2 = 500, 3 = 250, 4 = 125, "
+                             "5 = 100, 6 = 50, 7 = 20 kbit/s (1 is reserved)",
+                             err, err_len);
+        net->bit_rate = (uint8_t)v;
     } else {
         snprintf(err, err_len,
                  "%s:%u: unknown key '%s' in [Master] (cpj, interface, control, sdo_timeout, "
-                 "boot_time, retry_delay, sync_period, start, reset_all, node_id, heartbeat)",
+                 "boot_time, retry_delay, sync_period, start, reset_all, node_id, heartbeat, "
+                 "bit_rate)",
                  line->path, line->number, k);
         return false;
     }
@@ -414,6 +422,7 @@ static bool cpj_key(void *ctx, const ini_line_t *line, char *err, size_t err_len
 static void network_init(comaster_network_t *net)
 {
     memset(net, 0, sizeof *net);
+    net->bit_rate = COMASTER_BIT_RATE_NONE;
     net->config = (co_net_master_config_t){
         .slaves = net->slave_config,
         .slave_state = net->slave_state,
@@ -461,21 +470,20 @@ static int load_topology(comaster_network_t *net, const char *cpj, char *err, si
     return rc;
 }
 
-/* The master's heartbeat is sent on 700h + its own node-id, which no slave may have. */
+/* The master's own node-id (the PLC300's %CB3052), which no slave may have; its heartbeat is sent
+ * on 700h + that node-id. */
 static int check_master_node(const comaster_network_t *net, const char *path, char *err,
                              size_t err_len)
 {
     const co_net_master_config_t *c = &net->config;
-    if (c->heartbeat_ms == 0)
-        return 0;
-    if (c->node_id == 0) {
+    if (c->heartbeat_ms != 0 && c->node_id == 0) {
         snprintf(err, err_len,
                  "%s: [Master] heartbeat = %u needs node_id = N, the master's own node-id (its "
                  "heartbeat is 700h + N)",
                  path, c->heartbeat_ms);
         return EX_DATAERR;
     }
-    if (slave_of_node(net, c->node_id) != net->slave_count) {
+    if (c->node_id != 0 && slave_of_node(net, c->node_id) != net->slave_count) {
         snprintf(err, err_len, "%s: [Master] node_id = %u is the node-id of a slave", path,
                  c->node_id);
         return EX_DATAERR;

@@ -21,6 +21,8 @@
 #define COMASTER_PDO_MAX COMASTER_IMAGE_SIZE
 #define COMASTER_VARIABLE_MAX COMASTER_IMAGE_SIZE
 #define COMASTER_CONTROL_PATH_MAX 108u /* sockaddr_un.sun_path */
+/* comaster_network_t.bit_rate when [Master] gives none. */
+#define COMASTER_BIT_RATE_NONE 0xFFu
 
 /* One object a PDO maps, at its place in the input or output image. */
 typedef struct comaster_variable {
@@ -38,6 +40,9 @@ typedef struct comaster_network {
     char net_name[COMASTER_NAME_MAX];
     char iface[IFNAMSIZ];                    /* [Master] interface, "" when not given */
     char control[COMASTER_CONTROL_PATH_MAX]; /* [Master] control, "" when not given */
+    /* [Master] bit_rate, the PLC300's code (CO_NET_BIT_RATE_*), or COMASTER_BIT_RATE_NONE: what
+     * the run reports as its bit rate marker; the interface's own is ip link's. */
+    uint8_t bit_rate;
     size_t slave_count;
     comaster_slave_t slave[CO_NMT_MASTER_NODE_ID_MAX];
     co_net_slave_config_t slave_config[CO_NMT_MASTER_NODE_ID_MAX];

@@ -328,24 +328,50 @@ static const char *controller_state(const runner_t *r)
     return names[co_linux_bus_can_state(&r->bus.loop.bus)];
 }
 
+/* The interface's configuration markers the network description gives, the PLC300's %CB3052
+ * (node-id) and %CB3055 (bit rate code): ", node-id 1, bit-rate 2 (500 kbit/s)", or the JSON
+ * fields, null when not given (D-NET-MASTER-MARKERS). */
+static void format_markers(const runner_t *r, bool json, char *out, size_t cap)
+{
+    uint8_t node_id = r->net->config.node_id;
+    uint8_t code = r->net->bit_rate;
+    char id[8] = "null", rate[64] = "null";
+    if (node_id != 0)
+        snprintf(id, sizeof id, "%u", node_id);
+    if (code != COMASTER_BIT_RATE_NONE && json)
+        snprintf(rate, sizeof rate, "{\"code\": %u, \"bit_s\": %lu}", code,
+                 (unsigned long)co_net_bit_rate(code));
+    else if (code != COMASTER_BIT_RATE_NONE)
+        snprintf(rate, sizeof rate, "%u (%lu kbit/s)", code,
+                 (unsigned long)co_net_bit_rate(code) / 1000ul);
+    if (json)
+        snprintf(out, cap, ", \"node_id\": %s, \"bit_rate\": %s", id, rate);
+    else
+        snprintf(out, cap, "%s%s%s%s", node_id != 0 ? ", node-id " : "", node_id != 0 ? id : "",
+                 code != COMASTER_BIT_RATE_NONE ? ", bit-rate " : "",
+                 code != COMASTER_BIT_RATE_NONE ? rate : "");
+}
+
 static void reply_can(const runner_t *r, bool json, char *reply, size_t cap)
 {
     const co_linux_stats_t *st = &r->bus.loop.stats;
     const char *iface = r->bus.opts->iface;
     unsigned long long dropped = st->tx_dropped + st->down_dropped;
+    char markers[128];
+    format_markers(r, json, markers, sizeof markers);
     if (json)
         snprintf(reply, cap,
                  "{\"interface\": \"%s\", \"state\": \"%s\", \"bus_power\": %s, \"rx\": %llu, "
                  "\"tx\": %llu, \"tx_dropped\": %llu, \"error_frames\": %llu, \"bus_off\": "
-                 "%llu}\n",
+                 "%llu%s}\n",
                  iface, controller_state(r), r->bus.loop.bus.link_up ? "true" : "false", st->rx,
-                 st->tx, dropped, st->error_frames, r->bus.loop.bus.conditions.bus_offs);
+                 st->tx, dropped, st->error_frames, r->bus.loop.bus.conditions.bus_offs, markers);
     else
         snprintf(reply, cap,
                  "can %s: %s, rx %llu, tx %llu, tx-dropped %llu, error-frames %llu, bus-off "
-                 "%llu\n",
+                 "%llu%s\n",
                  iface, controller_state(r), st->rx, st->tx, dropped, st->error_frames,
-                 r->bus.loop.bus.conditions.bus_offs);
+                 r->bus.loop.bus.conditions.bus_offs, markers);
 }
 
 bool run_request(runner_t *r, char **field, size_t count, bool json, char *reply, size_t cap,

@@ -55,6 +55,17 @@
 #define CO_NET_CHECK_SERIAL 0x10u      /* 1018h:04 */
 #define CO_NET_IDENTITY_SUBS 4u
 
+/* The PLC300's CAN baud rate codes, its %CB3055 and Setup menu's BAUD RATE (section 8.2; 1 is
+ * reserved, and 800 and 10 kbit/s have none): the master's bit rate marker, which the application
+ * sets its controller to (docs/decisions.md, D-NET-MASTER-MARKERS). */
+#define CO_NET_BIT_RATE_1M 0u
+#define CO_NET_BIT_RATE_500K 2u
+#define CO_NET_BIT_RATE_250K 3u
+#define CO_NET_BIT_RATE_125K 4u
+#define CO_NET_BIT_RATE_100K 5u
+#define CO_NET_BIT_RATE_50K 6u
+#define CO_NET_BIT_RATE_20K 7u
+
 /* The PLC300's SDO timeout range (its CO_SDORead block, 5-5000 ms). */
 #define CO_NET_SDO_TIMEOUT_MIN_MS 5u
 #define CO_NET_SDO_TIMEOUT_MAX_MS 5000u
@@ -330,6 +341,9 @@ uint16_t co_net_master_slave_status(const co_net_master_t *master, uint8_t node_
 uint8_t co_net_master_protocol_state(const co_net_master_t *master);
 /* The slave's record, NULL for a node not in the table. */
 const co_net_slave_t *co_net_master_slave(const co_net_master_t *master, uint8_t node_id);
+
+/* The bit rate of a CO_NET_BIT_RATE_* code in bit/s; 0 for the reserved code 1 and above 7. */
+uint32_t co_net_bit_rate(uint8_t code);
 
 /* "idle", "wait boot-up", ... and "SDO error", "device type mismatch", ... for printing. */
 const char *co_net_step_text(co_net_step_t step);

@@ -232,6 +232,30 @@ START_TEST(master_heartbeat_and_node_id)
     ck_assert_ptr_nonnull(strstr(err, "node_id"));
     ck_assert_int_eq(load_with("heartbeat = 65536\nnode_id = 1\n"), EX_DATAERR);
     ck_assert_ptr_nonnull(strstr(err, "heartbeat"));
+    /* The node-id marker (%CB3052) alone is the master's own too. */
+    ck_assert_int_eq(load_with("node_id = 4\n"), EX_DATAERR);
+    ck_assert_ptr_nonnull(strstr(err, "/net.ini: [Master] node_id = 4 is the node-id of a slave"));
+}
+END_TEST
+
+/* The bit rate marker, the PLC300's %CB3055 codes: 0 = 1 Mbit/s, 1 reserved, 2..7 = 500..20
+ * kbit/s. */
+START_TEST(master_bit_rate_code)
+{
+    ck_assert_int_eq(load_with(""), 0);
+    ck_assert_uint_eq(net.bit_rate, COMASTER_BIT_RATE_NONE);
+    for (unsigned code = 0; code <= 7; code++) {
+        char line[32];
+        snprintf(line, sizeof line, "bit_rate = %u\n", code);
+        ck_assert_int_eq(load_with(line), code == 1 ? EX_DATAERR : 0);
+        if (code != 1)
+            ck_assert_uint_eq(net.bit_rate, code);
+    }
+    ck_assert_ptr_nonnull(strstr(err, "net.ini:3: bit_rate = '1': give the PLC300's code: 0 = 1 "
+                                      "Mbit/s, 2 = 500, 3 = 250, 4 = 125, 5 = 100, 6 = 50, 7 = 20 "
+                                      "kbit/s (1 is reserved)"));
+    ck_assert_int_eq(load_with("bit_rate = 8\n"), EX_DATAERR);
+    ck_assert_int_eq(load_with("bit_rate = 500k\n"), EX_DATAERR);
 }
 END_TEST
 
@@ -533,6 +557,7 @@ static Suite *network_suite(void)
     tcase_add_test(tc, one_slave_for_boot);
     tcase_add_test(tc, node_options);
     tcase_add_test(tc, master_heartbeat_and_node_id);
+    tcase_add_test(tc, master_bit_rate_code);
     tcase_add_test(tc, bad_files_are_refused);
     tcase_add_test(tc, option_file_and_nodelist_syntax);
     tcase_add_test(tc, option_file_and_nodelist_syntax_errors);

@@ -1025,6 +1025,13 @@ START_TEST(texts)
     ck_assert_str_eq(co_net_protocol_state_text(CO_NET_PROTOCOL_EC_ENABLED),
                      "error control enabled");
     ck_assert_str_eq(co_net_protocol_state_text(1), "reserved");
+    /* The PLC300's baud rate codes (%CB3055). */
+    static const uint32_t bit_s[] = {1000000, 0, 500000, 250000, 125000, 100000, 50000, 20000, 0};
+    for (uint8_t code = 0; code < sizeof bit_s / sizeof bit_s[0]; code++)
+        ck_assert_uint_eq(co_net_bit_rate(code), bit_s[code]);
+    ck_assert_uint_eq(co_net_bit_rate(CO_NET_BIT_RATE_1M), 1000000);
+    ck_assert_uint_eq(co_net_bit_rate(CO_NET_BIT_RATE_20K), 20000);
+    ck_assert_uint_eq(co_net_bit_rate(255), 0);
 }
 END_TEST
 

@@ -500,6 +500,7 @@ def test_can_tells_the_controller_state_and_counters(bus, start_daemon, run):
     rc, out, _ = r.request("--json", "can")
     state = json.loads(out)
     assert state["state"] == "error-active" and state["bus_power"] is True and state["tx"] > 10
+    assert (state["node_id"], state["bit_rate"]) == (None, None)  # bench.ini gives no markers
     try:
         subprocess.run(["ip", "link", "set", IFACE, "down"], check=True, timeout=5)
         deadline = time.monotonic() + 2.0
@@ -509,3 +510,22 @@ def test_can_tells_the_controller_state_and_counters(bus, start_daemon, run):
         assert re.fullmatch(r"master 0xC0[0-9A-F]{2} .*no-bus-power disabled", out.splitlines()[0]), out
     finally:
         subprocess.run(["ip", "link", "set", IFACE, "up"], check=True, timeout=5)
+
+
+def test_can_tells_the_node_id_and_bit_rate_markers(bus, start_daemon, run, tmp_path):
+    """The PLC300's CAN interface markers as [Master] gives them: %CB3052 (node-id) and %CB3055
+    (bit rate code 2 = 500 kbit/s), reported with the controller's state."""
+    ini = tmp_path / "bench.ini"
+    ini.write_text(f"[Master]\ncpj = {NET / 'bench.cpj'}\nnode_id = 1\nbit_rate = 2\n")
+    start_daemon(bus, "--node-id", "4-6")
+    r = run(ini)
+    expect_booted(r)
+    rc, out, _ = r.request("can")
+    assert rc == 0
+    assert re.fullmatch(r"can vcan0: error-active, rx \d+, tx \d+, tx-dropped 0, error-frames 0, bus-off 0, "
+                        r"node-id 1, bit-rate 2 \(500 kbit/s\)\n", out), out
+    state = json.loads(r.request("--json", "can")[1])
+    assert (state["node_id"], state["bit_rate"]) == (1, {"code": 2, "bit_s": 500000})
+    ini.write_text(f"[Master]\ncpj = {NET / 'bench.cpj'}\nbit_rate = 1\n")
+    rc, _, err = comaster("run", ini, "--control", tmp_path / "other.sock")
+    assert rc == 65 and "bit_rate = '1': give the PLC300's code" in err, err

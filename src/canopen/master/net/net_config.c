@@ -1,8 +1,15 @@
 /* SPDX-License-Identifier: Apache-2.0 */
 /* The network master's description as the application gives it (co_net_master_config_t): what
  * co_net_master_init refuses before anything is sent (docs/net-master.md, "The application's
- * description"). */
+ * description"); the bit rates of the PLC300's codes, which the application's interface takes. */
 #include "canopen/master/net/net_floors.h"
+
+uint32_t co_net_bit_rate(uint8_t code)
+{
+    /* kbit/s by code, as the PLC300 manual's table lists them. */
+    static const uint16_t kbit[] = {1000, 0, 500, 250, 125, 100, 50, 20};
+    return code < sizeof kbit / sizeof kbit[0] ? kbit[code] * 1000u : 0;
+}
 
 static bool pdo_valid(const co_net_master_config_t *config, const co_net_pdo_t *pdo,
                       size_t image_size)

@@ -279,6 +279,22 @@ static bool master_key(comaster_network_t *net, const ini_line_t *line, char *er
             c->start = CO_NET_START_NONE;
         else
             return bad_value(line, "give each, all or none", err, err_len);
+    } else if (strcasecmp(k, "on_mandatory_error") == 0) {
+        if (strcasecmp(line->value, "alone") == 0)
+            c->on_mandatory_error = CO_NET_MANDATORY_ALONE;
+        else if (strcasecmp(line->value, "stop_all") == 0)
+            c->on_mandatory_error = CO_NET_MANDATORY_STOP_ALL;
+        else if (strcasecmp(line->value, "reset_all") == 0)
+            c->on_mandatory_error = CO_NET_MANDATORY_RESET_ALL;
+        else
+            return bad_value(line, "give alone, stop_all or reset_all", err, err_len);
+    } else if (strcasecmp(k, "nmt_startup") == 0) {
+        /* CiA 302-2's 1F80h, the object start and on_mandatory_error stand for. */
+        if (!parse_number(line->value, UINT32_MAX, &v) || !co_net_master_config_from_1f80(c, v))
+            return bad_value(line,
+                             "give CiA 302's 1F80h with bit 0 (NMT master) and any of bits 1 "
+                             "(start all), 3 (start none), 4 (reset all), 6 (stop all)",
+                             err, err_len);
     } else if (strcasecmp(k, "reset_all") == 0) {
         if (!parse_yes_no(line->value, &c->reset_all))
             return bad_value(line, "give yes or no", err, err_len);
@@ -300,8 +316,8 @@ static bool master_key(comaster_network_t *net, const ini_line_t *line, char *er
     } else {
         snprintf(err, err_len,
                  "%s:%u: unknown key '%s' in [Master] (cpj, interface, control, sdo_timeout, "
-                 "boot_time, retry_delay, sync_period, start, reset_all, node_id, heartbeat, "
-                 "bit_rate)",
+                 "boot_time, retry_delay, sync_period, start, on_mandatory_error, nmt_startup, "
+                 "reset_all, node_id, heartbeat, bit_rate)",
                  line->path, line->number, k);
         return false;
     }

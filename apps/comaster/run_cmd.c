@@ -460,8 +460,10 @@ static int run_master(runner_t *r, comaster_options_t *opts, const char *control
             comaster_bus_close(&r->bus);
             return comaster_fail(opts, rc, "%s", err);
         }
-        printf("comaster: network %s: %zu slaves on %s, control socket %s\n", r->net->net_name,
-               r->net->slave_count, opts->iface, control_path);
+        printf("comaster: network %s: %zu slaves on %s, NMT start-up 1F80h = 0x%08lX, control "
+               "socket %s\n",
+               r->net->net_name, r->net->slave_count, opts->iface,
+               (unsigned long)co_net_master_1f80(&r->master.config), control_path);
     }
     comaster_job_t job = {.receive = job_receive, .process = job_process, .ctx = r};
     rc = comaster_bus_run(&r->bus, &job);

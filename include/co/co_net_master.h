@@ -108,6 +108,28 @@ typedef enum co_net_start {
     CO_NET_START_NONE      /* never: the application starts them */
 } co_net_start_t;
 
+/* What an error control failure of a mandatory slave does to the network: CiA 302-2's NMT
+ * start-up (1F80h) bits 4 and 6. */
+typedef enum co_net_mandatory_error {
+    CO_NET_MANDATORY_ALONE = 0, /* the slave alone, as its on_error says */
+    CO_NET_MANDATORY_STOP_ALL,  /* NMT stop to all nodes (000#0200), the master stopped too: no
+                                 * SYNC, no output PDO, its heartbeat 04h, until the application's
+                                 * NMT start to all or a new start; the slave LOST */
+    CO_NET_MANDATORY_RESET_ALL  /* NMT reset node to all (000#8100), then the whole network
+                                 * booted again from its boot-ups */
+} co_net_mandatory_error_t;
+
+/* CiA 302-2's NMT start-up object 1F80h (UNSIGNED32) of an NMT master, bit by bit. */
+#define CO_NET_1F80_NMT_MASTER 0x01u     /* bit 0: the device is the NMT master */
+#define CO_NET_1F80_START_ALL 0x02u      /* bit 1: start all nodes by one NMT start to node 0 */
+#define CO_NET_1F80_NO_SELF_START 0x04u  /* bit 2: the master does not enter Operational itself */
+#define CO_NET_1F80_NO_SLAVE_START 0x08u /* bit 3: the master starts no slave: the application */
+#define CO_NET_1F80_RESET_ALL                                                                      \
+    0x10u                               /* bit 4: a mandatory slave's error control event resets   \
+                                         * all nodes */
+#define CO_NET_1F80_FLYING_MASTER 0x20u /* bit 5: takes part in the flying master process */
+#define CO_NET_1F80_STOP_ALL 0x40u      /* bit 6: ... stops all nodes (before bit 4) */
+
 /* One PDO of the process image: the frame's bytes are image[offset .. offset + len). Inputs are
  * the slaves' TPDOs, outputs the RPDOs the master sends them. */
 typedef struct co_net_pdo {
@@ -247,6 +269,7 @@ typedef struct co_net_master_config {
      * from co_net_master_start; 0: none. node_id 1..127, no slave's, when heartbeat_ms is set. */
     uint8_t node_id;
     uint16_t heartbeat_ms;
+    co_net_mandatory_error_t on_mandatory_error;
 } co_net_master_config_t;
 
 typedef struct co_net_master {
@@ -259,6 +282,7 @@ typedef struct co_net_master {
     size_t next_pick; /* where the search for the next slave to boot starts */
     bool started;     /* co_net_master_start was called */
     bool started_all; /* CO_NET_START_ALL: the start all was sent */
+    bool stopped_all; /* CO_NET_MANDATORY_STOP_ALL stopped every node, the master too */
     co_time_t now;    /* of the call under way, for requests started from callbacks */
     uint8_t value[4]; /* an identity value being read */
     co_net_sdo_error_t last_sdo_error;
@@ -341,6 +365,13 @@ uint16_t co_net_master_slave_status(const co_net_master_t *master, uint8_t node_
 uint8_t co_net_master_protocol_state(const co_net_master_t *master);
 /* The slave's record, NULL for a node not in the table. */
 const co_net_slave_t *co_net_master_slave(const co_net_master_t *master, uint8_t node_id);
+
+/* CiA 302-2's 1F80h of the master's start and on_mandatory_error (bit 0 always set), and the
+ * reverse: false, and `config` untouched, for a value this master does not take (bit 0 clear:
+ * no NMT master; bit 2: the master is Operational by itself, D-NET-MASTER-HEARTBEAT; bit 5, no
+ * flying master; a reserved bit 7..31). Bit 3 wins over bit 1, bit 6 over bit 4. */
+uint32_t co_net_master_1f80(const co_net_master_config_t *config);
+bool co_net_master_config_from_1f80(co_net_master_config_t *config, uint32_t value);
 
 /* The bit rate of a CO_NET_BIT_RATE_* code in bit/s; 0 for the reserved code 1 and above 7. */
 uint32_t co_net_bit_rate(uint8_t code);

@@ -238,6 +238,29 @@ START_TEST(master_heartbeat_and_node_id)
 }
 END_TEST
 
+/* The start options and CiA 302-2's 1F80h, the object they stand for, both ways. */
+START_TEST(nmt_startup_options_and_1f80)
+{
+    ck_assert_int_eq(load_with(""), 0);
+    ck_assert_uint_eq(co_net_master_1f80(&net.config), 0x01);
+    ck_assert_int_eq(load_with("start = all\non_mandatory_error = stop_all\n"), 0);
+    ck_assert_uint_eq(co_net_master_1f80(&net.config), 0x43);
+    ck_assert_int_eq(load_with("start = none\non_mandatory_error = reset_all\n"), 0);
+    ck_assert_uint_eq(co_net_master_1f80(&net.config), 0x19);
+    ck_assert_int_eq(load_with("nmt_startup = 0x13\n"), 0);
+    ck_assert_uint_eq(net.config.start, CO_NET_START_ALL);
+    ck_assert_uint_eq(net.config.on_mandatory_error, CO_NET_MANDATORY_RESET_ALL);
+    ck_assert_int_eq(load_with("nmt_startup = 0x41\nstart = none\n"), 0); /* the last one */
+    ck_assert_uint_eq(co_net_master_1f80(&net.config), 0x49);
+    ck_assert_int_eq(load_with("nmt_startup = 0x05\n"), EX_DATAERR);
+    ck_assert_ptr_nonnull(strstr(err, "net.ini:3: nmt_startup = '0x05': give CiA 302's 1F80h with "
+                                      "bit 0 (NMT master)"));
+    ck_assert_int_eq(load_with("nmt_startup = 2\n"), EX_DATAERR);
+    ck_assert_int_eq(load_with("on_mandatory_error = reboot\n"), EX_DATAERR);
+    ck_assert_ptr_nonnull(strstr(err, "give alone, stop_all or reset_all"));
+}
+END_TEST
+
 /* The bit rate marker, the PLC300's %CB3055 codes: 0 = 1 Mbit/s, 1 reserved, 2..7 = 500..20
  * kbit/s. */
 START_TEST(master_bit_rate_code)
@@ -558,6 +581,7 @@ static Suite *network_suite(void)
     tcase_add_test(tc, node_options);
     tcase_add_test(tc, master_heartbeat_and_node_id);
     tcase_add_test(tc, master_bit_rate_code);
+    tcase_add_test(tc, nmt_startup_options_and_1f80);
     tcase_add_test(tc, bad_files_are_refused);
     tcase_add_test(tc, option_file_and_nodelist_syntax);
     tcase_add_test(tc, option_file_and_nodelist_syntax_errors);

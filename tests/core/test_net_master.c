@@ -857,6 +857,129 @@ START_TEST(protocol_state_gives_the_first_slave_in_error)
 }
 END_TEST
 
+/* CiA 302-2's 1F80h both ways: the bits this master takes, bit 3 before bit 1 and bit 6 before
+ * bit 4, and the values it refuses (no NMT master, bit 2, bit 5, a reserved bit). */
+START_TEST(nmt_startup_1f80_both_ways)
+{
+    static const struct {
+        uint32_t value;
+        co_net_start_t start;
+        co_net_mandatory_error_t on_error;
+        uint32_t back;
+    } taken[] = {
+        {0x01, CO_NET_START_EACH, CO_NET_MANDATORY_ALONE, 0x01},
+        {0x03, CO_NET_START_ALL, CO_NET_MANDATORY_ALONE, 0x03},
+        {0x09, CO_NET_START_NONE, CO_NET_MANDATORY_ALONE, 0x09},
+        {0x0B, CO_NET_START_NONE, CO_NET_MANDATORY_ALONE, 0x09},
+        {0x11, CO_NET_START_EACH, CO_NET_MANDATORY_RESET_ALL, 0x11},
+        {0x41, CO_NET_START_EACH, CO_NET_MANDATORY_STOP_ALL, 0x41},
+        {0x53, CO_NET_START_ALL, CO_NET_MANDATORY_STOP_ALL, 0x43},
+    };
+    for (size_t k = 0; k < sizeof taken / sizeof taken[0]; k++) {
+        config.start = CO_NET_START_EACH;
+        config.on_mandatory_error = CO_NET_MANDATORY_ALONE;
+        ck_assert(co_net_master_config_from_1f80(&config, taken[k].value));
+        ck_assert_uint_eq(config.start, taken[k].start);
+        ck_assert_uint_eq(config.on_mandatory_error, taken[k].on_error);
+        ck_assert_uint_eq(co_net_master_1f80(&config), taken[k].back);
+    }
+    static const uint32_t refused[] = {0x00, 0x02, 0x05, 0x21, 0x81, 0x80000001};
+    for (size_t k = 0; k < sizeof refused / sizeof refused[0]; k++) {
+        ck_assert(!co_net_master_config_from_1f80(&config, refused[k]));
+        ck_assert_uint_eq(config.start, CO_NET_START_ALL); /* untouched */
+    }
+    config.on_mandatory_error = (co_net_mandatory_error_t)3;
+    ck_assert(!co_net_master_init(&master, &config));
+}
+END_TEST
+
+/* 1F80h bit 6: mandatory node 4's heartbeat stops; the master stops all nodes (000#0200) at the
+ * loss, node 4 is lost without a reset, the master is Stopped too (heartbeat 04h, no SYNC, no
+ * output PDO) until the application starts all nodes. Node 5 stopped meanwhile. */
+START_TEST(mandatory_loss_stops_all_nodes)
+{
+    config.on_mandatory_error = CO_NET_MANDATORY_STOP_ALL;
+    config.node_id = 1;
+    config.heartbeat_ms = 100;
+    config.sync_period_us = 50 * MS;
+    table[0].mandatory = true;
+    table[0].heartbeat_ms = 150;
+    table[0].on_error = CO_NET_ON_ERROR_REBOOT; /* the network's reaction comes first */
+    start_master();
+    advance(500 * MS);
+    slaves[0].present = false;
+    bus.next = bus.count;
+    advance(150 * MS);
+    skip_to("000#0200");
+    co_time_t stopped = bus.at[bus.next - 1];
+    ck_assert(!sent_later("000#8104"));
+    ck_assert_uint_eq(co_net_master_slave_status(&master, 4), 0x2F);
+    ck_assert_uint_eq(co_net_master_slave(&master, 4)->step, CO_NET_STEP_LOST);
+    ck_assert_uint_eq(co_net_master_slave(&master, 4)->ec_error, CO_NET_EC_ERROR_HEARTBEAT);
+    ck_assert_uint_eq(slaves[1].node.nmt_state, CO_NMT_STOPPED);
+    ck_assert(master.stopped_all);
+    advance(300 * MS);
+    for (size_t k = bus.next; k < bus.count; k++) {
+        if (bus.sender[k] != SLAVES || bus.at[k] <= stopped)
+            continue;
+        ck_assert_uint_ne(bus.log[k].id, 0x080);                     /* no SYNC */
+        ck_assert(bus.log[k].id != 0x205 && bus.log[k].id != 0x204); /* no PDO */
+        if (bus.log[k].id == 0x701)
+            ck_assert_uint_eq(bus.log[k].data[0], CO_NMT_STOPPED);
+    }
+    ck_assert(sent_later("701#04"));
+    ck_assert(co_net_master_write_output(&master, 2, (const uint8_t[]){1, 2}, 2));
+    bus.next = bus.count;
+    ck_assert(co_net_master_nmt(&master, CO_NMT_CS_START, 0, 500, bus.now));
+    advance(100 * MS);
+    expect("000#0100");
+    ck_assert(!master.stopped_all);
+    ck_assert(sent_later("701#05"));
+    ck_assert(sent_later("080#"));
+    ck_assert(sent_later("205#0102"));
+    ck_assert_uint_eq(slaves[1].node.nmt_state, CO_NMT_OPERATIONAL);
+}
+END_TEST
+
+/* 1F80h bit 4: the mandatory slave's loss resets every node (000#8100) and the master boots the
+ * network again; node 4 keeps bit 5 until its own boot succeeds. An optional slave's loss is
+ * its own (node 5: reset node alone). */
+START_TEST(mandatory_loss_resets_all_nodes)
+{
+    config.on_mandatory_error = CO_NET_MANDATORY_RESET_ALL;
+    table[0].mandatory = true;
+    table[0].heartbeat_ms = 150;
+    table[1].heartbeat_ms = 150;
+    start_master();
+    advance(500 * MS);
+    slaves[1].present = false;
+    bus.next = bus.count;
+    advance(150 * MS);
+    skip_to("000#8105");
+    ck_assert(!sent_later("000#8100"));
+    slaves[1].present = true;
+    advance(BOOT_TIME_MS * MS + 100 * MS);
+    ck_assert_uint_eq(co_net_master_slave_status(&master, 5), 0x0F);
+    slaves[0].present = false;
+    bus.next = bus.count;
+    advance(150 * MS);
+    skip_to("000#8100");
+    ck_assert_uint_eq(co_net_master_slave_status(&master, 4), CO_NET_SLAVE_EC_ERROR);
+    ck_assert_uint_eq(co_net_master_slave(&master, 4)->step, CO_NET_STEP_WAIT_BOOT);
+    expect("705#00"); /* nodes 5 and 6 reset by the broadcast: their boot-ups at once */
+    expect("706#00");
+    expect_boot(5); /* and their boot again, configuration and start included */
+    expect_boot(6);
+    ck_assert_uint_eq(co_net_master_slave_status(&master, 5), 0x0F);
+    ck_assert_uint_eq(co_net_master_slave_status(&master, 6), 0x0F);
+    slaves[0].present = true;
+    co_node_start(&slaves[0].node, bus.now);
+    advance(BOOT_TIME_MS * MS);
+    ck_assert_uint_eq(co_net_master_slave_status(&master, 4), 0x0F);
+    ck_assert_uint_eq(co_net_master_status(&master), 0x0F);
+}
+END_TEST
+
 START_TEST(emcy_is_recorded)
 {
     start_master();
@@ -1408,6 +1531,9 @@ static Suite *net_master_suite(void)
     tcase_add_test(tc, guarded_slave_silent_is_a_node_guarding_error);
     tcase_add_test(tc, heartbeat_producer_silent_is_a_heartbeat_error);
     tcase_add_test(tc, protocol_state_gives_the_first_slave_in_error);
+    tcase_add_test(tc, nmt_startup_1f80_both_ways);
+    tcase_add_test(tc, mandatory_loss_stops_all_nodes);
+    tcase_add_test(tc, mandatory_loss_resets_all_nodes);
     tcase_add_test(tc, emcy_is_recorded);
     tcase_add_test(tc, process_image_in);
     tcase_add_test(tc, process_image_out_on_change);

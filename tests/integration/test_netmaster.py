@@ -529,3 +529,30 @@ def test_can_tells_the_node_id_and_bit_rate_markers(bus, start_daemon, run, tmp_
     ini.write_text(f"[Master]\ncpj = {NET / 'bench.cpj'}\nbit_rate = 1\n")
     rc, _, err = comaster("run", ini, "--control", tmp_path / "other.sock")
     assert rc == 65 and "bit_rate = '1': give the PLC300's code" in err, err
+
+
+def test_mandatory_drive_lost_stops_all_nodes(bus, start_daemon, run, tmp_path):
+    """CiA 302-2's 1F80h bit 6 ([Master] on_mandatory_error = stop_all, which the run shows as
+    1F80h = 0x41): drive 4, mandatory, killed; the master stops every node (000#0200) instead of
+    resetting drive 4, drives 5 and 6 beat Stopped until the application starts all nodes."""
+    drive4 = start_daemon(bus, "--node-id", "4")
+    start_daemon(bus, "--node-id", "5-6")
+    text = (NET / "bench.ini").read_text().replace("cpj = bench.cpj", f"cpj = {NET / 'bench.cpj'}")
+    ini = tmp_path / "bench.ini"
+    ini.write_text(text.replace("start = each\n", "start = each\non_mandatory_error = stop_all\n"))
+    r = run(ini)
+    r.expect(f"comaster: network bench: 3 slaves on {IFACE}, NMT start-up 1F80h = 0x00000041, control socket "
+             f"{r.control}")
+    expect_booted(r)
+    lost = time.time()
+    drive4.proc.kill()
+    drive4.proc.wait()
+    bus.expect(0x000, "0200", timeout=2.0)
+    r.expect("node 4 drive4: error control lost", timeout=1.0)
+    bus.expect(0x705, "04", timeout=1.0)
+    bus.expect(0x706, "04", timeout=1.0)
+    assert [f for f in bus.collect(0.5, 0x000) if f.timestamp > lost and f.data != bytes([0x02, 0x00])] == []
+    rc, _, err = r.request("--timeout", 300, "nmt", "start", "all", "--run")
+    assert rc == EXIT_TIMEOUT, err  # drive 4 cannot confirm: it is gone
+    bus.expect(0x705, "05", timeout=1.0)
+    bus.expect(0x706, "05", timeout=1.0)

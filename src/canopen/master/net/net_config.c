@@ -4,6 +4,42 @@
  * description"); the bit rates of the PLC300's codes, which the application's interface takes. */
 #include "canopen/master/net/net_floors.h"
 
+uint32_t co_net_master_1f80(const co_net_master_config_t *config)
+{
+    uint32_t value = CO_NET_1F80_NMT_MASTER;
+    if (config->start == CO_NET_START_ALL)
+        value |= CO_NET_1F80_START_ALL;
+    else if (config->start == CO_NET_START_NONE)
+        value |= CO_NET_1F80_NO_SLAVE_START;
+    if (config->on_mandatory_error == CO_NET_MANDATORY_STOP_ALL)
+        value |= CO_NET_1F80_STOP_ALL;
+    else if (config->on_mandatory_error == CO_NET_MANDATORY_RESET_ALL)
+        value |= CO_NET_1F80_RESET_ALL;
+    return value;
+}
+
+bool co_net_master_config_from_1f80(co_net_master_config_t *config, uint32_t value)
+{
+    const uint32_t taken = CO_NET_1F80_NMT_MASTER | CO_NET_1F80_START_ALL |
+                           CO_NET_1F80_NO_SLAVE_START | CO_NET_1F80_RESET_ALL |
+                           CO_NET_1F80_STOP_ALL;
+    if ((value & CO_NET_1F80_NMT_MASTER) == 0 || (value & ~taken) != 0)
+        return false;
+    if ((value & CO_NET_1F80_NO_SLAVE_START) != 0)
+        config->start = CO_NET_START_NONE;
+    else if ((value & CO_NET_1F80_START_ALL) != 0)
+        config->start = CO_NET_START_ALL;
+    else
+        config->start = CO_NET_START_EACH;
+    if ((value & CO_NET_1F80_STOP_ALL) != 0)
+        config->on_mandatory_error = CO_NET_MANDATORY_STOP_ALL;
+    else if ((value & CO_NET_1F80_RESET_ALL) != 0)
+        config->on_mandatory_error = CO_NET_MANDATORY_RESET_ALL;
+    else
+        config->on_mandatory_error = CO_NET_MANDATORY_ALONE;
+    return true;
+}
+
 uint32_t co_net_bit_rate(uint8_t code)
 {
     /* kbit/s by code, as the PLC300 manual's table lists them. */
@@ -56,7 +92,8 @@ bool co_net_config_valid(const co_net_master_config_t *config)
         config->slave_state == NULL || config->slave_count == 0 ||
         config->slave_count > CO_NMT_MASTER_NODE_ID_MAX ||
         config->sdo_timeout_ms < CO_NET_SDO_TIMEOUT_MIN_MS ||
-        config->sdo_timeout_ms > CO_NET_SDO_TIMEOUT_MAX_MS || config->start > CO_NET_START_NONE)
+        config->sdo_timeout_ms > CO_NET_SDO_TIMEOUT_MAX_MS || config->start > CO_NET_START_NONE ||
+        config->on_mandatory_error > CO_NET_MANDATORY_RESET_ALL)
         return false;
     if (config->heartbeat_ms != 0 &&
         (config->node_id < 1 || config->node_id > CO_NMT_MASTER_NODE_ID_MAX ||

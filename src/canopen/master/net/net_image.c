@@ -30,16 +30,18 @@ static void send_output(co_net_master_t *m, size_t p)
     co_net_send(m, &frame);
 }
 
+/* A master that stopped all nodes is Stopped itself: no PDO. */
 static bool output_live(const co_net_master_t *m, size_t p)
 {
     size_t i = co_net_slave_index(m, m->config.outputs[p].node_id);
-    return m->config.slave_state[i].step == CO_NET_STEP_OPERATIONAL;
+    return m->config.slave_state[i].step == CO_NET_STEP_OPERATIONAL && !m->stopped_all;
 }
 
+/* Nor SYNC while it is Stopped: its period goes on, unsent. */
 void co_net_image_sync(co_net_master_t *m)
 {
     co_frame_t frame;
-    if (!co_sync_producer_take(&m->sync, m->now, &frame))
+    if (!co_sync_producer_take(&m->sync, m->now, &frame) || m->stopped_all)
         return;
     co_net_send(m, &frame);
     for (size_t p = 0; p < m->config.output_count; p++) {

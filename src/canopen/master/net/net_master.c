@@ -30,6 +30,7 @@ void co_net_master_start(co_net_master_t *master, co_time_t now)
     master->now = now;
     master->started = true;
     master->started_all = false;
+    master->stopped_all = false;
     if (master->config.heartbeat_ms != 0)
         master->next_heartbeat = now;
     if (master->config.reset_all)

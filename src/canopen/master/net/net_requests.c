@@ -99,6 +99,9 @@ bool co_net_master_nmt(co_net_master_t *master, uint8_t command, uint8_t node_id
         nmt_await(r, co_net_slave_config(master, i)->node_id);
     co_nmt_master_command(&master->nmt, command, node_id);
     master->nmt_toggle ^= CO_NET_MASTER_NMT_TOGGLE;
+    /* The application starts the nodes the master stopped (1F80h bit 6), the master with them. */
+    if (command == CO_NMT_CS_START && node_id == CO_NMT_MASTER_ALL_NODES)
+        master->stopped_all = false;
     for (unsigned id = 1; expected != CO_NMT_INITIALISING && id <= CO_NMT_MASTER_NODE_ID_MAX;
          id++) {
         if (nmt_awaits(r, (uint8_t)id))

@@ -5,14 +5,42 @@
  * master's own heartbeat, which lets the slaves supervise it (docs/net-master.md). */
 #include "canopen/master/net/net_floors.h"
 
-/* The kind is recorded before bit 5 is set, so that the event of the new status finds it. */
+/* CiA 302-2's 1F80h bit 4: every node reset, the master's network booted again from the
+ * boot-ups (the lost slave keeps bit 5 until its boot succeeds). */
+static void reset_all(co_net_master_t *m)
+{
+    co_nmt_master_command(&m->nmt, CO_NMT_CS_RESET_NODE, CO_NMT_MASTER_ALL_NODES);
+    m->started_all = false;
+    for (size_t i = 0; i < m->config.slave_count; i++) {
+        co_net_slave_at(m, i)->tried = false;
+        co_net_await_boot(m, i, false);
+    }
+}
+
+/* The kind is recorded before bit 5 is set, so that the event of the new status finds it. A
+ * mandatory slave's loss is the network's when 1F80h says so (bits 6 and 4); any other the slave's
+ * alone, as its on_error says. */
 static void error_control_lost(co_net_master_t *m, size_t i, co_net_ec_error_t kind)
 {
     co_net_slave_t *s = co_net_slave_at(m, i);
     if (s->step != CO_NET_STEP_OPERATIONAL && s->step != CO_NET_STEP_WAIT_START)
         return;
     s->ec_error = (uint8_t)kind;
-    if (co_net_slave_config(m, i)->on_error == CO_NET_ON_ERROR_REPORT) {
+    co_net_mandatory_error_t network = co_net_slave_config(m, i)->mandatory
+                                           ? m->config.on_mandatory_error
+                                           : CO_NET_MANDATORY_ALONE;
+    if (network == CO_NET_MANDATORY_RESET_ALL) {
+        co_net_set_status(m, i,
+                          (uint16_t)((s->status & ~CO_NET_SLAVE_PROGRESS) | CO_NET_SLAVE_EC_ERROR));
+        reset_all(m);
+        return;
+    }
+    if (network == CO_NET_MANDATORY_STOP_ALL) {
+        co_nmt_master_command(&m->nmt, CO_NMT_CS_STOP, CO_NMT_MASTER_ALL_NODES);
+        m->stopped_all = true;
+    }
+    if (network == CO_NET_MANDATORY_STOP_ALL ||
+        co_net_slave_config(m, i)->on_error == CO_NET_ON_ERROR_REPORT) {
         co_net_add_status(m, i, CO_NET_SLAVE_EC_ERROR);
         co_net_set_step(m, i, CO_NET_STEP_LOST);
         return;
@@ -96,13 +124,15 @@ void co_net_emcy_received(void *user, co_emcy_decode_t result, const co_emcy_mes
     co_net_report(m, CO_NET_EVENT_EMCY, msg->node_id, 0);
 }
 
-/* Operational (it runs the network), on the grid of its start. */
+/* Operational (it runs the network), Stopped once it stopped all nodes; on the grid of its start.
+ */
 co_time_t co_net_heartbeat(co_net_master_t *m)
 {
     if (m->next_heartbeat > m->now)
         return m->next_heartbeat;
-    co_frame_t beat = {
-        .id = CO_CAN_ID_ERROR_CONTROL + m->config.node_id, .len = 1, .data = {CO_NMT_OPERATIONAL}};
+    co_frame_t beat = {.id = CO_CAN_ID_ERROR_CONTROL + m->config.node_id,
+                       .len = 1,
+                       .data = {m->stopped_all ? CO_NMT_STOPPED : CO_NMT_OPERATIONAL}};
     co_net_send(m, &beat);
     m->next_heartbeat = co_time_next_period(
         m->next_heartbeat, (co_time_t)m->config.heartbeat_ms * CO_NET_US_PER_MS, m->now);

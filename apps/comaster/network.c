@@ -389,11 +389,20 @@ static bool node_key_value(co_net_slave_config_t *c, const ini_line_t *line, cha
             return bad_value(line, "give reboot or report", err, err_len);
     } else if (strcasecmp(k, "check") == 0) {
         return parse_check(line, &c->check, err, err_len);
+    } else if (strcasecmp(k, "assignment") == 0) {
+        /* CiA 302-2's 1F81h, the object mandatory, on_error, guard_time and life_time_factor
+         * stand for. */
+        if (!parse_number(line->value, UINT32_MAX, &v) || !co_net_slave_config_from_1f81(c, v))
+            return bad_value(line,
+                             "give CiA 302's 1F81h with bit 0 (NMT slave) and any of bits 2 "
+                             "(reboot on error), 3 (mandatory), 8..15 (retry factor), 16..31 "
+                             "(guard time)",
+                             err, err_len);
     } else {
         snprintf(err, err_len,
                  "%s:%u: unknown key '%s' in [%s] (mandatory, heartbeat, guard_time, "
-                 "life_time_factor, on_error, check, device_type, vendor, product, revision, "
-                 "serial)",
+                 "life_time_factor, on_error, assignment, check, device_type, vendor, product, "
+                 "revision, serial)",
                  line->path, line->number, k, line->section);
         return false;
     }

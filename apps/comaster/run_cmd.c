@@ -236,9 +236,10 @@ static void reply_status_json(runner_t *r, uint16_t status, char *reply, size_t 
         if (s->ec_error != CO_NET_EC_ERROR_NONE)
             snprintf(ec_error, sizeof ec_error, "\"%s\"", co_net_ec_error_text(s->ec_error));
         used = append(reply, cap, used,
-                      "%s{\"node\": %u, \"name\": %s, \"status\": \"0x%04X\", \"step\": \"%s\", "
-                      "\"failure\": %s, \"error_control_error\": %s}",
-                      i ? ", " : "", r->net->slave_config[i].node_id, name, s->status,
+                      "%s{\"node\": %u, \"name\": %s, \"assignment\": \"0x%08lX\", \"status\": "
+                      "\"0x%04X\", \"step\": \"%s\", \"failure\": %s, \"error_control_error\": %s}",
+                      i ? ", " : "", r->net->slave_config[i].node_id, name,
+                      (unsigned long)co_net_slave_1f81(&r->net->slave_config[i]), s->status,
                       co_net_step_text(s->step), failure, ec_error);
     }
     const co_net_sdo_error_t *e = &r->master.last_sdo_error;

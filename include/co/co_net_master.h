@@ -100,6 +100,14 @@ typedef struct co_net_slave_config {
     co_net_on_error_t on_error;
 } co_net_slave_config_t;
 
+/* CiA 302-2's NMT slave assignment 1F81h (its sub-index is the slave's node-id), bit by bit. */
+#define CO_NET_1F81_SLAVE 0x01u /* bit 0: an NMT slave of this master */
+#define CO_NET_1F81_BOOT 0x04u  /* bit 2: an error control event configures and starts it again */
+#define CO_NET_1F81_MANDATORY 0x08u  /* bit 3: the network does not start without it */
+#define CO_NET_1F81_KEEP_ALIVE 0x10u /* bit 4: not reset by the master's boot when Operational */
+#define CO_NET_1F81_RETRY_SHIFT 8u   /* bits 8..15: the retry factor (life time factor) */
+#define CO_NET_1F81_GUARD_SHIFT 16u  /* bits 16..31: the guard time, ms */
+
 /* When the master sends NMT start. */
 typedef enum co_net_start {
     CO_NET_START_EACH = 0, /* each slave as soon as it is configured */
@@ -372,6 +380,14 @@ const co_net_slave_t *co_net_master_slave(const co_net_master_t *master, uint8_t
  * flying master; a reserved bit 7..31). Bit 3 wins over bit 1, bit 6 over bit 4. */
 uint32_t co_net_master_1f80(const co_net_master_config_t *config);
 bool co_net_master_config_from_1f80(co_net_master_config_t *config, uint32_t value);
+
+/* CiA 302-2's 1F81h of a slave of the table (bits 0 and 2 from on_error, 3, the guard time and
+ * factor), and the reverse: false, and `slave` untouched, for a value this master does not take
+ * (bit 0 clear; bit 1, reserved; bit 4, keep alive: the master resets every slave at its start;
+ * bits 5..7, software version check and update, restore). Bit 2 clear is on_error "report"
+ * (docs/net-master.md, "NMT slave assignment 1F81h"). */
+uint32_t co_net_slave_1f81(const co_net_slave_config_t *slave);
+bool co_net_slave_config_from_1f81(co_net_slave_config_t *slave, uint32_t value);
 
 /* The bit rate of a CO_NET_BIT_RATE_* code in bit/s; 0 for the reserved code 1 and above 7. */
 uint32_t co_net_bit_rate(uint8_t code);

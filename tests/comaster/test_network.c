@@ -261,6 +261,24 @@ START_TEST(nmt_startup_options_and_1f80)
 }
 END_TEST
 
+/* [NodeN] assignment, CiA 302-2's 1F81h, and the keys it stands for, both ways. */
+START_TEST(slave_assignment_1f81)
+{
+    ck_assert_int_eq(load_with("[Node4]\nmandatory = yes\non_error = report\nguard_time = 100\n"
+                               "life_time_factor = 3\n"),
+                     0);
+    ck_assert_uint_eq(co_net_slave_1f81(slave(0)), 0x00640309);
+    ck_assert_int_eq(load_with("[Node4]\nassignment = 0x0032020D\n"), 0);
+    ck_assert(slave(0)->mandatory);
+    ck_assert_uint_eq(slave(0)->on_error, CO_NET_ON_ERROR_REBOOT);
+    ck_assert_uint_eq(slave(0)->guard_ms, 50);
+    ck_assert_uint_eq(slave(0)->life_time_factor, 2);
+    ck_assert_int_eq(load_with("[Node4]\nassignment = 0x1D\n"), EX_DATAERR);
+    ck_assert_ptr_nonnull(strstr(err, "net.ini:4: assignment = '0x1D': give CiA 302's 1F81h with "
+                                      "bit 0 (NMT slave)"));
+}
+END_TEST
+
 /* The bit rate marker, the PLC300's %CB3055 codes: 0 = 1 Mbit/s, 1 reserved, 2..7 = 500..20
  * kbit/s. */
 START_TEST(master_bit_rate_code)
@@ -582,6 +600,7 @@ static Suite *network_suite(void)
     tcase_add_test(tc, master_heartbeat_and_node_id);
     tcase_add_test(tc, master_bit_rate_code);
     tcase_add_test(tc, nmt_startup_options_and_1f80);
+    tcase_add_test(tc, slave_assignment_1f81);
     tcase_add_test(tc, bad_files_are_refused);
     tcase_add_test(tc, option_file_and_nodelist_syntax);
     tcase_add_test(tc, option_file_and_nodelist_syntax_errors);

@@ -893,6 +893,31 @@ START_TEST(nmt_startup_1f80_both_ways)
 }
 END_TEST
 
+/* CiA 302-2's 1F81h both ways: node 5 guarded 100 ms x 3, mandatory, rebooted on a loss is
+ * 0x0064030D; the bits this master does not take are refused, the record left as it was. */
+START_TEST(slave_assignment_1f81_both_ways)
+{
+    co_net_slave_config_t s = plain_slave(5);
+    ck_assert_uint_eq(co_net_slave_1f81(&s), 0x05);
+    ck_assert(co_net_slave_config_from_1f81(&s, 0x0064030D));
+    ck_assert(s.mandatory);
+    ck_assert_uint_eq(s.on_error, CO_NET_ON_ERROR_REBOOT);
+    ck_assert_uint_eq(s.guard_ms, 100);
+    ck_assert_uint_eq(s.life_time_factor, 3);
+    ck_assert_uint_eq(co_net_slave_1f81(&s), 0x0064030D);
+    ck_assert(co_net_slave_config_from_1f81(&s, 0x01));
+    ck_assert(!s.mandatory);
+    ck_assert_uint_eq(s.on_error, CO_NET_ON_ERROR_REPORT);
+    ck_assert_uint_eq(s.guard_ms, 0);
+    ck_assert_uint_eq(co_net_slave_1f81(&s), 0x01);
+    static const uint32_t refused[] = {0x00, 0x0C, 0x03, 0x11, 0x21, 0x41, 0x81};
+    for (size_t k = 0; k < sizeof refused / sizeof refused[0]; k++) {
+        ck_assert(!co_net_slave_config_from_1f81(&s, refused[k]));
+        ck_assert_uint_eq(co_net_slave_1f81(&s), 0x01);
+    }
+}
+END_TEST
+
 /* 1F80h bit 6: mandatory node 4's heartbeat stops; the master stops all nodes (000#0200) at the
  * loss, node 4 is lost without a reset, the master is Stopped too (heartbeat 04h, no SYNC, no
  * output PDO) until the application starts all nodes. Node 5 stopped meanwhile. */
@@ -1532,6 +1557,7 @@ static Suite *net_master_suite(void)
     tcase_add_test(tc, heartbeat_producer_silent_is_a_heartbeat_error);
     tcase_add_test(tc, protocol_state_gives_the_first_slave_in_error);
     tcase_add_test(tc, nmt_startup_1f80_both_ways);
+    tcase_add_test(tc, slave_assignment_1f81_both_ways);
     tcase_add_test(tc, mandatory_loss_stops_all_nodes);
     tcase_add_test(tc, mandatory_loss_resets_all_nodes);
     tcase_add_test(tc, emcy_is_recorded);

@@ -169,8 +169,9 @@ def test_run_boots_drives_4_to_6_from_their_dcfs(bus, start_daemon, run, remote)
     assert rc == 0
     assert json.loads(out) == {
         "status": "0x000F", "protocol_state": {"code": 3, "text": "error control enabled"},
-        "slaves": [{"node": n, "name": f"drive{n}", "status": "0x000F", "step": "operational", "failure": None,
-                    "error_control_error": None} for n in (4, 5, 6)],
+        "slaves": [{"node": n, "name": f"drive{n}", "assignment": assignment, "status": "0x000F",
+                    "step": "operational", "failure": None, "error_control_error": None}
+                   for n, assignment in ((4, "0x0000000D"), (5, "0x00000005"), (6, "0x00000005"))],
         "last_sdo_error": None, "last_emcy": None}
 
 

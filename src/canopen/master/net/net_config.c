@@ -40,6 +40,30 @@ bool co_net_master_config_from_1f80(co_net_master_config_t *config, uint32_t val
     return true;
 }
 
+uint32_t co_net_slave_1f81(const co_net_slave_config_t *slave)
+{
+    uint32_t value = CO_NET_1F81_SLAVE;
+    if (slave->on_error == CO_NET_ON_ERROR_REBOOT)
+        value |= CO_NET_1F81_BOOT;
+    if (slave->mandatory)
+        value |= CO_NET_1F81_MANDATORY;
+    return value | (uint32_t)slave->life_time_factor << CO_NET_1F81_RETRY_SHIFT |
+           (uint32_t)slave->guard_ms << CO_NET_1F81_GUARD_SHIFT;
+}
+
+bool co_net_slave_config_from_1f81(co_net_slave_config_t *slave, uint32_t value)
+{
+    const uint32_t taken = CO_NET_1F81_SLAVE | CO_NET_1F81_BOOT | CO_NET_1F81_MANDATORY;
+    if ((value & CO_NET_1F81_SLAVE) == 0 || (value & 0xFFu & ~taken) != 0)
+        return false;
+    slave->on_error =
+        (value & CO_NET_1F81_BOOT) != 0 ? CO_NET_ON_ERROR_REBOOT : CO_NET_ON_ERROR_REPORT;
+    slave->mandatory = (value & CO_NET_1F81_MANDATORY) != 0;
+    slave->life_time_factor = (uint8_t)(value >> CO_NET_1F81_RETRY_SHIFT);
+    slave->guard_ms = (uint16_t)(value >> CO_NET_1F81_GUARD_SHIFT);
+    return true;
+}
+
 uint32_t co_net_bit_rate(uint8_t code)
 {
     /* kbit/s by code, as the PLC300 manual's table lists them. */

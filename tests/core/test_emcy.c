@@ -4,6 +4,7 @@
  * states in which EMCY is sent. */
 #include "check_main.h"
 #include "test_bus.h"
+#include "test_od.h"
 
 #include <stdio.h>
 #include <stdlib.h>
@@ -49,6 +50,16 @@ START_TEST(frame_bytes_register_and_error_reset)
     clear_error(0x4210);
     test_expect(&t, "084#0000000000000000");
     ck_assert_int_eq(co_od_value(&t.node, 0x1001, 0), 0);
+}
+END_TEST
+
+/* CiA 301 7.2.7.1: a dictionary without 1014h (the PLC300's) sends its EMCY on the predefined
+ * CAN-ID, 80h + node-id, never on 000h, the NMT's. */
+START_TEST(without_1014h_the_predefined_can_id)
+{
+    test_node_start_od(&t, test_od_without(0x1014), 5, NULL, NULL);
+    raise_error(0x8130, CO_ERR_REG_COMMUNICATION);
+    test_expect(&t, "085#3081110000000000");
 }
 END_TEST
 
@@ -230,6 +241,7 @@ int main(void)
     TCase *tc = tcase_create("emcy");
     tcase_add_checked_fixture(tc, setup, NULL);
     tcase_add_test(tc, frame_bytes_register_and_error_reset);
+    tcase_add_test(tc, without_1014h_the_predefined_can_id);
     tcase_add_test(tc, raise_refusals);
     tcase_add_test(tc, history_order_cap_and_clear);
     tcase_add_test(tc, inhibit_time_queues_with_exact_times);

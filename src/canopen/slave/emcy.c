@@ -41,7 +41,8 @@ static void send_now(co_node_t *node, const co_frame_t *frame)
 /* Sends at once when the inhibit time allows and nothing waits, else queues behind the others. */
 static void emit(co_node_t *node, uint16_t code, const uint8_t msef[5])
 {
-    uint32_t cobid = (uint32_t)co_od_value(node, CO_IDX_EMCY_COB_ID, 0);
+    /* CiA 301 7.2.7.1: without 1014h the EMCY is on its predefined CAN-ID, 80h + node-id. */
+    uint32_t cobid = co_od_param(node, CO_IDX_EMCY_COB_ID, 0, CO_CAN_ID_EMCY + node->node_id);
     if ((cobid & CO_COB_ID_INVALID) || !service_allowed(node))
         return;
     co_emcy_t *emcy = &node->emcy;

@@ -635,8 +635,9 @@ def make_stream(e, name):
 
 
 def apply_hooks(entries, path):
-    """Reads a hooks file: 'INDEX[:SUB] WORD...' where WORD is zero-ok, process-data, the name
-    of an extern const co_od_hook_t, or stream=NAME, NAME an extern const co_od_stream_t."""
+    """Reads a hooks file: 'INDEX[:SUB] WORD...' or 'FIRST-LAST WORD...' (every object of the
+    range) where WORD is zero-ok, process-data, the name of an extern const co_od_hook_t, or
+    stream=NAME, NAME an extern const co_od_stream_t."""
     try:
         with open(path, encoding="utf-8") as f:
             lines = f.read().splitlines()
@@ -656,18 +657,29 @@ def apply_hooks(entries, path):
         if not actions:
             raise fail(number, "'%s' names no hook, zero-ok or process-data" % where)
         index_text, _, sub_text = where.partition(":")
+        first_text, dash, last_text = index_text.partition("-")
         try:
-            index = parse_index(index_text)
+            first = parse_index(first_text)
+            last = parse_index(last_text) if dash else first
         except ValueError:
-            raise fail(number, "'%s' is not a hex index like 0x203C" % index_text)
+            raise fail(number, "'%s' is not a hex index like 0x203C or a range like "
+                       "0x3000-0x31FF" % index_text)
+        if last < first:
+            raise fail(number, "range %s is backwards: write it as 0x%04X-0x%04X"
+                       % (index_text, last, first))
+        if dash and sub_text:
+            raise fail(number, "'%s': a range of objects takes no sub-index" % where)
         sub = None
         if sub_text:
             if not HOOK_SUB_INDEX.match(sub_text):
                 raise fail(number, "'%s' is not a sub-index (0x02 or 2)" % sub_text)
             sub = int(sub_text, 16) if sub_text.lower().startswith("0x") else int(sub_text, 10)
-        targets = [e for e in entries if e.index == index and (sub is None or e.sub == sub)]
+        targets = [e for e in entries
+                   if first <= e.index <= last and (sub is None or e.sub == sub)]
         if not targets:
-            what = "0x%04X" % index if sub is None else "0x%04X:0x%02X" % (index, sub)
+            if dash:
+                raise fail(number, "no object of 0x%04X-0x%04X is in the EDS" % (first, last))
+            what = "0x%04X" % first if sub is None else "0x%04X:0x%02X" % (first, sub)
             raise fail(number, "%s is not in the EDS" % what)
         for word in actions:
             stream = STREAM_WORD.match(word)

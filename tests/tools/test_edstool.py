@@ -481,6 +481,26 @@ class Hooks(ToolCase):
         self.assertEqual((entries[(0x2000, 2)].hook, entries[(0x2000, 1)].hook), ("h", "g"))
 
 
+    def test_range_of_objects(self):
+        """FIRST-LAST names every object of the range (the PLC300's 1,792 markers in one line)."""
+        hooks = self.write("t.hooks", "0x2000-0x2001 range_hook\n")
+        entries = self.entries(self.eds(), hooks)
+        self.assertEqual({entries[(0x2000, n)].hook for n in (0, 1, 2)}, {"range_hook"})
+        self.assertEqual(entries[(0x2001, 0)].hook, "range_hook")
+        self.assertIsNone(entries[(0x1018, 0)].hook)
+
+    def test_range_refusals(self):
+        self.check_refused("0x2001-0x2000 h\n",
+                           "line 1: range 0x2001-0x2000 is backwards: write it as 0x2000-0x2001")
+        self.check_refused("0x2000-0x2001:1 h\n",
+                           "line 1: '0x2000-0x2001:1': a range of objects takes no sub-index")
+        self.check_refused("0x3000-0x31FF h\n",
+                           "line 1: no object of 0x3000-0x31FF is in the EDS")
+        self.check_refused("0x2000-x h\n",
+                           "line 1: '0x2000-x' is not a hex index like 0x203C or a range like "
+                           "0x3000-0x31FF")
+
+
 class GeneratorRefusals(ToolCase):
     def refused(self, edit, message):
         path = self.eds(edit)

@@ -4,8 +4,12 @@
 #include "atv312d/control_commands.h"
 
 #include "co_linux/log.h"
+#include "nodes/io/io401.h"
+#include "nodes/plc300/plc300.h"
 
+#include <ctype.h>
 #include <stdarg.h>
+#include <stdint.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -67,7 +71,7 @@ static bool printable_word(const char *word)
     for (; word[n]; n++) {
         char c = word[n];
         if (!((c >= '0' && c <= '9') || (c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z') ||
-              c == '-' || c == '_' || c == '.'))
+              c == '-' || c == '_' || c == '.' || c == '%'))
             return false;
     }
     return n > 0 && n <= 16;
@@ -105,6 +109,25 @@ static const atv312d_control_node_t *find_node(const atv312d_control_t *control,
     return NULL;
 }
 
+/* The commands a plain node of each model takes, for the refusal of a drive's command. */
+static const char *plain_commands(const atv312d_control_node_t *node)
+{
+    return node->plain->model == &plc300_model ? "marker, state" : "input, analog, state";
+}
+
+/* The node NODE names when it is a drive: a plain node has no drive commands. */
+static const atv312d_control_node_t *find_drive(const atv312d_control_t *control, const char *word,
+                                                const char *command, reply_t *r)
+{
+    const atv312d_control_node_t *node = find_node(control, word, r);
+    if (node && node->plain) {
+        fail(r, "node %u is a %s node, not a drive: %s is a drive's command; its commands are %s",
+             node->id, node->model, command, plain_commands(node));
+        return NULL;
+    }
+    return node;
+}
+
 static void list_faults(const drive_t *drive, char *buf, size_t len)
 {
     const drive_fault_table_t *table = drive->profile->faults;
@@ -127,7 +150,8 @@ static int find_fault(const atv312d_control_node_t *node, const char *code, repl
     return -1;
 }
 
-/* After a change: the drive runs its process (frames go out, its deadline is taken). */
+/* After a change: the node runs its process (frames go out, a TPDO whose data changed among
+ * them; its deadline is taken). */
 static void changed(const atv312d_control_node_t *node)
 {
     co_linux_device_process(node->device);
@@ -174,7 +198,7 @@ static bool command_fault(const atv312d_control_t *control, char **words, size_t
 {
     if (n != 3)
         return fail(r, "usage: fault NODE CODE (e.g. fault 4 OHF)");
-    const atv312d_control_node_t *node = find_node(control, words[1], r);
+    const atv312d_control_node_t *node = find_drive(control, words[1], "fault", r);
     if (!node)
         return false;
     int index = find_fault(node, words[2], r);
@@ -203,7 +227,7 @@ static bool command_clear(const atv312d_control_t *control, char **words, size_t
 {
     if (n != 3)
         return fail(r, "usage: clear NODE CODE|all (e.g. clear 4 OHF)");
-    const atv312d_control_node_t *node = find_node(control, words[1], r);
+    const atv312d_control_node_t *node = find_drive(control, words[1], "clear", r);
     if (!node)
         return false;
     if (strcmp(words[2], "all") == 0)
@@ -223,7 +247,7 @@ static bool command_mains(const atv312d_control_t *control, char **words, size_t
 {
     if (n != 3 || (strcmp(words[2], "undervoltage") != 0 && strcmp(words[2], "normal") != 0))
         return fail(r, "usage: mains NODE undervoltage|normal");
-    const atv312d_control_node_t *node = find_node(control, words[1], r);
+    const atv312d_control_node_t *node = find_drive(control, words[1], "mains", r);
     if (!node)
         return false;
     int index = find_fault(node, "USF", r);
@@ -240,7 +264,7 @@ static bool command_stop_key(const atv312d_control_t *control, char **words, siz
 {
     if (n != 2)
         return fail(r, "usage: stop-key NODE");
-    const atv312d_control_node_t *node = find_node(control, words[1], r);
+    const atv312d_control_node_t *node = find_drive(control, words[1], "stop-key", r);
     if (!node)
         return false;
     drive_t *drive = node->drive;
@@ -262,7 +286,7 @@ static bool command_run_key(const atv312d_control_t *control, char **words, size
 {
     if (n != 2)
         return fail(r, "usage: run-key NODE");
-    const atv312d_control_node_t *node = find_node(control, words[1], r);
+    const atv312d_control_node_t *node = find_drive(control, words[1], "run-key", r);
     if (!node)
         return false;
     drive_t *drive = node->drive;
@@ -292,7 +316,7 @@ static bool command_local(const atv312d_control_t *control, char **words, size_t
 {
     if (n != 3 || (strcmp(words[2], "on") != 0 && strcmp(words[2], "off") != 0))
         return fail(r, "usage: local NODE on|off");
-    const atv312d_control_node_t *node = find_node(control, words[1], r);
+    const atv312d_control_node_t *node = find_drive(control, words[1], "local", r);
     if (!node)
         return false;
     drive_t *drive = node->drive;
@@ -314,7 +338,7 @@ static bool command_load(const atv312d_control_t *control, char **words, size_t 
 {
     if (n != 3)
         return fail(r, "usage: load NODE PERCENT (0..%d %% of nominal torque)", LOAD_MAX_PERCENT);
-    const atv312d_control_node_t *node = find_node(control, words[1], r);
+    const atv312d_control_node_t *node = find_drive(control, words[1], "load", r);
     if (!node)
         return false;
     char *end;
@@ -337,13 +361,62 @@ static unsigned input_number(const char *word)
     return (unsigned)(word[2] - '0');
 }
 
+/* A plain node's terminal: "DI3" in any case, its number 1..9, or 0. */
+static unsigned terminal_number(const char *word, char first, char second)
+{
+    if (toupper((unsigned char)word[0]) != first || toupper((unsigned char)word[1]) != second ||
+        word[2] < '1' || word[2] > '9' || word[3] != '\0')
+        return 0;
+    return (unsigned)(word[2] - '0');
+}
+
+/* `input NODE DIn on|off` on an I/O node: 6000h:01's bit n-1. */
+static bool plain_input(const atv312d_control_node_t *node, char **words, reply_t *r)
+{
+    if (node->plain->model != &io401_model)
+        return fail(r, "node %u is a %s node: it has no inputs to set; its commands are %s",
+                    node->id, node->model, plain_commands(node));
+    unsigned input = terminal_number(words[2], 'D', 'I');
+    bool on = strcmp(words[3], "on") == 0;
+    if (input == 0 || !io401_set_input(node->plain, (uint8_t)input, on))
+        return fail(r, "node %u has no input %s: its inputs are DI1..DI%u", node->id,
+                    shown(words[2]), IO401_DIGITAL_INPUTS);
+    changed(node);
+    co_log(CO_LOG_INFO, "node %u: control: DI%u %s", node->id, input, words[3]);
+    return succeed(r, "node %u: DI%u %s (6000h:01 = %02X)", node->id, input, words[3],
+                   io401_inputs(node->plain));
+}
+
+/* `analog NODE AIn VALUE` on an I/O node: 6401h:0n, a raw INTEGER16. */
+static bool plain_analog(const atv312d_control_node_t *node, char **words, reply_t *r)
+{
+    if (node->plain->model != &io401_model)
+        return fail(r, "node %u is a %s node: it has no analogue inputs; its commands are %s",
+                    node->id, node->model, plain_commands(node));
+    unsigned input = terminal_number(words[2], 'A', 'I');
+    if (input == 0 || input > IO401_ANALOG_INPUTS)
+        return fail(r, "node %u has no analogue input %s: its analogue inputs are AI1..AI%u",
+                    node->id, shown(words[2]), IO401_ANALOG_INPUTS);
+    char *end;
+    long value = strtol(words[3], &end, 10);
+    if (end == words[3] || *end != '\0' || value < INT16_MIN || value > INT16_MAX)
+        return fail(r, "analog AI%u %s: give the raw value of 6401h:%02u, -32768..32767", input,
+                    shown(words[3]), input);
+    io401_set_analog(node->plain, (uint8_t)input, (int16_t)value);
+    changed(node);
+    co_log(CO_LOG_INFO, "node %u: control: AI%u %ld", node->id, input, value);
+    return succeed(r, "node %u: AI%u %ld (6401h:%02u)", node->id, input, value, input);
+}
+
 static bool command_input(const atv312d_control_t *control, char **words, size_t n, reply_t *r)
 {
     if (n != 4 || (strcmp(words[3], "on") != 0 && strcmp(words[3], "off") != 0))
-        return fail(r, "usage: input NODE LIn on|off (e.g. input 4 LI3 on)");
+        return fail(r, "usage: input NODE LIn|DIn on|off (e.g. input 4 LI3 on)");
     const atv312d_control_node_t *node = find_node(control, words[1], r);
     if (!node)
         return false;
+    if (node->plain)
+        return plain_input(node, words, r);
     drive_t *drive = node->drive;
     unsigned id = node->id;
     unsigned count = drive->profile->logic_inputs;
@@ -446,6 +519,8 @@ static bool command_analog(const atv312d_control_t *control, char **words, size_
     const atv312d_control_node_t *node = find_node(control, words[1], r);
     if (!node)
         return false;
+    if (node->plain)
+        return plain_analog(node, words, r);
     const drive_t *drive = node->drive;
     if (drive->profile->analog_input_count == 0)
         return fail(r, "node %u has no analogue inputs", node->id);
@@ -464,7 +539,7 @@ static bool command_pot(const atv312d_control_t *control, char **words, size_t n
 {
     if (n != 3)
         return fail(r, "usage: pot NODE PERCENT (0..100, e.g. pot 5 50)");
-    const atv312d_control_node_t *node = find_node(control, words[1], r);
+    const atv312d_control_node_t *node = find_drive(control, words[1], "pot", r);
     if (!node)
         return false;
     const drive_profile_t *profile = node->drive->profile;
@@ -473,6 +548,60 @@ static bool command_pot(const atv312d_control_t *control, char **words, size_t n
             return set_analog(node, i, words[2], "pot", r);
     }
     return fail(r, "node %u has no reference potentiometer", node->id);
+}
+
+/* A marker's value as written: decimal, or hexadecimal with 0x; false when it does not fit. */
+static bool parse_marker_value(const char *word, uint8_t size, uint32_t *value)
+{
+    char *end;
+    bool hex = word[0] == '0' && (word[1] == 'x' || word[1] == 'X');
+    if (!isdigit((unsigned char)word[0]) || (hex && !isxdigit((unsigned char)word[2])))
+        return false;
+    unsigned long long v = strtoull(word, &end, hex ? 16 : 10);
+    if (*end != '\0' || (size < 4 && v >> (8 * size)) || v > UINT32_MAX)
+        return false;
+    *value = (uint32_t)v;
+    return true;
+}
+
+/* `marker NODE MARKER [VALUE]` on a PLC300: the PLC program reads or writes a network marker
+ * (docs/plc300.md): an output marker that TPDOs send, an input marker the master wrote. */
+static bool command_marker(const atv312d_control_t *control, char **words, size_t n, reply_t *r)
+{
+    if (n != 3 && n != 4)
+        return fail(r, "usage: marker NODE MARKER [VALUE] (e.g. marker 1 %%QW2000 1234)");
+    const atv312d_control_node_t *node = find_node(control, words[1], r);
+    if (!node)
+        return false;
+    if (!node->plain || node->plain->model != &plc300_model)
+        return fail(r, "node %u is a %s %s: markers are a PLC300's", node->id, node->model,
+                    node->plain ? "node" : "drive");
+    plc300_marker_t marker;
+    if (!plc300_marker_parse(words[2], &marker))
+        return fail(r,
+                    "'%s' is no network marker: give %%IB, %%IW or %%ID (inputs), %%QB, %%QW or "
+                    "%%QD (outputs) and its number, 2000..2511 (a word's even, a double word's "
+                    "a multiple of 4)",
+                    shown(words[2]));
+    char name[16];
+    plc300_marker_name(&marker, name, sizeof name);
+    if (n == 3) {
+        uint32_t value = plc300_marker_get(node->plain, &marker);
+        return succeed(r, "node %u: %s = %lu (0x%0*lX, %04Xh)", node->id, name,
+                       (unsigned long)value, marker.size * 2, (unsigned long)value, marker.index);
+    }
+    uint32_t value;
+    if (!parse_marker_value(words[3], marker.size, &value))
+        return fail(r, "marker %s %s: give 0..%lu (or 0x in hexadecimal)", name, shown(words[3]),
+                    marker.size == 4 ? 0xFFFFFFFFul : (1ul << (8 * marker.size)) - 1);
+    uint32_t abort = plc300_marker_set(node->plain, &marker, value);
+    if (abort != 0)
+        return fail(r, "node %u: %s refused (abort code %08lX)", node->id, name,
+                    (unsigned long)abort);
+    changed(node);
+    co_log(CO_LOG_INFO, "node %u: control: %s = %lu", node->id, name, (unsigned long)value);
+    return succeed(r, "node %u: %s = %lu (%04Xh)", node->id, name, (unsigned long)value,
+                   marker.index);
 }
 
 /* `state [NODE]`: the view of each drive (view.h), after the CAN controller's in JSON. */
@@ -522,11 +651,11 @@ static const struct {
     {"fault", command_fault},       {"clear", command_clear},     {"mains", command_mains},
     {"stop-key", command_stop_key}, {"run-key", command_run_key}, {"local", command_local},
     {"load", command_load},         {"input", command_input},     {"analog", command_analog},
-    {"pot", command_pot},           {"state", command_state},
+    {"pot", command_pot},           {"marker", command_marker},   {"state", command_state},
 };
 
 #define COMMAND_NAMES                                                                              \
-    "fault, clear, mains, stop-key, run-key, local, load, input, analog, pot, state"
+    "fault, clear, mains, stop-key, run-key, local, load, input, analog, pot, marker, state"
 
 bool atv312d_control_execute(const atv312d_control_t *control, const char *line, char *reply,
                              size_t reply_len)

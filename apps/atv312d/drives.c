@@ -1,7 +1,7 @@
 /* SPDX-License-Identifier: Apache-2.0 */
-/* The drives on the bus as runtime devices (drives.h): their callbacks from the loop, the log of
- * their state changes, boot-ups and emergencies, their DeviceNet cards' stored values, and
- * their initialisation from the command line. */
+/* The nodes on the bus as runtime devices (drives.h): the drives' and the plain nodes' callbacks
+ * from the loop, the log of their state changes, boot-ups and emergencies, the DeviceNet cards'
+ * stored values, and their initialisation from the command line. */
 #include "atv312d/drives.h"
 
 #include "atv312d/leds.h"
@@ -153,6 +153,84 @@ static const co_node_t *slot_node(void *ctx)
     atv312d_drive_t *slot = ctx;
     return &slot->drive.node;
 }
+
+/* A plain node's state changes: NMT, and the error control events its model reacts to. */
+static void log_plain_changes(atv312d_drive_t *slot)
+{
+    const plain_node_t *plain = slot->plain;
+    if (plain->node.nmt_state != slot->nmt_state) {
+        co_log(CO_LOG_INFO, "node %u: NMT %s -> %s", slot->id, co_nmt_state_name(slot->nmt_state),
+               co_nmt_state_name(plain->node.nmt_state));
+        slot->nmt_state = plain->node.nmt_state;
+    }
+    if (plain->loss != slot->plain_loss && plain->loss == PLAIN_LOSS_HEARTBEAT)
+        co_log(CO_LOG_WARN, "node %u: heartbeat of node %u timed out", slot->id,
+               plain->lost_producer);
+    else if (plain->loss != slot->plain_loss && plain->loss == PLAIN_LOSS_GUARDING)
+        co_log(CO_LOG_WARN, "node %u: life guarding timed out", slot->id);
+    slot->plain_loss = plain->loss;
+}
+
+static void plain_slot_start(void *ctx, co_time_t now)
+{
+    atv312d_drive_t *slot = ctx;
+    plain_node_start(slot->plain, now);
+    log_plain_changes(slot);
+}
+
+/* After the interface was down: reset communication, as a drive does (slot_restart). */
+static void plain_slot_restart(void *ctx, co_time_t now)
+{
+    atv312d_drive_t *slot = ctx;
+    co_frame_t reset = {.id = 0, .len = 2, .data = {CO_NMT_CS_RESET_COMMUNICATION, slot->id}};
+    co_log(CO_LOG_INFO, "node %u: reset communication after the interface came back", slot->id);
+    plain_node_receive(slot->plain, &reset, now);
+    log_plain_changes(slot);
+}
+
+static void plain_slot_receive(void *ctx, const co_frame_t *frame, co_time_t now)
+{
+    atv312d_drive_t *slot = ctx;
+    atv312d_count_received(&slot->counters, slot->id, frame);
+    plain_node_receive(slot->plain, frame, now);
+    log_plain_changes(slot);
+}
+
+static co_time_t plain_slot_process(void *ctx, co_time_t now)
+{
+    atv312d_drive_t *slot = ctx;
+    co_time_t next = plain_node_process(slot->plain, now);
+    log_plain_changes(slot);
+    return next;
+}
+
+static void plain_slot_bus_event(void *ctx, uint16_t emcy_code, bool active)
+{
+    atv312d_drive_t *slot = ctx;
+    plain_node_bus_event(slot->plain, emcy_code, active);
+}
+
+static void plain_slot_bus_warning(void *ctx, bool active)
+{
+    atv312d_drive_t *slot = ctx;
+    plain_node_bus_warning(slot->plain, active);
+}
+
+static const co_node_t *plain_slot_node(void *ctx)
+{
+    atv312d_drive_t *slot = ctx;
+    return &slot->plain->node;
+}
+
+static const co_linux_device_ops_t plain_slot_ops = {
+    .start = plain_slot_start,
+    .restart = plain_slot_restart,
+    .receive = plain_slot_receive,
+    .process = plain_slot_process,
+    .bus_event = plain_slot_bus_event,
+    .bus_warning = plain_slot_bus_warning,
+    .node = plain_slot_node,
+};
 
 static const co_linux_device_ops_t slot_ops = {
     .start = slot_start,
@@ -321,6 +399,47 @@ static int init_devicenet_drive(atv312d_drive_t *slot, const drive_model_t *mode
     return EX_SOFTWARE;
 }
 
+/* A plain node of `model` (a PLC300, an I/O node): its serial number the model's base plus its
+ * node-id, the heartbeat grid as the drives'. */
+static int init_plain(atv312d_drive_t *slot, const plain_model_t *model,
+                      const co_storage_t *storage)
+{
+    slot->plain = calloc(1, sizeof *slot->plain);
+    slot->od_data = calloc(1, model->od->data_size);
+    if (!slot->plain || !slot->od_data)
+        return EX_OSERR;
+    plain_node_config_t config = {
+        .model = model,
+        .od_data = slot->od_data,
+        .node_id = slot->id,
+        .serial_number = model->serial_base + slot->id,
+        .send = slot_send,
+        .send_user = slot,
+        .storage = storage,
+        .node_options = CO_NODE_HEARTBEAT_GRID,
+        .node_options_code = &co_node_options,
+    };
+    int rc = plain_node_init(slot->plain, &config);
+    if (rc == 0)
+        return 0;
+    co_log(CO_LOG_ERROR, "node %u: the %s node cannot be initialised (error 0x%X)", slot->id,
+           model->name, (unsigned)rc);
+    return EX_SOFTWARE;
+}
+
+/* A node on CANopen: bound to the store, a drive or a plain node by its model's kind. */
+static int init_canopen(atv312d_drive_t *slot, const atv312d_model_t *model)
+{
+    const co_storage_t *storage = NULL;
+    if (slot->store) {
+        co_file_store_bind(slot->store, slot->id, &slot->store_node, &slot->storage);
+        storage = &slot->storage;
+    }
+    if (model->kind == ATV312D_KIND_NODE)
+        return init_plain(slot, model->node, storage);
+    return init_drive(slot, slot->id, model->drive, model->drive->profile, storage, slot_send);
+}
+
 int atv312d_drives_init(atv312d_drive_t *slots, const atv312d_options_t *opts,
                         co_file_store_t *store, co_linux_loop_t *loop)
 {
@@ -328,20 +447,15 @@ int atv312d_drives_init(atv312d_drive_t *slots, const atv312d_options_t *opts,
         atv312d_drive_t *slot = &slots[i];
         slot->id = opts->node_ids[i];
         slot->store = store;
-        int rc;
-        if (opts->devicenet) {
-            rc = init_devicenet_drive(slot, opts->models[i], opts);
-        } else {
-            const co_storage_t *storage = NULL;
-            if (store) {
-                co_file_store_bind(store, slot->id, &slot->store_node, &slot->storage);
-                storage = &slot->storage;
-            }
-            rc = init_drive(slot, slot->id, opts->models[i], opts->models[i]->profile, storage,
-                            slot_send);
-        }
+        int rc = opts->devicenet ? init_devicenet_drive(slot, opts->models[i].drive, opts)
+                                 : init_canopen(slot, &opts->models[i]);
         if (rc != 0)
             return rc;
+        if (slot->plain) {
+            slot->nmt_state = slot->plain->node.nmt_state;
+            co_linux_loop_add(loop, &slot->device, &plain_slot_ops, slot);
+            continue;
+        }
         slot->nmt_state = slot->drive.node.nmt_state;
         slot->cia402_state = drive_state_name(&slot->drive);
         co_linux_loop_add(loop, &slot->device, slot->dn ? &dn_slot_ops : &slot_ops, slot);
@@ -357,6 +471,7 @@ void atv312d_drives_free(atv312d_drive_t *slots, size_t count)
         co_file_store_unbind(&slots[i].store_node);
         free(slots[i].od_data);
         free(slots[i].dn);
+        free(slots[i].plain);
     }
     free(slots);
 }

@@ -89,12 +89,26 @@ static void format_node_ids(const atv312d_options_t *opts, char *buf, size_t len
     size_t used = 0;
     buf[0] = '\0';
     for (size_t i = 0; i < opts->node_count && used < len; i++) {
-        const char *separator = i == 0 ? "" : opts->models[i] == opts->models[i - 1] ? "," : ", ";
+        const char *separator = i == 0                                             ? ""
+                                : opts->models[i].name == opts->models[i - 1].name ? ","
+                                                                                   : ", ";
         used += (size_t)snprintf(buf + used, len - used, "%s%u", separator, opts->node_ids[i]);
-        bool run_ends = i + 1 == opts->node_count || opts->models[i + 1] != opts->models[i];
+        bool run_ends =
+            i + 1 == opts->node_count || opts->models[i + 1].name != opts->models[i].name;
         if (run_ends && used < len)
-            used += (size_t)snprintf(buf + used, len - used, " (%s)", opts->models[i]->name);
+            used += (size_t)snprintf(buf + used, len - used, " (%s)", opts->models[i].name);
     }
+}
+
+/* What the bench is made of, for the log and the service manager: "drive(s)" when every node
+ * is a drive, "node(s)" when some are not (a PLC300, an I/O node). */
+static const char *nodes_noun(const atv312d_options_t *opts)
+{
+    for (size_t i = 0; i < opts->node_count; i++) {
+        if (opts->models[i].kind != ATV312D_KIND_DRIVE)
+            return "node(s)";
+    }
+    return "drive(s)";
 }
 
 /* The web surface's settings: --http's address, --http-actions and the secret of --http-token. */
@@ -121,8 +135,10 @@ static int open_surfaces(atv312d_control_socket_t *control_socket, atv312d_contr
 {
     for (size_t i = 0; i < opts->node_count; i++)
         nodes[i] = (atv312d_control_node_t){.id = drives[i].id,
-                                            .model = opts->models[i]->name,
-                                            .drive = &drives[i].drive,
+                                            .model = opts->models[i].name,
+                                            .kind = opts->models[i].kind,
+                                            .plain = drives[i].plain,
+                                            .drive = drives[i].plain ? NULL : &drives[i].drive,
                                             .devicenet = drives[i].dn,
                                             .device = &drives[i].device,
                                             .counters = &drives[i].counters};
@@ -174,8 +190,8 @@ static void tell_when_ready(void *ctx, co_linux_loop_t *loop)
                  "READY=1\nSTATUS=%zu drive(s) on DeviceNet on %s: %zu online, %zu faulted", count,
                  loop->iface, count - faulted, faulted);
     else
-        snprintf(state, sizeof state, "READY=1\nSTATUS=%zu drive(s) booted on %s", count,
-                 loop->iface);
+        snprintf(state, sizeof state, "READY=1\nSTATUS=%zu %s booted on %s", count,
+                 nodes_noun(ready->opts), loop->iface);
     co_log(CO_LOG_DEBUG, "service manager told: %s", strchr(state, '\n') + 1);
     notify(state);
 }
@@ -205,8 +221,8 @@ static int run(const atv312d_options_t *opts, FILE *trace, co_file_store_t *stor
                    "atv312d %s started on %s: %zu drive(s) on DeviceNet at %s, MAC ID %s",
                    ATV312D_VERSION, opts->iface, opts->node_count, baud_text(opts->baud), ids);
         else
-            co_log(CO_LOG_INFO, "atv312d %s started on %s: %zu drive(s), node-id %s",
-                   ATV312D_VERSION, opts->iface, opts->node_count, ids);
+            co_log(CO_LOG_INFO, "atv312d %s started on %s: %zu %s, node-id %s", ATV312D_VERSION,
+                   opts->iface, opts->node_count, nodes_noun(opts), ids);
         readiness_t readiness = {.opts = opts, .drives = drives};
         co_linux_loop_on_settled(&loop, tell_when_ready, &readiness);
         rc = co_linux_loop_run(&loop);

@@ -154,10 +154,10 @@ static int parse_id(const id_kind_t *kind, const char *text, size_t len, unsigne
  * names the model of that group. Every group adds at least one id, so there are at most 127. */
 typedef struct node_groups {
     uint8_t group_of[ATV312D_NODE_ID_MAX + 1]; /* 0: not given; n: given by the n-th group */
-    const drive_model_t *model_of[ATV312D_NODE_ID_MAX + 1]; /* per group; NULL: default */
-    uint8_t count;                                          /* groups so far */
-    const char *first_node_id; /* the first --node-id's value, NULL: none */
-    const char *first_mac_id;  /* the first --mac-id's value, NULL: none */
+    atv312d_model_t model_of[ATV312D_NODE_ID_MAX + 1]; /* per group; name NULL: default */
+    uint8_t count;                                     /* groups so far */
+    const char *first_node_id;                         /* the first --node-id's value, NULL: none */
+    const char *first_mac_id;                          /* the first --mac-id's value, NULL: none */
 } node_groups_t;
 
 /* One --node-id or --mac-id value: "N", "A-B" or a comma-separated list of those, a new group. */
@@ -202,21 +202,21 @@ static int parse_ids(const id_kind_t *kind, const char *value, node_groups_t *gr
     }
 }
 
-/* "atv312" or "atv312, atv31, atv58": the names --model takes. */
+/* "atv312, atv31, ..., plc300, io": the names --model takes. */
 static void list_models(char *buf, size_t len)
 {
     size_t used = 0;
     buf[0] = '\0';
-    for (size_t i = 0; i < drive_model_count && used < len; i++)
-        used +=
-            (size_t)snprintf(buf + used, len - used, "%s%s", i ? ", " : "", drive_models[i].name);
+    for (size_t i = 0; i < atv312d_model_count() && used < len; i++)
+        used += (size_t)snprintf(buf + used, len - used, "%s%s", i ? ", " : "",
+                                 atv312d_model_at(i).name);
 }
 
 /* --model names the model of the drives of the --node-id just before it. */
 static int parse_model(const char *name, node_groups_t *groups, char *err, size_t err_len)
 {
-    const drive_model_t *model = drive_model_find(name);
-    if (!model) {
+    atv312d_model_t model;
+    if (!atv312d_model_find(name, &model)) {
         char names[128];
         list_models(names, sizeof names);
         return usage_error(err, err_len, "--model: unknown model '%s': the models are %s", name,
@@ -228,11 +228,11 @@ static int parse_model(const char *name, node_groups_t *groups, char *err, size_
                            "its drives, e.g. --node-id 4 --model %s (--mac-id 25 --model %s on "
                            "DeviceNet)",
                            name, name, name);
-    if (groups->model_of[groups->count])
+    if (groups->model_of[groups->count].name)
         return usage_error(err, err_len,
-                           "--model %s: the drives of the --node-id before it are already %s: "
+                           "--model %s: the nodes of the --node-id before it are already %s: "
                            "give one --model after each --node-id",
-                           name, groups->model_of[groups->count]->name);
+                           name, groups->model_of[groups->count].name);
     groups->model_of[groups->count] = model;
     return 0;
 }
@@ -413,8 +413,8 @@ static int check_bus(atv312d_options_t *opts, node_groups_t *groups, char *err, 
     if (!groups->first_mac_id)
         groups->group_of[ATV312D_MAC_ID_DEFAULT] = ++groups->count;
     for (uint8_t g = 1; g <= groups->count; g++) {
-        const drive_model_t *model = groups->model_of[g];
-        if (model && !model->devicenet) {
+        const atv312d_model_t *model = &groups->model_of[g];
+        if (model->name && (!model->drive || !model->drive->devicenet)) {
             char names[128];
             list_devicenet_models(names, sizeof names);
             return usage_error(err, err_len,
@@ -467,12 +467,12 @@ static int check_complete(atv312d_options_t *opts, node_groups_t *groups, char *
         uint8_t group = groups->group_of[id];
         if (!group)
             continue;
-        const drive_model_t *model = groups->model_of[group];
-        if (model && !opts->devicenet && id > model->node_id_max)
+        const atv312d_model_t *model = &groups->model_of[group];
+        if (model->name && !opts->devicenet && id > model->node_id_max)
             return usage_error(err, err_len,
                                "--node-id %d: the %s takes node-ids %d..%d, give it one of those",
                                id, model->name, ATV312D_NODE_ID_MIN, model->node_id_max);
-        opts->models[opts->node_count] = model ? model : &drive_models[0];
+        opts->models[opts->node_count] = model->name ? *model : atv312d_model_at(0);
         opts->node_ids[opts->node_count++] = (uint8_t)id;
     }
     if (opts->node_count == 0)
@@ -522,24 +522,27 @@ void atv312d_print_usage(FILE *out)
           "       atv312d IFACE --devicenet [--mac-id N [--model M]...] [--baud RATE] [options]\n"
           "       atv312d ctl PATH [--json] COMMAND...\n"
           "\n"
-          "Puts emulated Schneider Altivar drives (CANopen, CiA 402) on a SocketCAN\n"
-          "interface, or Altivar 312 drives with their DeviceNet card on a DeviceNet bus.\n"
+          "Puts emulated Schneider Altivar drives (CANopen, CiA 402), WEG PLC300 slaves\n"
+          "and CiA 401 I/O nodes on a SocketCAN interface, or Altivar 312 drives with\n"
+          "their DeviceNet card on a DeviceNet bus.\n"
           "\n"
           "  IFACE               SocketCAN interface, e.g. can0 or vcan0\n"
-          "  --node-id N         node-id 1..127 of a drive; a range 4-9 or a list 4,6 puts\n"
-          "                      several drives on one socket; may be repeated\n"
-          "  --model M           model of the drives of the --node-id just before it\n",
+          "  --node-id N         node-id 1..127 of a drive or node; a range 4-9 or a list\n"
+          "                      4,6 puts several on one socket; may be repeated\n"
+          "  --model M           model of the nodes of the --node-id just before it\n",
           out);
-    fprintf(out, "                      (default %s), one of:\n", drive_models[0].name);
+    fprintf(out, "                      (default %s), a drive or a node, one of:\n",
+            atv312d_model_at(0).name);
     /* The names in a column as wide as the longest: two spaces or more before each description,
      * which is how a reader (and tools/man-from-help.py) tells a term from its description. */
     int width = 0;
-    for (size_t i = 0; i < drive_model_count; i++)
-        if ((int)strlen(drive_models[i].name) > width)
-            width = (int)strlen(drive_models[i].name);
-    for (size_t i = 0; i < drive_model_count; i++)
-        fprintf(out, "                        %-*s  %s\n", width, drive_models[i].name,
-                drive_models[i].description);
+    for (size_t i = 0; i < atv312d_model_count(); i++)
+        if ((int)strlen(atv312d_model_at(i).name) > width)
+            width = (int)strlen(atv312d_model_at(i).name);
+    for (size_t i = 0; i < atv312d_model_count(); i++) {
+        atv312d_model_t model = atv312d_model_at(i);
+        fprintf(out, "                        %-*s  %s\n", width, model.name, model.description);
+    }
     fputs("  --devicenet         the interface is a DeviceNet bus: the drives are DeviceNet\n"
           "                      slaves (Group 2 only servers) instead of CANopen nodes\n"
           "  --mac-id N          MAC ID 0..63 of a DeviceNet drive (default 63); ranges,\n"
@@ -569,6 +572,7 @@ void atv312d_print_usage(FILE *out)
           "\n",
           out);
     fputs("Example: atv312d vcan0 --node-id 4-5 --model atv312 --node-id 6\n"
+          "         atv312d vcan0 --node-id 1 --model plc300 --node-id 10-12 --model io\n"
           "         atv312d vcan1 --devicenet --mac-id 25,63\n"
           "\n"
           "Control commands, for testing a master: atv312d ctl PATH COMMAND sends one to\n"
@@ -593,20 +597,28 @@ void atv312d_print_usage(FILE *out)
           "  local NODE on|off   forced local control (status word bit 9 = 0): the network's\n"
           "                      control word is ignored; either way a freewheel stop\n"
           "  load NODE PERCENT   extra load torque, 0..150 % of nominal: torque and current\n"
-          "  input NODE LIn on|off\n"
+          "  input NODE LIn|DIn on|off\n"
           "                      a logic input (LI1..LI3 on an ATV312): a switch assigned\n"
-          "                      to it (rFC, CCS, rPS) acts at once\n"
+          "                      to it (rFC, CCS, rPS) acts at once; on an I/O node a\n"
+          "                      digital input DI1..DI8 (6000h:01, TPDO1)\n"
           "  analog NODE AIn VALUE\n"
           "                      an analogue input (ATV312 AI2 -10..10 V, AI3 0..20 mA;\n"
           "                      ATV31 also AI1 0..10 V): a reference channel Fr1/Fr2\n"
-          "                      assigned to it follows, LSP..HSP over its range\n"
+          "                      assigned to it follows, LSP..HSP over its range; on an\n"
+          "                      I/O node AI1..AI2, the raw value of 6401h (TPDO2)\n"
           "  pot NODE PERCENT    the front panel's reference potentiometer (ATV31 AIP,\n"
           "                      0..100 %)\n"
+          "  marker NODE MARKER [VALUE]\n"
+          "                      a PLC300's network marker (%IB2000, %QW2004, %QD2508)\n"
+          "                      read, or written as its PLC program would: outputs go\n"
+          "                      out in TPDOs, inputs are what the master wrote\n"
           "  state [NODE]        NMT and CiA 402 state, status word, speed, current, torque,\n"
           "                      front panel display, RUN and ERR LEDs, latched fault, frame\n"
           "                      counters, inputs (on DeviceNet the MS and NS LEDs and the\n"
           "                      Control supervisor state replace the NMT state and the RUN\n"
-          "                      and ERR LEDs, the card's counters the CANopen services')\n"
+          "                      and ERR LEDs, the card's counters the CANopen services');\n"
+          "                      of a PLC300 or I/O node its NMT state, RUN and ERR LEDs,\n"
+          "                      error control event, counters, markers or terminals\n"
           "\n"
           "Example: atv312d ctl /tmp/atv312d.sock fault 4 OHF\n"
           "\n"

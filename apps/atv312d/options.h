@@ -5,8 +5,8 @@
 #ifndef ATV312D_OPTIONS_H
 #define ATV312D_OPTIONS_H
 
+#include "atv312d/catalogue.h"
 #include "co_linux/log.h"
-#include "drive/models/models.h"
 
 #include <netinet/in.h>
 #include <stdbool.h>
@@ -42,9 +42,10 @@ typedef struct atv312d_http_address {
 
 typedef struct atv312d_options {
     const char *iface;
-    /* The drives: node-ids on CANopen, MAC IDs on DeviceNet; ascending, each once. */
+    /* The nodes, drives or plain nodes: node-ids on CANopen, MAC IDs on DeviceNet; ascending,
+     * each once. */
     uint8_t node_ids[ATV312D_NODE_ID_MAX];
-    const drive_model_t *models[ATV312D_NODE_ID_MAX]; /* the model of node_ids[i] */
+    atv312d_model_t models[ATV312D_NODE_ID_MAX]; /* the model of node_ids[i] */
     size_t node_count;
     bool devicenet;      /* --devicenet: the interface is a DeviceNet bus */
     atv312d_baud_t baud; /* --baud, DeviceNet only (default 125k) */

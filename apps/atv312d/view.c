@@ -1,8 +1,10 @@
 /* SPDX-License-Identifier: Apache-2.0 */
-/* The view of a drive, in text and JSON (view.h). */
+/* The view of a node, a drive or a plain node, in text and JSON (view.h). */
 #include "atv312d/view.h"
 
 #include "drive/panel.h"
+#include "nodes/io/io401.h"
+#include "nodes/plc300/plc300.h"
 
 #include <ctype.h>
 #include <stdarg.h>
@@ -176,8 +178,151 @@ static void put_analog(const drive_t *drive, atv312d_text_t *t)
     }
 }
 
+/* ---- a plain node ---- */
+
+static void counters_json(cli_json_t *json, const atv312d_control_node_t *node);
+
+/* The marker bytes shown of an area: the first ones not at 0. */
+#define PLAIN_MARKERS_SHOWN 16u
+
+static const char *const plain_loss_by[] = {
+    [PLAIN_LOSS_HEARTBEAT] = "heartbeat",
+    [PLAIN_LOSS_GUARDING] = "guarding",
+};
+
+/* An area's bytes not at 0, as %IB/%QB markers: ", inputs %IB2000 E7 %IB2001 03" (" none"). */
+static void put_plc300_area(const plain_node_t *plc, bool output, atv312d_text_t *t)
+{
+    atv312d_text_put(t, ", %s", output ? "outputs" : "inputs");
+    unsigned shown = 0;
+    for (uint16_t b = 0; b < PLC300_AREA_BYTES; b++) {
+        uint8_t value = plc300_area_byte(plc, output, b);
+        if (value == 0)
+            continue;
+        if (shown++ == PLAIN_MARKERS_SHOWN) {
+            atv312d_text_put(t, " ...");
+            break;
+        }
+        atv312d_text_put(t, " %%%cB%u %02X", output ? 'Q' : 'I', PLC300_MARKER_FIRST + b, value);
+    }
+    if (shown == 0)
+        atv312d_text_put(t, " none");
+}
+
+/* The I/O node's terminals: ", inputs DI1 DI3, outputs DO2, analog AI1 100 AI2 -5". */
+static void put_io401(const plain_node_t *io, atv312d_text_t *t)
+{
+    uint8_t bits[2] = {io401_inputs(io), io401_outputs(io)};
+    for (size_t k = 0; k < 2; k++) {
+        atv312d_text_put(t, ", %s", k ? "outputs" : "inputs");
+        if (bits[k] == 0)
+            atv312d_text_put(t, " none");
+        for (uint8_t i = 0; i < 8; i++) {
+            if (bits[k] & (1u << i))
+                atv312d_text_put(t, " %s%u", k ? "DO" : "DI", i + 1u);
+        }
+    }
+    atv312d_text_put(t, ", analog");
+    for (uint8_t i = 1; i <= IO401_ANALOG_INPUTS; i++)
+        atv312d_text_put(t, " AI%u %d", i, io401_analog(io, i));
+}
+
+static void plain_state_text(atv312d_text_t *t, const atv312d_control_node_t *node)
+{
+    const plain_node_t *plain = node->plain;
+    atv312d_text_put(t, "node %u: nmt %s, model %s, RUN %s, ERR %s, ", node->id,
+                     co_nmt_state_name(plain->node.nmt_state), node->model,
+                     plain_led_name(plain_node_run_led(plain)),
+                     plain_led_name(plain_node_err_led(plain)));
+    if (plain->loss == PLAIN_LOSS_HEARTBEAT)
+        atv312d_text_put(t, "error-control heartbeat node %u, ", plain->lost_producer);
+    else if (plain->loss != PLAIN_LOSS_NONE)
+        atv312d_text_put(t, "error-control %s, ", plain_loss_by[plain->loss]);
+    put_counters(node, t);
+    if (plain->model == &plc300_model) {
+        put_plc300_area(plain, false, t);
+        put_plc300_area(plain, true, t);
+    } else if (plain->model == &io401_model) {
+        put_io401(plain, t);
+    }
+}
+
+/* {"%IB2000":231,...}: an area's bytes not at 0. */
+static void plc300_area_json(cli_json_t *json, const plain_node_t *plc, bool output)
+{
+    cli_json_begin_object(json, output ? "outputs" : "inputs");
+    unsigned shown = 0;
+    for (uint16_t b = 0; b < PLC300_AREA_BYTES && shown < PLAIN_MARKERS_SHOWN; b++) {
+        uint8_t value = plc300_area_byte(plc, output, b);
+        if (value == 0)
+            continue;
+        char name[16];
+        snprintf(name, sizeof name, "%%%cB%u", output ? 'Q' : 'I', PLC300_MARKER_FIRST + b);
+        cli_json_uint(json, name, value);
+        shown++;
+    }
+    cli_json_end_object(json);
+}
+
+static void io401_json(cli_json_t *json, const plain_node_t *io)
+{
+    uint8_t bits[2] = {io401_inputs(io), io401_outputs(io)};
+    for (size_t k = 0; k < 2; k++) {
+        cli_json_begin_array(json, k ? "outputs" : "inputs");
+        for (uint8_t i = 0; i < 8; i++) {
+            char name[8];
+            snprintf(name, sizeof name, "%s%u", k ? "DO" : "DI", i + 1u);
+            if (bits[k] & (1u << i))
+                cli_json_str(json, NULL, name);
+        }
+        cli_json_end_array(json);
+    }
+    cli_json_begin_object(json, "analog");
+    for (uint8_t i = 1; i <= IO401_ANALOG_INPUTS; i++) {
+        char name[8];
+        snprintf(name, sizeof name, "AI%u", i);
+        cli_json_int(json, name, io401_analog(io, i));
+    }
+    cli_json_end_object(json);
+}
+
+static void plain_state_json(cli_json_t *json, const atv312d_control_node_t *node)
+{
+    const plain_node_t *plain = node->plain;
+    cli_json_begin_object(json, NULL);
+    cli_json_uint(json, "node", node->id);
+    cli_json_str(json, "kind", atv312d_kind_name(node->kind));
+    cli_json_str(json, "model", node->model);
+    cli_json_str(json, "nmt", co_nmt_state_name(plain->node.nmt_state));
+    cli_json_str(json, "run_led", plain_led_name(plain_node_run_led(plain)));
+    cli_json_str(json, "err_led", plain_led_name(plain_node_err_led(plain)));
+    if (plain->loss == PLAIN_LOSS_NONE) {
+        cli_json_null(json, "error_control");
+    } else {
+        cli_json_begin_object(json, "error_control");
+        cli_json_str(json, "by", plain_loss_by[plain->loss]);
+        if (plain->loss == PLAIN_LOSS_HEARTBEAT)
+            cli_json_uint(json, "node", plain->lost_producer);
+        cli_json_end_object(json);
+    }
+    counters_json(json, node);
+    if (plain->model == &plc300_model) {
+        plc300_area_json(json, plain, false);
+        plc300_area_json(json, plain, true);
+    } else if (plain->model == &io401_model) {
+        io401_json(json, plain);
+    }
+    cli_json_end_object(json);
+}
+
+/* ---- a drive ---- */
+
 void atv312d_state_text(atv312d_text_t *t, const atv312d_control_node_t *node)
 {
+    if (node->plain) {
+        plain_state_text(t, node);
+        return;
+    }
     const drive_t *drive = node->drive;
     motion_t m = read_motion(drive);
     const drive_fault_def_t *fault = drive_fault_latched(drive);
@@ -282,6 +427,10 @@ static void analog_json(cli_json_t *json, const drive_t *drive)
 
 void atv312d_state_json(cli_json_t *json, const atv312d_control_node_t *node)
 {
+    if (node->plain) {
+        plain_state_json(json, node);
+        return;
+    }
     const drive_t *drive = node->drive;
     const drive_dn_t *dn = node->devicenet;
     motion_t m = read_motion(drive);
@@ -345,6 +494,19 @@ void atv312d_bench_drive_json(cli_json_t *json, const atv312d_control_node_t *no
     cli_json_begin_object(json, NULL);
     cli_json_uint(json, "node", node->id);
     cli_json_str(json, "model", model);
+    if (node->plain) {
+        cli_json_str(json, "kind", atv312d_kind_name(node->kind));
+        cli_json_begin_array(json, "faults");
+        cli_json_end_array(json);
+        cli_json_begin_array(json, "inputs");
+        cli_json_end_array(json);
+        cli_json_begin_array(json, "leds");
+        cli_json_str(json, NULL, "RUN");
+        cli_json_str(json, NULL, "ERR");
+        cli_json_end_array(json);
+        cli_json_end_object(json);
+        return;
+    }
     cli_json_begin_array(json, "faults");
     const drive_fault_table_t *faults = drive->profile->faults;
     for (uint8_t i = 0; i < faults->count; i++) {

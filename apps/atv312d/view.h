@@ -1,5 +1,5 @@
 /* SPDX-License-Identifier: Apache-2.0 */
-/* The one view of a drive that every surface shows (the control socket's `state`, the status
+/* The one view of a node that every surface shows (the control socket's `state`, the status
  * file and SIGUSR1, the web's API and events), in text and in JSON: its bus state (NMT, or the
  * DeviceNet card's LEDs and supervisor), CiA 402 state, speed, current, torque, front panel,
  * fault, communication loss, frame and service counters and inputs; the drive's fixed data for
@@ -8,20 +8,26 @@
 #ifndef ATV312D_VIEW_H
 #define ATV312D_VIEW_H
 
+#include "atv312d/catalogue.h"
 #include "atv312d/counters.h"
 #include "cli/json.h"
 #include "co_linux/loop.h"
 #include "drive/drive.h"
 #include "drive/drive_devicenet.h"
+#include "nodes/plain_node.h"
 
 #include <stdbool.h>
 #include <stddef.h>
 
-/* One drive as the surfaces see it (named after the control surface, which came first). */
+/* One node as the surfaces see it (named after the control surface, which came first): a drive,
+ * or a plain node (a PLC300, an I/O node) whose view is its NMT state, LEDs, error control event,
+ * counters and its model's data (docs/atv312d.md, "Plain nodes"). */
 typedef struct atv312d_control_node {
     uint8_t id;        /* what NODE names: the node-id on CANopen, the MAC ID on DeviceNet */
     const char *model; /* its --model name, "atv312" */
-    drive_t *drive;
+    atv312d_kind_t kind;
+    drive_t *drive;              /* a drive's; NULL for a plain node */
+    plain_node_t *plain;         /* a plain node's; NULL for a drive */
     const drive_dn_t *devicenet; /* its DeviceNet card; NULL on CANopen */
     co_linux_device_t *device;   /* processed after a command changed the drive; its frame counts */
     const atv312d_counters_t *counters;
@@ -52,8 +58,9 @@ void atv312d_state_text(atv312d_text_t *text, const atv312d_control_node_t *node
 /* The same JSON object as a value of the document being written. */
 void atv312d_state_json(cli_json_t *json, const atv312d_control_node_t *node);
 
-/* The drive's fixed data for the web's bench, as a value of the document being written: node,
- * model, faults, inputs and LEDs (docs/web.md, GET /api/bench). */
+/* The node's fixed data for the web's bench, as a value of the document being written: node,
+ * model, faults, inputs and LEDs (docs/web.md, GET /api/bench); a plain node's has "kind":
+ * "node", no faults and no inputs. */
 void atv312d_bench_drive_json(cli_json_t *json, const atv312d_control_node_t *node);
 
 #endif

@@ -7,6 +7,8 @@
 #include "atv312d/options.h"
 #include "atv58/atv58.h"
 #include "check_main.h"
+#include "nodes/io/io401.h"
+#include "nodes/plc300/plc300.h"
 
 #include <check.h>
 #include <stdarg.h>
@@ -48,8 +50,8 @@ START_TEST(single_node_with_defaults)
     ck_assert_ptr_null(opts.status_path);
     ck_assert_int_eq(opts.log_level, CO_LOG_INFO);
     ck_assert(!opts.help && !opts.version);
-    ck_assert_str_eq(opts.models[0]->name, "atv312");
-    ck_assert_ptr_eq(opts.models[0]->profile, &atv312_profile);
+    ck_assert_str_eq(opts.models[0].name, "atv312");
+    ck_assert_ptr_eq(opts.models[0].drive->profile, &atv312_profile);
 }
 END_TEST
 
@@ -64,18 +66,18 @@ START_TEST(model_of_each_node_id_group)
                      0);
     assert_ids(3, (const uint8_t[]){4, 5, 6});
     for (size_t i = 0; i < 3; i++)
-        ck_assert_ptr_eq(opts.models[i], atv312);
+        ck_assert_ptr_eq(opts.models[i].drive, atv312);
     ck_assert_int_eq(parse("--node-id", "4", "--model", "atv312", "vcan0", NULL), 0);
-    ck_assert_ptr_eq(opts.models[0], atv312);
+    ck_assert_ptr_eq(opts.models[0].drive, atv312);
     ck_assert_ptr_null(drive_model_find("ATV312"));
     /* A mixed bench: the ATV31 of firmware V1.2 and the one before, beside the default. */
     ck_assert_int_eq(parse("vcan0", "--node-id", "4", "--node-id", "5", "--model", "atv31",
                            "--node-id", "6", "--model", "atv31-v1.1", NULL),
                      0);
     assert_ids(3, (const uint8_t[]){4, 5, 6});
-    ck_assert_ptr_eq(opts.models[0]->profile, &atv312_profile);
-    ck_assert_ptr_eq(opts.models[1]->profile, &atv31_profile);
-    ck_assert_ptr_eq(opts.models[2]->profile, &atv31_v11_profile);
+    ck_assert_ptr_eq(opts.models[0].drive->profile, &atv312_profile);
+    ck_assert_ptr_eq(opts.models[1].drive->profile, &atv31_profile);
+    ck_assert_ptr_eq(opts.models[2].drive->profile, &atv31_v11_profile);
 }
 END_TEST
 
@@ -83,14 +85,15 @@ START_TEST(model_errors)
 {
     ck_assert_int_eq(parse("vcan0", "--node-id", "4", "--model", "atv99", NULL), EX_USAGE);
     ck_assert_str_eq(
-        err, "--model: unknown model 'atv99': the models are atv312, atv31, atv31-v1.1, atv58");
+        err, "--model: unknown model 'atv99': the models are atv312, atv31, atv31-v1.1, atv58, "
+             "plc300, io");
     ck_assert_int_eq(parse("vcan0", "--model", "atv312", "--node-id", "4", NULL), EX_USAGE);
     ck_assert_str_eq(err, "--model atv312: no --node-id before it: a model follows the node-ids "
                           "of its drives, e.g. --node-id 4 --model atv312 (--mac-id 25 --model "
                           "atv312 on DeviceNet)");
     ck_assert_int_eq(
         parse("vcan0", "--node-id", "4", "--model", "atv312", "--model", "atv312", NULL), EX_USAGE);
-    ck_assert_str_eq(err, "--model atv312: the drives of the --node-id before it are already "
+    ck_assert_str_eq(err, "--model atv312: the nodes of the --node-id before it are already "
                           "atv312: give one --model after each --node-id");
     ck_assert_int_eq(parse("vcan0", "--node-id", "4", "--model", NULL), EX_USAGE);
     ck_assert_str_eq(err, "option --model needs a value: give --model M");
@@ -108,9 +111,9 @@ START_TEST(atv58_node_ids_up_to_63)
                            "--model", "atv58", NULL),
                      0);
     assert_ids(3, (const uint8_t[]){1, 63, 64});
-    ck_assert_ptr_eq(opts.models[0]->profile, &atv58_profile);
-    ck_assert_ptr_eq(opts.models[1]->profile, &atv58_profile);
-    ck_assert_ptr_eq(opts.models[2]->profile, &atv31_profile);
+    ck_assert_ptr_eq(opts.models[0].drive->profile, &atv58_profile);
+    ck_assert_ptr_eq(opts.models[1].drive->profile, &atv58_profile);
+    ck_assert_ptr_eq(opts.models[2].drive->profile, &atv31_profile);
 }
 END_TEST
 
@@ -124,9 +127,39 @@ START_TEST(help_lists_the_models)
     atv312d_print_usage(out);
     fclose(out);
     ck_assert_msg(strstr(text, "(default atv312)") != NULL, "%s", text);
-    for (size_t i = 0; i < drive_model_count; i++)
-        ck_assert_msg(strstr(text, drive_models[i].description) != NULL, "%s", text);
+    for (size_t i = 0; i < atv312d_model_count(); i++)
+        ck_assert_msg(strstr(text, atv312d_model_at(i).description) != NULL, "%s", text);
+    ck_assert_msg(strstr(text, "a drive or a node, one of:") != NULL, "%s", text);
     free(text);
+}
+END_TEST
+
+/* Drives and plain nodes on one bus: each --node-id group its model and the model's kind. */
+START_TEST(plain_nodes_beside_drives)
+{
+    ck_assert_int_eq(parse("vcan0", "--node-id", "4", "--node-id", "10-11", "--model", "io",
+                           "--node-id", "1", "--model", "plc300", NULL),
+                     0);
+    ck_assert_uint_eq(opts.node_count, 4);
+    ck_assert_uint_eq(opts.node_ids[0], 1);
+    ck_assert_str_eq(opts.models[0].name, "plc300");
+    ck_assert_int_eq(opts.models[0].kind, ATV312D_KIND_NODE);
+    ck_assert_ptr_eq(opts.models[0].node, &plc300_model);
+    ck_assert_ptr_null(opts.models[0].drive);
+    ck_assert_int_eq(opts.models[1].kind, ATV312D_KIND_DRIVE);
+    ck_assert_ptr_eq(opts.models[1].drive->profile, &atv312_profile);
+    ck_assert_ptr_eq(opts.models[2].node, &io401_model);
+    ck_assert_ptr_eq(opts.models[3].node, &io401_model);
+    ck_assert_str_eq(atv312d_kind_name(opts.models[3].kind), "node");
+}
+END_TEST
+
+START_TEST(plain_nodes_have_no_devicenet_card)
+{
+    ck_assert_int_eq(parse("vcan0", "--devicenet", "--mac-id", "5", "--model", "io", NULL),
+                     EX_USAGE);
+    ck_assert_str_eq(err, "--model io: the io has no DeviceNet card here: on DeviceNet give "
+                          "--model atv312, or leave --model out");
 }
 END_TEST
 
@@ -238,8 +271,8 @@ START_TEST(devicenet_defaults)
     ck_assert_int_eq(parse("vcan1", "--devicenet", NULL), 0);
     ck_assert(opts.devicenet);
     assert_ids(1, (const uint8_t[]){63});
-    ck_assert_str_eq(opts.models[0]->name, "atv312");
-    ck_assert_ptr_eq(opts.models[0]->devicenet, &atv312_devicenet_profile);
+    ck_assert_str_eq(opts.models[0].name, "atv312");
+    ck_assert_ptr_eq(opts.models[0].drive->devicenet, &atv312_devicenet_profile);
     ck_assert_int_eq(opts.baud, ATV312D_BAUD_125K);
     ck_assert_int_eq(parse("vcan0", "--node-id", "4", NULL), 0);
     ck_assert(!opts.devicenet);
@@ -254,7 +287,7 @@ START_TEST(devicenet_mac_ids_and_baud)
                      0);
     assert_ids(4, (const uint8_t[]){0, 25, 62, 63});
     for (size_t i = 0; i < 4; i++)
-        ck_assert_str_eq(opts.models[i]->name, "atv312");
+        ck_assert_str_eq(opts.models[i].name, "atv312");
     ck_assert_int_eq(opts.baud, ATV312D_BAUD_500K);
     ck_assert_int_eq(parse("vcan1", "--devicenet", "--baud=250k", NULL), 0);
     ck_assert_int_eq(opts.baud, ATV312D_BAUD_250K);
@@ -324,6 +357,8 @@ int main(void)
     tcase_add_test(tc, model_errors);
     tcase_add_test(tc, atv58_node_ids_up_to_63);
     tcase_add_test(tc, help_lists_the_models);
+    tcase_add_test(tc, plain_nodes_beside_drives);
+    tcase_add_test(tc, plain_nodes_have_no_devicenet_card);
     tcase_add_test(tc, every_option_in_both_spellings);
     tcase_add_test(tc, ranges_lists_and_repeats_are_sorted);
     tcase_add_test(tc, out_of_range_names_the_range);

@@ -177,7 +177,7 @@ def test_frame_counters_of_each_of_two_drives(bus, start_daemon, tmp_path):
         (["clear", 4, "OHF"], "error: node 4: no cause of OHF is present"),
         (["mains", 4, "low"], "error: usage: mains NODE undervoltage|normal"),
         (["state", "x"], "error: node x is not present: this daemon runs node-id 4"),
-        (["reboot", 4], "error: unknown command 'reboot': the commands are fault, clear, mains, stop-key, run-key, local, load, input, analog, pot, state"),
+        (["reboot", 4], "error: unknown command 'reboot': the commands are fault, clear, mains, stop-key, run-key, local, load, input, analog, pot, marker, state"),
         (["run-key", 4], "error: node 4 is under network control: the RUN key works under local control (local 4 on, or a command channel other than CANopen)"),
         (["local", 4, "off"], "error: node 4 is under network control already"),
         (["load", 4, "151"], "error: load 151: give a percentage of nominal torque, 0..150"),

@@ -23,8 +23,8 @@ ATV312D, COMASTER, DNSCAN, COTRACE, COMMANDS = None, None, None, None, []
 # atv312d's control commands as its help writes their synopses (docs/atv312d.md).
 CONTROL_COMMANDS = ["fault NODE CODE", "clear NODE CODE|all", "mains NODE undervoltage|normal",
                     "stop-key NODE", "run-key NODE", "local NODE on|off", "load NODE PERCENT",
-                    "input NODE LIn on|off", "analog NODE AIn VALUE", "pot NODE PERCENT",
-                    "state [NODE]"]
+                    "input NODE LIn|DIn on|off", "analog NODE AIn VALUE", "pot NODE PERCENT",
+                    "marker NODE MARKER [VALUE]", "state [NODE]"]
 
 
 def man_page(name, program):
@@ -60,7 +60,8 @@ class ManPagesTest(unittest.TestCase):
         page = terms(man_page("atv312d", ATV312D))
         for model in models:
             self.assertIn(roff(model), page, "model %s is no term of its own" % model)
-            self.assertTrue(page[roff(model)].startswith("Schneider Altivar"), page[roff(model)])
+            self.assertTrue(page[roff(model)].startswith(("Schneider Altivar", "WEG PLC300", "CiA 401")),
+                            page[roff(model)])
 
     def test_every_control_command_of_atv312d_is_a_term(self):
         page = terms(man_page("atv312d", ATV312D))

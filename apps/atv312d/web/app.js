@@ -126,6 +126,8 @@ function tileFields() {
 }
 
 function fieldText(key, node, drive) {
+  // A plain node (a PLC300, an I/O node: "kind":"node") has its NMT state and LEDs, no drive.
+  if (node.kind === "node" && key !== "nmt") return "—";
   switch (key) {
     case "connection":
       return DEVICENET_CONNECTION[node.ns] || node.ns;
@@ -184,8 +186,8 @@ function renderTile(tile, node) {
     SevenSegment.render(tile.display, "");
     return;
   }
-  SevenSegment.render(tile.display, node.display);
-  tile.root.dataset.display = node.display;
+  SevenSegment.render(tile.display, node.display ?? "");
+  tile.root.dataset.display = node.display ?? "";
   tile.root.dataset.fault = node.fault ?? "";
   tile.root.dataset.cia402 = node.cia402;
   for (const [name, led] of tile.leds) renderLed(led, name, node);

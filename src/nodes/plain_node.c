@@ -1,0 +1,159 @@
+/* SPDX-License-Identifier: Apache-2.0 */
+/* A plain node (plain_node.h): the core's node with the model's error-control reaction, LEDs and
+ * serial number. */
+#include "nodes/plain_node.h"
+
+#include "co/co_cia301.h"
+
+/* CiA 301 7.5.2.32: without 1029h a communication error takes an Operational node to
+ * Pre-operational; the PLC300 goes there from any state (plain_model_t.loss_from_any_state). */
+static void react_to_loss(plain_node_t *plain)
+{
+    co_node_t *node = &plain->node;
+    if (node->nmt_state == CO_NMT_OPERATIONAL ||
+        (plain->model->loss_from_any_state && node->nmt_state == CO_NMT_STOPPED))
+        co_nmt_enter(node, CO_NMT_PRE_OPERATIONAL);
+}
+
+static void on_heartbeat(co_node_t *node, uint8_t producer, bool lost)
+{
+    plain_node_t *plain = plain_node_of(node);
+    if (!lost) {
+        if (plain->loss == PLAIN_LOSS_HEARTBEAT && plain->lost_producer == producer)
+            plain->loss = PLAIN_LOSS_NONE;
+        return;
+    }
+    plain->loss = PLAIN_LOSS_HEARTBEAT;
+    plain->lost_producer = producer;
+    react_to_loss(plain);
+}
+
+static void on_guarding(co_node_t *node, bool lost)
+{
+    plain_node_t *plain = plain_node_of(node);
+    if (!lost) {
+        if (plain->loss == PLAIN_LOSS_GUARDING)
+            plain->loss = PLAIN_LOSS_NONE;
+        return;
+    }
+    plain->loss = PLAIN_LOSS_GUARDING;
+    react_to_loss(plain);
+}
+
+/* A reset restarts the error control services without a call (co_node.h): the event is over. */
+static void on_reset(co_node_t *node, co_nmt_reset_t scope)
+{
+    (void)scope;
+    plain_node_of(node)->loss = PLAIN_LOSS_NONE;
+}
+
+/* Every reset ends here, having brought 1018h back to its EDS default: the node's own serial
+ * number goes back in. */
+static void on_nmt_state(co_node_t *node, co_nmt_state_t state)
+{
+    (void)state;
+    plain_node_t *plain = plain_node_of(node);
+    co_od_set_value(node, CO_IDX_IDENTITY, CO_IDENTITY_SERIAL, plain->serial_number);
+}
+
+static const co_app_hooks_t plain_hooks = {
+    .nmt_state = on_nmt_state,
+    .reset = on_reset,
+    .heartbeat = on_heartbeat,
+    .guarding = on_guarding,
+};
+
+int plain_node_init(plain_node_t *plain, const plain_node_config_t *config)
+{
+    plain->model = config->model;
+    plain->serial_number = config->serial_number;
+    plain->loss = PLAIN_LOSS_NONE;
+    co_node_config_t node_config = {
+        .node_id = config->node_id,
+        .od = config->model->od,
+        .od_data = config->od_data,
+        .send = config->send,
+        .user = config->send_user,
+        .hooks = &plain_hooks,
+        .storage = config->storage,
+        .options = config->node_options,
+        .options_code = config->node_options_code,
+    };
+    int rc = co_node_init(&plain->node, &node_config);
+    if (rc == 0)
+        co_od_set_value(&plain->node, CO_IDX_IDENTITY, CO_IDENTITY_SERIAL, plain->serial_number);
+    return rc;
+}
+
+void plain_node_start(plain_node_t *plain, co_time_t now)
+{
+    co_node_start(&plain->node, now);
+}
+
+void plain_node_receive(plain_node_t *plain, const co_frame_t *frame, co_time_t now)
+{
+    co_node_receive(&plain->node, frame, now);
+}
+
+co_time_t plain_node_process(plain_node_t *plain, co_time_t now)
+{
+    return co_node_process(&plain->node, now);
+}
+
+void plain_node_bus_event(plain_node_t *plain, uint16_t emcy_code, bool active)
+{
+    if (emcy_code == CO_EMCY_CAN_PASSIVE)
+        plain->bus_passive = active;
+    else if (emcy_code == CO_EMCY_BUS_OFF)
+        plain->bus_off = active;
+}
+
+void plain_node_bus_warning(plain_node_t *plain, bool active)
+{
+    plain->bus_warning = active;
+}
+
+plain_led_t plain_node_err_led(const plain_node_t *plain)
+{
+    if (plain->bus_off)
+        return PLAIN_LED_ON;
+    if (plain->loss != PLAIN_LOSS_NONE)
+        return PLAIN_LED_DOUBLE_FLASH;
+    if (plain->bus_warning || plain->bus_passive)
+        return PLAIN_LED_SINGLE_FLASH;
+    return PLAIN_LED_OFF;
+}
+
+plain_led_t plain_node_run_led(const plain_node_t *plain)
+{
+    if (plain->model->err_over_run && plain_node_err_led(plain) != PLAIN_LED_OFF)
+        return PLAIN_LED_OFF;
+    switch (plain->node.nmt_state) {
+    case CO_NMT_OPERATIONAL:
+        return PLAIN_LED_ON;
+    case CO_NMT_PRE_OPERATIONAL:
+        return PLAIN_LED_BLINKING;
+    case CO_NMT_STOPPED:
+        return PLAIN_LED_SINGLE_FLASH;
+    case CO_NMT_INITIALISING:
+        break;
+    }
+    return PLAIN_LED_OFF;
+}
+
+const char *plain_led_name(plain_led_t led)
+{
+    switch (led) {
+    case PLAIN_LED_ON:
+        return "on";
+    case PLAIN_LED_BLINKING:
+        return "blinking";
+    case PLAIN_LED_SINGLE_FLASH:
+        return "single flash";
+    case PLAIN_LED_DOUBLE_FLASH:
+        return "double flash";
+    case PLAIN_LED_OFF:
+        break;
+    }
+    return "off";
+}

@@ -1,0 +1,98 @@
+/* SPDX-License-Identifier: Apache-2.0 */
+/* A plain node: a CANopen slave that is no drive, whose behaviour is its model's dictionary (its
+ * EDS and hooks file) and the few rules of plain_model_t: what a lost heartbeat producer or life
+ * guarding does to the NMT state, its LEDs, its identity's serial number. The PLC300 slave
+ * (nodes/plc300/plc300.h) and the CiA 401 I/O node (nodes/io/io401.h) are plain nodes.
+ * Portable like the core: no malloc, no OS calls, no globals; time is passed in. docs/plc300.md,
+ * docs/io.md; where it stands among the layers: docs/architecture.md. */
+#ifndef NODES_PLAIN_NODE_H
+#define NODES_PLAIN_NODE_H
+
+#include "co/co_node.h"
+
+/* A model of plain node: data, no code of its own but its dictionary's hooks. */
+typedef struct plain_model {
+    const char *name;        /* as atv312d's --model takes it */
+    const char *description; /* for --help */
+    const co_od_t *od;
+    uint8_t node_id_max; /* highest node-id the model takes */
+    /* 1018h:04 of a node is this plus the number the application gives it (atv312d: its node-id),
+     * so that every node of a bench has its own serial number. */
+    uint32_t serial_base;
+    /* A lost heartbeat producer or life guarding enters Pre-operational from Stopped too (the
+     * PLC300's manual, 6.5.2 and 6.5.3); false: only from Operational, CiA 301's error behaviour
+     * where 1029h:01 is absent or 0. */
+    bool loss_from_any_state;
+    /* While the ERR (red) LED shows anything the RUN (green) LED is off (the PLC300's manual,
+     * 2.4); false: both show, as CiA 303-3 has them. */
+    bool err_over_run;
+} plain_model_t;
+
+/* The LED patterns of CiA 303-3, which the PLC300's manual uses too (2.4: blinking 200 ms on and
+ * off, a flash 200 ms on then 1 s off). */
+typedef enum plain_led {
+    PLAIN_LED_OFF,
+    PLAIN_LED_ON,
+    PLAIN_LED_BLINKING,
+    PLAIN_LED_SINGLE_FLASH,
+    PLAIN_LED_DOUBLE_FLASH
+} plain_led_t;
+
+/* The error control event the node saw last, until the producer or the master comes back or a
+ * reset (the ERR LED's double flash). */
+typedef enum plain_loss {
+    PLAIN_LOSS_NONE,
+    PLAIN_LOSS_HEARTBEAT, /* of producer `lost_producer` */
+    PLAIN_LOSS_GUARDING   /* life guarding: the master's guarding requests stopped */
+} plain_loss_t;
+
+typedef struct plain_node {
+    co_node_t node; /* first: a hook's co_node_t is its plain node (plain_node_of) */
+    const plain_model_t *model;
+    uint32_t serial_number;
+    plain_loss_t loss;
+    uint8_t lost_producer;
+    bool bus_warning; /* the controller at or over its warning level */
+    bool bus_passive; /* error passive */
+    bool bus_off;
+} plain_node_t;
+
+typedef struct plain_node_config {
+    const plain_model_t *model;
+    uint8_t *od_data; /* model->od->data_size bytes owned by the application */
+    uint8_t node_id;
+    uint32_t serial_number; /* 1018h:04 */
+    co_send_fn send;
+    void *send_user;
+    const co_storage_t *storage;                     /* may be NULL */
+    uint32_t node_options;                           /* the core's CO_NODE_* options */
+    const co_node_options_code_t *node_options_code; /* &co_node_options when options != 0 */
+} plain_node_config_t;
+
+/* The plain node of a core node initialised by plain_node_init. */
+static inline plain_node_t *plain_node_of(co_node_t *node)
+{
+    return (plain_node_t *)(void *)node;
+}
+
+/* Prepares the node in Initialising; 0 or co_node_init's error. */
+int plain_node_init(plain_node_t *plain, const plain_node_config_t *config);
+void plain_node_start(plain_node_t *plain, co_time_t now);
+void plain_node_receive(plain_node_t *plain, const co_frame_t *frame, co_time_t now);
+co_time_t plain_node_process(plain_node_t *plain, co_time_t now);
+
+/* A CAN condition began or ended: emcy_code 8120h (error passive) or 8140h (bus off; its end the
+ * recovery); others change no LED. */
+void plain_node_bus_event(plain_node_t *plain, uint16_t emcy_code, bool active);
+/* The controller reached (active) or left its warning level. */
+void plain_node_bus_warning(plain_node_t *plain, bool active);
+
+/* The RUN (green) and ERR (red) LEDs: RUN single flash Stopped, blinking Pre-operational, on
+ * Operational; ERR on bus off, double flash after an error control event, single flash at the
+ * warning level or error passive, otherwise off. */
+plain_led_t plain_node_run_led(const plain_node_t *plain);
+plain_led_t plain_node_err_led(const plain_node_t *plain);
+/* "off", "on", "blinking", "single flash", "double flash". */
+const char *plain_led_name(plain_led_t led);
+
+#endif

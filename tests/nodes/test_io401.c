@@ -1,0 +1,89 @@
+/* SPDX-License-Identifier: Apache-2.0 */
+/* The CiA 401 I/O node on its dictionary (eds/IO401.eds): its default PDOs following its
+ * terminals, its serial number, CiA 301's error behaviour without 1029h (Pre-operational from
+ * Operational only), its LEDs as CiA 303-3 has them (both show). */
+#include "check_main.h"
+#include "nodes/io/io401.h"
+#include "plain_bench.h"
+
+#define NODE 10
+
+static plain_bench_t b;
+
+static void start_operational(void)
+{
+    plain_bench_start(&b, &io401_model, NODE, 0x4010000Au);
+    plain_bench_expect(&b, "70A#00");
+    plain_bench_rx(&b, "000#010A");
+    plain_bench_drain(&b);
+}
+
+START_TEST(the_tpdos_send_the_inputs_when_they_change)
+{
+    start_operational();
+    ck_assert(io401_set_input(&b.plain, 3, true));
+    plain_bench_advance(&b, 1000);
+    plain_bench_expect(&b, "18A#04");
+    plain_bench_expect_none(&b);
+    ck_assert(io401_set_analog(&b.plain, 2, -300));
+    plain_bench_advance(&b, 1000);
+    plain_bench_expect(&b, "28A#0000D4FE");
+    plain_bench_expect_none(&b);
+    ck_assert(!io401_set_input(&b.plain, 9, true));
+    ck_assert(!io401_set_analog(&b.plain, 3, 1));
+    ck_assert_uint_eq(io401_inputs(&b.plain), 0x04);
+    ck_assert_int_eq(io401_analog(&b.plain, 2), -300);
+}
+END_TEST
+
+START_TEST(rpdo1_sets_the_outputs)
+{
+    start_operational();
+    plain_bench_rx(&b, "20A#A5");
+    ck_assert_uint_eq(io401_outputs(&b.plain), 0xA5);
+}
+END_TEST
+
+START_TEST(the_serial_number_is_the_nodes)
+{
+    start_operational();
+    plain_bench_rx(&b, "60A#4018100400000000");
+    plain_bench_expect(&b, "58A#431810040A001040");
+}
+END_TEST
+
+START_TEST(a_heartbeat_loss_leaves_stopped_alone)
+{
+    start_operational();
+    plain_bench_rx(&b, "60A#2316100164000500");
+    plain_bench_rx(&b, "000#020A");
+    plain_bench_rx(&b, "705#05");
+    plain_bench_advance(&b, 200000);
+    ck_assert_uint_eq(b.plain.node.nmt_state, CO_NMT_STOPPED);
+    ck_assert_uint_eq(b.plain.loss, PLAIN_LOSS_HEARTBEAT);
+    ck_assert_uint_eq(plain_node_err_led(&b.plain), PLAIN_LED_DOUBLE_FLASH);
+    ck_assert_uint_eq(plain_node_run_led(&b.plain), PLAIN_LED_SINGLE_FLASH);
+    /* From Operational it enters Pre-operational (CiA 301, 1029h:01 = 0). */
+    plain_bench_rx(&b, "705#05");
+    plain_bench_rx(&b, "000#010A");
+    plain_bench_advance(&b, 200000);
+    ck_assert_uint_eq(b.plain.node.nmt_state, CO_NMT_PRE_OPERATIONAL);
+}
+END_TEST
+
+static Suite *suite(void)
+{
+    Suite *s = suite_create("io401");
+    TCase *tc = tcase_create("io401");
+    tcase_add_test(tc, the_tpdos_send_the_inputs_when_they_change);
+    tcase_add_test(tc, rpdo1_sets_the_outputs);
+    tcase_add_test(tc, the_serial_number_is_the_nodes);
+    tcase_add_test(tc, a_heartbeat_loss_leaves_stopped_alone);
+    suite_add_tcase(s, tc);
+    return s;
+}
+
+int main(void)
+{
+    return check_run_suite(suite());
+}

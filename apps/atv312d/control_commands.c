@@ -109,6 +109,13 @@ static const atv312d_control_node_t *find_node(const atv312d_control_t *control,
     return NULL;
 }
 
+/* What the node is, for a refusal: "an io node", "a plc300 node", "an atv312 drive". */
+static void node_phrase(const atv312d_control_node_t *node, char *buf, size_t len)
+{
+    bool vowel = node->model[0] && strchr("aeiou", node->model[0]);
+    snprintf(buf, len, "%s %s %s", vowel ? "an" : "a", node->model, node->plain ? "node" : "drive");
+}
+
 /* The commands a plain node of each model takes, for the refusal of a drive's command. */
 static const char *plain_commands(const atv312d_control_node_t *node)
 {
@@ -121,8 +128,10 @@ static const atv312d_control_node_t *find_drive(const atv312d_control_t *control
 {
     const atv312d_control_node_t *node = find_node(control, word, r);
     if (node && node->plain) {
-        fail(r, "node %u is a %s node, not a drive: %s is a drive's command; its commands are %s",
-             node->id, node->model, command, plain_commands(node));
+        char what[64];
+        node_phrase(node, what, sizeof what);
+        fail(r, "node %u is %s, not a drive: %s is a drive's command; its commands are %s",
+             node->id, what, command, plain_commands(node));
         return NULL;
     }
     return node;
@@ -373,9 +382,11 @@ static unsigned terminal_number(const char *word, char first, char second)
 /* `input NODE DIn on|off` on an I/O node: 6000h:01's bit n-1. */
 static bool plain_input(const atv312d_control_node_t *node, char **words, reply_t *r)
 {
+    char what[64];
+    node_phrase(node, what, sizeof what);
     if (node->plain->model != &io401_model)
-        return fail(r, "node %u is a %s node: it has no inputs to set; its commands are %s",
-                    node->id, node->model, plain_commands(node));
+        return fail(r, "node %u is %s: it has no inputs to set; its commands are %s", node->id,
+                    what, plain_commands(node));
     unsigned input = terminal_number(words[2], 'D', 'I');
     bool on = strcmp(words[3], "on") == 0;
     if (input == 0 || !io401_set_input(node->plain, (uint8_t)input, on))
@@ -390,9 +401,11 @@ static bool plain_input(const atv312d_control_node_t *node, char **words, reply_
 /* `analog NODE AIn VALUE` on an I/O node: 6401h:0n, a raw INTEGER16. */
 static bool plain_analog(const atv312d_control_node_t *node, char **words, reply_t *r)
 {
+    char what[64];
+    node_phrase(node, what, sizeof what);
     if (node->plain->model != &io401_model)
-        return fail(r, "node %u is a %s node: it has no analogue inputs; its commands are %s",
-                    node->id, node->model, plain_commands(node));
+        return fail(r, "node %u is %s: it has no analogue inputs; its commands are %s", node->id,
+                    what, plain_commands(node));
     unsigned input = terminal_number(words[2], 'A', 'I');
     if (input == 0 || input > IO401_ANALOG_INPUTS)
         return fail(r, "node %u has no analogue input %s: its analogue inputs are AI1..AI%u",
@@ -573,9 +586,11 @@ static bool command_marker(const atv312d_control_t *control, char **words, size_
     const atv312d_control_node_t *node = find_node(control, words[1], r);
     if (!node)
         return false;
-    if (!node->plain || node->plain->model != &plc300_model)
-        return fail(r, "node %u is a %s %s: markers are a PLC300's", node->id, node->model,
-                    node->plain ? "node" : "drive");
+    if (!node->plain || node->plain->model != &plc300_model) {
+        char what[64];
+        node_phrase(node, what, sizeof what);
+        return fail(r, "node %u is %s: markers are a PLC300's", node->id, what);
+    }
     plc300_marker_t marker;
     if (!plc300_marker_parse(words[2], &marker))
         return fail(r,

@@ -3,8 +3,9 @@
  * control_socket.h) and the web's POST /api/command (http.h): one command line in, one reply out,
  * "ok ..." or "error: ..." (or a JSON object when the line starts with "json "). They inject a
  * fault and remove its cause, set a mains undervoltage, press the keypad's STOP and RUN keys,
- * switch forced local control, load the motor, set the logic and analogue inputs, and read the
- * state of the drives (view.h). Commands: docs/atv312d.md, "Control surface". */
+ * switch forced local control, load the motor, set the logic and analogue inputs, set an I/O
+ * node's terminals and read or write a PLC300's markers (the plain nodes' commands), and read
+ * the state of the nodes (view.h). Commands: docs/atv312d.md, "Control surface". */
 #ifndef ATV312D_CONTROL_COMMANDS_H
 #define ATV312D_CONTROL_COMMANDS_H
 

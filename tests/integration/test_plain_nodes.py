@@ -281,3 +281,20 @@ def test_every_object_matches_the_eds(eds_node):
                 mismatches.append(f"{where}: write of its own value aborted 0x{e.code:08X}")
     assert not mismatches, "\n".join(mismatches[:40])
     assert checked == len(list(entries(eds_node.object_dictionary)))
+
+
+def test_io_node_keeps_what_1010h_saved_and_the_plc300_nothing(bus, start_daemon, tmp_path):
+    """--store binds a plain node as a drive: what the I/O node's 1010h saved (1017h) comes back
+    after a restart; the PLC300 has no 1010h (06020000) and its markers start from their
+    defaults again (6.2.2: not kept)."""
+    store = tmp_path / "bench.store"
+    args = ("--node-id", IO, "--model", "io", "--node-id", PLC, "--model", "plc300", "--store", store)
+    d = start_daemon(bus, *args, boot_ids=[PLC, IO])
+    bus.sdo_write(IO, 0x1017, 0, 500, 2)
+    bus.sdo_write(IO, 0x1010, 1, int.from_bytes(b"save", "little"), 4)
+    assert bus.sdo_abort_code(PLC, bytes.fromhex("2310100173617665")) == 0x06020000
+    bus.sdo_write(PLC, 0x4400, 0, 0x1234, 2)
+    assert d.stop() == 0
+    start_daemon(bus, *args, boot_ids=[PLC, IO])
+    assert bus.sdo_read(IO, 0x1017, 0) == 500
+    assert bus.sdo_read(PLC, 0x4400, 0) == 0

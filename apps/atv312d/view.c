@@ -464,6 +464,8 @@ void atv312d_state_json(cli_json_t *json, const atv312d_control_node_t *node)
     }
     cli_json_end_array(json);
     analog_json(json, drive);
+    /* Last, so that a reader of the drive's fields in their order finds them where they were. */
+    cli_json_str(json, "kind", atv312d_kind_name(node->kind));
     cli_json_end_object(json);
 }
 

@@ -165,7 +165,8 @@ START_TEST(analog_inputs_in_their_units)
     const char *text = ", EMCY 0, analog AI2 -2.500 V AI3 12.000 mA";
     ck_assert_str_eq(line + strlen(line) - strlen(text), text);
     atv312d_format_state(&node, true, line, sizeof line);
-    const char *json = ",\"inputs\":[],\"analog\":{\"AI2\":-2.500,\"AI3\":12.000}}";
+    const char *json =
+        ",\"inputs\":[],\"analog\":{\"AI2\":-2.500,\"AI3\":12.000},\"kind\":\"drive\"}";
     ck_assert_str_eq(line + strlen(line) - strlen(json), json);
     ck_assert_str_eq(execute("json analog 4 AI2 5"),
                      "{\"ok\":true,\"message\":\"node 4: AI2 5.000 V\"}");
@@ -241,7 +242,7 @@ START_TEST(devicenet_state_shows_the_card_counters)
         ",\"fault\":null,\"comm_loss\":null,\"frames\":{\"received\":52,\"sent\":50,\"dropped\":1,"
         "\"explicit_requests\":7,\"error_responses\":2,\"io_messages\":40,"
         "\"fragments\":3,\"timeouts\":1},\"inputs\":[],"
-        "\"analog\":{\"AI2\":0.000,\"AI3\":0.000}}";
+        "\"analog\":{\"AI2\":0.000,\"AI3\":0.000},\"kind\":\"drive\"}";
     ck_assert_str_eq(line + strlen(line) - strlen(json), json);
 }
 END_TEST

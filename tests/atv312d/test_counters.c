@@ -88,7 +88,7 @@ START_TEST(state_shows_the_counters)
     const char *json =
         ",\"fault\":null,\"comm_loss\":null,\"frames\":{\"received\":12,\"sent\":9,\"dropped\":1,"
         "\"sdo_requests\":7,\"sdo_aborts\":2,\"emcy\":3},\"inputs\":[],"
-        "\"analog\":{\"AI2\":0.000,\"AI3\":0.000}}";
+        "\"analog\":{\"AI2\":0.000,\"AI3\":0.000},\"kind\":\"drive\"}";
     ck_assert_str_eq(line + strlen(line) - strlen(json), json);
 }
 END_TEST

@@ -167,7 +167,7 @@ def test_a_bus_of_drives_io_nodes_and_a_plc300(bus, mixed):
     assert bus.sdo_read(IO, 0x1000, 0) == 0x00070191
     assert bus.sdo_read(PLC, 0x1000, 0) == 0
     status, reply = ctl(mixed, "--json", "state")
-    kinds = [(n["node"], n.get("kind", "drive")) for n in json.loads(reply)["nodes"]]
+    kinds = [(n["node"], n["kind"]) for n in json.loads(reply)["nodes"]]
     assert kinds == [(1, "node"), (4, "drive"), (10, "node"), (11, "node"), (12, "node")]
 
 

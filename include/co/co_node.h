@@ -10,6 +10,7 @@
 #include "co_emcy.h"
 #include "co_guarding.h"
 #include "co_heartbeat.h"
+#include "co_lss_slave.h"
 #include "co_nmt.h"
 #include "co_od.h"
 #include "co_pdo.h"
@@ -85,7 +86,7 @@ typedef struct co_node_options_code {
 extern const co_node_options_code_t co_node_options;
 
 typedef struct co_node_config {
-    uint8_t node_id; /* 1..127 */
+    uint8_t node_id; /* 1..127; CO_LSS_NODE_ID_UNCONFIGURED (FFh) too for a node with LSS */
     const co_od_t *od;
     uint8_t *od_data; /* od->data_size bytes owned by the application */
     co_send_fn send;
@@ -99,6 +100,8 @@ typedef struct co_node_config {
     /* &co_node_options when options is not 0 (else co_node_init refuses the node with
      * CO_NODE_ERR_OPTIONS); NULL links none of the options' code. */
     const co_node_options_code_t *options_code;
+    /* CiA 305 LSS slave (co_lss_slave_init), NULL for none; the application owns it. */
+    co_lss_slave_t *lss;
 } co_node_config_t;
 
 struct co_node {
@@ -111,6 +114,7 @@ struct co_node {
     const co_app_hooks_t *hooks;
     const co_storage_t *storage;
     uint32_t options;             /* CO_NODE_* */
+    co_lss_slave_t *lss;          /* CiA 305 LSS slave, NULL for none */
     co_time_t now;                /* time of the frame or process call being handled */
     uint32_t consumer_generation; /* co_consumers.h */
     /* The options' code, beside a 32-bit member so that a 32-bit processor pads nothing. */
@@ -135,8 +139,9 @@ struct co_node {
 };
 
 /* Results of co_node_init besides the object dictionary's own validation errors. */
-#define CO_NODE_ERR_NODE_ID 0x100 /* node-id outside 1..127 */
-#define CO_NODE_ERR_CONFIG 0x101  /* missing od, data block, send callback or SDO buffer */
+/* node-id outside 1..127, and not FFh of a node with LSS */
+#define CO_NODE_ERR_NODE_ID 0x100
+#define CO_NODE_ERR_CONFIG 0x101 /* missing od, data block, send callback or SDO buffer */
 /* The dictionary has more RPDOs or TPDOs than co_config.h gives a node (CO_CONFIG_RPDO_MAX,
  * CO_CONFIG_TPDO_MAX). */
 #define CO_NODE_ERR_TABLES 0x102
@@ -148,7 +153,8 @@ struct co_node {
 int co_node_init(co_node_t *node, const co_node_config_t *config);
 
 /* Leaves Initialising: applies stored parameters, sends the boot-up frame, enters
- * Pre-operational. */
+ * Pre-operational. A node without a node-id (FFh, LSS) stays in Initialising, answering LSS only,
+ * until LSS gives it one (docs/lss.md). */
 void co_node_start(co_node_t *node, co_time_t now);
 
 /* Handles one received frame. Malformed or foreign frames are ignored. */

@@ -51,6 +51,10 @@ void test_node_start_config(test_node_t *t, const co_node_config_t *config)
     ck_assert_int_eq(co_node_init(&t->node, &bus_config), 0);
     co_node_start(&t->node, 0);
     t->bus.deadline = co_node_process(&t->node, 0);
+    if (config->node_id == CO_LSS_NODE_ID_UNCONFIGURED) {
+        test_expect_none(t); /* no node-id, no boot-up (CiA 305) */
+        return;
+    }
     bool padded = (config->options & CO_NODE_PAD_DLC8) != 0;
     char boot[32];
     snprintf(boot, sizeof(boot), "%03X#00%s", 0x700 + config->node_id,

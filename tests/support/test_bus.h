@@ -33,8 +33,9 @@ void test_node_start(test_node_t *t, uint8_t node_id, const co_app_hooks_t *hook
 /* The same on another dictionary (a variant of the test OD), which must outlive the node. */
 void test_node_start_od(test_node_t *t, const co_od_t *od, uint8_t node_id,
                         const co_app_hooks_t *hooks, const co_storage_t *storage);
-/* The same from a whole node configuration (its dictionary, hooks, storage, options); the bus
- * supplies the data block and the send callback. The boot-up is 8 bytes with CO_NODE_PAD_DLC8. */
+/* The same from a whole node configuration (its dictionary, hooks, storage, options, LSS); the
+ * bus supplies the data block and the send callback. The boot-up is 8 bytes with
+ * CO_NODE_PAD_DLC8; a node without a node-id (FFh, LSS) must send none. */
 void test_node_start_config(test_node_t *t, const co_node_config_t *config);
 
 /* Parses "123#0102", "123#R" (RTR, len 0) or "123#R2" (RTR, len 2) into a frame. */

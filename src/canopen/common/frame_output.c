@@ -6,6 +6,9 @@
 
 void co_node_send(co_node_t *node, const co_frame_t *frame)
 {
+    /* CiA 305 activate bit timing: the node keeps still while the bit rate changes. */
+    if (node->lss != NULL && node->lss->silent)
+        return;
     if ((node->options & CO_NODE_PAD_DLC8) && !(frame->flags & CO_FRAME_RTR))
         node->options_code->send_padded(node, frame);
     else

@@ -29,10 +29,14 @@ void co_nmt_enter(co_node_t *node, co_nmt_state_t state)
 }
 
 /* CiA 301 7.3.2.2.2: reset node restores the whole dictionary, reset communication only the
- * communication area; each area gets its defaults, then its stored values. */
+ * communication area; each area gets its defaults, then its stored values. CiA 305: both make
+ * the LSS pending node-id the active one, and a node left without one (FFh) stays in
+ * Initialising, silent but for LSS, with its defaults loaded for the boot that LSS starts. */
 void co_nmt_reset(co_node_t *node, co_nmt_reset_t scope)
 {
     node->nmt_state = CO_NMT_INITIALISING;
+    if (node->lss != NULL)
+        node->node_id = node->lss->pending_node_id;
     if (node->hooks != NULL && node->hooks->reset != NULL)
         node->hooks->reset(node, scope);
     if (scope == CO_NMT_RESET_NODE) {
@@ -41,6 +45,8 @@ void co_nmt_reset(co_node_t *node, co_nmt_reset_t scope)
     }
     co_od_restore_defaults(node, CO_IDX_COMM_FIRST, CO_IDX_COMM_LAST);
     co_store_apply(node, CO_IDX_COMM_FIRST, CO_IDX_COMM_LAST);
+    if (node->node_id == CO_LSS_NODE_ID_UNCONFIGURED)
+        return;
     reset_services(node, scope);
     co_consumers_changed(node);
     co_node_send_byte(node, CO_CAN_ID_ERROR_CONTROL + node->node_id, 0);

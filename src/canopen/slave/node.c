@@ -75,7 +75,8 @@ static uint32_t parameter_write(co_node_t *node, const co_od_entry_t *entry, con
 
 int co_node_init(co_node_t *node, const co_node_config_t *config)
 {
-    if (config->node_id < 1 || config->node_id > CO_NODE_ID_MAX)
+    bool unconfigured = config->node_id == CO_LSS_NODE_ID_UNCONFIGURED && config->lss != NULL;
+    if ((config->node_id < 1 || config->node_id > CO_NODE_ID_MAX) && !unconfigured)
         return CO_NODE_ERR_NODE_ID;
     if (config->od == NULL || config->od_data == NULL || config->send == NULL)
         return CO_NODE_ERR_CONFIG;
@@ -100,6 +101,9 @@ int co_node_init(co_node_t *node, const co_node_config_t *config)
     node->storage = config->storage;
     node->options = config->options;
     node->options_code = config->options_code;
+    node->lss = config->lss;
+    if (node->lss != NULL)
+        node->lss->pending_node_id = config->node_id;
     node->parameter_write = parameter_write;
     node->sync.deliver = co_sync_event;
     node->sdo.timeout_us = CO_CONFIG_SDO_TIMEOUT_US;
@@ -135,8 +139,15 @@ void co_sync_event(co_node_t *node, uint8_t counter)
 void co_node_receive(co_node_t *node, const co_frame_t *frame, co_time_t now)
 {
     node->now = now;
-    if ((frame->flags & CO_FRAME_EFF) || frame->len > CO_FRAME_DLC_MAX ||
-        node->nmt_state == CO_NMT_INITIALISING)
+    if ((frame->flags & CO_FRAME_EFF) || frame->len > CO_FRAME_DLC_MAX)
+        return;
+    /* LSS works in every NMT state, Initialising included (CiA 305). */
+    if (node->lss != NULL && frame->id == CO_LSS_ID_MASTER) {
+        node->lss->receive(node, frame);
+        co_node_reschedule(node);
+        return;
+    }
+    if (node->nmt_state == CO_NMT_INITIALISING)
         return;
     if (co_nmt_receive(node, frame))
         return;
@@ -183,9 +194,10 @@ static co_time_t services_process(co_node_t *node, co_time_t now)
 co_time_t co_node_process(co_node_t *node, co_time_t now)
 {
     node->now = now;
+    co_time_t lss_due = node->lss != NULL ? node->lss->process(node, now) : CO_TIME_NEVER;
     if (node->nmt_state == CO_NMT_INITIALISING)
-        return CO_TIME_NEVER;
-    co_time_t next = services_process(node, now);
+        return lss_due;
+    co_time_t next = co_time_min(lss_due, services_process(node, now));
     /* The PDOs run on every call: the application changes mapped data without telling the core,
      * and an event-driven TPDO compares it here. */
     return co_time_min(next, co_pdo_process(node, now));

@@ -3,15 +3,12 @@
 #include "trace/text.h"
 
 #include "co/co_emcy.h"
+#include "co/co_lss.h"
 #include "co/co_nmt.h"
 #include "co/co_pdo.h"
 
 #include <stdio.h>
 #include <string.h>
-
-/* Layer setting services (CiA 305), beside CiA 301's predefined connection set (co_cia301.h). */
-#define COB_LSS_SLAVE 0x7E4u
-#define COB_LSS_MASTER 0x7E5u
 
 /* CiA 301 7.2.6: the TIME object counts days from 1984-01-01. */
 #define TIME_EPOCH_DAYS_FROM_1970 5113u
@@ -683,12 +680,149 @@ static void decode_pdo(const cotrace_decoder_t *dec, const struct can_frame *f,
 
 /* ---- everything else ---------------------------------------------------------------------- */
 
+/* ---- LSS (CiA 305) ------------------------------------------------------------------------- */
+
+static const char *const lss_part_name[CO_LSS_FASTSCAN_PARTS] = {"vendor-ID", "product code",
+                                                                 "revision", "serial"};
+
+static void say_lss_node_id(text_t *t, uint8_t id)
+{
+    if (id == CO_LSS_NODE_ID_UNCONFIGURED)
+        say(t, "255 (none)");
+    else
+        say(t, "%u%s", id, id == 0 || id > COTRACE_NODE_MAX ? " (not a node-id)" : "");
+}
+
+static void say_lss_bit_timing(text_t *t, uint8_t table, uint8_t index)
+{
+    say(t, "table %u index %u", table, index);
+    if (table != CO_LSS_BIT_TIMING_TABLE)
+        return;
+    uint16_t kbit = co_lss_bit_rate_kbit(index);
+    if (kbit != 0)
+        say(t, " (%u kbit/s)", kbit);
+    else if (index == CO_LSS_BIT_TIMING_AUTO)
+        say(t, " (automatic bit rate detection)");
+    else
+        say(t, " (not in the table)");
+}
+
+/* The error code of a confirmation (configure node-ID, configure bit timing, store). */
+static void say_lss_error(text_t *t, uint8_t cs, const uint8_t *d)
+{
+    if (d[1] == CO_LSS_OK) {
+        say(t, "done");
+        return;
+    }
+    say(t, "error %u", d[1]);
+    if (d[1] == CO_LSS_SPECIFIC_ERROR)
+        say(t, " (device-specific error 0x%02X)", d[2]);
+    else if (d[1] == 1 && cs == CO_LSS_CS_CONFIGURE_NODE_ID)
+        say(t, " (node-ID out of range)");
+    else if (d[1] == 1 && cs == CO_LSS_CS_CONFIGURE_BIT_TIMING)
+        say(t, " (bit timing not supported)");
+    else if (d[1] == 1 && cs == CO_LSS_CS_STORE)
+        say(t, " (store configuration not supported)");
+    else if (d[1] == CO_LSS_STORE_MEDIA_ERROR && cs == CO_LSS_CS_STORE)
+        say(t, " (storage media access error)");
+    else
+        say(t, " (reserved)");
+}
+
+/* Which specifiers go which way (CiA 305): 44h, 4Fh and 50h come only from a slave; the answers
+ * of the confirmed services repeat their request's specifier. */
+static bool lss_slave_only(uint8_t cs)
+{
+    return cs == CO_LSS_CS_SWITCH_SELECTIVE_RESPONSE || cs == CO_LSS_CS_IDENTIFY_SLAVE ||
+           cs == CO_LSS_CS_IDENTIFY_NON_CONFIGURED_SLAVE;
+}
+
+static bool lss_confirmed(uint8_t cs)
+{
+    return cs == CO_LSS_CS_CONFIGURE_NODE_ID || cs == CO_LSS_CS_CONFIGURE_BIT_TIMING ||
+           cs == CO_LSS_CS_STORE ||
+           (cs >= CO_LSS_CS_INQUIRE_VENDOR && cs <= CO_LSS_CS_INQUIRE_NODE_ID);
+}
+
+static void lss_request(const uint8_t *d, text_t *t)
+{
+    uint8_t cs = d[0];
+    uint32_t value =
+        (uint32_t)d[1] | (uint32_t)d[2] << 8 | (uint32_t)d[3] << 16 | (uint32_t)d[4] << 24;
+    if (cs == CO_LSS_CS_SWITCH_GLOBAL) {
+        if (d[1] == CO_LSS_WAITING)
+            say(t, ": waiting");
+        else if (d[1] == CO_LSS_CONFIGURATION)
+            say(t, ": configuration");
+        else
+            say(t, ": unknown state %u", d[1]);
+    } else if (cs == CO_LSS_CS_CONFIGURE_NODE_ID) {
+        say(t, " ");
+        say_lss_node_id(t, d[1]);
+    } else if (cs == CO_LSS_CS_CONFIGURE_BIT_TIMING) {
+        say(t, " ");
+        say_lss_bit_timing(t, d[1], d[2]);
+    } else if (cs == CO_LSS_CS_ACTIVATE_BIT_TIMING) {
+        say(t, ", switch delay %u ms", (unsigned)(d[1] | d[2] << 8));
+    } else if ((cs >= CO_LSS_CS_SWITCH_SELECTIVE_VENDOR &&
+                cs <= CO_LSS_CS_SWITCH_SELECTIVE_SERIAL) ||
+               (cs >= CO_LSS_CS_IDENTIFY_VENDOR && cs <= CO_LSS_CS_IDENTIFY_SERIAL_HIGH)) {
+        say(t, " 0x%08X", (unsigned)value);
+    } else if (cs == CO_LSS_CS_FASTSCAN) {
+        if (d[5] == CO_LSS_FASTSCAN_RESET) {
+            say(t, " reset: every non-configured slave answers");
+            return;
+        }
+        if (d[5] > CO_LSS_FASTSCAN_BIT_MAX || d[6] >= CO_LSS_FASTSCAN_PARTS ||
+            d[7] >= CO_LSS_FASTSCAN_PARTS) {
+            say(t, " out of range: bit %u, LSS sub %u, next %u", d[5], d[6], d[7]);
+            return;
+        }
+        say(t, " %s 0x%08X, bits 31..%u, next %s", lss_part_name[d[6]], (unsigned)value, d[5],
+            lss_part_name[d[7]]);
+    }
+}
+
+static void lss_answer(const uint8_t *d, text_t *t)
+{
+    uint8_t cs = d[0];
+    if (lss_confirmed(cs))
+        say(t, " answer");
+    if (cs == CO_LSS_CS_CONFIGURE_NODE_ID || cs == CO_LSS_CS_CONFIGURE_BIT_TIMING ||
+        cs == CO_LSS_CS_STORE) {
+        say(t, ": ");
+        say_lss_error(t, cs, d);
+    } else if (cs >= CO_LSS_CS_INQUIRE_VENDOR && cs <= CO_LSS_CS_INQUIRE_SERIAL) {
+        say(t, ": 0x%08X",
+            (unsigned)((uint32_t)d[1] | (uint32_t)d[2] << 8 | (uint32_t)d[3] << 16 |
+                       (uint32_t)d[4] << 24));
+    } else if (cs == CO_LSS_CS_INQUIRE_NODE_ID) {
+        say(t, ": ");
+        say_lss_node_id(t, d[1]);
+    }
+}
+
 static void decode_lss(const struct can_frame *f, text_t *t)
 {
-    say(t, "LSS %s",
-        (f->can_id & CAN_SFF_MASK) == COB_LSS_MASTER ? "master request" : "slave response");
-    if (f->len > 0)
-        say(t, ", command 0x%02X", f->data[0]);
+    bool from_slave = (f->can_id & CAN_SFF_MASK) == CO_LSS_ID_SLAVE;
+    const char *who = from_slave ? "slave" : "master";
+    if (f->can_id & CAN_RTR_FLAG || f->len != CO_LSS_FRAME_LEN) {
+        say(t, "LSS %s malformed: %u bytes, an LSS frame has 8", who, f->len);
+        return;
+    }
+    uint8_t cs = f->data[0];
+    const char *name = co_lss_cs_name(cs);
+    bool known = name != NULL &&
+                 (from_slave ? lss_slave_only(cs) || lss_confirmed(cs) : !lss_slave_only(cs));
+    if (!known) {
+        say(t, "LSS %s unknown command 0x%02X", who, cs);
+        return;
+    }
+    say(t, "LSS %s", name);
+    if (from_slave)
+        lss_answer(f->data, t);
+    else
+        lss_request(f->data, t);
 }
 
 void cotrace_decode(cotrace_decoder_t *dec, const struct can_frame *f, char *out, size_t cap)
@@ -716,7 +850,7 @@ void cotrace_decode(cotrace_decoder_t *dec, const struct can_frame *f, char *out
         sdo_request(dec, node, f, &t);
     } else if (id > CO_CAN_ID_ERROR_CONTROL && id < CO_CAN_ID_ERROR_CONTROL + CO_CAN_ID_NODE_SPAN) {
         decode_error_control(dec, node, f, &t);
-    } else if (id == COB_LSS_MASTER || id == COB_LSS_SLAVE) {
+    } else if (id == CO_LSS_ID_MASTER || id == CO_LSS_ID_SLAVE) {
         decode_lss(f, &t);
     } else if (pdo_predefined(id, &pdo)) {
         decode_pdo(dec, f, &pdo, node, &t);

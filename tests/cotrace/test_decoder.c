@@ -287,6 +287,75 @@ START_TEST(pdos_with_eds)
 }
 END_TEST
 
+/* Every LSS frame of CiA 305 by name, both ways, and what is not one. */
+START_TEST(lss_frames)
+{
+    static const step_t steps[] = {
+        {"7E5#0401000000000000", "LSS switch state global: configuration"},
+        {"7E5#0400000000000000", "LSS switch state global: waiting"},
+        {"7E5#0402000000000000", "LSS switch state global: unknown state 2"},
+        {"7E5#405F000000000000", "LSS switch state selective vendor-ID 0x0000005F"},
+        {"7E5#4112030000000000", "LSS switch state selective product code 0x00000312"},
+        {"7E5#4202000100000000", "LSS switch state selective revision 0x00010002"},
+        {"7E5#4378563412000000", "LSS switch state selective serial 0x12345678"},
+        {"7E4#4400000000000000", "LSS switch state selective response"},
+        {"7E5#1105000000000000", "LSS configure node-ID 5"},
+        {"7E5#11FF000000000000", "LSS configure node-ID 255 (none)"},
+        {"7E5#1180000000000000", "LSS configure node-ID 128 (not a node-id)"},
+        {"7E4#1100000000000000", "LSS configure node-ID answer: done"},
+        {"7E4#1101000000000000", "LSS configure node-ID answer: error 1 (node-ID out of range)"},
+        {"7E5#1300040000000000", "LSS configure bit timing table 0 index 4 (125 kbit/s)"},
+        {"7E5#1300090000000000",
+         "LSS configure bit timing table 0 index 9 (automatic bit rate detection)"},
+        {"7E5#1300050000000000", "LSS configure bit timing table 0 index 5 (not in the table)"},
+        {"7E5#1381020000000000", "LSS configure bit timing table 129 index 2"},
+        {"7E4#1301000000000000",
+         "LSS configure bit timing answer: error 1 (bit timing not supported)"},
+        {"7E5#1564000000000000", "LSS activate bit timing, switch delay 100 ms"},
+        {"7E5#1700000000000000", "LSS store configuration"},
+        {"7E4#1700000000000000", "LSS store configuration answer: done"},
+        {"7E4#1701000000000000",
+         "LSS store configuration answer: error 1 (store configuration not supported)"},
+        {"7E4#1702000000000000",
+         "LSS store configuration answer: error 2 (storage media access error)"},
+        {"7E4#17FF420000000000",
+         "LSS store configuration answer: error 255 (device-specific error 0x42)"},
+        {"7E4#1703000000000000", "LSS store configuration answer: error 3 (reserved)"},
+        {"7E5#5A00000000000000", "LSS inquire vendor-ID"},
+        {"7E4#5A5F000000000000", "LSS inquire vendor-ID answer: 0x0000005F"},
+        {"7E5#5B00000000000000", "LSS inquire product code"},
+        {"7E4#5B12030000000000", "LSS inquire product code answer: 0x00000312"},
+        {"7E5#5C00000000000000", "LSS inquire revision"},
+        {"7E4#5C02000100000000", "LSS inquire revision answer: 0x00010002"},
+        {"7E5#5D00000000000000", "LSS inquire serial"},
+        {"7E4#5D78563412000000", "LSS inquire serial answer: 0x12345678"},
+        {"7E5#5E00000000000000", "LSS inquire node-ID"},
+        {"7E4#5E05000000000000", "LSS inquire node-ID answer: 5"},
+        {"7E4#5EFF000000000000", "LSS inquire node-ID answer: 255 (none)"},
+        {"7E5#465F000000000000", "LSS identify remote slave vendor-ID 0x0000005F"},
+        {"7E5#4712030000000000", "LSS identify remote slave product code 0x00000312"},
+        {"7E5#4800000000000000", "LSS identify remote slave revision low 0x00000000"},
+        {"7E5#49FFFFFFFF000000", "LSS identify remote slave revision high 0xFFFFFFFF"},
+        {"7E5#4A00000000000000", "LSS identify remote slave serial low 0x00000000"},
+        {"7E5#4BFFFFFFFF000000", "LSS identify remote slave serial high 0xFFFFFFFF"},
+        {"7E4#4F00000000000000", "LSS identify slave"},
+        {"7E5#4C00000000000000", "LSS identify non-configured remote slave"},
+        {"7E4#5000000000000000", "LSS identify non-configured slave"},
+        {"7E5#5100000000800000", "LSS fastscan reset: every non-configured slave answers"},
+        {"7E5#51000000001F0000", "LSS fastscan vendor-ID 0x00000000, bits 31..31, next vendor-ID"},
+        {"7E5#5178563412000300", "LSS fastscan serial 0x12345678, bits 31..0, next vendor-ID"},
+        {"7E5#5100000000200000", "LSS fastscan out of range: bit 32, LSS sub 0, next 0"},
+        {"7E5#5100000000000400", "LSS fastscan out of range: bit 0, LSS sub 4, next 0"},
+        {"7E5#4F00000000000000", "LSS master unknown command 0x4F"},
+        {"7E4#0400000000000000", "LSS slave unknown command 0x04"},
+        {"7E5#0500000000000000", "LSS master unknown command 0x05"},
+        {"7E5#04010000", "LSS master malformed: 4 bytes, an LSS frame has 8"},
+        {"7E4#R", "LSS slave malformed: 0 bytes, an LSS frame has 8"},
+    };
+    PLAY(&dec, steps);
+}
+END_TEST
+
 START_TEST(other_frames)
 {
     static const step_t steps[] = {
@@ -294,8 +363,6 @@ START_TEST(other_frames)
         {"20000080#0000000000000000", "CAN error frame: bus error"},
         {"20000040#0000000000000000", "CAN error frame: bus off"},
         {"12345678#01", "29-bit identifier: not CANopen"},
-        {"7E5#4C00000000000000", "LSS master request, command 0x4C"},
-        {"7E4#4400000000000000", "LSS slave response, command 0x44"},
         {"7FF#01", "COB-ID 0x7FF: no predefined meaning"},
     };
     PLAY(&dec, steps);
@@ -379,6 +446,7 @@ int main(void)
     TCase *tc = tcase_create("decoder");
     tcase_add_checked_fixture(tc, plain, NULL);
     tcase_add_test(tc, nmt_commands);
+    tcase_add_test(tc, lss_frames);
     tcase_add_test(tc, sync_and_time);
     tcase_add_test(tc, emcy);
     tcase_add_test(tc, heartbeat_and_guarding);

@@ -67,7 +67,8 @@ static bool is_flag(const char *flags, const char *arg)
 /* The options that take a value, and what --help calls it. */
 static const cli_valued_option_t valued[] = {
     {"-i", "IFACE"},      {"--interface", "IFACE"}, {"--timeout", "MS"},   {"--eds", "FILE"},
-    {"--eds-dir", "DIR"}, {"--output", "FILE"},     {"--heartbeat", "MS"}, {"--control", "PATH"}};
+    {"--eds-dir", "DIR"}, {"--output", "FILE"},     {"--heartbeat", "MS"}, {"--control", "PATH"},
+    {"--vendor", "N"},    {"--product", "N"},       {"--revision", "N"},   {"--frame-ms", "MS"}};
 
 int comaster_missing_value(const comaster_options_t *opts, const char *option)
 {

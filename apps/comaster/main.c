@@ -26,6 +26,7 @@ static const comaster_command_t commands[] = {
     {"disable", "disable: disable the communication of a run's master", comaster_disable_main},
     {"enable", "enable: enable it again (the network boots again)", comaster_enable_main},
     {"can", "can: the CAN controller's state and counters of a run", comaster_can_main},
+    {"lss", "lss SERVICE [ARGS...]: CiA 305 LSS: node-ids, bit rates, fastscan", comaster_lss_main},
 };
 
 #define COMMAND_COUNT (sizeof commands / sizeof commands[0])
@@ -37,7 +38,8 @@ static void print_usage(void)
            "\n"
            "A CANopen master on a SocketCAN interface: SDO read and write by index or by\n"
            "name, NMT commands, a scan of the nodes present, a monitor of heartbeats,\n"
-           "emergencies, SYNC and PDOs, and a CiA 402 drive helper.\n"
+           "emergencies, SYNC and PDOs, a CiA 402 drive helper, and the CiA 305 layer\n"
+           "setting services (node-ids and bit rates, fastscan).\n"
            "\n"
            "Commands (comaster COMMAND --help tells more):\n");
     /* The names in a column as wide as the longest: two spaces or more before each summary,

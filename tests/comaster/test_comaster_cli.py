@@ -19,7 +19,8 @@ from control_stand_in import StandIn  # noqa: E402
 COMASTER = os.environ["COMASTER"]
 EX_USAGE, EX_UNAVAILABLE, EX_PROTOCOL = 64, 69, 76
 EXIT_REFUSED, EXIT_TIMEOUT = 1, 2
-COMMANDS = "read, write, nmt, scan, monitor, drive, boot, run, set, get, status, disable, enable, can"
+COMMANDS = ("read, write, nmt, scan, monitor, drive, boot, run, set, get, status, disable, enable, "
+            "can, lss")
 
 
 def run(*args):
@@ -52,6 +53,41 @@ class WrongArguments(unittest.TestCase):
                    "OBJECT [TYPE] VALUE [--block]", "write")
         self.check(["get", "4", "speed", "x"], "get: too many arguments from 'x': usage: comaster "
                    "get NODE NAME [--control PATH]", "get")
+
+    def test_lss_arguments(self):
+        services = ("switch, set-node-id, set-bit-timing, activate, store, inquire, identify or "
+                    "fastscan")
+        self.check(["lss", "frob"], f"lss: 'frob' is not an LSS service: give {services}", "lss")
+        self.check(["lss", "set-node-id", "128"],
+                   "lss set-node-id: '128' is not a node-id: give 1..127, or none", "lss")
+        self.check(["lss", "set-node-id"],
+                   "lss set-node-id: takes 1 argument, 0 given (see lss --help)", "lss")
+        self.check(["lss", "set-bit-timing", "300"],
+                   "lss set-bit-timing: '300' is not a bit rate of CiA 305 table 0: give 1000, "
+                   "800, 500, 250, 125, 50, 20, 10 (kbit/s) or auto", "lss")
+        self.check(["lss", "activate", "70000"],
+                   "lss activate: '70000' is not a switch delay: give milliseconds 0..65535", "lss")
+        self.check(["lss", "switch", "sleeping"],
+                   "lss switch: 'sleeping' is not an LSS state: give waiting or configuration, or "
+                   "the four parts of an address", "lss")
+        self.check(["lss", "switch", "1", "2", "3"],
+                   "lss switch: give waiting, configuration, or VENDOR PRODUCT REVISION SERIAL "
+                   "(3 values given)", "lss")
+        self.check(["lss", "switch", "1", "2", "3", "x"],
+                   "lss: 'x' is not a 32-bit number: give decimal or 0x hex, 0..4294967295", "lss")
+        self.check(["lss", "inquire", "name"],
+                   "lss inquire: 'name' is not something to inquire: give identity or node-id",
+                   "lss")
+        self.check(["lss", "identify", "1", "2"],
+                   "lss identify: give non-configured, or VENDOR PRODUCT REV_LOW REV_HIGH "
+                   "SERIAL_LOW SERIAL_HIGH (2 values given)", "lss")
+        self.check(["lss", "fastscan", "0"],
+                   "lss fastscan: '0' is not a node-id: give the first node-id to assign, 1..127",
+                   "lss")
+        self.check(["lss", "fastscan", "1", "--vendor"],
+                   "lss: option --vendor needs a value: give --vendor N", "lss")
+        self.check(["lss", "fastscan", "1", "--frame-ms", "0"],
+                   "lss fastscan: --frame-ms 0 is out of range: give milliseconds 1..60000", "lss")
 
     def test_bad_values(self):
         self.check(["read", "128", "ACC"], "'128' is not a node-id: give a number 1..127", "read")

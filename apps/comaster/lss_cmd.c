@@ -52,6 +52,8 @@ static const char lss_help[] =
     "Example: comaster -i vcan0 lss fastscan 20 --vendor 0x5F\n";
 
 #define FRAME_MS_DEFAULT 20u
+#define FASTSCAN_TRIES 3 /* scans of one slave before giving up on it */
+#define FASTSCAN_LOST (-1)
 
 typedef struct lss_job {
     comaster_bus_t *bus;
@@ -215,7 +217,8 @@ static int cmd_switch(lss_job_t *job, const comaster_options_t *opts, const coma
     co_lss_address_t address;
     if (!parse_address(opts, &a->positional[1], 4, address.part))
         return EX_USAGE;
-    int rc = run(job, co_lss_master_switch_selective(&job->master, &address, timeout_us(opts), 0));
+    int rc = run(job, co_lss_master_switch_selective(&job->master, &address, timeout_us(opts),
+                                                     co_linux_now()));
     if (rc == 0 && job->result.status != CO_LSS_MASTER_OK)
         return comaster_fail(opts, CLI_EXIT_TIMEOUT,
                              "lss switch: no slave of address 0x%08X 0x%08X 0x%08X 0x%08X "
@@ -235,8 +238,8 @@ static int cmd_set_node_id(lss_job_t *job, const comaster_options_t *opts, const
     else if (!parse_u32(text, &id) || id < 1 || id > CO_NODE_ID_MAX)
         return comaster_fail(opts, EX_USAGE,
                              "lss set-node-id: '%s' is not a node-id: give 1..127, or none", text);
-    int rc =
-        run(job, co_lss_master_configure_node_id(&job->master, (uint8_t)id, timeout_us(opts), 0));
+    int rc = run(job, co_lss_master_configure_node_id(&job->master, (uint8_t)id, timeout_us(opts),
+                                                      co_linux_now()));
     if (rc != 0)
         return rc;
     if (job->result.status != CO_LSS_MASTER_OK)
@@ -263,7 +266,7 @@ static int cmd_set_bit_timing(lss_job_t *job, const comaster_options_t *opts, co
                              "give 1000, 800, 500, 250, 125, 50, 20, 10 (kbit/s) or auto",
                              text);
     int rc = run(job, co_lss_master_configure_bit_timing(&job->master, CO_LSS_BIT_TIMING_TABLE,
-                                                         index, timeout_us(opts), 0));
+                                                         index, timeout_us(opts), co_linux_now()));
     if (rc != 0)
         return rc;
     if (job->result.status != CO_LSS_MASTER_OK)
@@ -290,7 +293,7 @@ static int cmd_activate(lss_job_t *job, const comaster_options_t *opts, const ch
 
 static int cmd_store(lss_job_t *job, const comaster_options_t *opts)
 {
-    int rc = run(job, co_lss_master_store(&job->master, timeout_us(opts), 0));
+    int rc = run(job, co_lss_master_store(&job->master, timeout_us(opts), co_linux_now()));
     if (rc != 0)
         return rc;
     if (job->result.status != CO_LSS_MASTER_OK)
@@ -315,7 +318,7 @@ static int cmd_inquire(lss_job_t *job, const comaster_options_t *opts, const cha
                              what);
     if (!identity) {
         int rc = run(job, co_lss_master_inquire(&job->master, CO_LSS_CS_INQUIRE_NODE_ID,
-                                                timeout_us(opts), 0));
+                                                timeout_us(opts), co_linux_now()));
         if (rc == 0 && job->result.status != CO_LSS_MASTER_OK)
             return no_answer(opts, "inquire");
         if (rc == 0 && opts->json)
@@ -330,7 +333,7 @@ static int cmd_inquire(lss_job_t *job, const comaster_options_t *opts, const cha
     for (unsigned part = 0; part < CO_LSS_FASTSCAN_PARTS; part++) {
         int rc =
             run(job, co_lss_master_inquire(&job->master, (uint8_t)(CO_LSS_CS_INQUIRE_VENDOR + part),
-                                           timeout_us(opts), 0));
+                                           timeout_us(opts), co_linux_now()));
         if (rc != 0)
             return rc;
         if (job->result.status != CO_LSS_MASTER_OK)
@@ -345,14 +348,15 @@ static int cmd_identify(lss_job_t *job, const comaster_options_t *opts, const co
 {
     int rc;
     if (a->count == 2 && strcmp(a->positional[1], "non-configured") == 0) {
-        rc = run(job, co_lss_master_identify_non_configured(&job->master, timeout_us(opts), 0));
+        rc = run(job, co_lss_master_identify_non_configured(&job->master, timeout_us(opts),
+                                                            co_linux_now()));
     } else if (a->count == 7) {
         uint32_t v[6];
         if (!parse_address(opts, &a->positional[1], 6, v))
             return EX_USAGE;
         co_lss_address_t low = {{v[0], v[1], v[2], v[4]}}, high = {{v[0], v[1], v[3], v[5]}};
-        rc =
-            run(job, co_lss_master_identify_remote(&job->master, &low, &high, timeout_us(opts), 0));
+        rc = run(job, co_lss_master_identify_remote(&job->master, &low, &high, timeout_us(opts),
+                                                    co_linux_now()));
     } else {
         return comaster_fail(opts, EX_USAGE,
                              "lss identify: give non-configured, or VENDOR PRODUCT REV_LOW "
@@ -361,11 +365,16 @@ static int cmd_identify(lss_job_t *job, const comaster_options_t *opts, const co
     }
     if (rc != 0)
         return rc;
+    if (job->result.answers == 0)
+        return comaster_fail(opts, CLI_EXIT_TIMEOUT,
+                             "lss identify: no slave answered on %s within %u ms (--timeout MS "
+                             "waits longer)",
+                             opts->iface, opts->timeout_ms);
     if (opts->json)
         printf("{\"answers\": %u}\n", job->result.answers);
     else
         printf("%u slave%s answered\n", job->result.answers, job->result.answers == 1 ? "" : "s");
-    return job->result.answers > 0 ? 0 : CLI_EXIT_TIMEOUT;
+    return 0;
 }
 
 /* fastscan's own options, taken out of argv before the common parser sees it. */
@@ -421,6 +430,29 @@ static int take_fastscan_options(comaster_options_t *opts, int *argc, char **arg
     return -1;
 }
 
+/* One slave found (0, its address in job->result), none left (CLI_EXIT_TIMEOUT), or an error. A
+ * scan that lost the slave that answered its first frame (an answer later than the frame's wait:
+ * a busy bus or node) is repeated with twice the wait, all slaves back in waiting first in case
+ * the lost one reached configuration; FASTSCAN_LOST after FASTSCAN_TRIES scans. */
+static int scan_one(lss_job_t *job, const fastscan_options_t *fo, uint32_t *frame_ms)
+{
+    for (int attempt = 0; attempt < FASTSCAN_TRIES; attempt++) {
+        if (attempt > 0) {
+            *frame_ms *= 2;
+            co_lss_master_switch_global(&job->master, CO_LSS_WAITING);
+        }
+        int rc = run(job, co_lss_master_fastscan(&job->master, &fo->known,
+                                                 (co_time_t)*frame_ms * 1000u, co_linux_now()));
+        if (rc != 0)
+            return rc;
+        if (job->result.status == CO_LSS_MASTER_OK)
+            return 0;
+        if (job->result.answers == 0)
+            return CLI_EXIT_TIMEOUT;
+    }
+    return FASTSCAN_LOST;
+}
+
 static int cmd_fastscan(lss_job_t *job, const comaster_options_t *opts, const char *first_text,
                         const fastscan_options_t *fo)
 {
@@ -431,13 +463,19 @@ static int cmd_fastscan(lss_job_t *job, const comaster_options_t *opts, const ch
                              "assign, 1..127",
                              first_text);
     unsigned found = 0;
+    uint32_t frame_ms = fo->frame_ms;
     for (uint32_t node = first;; node++) {
-        int rc = run(job, co_lss_master_fastscan(&job->master, &fo->known,
-                                                 (co_time_t)fo->frame_ms * 1000u, 0));
+        int rc = scan_one(job, fo, &frame_ms);
+        if (rc == CLI_EXIT_TIMEOUT)
+            break;
+        if (rc == FASTSCAN_LOST)
+            return comaster_fail(opts, CLI_EXIT_TIMEOUT,
+                                 "lss fastscan: a slave without node-id answered, but %d scans "
+                                 "lost it, the last waiting %u ms a frame: answers come late on "
+                                 "%s (--frame-ms MS waits longer)",
+                                 FASTSCAN_TRIES, frame_ms, opts->iface);
         if (rc != 0)
             return rc;
-        if (job->result.status != CO_LSS_MASTER_OK)
-            break;
         co_lss_address_t address = job->result.address;
         if (node > CO_NODE_ID_MAX) {
             co_lss_master_switch_global(&job->master, CO_LSS_WAITING);
@@ -447,15 +485,15 @@ static int cmd_fastscan(lss_job_t *job, const comaster_options_t *opts, const ch
                                  "after 127: give a lower first node-id than %u",
                                  address.part[CO_LSS_SERIAL], first);
         }
-        rc = run(job,
-                 co_lss_master_configure_node_id(&job->master, (uint8_t)node, timeout_us(opts), 0));
+        rc = run(job, co_lss_master_configure_node_id(&job->master, (uint8_t)node, timeout_us(opts),
+                                                      co_linux_now()));
         if (rc == 0 && job->result.status != CO_LSS_MASTER_OK)
             return no_answer(opts, "fastscan (set-node-id)");
         if (rc == 0 && job->result.error != CO_LSS_OK)
             return slave_error(opts, "fastscan (set-node-id)", &job->result,
                                "node-id out of range");
         if (rc == 0 && fo->store) {
-            rc = run(job, co_lss_master_store(&job->master, timeout_us(opts), 0));
+            rc = run(job, co_lss_master_store(&job->master, timeout_us(opts), co_linux_now()));
             if (rc == 0 && job->result.status != CO_LSS_MASTER_OK)
                 return no_answer(opts, "fastscan (store)");
             if (rc == 0 && job->result.error != CO_LSS_OK)

@@ -34,7 +34,7 @@ void board_wait(co_time_t deadline);
 /* Flash: pages of FLASH_PAGE_SIZE bytes at the end of the flash, read through the memory map,
  * erased to 0xFF a page at a time and programmed byte-wise (a bit goes from 1 to 0 only). */
 #define FLASH_PAGE_SIZE 2048u
-#define FLASH_STORAGE_PAGES 6u
+#define FLASH_STORAGE_PAGES 8u
 const uint8_t *flash_page(unsigned page);
 int flash_erase(unsigned page);
 int flash_program(unsigned page, uint32_t offset, const uint8_t *data, size_t len);

@@ -1,5 +1,6 @@
 /* SPDX-License-Identifier: Apache-2.0 */
-/* Flash pages as the co_storage_t of a node. Areas 2..4 (CO_STORE_AREA_*) each own two pages;
+/* Flash pages as the co_storage_t of a node. Areas 2..4 (CO_STORE_AREA_*) and the LSS
+ * configuration's (FLASH_STORAGE_AREA_LSS) each own two pages;
  * each page starts with a header (magic, sequence, length, CRC) and holds one image after it. A
  * save erases the page that is not in force, programs the image, then the header: a power cut
  * before the header leaves the old page in force, one during it leaves a header whose CRC or
@@ -52,7 +53,7 @@ static int page_in_force(uint8_t area, header_t *h)
 
 static bool area_ok(uint8_t area)
 {
-    return area >= CO_STORE_AREA_COMMUNICATION && area <= CO_STORE_AREA_MANUFACTURER;
+    return area >= CO_STORE_AREA_COMMUNICATION && area <= FLASH_STORAGE_AREA_LSS;
 }
 
 static int save_begin(void *ctx, uint8_t area)

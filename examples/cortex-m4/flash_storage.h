@@ -13,7 +13,11 @@ typedef struct flash_storage {
     bool failed;
 } flash_storage_t;
 
-/* The storage of 1010h/1011h; ctx is the flash_storage_t. */
+/* The area of the LSS configuration (CiA 305 store configuration: node-id and bit timing), past
+ * the three of 1010h/1011h (CO_STORE_AREA_*), through the same functions of the storage. */
+#define FLASH_STORAGE_AREA_LSS 5u
+
+/* The storage of 1010h/1011h and of the LSS configuration; ctx is the flash_storage_t. */
 void flash_storage_init(co_storage_t *storage, flash_storage_t *flash);
 
 #endif

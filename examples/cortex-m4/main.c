@@ -4,7 +4,9 @@
  * given by the application (the core is built with CO_CONFIG_SDO_BUFFER=0 and tables sized to the
  * dictionary: CMakeLists.txt), parameters saved by 1010h into flash pages, frames in from the
  * receive interrupt's queue and out through the board's transmitter, and the main loop sleeping
- * until the next frame or deadline. The same file runs on both boards of board.h. */
+ * until the next frame or deadline. The node has CiA 305 LSS: a master may give it another
+ * node-id, or none, and store that in flash (docs/lss.md). The same file runs on both boards of
+ * board.h. */
 #include "blinky_od.h"
 #include "board.h"
 #include "co/co_emcy.h"
@@ -14,7 +16,11 @@
 /* Largest segmented or block transfer: 1008h-like strings and a whole PDO mapping fit. Nodes of
  * one firmware could share it (co_sdo_buffer_t). */
 #define SDO_BUFFER_SIZE 64u
-#define NODE_ID 0x10u
+#define NODE_ID 0x10u /* until LSS stores another */
+/* The bit timing index (CiA 305 table 0) LSS stores beside the node-id: 125 kbit/s, what the
+ * host's slcand is told. The board has no CAN controller to retime (its frames cross a UART), so
+ * the node offers no other: configure bit timing answers "not supported". */
+#define BIT_TIMING_125K 4u
 #define BLINK_PERIOD 0x2000u
 #define BLINK_COUNT 0x2001u
 #define SIMULATED_ERROR 0x2002u
@@ -25,6 +31,7 @@ static uint8_t sdo_data[SDO_BUFFER_SIZE];
 static co_sdo_buffer_t sdo_buffer = {.data = sdo_data, .size = SDO_BUFFER_SIZE};
 static flash_storage_t flash;
 static co_storage_t storage;
+static co_lss_slave_t lss;
 /* The EMCY code raised through 2002h, 0 for none. */
 static uint16_t simulated_error;
 
@@ -79,6 +86,33 @@ static void heartbeat(co_node_t *self, uint8_t producer, bool lost)
 static const co_app_hooks_t hooks = {
     .od_written = od_written, .reset = reset, .guarding = guarding, .heartbeat = heartbeat};
 
+/* LSS store configuration: the node-id and bit timing in their own flash area, a 2-byte image. */
+static uint8_t lss_store(co_node_t *self, uint8_t node_id, uint8_t bit_timing, uint8_t *specific)
+{
+    (void)self;
+    (void)specific;
+    const uint8_t image[2] = {node_id, bit_timing};
+    bool saved = storage.save_begin(storage.ctx, FLASH_STORAGE_AREA_LSS) == 0 &&
+                 storage.save_write(storage.ctx, image, sizeof(image)) == 0;
+    if (storage.save_end(storage.ctx, saved) != 0 || !saved)
+        return CO_LSS_STORE_MEDIA_ERROR;
+    return CO_LSS_OK;
+}
+
+static const co_lss_slave_hooks_t lss_hooks = {.store = lss_store};
+
+/* The node-id LSS stored (FFh: none, the node waits for LSS), else NODE_ID. */
+static uint8_t stored_node_id(void)
+{
+    uint8_t image[2];
+    if (storage.load_size(storage.ctx, FLASH_STORAGE_AREA_LSS) != (long)sizeof(image) ||
+        storage.load_read(storage.ctx, FLASH_STORAGE_AREA_LSS, 0, image, sizeof(image)) != 0)
+        return NODE_ID;
+    bool valid =
+        (image[0] >= 1 && image[0] <= CO_NODE_ID_MAX) || image[0] == CO_LSS_NODE_ID_UNCONFIGURED;
+    return valid ? image[0] : NODE_ID;
+}
+
 /* The application's work: count blinks at the period of 2000h; 2001h is mapped into TPDO1, and
  * co_node_process sends it when it changes. */
 static co_time_t blink(co_time_t now, co_time_t due)
@@ -94,8 +128,9 @@ int main(void)
 {
     board_init();
     flash_storage_init(&storage, &flash);
+    co_lss_slave_init(&lss, &lss_hooks, BIT_TIMING_125K);
     co_node_config_t config = {
-        .node_id = NODE_ID,
+        .node_id = stored_node_id(),
         .od = &blinky_od,
         .od_data = od_data,
         .send = send,
@@ -103,6 +138,7 @@ int main(void)
         .hooks = &hooks,
         .storage = &storage,
         .sdo_buffer = &sdo_buffer,
+        .lss = &lss,
     };
     if (co_node_init(&node, &config) != 0)
         for (;;) /* a dictionary the core refuses is a build error: stop here under a debugger */

@@ -20,7 +20,10 @@ typedef struct co_lss_master_result {
     uint8_t error;    /* configure, store: the slave's error code (CO_LSS_OK, ...) */
     uint8_t specific; /* with error CO_LSS_SPECIFIC_ERROR: the device's own code */
     uint32_t value;   /* inquire: the vendor-ID, product code, revision, serial or node-id */
-    uint16_t answers; /* identify: the answers that came within the timeout */
+    /* identify: the answers that came within the timeout; fastscan ended in TIMEOUT: the answers
+     * to its first frame, so that a scan that lost its slave (an answer later than the timeout)
+     * tells itself from one that found none (0) */
+    uint16_t answers;
     co_lss_address_t address; /* fastscan: the address of the slave found, now configuring */
 } co_lss_master_result_t;
 
@@ -52,9 +55,10 @@ typedef struct co_lss_master {
     co_lss_master_result_t result;
     /* fastscan */
     co_lss_fastscan_known_t known;
-    uint8_t part;    /* the part under scan */
-    uint8_t bit;     /* the bit checked by the frame in flight */
-    bool confirming; /* the frame in flight moves the slave to the next part */
+    uint8_t part;           /* the part under scan */
+    uint8_t bit;            /* the bit checked by the frame in flight */
+    bool confirming;        /* the frame in flight moves the slave to the next part */
+    uint16_t reset_answers; /* the answers to the scan's first frame */
 } co_lss_master_t;
 
 /* Results of co_lss_master_init and the requests; 0 when the request was sent. */
@@ -88,8 +92,10 @@ int co_lss_master_identify_remote(co_lss_master_t *master, const co_lss_address_
 int co_lss_master_identify_non_configured(co_lss_master_t *master, co_time_t timeout_us,
                                           co_time_t now);
 /* Finds one non-configured slave in the waiting state and leaves it in the configuration state,
- * its address in the result; TIMEOUT when there is none. Each frame waits the whole timeout,
- * since several slaves may answer one frame (docs/lss.md, "Fastscan"). */
+ * its address in the result; TIMEOUT when there is none (answers 0), or when a slave answered the
+ * first frame and a later one went unanswered (answers > 0: scan again, with a longer timeout).
+ * Each frame waits the whole timeout, since several slaves may answer one frame (docs/lss.md,
+ * "Fastscan"). */
 int co_lss_master_fastscan(co_lss_master_t *master, const co_lss_fastscan_known_t *known,
                            co_time_t timeout_us, co_time_t now);
 

@@ -257,6 +257,7 @@ START_TEST(fastscan_frames_exact)
     co_lss_master_process(&m, now + TIMEOUT);
     ck_assert_uint_eq(done_calls, 1);
     ck_assert_uint_eq(done_result.status, CO_LSS_MASTER_TIMEOUT);
+    ck_assert_uint_eq(done_result.answers, 0);
     expect_nothing_sent();
 
     ck_assert_int_eq(co_lss_master_fastscan(&m, NULL, TIMEOUT, now), 0);
@@ -299,10 +300,11 @@ START_TEST(fastscan_frames_exact)
     ck_assert(answer("7E4#4F00000000000000", now));
     co_lss_master_process(&m, now += TIMEOUT);
     expect_sent("7E5#5112030000000102");
-    /* The product code unanswered: no such slave, the scan ends. */
+    /* The product code unanswered: the slave that answered the reset was lost (answers 1). */
     co_lss_master_process(&m, now += TIMEOUT);
     ck_assert_uint_eq(done_calls, 3);
     ck_assert_uint_eq(done_result.status, CO_LSS_MASTER_TIMEOUT);
+    ck_assert_uint_eq(done_result.answers, 1);
     expect_nothing_sent();
 }
 END_TEST

@@ -381,3 +381,77 @@ if "firmware" in TARGETS:
         assert comaster(target, "read", target.node, "0x2003", "string") == (0, text + "\n", "")
         assert comaster(target, "write", target.node, "0x2003", "string", text.upper(), "--block") == (0, "", "")
         assert comaster(target, "read", target.node, "0x2003", "string", "--block") == (0, text.upper() + "\n", "")
+
+    # CiA 305 LSS (docs/lss.md): only the firmware has it. blinky.eds's identity, the LSS address.
+    BLINKY_ADDRESS = (0x1, 0x1, 0x00010000, 0x1)
+    BLINKY_IDENTITY = ("vendor-ID 0x00000001 product code 0x00000001 revision 0x00010000 "
+                       "serial 0x00000001\n")
+
+    def lss_restore_node_id(target, bus, active):
+        """Back to node-id 16, stored, whatever node-id `active` the node has now."""
+        assert comaster(target, "lss", "switch", *map(hex, BLINKY_ADDRESS)) == \
+            (0, "slave selected: configuration state\n", "")
+        assert comaster(target, "lss", "set-node-id", target.node)[0] == 0
+        assert comaster(target, "lss", "store")[0] == 0
+        assert comaster(target, "lss", "switch", "waiting")[0] == 0
+        if active != target.node:
+            bus.nmt(NMT_RESET_NODE, active)  # the pending node-id becomes the active one
+            bus.expect(0x700 + target.node, b"\x00", timeout=BOOT_TIMEOUT)
+
+    @pytest.mark.parametrize("target", ["firmware"], indirect=True)
+    def test_lss_python_canopen_master(target, bus):
+        """python canopen's LssMaster: switch selective, inquire, configure node-id, store; the
+        node boots with the stored node-id after a power cycle."""
+        import canopen
+        network = canopen.Network()
+        network.connect(channel=target.iface, interface="socketcan")
+        try:
+            lss = network.lss
+            assert lss.send_switch_state_selective(*BLINKY_ADDRESS)
+            assert lss.inquire_node_id() == target.node
+            parts = [lss.inquire_lss_address(cs) for cs in (0x5A, 0x5B, 0x5C, 0x5D)]
+            assert tuple(parts) == BLINKY_ADDRESS
+            lss.configure_node_id(17)
+            assert lss.inquire_node_id() == target.node  # pending until a reset
+            lss.store_configuration()
+            with pytest.raises(canopen.lss.LssError, match="LSS Error: 1"):
+                lss.configure_bit_timing(2)  # the board has no controller to retime
+            lss.send_switch_state_global(lss.WAITING_STATE)
+        finally:
+            network.disconnect()
+        bus.expect_none(0x700 + 17, 0.3)  # a node that has a node-id keeps it until a reset
+        target.power_cycle()
+        bus.expect(0x700 + 17, b"\x00", timeout=BOOT_TIMEOUT)
+        assert bus.sdo_read(17, 0x1018, 4) == 1
+        lss_restore_node_id(target, bus, 17)
+
+    @pytest.mark.parametrize("target", ["firmware"], indirect=True)
+    def test_lss_comaster_fastscan_numbers_the_node_without_node_id(target, bus):
+        """comaster lss: the node-id taken away and stored, the node comes up silent but for LSS,
+        and fastscan finds it, gives it a node-id, stores it and sees it boot."""
+        assert comaster(target, "lss", "switch", *map(hex, BLINKY_ADDRESS)) == \
+            (0, "slave selected: configuration state\n", "")
+        assert comaster(target, "lss", "inquire", "identity") == (0, BLINKY_IDENTITY, "")
+        assert comaster(target, "lss", "inquire", "node-id") == (0, "node-id 16\n", "")
+        assert comaster(target, "lss", "set-node-id", "none") == (0, "node-id configured (pending)\n", "")
+        assert comaster(target, "lss", "store") == (0, "configuration stored\n", "")
+        assert comaster(target, "lss", "set-bit-timing", "500") == \
+            (1, "", "comaster: error: lss set-bit-timing: the slave refused: error 1 (bit timing not "
+                    "supported by the slave)\n")
+        target.power_cycle()
+        bus.expect_none(0x700 + target.node, 1.0)  # no boot-up: no node-id
+        assert comaster(target, "lss", "identify", "non-configured") == (0, "1 slave answered\n", "")
+        # 37 frames of 300 ms: the known parts are one frame each. QEMU in the guest now and then
+        # answers a few hundred ms late; comaster then scans again waiting twice as long.
+        done = subprocess.run([COMASTER, "-i", target.iface, "lss", "fastscan", "16", "--store",
+                               "--frame-ms", "300", "--vendor", "1", "--product", "1", "--revision",
+                               "0x10000"], capture_output=True, text=True, timeout=180)
+        assert (done.returncode, done.stdout, done.stderr) == \
+            (0, BLINKY_IDENTITY.rstrip("\n") + ": node-id 16\n1 slave configured\n", "")
+        assert comaster(target, "lss", "identify", "non-configured") == \
+            (2, "", "comaster: error: lss identify: no slave answered on slcan0 within 1000 ms "
+                    "(--timeout MS waits longer)\n")
+        target.power_cycle()
+        bus.expect(0x700 + target.node, b"\x00", timeout=BOOT_TIMEOUT)  # the stored node-id
+        assert comaster(target, "lss", "identify", "1", "1", "0", "0xFFFFFFFF", "1", "1") == \
+            (0, "1 slave answered\n", "")

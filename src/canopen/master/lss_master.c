@@ -222,6 +222,7 @@ static void fastscan_step(co_lss_master_t *master, co_time_t now)
 {
     bool answered = master->result.answers > 0;
     if (master->step == STEP_FASTSCAN_RESET) {
+        master->reset_answers = master->result.answers;
         if (!answered) {
             finish(master, CO_LSS_MASTER_TIMEOUT);
             return;
@@ -233,10 +234,12 @@ static void fastscan_step(co_lss_master_t *master, co_time_t now)
     }
     uint8_t part = master->part;
     if (master->confirming) {
-        if (answered)
+        if (answered) {
             fastscan_next_part(master, now);
-        else
+        } else {
+            master->result.answers = master->reset_answers;
             finish(master, CO_LSS_MASTER_TIMEOUT);
+        }
         return;
     }
     if (!answered)

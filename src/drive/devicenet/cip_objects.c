@@ -188,24 +188,27 @@ static uint8_t supervisor_value(const drive_dn_t *dn, uint8_t attribute)
     }
 }
 
-static dn_status_t set_bool(drive_dn_t *dn, uint8_t attribute, uint8_t value)
+/* A BOOL attribute of the command set: `flag` is its field in `next`, a copy of the command.
+ * The caller picks the field by its own class's attribute number, since the numbers repeat across
+ * classes (Run2 and NetRef are both attribute 4). */
+static dn_status_t set_flag(drive_dn_t *dn, drive_dn_command_t *next, bool *flag, uint8_t value)
 {
     if (value > 1)
         return DN_ERROR(DN_GS_INVALID_ATTRIBUTE_VALUE);
-    drive_dn_command_t next = dn->command;
-    bool on = value != 0;
-    if (attribute == RUN1)
-        next.run1 = on;
-    else if (attribute == RUN2)
-        next.run2 = on;
-    else if (attribute == NET_CTRL)
-        next.net_ctrl = on;
-    else if (attribute == FAULT_RST)
-        next.fault_reset = on;
-    else
-        next.net_ref = on; /* AC/DC drive NetRef */
-    drive_dn_command(dn, &next);
+    *flag = value != 0;
+    drive_dn_command(dn, next);
     return DN_OK;
+}
+
+/* The Control supervisor's settable BOOLs (Run1, Run2, NetCtrl, FaultRst). */
+static dn_status_t supervisor_set(drive_dn_t *dn, uint8_t attribute, uint8_t value)
+{
+    drive_dn_command_t next = dn->command;
+    bool *flag = attribute == RUN1       ? &next.run1
+                 : attribute == RUN2     ? &next.run2
+                 : attribute == NET_CTRL ? &next.net_ctrl
+                                         : &next.fault_reset;
+    return set_flag(dn, &next, flag, value);
 }
 
 /* Reset (the project's reading of the ODVA service, docs/decisions.md, D-DEVICENET-SUPERVISOR-
@@ -235,7 +238,7 @@ static dn_status_t supervisor_handler(dn_node_t *node, const dn_object_t *object
         return DN_OK;
     }
     if (!is_get(request))
-        return set_bool(dn, request->attribute, request->data[0]);
+        return supervisor_set(dn, request->attribute, request->data[0]);
     dn_reply_u8(reply, supervisor_value(dn, request->attribute));
     return DN_OK;
 }
@@ -290,9 +293,9 @@ static dn_status_t drive_handler(dn_node_t *node, const dn_object_t *object,
         return DN_ERROR(DN_GS_SERVICE_NOT_SUPPORTED);
     if (is_get(request))
         return drive_get(dn, request->attribute, reply);
-    if (request->attribute == NET_REF)
-        return set_bool(dn, NET_REF, request->data[0]);
     drive_dn_command_t next = dn->command;
+    if (request->attribute == NET_REF)
+        return set_flag(dn, &next, &next.net_ref, request->data[0]);
     next.speed_reference = (int16_t)co_get_u16(request->data);
     drive_dn_command(dn, &next);
     return DN_OK;

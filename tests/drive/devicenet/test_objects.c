@@ -79,6 +79,31 @@ START_TEST(ac_dc_drive)
 }
 END_TEST
 
+/* Two rows of the manual's tables ("Supported CIP objects": the AC/DC drive object's instance
+ * attributes, NetRef 0x2A attribute 4; the Control supervisor's, Run2 0x29 attribute 4), two
+ * attributes: they share an attribute number, not a value.
+ * The manual's explicit recipe (NetRef = 1, SpeedRef 300, Run1 = 1) runs forward: 6044h +300 rpm,
+ * status 0627h. NetRef back to 0 leaves Run1 and Run2 as they were, and the drive running. */
+START_TEST(net_ref_leaves_run2_alone)
+{
+    db_exchange(&b, "4CC#01102A010401", "4CB#0190");
+    db_exchange(&b, "4CC#010E290104", "4CB#018E00");
+    db_exchange(&b, "4CC#01102A01082C01", "4CB#0190");
+    db_exchange(&b, "4CC#011029010301", "4CB#0190");
+    db_advance(&b, 2400000);
+    ck_assert_int_eq(db_value(&b, 0x6042, 0), 300);
+    ck_assert_int_eq(db_value(&b, 0x6044, 0), 300);
+    ck_assert_int_eq(db_value(&b, 0x6041, 0), 0x0627);
+    db_exchange(&b, "4CC#010E2A0107", "4CB#018E2C01");
+    db_exchange(&b, "4CC#01102A010400", "4CB#0190");
+    db_exchange(&b, "4CC#010E2A0104", "4CB#018E00");
+    db_exchange(&b, "4CC#010E290104", "4CB#018E00");
+    db_exchange(&b, "4CC#010E290103", "4CB#018E01");
+    ck_assert_int_eq(db_value(&b, 0x6044, 0), 300);
+    db_exchange(&b, "4CC#01102A010402", "4CB#019409FF"); /* a BOOL of 2 */
+}
+END_TEST
+
 /* Class ((ADL - 3000) / 200) + 70h, attribute ADL mod 200 + 1, instance 1. */
 START_TEST(application_objects_by_address)
 {
@@ -242,6 +267,7 @@ static Suite *suite(void)
     tcase_add_test(tc, motor_data);
     tcase_add_test(tc, control_supervisor);
     tcase_add_test(tc, ac_dc_drive);
+    tcase_add_test(tc, net_ref_leaves_run2_alone);
     tcase_add_test(tc, application_objects_by_address);
     tcase_add_test(tc, io_timeout_is_cnf_and_the_scanner_resets_it);
     tcase_add_test(tc, release_while_running_is_cnf);

@@ -35,7 +35,7 @@ typedef struct drive_dn_profile {
     uint8_t minor_revision;
     const char *product_name;
     uint8_t motor_type;          /* Motor data attribute 3 (7: squirrel cage induction motor) */
-    drive_param_t rated_voltage; /* Motor data attribute 7, V */
+    drive_param_t rated_voltage; /* Motor data attribute 7, V: a parameter of the dictionary */
     uint8_t class_first;
     uint8_t class_last;
     uint16_t address_first;

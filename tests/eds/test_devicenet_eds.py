@@ -37,7 +37,7 @@ CIP_SIZES = {CIP_BOOL: 1, CIP_INT: 2, CIP_USINT: 1, CIP_UINT: 2}
 ENUMERATED, SCALED, READ_ONLY, MONITOR = 0x0002, 0x0004, 0x0010, 0x0020
 # The unit a dictionary entry's name ends with -> units string and scaling divisor.
 UNITS = {"0.1 Hz": ("Hz", 10), "0.1 s": ("s", 10), "0.1 A": ("A", 10), "0.1 mA": ("mA", 10),
-         "rpm": ("rpm", 1), "%": ("%", 1)}
+         "rpm": ("rpm", 1), "%": ("%", 1), "V": ("V", 1)}
 # [IO_Info] connection type bits.
 POLL, COS, CYCLIC = 0x0001, 0x0004, 0x0008
 # CIP general status codes the drive answers.

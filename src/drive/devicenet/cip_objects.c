@@ -88,16 +88,10 @@ static const dn_attribute_t motor_attributes[] = {
     {INSTANCE, RATED_VOLTAGE, DN_GET_SET, 2},
 };
 
-/* A parameter of the profile, or a fixed value the network cannot change. */
+/* A motor data attribute is the drive's parameter (NCR, UnS): its limits and its rules. */
 static dn_status_t param_access(drive_t *drive, drive_param_t param, const dn_request_t *request,
                                 dn_reply_t *reply)
 {
-    if (param.index == 0) {
-        if (!is_get(request))
-            return DN_ERROR(DN_GS_ATTRIBUTE_NOT_SETTABLE);
-        dn_reply_u16(reply, (uint16_t)param.fixed);
-        return DN_OK;
-    }
     return is_get(request) ? reply_entry(drive, param.index, param.subindex, reply)
                            : write_entry(drive, param.index, param.subindex, request);
 }

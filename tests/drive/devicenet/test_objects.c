@@ -25,10 +25,36 @@ START_TEST(motor_data)
     db_exchange(&b, "4CC#0110280106 2D00", "4CB#0190");
     ck_assert_int_eq(db_value(&b, 0x2042, 4), 45);
     db_exchange(&b, "4CC#011028010300", "4CB#019409FF");    /* another motor type */
-    db_exchange(&b, "4CC#0110280107E600", "4CB#01940EFF");  /* fixed */
     db_exchange(&b, "4CC#0110280106 0000", "4CB#019409FF"); /* below NCR's limit */
     db_exchange(&b, "4CC#010E280102", "4CB#019414FF");
     db_exchange(&b, "4CC#0110280106 2D", "4CB#019413FF");
+}
+END_TEST
+
+/* RatedVoltage is Get/Set (the manual's Motor data object, instance attribute 7, [V]): the drive's
+ * UnS (2042:02, ADL 9601, also class 91h attribute 2), 100..500 V, a configuration parameter
+ * refused while the motor runs (0x10) and taken back to Switch on disabled after. */
+START_TEST(rated_voltage_is_uns)
+{
+    db_exchange(&b, "4CC#0110280107E600", "4CB#0190"); /* 230 V */
+    ck_assert_int_eq(db_value(&b, 0x2042, 2), 230);
+    db_exchange(&b, "4CC#010E280107", "4CB#018EE600");
+    db_exchange(&b, "4CC#010E910102", "4CB#018EE600");
+    db_exchange(&b, "4CC#01109101029001", "4CB#0190"); /* 400 V by its address */
+    db_exchange(&b, "4CC#010E280107", "4CB#018E9001");
+    db_exchange(&b, "4CC#0110280107F501", "4CB#019409FF"); /* 501 V */
+    db_exchange(&b, "4CC#01102801076300", "4CB#019409FF"); /* 99 V */
+    db_exchange(&b, "4CC#0110280107E6", "4CB#019413FF");
+    ck_assert_int_eq(db_value(&b, 0x2042, 2), 400);
+    db_exchange(&b, "4CC#01102A0108B004", "4CB#0190"); /* 1200 rpm */
+    db_exchange(&b, "4CC#011029010301", "4CB#0190");   /* Run1 */
+    db_advance(&b, 100000);
+    db_exchange(&b, "4CC#0110280107E600", "4CB#019410FF");
+    ck_assert_int_eq(db_value(&b, 0x2042, 2), 400);
+    db_exchange(&b, "4CC#011029010300", "4CB#0190"); /* Run1 off: on its ramp to 0 */
+    db_advance(&b, 3000000);
+    db_exchange(&b, "4CC#0110280107E600", "4CB#0190");
+    ck_assert_int_eq(db_value(&b, 0x6041, 0) & 0x006F, 0x0040); /* Switch on disabled */
 }
 END_TEST
 
@@ -265,6 +291,7 @@ static Suite *suite(void)
     TCase *tc = tcase_create("objects");
     tcase_add_checked_fixture(tc, setup, NULL);
     tcase_add_test(tc, motor_data);
+    tcase_add_test(tc, rated_voltage_is_uns);
     tcase_add_test(tc, control_supervisor);
     tcase_add_test(tc, ac_dc_drive);
     tcase_add_test(tc, net_ref_leaves_run2_alone);

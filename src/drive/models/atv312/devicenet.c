@@ -17,9 +17,8 @@ const drive_dn_profile_t atv312_devicenet_profile = {
     .minor_revision = 1,
     .product_name = "ATV312",
     .motor_type = 7, /* squirrel cage induction motor */
-    /* The dictionary has no nominal motor voltage (UnS): the ATV312N4's 400 V, read-only
-     * (docs/decisions.md, D-DEVICENET-RATED-VOLTAGE). */
-    .rated_voltage = DRIVE_FIXED(400),
+    /* UnS, ADL 9601 (docs/decisions.md, D-DEVICENET-RATED-VOLTAGE). */
+    .rated_voltage = DRIVE_PARAM(0x2042, 2),
     .class_first = 0x70,
     .class_last = 0xA8,
     .address_first = 3000,

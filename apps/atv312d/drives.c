@@ -297,7 +297,8 @@ static void dn_slot_bus_event(void *ctx, uint16_t emcy_code, bool active)
     }
 }
 
-_Static_assert(DN_NODE_CONSUMED_IDS <= CO_CONSUMERS_MAX, "a card's CAN-IDs fit a device's");
+_Static_assert(DN_NODE_CONSUMED_IDS <= CO_LINUX_DEVICE_CONSUMERS_MAX,
+               "a card's CAN-IDs fit a device's");
 
 static size_t dn_slot_consumers(void *ctx, co_cob_t *cobs)
 {

@@ -14,6 +14,12 @@
 struct co_node;
 typedef struct co_linux_loop co_linux_loop_t;
 
+/* The most CAN-IDs one device consumes: a core node's (CO_CONSUMERS_MAX), or a DeviceNet card's,
+ * which takes group 3 from every source MAC ID (the UCMM and its connections: 6 x 64 IDs). */
+#define CO_LINUX_DEVICE_CONSUMERS_MAX 512u
+_Static_assert(CO_CONSUMERS_MAX <= CO_LINUX_DEVICE_CONSUMERS_MAX,
+               "a node's CAN-IDs fit a device's");
+
 /* What the loop calls on a device; ctx is the device's own object. Only bus_event and
  * bus_warning may be NULL. */
 typedef struct co_linux_device_ops {
@@ -35,9 +41,10 @@ typedef struct co_linux_device_ops {
      * node consumes their COB-ID (co_consumers.h). NULL: the device gets every frame, and the
      * socket then receives the whole bus, unless `consumers` names what the device takes. */
     const struct co_node *(*node)(void *ctx);
-    /* A device that is no core node (a DeviceNet card): fills cobs (at most CO_CONSUMERS_MAX) with
-     * the CAN-IDs it consumes, which never change, and returns their number; frames reach it
-     * only on those. Used when `node` is NULL; both NULL: every frame. */
+    /* A device that is no core node (a DeviceNet card): fills cobs (at most
+     * CO_LINUX_DEVICE_CONSUMERS_MAX) with the CAN-IDs it consumes, which never change, and returns
+     * their number; frames reach it only on those. Used when `node` is NULL; both NULL: every
+     * frame. */
     size_t (*consumers)(void *ctx, co_cob_t *cobs);
 } co_linux_device_ops_t;
 

@@ -34,9 +34,21 @@
 #define DN_G2_UNCONNECTED_REQUEST 6u    /* group 2 only unconnected explicit request port */
 #define DN_G2_DUPLICATE_MAC_CHECK 7u
 
-/* Group 3 message IDs of the UCMM (the library does not serve them: docs/devicenet.md). */
+/* Group 3 message IDs: 0..4 those of the connections the UCMM opens, 5 and 6 the UCMM's own. */
+#define DN_G3_CONNECTED_LAST 4u
 #define DN_G3_UNCONNECTED_RESPONSE 5u
 #define DN_G3_UNCONNECTED_REQUEST 6u
+
+/* The UCMM's Open Explicit Messaging Connection request body: byte 0 the requested message body
+ * format (low nibble), byte 1 the group select (high nibble) and the client's source message ID
+ * (low nibble); the response: the actual body format, the destination message ID (high nibble,
+ * the client's) and the server's source message ID (low nibble), the connection instance (UINT).
+ * Close carries the connection instance (UINT). */
+#define DN_UCMM_BODY_FORMAT 0x0Fu
+#define DN_UCMM_GROUP_SHIFT 4u
+#define DN_UCMM_MESSAGE_ID 0x0Fu
+#define DN_UCMM_GROUP_3 3u
+#define DN_BODY_FORMAT_8_8 0u
 
 /* Duplicate MAC ID check message: byte 0 request/response flag and physical port number, then
  * vendor ID (UINT) and serial number (UDINT), 7 bytes. */
@@ -71,6 +83,8 @@
 #define DN_SVC_ERROR_RESPONSE 0x14u /* sent as 0x94, with the response bit */
 #define DN_SVC_ALLOCATE 0x4Bu       /* Allocate_Master/Slave_Connection_Set */
 #define DN_SVC_RELEASE 0x4Cu        /* Release_Group_2_Identifier_Set */
+#define DN_SVC_OPEN_EXPLICIT 0x4Bu  /* the UCMM's Open Explicit Messaging Connection (group 3) */
+#define DN_SVC_CLOSE 0x4Cu          /* the UCMM's Close Connection (group 3) */
 
 /* CIP general status codes. */
 #define DN_GS_SUCCESS 0x00u
@@ -123,6 +137,8 @@
 #define DN_CONN_POLL 2u
 #define DN_CONN_BIT_STROBE 3u
 #define DN_CONN_COS_CYCLIC 4u
+#define DN_CONN_UCMM_FIRST 10u /* the explicit server instances 10-14 the UCMM opens */
+#define DN_CONN_UCMM_LAST 14u
 #define DN_CONN_ATTR_STATE 1u
 #define DN_CONN_ATTR_EXPECTED_PACKET_RATE 9u
 #define DN_CONN_ATTR_PRODUCED_PATH 14u

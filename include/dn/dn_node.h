@@ -1,16 +1,17 @@
 /* SPDX-License-Identifier: Apache-2.0 */
-/* A DeviceNet slave (Group 2 only server of the predefined master/slave connection set), portable
+/* A DeviceNet slave (the predefined master/slave connection set, and the UCMM's explicit
+ * connections on group 3), portable
  * like the CANopen core: no malloc, no OS calls, no globals; frames and time (microseconds, the
  * core's co_time_t) are passed in, frames leave through a send callback, and dn_node_process
  * returns the next deadline. The application allocates a dn_node_t wherever it likes.
  *
  * The library owns the link (duplicate MAC ID check, identifiers), the connections (explicit
  * instance 1 with fragmentation, polled instance 2, COS/cyclic instance 4, the acknowledge
- * handler) and the standard CIP objects (Identity 0x01, Message router 0x02, DeviceNet 0x03,
- * Assembly 0x04, Connection 0x05, Acknowledge handler 0x2B). The application supplies its
- * assemblies (a table and data callbacks) and registers its own classes (a drive's 0x28, 0x29,
- * 0x2A, 0x70+) as a table of dn_object_t sorted by class, without changing the library
- * (docs/devicenet.md). */
+ * handler, the explicit server instances 10-14 that the UCMM opens and closes) and the standard CIP
+ * objects (Identity 0x01, Message router 0x02, DeviceNet 0x03, Assembly 0x04, Connection 0x05,
+ * Acknowledge handler 0x2B). The application supplies its assemblies (a table and data callbacks)
+ * and registers its own classes (a drive's 0x28, 0x29, 0x2A, 0x70+) as a table of dn_object_t
+ * sorted by class, without changing the library (docs/devicenet.md). */
 #ifndef DN_NODE_H
 #define DN_NODE_H
 
@@ -42,7 +43,8 @@ typedef struct dn_request {
     uint8_t class_id;
     uint8_t instance;   /* 0: the class */
     uint8_t attribute;  /* Get/Set_Attribute_Single only */
-    uint8_t master_mac; /* the requester's MAC ID, from the message header */
+    uint8_t master_mac; /* the requester's MAC ID, from the message header or the group 3 CAN-ID */
+    uint8_t connection; /* the explicit connection's instance (1, 10-14); 0: unconnected */
     const uint8_t *data;
     uint8_t len; /* data after the path (and the attribute) */
 } dn_request_t;
@@ -151,7 +153,8 @@ typedef struct dn_app {
     void (*write_assembly)(void *user, uint16_t instance, const uint8_t *data);
     void (*io_event)(void *user, dn_io_event_t event); /* optional */
     /* An Established connection ended: instance 1 (explicit), 2 (polled, or the master's
-     * COS/cyclic data) or 4 (the slave's COS/cyclic data), told once whatever ended it, after
+     * COS/cyclic data), 4 (the slave's COS/cyclic data) or 10-14 (explicit, opened by the UCMM:
+     * DN_END_RELEASED is their Close), told once whatever ended it, after
      * the connection left Established; the I/O connections before the explicit one when several
      * end at once (docs/devicenet.md, "How a connection ends"). Optional. */
     void (*connection_ended)(void *user, uint8_t instance, dn_end_cause_t cause);
@@ -224,10 +227,12 @@ typedef struct dn_connection {
     uint16_t consumed_size;        /* attribute 8 */
     uint16_t expected_packet_rate; /* attribute 9, ms, 0: no watchdog */
     uint16_t inhibit_time;         /* attribute 17, ms */
+    uint8_t client_mac;            /* instances 10-14: the MAC ID of the client that opened it */
     co_time_t watchdog;            /* inactivity deadline, CO_TIME_NEVER when not running */
 } dn_connection_t;
 
-#define DN_CONN_COUNT 3u /* explicit, poll, COS/cyclic: conn[0..2] */
+/* conn[0..2]: explicit (1), poll (2), COS/cyclic (4); conn[3..7]: the UCMM's 10-14. */
+#define DN_CONN_COUNT 8u
 
 struct dn_node {
     const dn_config_t *config;
@@ -258,9 +263,9 @@ struct dn_node {
     co_time_t produce_deadline; /* the next cyclic production, or the COS heartbeat */
     co_time_t inhibit_until;
     uint8_t last_produced[DN_IO_MAX];
-    /* Explicit messaging. */
-    dn_fragments_t rx;
-    dn_fragments_t tx;
+    /* Explicit messaging: the fragmented message of each connection (the I/O ones' unused). */
+    dn_fragments_t rx[DN_CONN_COUNT];
+    dn_fragments_t tx[DN_CONN_COUNT];
     int16_t pending_reset; /* Identity Reset type to hand over after the response, or -1 */
     co_time_t now;         /* the time of the call in progress */
 };
@@ -282,10 +287,12 @@ void dn_node_start(dn_node_t *node, co_time_t now);
  * connections end (DN_END_OFFLINE) and it sends nothing until dn_node_start. */
 void dn_node_stop(dn_node_t *node, co_time_t now);
 /* The CAN-IDs of the frames dn_node_receive acts on: group 2 with the node's MAC ID, messages
- * 2, 4, 5, 6 and 7 (the predefined set's master-to-slave messages and the duplicate MAC ID check).
- * They depend on the MAC ID only, so a runtime can route by them once: the others are no
- * business of this node. Returns DN_NODE_CONSUMED_IDS. */
-#define DN_NODE_CONSUMED_IDS 5u
+ * 2, 4, 5, 6 and 7 (the predefined set's master-to-slave messages and the duplicate MAC ID
+ * check), and group 3 messages 0-4 and 6 of every source MAC ID (the UCMM's requests, addressed
+ * in their header, and the clients' requests on the connections it opens, whose message IDs the
+ * clients choose). They depend on the MAC ID only, so a runtime can route by them once: the
+ * others are no business of this node. Returns DN_NODE_CONSUMED_IDS. */
+#define DN_NODE_CONSUMED_IDS (5u + 6u * 64u)
 size_t dn_node_consumed_ids(const dn_node_t *node, uint16_t ids[DN_NODE_CONSUMED_IDS]);
 /* Every received frame; 29-bit and remote frames, and a length over 8, are ignored. */
 void dn_node_receive(dn_node_t *node, const co_frame_t *frame, co_time_t now);
@@ -300,7 +307,8 @@ void dn_node_set_faults(dn_node_t *node, uint16_t faults);
 uint16_t dn_node_identity_status(const dn_node_t *node);
 dn_led_t dn_node_ms_led(const dn_node_t *node);
 dn_led_t dn_node_ns_led(const dn_node_t *node);
-/* The state (dn_conn_state_t) of connection instance 1, 2 or 4; Non-existent for another. */
+/* The state (dn_conn_state_t) of connection instance 1, 2, 4 or 10-14; Non-existent for
+ * another. */
 uint8_t dn_node_connection_state(const dn_node_t *node, uint8_t instance);
 /* The assembly table's entry of an instance, or NULL. */
 const dn_assembly_t *dn_node_assembly(const dn_node_t *node, uint16_t instance);

@@ -96,7 +96,7 @@ static bool device_consumers(co_linux_device_t *dev, co_cob_t *cobs, size_t *cou
 static void build_routes(co_linux_router_t *router)
 {
     uint32_t cursor[CO_LINUX_ROUTE_KEYS];
-    co_cob_t cobs[CO_CONSUMERS_MAX];
+    co_cob_t cobs[CO_LINUX_DEVICE_CONSUMERS_MAX];
     size_t count;
     router->routes_stale = false;
     router->filter.stale = true;

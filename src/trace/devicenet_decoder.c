@@ -10,8 +10,8 @@
 
 #include <string.h>
 
-/* Group 3 UCMM services and the group 4 offline connection set (DeviceNet's public
- * descriptions); the slave library serves neither (docs/devicenet.md). */
+/* Group 3 UCMM services (the slave library serves them, D-DEVICENET-UCMM) and the group 4
+ * offline connection set (DeviceNet's public descriptions; not served). */
 #define UCMM_OPEN_EXPLICIT 0x4Bu
 #define UCMM_CLOSE 0x4Cu
 #define G4_COMM_FAULT_RESPONSE 0x2Cu
@@ -494,32 +494,70 @@ static void group2(cotrace_dn_node_t *n, dn_can_id_t id, const struct can_frame 
     }
 }
 
-/* Group 3: the UCMM's requests and responses (open and close an explicit connection) and the
- * dynamically allocated connections, which the predefined set does not describe. */
-static void group3(dn_can_id_t id, const struct can_frame *f, text_t *t)
+/* The data of the UCMM's Open and Close: the request's body format, group and the client's
+ * message ID; the response's body format, the two message IDs and the connection instance; the
+ * instance Close names. */
+static void say_ucmm_data(text_t *t, uint8_t service, bool response, const uint8_t *data,
+                          size_t len)
+{
+    if (service == UCMM_OPEN_EXPLICIT && !response && len == 2) {
+        say(t, ": body format %u, group %u, source message ID %u", data[0] & DN_UCMM_BODY_FORMAT,
+            data[1] >> DN_UCMM_GROUP_SHIFT, data[1] & DN_UCMM_MESSAGE_ID);
+    } else if (service == UCMM_OPEN_EXPLICIT && response && len == 4) {
+        say(t, ": body format %u, destination message ID %u, source message ID %u, instance %u",
+            data[0] & DN_UCMM_BODY_FORMAT, data[1] >> DN_UCMM_GROUP_SHIFT,
+            data[1] & DN_UCMM_MESSAGE_ID, co_get_u16(&data[2]));
+    } else if (service == UCMM_CLOSE && !response && len == 2) {
+        say(t, ": instance %u", co_get_u16(data));
+    } else if (service == DN_SVC_ERROR_RESPONSE && len >= 1) {
+        say(t, ": 0x%02X %s", data[0], cip_general_status_text(data[0]));
+    } else if (len) {
+        say(t, ": ");
+        say_bytes(t, data, len);
+    }
+}
+
+/* Group 3 messages 5 and 6: the UCMM's requests and responses (open and close an explicit
+ * connection). */
+static void ucmm(dn_can_id_t id, const struct can_frame *f, text_t *t)
 {
     bool request = id.message_id == DN_G3_UNCONNECTED_REQUEST;
-    if (!request && id.message_id != DN_G3_UNCONNECTED_RESPONSE) {
-        say_data(t, "dynamically allocated connection", f);
-        return;
-    }
     if (f->len < 2) {
         say_data(t, request ? "UCMM request, malformed" : "UCMM response, malformed", f);
         return;
     }
     say(t, "UCMM %s %u: ", request ? "request to" : "response to", f->data[0] & DN_HDR_MAC);
     uint8_t service = f->data[1] & DN_SERVICE_CODE;
+    bool response = f->data[1] & DN_SERVICE_RESPONSE;
     if (service == UCMM_OPEN_EXPLICIT)
         say(t, "Open Explicit Messaging Connection");
     else if (service == UCMM_CLOSE)
         say(t, "Close Connection");
     else
         say_service(t, service);
-    say(t, f->data[1] & DN_SERVICE_RESPONSE ? " response" : " request");
-    if (f->len > 2) {
-        say(t, ": ");
-        say_bytes(t, &f->data[2], f->len - 2u);
+    say(t, response ? " response" : " request");
+    say_ucmm_data(t, service, response, &f->data[2], f->len - 2u);
+}
+
+/* Group 3 messages 0-4: an explicit message on a connection the UCMM opened. Its header names
+ * the other end (the server of a request, the client of a response); the service's
+ * request/response bit tells which, and the server's record names what a response answers. */
+static void group3(cotrace_dn_decoder_t *dec, dn_can_id_t id, const struct can_frame *f, text_t *t)
+{
+    if (id.message_id == DN_G3_UNCONNECTED_REQUEST || id.message_id == DN_G3_UNCONNECTED_RESPONSE) {
+        ucmm(id, f, t);
+        return;
     }
+    if (f->len < 2 || f->data[0] & DN_HDR_FRAG) {
+        say_data(t, "UCMM connection message", f);
+        return;
+    }
+    uint8_t other = f->data[0] & DN_HDR_MAC;
+    bool response = f->data[1] & DN_SERVICE_RESPONSE;
+    say(t, "UCMM connection %s %u: ", response ? "response to" : "request to", other);
+    cotrace_dn_node_t *server = &dec->node[response ? id.mac_id : other];
+    message_body(server, response ? EXPLICIT_RESPONSE : EXPLICIT_REQUEST, &f->data[1], f->len - 1u,
+                 t);
 }
 
 static void group4(dn_can_id_t id, const struct can_frame *f, text_t *t)
@@ -588,7 +626,7 @@ void cotrace_dn_decode(cotrace_dn_decoder_t *dec, const struct can_frame *f, cha
     else if (id.group == 2)
         group2(n, id, f, &t);
     else
-        group3(id, f, &t);
+        group3(dec, id, f, &t);
 }
 
 void cotrace_dn_decoder_init(cotrace_dn_decoder_t *dec, uint16_t consumed, uint16_t produced)

@@ -186,8 +186,11 @@ static void script(recorder_t *r)
     advance(r, 2000000);
     scanner(r, "40F#00F300EFBEADDE");
     scanner(r, "4CF#00F300EFBEADDE");
-    /* A UCMM Open Explicit Messaging Connection: the Group 2 only server does not answer. */
+    /* The UCMM: Open Explicit Messaging Connection (group 3, the client's message ID 1), a Get
+     * on the connection it opened (instance 10), Close. */
     scanner(r, "781#194B0031");
+    scanner(r, "641#190E010101");
+    scanner(r, "781#194C0A00");
     /* Allocate the explicit connection; Get the vendor, the product name (in two fragments). */
     scanner(r, "4CE#014B03010101");
     scanner(r, "4CC#010E010101");

@@ -2,7 +2,8 @@
 """cotrace --devicenet on a trace of the DeviceNet slave library: the trace made again byte for
 byte by its recorder, decoded as expected, and decoded alike by Wireshark's DeviceNet dissector
 (tshark): for every frame the message group, message ID and MAC ID, and every field the
-dissector decodes besides (the duplicate MAC ID check's fields, a UCMM service, and service,
+dissector decodes besides (the duplicate MAC ID check's fields, a UCMM service, the service and
+destination of a request or response on a connection the UCMM opened, and service,
 class, instance, attribute and status wherever it gives them). docs/cotrace.md says what the
 dissector leaves undecoded."""
 
@@ -28,6 +29,9 @@ DUP_MAC = re.compile(r"duplicate MAC ID check (request|response), port (\d+), ve
                      r" serial number 0x([0-9A-F]{8})")
 UCMM = re.compile(r"UCMM (request|response) to (\d+): (.+) (request|response)")
 SERVICES = {"Open Explicit Messaging Connection": 0x4B, "Close Connection": 0x4C}
+# An explicit message on a connection the UCMM opened: the other end, the service.
+UCMM_CONNECTION = re.compile(r"UCMM connection (request|response) to (\d+): (\S+)")
+CIP_SERVICES = {"Get_Attribute_Single": 0x0E, "Set_Attribute_Single": 0x10}
 
 # tshark's fields, in this order.
 FIELDS = ["devicenet.grp_msg1.id", "devicenet.grp_msg2.id", "devicenet.grp_msg3.id",
@@ -91,6 +95,11 @@ def cotrace_frames(log):
             fields["devicenet.dest_mac_id"] = int(ucmm[2])
             fields["devicenet.service"] = SERVICES[ucmm[3]]
             fields["devicenet.rr"] = int(ucmm[4] == "response")
+        connected = UCMM_CONNECTION.match(m["meaning"])
+        if connected:
+            fields["devicenet.rr"] = int(connected[1] == "response")
+            fields["devicenet.dest_mac_id"] = int(connected[2])
+            fields["devicenet.service"] = CIP_SERVICES[connected[3]]
         frames.append((line, fields))
     return frames
 

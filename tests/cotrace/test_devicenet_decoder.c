@@ -53,7 +53,7 @@ START_TEST(groups_and_identifiers)
         {"5F8#0102", "G2 msg 0 from 63: bit-strobe command: 01 02"},
         {"5F9#", "G2 msg 1 from 63: multicast poll command"},
         {"5FA#", "G2 msg 2 to 63: COS/cyclic acknowledge"},
-        {"605#01", "G3 msg 0 from 5: dynamically allocated connection: 01"},
+        {"605#01", "G3 msg 0 from 5: UCMM connection message: 01"},
         {"7C1#", "G4 msg 1: reserved"},
         {"7ED#00CC", "G4 msg 45: communication faulted request: 00 CC"},
         {"7F0#", "identifier 0x7F0: invalid in DeviceNet"},
@@ -341,10 +341,22 @@ START_TEST(ucmm)
 {
     static const step_t steps[] = {
         {"781#194B0031", "G3 msg 6 from 1: UCMM request to 25: Open Explicit Messaging "
-                         "Connection request: 00 31"},
+                         "Connection request: body format 0, group 3, source message ID 1"},
+        {"759#01CB00100A00", "G3 msg 5 from 25: UCMM response to 1: Open Explicit Messaging "
+                             "Connection response: body format 0, destination message ID 1, "
+                             "source message ID 0, instance 10"},
+        {"641#190E010101", "G3 msg 1 from 1: UCMM connection request to 25: "
+                           "Get_Attribute_Single Identity (0x01) instance 1 attribute 1"},
+        {"619#018EF300", "G3 msg 0 from 25: UCMM connection response to 1: "
+                         "Get_Attribute_Single Identity (0x01) instance 1 attribute 1 = F3 00 "
+                         "(243)"},
+        {"781#194C0A00", "G3 msg 6 from 1: UCMM request to 25: Close Connection request: "
+                         "instance 10"},
+        {"759#01CC", "G3 msg 5 from 25: UCMM response to 1: Close Connection response"},
+        {"759#019402FF", "G3 msg 5 from 25: UCMM response to 1: Error_Response response: 0x02 "
+                         "resource unavailable"},
         {"759#01CB00", "G3 msg 5 from 25: UCMM response to 1: Open Explicit Messaging "
                        "Connection response: 00"},
-        {"759#01CC", "G3 msg 5 from 25: UCMM response to 1: Close Connection response"},
         {"781#19", "G3 msg 6 from 1: UCMM request, malformed: 19"},
     };
     PLAY(&dec, steps);

@@ -2,7 +2,8 @@
 /* The predefined master/slave connection set: Allocate and Release, the Connection object's
  * instances 1 (explicit), 2 (polled, or the master's COS/cyclic data) and 4 (the slave's
  * COS/cyclic data) with their states and watchdogs, the I/O messages and the acknowledge
- * handler's retries. */
+ * handler's retries; and the UCMM's explicit server instances 10-14, opened and closed on
+ * group 3 (docs/decisions.md, D-DEVICENET-UCMM). */
 #include <string.h>
 
 #include "devicenet/slave/dn_slave.h"
@@ -27,6 +28,7 @@
 #define TRANSPORT_COS 0x10u
 #define TRANSPORT_CLASS2 0x02u
 #define COMM_EXPLICIT 0x21u      /* produces and consumes over group 2 */
+#define COMM_GROUP3 0x33u        /* the UCMM's: produces and consumes over group 3 */
 #define COMM_G1_PRODUCE_G2 0x01u /* produces over group 1, consumes over group 2 */
 #define COMM_G2_CONSUME_ONLY 0xF1u
 #define COMM_G1_PRODUCE_ONLY 0x0Fu
@@ -53,9 +55,15 @@ static void clear(dn_connection_t *c)
 }
 
 /* The instance at each conn[] position; the order in which the ends of several are told. */
-static const uint8_t instance_of[DN_CONN_COUNT] = {DN_CONN_EXPLICIT, DN_CONN_POLL,
-                                                   DN_CONN_COS_CYCLIC};
-static const unsigned end_order[DN_CONN_COUNT] = {DN_IO_CONSUMER, DN_IO_PRODUCER, DN_EXPLICIT};
+static const uint8_t instance_of[DN_CONN_COUNT] = {
+    DN_CONN_EXPLICIT, DN_CONN_POLL, DN_CONN_COS_CYCLIC, 10, 11, 12, 13, 14};
+static const unsigned end_order[DN_CONN_COUNT] = {
+    DN_IO_CONSUMER, DN_IO_PRODUCER, DN_EXPLICIT, 3, 4, 5, 6, 7};
+
+uint8_t dn_connection_instance(unsigned index)
+{
+    return instance_of[index];
+}
 
 static void tell_ended(dn_node_t *node, unsigned index, dn_end_cause_t cause)
 {
@@ -93,8 +101,8 @@ void dn_connections_reset(dn_node_t *node)
     node->awaiting_ack = false;
     node->produce_deadline = CO_TIME_NEVER;
     node->idle = true;
-    node->rx.active = false;
-    node->tx.active = false;
+    for (unsigned i = 0; i < DN_CONN_COUNT; i++)
+        node->rx[i].active = node->tx[i].active = false;
 }
 
 void dn_connections_end(dn_node_t *node, dn_end_cause_t cause)
@@ -205,11 +213,15 @@ static void drop_owner_if_unused(dn_node_t *node)
     }
 }
 
-static void delete_explicit(dn_node_t *node)
+/* An explicit connection goes: its fragmented messages with it; instance 1 leaves the
+ * allocation. */
+static void delete_explicit(dn_node_t *node, unsigned index)
 {
-    clear(&node->conn[DN_EXPLICIT]);
-    node->rx.active = false;
-    node->tx.active = false;
+    clear(&node->conn[index]);
+    node->rx[index].active = false;
+    node->tx[index].active = false;
+    if (index != DN_EXPLICIT)
+        return;
     node->allocation &= (uint8_t)~DN_ALLOC_EXPLICIT;
     drop_owner_if_unused(node);
 }
@@ -280,11 +292,11 @@ dn_status_t dn_release(dn_node_t *node, const dn_request_t *request)
     else if (before & DN_ALLOC_POLLED && !(remaining & DN_ALLOC_POLLED))
         open_consumer(node); /* instance 2 goes on consuming the master's COS/cyclic data */
     if (before & choice & DN_ALLOC_EXPLICIT)
-        delete_explicit(node);
+        delete_explicit(node, DN_EXPLICIT);
     tell_ended_since(node, states, DN_END_RELEASED);
     if (had_io && !io_allocated(node)) {
         if (node->conn[DN_EXPLICIT].state == DN_CONN_DEFERRED_DELETE)
-            delete_explicit(node);
+            delete_explicit(node, DN_EXPLICIT);
         dn_io_event(node, DN_IO_RELEASED);
     }
     drop_owner_if_unused(node);
@@ -296,9 +308,96 @@ bool dn_io_consuming(const dn_node_t *node)
     return node->conn[DN_IO_CONSUMER].state != DN_CONN_NON_EXISTENT;
 }
 
-void dn_explicit_activity(dn_node_t *node)
+void dn_explicit_activity(dn_node_t *node, unsigned index)
 {
-    kick(node, &node->conn[DN_EXPLICIT]);
+    kick(node, &node->conn[index]);
+}
+
+/* ---- The UCMM's explicit server connections, instances 10-14 ---- */
+
+/* conn[index] as the manual's table of instances 10-14 has it: a transport class 3 server
+ * producing with the server's message ID (instance 10 + n uses n, 0..4, so that no two of its
+ * connections share a CAN-ID) and consuming the client's, 64 bytes each way, the expected packet
+ * rate of instance 1 (2504 ms, a watchdog of 10 s) and auto delete. */
+static void open_ucmm(dn_node_t *node, unsigned index, uint8_t client, uint16_t consumed_id)
+{
+    dn_connection_t *c = &node->conn[index];
+    clear(c);
+    c->state = DN_CONN_ESTABLISHED;
+    c->transport = TRANSPORT_EXPLICIT_SERVER;
+    c->comm = COMM_GROUP3;
+    c->produced_id = dn_group3_id((uint8_t)(index - DN_UCMM_FIRST), node->config->mac_id);
+    c->consumed_id = consumed_id;
+    c->produced_size = DN_MESSAGE_MAX;
+    c->consumed_size = DN_MESSAGE_MAX;
+    c->expected_packet_rate = EXPLICIT_EPR_DEFAULT_MS;
+    c->timeout_action = DN_WATCHDOG_AUTO_DELETE;
+    c->client_mac = client;
+    kick(node, c);
+}
+
+int dn_ucmm_connection(const dn_node_t *node, uint16_t can_id)
+{
+    for (unsigned i = DN_UCMM_FIRST; i < DN_CONN_COUNT; i++)
+        if (node->conn[i].state == DN_CONN_ESTABLISHED && node->conn[i].consumed_id == can_id)
+            return (int)i;
+    return -1;
+}
+
+/* Open: group 3 only (the manual's Initial Comm Characteristics 33 for 10-14), the client's
+ * source message ID one of group 3's connected IDs 0..4, the body format 8/8 whatever was asked
+ * (the response names the one in use). A request that names a connection open already (the
+ * same client and message ID: its response was lost and the client asks again) is answered with
+ * that connection, not a second one; a sixth connection is 0x02 resource unavailable. */
+dn_status_t dn_ucmm_open(dn_node_t *node, const dn_request_t *request, dn_reply_t *reply)
+{
+    if (request->len < 2)
+        return DN_ERROR(DN_GS_NOT_ENOUGH_DATA);
+    if (request->len > 2)
+        return DN_ERROR(DN_GS_TOO_MUCH_DATA);
+    uint8_t group = request->data[1] >> DN_UCMM_GROUP_SHIFT;
+    uint8_t client_message = request->data[1] & DN_UCMM_MESSAGE_ID;
+    if (group != DN_UCMM_GROUP_3 || client_message > DN_G3_CONNECTED_LAST)
+        return DN_ERROR(DN_GS_INVALID_PARAMETER);
+    uint16_t consumed_id = dn_group3_id(client_message, request->master_mac);
+    int index = dn_ucmm_connection(node, consumed_id);
+    if (index >= 0) {
+        kick(node, &node->conn[index]);
+    } else {
+        for (unsigned i = DN_UCMM_FIRST; i < DN_CONN_COUNT && index < 0; i++)
+            if (node->conn[i].state == DN_CONN_NON_EXISTENT)
+                index = (int)i;
+        if (index < 0)
+            return DN_ERROR(DN_GS_RESOURCE_UNAVAILABLE);
+        open_ucmm(node, (unsigned)index, request->master_mac, consumed_id);
+    }
+    dn_reply_u8(reply, DN_BODY_FORMAT_8_8);
+    dn_reply_u8(reply, (uint8_t)(client_message << DN_UCMM_GROUP_SHIFT |
+                                 (unsigned)(index - (int)DN_UCMM_FIRST)));
+    dn_reply_u16(reply, instance_of[index]);
+    return DN_OK;
+}
+
+/* Close: a connection of instances 10-14 that exists (else 0x16), by the client that opened it
+ * (another's 0x0C); the application is told as of a release. */
+dn_status_t dn_ucmm_close(dn_node_t *node, const dn_request_t *request)
+{
+    if (request->len < 2)
+        return DN_ERROR(DN_GS_NOT_ENOUGH_DATA);
+    if (request->len > 2)
+        return DN_ERROR(DN_GS_TOO_MUCH_DATA);
+    uint16_t instance = co_get_u16(request->data);
+    if (instance < DN_CONN_UCMM_FIRST || instance > DN_CONN_UCMM_LAST)
+        return DN_ERROR(DN_GS_OBJECT_DOES_NOT_EXIST);
+    unsigned index = DN_UCMM_FIRST + (unsigned)(instance - DN_CONN_UCMM_FIRST);
+    dn_connection_t *c = &node->conn[index];
+    if (c->state == DN_CONN_NON_EXISTENT)
+        return DN_ERROR(DN_GS_OBJECT_DOES_NOT_EXIST);
+    if (c->client_mac != request->master_mac)
+        return DN_ERROR(DN_GS_OBJECT_STATE_CONFLICT);
+    delete_explicit(node, index);
+    tell_ended(node, index, DN_END_RELEASED);
+    return DN_OK;
 }
 
 /* An I/O connection's watchdog, which a producer without acknowledgements does not have: it
@@ -434,11 +533,11 @@ static co_time_t io_watchdog(dn_node_t *node, unsigned index)
     return c->watchdog;
 }
 
-/* The explicit connection's watchdog: deleted (auto delete), or kept in deferred delete while an
- * I/O connection exists. */
-static co_time_t explicit_watchdog(dn_node_t *node)
+/* An explicit connection's watchdog: deleted (auto delete), or kept in deferred delete while an
+ * I/O connection exists (instance 1's choice; 10-14 always delete). */
+static co_time_t explicit_watchdog(dn_node_t *node, unsigned index)
 {
-    dn_connection_t *c = &node->conn[DN_EXPLICIT];
+    dn_connection_t *c = &node->conn[index];
     if (c->state != DN_CONN_ESTABLISHED)
         return CO_TIME_NEVER;
     if (node->now < c->watchdog)
@@ -447,18 +546,20 @@ static co_time_t explicit_watchdog(dn_node_t *node)
     if (c->timeout_action == DN_WATCHDOG_DEFERRED_DELETE && io_allocated(node)) {
         c->state = DN_CONN_DEFERRED_DELETE;
         c->watchdog = CO_TIME_NEVER;
-        node->rx.active = false;
-        node->tx.active = false;
+        node->rx[index].active = false;
+        node->tx[index].active = false;
     } else {
-        delete_explicit(node);
+        delete_explicit(node, index);
     }
-    tell_ended(node, DN_EXPLICIT, DN_END_TIMEOUT);
+    tell_ended(node, index, DN_END_TIMEOUT);
     return CO_TIME_NEVER;
 }
 
 co_time_t dn_connections_process(dn_node_t *node)
 {
-    co_time_t next = explicit_watchdog(node);
+    co_time_t next = explicit_watchdog(node, DN_EXPLICIT);
+    for (unsigned i = DN_UCMM_FIRST; i < DN_CONN_COUNT; i++)
+        next = co_time_min(next, explicit_watchdog(node, i));
     next = co_time_min(next, io_watchdog(node, DN_IO_CONSUMER));
     next = co_time_min(next, io_watchdog(node, DN_IO_PRODUCER));
     return co_time_min(next, producer_process(node));
@@ -480,7 +581,7 @@ static const uint8_t ack_handler_path[5] = {0x20, DN_CLASS_ACK_HANDLER, 0x25, 0x
 static void reply_path(const dn_node_t *node, unsigned index, bool produced, dn_reply_t *reply)
 {
     const dn_connection_t *c = &node->conn[index];
-    if (index == DN_EXPLICIT)
+    if (dn_is_explicit(index))
         return;
     if (produced && c->produced_size)
         reply_assembly_path(reply, node->produced_assembly);
@@ -499,7 +600,7 @@ static dn_status_t connection_get(const dn_node_t *node, unsigned index, uint8_t
         dn_reply_u8(reply, c->state);
         break;
     case 2: /* instance type: explicit 0, I/O 1 */
-        dn_reply_u8(reply, index != DN_EXPLICIT);
+        dn_reply_u8(reply, !dn_is_explicit(index));
         break;
     case 3:
         dn_reply_u8(reply, c->transport);
@@ -558,13 +659,13 @@ static dn_status_t set_expected_packet_rate(dn_node_t *node, unsigned index, uin
         (uint16_t)((rate + TIMER_RESOLUTION_MS - 1u) / TIMER_RESOLUTION_MS * TIMER_RESOLUTION_MS);
     c->expected_packet_rate = rate;
     dn_reply_u16(reply, rate);
-    if (index != DN_EXPLICIT &&
+    if (!dn_is_explicit(index) &&
         (c->state == DN_CONN_CONFIGURING || c->state == DN_CONN_TIMED_OUT)) {
         establish(node, index);
         return DN_OK;
     }
     if (c->state == DN_CONN_ESTABLISHED) {
-        if (index == DN_EXPLICIT)
+        if (dn_is_explicit(index))
             kick(node, c);
         else
             start_io_watchdog(node, index);
@@ -580,7 +681,7 @@ static dn_status_t connection_set(dn_node_t *node, unsigned index, const dn_requ
     switch (request->attribute) {
     case CONN_ATTR_EPR:
         return set_expected_packet_rate(node, index, co_get_u16(request->data), reply);
-    case CONN_ATTR_TIMEOUT_ACTION: /* the explicit connection's only, auto or deferred delete */
+    case CONN_ATTR_TIMEOUT_ACTION: /* instance 1's only (the manual), auto or deferred delete */
         if (index != DN_EXPLICIT)
             return DN_ERROR(DN_GS_ATTRIBUTE_NOT_SETTABLE);
         if (value != DN_WATCHDOG_AUTO_DELETE && value != DN_WATCHDOG_DEFERRED_DELETE)

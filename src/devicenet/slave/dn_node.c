@@ -99,12 +99,31 @@ static void duplicate_mac_receive(dn_node_t *node, const co_frame_t *frame)
 
 size_t dn_node_consumed_ids(const dn_node_t *node, uint16_t ids[DN_NODE_CONSUMED_IDS])
 {
-    static const uint8_t messages[DN_NODE_CONSUMED_IDS] = {
-        DN_G2_MASTER_COS_CYCLIC_ACK, DN_G2_MASTER_EXPLICIT_REQUEST, DN_G2_MASTER_POLL_COS_CYCLIC,
-        DN_G2_UNCONNECTED_REQUEST, DN_G2_DUPLICATE_MAC_CHECK};
-    for (size_t i = 0; i < DN_NODE_CONSUMED_IDS; i++)
-        ids[i] = dn_group2_id(node->config->mac_id, messages[i]);
-    return DN_NODE_CONSUMED_IDS;
+    static const uint8_t messages[] = {DN_G2_MASTER_COS_CYCLIC_ACK, DN_G2_MASTER_EXPLICIT_REQUEST,
+                                       DN_G2_MASTER_POLL_COS_CYCLIC, DN_G2_UNCONNECTED_REQUEST,
+                                       DN_G2_DUPLICATE_MAC_CHECK};
+    size_t count = 0;
+    for (size_t i = 0; i < sizeof messages; i++)
+        ids[count++] = dn_group2_id(node->config->mac_id, messages[i]);
+    for (uint8_t message = 0; message <= DN_G3_UNCONNECTED_REQUEST; message++)
+        if (message != DN_G3_UNCONNECTED_RESPONSE)
+            for (uint8_t mac = 0; mac <= DN_MAC_ID_MAX; mac++)
+                ids[count++] = dn_group3_id(message, mac);
+    return count;
+}
+
+/* Group 3: a UCMM request whose header names this node, or a request on a connection the UCMM
+ * opened (its CAN-ID is the client's). */
+static void group3_receive(dn_node_t *node, const co_frame_t *frame, dn_can_id_t id)
+{
+    if (id.message_id == DN_G3_UNCONNECTED_REQUEST) {
+        if (frame->len >= 1 && (frame->data[0] & DN_HDR_MAC) == node->config->mac_id)
+            dn_unconnected_receive(node, frame, true, id.mac_id);
+        return;
+    }
+    int index = dn_ucmm_connection(node, (uint16_t)frame->id);
+    if (index >= 0)
+        dn_explicit_receive(node, frame, (unsigned)index);
 }
 
 void dn_node_receive(dn_node_t *node, const co_frame_t *frame, co_time_t now)
@@ -114,6 +133,11 @@ void dn_node_receive(dn_node_t *node, const co_frame_t *frame, co_time_t now)
         node->link == DN_LINK_OFF)
         return;
     dn_can_id_t id = dn_can_id_decode(frame->id);
+    if (id.group == 3) {
+        if (node->link == DN_LINK_ONLINE)
+            group3_receive(node, frame, id);
+        return;
+    }
     /* The predefined set's frames to this slave are all group 2 with its MAC ID. */
     if (id.group != 2 || id.mac_id != node->config->mac_id)
         return;
@@ -125,10 +149,11 @@ void dn_node_receive(dn_node_t *node, const co_frame_t *frame, co_time_t now)
         return;
     switch (id.message_id) {
     case DN_G2_UNCONNECTED_REQUEST:
-        dn_explicit_receive(node, frame, true);
+        if (frame->len >= 1)
+            dn_unconnected_receive(node, frame, false, frame->data[0] & DN_HDR_MAC);
         break;
     case DN_G2_MASTER_EXPLICIT_REQUEST:
-        dn_explicit_receive(node, frame, false);
+        dn_explicit_receive(node, frame, DN_EXPLICIT);
         break;
     case DN_G2_MASTER_POLL_COS_CYCLIC:
         dn_io_receive(node, frame);
@@ -210,9 +235,9 @@ dn_led_t dn_node_ns_led(const dn_node_t *node)
     case DN_LINK_ONLINE:
         if (dn_io_in_state(node, DN_CONN_TIMED_OUT))
             return DN_LED_FLASHING_RED;
-        if (dn_io_in_state(node, DN_CONN_ESTABLISHED) ||
-            node->conn[DN_EXPLICIT].state == DN_CONN_ESTABLISHED)
-            return DN_LED_GREEN;
+        for (unsigned i = 0; i < DN_CONN_COUNT; i++)
+            if (node->conn[i].state == DN_CONN_ESTABLISHED)
+                return DN_LED_GREEN;
         return DN_LED_FLASHING_GREEN;
     default: /* off, or checking its MAC ID: not online yet */
         return DN_LED_OFF;

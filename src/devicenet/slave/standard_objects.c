@@ -353,7 +353,7 @@ static const dn_object_t standard_objects[] = {
      NULL},
     {DN_CLASS_ASSEMBLY, DN_CLASS_ASSEMBLY, UINT8_MAX, TABLE(assembly_attributes), assembly_handler,
      NULL},
-    {DN_CLASS_CONNECTION, DN_CLASS_CONNECTION, DN_CONN_COS_CYCLIC, TABLE(connection_attributes),
+    {DN_CLASS_CONNECTION, DN_CLASS_CONNECTION, DN_CONN_UCMM_LAST, TABLE(connection_attributes),
      dn_connection_handler, NULL},
     {DN_CLASS_ACK_HANDLER, DN_CLASS_ACK_HANDLER, 1, TABLE(ack_handler_attributes),
      ack_handler_handler, NULL},

@@ -127,12 +127,13 @@ static bool runs_on_network_command(const drive_dn_t *dn)
 
 /* Whether a connection carried the commands the drive runs on: the I/O connection of instance 2
  * while it is Established (each of its messages carries the whole command), else the explicit
- * connection (docs/decisions.md, D-DEVICENET-CONNECTION-END). */
+ * connection whose Sets last changed them, instance 1 until one the UCMM opened does
+ * (docs/decisions.md, D-DEVICENET-CONNECTION-END). */
 static bool carried_the_commands(const drive_dn_t *dn, uint8_t instance)
 {
     if (instance == DN_CONN_POLL)
         return true;
-    return instance == DN_CONN_EXPLICIT &&
+    return instance == dn->command_connection &&
            dn_node_connection_state(&dn->node, DN_CONN_POLL) != DN_CONN_ESTABLISHED;
 }
 
@@ -147,7 +148,8 @@ static void on_connection_ended(void *user, uint8_t instance, dn_end_cause_t cau
 {
     drive_dn_t *dn = user;
     (void)drive_process(dn->drive, dn->now); /* the state at the frame's time */
-    bool io_timeout = cause == DN_END_TIMEOUT && instance != DN_CONN_EXPLICIT;
+    bool io_timeout =
+        cause == DN_END_TIMEOUT && (instance == DN_CONN_POLL || instance == DN_CONN_COS_CYCLIC);
     if (io_timeout || (carried_the_commands(dn, instance) && runs_on_network_command(dn)))
         drive_communication_loss(dn->drive, dn->now);
 }
@@ -191,6 +193,7 @@ int drive_dn_init(drive_dn_t *dn, const drive_dn_config_t *config)
     dn->store = config->store;
     dn->pending_reset = -1;
     dn->command.net_ctrl = dn->command.net_ref = true; /* the network, until told otherwise */
+    dn->command_connection = DN_CONN_EXPLICIT;
     dn->app = (dn_app_t){.user = dn,
                          .send = on_send,
                          .read_assembly = on_read_assembly,
@@ -258,6 +261,7 @@ static void carry_out_reset(drive_dn_t *dn, co_time_t now)
     drive_receive(dn->drive, &reset_node, now);
     drive_dn_command_t start = {.net_ctrl = true, .net_ref = true};
     dn->command = start;
+    dn->command_connection = DN_CONN_EXPLICIT;
     dn->reverse = false;
     dn_node_stop(&dn->node, now); /* its connections end on a drive that no longer runs */
     (void)dn_node_init(&dn->node, &dn->config);

@@ -1,7 +1,8 @@
 /* SPDX-License-Identifier: Apache-2.0 */
 /* The drive never runs on the network's command without a live connection carrying it: every
  * way the connection that carried the commands ends (bus off with and without BOI, the interface
- * coming back, the explicit connection's watchdog or release) while the drive runs on them is
+ * coming back, the explicit connection's watchdog or release, a UCMM connection's Close or
+ * watchdog) while the drive runs on them is
  * CnF with COL's reaction (docs/decisions.md, D-DEVICENET-CONNECTION-END); a standing drive, or
  * one whose commands another live connection carries, keeps its state. The ATV312 behind its
  * card at MAC ID 25, the scanner at 1. */
@@ -130,6 +131,52 @@ START_TEST(explicit_release_while_running_is_cnf)
 }
 END_TEST
 
+/* A connection the UCMM opened (group 3: 781h from MAC ID 1, answered on 759h; requests on 641h,
+ * responses on 619h) runs the drive as instance 1 does: its Close or its watchdog while the drive
+ * runs on its Sets is CnF; closing one that carried nothing, while instance 1's Sets run the
+ * drive, leaves it running. */
+static void run_by_ucmm_connection(void)
+{
+    db_exchange(&b, "781#194B0031", "759#01CB00100A00");
+    db_exchange(&b, "641#19102A0108B004", "619#0190");
+    db_exchange(&b, "641#191029010301", "619#0190");
+    db_advance(&b, 50000);
+    expect_running();
+}
+
+START_TEST(ucmm_close_while_running_is_cnf)
+{
+    run_by_ucmm_connection();
+    db_exchange(&b, "781#194C0A00", "759#01CC");
+    expect_cnf();
+}
+END_TEST
+
+START_TEST(ucmm_watchdog_while_running_is_cnf)
+{
+    run_by_ucmm_connection();
+    db_advance(&b, 10015999 - 50000);
+    expect_running();
+    db_advance(&b, 1);
+    expect_cnf();
+}
+END_TEST
+
+START_TEST(ucmm_close_of_a_connection_that_carried_nothing_keeps_running)
+{
+    db_exchange(&b, "781#194B0032", "759#01CB00200A00");
+    db_exchange(&b, "681#190E2A0107", "619#018E0000");
+    run_by_explicit_messages("4CE#014B03010101");
+    db_exchange(&b, "781#194C0A00", "759#01CC");
+    expect_running();
+    /* Then the drive's commands come through a UCMM connection, and instance 1 goes: running. */
+    db_exchange(&b, "781#194B0033", "759#01CB00300A00");
+    db_exchange(&b, "6C1#191029010301", "619#0190");
+    db_exchange(&b, "4CE#014C030101", "4CB#01CC");
+    expect_running();
+}
+END_TEST
+
 /* The polled connection allocated but still configuring carries nothing: bus off ends the
  * explicit connection the commands came on. */
 START_TEST(bus_off_with_a_configuring_poll_is_cnf)
@@ -197,6 +244,9 @@ static Suite *suite(void)
     tcase_add_test(tc, explicit_end_while_polls_carry_keeps_running);
     tcase_add_test(tc, explicit_end_of_a_standing_drive_keeps_it);
     tcase_add_test(tc, identity_reset_while_running_is_no_fault);
+    tcase_add_test(tc, ucmm_close_while_running_is_cnf);
+    tcase_add_test(tc, ucmm_watchdog_while_running_is_cnf);
+    tcase_add_test(tc, ucmm_close_of_a_connection_that_carried_nothing_keeps_running);
     suite_add_tcase(s, tc);
     return s;
 }

@@ -2,8 +2,8 @@
 """atv312d --devicenet on real SocketCAN against the project's scanner, dnscan: the duplicate MAC ID
 check of several drives on one bus, scan, explicit get/set with a fragmented response, polled I/O
 to 1200 rpm, the transparent assemblies after selecting them and an Identity Reset, the stored
-selection across a restart, an I/O timeout faulting the drive with CnF and the scanner's fault
-reset, the connections released while the drive runs, bus off and the interface coming back as
+selection across a restart, a UCMM connection (group 3) with its Get, Set and Close, an I/O
+timeout faulting the drive with CnF and the scanner's fault reset, the connections released while the drive runs, bus off and the interface coming back as
 the same CnF, a drive killed and restarted, and the command lines that mix CANopen and DeviceNet.
 
 Frames are DeviceNet's predefined master/slave connection set (docs/devicenet.md): for MAC ID 25
@@ -97,9 +97,10 @@ def test_two_drives_check_their_mac_ids_and_answer_a_scan(start_dn, dump):
 
 # Frames for nobody on a bench of MAC IDs 25 and 63: other MAC IDs' group 2 messages, the group 2
 # messages a slave does not take (bit-strobe, multicast poll, its own explicit response), group 1
-# and group 3 frames, a CANopen heartbeat, a 29-bit frame.
+# frames, group 3's UCMM responses (message 5: a card consumes group 3's other messages of every
+# MAC ID, D-DEVICENET-UCMM), a CANopen heartbeat, a 29-bit frame.
 FOR_NOBODY = ["4D6#004B03010100", "4D7#00F30078563412", "4C8#00", "4C9#00", "4CB#00CB00", "3D9#00000000",
-              "359#00000000", "619#00", "719#05"]
+              "359#00000000", "759#01CB00100A00", "77F#05"]
 
 
 def test_frames_for_other_mac_ids_do_not_wake_the_daemon(start_dn, bus):
@@ -136,6 +137,29 @@ def test_explicit_get_and_set_with_a_fragmented_response(start_dn, dump):
     assert err == "dnscan: error: MAC ID 25, get 1/1/99: CIP error 0x14 (attribute not supported), additional code 0xFF\n"
     status, _, err = dnscan("set", 25, "0x8E", 1, 2, "u16:65535")
     assert status == 1 and "CIP error" in err, err
+
+
+def test_ucmm_opens_an_explicit_connection_that_gets_and_sets(start_dn, bus):
+    """The manual's explicit server instances 10-14 over real SocketCAN: a scanner at MAC ID 1
+    opens by UCMM (group 3 message 6, 781h) and gets the group 3 answer (759h), reads the vendor
+    ID and the product name (fragmented) and sets ACC on the connection (641h, answered on 619h),
+    then closes it. The other drive (63) answers none of it."""
+    _, sock = start_dn([25, 63])
+    assert bus.request("781#194B0031", 0x759).data.hex().upper() == "01CB00100A00"
+    assert bus.request("641#190E010101", 0x619).data.hex().upper() == "018EF300"
+    assert bus.request("641#190E010107", 0x619).data.hex().upper() == "81008E0641545633"
+    assert bus.request("641#99C000", 0x619).data.hex().upper() == "81813132"
+    bus.send("641#99C100")
+    assert bus.request("641#19108E01023200", 0x619).data.hex().upper() == "0190"  # ACC 5.0 s
+    assert bus.request("641#190E8E0102", 0x619).data.hex().upper() == "018E3200"
+    assert ctl_state(sock, 25)["ns"] == "green"
+    # The Open asked again is the same connection; Close ends it; then requests go unanswered.
+    assert bus.request("781#194B0031", 0x759).data.hex().upper() == "01CB00100A00"
+    assert bus.request("781#194C0A00", 0x759).data.hex().upper() == "01CC"
+    bus.send("641#190E010101")
+    bus.expect_none(0x619, 0.3)
+    assert ctl_state(sock, 25)["ns"] == "flashing-green"
+    assert ctl_state(sock, 63)["ns"] == "flashing-green"
 
 
 def test_poll_21_71_runs_the_drive_to_1200_rpm(start_dn):

@@ -3,7 +3,8 @@
 devicenet-py 0.0.1 (PyPI, on python-can; scripts/setup installs it). Its duplicate MAC ID check
 beside a drive and against one, the allocation of the predefined master/slave connection set,
 Get/Set_Attribute_Single of the Identity and of a drive parameter, the polled connection's
-attributes, poll I/O with assemblies 21/71 to 1200 rpm, and the release; each session's candump
+attributes, poll I/O with assemblies 21/71 to 1200 rpm, and the release; its UCMM Open of an
+explicit connection (instances 10-14), a Get and a Set on it and Close; each session's candump
 trace decoded frame by frame by `cotrace --devicenet`.
 
 devicenet-py disagrees with the DeviceNet specification in three places that these tests meet
@@ -26,6 +27,7 @@ from devicenet.cid import DeviceNetCID
 from devicenet.devicenet import DeviceNet
 from devicenet.dtypes import DeviceNetDatatype
 from devicenet.enums import DeviceNetBodyFormat, DeviceNetFragmentationType, DeviceNetServiceCode, DeviceNetState
+from devicenet.enums import DeviceNetMessageGroup
 from devicenet.enums import DeviceNetConnectionObjectAttributes as ConnectionAttribute
 from devicenet.fields import DeviceNetAllocationChoiceByte, DeviceNetExplicitHeader, DeviceNetFragmentProtocol
 from devicenet.helpers import CanFilter
@@ -248,6 +250,63 @@ def assert_trace(lines, expected, ramp=()):
     unexplained = [line for line in lines if line not in expected and not any(re.fullmatch(p, line[1]) for p in ramp)]
     assert unexplained == []
     assert set(expected) - set(lines) == set()
+
+
+def ucmm_exchange(master, cid, message, response_id):
+    """Sends message (devicenet-py's classes) on a group 3 CAN-ID and returns the payload of the
+    first frame on response_id."""
+    payloads = []
+    response_filter = CanFilter(id=response_id, mask=0x7FF, callback=lambda _cid, payload: payloads.append(payload))
+    master.register_callback(response_filter)
+    master.send(cid, message)
+    master.handle_messages()
+    master.deregister_callback(response_filter)
+    assert payloads, f"no response on {response_id:03X} to {message}"
+    return payloads[0]
+
+
+def test_devicenet_py_opens_by_ucmm_and_gets_and_sets_on_the_connection(start_dn, peer, dump, tmp_path):
+    """devicenet-py's own Open Explicit Messaging Connection (IEC 62026-3's UCMM, group 3 message
+    6) reaches the drive's explicit server instances 10-14: group 3, devicenet-py's source message
+    ID 1, answered on group 3 message 5 with instance 10; its request class then reads the vendor
+    ID and sets ACC on the connection (641h, the drive answering on 619h), and Close ends it."""
+    mark = dump.mark()
+    _, sock = start_dn([25])
+    master = peer(1)
+    master.connect(quick_connect=True)
+    assert master.open_explicit_messaging_connection_request(25, DeviceNetBodyFormat.DEVICENET_8_8,
+                                                             DeviceNetMessageGroup.MESSAGE_GROUP_3, 1)
+    dump.expect(0x781, "194B0031", since=mark)
+    dump.expect(0x759, "01CB00100A00")
+    assert ctl_state(sock, 25)["ns"] == "green"
+    to_drive = DeviceNetCID(DeviceNetMessageGroup.MESSAGE_GROUP_3, message_id=1, mac_id=1)
+    get_vendor = DeviceNetExplicitRequestMessage(service_code=DeviceNetServiceCode.GET_ATTRIBUTE_SINGLE, mac_id=25,
+                                                 class_id=IDENTITY_CLASS, instance_id=1, message=bytes([1]))
+    response = DeviceNetExplicitMessageGenericService.unpack([ucmm_exchange(master, to_drive, get_vendor, 0x619)])
+    assert (response.is_response, response.mac_id, response.message) == (True, 1, bytes([0xF3, 0x00]))
+    set_acc = DeviceNetExplicitRequestMessage(service_code=DeviceNetServiceCode.SET_ATTRIBUTE_SINGLE, mac_id=25,
+                                              class_id=ACC_CLASS, instance_id=1,
+                                              message=bytes([ACC_ATTRIBUTE]) + (10).to_bytes(2, "little"))
+    assert ucmm_exchange(master, to_drive, set_acc, 0x619) == bytes([0x01, 0x90])
+    dump.expect(0x641, "19108E01020A00")
+    close = DeviceNetDataMessage(bytes([25, 0x4C, 10, 0]))
+    ucmm = DeviceNetCID(DeviceNetMessageGroup.MESSAGE_GROUP_3, message_id=6, mac_id=1)
+    assert ucmm_exchange(master, ucmm, close, 0x759) == bytes([0x01, 0xCC])
+    dump.expect(0x759, "01CC")
+    assert_trace(decoded_trace(dump, mark, tmp_path / "ucmm.log"), [
+        ("781#194B0031", "G3 msg 6 from 1: UCMM request to 25: Open Explicit Messaging Connection request: "
+                         "body format 0, group 3, source message ID 1"),
+        ("759#01CB00100A00", "G3 msg 5 from 25: UCMM response to 1: Open Explicit Messaging Connection response: "
+                             "body format 0, destination message ID 1, source message ID 0, instance 10"),
+        ("641#190E010101", "G3 msg 1 from 1: UCMM connection request to 25: Get_Attribute_Single Identity (0x01) "
+                           "instance 1 attribute 1"),
+        ("619#018EF300", "G3 msg 0 from 25: UCMM connection response to 1: Get_Attribute_Single Identity (0x01) "
+                         "instance 1 attribute 1 = F3 00 (243)"),
+        ("781#194C0A00", "G3 msg 6 from 1: UCMM request to 25: Close Connection request: instance 10"),
+        ("759#01CC", "G3 msg 5 from 25: UCMM response to 1: Close Connection response"),
+    ], ramp=(r"G2 msg 7 .*", r"G3 msg 1 from 1: UCMM connection request to 25: Set_Attribute_Single .*",
+             r"G3 msg 0 from 25: UCMM connection response to 1: Set_Attribute_Single .*"))
+    wait_state(sock, 25, ns="flashing-green")
 
 
 def test_devicenet_py_allocates_reads_the_identity_and_sets_acc(start_dn, peer, dump, tmp_path):

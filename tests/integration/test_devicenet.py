@@ -383,5 +383,14 @@ def test_control_surface_faults_and_keys_by_mac_id(start_dn):
     assert dnscan("poll", 25, "--assembly", "21/71", "--set", "Fault_reset=1", "--count", 1)[0] == 0
     # The card's Stop after the reset is a Shutdown: Ready to switch on.
     wait_state(sock, 25, fault=None, supervisor="ready", cia402="Ready to switch on")
+    # COF, the card not working (the manual's "Communication fault management"): injected as any
+    # fault, seen by the scanner as Faulted; the reset is taken once the card works again.
+    status, reply = ctl(sock, "fault", 25, "COF")
+    assert (status, reply.startswith("ok node 25: COF (communication card fault")) == (0, True), reply
+    wait_state(sock, 25, fault="COF", cia402="Fault", supervisor="faulted")
+    assert dnscan("poll", 25, "--assembly", "21/71", "--count", 1)[1].startswith("MAC ID 25: Faulted=1")
+    assert ctl(sock, "clear", 25, "COF") == (0, "ok node 25: cause of COF removed")
+    assert dnscan("poll", 25, "--assembly", "21/71", "--set", "Fault_reset=1", "--count", 1)[0] == 0
+    wait_state(sock, 25, fault=None, supervisor="ready")
     assert ctl(sock, "load", 25, 50) == (0, "ok node 25: load 50 %")
     assert ctl(sock, "fault", 4, "OHF") == (1, "atv312d: error: node 4 is not present: this daemon runs MAC ID 25")

@@ -106,6 +106,35 @@ START_TEST(fault_and_fault_reset)
 }
 END_TEST
 
+/* COF behind the DeviceNet card (the manual's "Communication fault management": "The
+ * communication card is not working properly: ... (COF)"), as the daemon's control surface
+ * injects it: the drive freewheels into Fault with 603Fh 7520h, the scanner sees Faulted and the
+ * Identity's major recoverable fault; the fault reset is refused while the card does not work,
+ * taken once it does; the network fault code (CnF, 2022:03) stays 0. */
+START_TEST(cof_is_the_card_not_working)
+{
+    db_exchange(&b, "4CD#0100B004", "3D9#74040000");
+    db_advance(&b, 2400000);
+    int cof = drive_fault_find(&b.drive, "COF");
+    ck_assert_int_eq(cof, 1);
+    drive_fault_inject(&b.drive, (uint8_t)cof, b.now);
+    ck_assert_str_eq(drive_fault_latched(&b.drive)->code, "COF");
+    ck_assert_int_eq(db_value(&b, 0x603F, 0), 0x7520);
+    ck_assert_int_eq(db_value(&b, 0x6041, 0), 0x0608);
+    ck_assert_int_eq(db_value(&b, 0x2022, 3), 0);
+    db_exchange(&b, "4CD#0100B004", "3D9#E1070000"); /* Faulted, state 7 */
+    ck_assert_uint_eq(dn_node_identity_status(&b.dn.node) & DN_STATUS_MAJOR_RECOVERABLE,
+                      DN_STATUS_MAJOR_RECOVERABLE);
+    db_advance(&b, 10000000);
+    db_exchange(&b, "4CD#0500B004", "3D9#E1070000"); /* FaultRst: refused, the cause is there */
+    ck_assert_str_eq(drive_fault_latched(&b.drive)->code, "COF");
+    drive_fault_remove_cause(&b.drive, (uint8_t)cof, b.now);
+    db_exchange(&b, "4CD#0000B004", "3D9#E1070000");
+    db_exchange(&b, "4CD#0400B004", "3D9#F0030000");
+    ck_assert_ptr_null(drive_fault_latched(&b.drive));
+}
+END_TEST
+
 /* The manual's configuration for 21/71: CHCF separate, Cd1 the network, Cd2 the terminals, CCS
  * C212; Fr1 the network, Fr2 AI2, rFC C213. NetCtrl 0 asks for local control (bit 12 at 1,
  * channel 2), NetRef 0 for the local reference (bit 13 at 1). */
@@ -133,6 +162,7 @@ static Suite *suite(void)
     tcase_add_test(tc, run_stop_table_row_by_row);
     tcase_add_test(tc, stop_ramps_through_stopping_to_ready);
     tcase_add_test(tc, fault_and_fault_reset);
+    tcase_add_test(tc, cof_is_the_card_not_working);
     tcase_add_test(tc, net_ctrl_and_net_ref_switch_the_channels);
     suite_add_tcase(s, tc);
     return s;

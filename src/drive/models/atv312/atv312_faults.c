@@ -27,8 +27,15 @@ static const drive_fault_def_t atv312_faults[] = {
 #include "atv312/family_faults.inc"
 };
 
+/* Behind the DeviceNet card, COF is the card itself not working (the DeviceNet manual's "The
+ * communication card is not working properly ... (COF)", "Interruption in communication between
+ * the option card and the drive"): ILF's cause and EMCY code, reset by command once the card
+ * works again ("Check the option card"), where ILF needs a power cycle ("Replace the option
+ * card"). */
 static const drive_fault_def_t atv312_devicenet_faults_defs[] = {
     {"CnF", "network fault (I/O connection time out)", 0x8130, 0, COMMAND, FREEWHEEL},
+    {"COF", "communication card fault (the card and the drive do not communicate)", 0x7520, 0,
+     COMMAND, FREEWHEEL},
 #include "atv312/family_faults.inc"
 };
 

@@ -179,6 +179,14 @@ typedef struct drive_profile {
     /* The STOP key also resets the faults in Fault when a fault reset would (the ATV31's
      * STOP/RESET key: every active fault reset by command, its cause gone). */
     bool stop_key_resets_faults;
+    /* The internal control word (the Altivars' CMI): while its bit internal_control_no_check is 1
+     * the parameters' cross checks (low_speed <= high_speed) are suspended for a configuration
+     * transfer; when it goes back to 0 they are made, and a configuration they find inconsistent
+     * is the fault of code inconsistent_fault (CFI) until a write makes it consistent. {0, 0}:
+     * none. */
+    drive_param_t internal_control;
+    uint16_t internal_control_no_check;
+    const char *inconsistent_fault;
     /* The faults of the model's manuals (faults.h); required. */
     const drive_fault_table_t *faults;
     /* The LEDs of the model's card as its manual names them (panel.h), indicator_count of them;
@@ -382,7 +390,9 @@ const char *drive_state_name(const drive_t *drive);
 /* Dictionary hooks for a model's hooks file, on the entries its profile names:
  * drive_configuration_parameter: motor data, refused with 0x08000022 while the motor turns or has
  *   a non-zero target; a change returns the drive to Switch on disabled;
- * drive_speed_limit: low_speed and high_speed, low <= high (else 0x06090036);
+ * drive_speed_limit: low_speed and high_speed, low <= high (else 0x06090036) unless the internal
+ *   control word suspends the check; a consistent write ends the inconsistent_fault's cause;
+ * drive_internal_control: internal_control; its check bit back to 0 checks the configuration;
  * drive_velocity_limits: 6046h:01/02 (rpm), views of low_speed/high_speed (0.1 Hz);
  * drive_ramp_rate: 6048h/6049h (delta speed / delta time), views of acceleration/deceleration;
  * drive_auto_tune: auto_tune; YES only in Operation enabled with the motor standing (else
@@ -397,6 +407,7 @@ const char *drive_state_name(const drive_t *drive);
  * (docs/decisions.md, D-VIEW-LIMITS). */
 extern const co_od_hook_t drive_configuration_parameter;
 extern const co_od_hook_t drive_speed_limit;
+extern const co_od_hook_t drive_internal_control;
 extern const co_od_hook_t drive_velocity_limits;
 extern const co_od_hook_t drive_ramp_rate;
 extern const co_od_hook_t drive_auto_tune;

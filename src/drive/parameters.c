@@ -26,8 +26,25 @@ static uint32_t written_value(const uint8_t *data, size_t len)
     return len == 4 ? co_get_u32(data) : len == 2 ? co_get_u16(data) : data[0];
 }
 
+/* The internal control word suspends the cross checks (a configuration transfer under way). */
+static bool checks_suspended(const drive_t *drive)
+{
+    const drive_profile_t *profile = drive->profile;
+    return profile->internal_control.index != 0 &&
+           (drive_param_value(drive, profile->internal_control) &
+            profile->internal_control_no_check) != 0;
+}
+
+/* The model's fault of an inconsistent configuration, or -1. */
+static int inconsistent_fault(const drive_t *drive)
+{
+    const char *code = drive->profile->inconsistent_fault;
+    return code ? drive_fault_find(drive, code) : -1;
+}
+
 /* The low speed may not exceed the high speed (CiA 301 abort "maximum value is less than minimum
- * value"). */
+ * value"), unless the check is suspended; a write that makes them consistent again ends the
+ * inconsistent configuration fault's cause. */
 static uint32_t speed_limit_write(co_node_t *node, const co_od_entry_t *entry, const uint8_t *data,
                                   size_t len, co_od_origin_t origin)
 {
@@ -39,10 +56,39 @@ static uint32_t speed_limit_write(co_node_t *node, const co_od_entry_t *entry, c
     uint32_t other = drive_param_value(drive, is_high ? profile->low_speed : profile->high_speed);
     uint32_t low = is_high ? other : value;
     uint32_t high = is_high ? value : other;
-    return low > high ? CO_SDO_ABORT_MAX_LESS_MIN : CO_SDO_OK;
+    if (checks_suspended(drive))
+        return CO_SDO_OK;
+    if (low > high)
+        return CO_SDO_ABORT_MAX_LESS_MIN;
+    int fault = inconsistent_fault(drive);
+    if (fault >= 0 && drive_fault_cause_present(drive, (uint8_t)fault))
+        drive_fault_remove_cause(drive, (uint8_t)fault, node->now);
+    return CO_SDO_OK;
+}
+
+/* The internal control word (ATV312 DeviceNet manual, "Switch on disabled": "disable the
+ * consistency check during the transfer: CMI W8504, bit 15 = 1 ... After the transfer,
+ * re-enable it: CMI W8504, bit 15 = 0"): the check bit back to 0 checks what was loaded, and an
+ * inconsistent configuration is the inconsistent configuration fault (CFI), which a consistent
+ * write then ends. */
+static uint32_t internal_control_write(co_node_t *node, const co_od_entry_t *entry,
+                                       const uint8_t *data, size_t len, co_od_origin_t origin)
+{
+    (void)entry, (void)origin;
+    drive_t *drive = drive_of(node);
+    const drive_profile_t *profile = drive->profile;
+    bool resumed =
+        checks_suspended(drive) && !(written_value(data, len) & profile->internal_control_no_check);
+    int fault = inconsistent_fault(drive);
+    if (resumed && fault >= 0 &&
+        drive_param_value(drive, profile->low_speed) >
+            drive_param_value(drive, profile->high_speed))
+        drive_fault_inject(drive, (uint8_t)fault, node->now);
+    return CO_SDO_OK;
 }
 
 const co_od_hook_t drive_speed_limit = {speed_limit_write, NULL};
+const co_od_hook_t drive_internal_control = {internal_control_write, NULL};
 
 /* A view's write goes through the full write path of the parameter it stands for (its limits,
  * its hook), so the view refuses what the parameter refuses, with the same abort code. */

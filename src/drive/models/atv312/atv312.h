@@ -97,7 +97,8 @@ extern const drive_fault_table_t atv312_devicenet_faults;
         .run_forward = 1, .run_reverse = 2,                                                        \
         .analog_input_count = sizeof(analog) / sizeof((analog)[0]),                                \
         .access_level = DRIVE_PARAM(0x2036, 1), .access_level_full = ATV312_LAC_L3,                \
-        .stop_key_resets_faults = (stop_key_resets),                                               \
+        .stop_key_resets_faults = (stop_key_resets), .internal_control = DRIVE_PARAM(0x2037, 5),   \
+        .internal_control_no_check = 0x8000, .inconsistent_fault = "CFI",                          \
     }
 
 extern const drive_profile_t atv312_profile;

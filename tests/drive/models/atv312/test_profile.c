@@ -228,6 +228,36 @@ START_TEST(motor_data_are_configuration_parameters)
 }
 END_TEST
 
+/* CMI (2037h:05, ADL 8504) bit 15 (ATV312 DeviceNet manual, "Switch on disabled": "disable the
+ * consistency check during the transfer: CMI W8504, bit 15 = 1 ... re-enable it: CMI W8504,
+ * bit 15 = 0"): LSP above HSP is refused, taken while the check is off, and found when it is on
+ * again: CFI (6300h) until LSP is consistent again, then Switch on disabled (CFI resets itself). */
+START_TEST(cmi_bit_15_suspends_the_consistency_check)
+{
+    bench_t b;
+    bench_start(&b);
+    ck_assert_uint_eq(bench_sdo_write(&b, 0x2001, 6, 600, 2), CO_SDO_ABORT_MAX_LESS_MIN);
+    ck_assert_uint_eq(bench_sdo_write(&b, 0x2037, 5, 0x8000, 2), 0);
+    ck_assert_uint_eq(bench_sdo_write(&b, 0x2001, 6, 600, 2), 0); /* LSP 60.0 Hz > HSP 50.0 */
+    ck_assert_uint_eq(bench_sdo_write(&b, 0x2001, 5, 550, 2), 0); /* HSP 55.0 Hz */
+    ck_assert_uint_eq(bench_read(&b, 0x6041, 0), 0x0640);
+    ck_assert_uint_eq(bench_sdo_write(&b, 0x2037, 5, 0x0000, 2), 0);
+    ck_assert_str_eq(drive_fault_latched(&b.drive)->code, "CFI");
+    ck_assert_uint_eq(bench_read(&b, 0x603F, 0), 0x6300);
+    ck_assert_uint_eq(bench_read(&b, 0x6041, 0) & 0x004F, 0x0008);
+    ck_assert_uint_eq(bench_sdo_write(&b, 0x2001, 6, 700, 2), CO_SDO_ABORT_MAX_LESS_MIN);
+    ck_assert_uint_eq(bench_sdo_write(&b, 0x2001, 6, 100, 2), 0);
+    ck_assert_ptr_null(drive_fault_latched(&b.drive));
+    ck_assert_uint_eq(bench_read(&b, 0x6041, 0), 0x0640);
+    /* A transfer that leaves the configuration consistent ends without a fault. */
+    ck_assert_uint_eq(bench_sdo_write(&b, 0x2037, 5, 0x8000, 2), 0);
+    ck_assert_uint_eq(bench_sdo_write(&b, 0x2001, 6, 600, 2), 0);
+    ck_assert_uint_eq(bench_sdo_write(&b, 0x2001, 5, 650, 2), 0);
+    ck_assert_uint_eq(bench_sdo_write(&b, 0x2037, 5, 0x0000, 2), 0);
+    ck_assert_ptr_null(drive_fault_latched(&b.drive));
+}
+END_TEST
+
 /* LCR (2002h:04, 0.1 A) and OTR (2002h:09, %) from NCR (2042h:04) = 4.0 A: 1.7 A and 20 % at
  * 1500 rpm steady (the manual's T31-06 values, 4.0 A and 83 %, describe another motor and load). */
 START_TEST(current_and_torque_are_lcr_and_otr)
@@ -256,6 +286,7 @@ int main(void)
     tcase_add_test(tc, speeds_beyond_16_bits_read_their_limit);
     tcase_add_test(tc, motor_data_are_configuration_parameters);
     tcase_add_test(tc, current_and_torque_are_lcr_and_otr);
+    tcase_add_test(tc, cmi_bit_15_suspends_the_consistency_check);
     suite_add_tcase(s, tc);
     return check_run_suite(s);
 }

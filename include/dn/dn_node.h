@@ -251,8 +251,9 @@ struct dn_node {
     uint16_t produced_assembly;
     uint8_t produced_size;
     dn_stored_t stored;
-    uint16_t faults; /* Identity status bits 8..11 the application reports */
-    bool idle;       /* the last I/O message was zero-length */
+    uint16_t faults;          /* Identity status bits 8..11 the application reports */
+    bool needs_commissioning; /* the application's configuration is missing or incorrect */
+    bool idle;                /* the last I/O message was zero-length */
     dn_connection_t conn[DN_CONN_COUNT];
     /* Acknowledge handler and the COS/cyclic production. */
     uint16_t ack_timer; /* ms */
@@ -303,6 +304,9 @@ co_time_t dn_node_process(dn_node_t *node, co_time_t now);
 void dn_node_bus_off(dn_node_t *node, co_time_t now);
 /* The application's faults for the Identity status (DN_STATUS_MINOR_... / MAJOR_... bits). */
 void dn_node_set_faults(dn_node_t *node, uint16_t faults);
+/* The application's configuration is missing, incomplete or incorrect: MS flashes green (the
+ * manual's "Needs commissioning"), unless an unrecoverable fault makes it red. */
+void dn_node_set_commissioning(dn_node_t *node, bool needed);
 
 uint16_t dn_node_identity_status(const dn_node_t *node);
 dn_led_t dn_node_ms_led(const dn_node_t *node);

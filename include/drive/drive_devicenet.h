@@ -36,6 +36,9 @@ typedef struct drive_dn_profile {
     const char *product_name;
     uint8_t motor_type;          /* Motor data attribute 3 (7: squirrel cage induction motor) */
     drive_param_t rated_voltage; /* Motor data attribute 7, V: a parameter of the dictionary */
+    /* The drive's faults of a missing or incorrect configuration: while one is latched the card's
+     * MS LED flashes green (the manual's "Needs commissioning"). */
+    const char *commissioning_faults[2];
     uint8_t class_first;
     uint8_t class_last;
     uint16_t address_first;

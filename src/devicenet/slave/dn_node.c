@@ -218,13 +218,18 @@ void dn_node_set_faults(dn_node_t *node, uint16_t faults)
                              DN_STATUS_MAJOR_RECOVERABLE | DN_STATUS_MAJOR_UNRECOVERABLE);
 }
 
+void dn_node_set_commissioning(dn_node_t *node, bool needed)
+{
+    node->needs_commissioning = needed;
+}
+
 dn_led_t dn_node_ms_led(const dn_node_t *node)
 {
     if (node->link == DN_LINK_OFF)
         return DN_LED_OFF;
     if (node->faults & (DN_STATUS_MINOR_UNRECOVERABLE | DN_STATUS_MAJOR_UNRECOVERABLE))
         return DN_LED_RED;
-    return DN_LED_GREEN;
+    return node->needs_commissioning ? DN_LED_FLASHING_GREEN : DN_LED_GREEN;
 }
 
 dn_led_t dn_node_ns_led(const dn_node_t *node)

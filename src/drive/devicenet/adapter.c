@@ -228,11 +228,27 @@ int drive_dn_init(drive_dn_t *dn, const drive_dn_config_t *config)
     return dn_node_init(&dn->node, &dn->config);
 }
 
+/* Whether the drive's latched fault is one of a missing or incorrect configuration. */
+static bool needs_commissioning(const drive_dn_t *dn)
+{
+    const drive_fault_def_t *fault = drive_fault_latched(dn->drive);
+    if (fault == NULL)
+        return false;
+    for (size_t i = 0; i < sizeof dn->profile->commissioning_faults / sizeof(const char *); i++) {
+        const char *code = dn->profile->commissioning_faults[i];
+        if (code && strcmp(code, fault->code) == 0)
+            return true;
+    }
+    return false;
+}
+
 /* The drive's faults in the Identity status: a drive in Fault is the manual's major recoverable
- * fault "Faulted". */
+ * fault "Faulted"; one whose configuration is incorrect (CFF, CFI) also needs commissioning, MS
+ * flashing green (docs/decisions.md, D-DEVICENET-LEDS). */
 static void report_faults(drive_dn_t *dn)
 {
     dn_node_set_faults(&dn->node, drive_dn_faulted(dn->drive) ? DN_STATUS_MAJOR_RECOVERABLE : 0u);
+    dn_node_set_commissioning(&dn->node, needs_commissioning(dn));
 }
 
 void drive_dn_start(drive_dn_t *dn, co_time_t now)

@@ -251,6 +251,24 @@ START_TEST(leds_before_and_after_the_check)
 }
 END_TEST
 
+/* MS flashing green, the manual's "Needs commissioning due to configuration missing, incomplete
+ * or incorrect": a transfer with CMI bit 15 (8504: class 8Bh attribute 69h) leaves LSP (3105:
+ * class 70h attribute 6Ah) above HSP, bit 15 back to 0 is CFI; a consistent LSP ends it. */
+START_TEST(ms_flashes_green_while_the_configuration_is_incorrect)
+{
+    db_exchange(&b, "4CC#01108B01690080", "4CB#0190");
+    db_exchange(&b, "4CC#011070016A5802", "4CB#0190"); /* LSP 60.0 Hz */
+    ck_assert_int_eq(dn_node_ms_led(&b.dn.node), DN_LED_GREEN);
+    db_exchange(&b, "4CC#01108B01690000", "4CB#0190");
+    ck_assert_str_eq(drive_fault_latched(&b.drive)->code, "CFI");
+    ck_assert_int_eq(dn_node_ms_led(&b.dn.node), DN_LED_FLASHING_GREEN);
+    ck_assert_int_eq(drive_dn_state(&b.dn), DRIVE_DN_FAULTED);
+    db_exchange(&b, "4CC#011070016A6400", "4CB#0190"); /* LSP 10.0 Hz */
+    ck_assert_ptr_null(drive_fault_latched(&b.drive));
+    ck_assert_int_eq(dn_node_ms_led(&b.dn.node), DN_LED_GREEN);
+}
+END_TEST
+
 /* Connection class attributes 100 and 101: stored, used after the restart an Identity Reset is. */
 START_TEST(stored_selection_after_a_reset)
 {
@@ -301,6 +319,7 @@ static Suite *suite(void)
     tcase_add_test(tc, release_while_running_stops_as_col_says);
     tcase_add_test(tc, release_of_a_standing_or_stopping_drive_keeps_it);
     tcase_add_test(tc, leds_before_and_after_the_check);
+    tcase_add_test(tc, ms_flashes_green_while_the_configuration_is_incorrect);
     tcase_add_test(tc, stored_selection_after_a_reset);
     suite_add_tcase(s, tc);
     return s;

@@ -19,6 +19,8 @@ const drive_dn_profile_t atv312_devicenet_profile = {
     .motor_type = 7, /* squirrel cage induction motor */
     /* UnS, ADL 9601 (docs/decisions.md, D-DEVICENET-RATED-VOLTAGE). */
     .rated_voltage = DRIVE_PARAM(0x2042, 2),
+    /* CFF, the incorrect configuration (at power on); CFI, an inconsistent one written. */
+    .commissioning_faults = {"CFF", "CFI"},
     .class_first = 0x70,
     .class_last = 0xA8,
     .address_first = 3000,

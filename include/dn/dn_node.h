@@ -253,6 +253,7 @@ struct dn_node {
     dn_stored_t stored;
     uint16_t faults;          /* Identity status bits 8..11 the application reports */
     bool needs_commissioning; /* the application's configuration is missing or incorrect */
+    co_time_t led_test_start; /* the start-up LED test's, CO_TIME_NEVER when not started */
     bool idle;                /* the last I/O message was zero-length */
     dn_connection_t conn[DN_CONN_COUNT];
     /* Acknowledge handler and the COS/cyclic production. */
@@ -281,8 +282,9 @@ struct dn_node {
  * to the default) and leaves the node offline. The node keeps `config` (and what it points at):
  * it must outlive the node. An Identity Reset is the application's init and start again. */
 int dn_node_init(dn_node_t *node, const dn_config_t *config);
-/* Goes on the bus: the duplicate MAC ID check's first request. On a node already started, its
- * connections end first (DN_END_OFFLINE). */
+/* Goes on the bus: the duplicate MAC ID check's first request, and the start-up LED test (1.25 s,
+ * the LEDs' own state after it). On a node already started, its connections end first
+ * (DN_END_OFFLINE). */
 void dn_node_start(dn_node_t *node, co_time_t now);
 /* Leaves the bus (the interface is gone, or the node is about to be initialised again): its
  * connections end (DN_END_OFFLINE) and it sends nothing until dn_node_start. */

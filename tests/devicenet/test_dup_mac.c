@@ -17,7 +17,7 @@ START_TEST(no_answer_goes_online)
     dn_node_start(&b.node, b.now);
     b.deadline = dn_node_process(&b.node, b.now);
     ck_assert_uint_eq(bench_expect(&b, "5FF#00F30078563412"), 0);
-    ck_assert_uint_eq(b.deadline, 1000000);
+    ck_assert_uint_eq(b.deadline, 250000); /* the LED test's next step; the check at 1 s */
     ck_assert_int_eq(dn_node_ns_led(&b.node), DN_LED_OFF);
     ck_assert_int_eq(dn_node_ms_led(&b.node), DN_LED_GREEN);
     bench_advance(&b, 999999);
@@ -33,6 +33,33 @@ START_TEST(no_answer_goes_online)
     bench_expect_none(&b);
     ck_assert_int_eq(dn_node_ns_led(&b.node), DN_LED_FLASHING_GREEN);
     ck_assert_uint_eq(dn_node_identity_status(&b.node), 0x0030); /* no I/O connection */
+}
+END_TEST
+
+/* The manual's start-up LED test ("performed during start-up, after module init is complete"),
+ * 0.25 s steps: MS green, MS red, NS green, NS red, NS off (MS green from the third step on);
+ * then the standard indication: NS off while the check runs, flashing green once online. Each
+ * step is a deadline, so that an application samples every change. */
+START_TEST(led_test_at_start_up)
+{
+    bench_init(&b, 63, defaults);
+    dn_node_start(&b.node, b.now);
+    b.deadline = dn_node_process(&b.node, b.now);
+    static const dn_led_t ms[] = {DN_LED_GREEN, DN_LED_RED, DN_LED_GREEN, DN_LED_GREEN,
+                                  DN_LED_GREEN};
+    static const dn_led_t ns[] = {DN_LED_OFF, DN_LED_OFF, DN_LED_GREEN, DN_LED_RED, DN_LED_OFF};
+    for (size_t step = 0; step < 5; step++) {
+        ck_assert_uint_eq(b.deadline, (step + 1) * 250000);
+        ck_assert_int_eq(dn_node_ms_led(&b.node), ms[step]);
+        ck_assert_int_eq(dn_node_ns_led(&b.node), ns[step]);
+        bench_advance(&b, 250000);
+    }
+    /* 1.25 s: the standard indication, the check still running. */
+    ck_assert_uint_eq(b.deadline, 2000000);
+    ck_assert_int_eq(dn_node_ms_led(&b.node), DN_LED_GREEN);
+    ck_assert_int_eq(dn_node_ns_led(&b.node), DN_LED_OFF);
+    bench_advance(&b, 750000);
+    ck_assert_int_eq(dn_node_ns_led(&b.node), DN_LED_FLASHING_GREEN);
 }
 END_TEST
 
@@ -79,8 +106,9 @@ START_TEST(response_means_duplicate)
     bench_advance(&b, 500000);
     bench_rx(&b, "5FF#80F300EFBEADDE");
     ck_assert_int_eq(b.node.link, DN_LINK_FAULTED);
-    ck_assert_uint_eq(b.deadline, CO_TIME_NEVER);
+    ck_assert_uint_eq(b.deadline, 750000); /* only the LED test's steps are left */
     bench_advance(&b, 5000000);
+    ck_assert_uint_eq(b.deadline, CO_TIME_NEVER);
     bench_expect_none(&b); /* no second request, never online */
     ck_assert_int_eq(dn_node_ns_led(&b.node), DN_LED_RED);
     ck_assert_uint_eq(dn_node_identity_status(&b.node) & DN_STATUS_MINOR_RECOVERABLE,
@@ -173,6 +201,7 @@ static Suite *suite(void)
     tcase_add_test(tc, no_answer_goes_online);
     tcase_add_test(tc, mac_25_check_frames);
     tcase_add_test(tc, consumed_ids_are_all_it_acts_on);
+    tcase_add_test(tc, led_test_at_start_up);
     tcase_add_test(tc, response_means_duplicate);
     tcase_add_test(tc, request_during_check_means_duplicate);
     tcase_add_test(tc, other_mac_ids_ignored);

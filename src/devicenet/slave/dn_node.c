@@ -58,6 +58,7 @@ int dn_node_init(dn_node_t *node, const dn_config_t *config)
     node->link = DN_LINK_OFF;
     node->link_deadline = CO_TIME_NEVER;
     node->pending_reset = -1;
+    node->led_test_start = CO_TIME_NEVER;
     dn_connections_reset(node);
     return DN_INIT_OK;
 }
@@ -79,6 +80,7 @@ void dn_node_start(dn_node_t *node, co_time_t now)
     dn_connections_end(node, DN_END_OFFLINE);
     node->link = DN_LINK_DUP_CHECK_1;
     node->link_deadline = now + DN_DUP_MAC_WAIT_US;
+    node->led_test_start = now;
     send_duplicate_mac(node, 0);
 }
 
@@ -180,13 +182,41 @@ static void link_process(dn_node_t *node)
     }
 }
 
+/* The manual's start-up LED test ("A LED test is performed during start-up, after module init is
+ * complete"): three steps of 0.25 s units, MS twice then NS twice, then both off; the manual's
+ * table lost its colours, read as green then red (docs/decisions.md, D-DEVICENET-LEDS). */
+#define LED_TEST_STEP_US 250000u
+#define LED_TEST_STEPS 5u
+static const dn_led_t led_test_ms[LED_TEST_STEPS] = {DN_LED_GREEN, DN_LED_RED, DN_LED_GREEN,
+                                                     DN_LED_GREEN, DN_LED_GREEN};
+static const dn_led_t led_test_ns[LED_TEST_STEPS] = {DN_LED_OFF, DN_LED_OFF, DN_LED_GREEN,
+                                                     DN_LED_RED, DN_LED_OFF};
+
+/* The LED test's step at the node's time, or -1 when it is over (or not started). */
+static int led_test_step(const dn_node_t *node)
+{
+    if (node->led_test_start == CO_TIME_NEVER || node->link == DN_LINK_OFF ||
+        node->now < node->led_test_start)
+        return -1;
+    co_time_t step = (node->now - node->led_test_start) / LED_TEST_STEP_US;
+    return step < LED_TEST_STEPS ? (int)step : -1;
+}
+
+static co_time_t led_test_deadline(const dn_node_t *node)
+{
+    int step = led_test_step(node);
+    return step < 0 ? CO_TIME_NEVER
+                    : node->led_test_start + (co_time_t)(step + 1) * LED_TEST_STEP_US;
+}
+
 co_time_t dn_node_process(dn_node_t *node, co_time_t now)
 {
     node->now = now;
     link_process(node);
+    co_time_t leds = led_test_deadline(node);
     if (node->link != DN_LINK_ONLINE)
-        return node->link_deadline;
-    co_time_t next = dn_explicit_process(node);
+        return co_time_min(node->link_deadline, leds);
+    co_time_t next = co_time_min(leds, dn_explicit_process(node));
     return co_time_min(next, dn_connections_process(node));
 }
 
@@ -227,6 +257,9 @@ dn_led_t dn_node_ms_led(const dn_node_t *node)
 {
     if (node->link == DN_LINK_OFF)
         return DN_LED_OFF;
+    int step = led_test_step(node);
+    if (step >= 0)
+        return led_test_ms[step];
     if (node->faults & (DN_STATUS_MINOR_UNRECOVERABLE | DN_STATUS_MAJOR_UNRECOVERABLE))
         return DN_LED_RED;
     return node->needs_commissioning ? DN_LED_FLASHING_GREEN : DN_LED_GREEN;
@@ -234,6 +267,9 @@ dn_led_t dn_node_ms_led(const dn_node_t *node)
 
 dn_led_t dn_node_ns_led(const dn_node_t *node)
 {
+    int step = led_test_step(node);
+    if (step >= 0)
+        return led_test_ns[step];
     switch (node->link) {
     case DN_LINK_FAULTED:
         return DN_LED_RED;

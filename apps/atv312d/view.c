@@ -232,8 +232,8 @@ static void plain_state_text(atv312d_text_t *t, const atv312d_control_node_t *no
     const plain_node_t *plain = node->plain;
     atv312d_text_put(t, "node %u: nmt %s, model %s, RUN %s, ERR %s, ", node->id,
                      co_nmt_state_name(plain->node.nmt_state), node->model,
-                     plain_led_name(plain_node_run_led(plain)),
-                     plain_led_name(plain_node_err_led(plain)));
+                     co_led_name(plain_node_run_led(plain)),
+                     co_led_name(plain_node_err_led(plain)));
     if (plain->loss == PLAIN_LOSS_HEARTBEAT)
         atv312d_text_put(t, "error-control heartbeat node %u, ", plain->lost_producer);
     else if (plain->loss != PLAIN_LOSS_NONE)
@@ -294,8 +294,8 @@ static void plain_state_json(cli_json_t *json, const atv312d_control_node_t *nod
     cli_json_str(json, "kind", atv312d_kind_name(node->kind));
     cli_json_str(json, "model", node->model);
     cli_json_str(json, "nmt", co_nmt_state_name(plain->node.nmt_state));
-    cli_json_str(json, "run_led", plain_led_name(plain_node_run_led(plain)));
-    cli_json_str(json, "err_led", plain_led_name(plain_node_err_led(plain)));
+    cli_json_str(json, "run_led", co_led_name(plain_node_run_led(plain)));
+    cli_json_str(json, "err_led", co_led_name(plain_node_err_led(plain)));
     if (plain->loss == PLAIN_LOSS_NONE) {
         cli_json_null(json, "error_control");
     } else {

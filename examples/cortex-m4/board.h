@@ -1,6 +1,6 @@
 /* SPDX-License-Identifier: Apache-2.0 */
 /* What the porter writes for a board: the CAN transport, a microsecond clock, the wait for the
- * next event, and flash pages. Two boards implement it: board_stub.c, stubs for a generic
+ * next event, two LEDs and flash pages. Two boards implement it: board_stub.c, stubs for a generic
  * STM32F4-like Cortex-M4 (the example links, it drives no real controller: replace their bodies
  * with your MCU vendor's registers or HAL), and board_mps2_an386.c, Arm's MPS2 board as QEMU
  * emulates it, whose frames travel over its UART in the serial-line CAN protocol (slcan), so that
@@ -30,6 +30,9 @@ co_time_t clock_us(void);
 /* Sleeps until a frame is queued or clock_us() reaches deadline (CO_TIME_NEVER: until a frame),
  * whichever comes first; returns at once if either is already so. */
 void board_wait(co_time_t deadline);
+
+/* The RUN (green) and ERR (red) LEDs, lit or dark; main.c blinks them as CiA 303-3 says. */
+void board_leds(bool run, bool err);
 
 /* Flash: pages of FLASH_PAGE_SIZE bytes at the end of the flash, read through the memory map,
  * erased to 0xFF a page at a time and programmed byte-wise (a bit goes from 1 to 0 only). */

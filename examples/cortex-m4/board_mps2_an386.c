@@ -11,6 +11,7 @@
  *   it answers the host's commands (O, C, Sn) itself.
  * - Transmit: can_transmit encodes the frame into a ring that the UART's transmit interrupt
  *   drains.
+ * - LEDs: the FPGA's user LEDs 0 and 1 (FPGAIO).
  * - Flash: the storage pages are in the board's code SSRAM (mps2-an386.ld), which QEMU keeps across
  *   a reset of the board; erase and program follow NOR flash's rules.
  * Registers: the ARMv7-M Architecture Reference Manual (SysTick, NVIC, SCB) and the Cortex-M
@@ -226,6 +227,16 @@ void board_wait(co_time_t deadline)
         __asm volatile("wfi");
     }
     irq_restore(primask);
+}
+
+/* The FPGA's user LEDs (AN386's FPGAIO LED0 register): LED 0 the RUN LED, LED 1 the ERR LED. */
+#define FPGAIO_LED0 REG(0x40028000u)
+#define LED_RUN 0x1u
+#define LED_ERR 0x2u
+
+void board_leds(bool run, bool err)
+{
+    FPGAIO_LED0 = (run ? LED_RUN : 0u) | (err ? LED_ERR : 0u);
 }
 
 void board_init(void)

@@ -118,6 +118,12 @@ bool can_transmit(const co_frame_t *frame)
     return true;
 }
 
+void board_leds(bool run, bool err)
+{
+    (void)run; /* stub: set or clear the two LEDs' GPIO output bits */
+    (void)err;
+}
+
 /* --- Flash: the pages are the linker script's STORAGE region. --- */
 extern uint8_t __storage_start[];
 

@@ -3,13 +3,14 @@
  * "The bare-metal example"). One node on the dictionary of blinky.eds, its SDO transfer buffer
  * given by the application (the core is built with CO_CONFIG_SDO_BUFFER=0 and tables sized to the
  * dictionary: CMakeLists.txt), parameters saved by 1010h into flash pages, frames in from the
- * receive interrupt's queue and out through the board's transmitter, and the main loop sleeping
- * until the next frame or deadline. The node has CiA 305 LSS: a master may give it another
- * node-id, or none, and store that in flash (docs/lss.md). The same file runs on both boards of
- * board.h. */
+ * receive interrupt's queue and out through the board's transmitter, the RUN and ERR LEDs of
+ * CiA 303-3, and the main loop sleeping until the next frame or deadline. The node has CiA 305
+ * LSS: a master may give it another node-id, or none, and store that in flash (docs/lss.md). The
+ * same file runs on both boards of board.h. */
 #include "blinky_od.h"
 #include "board.h"
 #include "co/co_emcy.h"
+#include "co/co_indicators.h"
 #include "co/co_node.h"
 #include "flash_storage.h"
 
@@ -34,6 +35,8 @@ static co_storage_t storage;
 static co_lss_slave_t lss;
 /* The EMCY code raised through 2002h, 0 for none. */
 static uint16_t simulated_error;
+/* Guarding or a monitored heartbeat lost and not back: the ERR LED's double flash. */
+static bool error_control_event;
 
 /* The core never waits for a frame to leave: a transmitter without room is a lost frame,
  * reported as the CiA 301 "CAN overrun" error (cleared when the application decides, here
@@ -65,12 +68,14 @@ static void reset(co_node_t *self, co_nmt_reset_t scope)
     (void)self;
     if (scope == CO_NMT_RESET_NODE)
         simulated_error = 0;
+    error_control_event = false; /* every reset restarts error control */
 }
 
 /* Error control: the master stopped guarding this node, or a monitored heartbeat stopped: the
  * CiA 301 "life guard or heartbeat error", cleared when it resumes. */
 static void guarding(co_node_t *self, bool lost)
 {
+    error_control_event = lost;
     if (lost)
         co_emcy_raise(self, CO_EMCY_HEARTBEAT, CO_ERR_REG_COMMUNICATION, NULL);
     else
@@ -124,6 +129,17 @@ static co_time_t blink(co_time_t now, co_time_t due)
     return now + (co_time_t)co_od_value(&node, BLINK_PERIOD, 0) * 1000u;
 }
 
+/* The LEDs as CiA 303-3 has them for the node's state at `now`; returns when they change next. */
+static co_time_t show_leds(co_time_t now)
+{
+    co_indicator_state_t state = {.nmt_state = node.nmt_state,
+                                  .error_control = error_control_event};
+    co_led_t run = co_indicator_run(&state);
+    co_led_t err = co_indicator_err(&state);
+    board_leds(co_led_lit(run, false, now), co_led_lit(err, true, now));
+    return co_time_min(co_led_next_change(run, now), co_led_next_change(err, now));
+}
+
 int main(void)
 {
     board_init();
@@ -153,7 +169,9 @@ int main(void)
             co_emcy_raise(&node, CO_EMCY_CAN_OVERRUN, CO_ERR_REG_COMMUNICATION, NULL);
         co_time_t now = clock_us();
         blink_due = blink(now, blink_due);
-        /* Sleep until the earlier of the core's deadline and the application's, or a frame. */
-        board_wait(co_time_min(co_node_process(&node, now), blink_due));
+        co_time_t due = co_time_min(co_node_process(&node, now), blink_due);
+        /* Sleep until the earliest of the core's deadline, the application's and the LEDs', or a
+         * frame. */
+        board_wait(co_time_min(due, show_leds(now)));
     }
 }

@@ -113,47 +113,27 @@ void plain_node_bus_warning(plain_node_t *plain, bool active)
     plain->bus_warning = active;
 }
 
-plain_led_t plain_node_err_led(const plain_node_t *plain)
+/* The node's conditions as CiA 303-3 names them; no SYNC error or LSS here yet. */
+static co_indicator_state_t indicator_state(const plain_node_t *plain)
 {
-    if (plain->bus_off)
-        return PLAIN_LED_ON;
-    if (plain->loss != PLAIN_LOSS_NONE)
-        return PLAIN_LED_DOUBLE_FLASH;
-    if (plain->bus_warning || plain->bus_passive)
-        return PLAIN_LED_SINGLE_FLASH;
-    return PLAIN_LED_OFF;
+    return (co_indicator_state_t){
+        .nmt_state = plain->node.nmt_state,
+        .bus_off = plain->bus_off,
+        .error_control = plain->loss != PLAIN_LOSS_NONE,
+        .warning = plain->bus_warning || plain->bus_passive,
+    };
 }
 
-plain_led_t plain_node_run_led(const plain_node_t *plain)
+co_led_t plain_node_err_led(const plain_node_t *plain)
 {
-    if (plain->model->err_over_run && plain_node_err_led(plain) != PLAIN_LED_OFF)
-        return PLAIN_LED_OFF;
-    switch (plain->node.nmt_state) {
-    case CO_NMT_OPERATIONAL:
-        return PLAIN_LED_ON;
-    case CO_NMT_PRE_OPERATIONAL:
-        return PLAIN_LED_BLINKING;
-    case CO_NMT_STOPPED:
-        return PLAIN_LED_SINGLE_FLASH;
-    case CO_NMT_INITIALISING:
-        break;
-    }
-    return PLAIN_LED_OFF;
+    co_indicator_state_t state = indicator_state(plain);
+    return co_indicator_err(&state);
 }
 
-const char *plain_led_name(plain_led_t led)
+co_led_t plain_node_run_led(const plain_node_t *plain)
 {
-    switch (led) {
-    case PLAIN_LED_ON:
-        return "on";
-    case PLAIN_LED_BLINKING:
-        return "blinking";
-    case PLAIN_LED_SINGLE_FLASH:
-        return "single flash";
-    case PLAIN_LED_DOUBLE_FLASH:
-        return "double flash";
-    case PLAIN_LED_OFF:
-        break;
-    }
-    return "off";
+    co_indicator_state_t state = indicator_state(plain);
+    if (plain->model->err_over_run && co_indicator_err(&state) != CO_LED_OFF)
+        return CO_LED_OFF;
+    return co_indicator_run(&state);
 }

@@ -8,6 +8,7 @@
 #ifndef NODES_PLAIN_NODE_H
 #define NODES_PLAIN_NODE_H
 
+#include "co/co_indicators.h"
 #include "co/co_node.h"
 
 /* A model of plain node: data, no code of its own but its dictionary's hooks. */
@@ -24,19 +25,10 @@ typedef struct plain_model {
      * where 1029h:01 is absent or 0. */
     bool loss_from_any_state;
     /* While the ERR (red) LED shows anything the RUN (green) LED is off (the PLC300's manual,
-     * 2.4); false: both show, as CiA 303-3 has them. */
+     * 2.4, whose patterns and timings are CiA 303-3's otherwise); false: both show, as CiA 303-3
+     * has them. */
     bool err_over_run;
 } plain_model_t;
-
-/* The LED patterns of CiA 303-3, which the PLC300's manual uses too (2.4: blinking 200 ms on and
- * off, a flash 200 ms on then 1 s off). */
-typedef enum plain_led {
-    PLAIN_LED_OFF,
-    PLAIN_LED_ON,
-    PLAIN_LED_BLINKING,
-    PLAIN_LED_SINGLE_FLASH,
-    PLAIN_LED_DOUBLE_FLASH
-} plain_led_t;
 
 /* The error control event the node saw last, until the producer or the master comes back or a
  * reset (the ERR LED's double flash). */
@@ -87,12 +79,11 @@ void plain_node_bus_event(plain_node_t *plain, uint16_t emcy_code, bool active);
 /* The controller reached (active) or left its warning level. */
 void plain_node_bus_warning(plain_node_t *plain, bool active);
 
-/* The RUN (green) and ERR (red) LEDs: RUN single flash Stopped, blinking Pre-operational, on
- * Operational; ERR on bus off, double flash after an error control event, single flash at the
- * warning level or error passive, otherwise off. */
-plain_led_t plain_node_run_led(const plain_node_t *plain);
-plain_led_t plain_node_err_led(const plain_node_t *plain);
-/* "off", "on", "blinking", "single flash", "double flash". */
-const char *plain_led_name(plain_led_t led);
+/* The RUN (green) and ERR (red) LEDs, CiA 303-3's (co_indicators.h): RUN single flash Stopped,
+ * blinking Pre-operational, on Operational; ERR on bus off, double flash after an error control
+ * event, single flash at the warning level or error passive, otherwise off; with the model's
+ * err_over_run, RUN off while ERR shows anything. */
+co_led_t plain_node_run_led(const plain_node_t *plain);
+co_led_t plain_node_err_led(const plain_node_t *plain);
 
 #endif

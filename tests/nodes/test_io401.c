@@ -61,8 +61,8 @@ START_TEST(a_heartbeat_loss_leaves_stopped_alone)
     plain_bench_advance(&b, 200000);
     ck_assert_uint_eq(b.plain.node.nmt_state, CO_NMT_STOPPED);
     ck_assert_uint_eq(b.plain.loss, PLAIN_LOSS_HEARTBEAT);
-    ck_assert_uint_eq(plain_node_err_led(&b.plain), PLAIN_LED_DOUBLE_FLASH);
-    ck_assert_uint_eq(plain_node_run_led(&b.plain), PLAIN_LED_SINGLE_FLASH);
+    ck_assert_uint_eq(plain_node_err_led(&b.plain), CO_LED_DOUBLE_FLASH);
+    ck_assert_uint_eq(plain_node_run_led(&b.plain), CO_LED_SINGLE_FLASH);
     /* From Operational it enters Pre-operational (CiA 301, 1029h:01 = 0). */
     plain_bench_rx(&b, "705#05");
     plain_bench_rx(&b, "000#010A");

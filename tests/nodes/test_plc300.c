@@ -148,12 +148,12 @@ static void lose_heartbeat_in(const char *nmt_command, const char *state_byte)
     ck_assert_uint_eq(b.plain.node.nmt_state, CO_NMT_PRE_OPERATIONAL);
     ck_assert_uint_eq(b.plain.loss, PLAIN_LOSS_HEARTBEAT);
     ck_assert_uint_eq(b.plain.lost_producer, 5);
-    ck_assert_uint_eq(plain_node_err_led(&b.plain), PLAIN_LED_DOUBLE_FLASH);
-    ck_assert_uint_eq(plain_node_run_led(&b.plain), PLAIN_LED_OFF);
+    ck_assert_uint_eq(plain_node_err_led(&b.plain), CO_LED_DOUBLE_FLASH);
+    ck_assert_uint_eq(plain_node_run_led(&b.plain), CO_LED_OFF);
     /* The producer is back: the event is over, the LEDs show the state again. */
     plain_bench_rx(&b, "705#05");
-    ck_assert_uint_eq(plain_node_err_led(&b.plain), PLAIN_LED_OFF);
-    ck_assert_uint_eq(plain_node_run_led(&b.plain), PLAIN_LED_BLINKING);
+    ck_assert_uint_eq(plain_node_err_led(&b.plain), CO_LED_OFF);
+    ck_assert_uint_eq(plain_node_run_led(&b.plain), CO_LED_BLINKING);
 }
 
 START_TEST(a_heartbeat_loss_in_operational_enters_pre_operational)
@@ -205,20 +205,20 @@ END_TEST
 START_TEST(the_red_led_wins_over_the_green)
 {
     start();
-    ck_assert_uint_eq(plain_node_run_led(&b.plain), PLAIN_LED_BLINKING);
+    ck_assert_uint_eq(plain_node_run_led(&b.plain), CO_LED_BLINKING);
     plain_node_bus_warning(&b.plain, true);
-    ck_assert_uint_eq(plain_node_err_led(&b.plain), PLAIN_LED_SINGLE_FLASH);
-    ck_assert_uint_eq(plain_node_run_led(&b.plain), PLAIN_LED_OFF);
+    ck_assert_uint_eq(plain_node_err_led(&b.plain), CO_LED_SINGLE_FLASH);
+    ck_assert_uint_eq(plain_node_run_led(&b.plain), CO_LED_OFF);
     plain_node_bus_event(&b.plain, CO_EMCY_BUS_OFF, true);
-    ck_assert_uint_eq(plain_node_err_led(&b.plain), PLAIN_LED_ON);
+    ck_assert_uint_eq(plain_node_err_led(&b.plain), CO_LED_ON);
     plain_node_bus_event(&b.plain, CO_EMCY_BUS_OFF, false);
     plain_node_bus_warning(&b.plain, false);
-    ck_assert_uint_eq(plain_node_err_led(&b.plain), PLAIN_LED_OFF);
+    ck_assert_uint_eq(plain_node_err_led(&b.plain), CO_LED_OFF);
     plain_bench_rx(&b, "000#0101");
-    ck_assert_uint_eq(plain_node_run_led(&b.plain), PLAIN_LED_ON);
+    ck_assert_uint_eq(plain_node_run_led(&b.plain), CO_LED_ON);
     plain_bench_rx(&b, "000#0201");
-    ck_assert_uint_eq(plain_node_run_led(&b.plain), PLAIN_LED_SINGLE_FLASH);
-    ck_assert_str_eq(plain_led_name(PLAIN_LED_DOUBLE_FLASH), "double flash");
+    ck_assert_uint_eq(plain_node_run_led(&b.plain), CO_LED_SINGLE_FLASH);
+    ck_assert_str_eq(co_led_name(CO_LED_DOUBLE_FLASH), "double flash");
 }
 END_TEST
 

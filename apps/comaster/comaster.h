@@ -63,6 +63,8 @@ int comaster_enable_main(comaster_options_t *opts, int argc, char **argv);
 int comaster_can_main(comaster_options_t *opts, int argc, char **argv);
 int comaster_lss_main(comaster_options_t *opts, int argc, char **argv);
 
+int comaster_time_main(comaster_options_t *opts, int argc, char **argv);
+
 /* Parses a command's arguments (argv[0] is the command): the common options, --help (prints
  * `help` and returns 0), the command's flags named in `flags` (" --block --output "), and at
  * least min_args, at most max_args positional arguments. Returns -1 to go on, else the exit

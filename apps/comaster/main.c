@@ -27,6 +27,9 @@ static const comaster_command_t commands[] = {
     {"enable", "enable: enable it again (the network boots again)", comaster_enable_main},
     {"can", "can: the CAN controller's state and counters of a run", comaster_can_main},
     {"lss", "lss SERVICE [ARGS...]: CiA 305 LSS: node-ids, bit rates, fastscan", comaster_lss_main},
+
+    {"time", "time [PERIOD]: send TIME (100h) from the host's clock, once or every PERIOD ms",
+     comaster_time_main},
 };
 
 #define COMMAND_COUNT (sizeof commands / sizeof commands[0])

@@ -20,9 +20,9 @@ typedef struct co_cob {
     bool rtr;
 } co_cob_t;
 
-/* Most COB-IDs a node can consume: NMT, SYNC, SDO, guarding, one per RPDO, TPDO and heartbeat
- * consumer. */
-#define CO_CONSUMERS_MAX (4 + CO_CONFIG_RPDO_MAX + CO_CONFIG_TPDO_MAX + CO_CONFIG_HB_CONSUMERS)
+/* Most COB-IDs a node can consume: NMT, SYNC, TIME, SDO, guarding, one per RPDO, TPDO and
+ * heartbeat consumer. */
+#define CO_CONSUMERS_MAX (5 + CO_CONFIG_RPDO_MAX + CO_CONFIG_TPDO_MAX + CO_CONFIG_HB_CONSUMERS)
 
 /* Fills cobs (CO_CONSUMERS_MAX entries) with the COB-IDs the node consumes now, each once, and
  * returns how many. A node still in Initialising (before co_node_start) consumes nothing. */
@@ -44,13 +44,14 @@ static inline void co_consumers_changed(co_node_t *node)
 }
 
 /* Called by the node after a stored write of an entry of `index`: moves the generation on when
- * that object holds a consumed COB-ID or decides whether one is used (1005h, 100Eh, 1016h,
+ * that object holds a consumed COB-ID or decides whether one is used (1005h, 1012h, 100Eh, 1016h,
  * 1200h..12FFh, the PDO parameters 1400h..1BFFh, whose mapping decides validity). Inline, as
  * co_consumers_changed: a few comparisons that its one caller folds in. */
 static inline void co_consumers_written(co_node_t *node, uint16_t index)
 {
-    if (index == CO_IDX_SYNC_COB_ID || index == CO_IDX_GUARD_COB_ID ||
-        index == CO_IDX_HB_CONSUMER || (index >= CO_IDX_SDO_SERVER && index <= 0x12FFu) ||
+    if (index == CO_IDX_SYNC_COB_ID || index == CO_IDX_TIME_COB_ID ||
+        index == CO_IDX_GUARD_COB_ID || index == CO_IDX_HB_CONSUMER ||
+        (index >= CO_IDX_SDO_SERVER && index <= 0x12FFu) ||
         (index >= CO_PDO_RPDO_COMM && index <= CO_PDO_LAST_INDEX))
         co_consumers_changed(node);
 }

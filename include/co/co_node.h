@@ -17,6 +17,7 @@
 #include "co_sdo.h"
 #include "co_store.h"
 #include "co_sync.h"
+#include "co_time_stamp.h"
 #include "co_types.h"
 
 /* Application callbacks; any of them may be NULL. */
@@ -35,6 +36,8 @@ typedef struct co_app_hooks {
     /* Life guarding: the master stopped guarding this node (lost = true) or resumed; a reset
      * restarts it without a call, as for heartbeat. */
     void (*guarding)(co_node_t *node, bool lost);
+    /* A TIME frame was received (co_time_stamp.h: a node given the service, 1012h bit 31). */
+    void (*time_stamp)(co_node_t *node, const co_time_of_day_t *time);
     /* An entry was written by SDO or PDO and stored. */
     void (*od_written)(co_node_t *node, const co_od_entry_t *entry, co_od_origin_t origin);
 } co_app_hooks_t;
@@ -102,6 +105,10 @@ typedef struct co_node_config {
     const co_node_options_code_t *options_code;
     /* CiA 305 LSS slave (co_lss_slave_init), NULL for none; the application owns it. */
     co_lss_slave_t *lss;
+
+    /* &co_time_stamp: the TIME consumer and the rules of 1012h (co_time_stamp.h); NULL links
+     * none of it, and 1012h then refuses bits 31 and 30. */
+    const co_time_stamp_code_t *time_stamp;
 } co_node_config_t;
 
 struct co_node {
@@ -129,6 +136,7 @@ struct co_node {
      * after schedule_changed, in what was padding before the 8-byte aligned service states. */
     uint32_t (*parameter_write)(co_node_t *node, const co_od_entry_t *entry, const uint8_t *data,
                                 size_t len);
+    const co_time_stamp_code_t *time_stamp; /* co_node_config_t.time_stamp */
 
     co_sdo_server_t sdo;
     co_pdo_t pdo;

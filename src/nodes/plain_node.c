@@ -56,11 +56,19 @@ static void on_nmt_state(co_node_t *node, co_nmt_state_t state)
     co_od_set_value(node, CO_IDX_IDENTITY, CO_IDENTITY_SERIAL, plain->serial_number);
 }
 
+static void on_time_stamp(co_node_t *node, const co_time_of_day_t *time)
+{
+    plain_node_t *plain = plain_node_of(node);
+    plain->time = *time;
+    plain->time_received = true;
+}
+
 static const co_app_hooks_t plain_hooks = {
     .nmt_state = on_nmt_state,
     .reset = on_reset,
     .heartbeat = on_heartbeat,
     .guarding = on_guarding,
+    .time_stamp = on_time_stamp,
 };
 
 int plain_node_init(plain_node_t *plain, const plain_node_config_t *config)
@@ -68,6 +76,7 @@ int plain_node_init(plain_node_t *plain, const plain_node_config_t *config)
     plain->model = config->model;
     plain->serial_number = config->serial_number;
     plain->loss = PLAIN_LOSS_NONE;
+    plain->time_received = false;
     co_node_config_t node_config = {
         .node_id = config->node_id,
         .od = config->model->od,
@@ -78,6 +87,7 @@ int plain_node_init(plain_node_t *plain, const plain_node_config_t *config)
         .storage = config->storage,
         .options = config->node_options,
         .options_code = config->node_options_code,
+        .time_stamp = config->model->time_stamp ? &co_time_stamp : NULL,
     };
     int rc = co_node_init(&plain->node, &node_config);
     if (rc == 0)

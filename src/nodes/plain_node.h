@@ -28,6 +28,9 @@ typedef struct plain_model {
      * 2.4, whose patterns and timings are CiA 303-3's otherwise); false: both show, as CiA 303-3
      * has them. */
     bool err_over_run;
+    /* The node consumes TIME (co_time_stamp.h) as its dictionary's 1012h says; false: the
+     * service is not linked into the node and 1012h, if any, can neither consume nor produce. */
+    bool time_stamp;
 } plain_model_t;
 
 /* The error control event the node saw last, until the producer or the master comes back or a
@@ -47,6 +50,10 @@ typedef struct plain_node {
     bool bus_warning; /* the controller at or over its warning level */
     bool bus_passive; /* error passive */
     bool bus_off;
+    /* The last TIME received (model->time_stamp), kept across resets: the time is the
+     * network's, not the node's. */
+    co_time_of_day_t time;
+    bool time_received;
 } plain_node_t;
 
 typedef struct plain_node_config {

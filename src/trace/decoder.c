@@ -6,13 +6,14 @@
 #include "co/co_lss.h"
 #include "co/co_nmt.h"
 #include "co/co_pdo.h"
+#include "co/co_time_stamp.h"
 
 #include <stdio.h>
 #include <string.h>
 
-/* CiA 301 7.2.6: the TIME object counts days from 1984-01-01. */
-#define TIME_EPOCH_DAYS_FROM_1970 5113u
-#define TIME_MS_MASK 0x0FFFFFFFu
+/* Layer setting services (CiA 305), beside CiA 301's predefined connection set (co_cia301.h). */
+#define COB_LSS_SLAVE 0x7E4u
+#define COB_LSS_MASTER 0x7E5u
 
 static const eds_t *eds_of(const cotrace_decoder_t *dec, uint8_t node)
 {
@@ -76,33 +77,17 @@ static void decode_sync(const struct can_frame *f, text_t *t)
         say(t, "SYNC malformed: %u bytes, a SYNC has none or 1 (counter)", f->len);
 }
 
-/* Days since 1970-01-01 to a civil date (proleptic Gregorian), without libc's time zone. */
-static void civil_from_days(long z, int *y, unsigned *m, unsigned *d)
-{
-    z += 719468;
-    long era = (z >= 0 ? z : z - 146096) / 146097;
-    unsigned long doe = (unsigned long)(z - era * 146097);
-    unsigned long yoe = (doe - doe / 1460 + doe / 36524 - doe / 146096) / 365;
-    unsigned long doy = doe - (365 * yoe + yoe / 4 - yoe / 100);
-    unsigned long mp = (5 * doy + 2) / 153;
-    *d = (unsigned)(doy - (153 * mp + 2) / 5 + 1);
-    *m = (unsigned)(mp < 10 ? mp + 3 : mp - 9);
-    *y = (int)((long)yoe + era * 400 + (*m <= 2));
-}
-
 static void decode_time(const struct can_frame *f, text_t *t)
 {
-    if (f->len != 6) {
-        say(t, "TIME malformed: %u bytes, a TIME_OF_DAY has 6", f->len);
+    co_time_of_day_t time;
+    if (!co_time_of_day_decode(f->data, f->len, &time)) {
+        say(t, "TIME malformed: %u bytes, a TIME_OF_DAY has %u", f->len, CO_TIME_OF_DAY_LEN);
         return;
     }
-    uint32_t ms = co_get_u32(f->data) & TIME_MS_MASK;
-    uint16_t days = co_get_u16(&f->data[4]);
-    int y;
-    unsigned m, d;
-    civil_from_days((long)days + TIME_EPOCH_DAYS_FROM_1970, &y, &m, &d);
-    say(t, "TIME %04d-%02u-%02u %02lu:%02lu:%02lu.%03lu", y, m, d, (unsigned long)ms / 3600000,
-        (unsigned long)ms / 60000 % 60, (unsigned long)ms / 1000 % 60, (unsigned long)ms % 1000);
+    co_civil_time_t c;
+    co_time_of_day_civil(&time, &c);
+    say(t, "TIME %04d-%02u-%02u %02u:%02u:%02u.%03u", c.year, c.month, c.day, c.hour, c.minute,
+        c.second, c.ms);
 }
 
 static void say_error_register(text_t *t, uint8_t reg)

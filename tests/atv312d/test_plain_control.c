@@ -118,7 +118,7 @@ START_TEST(state_lines)
     expect("state 10", true,
            "ok node 10: nmt Pre-operational, model io, RUN blinking, ERR off, frames received 0, "
            "sent 0, dropped 0, SDO requests 0, SDO aborts 0, EMCY 0, inputs DI1, outputs none, "
-           "analog AI1 0 AI2 0");
+           "analog AI1 0 AI2 0, time none");
 }
 END_TEST
 

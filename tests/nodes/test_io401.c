@@ -1,7 +1,7 @@
 /* SPDX-License-Identifier: Apache-2.0 */
 /* The CiA 401 I/O node on its dictionary (eds/IO401.eds): its default PDOs following its
  * terminals, its serial number, CiA 301's error behaviour without 1029h (Pre-operational from
- * Operational only), its LEDs as CiA 303-3 has them (both show). */
+ * Operational only), its LEDs as CiA 303-3 has them (both show), TIME consumed on 100h. */
 #include "check_main.h"
 #include "nodes/io/io401.h"
 #include "plain_bench.h"
@@ -44,6 +44,20 @@ START_TEST(rpdo1_sets_the_outputs)
 }
 END_TEST
 
+START_TEST(it_consumes_time_on_100h)
+{
+    start_operational();
+    ck_assert(!b.plain.time_received);
+    plain_bench_rx(&b, "60A#4012100000000000");
+    plain_bench_expect(&b, "58A#4312100000010080");
+    plain_bench_rx(&b, "100#952CB302393D"); /* 2026-11-29 12:34:56.789 */
+    ck_assert(b.plain.time_received);
+    ck_assert_uint_eq(b.plain.time.ms, 45296789u);
+    ck_assert_uint_eq(b.plain.time.days, 15673u);
+    plain_bench_expect_none(&b);
+}
+END_TEST
+
 START_TEST(the_serial_number_is_the_nodes)
 {
     start_operational();
@@ -77,6 +91,7 @@ static Suite *suite(void)
     TCase *tc = tcase_create("io401");
     tcase_add_test(tc, the_tpdos_send_the_inputs_when_they_change);
     tcase_add_test(tc, rpdo1_sets_the_outputs);
+    tcase_add_test(tc, it_consumes_time_on_100h);
     tcase_add_test(tc, the_serial_number_is_the_nodes);
     tcase_add_test(tc, a_heartbeat_loss_leaves_stopped_alone);
     suite_add_tcase(s, tc);

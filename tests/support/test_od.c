@@ -9,7 +9,8 @@
 typedef struct test_od_data {
     uint8_t x1000[4], x1001[1], x1003_0[1], x1003[5][4], x1005[4], x1006[4], x1007[4];
     uint8_t x1008[6], x100a[4], x100b[4], x100c[2], x100d[1], x100e[4];
-    uint8_t x1010_0[1], x1010[4][4], x1011_0[1], x1011[4][4], x1014[4], x1015[2];
+    uint8_t x1010_0[1], x1010[4][4], x1011_0[1], x1011[4][4], x1012[4], x1013[4], x1014[4],
+        x1015[2];
     uint8_t x1016_0[1], x1016[2][4], x1017[2], x1018_0[1], x1018[4][4], x1019[1];
     uint8_t x1200_0[1], x1200[2][4];
     uint8_t x1400_0[1], x1400_1[4], x1400_2[1];
@@ -49,6 +50,7 @@ static const test_od_data_t defaults = {
     .x1010 = {U32(1), U32(1), U32(1), U32(1)},
     .x1011_0 = U8(4),
     .x1011 = {U32(1), U32(1), U32(1), U32(1)},
+    .x1012 = U32(0x100),
     .x1014 = U32(0x80),
     .x1016_0 = U8(2),
     .x1018_0 = U8(4),
@@ -186,6 +188,8 @@ static const co_od_entry_t entries[] = {
     E(0x1011, 2, CO_DT_UNSIGNED32, RW, x1011[1], NULL, NULL),
     E(0x1011, 3, CO_DT_UNSIGNED32, RW, x1011[2], NULL, NULL),
     E(0x1011, 4, CO_DT_UNSIGNED32, RW, x1011[3], NULL, NULL),
+    E(0x1012, 0, CO_DT_UNSIGNED32, RW, x1012, NULL, NULL),
+    E(0x1013, 0, CO_DT_UNSIGNED32, RW, x1013, NULL, NULL),
     E(0x1014, 0, CO_DT_UNSIGNED32, RW | NID, x1014, NULL, NULL),
     E(0x1015, 0, CO_DT_UNSIGNED16, RW, x1015, NULL, NULL),
     E(0x1016, 0, CO_DT_UNSIGNED8, RO, x1016_0, NULL, NULL),

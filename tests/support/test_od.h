@@ -3,8 +3,9 @@
  * the CiA 402 words, ACC/DEC, LCR/OTR), plus 2000h: one test object of every data type, limits,
  * a write-only entry and long strings for segmented and block transfers; 6040h and 6042h are
  * process data, 6046h:01 a view of 2000:06 (x 10) and 6046h:02 a plain profile parameter. Unlike
- * the ATV312's it has 1006h/1007h (a SYNC producer), a writable 1014h and the dummy types
- * 0002h..0007h. Hand-written so the core tests do not depend on the EDS generator. */
+ * the ATV312's it has 1006h/1007h (a SYNC producer), 1012h/1013h (TIME, 1012h = 100h: neither
+ * consumed nor produced), a writable 1014h and the dummy types 0002h..0007h. Hand-written so the
+ * core tests do not depend on the EDS generator. */
 #ifndef TEST_OD_H
 #define TEST_OD_H
 

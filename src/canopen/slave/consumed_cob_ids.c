@@ -30,6 +30,14 @@ static void add_sync(const co_node_t *node, cob_set_t *set)
         add(set, (uint32_t)co_od_get(node, e) & CO_SYNC_COBID_CAN_ID, false);
 }
 
+/* TIME, for a node given the service whose 1012h says consume (bit 31). */
+static void add_time(const co_node_t *node, cob_set_t *set)
+{
+    uint32_t cob_id = (uint32_t)co_od_value(node, CO_IDX_TIME_COB_ID, 0);
+    if (node->time_stamp != NULL && (cob_id & CO_TIME_COBID_CONSUMER))
+        add(set, cob_id, false);
+}
+
 static void add_guarding(const co_node_t *node, cob_set_t *set)
 {
     const co_od_entry_t *e = co_od_find(node->od, CO_IDX_GUARD_COB_ID, 0);
@@ -67,6 +75,7 @@ size_t co_node_consumers(const co_node_t *node, co_cob_t *cobs)
         return 0;
     add(&set, CO_CAN_ID_NMT, false);
     add_sync(node, &set);
+    add_time(node, &set);
     add(&set, node->sdo.rx_id, false);
     add_guarding(node, &set);
     add_pdos(node, &set);

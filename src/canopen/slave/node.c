@@ -37,11 +37,24 @@ typedef struct service_range {
     uint32_t (*write)(co_node_t *node, const co_od_entry_t *entry, const uint8_t *data, size_t len);
 } service_range_t;
 
+/* 1012h: the TIME service's rules, or, for a node without it, no consumer and no producer
+ * (bits 31 and 30 refused: such a node could do neither). */
+static uint32_t time_write(co_node_t *node, const co_od_entry_t *entry, const uint8_t *data,
+                           size_t len)
+{
+    if (node->time_stamp != NULL)
+        return node->time_stamp->od_write(node, entry, data, len);
+    return co_get_u32(data) & (CO_TIME_COBID_CONSUMER | CO_TIME_COBID_PRODUCER)
+               ? CO_SDO_ABORT_VALUE_RANGE
+               : CO_SDO_OK;
+}
+
 static const service_range_t service_ranges[] = {
     {CO_IDX_ERROR_HISTORY, CO_IDX_ERROR_HISTORY, co_emcy_od_write},
     {CO_IDX_SYNC_COB_ID, CO_IDX_SYNC_WINDOW, co_sync_od_write},
     {CO_IDX_GUARD_TIME, CO_IDX_GUARD_COB_ID, co_guarding_od_write},
     {CO_IDX_STORE, CO_IDX_RESTORE, co_store_od_write},
+    {CO_IDX_TIME_COB_ID, CO_IDX_TIME_COB_ID, time_write},
     {CO_IDX_EMCY_COB_ID, CO_IDX_EMCY_INHIBIT, co_emcy_od_write},
     {CO_IDX_HB_CONSUMER, CO_IDX_HB_PRODUCER, co_heartbeat_od_write},
     {CO_IDX_SYNC_OVERFLOW, CO_IDX_SYNC_OVERFLOW, co_sync_od_write},
@@ -104,6 +117,8 @@ int co_node_init(co_node_t *node, const co_node_config_t *config)
     node->lss = config->lss;
     if (node->lss != NULL)
         node->lss->pending_node_id = config->node_id;
+
+    node->time_stamp = config->time_stamp;
     node->parameter_write = parameter_write;
     node->sync.deliver = co_sync_event;
     node->sdo.timeout_us = CO_CONFIG_SDO_TIMEOUT_US;
@@ -159,6 +174,8 @@ void co_node_receive(co_node_t *node, const co_frame_t *frame, co_time_t now)
     if (node->nmt_state == CO_NMT_STOPPED)
         return;
     if (co_sync_receive(node, frame))
+        return;
+    if (node->time_stamp != NULL && node->time_stamp->receive(node, frame))
         return;
     bool sdo_was_busy = node->sdo.state != CO_SDO_IDLE;
     if (co_sdo_receive(node, frame)) {

@@ -14,6 +14,8 @@ const plain_model_t io401_model = {
     .serial_base = 0x40100000u,
     .loss_from_any_state = false,
     .err_over_run = false,
+    /* 1012h = 80000100h: consumes TIME on 100h (docs/io.md). */
+    .time_stamp = true,
 };
 
 bool io401_set_input(plain_node_t *io, uint8_t input, bool on)

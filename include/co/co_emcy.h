@@ -28,6 +28,7 @@
 enum co_emcy_code {
     CO_EMCY_NO_ERROR = 0x0000,
     CO_EMCY_GENERIC = 0x1000,
+    CO_EMCY_COMMUNICATION = 0x8100, /* generic: the SYNC consumer's time-out (D-SYNC-TIMEOUT) */
     CO_EMCY_CAN_OVERRUN = 0x8110,
     CO_EMCY_CAN_PASSIVE = 0x8120,
     CO_EMCY_HEARTBEAT = 0x8130, /* life guard or heartbeat error */

@@ -58,6 +58,12 @@ typedef struct co_sync {
     uint32_t window_us;
     uint8_t overflow;
     bool length_error; /* EMCY 0x8240 raised */
+    /* The consumer's time-out: no SYNC within 1.5 x 1006h of the last one, EMCY 0x8100 (CiA 301
+     * 7.5.2.6; docs/decisions.md, D-SYNC-TIMEOUT). Watched from the first SYNC received after a
+     * reset, a 1005h/1006h write or a return to Pre-operational, in Pre-operational and
+     * Operational; CO_TIME_NEVER when not watched. */
+    co_time_t timeout_at;
+    bool timeout_error; /* EMCY 0x8100 raised, until the next SYNC or a reset */
 } co_sync_t;
 
 /* Loads the node's SYNC parameters from its dictionary (co_node_init). */
@@ -72,8 +78,9 @@ uint32_t co_sync_window_us(const co_node_t *node);
  */
 void co_sync_reset(co_node_t *node);
 bool co_sync_receive(co_node_t *node, const co_frame_t *frame);
-/* Produces the SYNC when due, through the dictionary's co_od_t.sync_producer; returns the next
- * one (CO_TIME_NEVER when not producing, or when the dictionary has no producer). */
+/* Produces the SYNC when due, through the dictionary's co_od_t.sync_producer, and watches the
+ * consumer's time-out; returns the earlier of the next SYNC and the time-out (CO_TIME_NEVER when
+ * neither). */
 co_time_t co_sync_process(co_node_t *node, co_time_t now);
 /* The node's producer (sync_producer.c), for co_od_t.sync_producer: produces the SYNC when
  * 1005h bit 30 and 1006h say so, in Pre-operational and Operational. */

@@ -123,12 +123,13 @@ void plain_node_bus_warning(plain_node_t *plain, bool active)
     plain->bus_warning = active;
 }
 
-/* The node's conditions as CiA 303-3 names them; no SYNC error or LSS here yet. */
+/* The node's conditions as CiA 303-3 names them; no LSS here yet. */
 static co_indicator_state_t indicator_state(const plain_node_t *plain)
 {
     return (co_indicator_state_t){
         .nmt_state = plain->node.nmt_state,
         .bus_off = plain->bus_off,
+        .sync_error = plain->node.sync.timeout_error,
         .error_control = plain->loss != PLAIN_LOSS_NONE,
         .warning = plain->bus_warning || plain->bus_passive,
     };

@@ -488,6 +488,30 @@ START_TEST(rpdo_sync_applied_at_next_sync)
 }
 END_TEST
 
+/* CiA 301 7.5.2.7: a synchronous RPDO received after the synchronous window (1007h) closed is
+ * discarded; one inside it is applied at the next SYNC. */
+START_TEST(rpdo_sync_outside_window_discarded)
+{
+    start_quiet();
+    ck_assert_uint_eq(write_param(0x1405, 2, 1, 1), 0);
+    ck_assert_uint_eq(write_param(0x1405, 1, 0x304, 4), 0);
+    ck_assert_uint_eq(write_param(0x1007, 0, 1000, 4), 0);
+    go_operational();
+    test_drain(&t);
+    co_frame_t sync = test_frame("080#");
+    co_frame_t rpdo = test_frame("304#0F00B004");
+    co_node_receive(&t.node, &sync, 10 * MS);
+    co_node_receive(&t.node, &rpdo, 11 * MS + 1); /* 1.001 ms after the SYNC: discarded */
+    co_node_receive(&t.node, &sync, 20 * MS);
+    ck_assert_int_eq(co_od_value(&t.node, 0x6040, 0), 0);
+    ck_assert_uint_eq(rpdo_calls, 0);
+    co_node_receive(&t.node, &rpdo, 21 * MS); /* 1 ms after: inside */
+    co_node_receive(&t.node, &sync, 30 * MS);
+    ck_assert_int_eq(co_od_value(&t.node, 0x6040, 0), 0x000F);
+    ck_assert_uint_eq(rpdo_calls, 1);
+}
+END_TEST
+
 /* ---- RPDO errors --------------------------------------------------------------------- */
 
 START_TEST(rpdo_short_frame_not_applied_emcy_8210)
@@ -887,6 +911,7 @@ int main(void)
     tcase_add_test(tc, rtr_types_252_and_253);
     tcase_add_test(tc, rtr_on_event_tpdo_and_forbidden_rtr);
     tcase_add_test(tc, rpdo_sync_applied_at_next_sync);
+    tcase_add_test(tc, rpdo_sync_outside_window_discarded);
     tcase_add_test(tc, rpdo_short_frame_not_applied_emcy_8210);
     tcase_add_test(tc, rpdo_long_frame_applied_emcy_8220);
     tcase_add_test(tc, rpdo_deadline_emcy_8250);

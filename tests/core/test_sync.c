@@ -251,6 +251,41 @@ START_TEST(consumer_wrong_length_emcy_8240)
 }
 END_TEST
 
+/* No SYNC within 1.5 x 1006h of the last one: EMCY 8100h once (D-SYNC-TIMEOUT), its reset at the
+ * next SYNC; not watched before the first SYNC, nor in Stopped, nor by the producer. */
+START_TEST(consumer_timeout_emcy_8100)
+{
+    start();
+    ck_assert_uint_eq(write_param(0x1006, 0, 10 * MS, 4), 0);
+    test_advance(&t, 50 * MS);
+    test_expect_none(&t);
+    test_rx(&t, "080#"); /* at 50 ms */
+    test_advance(&t, 15 * MS - 1);
+    test_expect_none(&t);
+    test_advance(&t, 100 * MS + 1);
+    ck_assert_uint_eq(test_expect(&t, "084#0081110000000000"), 65 * MS);
+    test_expect_none(&t);
+    ck_assert_uint_eq(co_od_value(&t.node, 0x1001, 0), 0x11);
+    test_rx(&t, "080#"); /* at 165 ms */
+    ck_assert_uint_eq(test_expect(&t, "084#0000000000000000"), 165 * MS);
+    test_advance(&t, 14 * MS);
+    test_rx(&t, "080#"); /* in time: the watch moves on */
+    test_advance(&t, 15 * MS - 1);
+    test_expect_none(&t);
+    test_rx(&t, "000#0204"); /* Stopped */
+    test_advance(&t, 100 * MS);
+    test_rx(&t, "000#8004");
+    test_advance(&t, 100 * MS);
+    test_expect_none(&t);
+    /* A producer does not watch its own SYNC. */
+    ck_assert_uint_eq(write_param(0x1005, 0, 0x40000080, 4), 0);
+    test_advance(&t, 100 * MS);
+    ck_assert_uint_eq(test_expect(&t, "080#"), t.bus.now - 90 * MS);
+    test_drain(&t);
+    test_expect_none(&t);
+}
+END_TEST
+
 /* Issue 7, item 7, with its frames (node 5): reset communication ends the SYNC length error
  * together with its EMCY, so 1001h does not keep bits that no correct SYNC would ever clear, and
  * the next wrong SYNC raises the EMCY again. */
@@ -347,6 +382,7 @@ int main(void)
     tcase_add_test(tc, sync_length_error_ends_with_reset_communication);
     tcase_add_test(tc, parameters_follow_writes_and_resets);
     tcase_add_test(tc, consumer_ignored_when_stopped);
+    tcase_add_test(tc, consumer_timeout_emcy_8100);
     tcase_add_test(tc, produced_sync_drives_synchronous_tpdo);
     suite_add_tcase(s, tc);
     return check_run_suite(s);

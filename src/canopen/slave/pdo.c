@@ -278,13 +278,19 @@ static co_time_t tpdo_process_event(co_node_t *node, co_tpdo_t *t, co_time_t now
     return t->pending ? t->inhibit_end : t->event_due;
 }
 
-/* Synchronous TPDO sampled at the last SYNC: sent unless the synchronous window (1007h, us)
- * has already elapsed since that SYNC (CiA 301 7.5.2.7). */
-static void tpdo_process_sync(co_node_t *node, co_tpdo_t *t, co_time_t now)
+/* CiA 301 7.5.2.7: synchronous PDOs go and come within the synchronous window (1007h, us; 0:
+ * no window) after the last SYNC. */
+static bool in_sync_window(const co_node_t *node, co_time_t now)
 {
     uint32_t window = co_sync_window_us(node);
+    return window == 0 || now - node->pdo.sync_at <= window;
+}
+
+/* Synchronous TPDO sampled at the last SYNC: sent unless the window has already elapsed. */
+static void tpdo_process_sync(co_node_t *node, co_tpdo_t *t, co_time_t now)
+{
     t->sync_due = false;
-    if (window == 0 || now - node->pdo.sync_at <= window)
+    if (in_sync_window(node, now))
         tpdo_send(node, t, t->sample);
 }
 
@@ -419,6 +425,9 @@ static void rpdo_receive(co_node_t *node, uint16_t n, const co_frame_t *frame)
         rpdo_error_release(node, CO_EMCY_RPDO_TIMEOUT);
     }
     if (pdo_type_is_sync(r->type)) {
+        /* Received after the window closed: discarded (CiA 301 7.5.2.7). */
+        if (!in_sync_window(node, node->now))
+            return;
         memcpy(r->buffer, frame->data, r->map.length);
         r->buffered = true;
     } else {

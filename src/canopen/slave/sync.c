@@ -20,6 +20,7 @@ static void sync_load(co_node_t *node)
 void co_sync_init(co_node_t *node)
 {
     sync_load(node);
+    node->sync.timeout_at = CO_TIME_NEVER;
 }
 
 static uint32_t sync_cob_id(const co_node_t *node)
@@ -52,6 +53,16 @@ static void sync_length_error_end(co_node_t *node)
     co_emcy_clear(node, CO_EMCY_SYNC_LENGTH);
 }
 
+/* The consumer's time-out ends with its EMCY, as the length error does. */
+static void sync_timeout_end(co_node_t *node)
+{
+    node->sync.timeout_at = CO_TIME_NEVER;
+    if (!node->sync.timeout_error)
+        return;
+    node->sync.timeout_error = false;
+    co_emcy_clear(node, CO_EMCY_COMMUNICATION);
+}
+
 /* Reset node and reset communication restart the consumer from restored parameters, so a length
  * error it detected is no longer detected (docs/error-control.md, "Errors and resets"). The node
  * is in Initialising: clearing the EMCY sends no error reset, the boot-up says it. */
@@ -61,6 +72,23 @@ void co_sync_reset(co_node_t *node)
     co_sync_producer_stop(&node->sync.producer);
     node->sync.producer.counter = 0;
     sync_length_error_end(node);
+    sync_timeout_end(node);
+}
+
+/* 1.5 x 1006h after the last SYNC without the next one (CiA 301 7.5.2.6): EMCY 0x8100 once, until
+ * a SYNC comes. Only a consumer (1005h bit 30 clear) with a period, in Pre-operational or
+ * Operational (a Stopped node receives no SYNC: the watch starts again at the next one). */
+static co_time_t sync_watch(co_node_t *node, co_time_t now)
+{
+    co_sync_t *sync = &node->sync;
+    if (node->nmt_state == CO_NMT_STOPPED)
+        sync->timeout_at = CO_TIME_NEVER;
+    if (now < sync->timeout_at)
+        return sync->timeout_at;
+    sync->timeout_at = CO_TIME_NEVER;
+    sync->timeout_error = true;
+    co_emcy_raise(node, CO_EMCY_COMMUNICATION, CO_ERR_REG_GENERIC | CO_ERR_REG_COMMUNICATION, NULL);
+    return CO_TIME_NEVER;
 }
 
 /* The producer's code is linked only by a dictionary that has it (co_od_t.sync_producer,
@@ -68,7 +96,8 @@ void co_sync_reset(co_node_t *node)
 co_time_t co_sync_process(co_node_t *node, co_time_t now)
 {
     co_time_t (*produce)(co_node_t *, co_time_t) = node->od->sync_producer;
-    return produce != NULL ? produce(node, now) : CO_TIME_NEVER;
+    co_time_t next = produce != NULL ? produce(node, now) : CO_TIME_NEVER;
+    return co_time_min(next, sync_watch(node, now));
 }
 
 bool co_sync_receive(co_node_t *node, const co_frame_t *frame)
@@ -88,6 +117,12 @@ bool co_sync_receive(co_node_t *node, const co_frame_t *frame)
         return true;
     }
     sync_length_error_end(node);
+    sync_timeout_end(node);
+    uint32_t period = sync_period_us(node);
+    if (period != 0 && !(sync_cob_id(node) & CO_SYNC_COBID_PRODUCER)) {
+        node->sync.timeout_at = node->now + period + period / 2;
+        co_node_reschedule(node);
+    }
     node->sync.deliver(node, overflow != 0 ? frame->data[0] : 0);
     return true;
 }
@@ -126,8 +161,10 @@ uint32_t co_sync_od_write(co_node_t *node, const co_od_entry_t *entry, const uin
     if (abort != CO_SDO_OK)
         return abort;
     /* A new producer configuration starts a fresh period at the next co_sync_process(). */
-    if (entry->index == CO_IDX_SYNC_COB_ID || entry->index == CO_IDX_SYNC_PERIOD)
+    if (entry->index == CO_IDX_SYNC_COB_ID || entry->index == CO_IDX_SYNC_PERIOD) {
         co_sync_producer_stop(&node->sync.producer);
+        sync_timeout_end(node);
+    }
     co_od_store(node, entry, data, len);
     sync_load(node);
     return CO_OD_HANDLED;

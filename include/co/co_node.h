@@ -105,10 +105,13 @@ typedef struct co_node_config {
     const co_node_options_code_t *options_code;
     /* CiA 305 LSS slave (co_lss_slave_init), NULL for none; the application owns it. */
     co_lss_slave_t *lss;
-
     /* &co_time_stamp: the TIME consumer and the rules of 1012h (co_time_stamp.h); NULL links
      * none of it, and 1012h then refuses bits 31 and 30. */
     const co_time_stamp_code_t *time_stamp;
+    /* The TPDOs whose inhibit time (18xxh:03) counts in 1 ms instead of CiA 301's 100 us, bit n
+     * for TPDO n+1 (TPDOs 1..32), as a device's manual prints the unit of each row (the ATV312's
+     * TPDO1, docs/decisions.md D-INHIBIT-TIME); 0 for plain CiA 301. */
+    uint32_t tpdo_inhibit_ms;
 } co_node_config_t;
 
 struct co_node {

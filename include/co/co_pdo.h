@@ -72,7 +72,8 @@ typedef struct co_tpdo {
 typedef struct co_pdo {
     co_rpdo_t rpdo[CO_CONFIG_RPDO_MAX];
     co_tpdo_t tpdo[CO_CONFIG_TPDO_MAX];
-    co_time_t sync_at; /* time of the last SYNC, start of the synchronous window (1007h) */
+    co_time_t sync_at;   /* time of the last SYNC, start of the synchronous window (1007h) */
+    uint32_t inhibit_ms; /* co_node_config_t.tpdo_inhibit_ms: TPDOs counting 18xxh:03 in ms */
 } co_pdo_t;
 
 /* Reset node and reset communication: co_pdo_restart(), and the RPDOs' errors end with their

@@ -95,6 +95,9 @@ typedef struct drive_profile {
     uint32_t node_options; /* the core's CO_NODE_* options of the model's profile (co_node.h) */
     /* &co_node_options when node_options is not 0: the options' code (co_node.h). */
     const co_node_options_code_t *node_options_code;
+    /* The TPDOs whose inhibit time counts in 1 ms, as its manual prints each TPDO's row
+     * (co_node_config_t.tpdo_inhibit_ms); 0: CiA 301's 100 us for every TPDO. */
+    uint32_t tpdo_inhibit_ms;
     /* The 1001h bits of the EMCYs of CAN bus conditions (drive_bus_event; CiA 301 table 48);
      * 0: bits 0 and 4, generic and communication. A fault's bits are in its table entry. */
     uint8_t bus_error_register;

@@ -244,6 +244,7 @@ int drive_init(drive_t *drive, const drive_config_t *config)
         .options = config->profile->node_options | config->node_options,
         .options_code = config->node_options_code != NULL ? config->node_options_code
                                                           : config->profile->node_options_code,
+        .tpdo_inhibit_ms = config->profile->tpdo_inhibit_ms,
     };
     if (!drive_faults_valid(config->profile))
         return DRIVE_INIT_BAD_FAULTS;

@@ -765,6 +765,40 @@ START_TEST(inhibit_from_dictionary_applies)
 }
 END_TEST
 
+/* A device that prints TPDO1's inhibit time in 1 ms (co_node_config_t.tpdo_inhibit_ms, the ATV312
+ * manual's object table: 1800h:03 "unit = 1 ms", 1805h:03 "unit = 0,1 ms"): 100 in 1800h:03 holds
+ * TPDO1 back 100 ms to the microsecond, 100 in 1805h:03 TPDO6 10 ms. */
+START_TEST(inhibit_unit_per_tpdo)
+{
+    co_node_config_t config = {
+        .node_id = 4, .od = &test_od, .hooks = &hooks, .tpdo_inhibit_ms = 1u << 0};
+    test_node_start_config(&t, &config);
+    ck_assert_uint_eq(write_param(0x1800, 5, 0, 2), 0);
+    ck_assert_uint_eq(write_param(0x1800, 1, 0x80000184, 4), 0);
+    ck_assert_uint_eq(write_param(0x1800, 3, 100, 2), 0);
+    ck_assert_uint_eq(write_param(0x1800, 1, 0x184, 4), 0);
+    ck_assert_uint_eq(write_param(0x1805, 3, 100, 2), 0);
+    ck_assert_uint_eq(write_param(0x1805, 5, 0, 2), 0);
+    ck_assert_uint_eq(write_param(0x1805, 1, 0x284, 4), 0);
+    go_operational();
+    test_expect(&t, "184#0000");
+    test_expect(&t, "284#00000000");
+    test_advance(&t, 1 * MS);
+    app_set(0x6041, 0, 0x0021);
+    test_expect_none(&t);
+    ck_assert_uint_eq(t.bus.deadline, 10 * MS);
+    test_advance(&t, 9 * MS - 1);
+    test_expect_none(&t);
+    test_advance(&t, 1);
+    ck_assert_uint_eq(test_expect(&t, "284#21000000"), 10 * MS);
+    test_advance(&t, 90 * MS - 1);
+    test_expect_none(&t);
+    test_advance(&t, 1);
+    ck_assert_uint_eq(test_expect(&t, "184#2100"), 100 * MS);
+    test_expect_none(&t);
+}
+END_TEST
+
 /* ---- Dynamic mapping ----------------------------------------------------------------- */
 
 START_TEST(mapping_refused_while_valid_or_enabled)
@@ -923,6 +957,7 @@ int main(void)
     tcase_add_test(tc, transmission_type_rules);
     tcase_add_test(tc, inhibit_and_start_value_only_while_invalid);
     tcase_add_test(tc, inhibit_from_dictionary_applies);
+    tcase_add_test(tc, inhibit_unit_per_tpdo);
     tcase_add_test(tc, mapping_refused_while_valid_or_enabled);
     tcase_add_test(tc, mapping_entry_aborts);
     tcase_add_test(tc, mapping_longer_than_64_bits);

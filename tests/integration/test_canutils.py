@@ -115,7 +115,7 @@ def test_tpdo1_sent_on_status_change_after_inhibit_time(dump, bus, start_daemon)
     bus.send("204#0600")  # shutdown: status becomes Ready to switch on
     rpdo = dump.expect(0x204, "0600")
     changed = dump.expect(0x184, "2106")
-    # Sent on the change as soon as the inhibit time (1800:03 = 300 x 100 us) since the previous
+    # Sent on the change as soon as the inhibit time (1800:03 = 30 x 1 ms) since the previous
     # TPDO1 allows. The daemon times the inhibit from its wake-up, the kernel stamps each frame
     # when its write completes: 2 ms are allowed for the first TPDO1's way from the one to the
     # other. The upper bound only keeps a stalled daemon from passing.

@@ -122,6 +122,7 @@ int co_node_init(co_node_t *node, const co_node_config_t *config)
     node->parameter_write = parameter_write;
     node->sync.deliver = co_sync_event;
     node->sdo.timeout_us = CO_CONFIG_SDO_TIMEOUT_US;
+    node->pdo.inhibit_ms = config->tpdo_inhibit_ms;
     node->sdo.buffer = config->sdo_buffer;
 #if CO_CONFIG_SDO_BUFFER > 0
     if (node->sdo.buffer == NULL) {

@@ -14,9 +14,11 @@
 #define PDO_SUB_EVENT_TIMER 5u
 #define PDO_SUB_SYNC_START 6u
 
-#define PDO_MAX_BITS 64u         /* a classic CAN frame */
-#define PDO_INHIBIT_UNIT_US 100u /* inhibit time in 100 us units */
-#define PDO_EVENT_UNIT_US 1000u  /* event timer in ms */
+#define PDO_MAX_BITS 64u             /* a classic CAN frame */
+#define PDO_INHIBIT_UNIT_US 100u     /* inhibit time in 100 us units (CiA 301 table 72) */
+#define PDO_INHIBIT_MS_UNIT_US 1000u /* a device's TPDO that counts it in ms (tpdo_inhibit_ms) */
+#define PDO_INHIBIT_MS_TPDOS 32u     /* TPDOs the bit set co_pdo_t.inhibit_ms covers */
+#define PDO_EVENT_UNIT_US 1000u      /* event timer in ms */
 
 /* Register bits of the PDO and SYNC emergencies: a communication error is also a generic one. */
 #define PDO_EMCY_REGISTER (CO_ERR_REG_GENERIC | CO_ERR_REG_COMMUNICATION)
@@ -208,6 +210,14 @@ static void tpdo_restart(co_tpdo_t *t)
     t->event_due = CO_TIME_NEVER;
 }
 
+/* The unit of TPDO n+1's inhibit time: CiA 301's 100 us, or 1 ms where the node's device prints
+ * that unit for this TPDO's row (co_node_config_t.tpdo_inhibit_ms). */
+static uint32_t tpdo_inhibit_unit_us(const co_node_t *node, uint16_t n)
+{
+    bool in_ms = n < PDO_INHIBIT_MS_TPDOS && (node->pdo.inhibit_ms >> n) & 1u;
+    return in_ms ? PDO_INHIBIT_MS_UNIT_US : PDO_INHIBIT_UNIT_US;
+}
+
 /* A TPDO takes its parameters, and restarts unless only its event timer changed (then only the
  * timer restarts). */
 static void tpdo_load(co_node_t *node, uint16_t n, bool restart)
@@ -219,7 +229,7 @@ static void tpdo_load(co_node_t *node, uint16_t n, bool restart)
     t->rtr_allowed = !(cob_id & CO_PDO_COBID_NO_RTR);
     t->can_id = (uint16_t)(cob_id & CO_PDO_COBID_CAN_ID);
     t->type = (uint8_t)param[PDO_SUB_TYPE];
-    t->inhibit_us = param[PDO_SUB_INHIBIT] * PDO_INHIBIT_UNIT_US;
+    t->inhibit_us = param[PDO_SUB_INHIBIT] * tpdo_inhibit_unit_us(node, n);
     t->event_us = param[PDO_SUB_EVENT_TIMER] * PDO_EVENT_UNIT_US;
     t->sync_start = (uint8_t)param[PDO_SUB_SYNC_START];
     if (restart)

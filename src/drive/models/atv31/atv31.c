@@ -17,7 +17,9 @@ static const drive_analog_input_t atv31_analog_inputs[] = {
     {"AIP", ATV312_FR_AIP, DRIVE_ANALOG_POTENTIOMETER, DRIVE_FIXED(0), DRIVE_FIXED(0)},
 };
 
-const drive_profile_t atv31_profile = ATV312_FAMILY_PROFILE(
-    &atv31_od, ATV31_LOGIC_INPUTS, atv31_analog_inputs, &atv312_family_faults, true);
-const drive_profile_t atv31_v11_profile = ATV312_FAMILY_PROFILE(
-    &atv31_v11_od, ATV31_LOGIC_INPUTS, atv31_analog_inputs, &atv312_family_faults, true);
+const drive_profile_t atv31_profile =
+    ATV312_FAMILY_PROFILE(&atv31_od, ATV31_LOGIC_INPUTS, atv31_analog_inputs, &atv312_family_faults,
+                          true, ATV31_TPDO_INHIBIT_MS);
+const drive_profile_t atv31_v11_profile =
+    ATV312_FAMILY_PROFILE(&atv31_v11_od, ATV31_LOGIC_INPUTS, atv31_analog_inputs,
+                          &atv312_family_faults, true, ATV31_TPDO_INHIBIT_MS);

@@ -19,6 +19,11 @@
  * choice: the ATV31 manual names no input), switching sources. */
 #define ATV31_LOGIC_INPUTS 6
 
+/* The ATV31 manual's object table prints "unit = 1 ms" for the inhibit time of both TPDO1 and TPDO6
+ * (1800h:03, 1805h:03), where the ATV312's prints 0.1 ms for TPDO6 (docs/decisions.md,
+ * D-INHIBIT-TIME): the bits of TPDO1 and TPDO6 (co_node_config_t.tpdo_inhibit_ms). */
+#define ATV31_TPDO_INHIBIT_MS ((1u << 0) | (1u << 5))
+
 extern const drive_profile_t atv31_profile;
 extern const drive_profile_t atv31_v11_profile;
 

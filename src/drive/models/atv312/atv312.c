@@ -13,7 +13,9 @@ static const drive_analog_input_t atv312_analog_inputs[] = {
     {"AI3", ATV312_FR_AI3, DRIVE_ANALOG_CURRENT, ATV312_AI3_LOW, ATV312_AI3_HIGH},
 };
 
-const drive_profile_t atv312_profile = ATV312_FAMILY_PROFILE(
-    &atv312_od, ATV312_LOGIC_INPUTS, atv312_analog_inputs, &atv312_family_faults, false);
-const drive_profile_t atv312_devicenet_drive_profile = ATV312_FAMILY_PROFILE(
-    &atv312_od, ATV312_LOGIC_INPUTS, atv312_analog_inputs, &atv312_devicenet_faults, false);
+const drive_profile_t atv312_profile =
+    ATV312_FAMILY_PROFILE(&atv312_od, ATV312_LOGIC_INPUTS, atv312_analog_inputs,
+                          &atv312_family_faults, false, ATV312_TPDO_INHIBIT_MS);
+const drive_profile_t atv312_devicenet_drive_profile =
+    ATV312_FAMILY_PROFILE(&atv312_od, ATV312_LOGIC_INPUTS, atv312_analog_inputs,
+                          &atv312_devicenet_faults, false, ATV312_TPDO_INHIBIT_MS);

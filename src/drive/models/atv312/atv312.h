@@ -51,6 +51,11 @@ extern const drive_fault_table_t atv312_devicenet_faults;
  * (error)", the generic bit alone (docs/decisions.md, D-ERROR-REGISTER). */
 #define ATV312_ERROR_REGISTER CO_ERR_REG_GENERIC
 
+/* The unit of each TPDO's inhibit time as the ATV312 manual's object table prints its row: TPDO1
+ * (1800h:03) "unit = 1 ms", TPDO6 (1805h:03) "unit = 0,1 ms", CiA 301's (docs/decisions.md,
+ * D-INHIBIT-TIME): the bit of TPDO1 alone (co_node_config_t.tpdo_inhibit_ms). */
+#define ATV312_TPDO_INHIBIT_MS (1u << 0)
+
 /* The profile of an Altivar 31/312 on the dictionary `dictionary`, with `inputs` logic inputs (LI1
  * forward and LI2 reverse in 2-wire control while the terminals command, the factory assignment
  * the project takes, docs/decisions.md D-TERMINAL-RUN), the
@@ -70,18 +75,20 @@ extern const drive_fault_table_t atv312_devicenet_faults;
  * with "Data length = 4 bytes" (docs/decisions.md, D-ATV312-LONG-EXPEDITED). A macro, not a
  * function, so that each model's profile stays a constant initialiser (in flash on a
  * microcontroller); the ATV31 (atv31/atv31.h) is the same drive under another name. */
-#define ATV312_FAMILY_PROFILE(dictionary, inputs, analog, fault_table, stop_key_resets)            \
+#define ATV312_FAMILY_PROFILE(dictionary, inputs, analog, fault_table, stop_key_resets,            \
+                              inhibit_ms)                                                          \
     {                                                                                              \
         .od = (dictionary), .node_options = CO_NODE_SDO_LONG_EXPEDITED,                            \
-        .bus_error_register = ATV312_ERROR_REGISTER, .node_options_code = &co_node_options,        \
-        .control_reverse = 0x0800, .control_ramp_stop = 0x1000,                                    \
-        .control_fast_stop = 0x2000 | 0x4000, .status_reverse = 0x8000, .status_stop_key = 0x4000, \
-        .fast_ramp_divider = 4, .acceleration = DRIVE_PARAM(0x203C, 2),                            \
-        .deceleration = DRIVE_PARAM(0x203C, 3), .high_speed = DRIVE_PARAM(0x2001, 5),              \
-        .low_speed = DRIVE_PARAM(0x2001, 6), .nominal_frequency = DRIVE_PARAM(0x2042, 3),          \
-        .nominal_current = DRIVE_PARAM(0x2042, 4), .nominal_speed = DRIVE_PARAM(0x2042, 5),        \
-        .motor_current = DRIVE_PARAM(0x2002, 4), .motor_torque = DRIVE_PARAM(0x2002, 9),           \
-        .control_word_copy = DRIVE_PARAM(0x2037, 2), .status_word_copy = DRIVE_PARAM(0x2002, 2),   \
+        .tpdo_inhibit_ms = (inhibit_ms), .bus_error_register = ATV312_ERROR_REGISTER,              \
+        .node_options_code = &co_node_options, .control_reverse = 0x0800,                          \
+        .control_ramp_stop = 0x1000, .control_fast_stop = 0x2000 | 0x4000,                         \
+        .status_reverse = 0x8000, .status_stop_key = 0x4000, .fast_ramp_divider = 4,               \
+        .acceleration = DRIVE_PARAM(0x203C, 2), .deceleration = DRIVE_PARAM(0x203C, 3),            \
+        .high_speed = DRIVE_PARAM(0x2001, 5), .low_speed = DRIVE_PARAM(0x2001, 6),                 \
+        .nominal_frequency = DRIVE_PARAM(0x2042, 3), .nominal_current = DRIVE_PARAM(0x2042, 4),    \
+        .nominal_speed = DRIVE_PARAM(0x2042, 5), .motor_current = DRIVE_PARAM(0x2002, 4),          \
+        .motor_torque = DRIVE_PARAM(0x2002, 9), .control_word_copy = DRIVE_PARAM(0x2037, 2),       \
+        .status_word_copy = DRIVE_PARAM(0x2002, 2),                                                \
         .communication_loss_mode = DRIVE_PARAM(0x2022, 2),                                         \
         .network_fault_code = DRIVE_PARAM(0x2022, 3), .faults = (fault_table),                     \
         .stop_type = DRIVE_PARAM(0x2052, 4), .channel_mode = DRIVE_PARAM(0x2036, 2),               \

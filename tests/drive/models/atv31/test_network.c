@@ -106,6 +106,36 @@ END_TEST
 /* The manual's node guarding example as its PL7 program sends it ("Data length = 4 bytes"): 100Ch
  * and 100Dh written with command 0x23, zero extended, are taken (docs/decisions.md,
  * D-ATV312-LONG-EXPEDITED), on both firmware versions; the life time is then 2 s. */
+/* The ATV31 manual's object table prints "unit = 1 ms" for the inhibit time of both TPDOs
+ * (1800h:03 and 1805h:03, default 30), where the ATV312's prints 0.1 ms for TPDO6
+ * (docs/decisions.md, D-INHIBIT-TIME): each holds its TPDO back 30 ms to the microsecond. */
+START_TEST(inhibit_time_of_both_tpdos_in_ms)
+{
+    bench_t b;
+    bench_start_model(&b, &atv31_profile, NULL);
+    ck_assert_uint_eq(bench_read(&b, 0x1800, 3), 30);
+    ck_assert_uint_eq(bench_read(&b, 0x1805, 3), 30);
+    ck_assert_uint_eq(bench_sdo_write(&b, 0x1800, 5, 0, 2), 0);
+    ck_assert_uint_eq(bench_sdo_write(&b, 0x1805, 5, 0, 2), 0);
+    ck_assert_uint_eq(bench_sdo_write(&b, 0x1805, 1, 0x284, 4), 0);
+    bench_rx(&b, "000#0104");
+    bench_expect(&b, "184#4006");
+    bench_expect(&b, "284#40060000");
+    bench_advance(&b, 100000);
+    co_time_t t = b.now;
+    bench_rx(&b, "204#0600");
+    ck_assert_uint_eq(bench_expect(&b, "184#2106"), t);
+    ck_assert_uint_eq(bench_expect(&b, "284#21060000"), t);
+    bench_rx(&b, "204#0700");
+    bench_advance(&b, 30000 - 1);
+    bench_expect_none(&b);
+    bench_advance(&b, 1);
+    ck_assert_uint_eq(bench_expect(&b, "184#2306"), t + 30000);
+    ck_assert_uint_eq(bench_expect(&b, "284#23060000"), t + 30000);
+    bench_expect_none(&b);
+}
+END_TEST
+
 START_TEST(manual_pl7_guarding_example)
 {
     static const drive_profile_t *const profiles[] = {&atv31_profile, &atv31_v11_profile};
@@ -208,6 +238,7 @@ int main(void)
     tcase_add_test(tc, manual_vectors_frame_for_frame);
     tcase_add_test(tc, manual_boot_up);
     tcase_add_test(tc, manual_pl7_guarding_example);
+    tcase_add_test(tc, inhibit_time_of_both_tpdos_in_ms);
     tcase_add_test(tc, heartbeat_only_from_v1_2);
     tcase_add_test(tc, network_fault_fast_stop_with_col_3);
     suite_add_tcase(s, tc);

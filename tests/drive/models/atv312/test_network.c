@@ -30,10 +30,10 @@ START_TEST(dictionary_as_the_manual_tables_it)
     ck_assert_uint_eq(bench_read(&b, 0x1600, 1), 0x60400010);
     ck_assert_uint_eq(bench_read(&b, 0x1605, 2), 0x60420010);
     ck_assert_uint_eq(bench_read(&b, 0x1800, 1), 0x184);
-    ck_assert_uint_eq(bench_read(&b, 0x1800, 3), 300);
+    ck_assert_uint_eq(bench_read(&b, 0x1800, 3), 30);
     ck_assert_uint_eq(bench_read(&b, 0x1800, 5), 100);
     ck_assert_uint_eq(bench_read(&b, 0x1805, 1), 0x80000284);
-    ck_assert_uint_eq(bench_read(&b, 0x1805, 3), 300);
+    ck_assert_uint_eq(bench_read(&b, 0x1805, 3), 30);
     ck_assert_uint_eq(bench_read(&b, 0x1A00, 1), 0x60410010);
     ck_assert_uint_eq(bench_read(&b, 0x1A05, 2), 0x60440010);
     ck_assert_uint_eq(bench_read(&b, 0x203C, 2), 30);
@@ -51,7 +51,7 @@ START_TEST(dictionary_as_the_manual_tables_it)
 END_TEST
 
 /* D-TRANSMISSION-TYPES and D-PDO-TIME-MINIMUM (docs/decisions.md): transmission types of PDO6,
- * 10 ms minimum of inhibit time and event timer. */
+ * the least inhibit time 10 in its row's unit, the least event timer 10 ms. */
 START_TEST(pdo6_parameter_rules)
 {
     bench_t b;
@@ -64,9 +64,9 @@ START_TEST(pdo6_parameter_rules)
     ck_assert_uint_eq(bench_sdo_write(&b, 0x1805, 2, 0, 1), 0);
     ck_assert_uint_eq(bench_sdo_write(&b, 0x1805, 2, 240, 1), 0);
     ck_assert_uint_eq(bench_sdo_write(&b, 0x1805, 2, 253, 1), CO_SDO_ABORT_VALUE_RANGE);
-    ck_assert_uint_eq(bench_sdo_write(&b, 0x1805, 3, 99, 2), CO_SDO_ABORT_VALUE_LOW);
+    ck_assert_uint_eq(bench_sdo_write(&b, 0x1805, 3, 9, 2), CO_SDO_ABORT_VALUE_LOW);
     ck_assert_uint_eq(bench_sdo_write(&b, 0x1805, 3, 0, 2), 0);
-    ck_assert_uint_eq(bench_sdo_write(&b, 0x1805, 3, 100, 2), 0);
+    ck_assert_uint_eq(bench_sdo_write(&b, 0x1805, 3, 10, 2), 0);
     ck_assert_uint_eq(bench_sdo_write(&b, 0x1805, 5, 9, 2), CO_SDO_ABORT_VALUE_LOW);
     ck_assert_uint_eq(bench_sdo_write(&b, 0x1805, 5, 0, 2), 0);
     ck_assert_uint_eq(bench_sdo_write(&b, 0x1800, 5, 9, 2), CO_SDO_ABORT_VALUE_LOW);
@@ -237,6 +237,40 @@ START_TEST(tpdo1_follows_the_status_word)
 }
 END_TEST
 
+/* The ATV312 manual's object table, 1800h:03 "Transmit PDO1 - Inhibit time ... unit = 1 ms" and
+ * 1805h:03 "... unit = 0,1 ms", both defaulting to 30 (docs/decisions.md, D-INHIBIT-TIME): the
+ * value 30 a PLC program writes to 1800h:03 is taken (it was refused with 0x06090032) and holds
+ * TPDO1 back 30 ms, while TPDO6's default 30 holds it back 3 ms, each to the microsecond. */
+START_TEST(inhibit_time_in_the_unit_each_row_prints)
+{
+    bench_t b;
+    bench_start(&b);
+    ck_assert_uint_eq(bench_sdo_write(&b, 0x1800, 1, 0x80000184, 4), 0);
+    ck_assert_uint_eq(bench_sdo_write(&b, 0x1800, 3, 9, 2), CO_SDO_ABORT_VALUE_LOW);
+    ck_assert_uint_eq(bench_sdo_write(&b, 0x1800, 3, 30, 2), 0);
+    ck_assert_uint_eq(bench_sdo_write(&b, 0x1800, 1, 0x184, 4), 0);
+    ck_assert_uint_eq(bench_sdo_write(&b, 0x1805, 1, 0x284, 4), 0);
+    bench_operational(&b);
+    bench_expect(&b, "184#4006");
+    bench_expect(&b, "284#40060000");
+    bench_advance(&b, 100000);
+    co_time_t t = b.now;
+    bench_rx(&b, "204#0600");
+    ck_assert_uint_eq(bench_expect(&b, "184#2106"), t);
+    ck_assert_uint_eq(bench_expect(&b, "284#21060000"), t);
+    bench_rx(&b, "204#0700");
+    bench_advance(&b, 3000 - 1);
+    bench_expect_none(&b);
+    bench_advance(&b, 1);
+    ck_assert_uint_eq(bench_expect(&b, "284#23060000"), t + 3000);
+    bench_advance(&b, 27000 - 1);
+    bench_expect_none(&b);
+    bench_advance(&b, 1);
+    ck_assert_uint_eq(bench_expect(&b, "184#2306"), t + 30000);
+    bench_expect_none(&b);
+}
+END_TEST
+
 static void enable_pdo6(bench_t *b)
 {
     ck_assert_uint_eq(bench_sdo_write(b, 0x1405, 1, 0x304, 4), 0);
@@ -344,6 +378,7 @@ int main(void)
     tcase_add_test(tc, alarm_bit_while_a_warning_lasts);
     tcase_add_test(tc, error_code_follows_the_emcy);
     tcase_add_test(tc, tpdo1_follows_the_status_word);
+    tcase_add_test(tc, inhibit_time_in_the_unit_each_row_prints);
     tcase_add_test(tc, manual_pdo6_default_mappings);
     tcase_add_test(tc, manual_tpdo6_user_mapping);
     tcase_add_test(tc, tpdo6_maps_readable_writable_variables);

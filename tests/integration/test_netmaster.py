@@ -349,6 +349,27 @@ def test_boot_signed_values_and_valid_pdos(bus, start_daemon, remote, tmp_path):
     assert remote(4).sdo[0x1A05][0].raw == 1
 
 
+def test_boot_dcf_of_the_manuals_tpdo_records(bus, start_daemon, remote, tmp_path):
+    """A DCF that writes TPDO1's and TPDO6's records as the ATV312 manual's object table prints them
+    (issue 31): 1800h:03 = 30 (unit 1 ms, D-INHIBIT-TIME) and the reserved RW U8 sub-index 4 of
+    1800h and 1805h, which the drive lacked, so the boot failed. All are taken, in the record's
+    order, TPDO1 invalidated around its inhibit time."""
+    text = (NET / "drive4.dcf").read_text()
+    for section, value in (("1800sub3", "30"), ("1800sub4", "7"), ("1805sub4", "9")):
+        text = configured(text, section, value)
+    dcf = tmp_path / "drive4.dcf"
+    dcf.write_text(text)
+    start_daemon(bus, "--node-id", "4")
+    rc, out, err = comaster("boot", 4, dcf)
+    assert rc == 0, out + err
+    for request in ("2300180184010080", "2B0018031E000000", "2F00180407000000", "2300180184010000",
+                    "2F05180409000000"):
+        bus.expect(0x604, request)  # in this order
+    assert remote(4).sdo[0x1800][3].raw == 30
+    assert remote(4).sdo[0x1800][4].raw == 7
+    assert remote(4).sdo[0x1805][4].raw == 9
+
+
 def test_boot_one_slave(bus, start_daemon, remote):
     start_daemon(bus, "--node-id", "4")
     rc, out, err = comaster("boot", 4, NET / "drive4.dcf")

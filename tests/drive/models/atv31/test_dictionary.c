@@ -2,7 +2,7 @@
 /* The Altivar 31's communication profile area as its manual's object dictionary table prints it
  * (*Altivar 31 CANopen user's manual*, "Object dictionary"), transcribed row by row: the sub-index
  * 0 of every record and array, every sub-index, type and access. The reserved sub-index 4 of
- * 1800h/1805h is absent (CiA 301: it answers 0x06090011) and 1010h, 1011h, 1015h, 1019h are the
+ * 1800h/1805h is there, RW U8 as printed, and 1010h, 1011h, 1015h, 1019h are the
  * project's additions (docs/atv31.md, deviations). */
 #include "../manual_table.h"
 #include "atv31/atv31.h"
@@ -46,13 +46,13 @@ static const manual_row_t manual_rows[] = {
     {0x1800, 0x01, CO_DT_UNSIGNED32, MANUAL_RW, MANUAL_NOT_COUNT},
     {0x1800, 0x02, CO_DT_UNSIGNED8, MANUAL_RO, MANUAL_NOT_COUNT},
     {0x1800, 0x03, CO_DT_UNSIGNED16, MANUAL_RW, MANUAL_NOT_COUNT},
-    {0x1800, 0x04, CO_DT_UNSIGNED8, MANUAL_ABSENT, MANUAL_NOT_COUNT}, /* "Reserved" */
+    {0x1800, 0x04, CO_DT_UNSIGNED8, MANUAL_RW, MANUAL_NOT_COUNT}, /* "Reserved" */
     {0x1800, 0x05, CO_DT_UNSIGNED16, MANUAL_RW, MANUAL_NOT_COUNT},
     {0x1805, 0x00, CO_DT_UNSIGNED8, MANUAL_RO, 5},
     {0x1805, 0x01, CO_DT_UNSIGNED32, MANUAL_RW, MANUAL_NOT_COUNT},
     {0x1805, 0x02, CO_DT_UNSIGNED8, MANUAL_RW, MANUAL_NOT_COUNT},
     {0x1805, 0x03, CO_DT_UNSIGNED16, MANUAL_RW, MANUAL_NOT_COUNT},
-    {0x1805, 0x04, CO_DT_UNSIGNED8, MANUAL_ABSENT, MANUAL_NOT_COUNT}, /* "Reserved" */
+    {0x1805, 0x04, CO_DT_UNSIGNED8, MANUAL_RW, MANUAL_NOT_COUNT}, /* "Reserved" */
     {0x1805, 0x05, CO_DT_UNSIGNED16, MANUAL_RW, MANUAL_NOT_COUNT},
     {0x1A00, 0x00, CO_DT_UNSIGNED8, MANUAL_RO, 1},
     {0x1A00, 0x01, CO_DT_UNSIGNED32, MANUAL_RO, MANUAL_NOT_COUNT},

@@ -39,7 +39,6 @@ START_TEST(dictionary_as_the_manual_tables_it)
     ck_assert_uint_eq(bench_read(&b, 0x203C, 2), 30);
     uint32_t value;
     ck_assert_uint_eq(bench_sdo_read(&b, 0x1003, 2, &value), CO_SDO_ABORT_NO_SUBINDEX);
-    ck_assert_uint_eq(bench_sdo_read(&b, 0x1800, 4, &value), CO_SDO_ABORT_NO_SUBINDEX);
     ck_assert_uint_eq(bench_sdo_write(&b, 0x1A00, 1, 0x60440010, 4), CO_SDO_ABORT_READ_ONLY);
     ck_assert_uint_eq(bench_sdo_write(&b, 0x1800, 2, 1, 1), CO_SDO_ABORT_READ_ONLY);
     /* 1008h "ATV312" is the manual's one segmented upload. */
@@ -47,6 +46,30 @@ START_TEST(dictionary_as_the_manual_tables_it)
     bench_expect(&b, "584#4108100006000000");
     bench_rx(&b, "604#6000000000000000");
     bench_expect(&b, "584#0341545633313200");
+}
+END_TEST
+
+/* The manual's object table: 1800h:04 "Transmit PDO1 - Reserved" and 1805h:04 "Transmit PDO6 -
+ * Reserved", RW Unsigned 8 (default "-": 0). A configuration tool's DCF writes them with the rest
+ * of the record, the PDO valid or not; they are kept and read back, and change no transmission. */
+START_TEST(reserved_sub_index_4_read_write)
+{
+    bench_t b;
+    bench_start(&b);
+    bench_rx(&b, "604#4000180400000000");
+    bench_expect(&b, "584#4F00180400000000");
+    bench_rx(&b, "604#2F00180407000000");
+    bench_expect(&b, "584#6000180400000000");
+    bench_rx(&b, "604#4000180400000000");
+    bench_expect(&b, "584#4F00180407000000");
+    ck_assert_uint_eq(bench_sdo_write(&b, 0x1805, 4, 0xFF, 1), 0);
+    ck_assert_uint_eq(bench_read(&b, 0x1805, 4), 0xFF);
+    ck_assert_uint_eq(bench_sdo_write(&b, 0x1805, 4, 0x100, 2), CO_SDO_ABORT_LENGTH_HIGH);
+    ck_assert_uint_eq(bench_read(&b, 0x1800, 0), 5);
+    bench_operational(&b);
+    bench_expect(&b, "184#4006");
+    bench_advance(&b, 1000000);
+    bench_expect_none(&b);
 }
 END_TEST
 
@@ -371,6 +394,7 @@ int main(void)
     Suite *s = suite_create("atv312_network");
     TCase *tc = tcase_create("network");
     tcase_add_test(tc, dictionary_as_the_manual_tables_it);
+    tcase_add_test(tc, reserved_sub_index_4_read_write);
     tcase_add_test(tc, pdo6_parameter_rules);
     tcase_add_test(tc, dictionary_dependent_cia301_rules);
     tcase_add_test(tc, manual_sdo_vectors);

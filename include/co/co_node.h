@@ -68,6 +68,11 @@ typedef struct co_app_hooks {
  * the nodes of one runtime send their heartbeats in the same wake-ups (a runtime's choice, not a
  * profile's: docs/error-control.md). */
 #define CO_NODE_HEARTBEAT_GRID 0x20u
+/* 1001h, and byte 2 of every EMCY the node sends whoever raises it (the core's RPDO and SYNC
+ * length errors too), is the generic bit alone: 1 while an error is active, 0 otherwise, without
+ * CiA 301's class bits (a device whose manual prints the error register as "error (1) or no error
+ * (0)"). */
+#define CO_NODE_ERROR_REGISTER_GENERIC 0x40u
 
 /* The code of the options (src/canopen/slave/node_options.c), one function for each option that
  * needs more than a test of its flag. */

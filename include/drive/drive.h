@@ -98,9 +98,6 @@ typedef struct drive_profile {
     /* The TPDOs whose inhibit time counts in 1 ms, as its manual prints each TPDO's row
      * (co_node_config_t.tpdo_inhibit_ms); 0: CiA 301's 100 us for every TPDO. */
     uint32_t tpdo_inhibit_ms;
-    /* The 1001h bits of the EMCYs of CAN bus conditions (drive_bus_event; CiA 301 table 48);
-     * 0: bits 0 and 4, generic and communication. A fault's bits are in its table entry. */
-    uint8_t bus_error_register;
     /* Control word bits 11-15 are manufacturer-specific in CiA 402: the model's meaning of each. */
     uint16_t control_reverse;   /* reverses the reference */
     uint16_t control_ramp_stop; /* stops as stop_type says, run command kept */

@@ -8,15 +8,10 @@
 
 #include <string.h>
 
-/* The EMCY error register of a CAN bus condition where the profile gives none: 1001h bit 0
- * (generic, "error (1)" in the ATV312 table) and bit 4 (communication), CiA 301 table 48. */
+/* The EMCY error register of a CAN bus condition: 1001h bit 0 (generic) and bit 4
+ * (communication), CiA 301 table 48; a model whose manual prints 1001h as 0 or 1 keeps bit 0 alone
+ * by its node option (CO_NODE_ERROR_REGISTER_GENERIC), for every EMCY alike. */
 #define COMMUNICATION_ERROR_REGISTER (CO_ERR_REG_GENERIC | CO_ERR_REG_COMMUNICATION)
-
-static uint8_t bus_error_register(const drive_t *drive)
-{
-    uint8_t bits = drive->profile->bus_error_register;
-    return bits ? bits : COMMUNICATION_ERROR_REGISTER;
-}
 
 /* Recomputes the motor's target from the state and the dictionary, and publishes the status
  * word, speeds, current and torque. */
@@ -215,7 +210,7 @@ static void on_nmt_state(co_node_t *node, co_nmt_state_t state)
     (void)state;
     drive_t *drive = drive_of(node);
     for (uint8_t i = 0; i < drive->bus_event_count; i++)
-        co_emcy_raise(node, drive->bus_events[i], bus_error_register(drive), NULL);
+        co_emcy_raise(node, drive->bus_events[i], COMMUNICATION_ERROR_REGISTER, NULL);
     drive_error_code_publish(drive);
     for (uint8_t i = 0; i < drive->profile->faults->count; i++) {
         if (drive_fault_cause_present(drive, i))
@@ -338,7 +333,7 @@ void drive_bus_event(drive_t *drive, uint16_t emcy_code, bool active)
 {
     remember_bus_event(drive, emcy_code, active);
     if (active)
-        co_emcy_raise(&drive->node, emcy_code, bus_error_register(drive), NULL);
+        co_emcy_raise(&drive->node, emcy_code, COMMUNICATION_ERROR_REGISTER, NULL);
     else if (!drive_emcy_code_in_use(drive, emcy_code))
         co_emcy_clear(&drive->node, emcy_code);
     drive_error_code_publish(drive);

@@ -169,6 +169,39 @@ START_TEST(nmt_disconnect)
 }
 END_TEST
 
+/* 1001h and every EMCY's byte 2 hold the generic bit alone, whoever raises the error: the RPDO
+ * length and SYNC length errors of the core (0x11 without the option) and an application's error
+ * of another class; 0 again once none is active. */
+START_TEST(error_register_generic)
+{
+    start(CO_NODE_ERROR_REGISTER_GENERIC);
+    ck_assert_uint_eq(test_write(&t, 0x1800, 1, 0x80000184, 4), 0);
+    test_rx(&t, "000#0104");
+    test_rx(&t, "204#06");
+    test_expect(&t, "084#1082010100010200");
+    ck_assert_int_eq(co_od_value(&t.node, 0x1001, 0), 0x01);
+    test_rx(&t, "080#01");
+    test_expect(&t, "084#4082010100000000");
+    ck_assert(co_emcy_raise(&t.node, 0x5000, CO_ERR_REG_CURRENT | CO_ERR_REG_MANUFACTURER, NULL));
+    t.bus.deadline = co_node_process(&t.node, t.bus.now);
+    test_expect(&t, "084#0050010000000000");
+    ck_assert_int_eq(co_od_value(&t.node, 0x1001, 0), 0x01);
+    co_emcy_clear(&t.node, 0x5000);
+    test_rx(&t, "080#");
+    test_rx(&t, "204#0600");
+    t.bus.deadline = co_node_process(&t.node, t.bus.now);
+    test_expect(&t, "084#0000000000000000");
+    ck_assert_int_eq(co_od_value(&t.node, 0x1001, 0), 0);
+
+    start(0);
+    ck_assert_uint_eq(test_write(&t, 0x1800, 1, 0x80000184, 4), 0);
+    test_rx(&t, "000#0104");
+    test_rx(&t, "204#06");
+    test_expect(&t, "084#1082110100010200");
+    ck_assert_int_eq(co_od_value(&t.node, 0x1001, 0), 0x11);
+}
+END_TEST
+
 static void ignore_frame(void *user, const co_frame_t *frame)
 {
     (void)user;
@@ -182,9 +215,13 @@ START_TEST(options_without_their_code_are_refused)
     static uint8_t data[2048];
     co_node_t node;
     ck_assert_uint_le(test_od.data_size, sizeof(data));
-    const uint32_t options[] = {CO_NODE_PAD_DLC8,           CO_NODE_SDO_EXPEDITED_ONLY,
-                                CO_NODE_SDO_LONG_EXPEDITED, CO_NODE_SDO_ERROR_CLASS,
-                                CO_NODE_NMT_DISCONNECT,     CO_NODE_HEARTBEAT_GRID};
+    const uint32_t options[] = {CO_NODE_PAD_DLC8,
+                                CO_NODE_SDO_EXPEDITED_ONLY,
+                                CO_NODE_SDO_LONG_EXPEDITED,
+                                CO_NODE_SDO_ERROR_CLASS,
+                                CO_NODE_NMT_DISCONNECT,
+                                CO_NODE_HEARTBEAT_GRID,
+                                CO_NODE_ERROR_REGISTER_GENERIC};
     for (size_t i = 0; i < sizeof(options) / sizeof(options[0]); i++) {
         co_node_config_t config = {.node_id = 4,
                                    .od = &test_od,
@@ -209,6 +246,7 @@ int main(void)
     tcase_add_test(tc, long_expedited_write);
     tcase_add_test(tc, error_class_layout);
     tcase_add_test(tc, nmt_disconnect);
+    tcase_add_test(tc, error_register_generic);
     tcase_add_test(tc, options_without_their_code_are_refused);
     suite_add_tcase(s, tc);
     return check_run_suite(s);

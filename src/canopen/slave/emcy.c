@@ -20,9 +20,14 @@ static uint8_t active_register(const co_emcy_t *emcy)
     return reg;
 }
 
+/* 1001h, which every EMCY frame copies into its byte 2: under CO_NODE_ERROR_REGISTER_GENERIC the
+ * generic bit alone, whatever classes the raisers gave. */
 static void update_register(co_node_t *node)
 {
-    co_od_set_value(node, CO_IDX_ERROR_REGISTER, 0, active_register(&node->emcy));
+    uint8_t reg = active_register(&node->emcy);
+    if (node->options & CO_NODE_ERROR_REGISTER_GENERIC)
+        reg &= CO_ERR_REG_GENERIC;
+    co_od_set_value(node, CO_IDX_ERROR_REGISTER, 0, reg);
 }
 
 static void queue_drop(co_emcy_t *emcy)

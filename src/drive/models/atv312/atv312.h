@@ -47,9 +47,11 @@ extern const drive_fault_table_t atv312_devicenet_faults;
 #define ATV312_AI3_LOW DRIVE_PARAM(0x2010, 3)
 #define ATV312_AI3_HIGH DRIVE_PARAM(0x2010, 4)
 
-/* 1001h in the family's EMCYs, CAN bus conditions too: the manuals' byte 2, "=0 (no error) =1
- * (error)", the generic bit alone (docs/decisions.md, D-ERROR-REGISTER). */
-#define ATV312_ERROR_REGISTER CO_ERR_REG_GENERIC
+/* The family's node options: an expedited write longer than its object taken when the extra bytes
+ * are 0 (D-ATV312-LONG-EXPEDITED), and 1001h in every EMCY, the core's RPDO and SYNC length errors
+ * and the CAN bus conditions too, the manuals' byte 2, "=0 (no error) =1 (error)", the generic bit
+ * alone (docs/decisions.md, D-ERROR-REGISTER). */
+#define ATV312_NODE_OPTIONS (CO_NODE_SDO_LONG_EXPEDITED | CO_NODE_ERROR_REGISTER_GENERIC)
 
 /* The unit of each TPDO's inhibit time as the ATV312 manual's object table prints its row: TPDO1
  * (1800h:03) "unit = 1 ms", TPDO6 (1805h:03) "unit = 0,1 ms", CiA 301's (docs/decisions.md,
@@ -78,8 +80,7 @@ extern const drive_fault_table_t atv312_devicenet_faults;
 #define ATV312_FAMILY_PROFILE(dictionary, inputs, analog, fault_table, stop_key_resets,            \
                               inhibit_ms)                                                          \
     {                                                                                              \
-        .od = (dictionary), .node_options = CO_NODE_SDO_LONG_EXPEDITED,                            \
-        .tpdo_inhibit_ms = (inhibit_ms), .bus_error_register = ATV312_ERROR_REGISTER,              \
+        .od = (dictionary), .node_options = ATV312_NODE_OPTIONS, .tpdo_inhibit_ms = (inhibit_ms),  \
         .node_options_code = &co_node_options, .control_reverse = 0x0800,                          \
         .control_ramp_stop = 0x1000, .control_fast_stop = 0x2000 | 0x4000,                         \
         .status_reverse = 0x8000, .status_stop_key = 0x4000, .fast_ramp_divider = 4,               \

@@ -6,15 +6,13 @@
  * setting of ACC as well. Control word bits 11-15 have no meaning the card's manual gives. */
 #include "atv58/atv58.h"
 
-/* 1001h in its EMCY: "=0 no fault, =1 fault", for the CAN bus conditions too. */
-#define ATV58_ERROR_REGISTER CO_ERR_REG_GENERIC
-
 const drive_profile_t atv58_profile = {
     .od = &atv58_od,
     .node_options = CO_NODE_PAD_DLC8 | CO_NODE_SDO_EXPEDITED_ONLY | CO_NODE_SDO_LONG_EXPEDITED |
-                    CO_NODE_SDO_ERROR_CLASS | CO_NODE_NMT_DISCONNECT,
+                    CO_NODE_SDO_ERROR_CLASS | CO_NODE_NMT_DISCONNECT |
+                    /* 1001h in every EMCY: "=0 no fault, =1 fault", the core's too. */
+                    CO_NODE_ERROR_REGISTER_GENERIC,
     .node_options_code = &co_node_options,
-    .bus_error_register = ATV58_ERROR_REGISTER,
     .faults = &atv58_faults,
     .indicators = atv58_indicators,
     .indicator_count = ATV58_INDICATORS,

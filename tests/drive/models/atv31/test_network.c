@@ -136,6 +136,20 @@ START_TEST(inhibit_time_of_both_tpdos_in_ms)
 }
 END_TEST
 
+/* Its manual's 1001h "Error (1) or no error (0)": the core's RPDO length EMCY carries 01h and
+ * 1001h is 1, as the drive's own EMCYs (D-ERROR-REGISTER). */
+START_TEST(core_emcy_error_register_is_1)
+{
+    bench_t b;
+    bench_start_model(&b, &atv31_profile, NULL);
+    bench_rx(&b, "000#0104");
+    bench_expect(&b, "184#4006");
+    bench_rx(&b, "204#060000");
+    bench_expect(&b, "084#2082010100030200");
+    ck_assert_uint_eq(bench_read(&b, 0x1001, 0), 1);
+}
+END_TEST
+
 START_TEST(manual_pl7_guarding_example)
 {
     static const drive_profile_t *const profiles[] = {&atv31_profile, &atv31_v11_profile};
@@ -238,6 +252,7 @@ int main(void)
     tcase_add_test(tc, manual_vectors_frame_for_frame);
     tcase_add_test(tc, manual_boot_up);
     tcase_add_test(tc, manual_pl7_guarding_example);
+    tcase_add_test(tc, core_emcy_error_register_is_1);
     tcase_add_test(tc, inhibit_time_of_both_tpdos_in_ms);
     tcase_add_test(tc, heartbeat_only_from_v1_2);
     tcase_add_test(tc, network_fault_fast_stop_with_col_3);

@@ -184,6 +184,30 @@ START_TEST(alarm_bit_while_a_warning_lasts)
 }
 END_TEST
 
+/* The manual's EMCY frame, byte 2 "=0 (no error) =1 (error)", and its 1001h "Error register":
+ * the EMCYs the core raises itself carry 01h too, not CiA 301's 11h (D-ERROR-REGISTER): an RPDO1
+ * of one byte where CMDD needs two (8210h, the issue's frame `084#1082110100010200` with 01h) and a
+ * SYNC of DLC 1 while 1019h is 0 (8240h); 1001h is 1 while they last, 0 after. */
+START_TEST(core_emcys_carry_the_manuals_error_register)
+{
+    bench_t b;
+    bench_start(&b);
+    bench_operational(&b);
+    bench_expect(&b, "184#4006");
+    bench_rx(&b, "204#06");
+    bench_expect(&b, "084#1082010100010200");
+    ck_assert_uint_eq(bench_read(&b, 0x1001, 0), 1);
+    bench_rx(&b, "080#01");
+    bench_expect(&b, "084#4082010100000000");
+    ck_assert_uint_eq(bench_read(&b, 0x1001, 0), 1);
+    bench_rx(&b, "080#");
+    bench_rx(&b, "204#0000");
+    bench_expect(&b, "084#0000000000000000");
+    ck_assert_uint_eq(bench_read(&b, 0x1001, 0), 0);
+    bench_expect_none(&b);
+}
+END_TEST
+
 /* The manual: "The Emergency Error Code is the same as the variable Fault code (603F)". A CAN
  * bus condition's EMCY (error passive, 8120h) is in 603Fh while it lasts, here mapped into TPDO6
  * beside ETAD; a fault's code takes its place while the fault is active, and the condition's comes
@@ -400,6 +424,7 @@ int main(void)
     tcase_add_test(tc, manual_sdo_vectors);
     tcase_add_test(tc, manual_pl7_guarding_example);
     tcase_add_test(tc, alarm_bit_while_a_warning_lasts);
+    tcase_add_test(tc, core_emcys_carry_the_manuals_error_register);
     tcase_add_test(tc, error_code_follows_the_emcy);
     tcase_add_test(tc, tpdo1_follows_the_status_word);
     tcase_add_test(tc, inhibit_time_in_the_unit_each_row_prints);

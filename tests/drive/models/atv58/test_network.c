@@ -243,6 +243,20 @@ START_TEST(bus_condition_emcy_has_error_register_1)
 }
 END_TEST
 
+/* The card's 1001h "=0 no fault, =1 fault" in the EMCY the core raises itself too: an RPDO of 2
+ * bytes where CMDD and LFRD need 4 (8210h) carries 01h, not CiA 301's 11h (D-ERROR-REGISTER). */
+START_TEST(core_emcy_error_register_is_1)
+{
+    bench_t b;
+    bench_start_model(&b, &atv58_profile, NULL);
+    bench_rx(&b, "000#0104");
+    b.next = b.count; /* its TPDO on entering Operational */
+    bench_rx(&b, "204#0600");
+    bench_expect(&b, "084#1082010100020400");
+    ck_assert_uint_eq(bench_read(&b, 0x1001, 0), 1);
+}
+END_TEST
+
 int main(void)
 {
     Suite *s = suite_create("atv58_network");
@@ -253,6 +267,7 @@ int main(void)
     tcase_add_test(tc, life_guarding_fault_and_emcy);
     tcase_add_test(tc, nmt_disconnect);
     tcase_add_test(tc, bus_condition_emcy_has_error_register_1);
+    tcase_add_test(tc, core_emcy_error_register_is_1);
     tcase_add_loop_test(tc, every_fault_of_its_table, 0,
                         (int)(sizeof atv58_table / sizeof atv58_table[0]));
     suite_add_tcase(s, tc);

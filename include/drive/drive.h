@@ -187,6 +187,9 @@ typedef struct drive_profile {
     drive_param_t internal_control;
     uint16_t internal_control_no_check;
     const char *inconsistent_fault;
+    /* The node-id as the drive's own parameter (the Altivars' AdCO): 0 while CANopen is off
+     * (drive_config_t.node_id 0); {0, 0}: the model has none. */
+    drive_param_t can_address;
     /* The faults of the model's manuals (faults.h); required. */
     const drive_fault_table_t *faults;
     /* The LEDs of the model's card as its manual names them (panel.h), indicator_count of them;
@@ -274,6 +277,8 @@ typedef struct drive {
     /* The profile's channels as last computed (channels.c): the network commands, and gives the
      * reference. */
     bool command_from_network;
+    /* drive_config_t.node_id was 0: the node stays in Initialising, silent. */
+    bool can_off;
     bool reference_from_network;
     bool second_ramp;                 /* the ramp switch's source is active: AC2/dE2 */
     bool io_mode;                     /* channel_mode is the I/O mode */
@@ -300,7 +305,10 @@ typedef struct drive {
 typedef struct drive_config {
     const drive_profile_t *profile;
     uint8_t *od_data; /* profile->od->data_size bytes owned by the caller */
-    uint8_t node_id;  /* 1..127 */
+    /* 1..127, or 0: CANopen off (the Altivars' AdCO = 0, "disables the CANopen communications"):
+     * the drive runs (terminals, keypad, the motor) but its node is never started, so it sends
+     * nothing and takes no frame; the profile's can_address reads 0. */
+    uint8_t node_id;
     co_send_fn send;
     void *send_user;
     const co_storage_t *storage; /* may be NULL: 1010h/1011h then abort */

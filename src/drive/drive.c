@@ -226,10 +226,16 @@ static const co_app_hooks_t drive_hooks = {
     .od_written = on_written,
 };
 
+/* CANopen off (drive_config_t.node_id 0): the core still holds the drive's dictionary, and a node
+ * needs a node-id 1..127 to be initialised; this one never reaches the bus, for the node is never
+ * started (co_node_receive and co_node_process do nothing in Initialising). */
+#define CAN_OFF_NODE_ID 1u
+
 int drive_init(drive_t *drive, const drive_config_t *config)
 {
+    bool can_off = config->node_id == 0;
     co_node_config_t node_config = {
-        .node_id = config->node_id,
+        .node_id = can_off ? CAN_OFF_NODE_ID : config->node_id,
         .od = config->profile->od,
         .od_data = config->od_data,
         .send = config->send,
@@ -252,6 +258,10 @@ int drive_init(drive_t *drive, const drive_config_t *config)
     int err = co_node_init(&drive->node, &node_config);
     if (err != 0)
         return err;
+    drive->can_off = can_off;
+    drive_param_t address = config->profile->can_address;
+    if (can_off && address.index != 0)
+        co_od_set_value(&drive->node, address.index, address.subindex, 0);
     drive_entries_find(drive);
     restart_drive(drive, 0);
     /* The channels of the dictionary's defaults, computed against the network commanding. */
@@ -262,7 +272,8 @@ int drive_init(drive_t *drive, const drive_config_t *config)
 
 void drive_start(drive_t *drive, co_time_t now)
 {
-    co_node_start(&drive->node, now);
+    if (!drive->can_off)
+        co_node_start(&drive->node, now);
     update_channels(drive);
     settle(drive);
 }
@@ -285,6 +296,8 @@ static bool is_service_request(const drive_t *drive, const co_frame_t *frame)
 
 void drive_receive(drive_t *drive, const co_frame_t *frame, co_time_t now)
 {
+    if (drive->can_off)
+        return;
     if (is_service_request(drive, frame))
         drive->service_received_at = now;
     uint8_t errors = drive->node.emcy.active_count;

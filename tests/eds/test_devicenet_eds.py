@@ -24,6 +24,9 @@ from eds_pie.eds_pie import CIP_EDS  # noqa: E402
 # on the dictionary's addresses (docs/decisions.md, D-MANUFACTURER-ADDRESS), with the values
 # src/drive/models/atv312/devicenet.c gives the adapter; the probe tests hold it to the adapter.
 CLASS_FIRST, CLASS_LAST = 0x70, 0xA8
+# The node-id of the drive behind the card (atv312d's DN_DRIVE_NODE_ID), which a default of
+# $NODEID+n in the CANopen EDS (AdCO, D-ADCO-BDCO) is relative to.
+CARD_DRIVE_NODE_ID = 1
 ADDRESSES_PER_CLASS = 200
 INDEX_FIRST = 0x2000
 ADDRESSES_PER_INDEX = 100
@@ -77,6 +80,13 @@ def parse_with_eds_pie():
 
 
 EDS, EDS_PIE_MESSAGES = parse_with_eds_pie()
+
+
+def default_of(text):
+    """A CANopen EDS DefaultValue, N or $NODEID+N, as the drive behind the card holds it."""
+    if text.upper().startswith("$NODEID+"):
+        return CARD_DRIVE_NODE_ID + int(text[len("$NODEID+"):], 0)
+    return int(text, 0)
 
 
 def number(value):
@@ -272,7 +282,7 @@ class ParamsTest(unittest.TestCase):
         self.assertEqual([number(self.field(param, n)) for n in (F_MIN, F_MAX, F_DEFAULT)],
                          [int(section.get("LowLimit") or str(low), 0),
                           int(section.get("HighLimit") or str(high), 0),
-                          int(section.get("DefaultValue"), 0)])
+                          default_of(section.get("DefaultValue"))])
         scaling = [self.field(param, n)
                    for n in (F_MULTIPLIER, F_DIVISOR, F_BASE, F_OFFSET, F_DECIMALS)]
         self.assertEqual(scaling, [1, 10, 1, 0, 1] if divisor != 1 else ["", "", "", "", 0])

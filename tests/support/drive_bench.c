@@ -20,8 +20,8 @@ void bench_start_model(bench_t *b, const drive_profile_t *profile, const co_stor
     bench_start_model_over(b, profile, storage, 0);
 }
 
-void bench_start_model_over(bench_t *b, const drive_profile_t *profile, const co_storage_t *storage,
-                            uint8_t fill)
+static void start_drive(bench_t *b, const drive_profile_t *profile, const co_storage_t *storage,
+                        uint8_t node_id, uint8_t fill)
 {
     memset(b, 0, sizeof(*b));
     memset(&b->drive, fill, sizeof b->drive);
@@ -29,7 +29,7 @@ void bench_start_model_over(bench_t *b, const drive_profile_t *profile, const co
     drive_config_t config = {
         .profile = profile,
         .od_data = b->od_data,
-        .node_id = BENCH_NODE_ID,
+        .node_id = node_id,
         .send = bench_send,
         .send_user = b,
         .storage = storage,
@@ -37,6 +37,17 @@ void bench_start_model_over(bench_t *b, const drive_profile_t *profile, const co
     ck_assert_int_eq(drive_init(&b->drive, &config), 0);
     drive_start(&b->drive, 0);
     b->deadline = drive_process(&b->drive, 0);
+}
+
+void bench_start_can_off(bench_t *b, const drive_profile_t *profile)
+{
+    start_drive(b, profile, NULL, 0, 0);
+}
+
+void bench_start_model_over(bench_t *b, const drive_profile_t *profile, const co_storage_t *storage,
+                            uint8_t fill)
+{
+    start_drive(b, profile, storage, BENCH_NODE_ID, fill);
     bool padded = (profile->node_options & CO_NODE_PAD_DLC8) != 0;
     bench_expect(b, padded ? "704#0000000000000000" : "704#00");
 }

@@ -32,6 +32,8 @@ void bench_start_model(bench_t *b, const drive_profile_t *profile, const co_stor
  * memory of a caller that does not zero it. */
 void bench_start_model_over(bench_t *b, const drive_profile_t *profile, const co_storage_t *storage,
                             uint8_t fill);
+/* Starts the model at time 0 with CANopen off (node-id 0, the Altivars' AdCO = 0): nothing sent. */
+void bench_start_can_off(bench_t *b, const drive_profile_t *profile);
 /* Delivers a frame now, then runs drive_process. */
 void bench_rx(bench_t *b, const char *text);
 /* Advances time by `us`, processing at every deadline on the way and at the end. */

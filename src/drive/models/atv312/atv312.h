@@ -30,6 +30,12 @@ extern const drive_fault_table_t atv312_devicenet_faults;
 #define ATV312_CD_CANOPEN 4
 #define ATV312_CD_TERMINALS 1
 
+/* AdCO, the CANopen address of the [COMMUNICATION] (COM-) menu, 0 to 127, 0 CANopen off, and
+ * bdCO, its speed (kbit/s, 125 by default): read-only on the bus, the node-id and the bitrate the
+ * drive runs with ("any change will only be applied after a power cycle"), at ADL 6051 and 6052,
+ * the project's addresses (docs/decisions.md, D-ADCO-BDCO). */
+#define ATV312_ADCO DRIVE_PARAM(0x201E, 0x34)
+
 /* The access level (LAC): 1 L1, 2 L2, 3 L3, the project's codes; L3 allows separate channels and
  * control word bits as switching sources. */
 #define ATV312_LAC_L3 3
@@ -107,6 +113,7 @@ extern const drive_fault_table_t atv312_devicenet_faults;
         .access_level = DRIVE_PARAM(0x2036, 1), .access_level_full = ATV312_LAC_L3,                \
         .stop_key_resets_faults = (stop_key_resets), .internal_control = DRIVE_PARAM(0x2037, 5),   \
         .internal_control_no_check = 0x8000, .inconsistent_fault = "CFI",                          \
+        .can_address = ATV312_ADCO,                                                                \
     }
 
 extern const drive_profile_t atv312_profile;

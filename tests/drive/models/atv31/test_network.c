@@ -25,6 +25,9 @@ START_TEST(identity_is_the_atv31s)
     ck_assert_uint_eq(bench_read(&b, 0x1000, 0), 0x00010192);
     ck_assert_uint_eq(bench_read(&b, 0x1018, 0), 1);
     ck_assert_uint_eq(bench_read(&b, 0x1018, 1), 0x5F);
+    /* AdCO and bdCO of its COM- menu, read-only (D-ADCO-BDCO). */
+    ck_assert_uint_eq(bench_read(&b, 0x201E, 0x34), 4);
+    ck_assert_uint_eq(bench_read(&b, 0x201E, 0x35), 125);
     uint32_t value;
     ck_assert_uint_eq(bench_sdo_read(&b, 0x1018, 2, &value), CO_SDO_ABORT_NO_SUBINDEX);
     static const bench_exchange_t name[] = {

@@ -413,6 +413,51 @@ START_TEST(manual_rpdo6_user_mapping)
 }
 END_TEST
 
+/* The manual's [COMMUNICATION] (COM-) menu: AdCO, the CANopen address 0 to 127, and bdCO, its
+ * speed (125 kbit/s by default), the drive's own parameters, readable on the bus
+ * (docs/decisions.md, D-ADCO-BDCO): AdCO reads the node-id; both are read-only, "any change will
+ * only be applied after a power cycle". */
+START_TEST(adco_and_bdco_read_as_parameters)
+{
+    bench_t b;
+    bench_start(&b);
+    bench_rx(&b, "604#401E203400000000");
+    bench_expect(&b, "584#4F1E203404000000");
+    bench_rx(&b, "604#401E203500000000");
+    bench_expect(&b, "584#4B1E20357D000000");
+    ck_assert_uint_eq(bench_sdo_write(&b, 0x201E, 0x34, 5, 1), CO_SDO_ABORT_READ_ONLY);
+    ck_assert_uint_eq(bench_sdo_write(&b, 0x201E, 0x35, 250, 2), CO_SDO_ABORT_READ_ONLY);
+}
+END_TEST
+
+/* "The default value (0) of this parameter disables the CANopen communications of the Altivar":
+ * with AdCO = 0 (drive_config_t.node_id 0) the drive is there and runs on its keypad, AdCO reads
+ * 0, and it is silent on CAN: no boot-up, no answer to NMT, SDO or guarding, no TPDO, no EMCY of a
+ * fault. */
+START_TEST(adco_0_drive_runs_silent_on_can)
+{
+    bench_t b;
+    bench_start_can_off(&b, &atv312_profile);
+    ck_assert_int_eq(co_od_value(&b.drive.node, 0x201E, 0x34), 0);
+    ck_assert_int_eq(co_od_value(&b.drive.node, 0x201E, 0x35), 125);
+    bench_rx(&b, "000#0100");
+    bench_rx(&b, "000#0101");
+    bench_rx(&b, "601#4000100000000000");
+    bench_rx(&b, "701#R");
+    bench_rx(&b, "201#0F00");
+    ck_assert_uint_eq(
+        co_od_write(&b.drive.node, 0x6042, 0, (const uint8_t *)"\xDC\x05", 2, CO_OD_ORIGIN_APP), 0);
+    drive_set_local(&b.drive, true, b.now);
+    ck_assert(drive_run_key(&b.drive, b.now));
+    bench_advance(&b, 4000000);
+    ck_assert_int_eq(co_od_value(&b.drive.node, 0x6044, 0), 1500);
+    drive_fault_inject(&b.drive, 1, b.now);
+    bench_advance(&b, 100000);
+    ck_assert_int_eq(b.drive.node.nmt_state, CO_NMT_INITIALISING);
+    bench_expect_none(&b);
+}
+END_TEST
+
 int main(void)
 {
     Suite *s = suite_create("atv312_network");
@@ -432,6 +477,8 @@ int main(void)
     tcase_add_test(tc, manual_tpdo6_user_mapping);
     tcase_add_test(tc, tpdo6_maps_readable_writable_variables);
     tcase_add_test(tc, manual_rpdo6_user_mapping);
+    tcase_add_test(tc, adco_and_bdco_read_as_parameters);
+    tcase_add_test(tc, adco_0_drive_runs_silent_on_can);
     suite_add_tcase(s, tc);
     return check_run_suite(s);
 }

@@ -156,3 +156,54 @@ def test_tun_needs_operation_enabled_then_reads_done(bus, drive):
     took = time.monotonic() - start
     assert read(bus, TUN) == 2
     assert 0.4 <= took <= 1.0, f"the auto-tune took {took:.2f} s, want 0.5 s"
+
+
+def test_inhibit_time_in_the_unit_each_row_prints(bus, drive):
+    """The ATV312 manual's object table: 1800h:03 "unit = 1 ms", 1805h:03 "unit = 0,1 ms", both 30
+    by default (D-INHIBIT-TIME). A PLC program writes 30 to TPDO1's, invalidated around the write
+    as CiA 301 asks: taken (it was refused, 0x06090032) and TPDO1 waits 30 ms after its last frame;
+    TPDO6 with its default 30 waits 3 ms, so its second frame comes well before TPDO1's."""
+    bus.sdo_write(NODE, 0x1800, 1, 0x80000184, 4)
+    bus.sdo_write(NODE, 0x1800, 3, 30, 2)
+    bus.sdo_write(NODE, 0x1800, 1, 0x184, 4)
+    assert bus.sdo_read(NODE, 0x1800, 3) == 30
+    assert bus.sdo_read(NODE, 0x1805, 3) == 30
+    for index in (0x1800, 0x1805):
+        bus.sdo_write(NODE, index, 5, 0, 2)  # no event timer: changes only
+    bus.sdo_write(NODE, 0x1805, 1, 0x284, 4)
+    bus.nmt(NMT_START, NODE)
+    bus.expect(0x180 + NODE, "4006")
+    bus.expect(0x280 + NODE, "40060000")
+    time.sleep(0.1)
+    mark = bus.mark()
+    bus.send(Frame(0x200 + NODE, bytes([0x06, 0x00])))
+    bus.send(Frame(0x200 + NODE, bytes([0x07, 0x00])))
+    first1 = bus.expect(0x180 + NODE, "2106", since=mark)
+    first6 = bus.expect(0x280 + NODE, "21060000", since=mark)
+    second6 = bus.expect(0x280 + NODE, "23060000", since=mark)
+    second1 = bus.expect(0x180 + NODE, "2306", since=mark)
+    assert second1.timestamp - first1.timestamp >= 0.028, "TPDO1's 30 ms inhibit not respected"
+    assert second6.timestamp - first6.timestamp >= 0.002, "TPDO6's 3 ms inhibit not respected"
+    assert second6.timestamp < second1.timestamp, "TPDO6 held back as long as TPDO1"
+
+
+def test_core_emcy_carries_error_register_1(bus, drive):
+    """The manual's EMCY byte 2 "=0 (no error) =1 (error)" for the EMCY the core raises itself: an
+    RPDO1 of one byte where CMDD needs two gives `084#1082010100010200` (not 11h), 1001h reads 1;
+    a good RPDO1 ends it with the error reset (D-ERROR-REGISTER)."""
+    bus.nmt(NMT_START, NODE)
+    bus.expect(0x180 + NODE, "4006")
+    bus.send(Frame(0x200 + NODE, bytes([0x06])))
+    bus.expect(0x80 + NODE, "1082010100010200")
+    assert bus.sdo_read(NODE, 0x1001, 0) == 1
+    bus.send(Frame(0x200 + NODE, bytes([0x00, 0x00])))
+    bus.expect(0x80 + NODE, "0000000000000000")
+    assert bus.sdo_read(NODE, 0x1001, 0) == 0
+
+
+def test_adco_and_bdco_read_as_the_drives_parameters(bus, drive):
+    """The COM- menu's AdCO and bdCO at 201Eh:34h and 35h (D-ADCO-BDCO): the node-id and 125
+    kbit/s, read-only on the bus."""
+    assert bus.sdo_read(NODE, 0x201E, 0x34) == NODE
+    assert bus.sdo_read(NODE, 0x201E, 0x35) == 125
+    assert write_abort(bus, (0x201E, 0x35), 250) == 0x06010002

@@ -428,8 +428,10 @@ static int init_plain(atv312d_drive_t *slot, const plain_model_t *model,
     return EX_SOFTWARE;
 }
 
-/* A node on CANopen: bound to the store, a drive or a plain node by its model's kind. */
-static int init_canopen(atv312d_drive_t *slot, const atv312d_model_t *model)
+/* A node on CANopen: bound to the store, a drive or a plain node by its model's kind. A drive
+ * with CANopen off (AdCO = 0) has node-id 0 in the drive layer, its node never started
+ * (D-ADCO-BDCO). */
+static int init_canopen(atv312d_drive_t *slot, const atv312d_model_t *model, bool can_off)
 {
     const co_storage_t *storage = NULL;
     if (slot->store) {
@@ -438,7 +440,11 @@ static int init_canopen(atv312d_drive_t *slot, const atv312d_model_t *model)
     }
     if (model->kind == ATV312D_KIND_NODE)
         return init_plain(slot, model->node, storage);
-    return init_drive(slot, slot->id, model->drive, model->drive->profile, storage, slot_send);
+    int rc = init_drive(slot, can_off ? 0 : slot->id, model->drive, model->drive->profile, storage,
+                        slot_send);
+    if (rc == 0 && can_off)
+        co_log(CO_LOG_INFO, "node %u: CANopen off (AdCO = 0): silent on the bus", slot->id);
+    return rc;
 }
 
 int atv312d_drives_init(atv312d_drive_t *slots, const atv312d_options_t *opts,
@@ -449,7 +455,7 @@ int atv312d_drives_init(atv312d_drive_t *slots, const atv312d_options_t *opts,
         slot->id = opts->node_ids[i];
         slot->store = store;
         int rc = opts->devicenet ? init_devicenet_drive(slot, opts->models[i].drive, opts)
-                                 : init_canopen(slot, &opts->models[i]);
+                                 : init_canopen(slot, &opts->models[i], opts->can_off[i]);
         if (rc != 0)
             return rc;
         if (slot->plain) {

@@ -155,6 +155,7 @@ static int parse_id(const id_kind_t *kind, const char *text, size_t len, unsigne
 typedef struct node_groups {
     uint8_t group_of[ATV312D_NODE_ID_MAX + 1]; /* 0: not given; n: given by the n-th group */
     atv312d_model_t model_of[ATV312D_NODE_ID_MAX + 1]; /* per group; name NULL: default */
+    bool can_off_of[ATV312D_NODE_ID_MAX + 1];          /* per group: --canopen-off */
     uint8_t count;                                     /* groups so far */
     const char *first_node_id;                         /* the first --node-id's value, NULL: none */
     const char *first_mac_id;                          /* the first --mac-id's value, NULL: none */
@@ -237,12 +238,24 @@ static int parse_model(const char *name, node_groups_t *groups, char *err, size_
     return 0;
 }
 
+/* --canopen-off: the drives of the --node-id just before it have AdCO = 0 (D-ADCO-BDCO). */
+static int parse_canopen_off(node_groups_t *groups, char *err, size_t err_len)
+{
+    if (groups->count == 0)
+        return usage_error(err, err_len,
+                           "--canopen-off: no --node-id before it: it follows the node-ids of its "
+                           "drives, e.g. --node-id 4 --canopen-off");
+    groups->can_off_of[groups->count] = true;
+    return 0;
+}
+
 typedef enum {
     OPT_NODE_ID,
     OPT_MAC_ID,
     OPT_DEVICENET,
     OPT_BAUD,
     OPT_MODEL,
+    OPT_CANOPEN_OFF,
     OPT_STORE,
     OPT_TRACE,
     OPT_CONTROL,
@@ -266,6 +279,7 @@ static const struct {
     {"--devicenet", OPT_DEVICENET, NULL},
     {"--baud", OPT_BAUD, "RATE"},
     {"--model", OPT_MODEL, "M"},
+    {"--canopen-off", OPT_CANOPEN_OFF, NULL},
     {"--store", OPT_STORE, "FILE"},
     {"--trace", OPT_TRACE, "FILE"},
     {"--control", OPT_CONTROL, "PATH"},
@@ -338,6 +352,8 @@ static int apply_option(opt_t opt, const char *value, atv312d_options_t *opts,
         return parse_baud(value, opts, err, err_len);
     case OPT_MODEL:
         return parse_model(value, groups, err, err_len);
+    case OPT_CANOPEN_OFF:
+        return parse_canopen_off(groups, err, err_len);
     case OPT_STORE:
         opts->store_path = value;
         return 0;
@@ -404,6 +420,11 @@ static int check_bus(atv312d_options_t *opts, node_groups_t *groups, char *err, 
                                "set with ip link");
         return 0;
     }
+    for (uint8_t g = 1; g <= groups->count; g++)
+        if (groups->can_off_of[g])
+            return usage_error(err, err_len,
+                               "--canopen-off: AdCO is the CANopen port's address; a DeviceNet "
+                               "drive is on the bus by its card's MAC ID: leave --canopen-off out");
     if (groups->first_node_id)
         return usage_error(err, err_len,
                            "--node-id %s: --devicenet makes %s a DeviceNet bus, whose drives have "
@@ -448,6 +469,26 @@ static int check_http(const atv312d_options_t *opts, char *err, size_t err_len)
     return 0;
 }
 
+/* --canopen-off is the Altivars' AdCO = 0 (D-ADCO-BDCO): refused for a model without AdCO, a
+ * plain node or a drive whose node-id is set on its card. */
+static int check_canopen_off(const atv312d_model_t *model, bool can_off, char *err, size_t err_len)
+{
+    if (!can_off)
+        return 0;
+    if (model->kind == ATV312D_KIND_NODE)
+        return usage_error(err, err_len,
+                           "--canopen-off: the %s is a plain node, not a drive: it has no AdCO, "
+                           "CANopen off is the atv312's and the atv31's AdCO = 0; leave "
+                           "--canopen-off out",
+                           model->name);
+    if (model->drive->profile->can_address.index == 0)
+        return usage_error(err, err_len,
+                           "--canopen-off: the %s has no AdCO (its node-id is set on its card): "
+                           "CANopen off is the atv312's and the atv31's AdCO = 0",
+                           model->name);
+    return 0;
+}
+
 static int check_complete(atv312d_options_t *opts, node_groups_t *groups, char *err, size_t err_len)
 {
     if (!opts->iface)
@@ -473,6 +514,11 @@ static int check_complete(atv312d_options_t *opts, node_groups_t *groups, char *
                                "--node-id %d: the %s takes node-ids %d..%d, give it one of those",
                                id, model->name, ATV312D_NODE_ID_MIN, model->node_id_max);
         opts->models[opts->node_count] = model->name ? *model : atv312d_model_at(0);
+        opts->can_off[opts->node_count] = groups->can_off_of[group];
+        rc = check_canopen_off(&opts->models[opts->node_count], opts->can_off[opts->node_count],
+                               err, err_len);
+        if (rc)
+            return rc;
         opts->node_ids[opts->node_count++] = (uint8_t)id;
     }
     if (opts->node_count == 0)
@@ -543,7 +589,10 @@ void atv312d_print_usage(FILE *out)
         atv312d_model_t model = atv312d_model_at(i);
         fprintf(out, "                        %-*s  %s\n", width, model.name, model.description);
     }
-    fputs("  --devicenet         the interface is a DeviceNet bus: the drives are DeviceNet\n"
+    fputs("  --canopen-off       the drives of the --node-id just before it have CANopen\n"
+          "                      off (AdCO = 0): present, controlled and shown by their\n"
+          "                      node-id, silent on the bus (no boot-up, no answer)\n"
+          "  --devicenet         the interface is a DeviceNet bus: the drives are DeviceNet\n"
           "                      slaves (Group 2 only servers) instead of CANopen nodes\n"
           "  --mac-id N          MAC ID 0..63 of a DeviceNet drive (default 63); ranges,\n"
           "                      lists, repeats and --model after it as for --node-id\n"

@@ -46,6 +46,8 @@ typedef struct atv312d_options {
      * each once. */
     uint8_t node_ids[ATV312D_NODE_ID_MAX];
     atv312d_model_t models[ATV312D_NODE_ID_MAX]; /* the model of node_ids[i] */
+    /* --canopen-off: node_ids[i] is the drive's id in the daemon, its AdCO 0: silent on CAN. */
+    bool can_off[ATV312D_NODE_ID_MAX];
     size_t node_count;
     bool devicenet;      /* --devicenet: the interface is a DeviceNet bus */
     atv312d_baud_t baud; /* --baud, DeviceNet only (default 125k) */

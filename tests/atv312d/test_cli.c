@@ -100,6 +100,41 @@ START_TEST(model_errors)
 }
 END_TEST
 
+/* --canopen-off (docs/decisions.md, D-ADCO-BDCO): the drives of the --node-id before it have AdCO
+ * = 0, the others not; refused before any --node-id, for a model without AdCO (the atv58, the
+ * plain nodes) and on DeviceNet. */
+START_TEST(canopen_off_of_a_group)
+{
+    ck_assert_int_eq(parse("vcan0", "--node-id", "5-6", "--canopen-off", "--node-id", "4", NULL),
+                     0);
+    assert_ids(3, (const uint8_t[]){4, 5, 6});
+    ck_assert(!opts.can_off[0]);
+    ck_assert(opts.can_off[1]);
+    ck_assert(opts.can_off[2]);
+    ck_assert_int_eq(parse("vcan0", "--canopen-off", "--node-id", "4", NULL), EX_USAGE);
+    ck_assert_str_eq(err, "--canopen-off: no --node-id before it: it follows the node-ids of its "
+                          "drives, e.g. --node-id 4 --canopen-off");
+    ck_assert_int_eq(parse("vcan0", "--node-id", "4", "--model", "atv58", "--canopen-off", NULL),
+                     EX_USAGE);
+    ck_assert_str_eq(err, "--canopen-off: the atv58 has no AdCO (its node-id is set on its card): "
+                          "CANopen off is the atv312's and the atv31's AdCO = 0");
+    ck_assert_int_eq(parse("vcan0", "--devicenet", "--mac-id", "4", "--canopen-off", NULL),
+                     EX_USAGE);
+    ck_assert_str_eq(err, "--canopen-off: AdCO is the CANopen port's address; a DeviceNet drive "
+                          "is on the bus by its card's MAC ID: leave --canopen-off out");
+    ck_assert_int_eq(parse("vcan0", "--node-id", "10", "--model", "io", "--canopen-off", NULL),
+                     EX_USAGE);
+    ck_assert_str_eq(err, "--canopen-off: the io is a plain node, not a drive: it has no AdCO, "
+                          "CANopen off is the atv312's and the atv31's AdCO = 0; leave "
+                          "--canopen-off out");
+    ck_assert_int_eq(parse("vcan0", "--node-id", "1", "--model", "plc300", "--canopen-off", NULL),
+                     EX_USAGE);
+    ck_assert_str_eq(err, "--canopen-off: the plc300 is a plain node, not a drive: it has no AdCO, "
+                          "CANopen off is the atv312's and the atv31's AdCO = 0; leave "
+                          "--canopen-off out");
+}
+END_TEST
+
 /* The ATV58's card takes node-ids 1..63 (its address switches): one above is refused, naming the
  * range, and the same id is fine for the other models. */
 START_TEST(atv58_node_ids_up_to_63)
@@ -355,6 +390,7 @@ int main(void)
     tcase_add_test(tc, single_node_with_defaults);
     tcase_add_test(tc, model_of_each_node_id_group);
     tcase_add_test(tc, model_errors);
+    tcase_add_test(tc, canopen_off_of_a_group);
     tcase_add_test(tc, atv58_node_ids_up_to_63);
     tcase_add_test(tc, help_lists_the_models);
     tcase_add_test(tc, plain_nodes_beside_drives);

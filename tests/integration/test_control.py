@@ -329,3 +329,28 @@ def test_state_and_log_tell_a_heartbeat_loss_from_a_guarding_loss(bus, start_dae
     assert "node 5: communication loss (EMCY 8130, error register 01): life guarding timed out" in log, log
     bus.sdo_write(4, 0x6040, 0, 0x0080, 2)  # fault reset: the loss is over
     assert state(sock, 4)["comm_loss"] is None
+
+
+def test_canopen_off_drive_is_present_and_silent(bus, start_daemon, tmp_path):
+    """AdCO = 0, "disables the CANopen communications" (the ATV312 manual's COM- menu;
+    D-ADCO-BDCO): node 5 with --canopen-off beside node 4. Node 4 boots and answers; node 5 sends
+    no boot-up, nothing after a broadcast NMT start, no SDO answer, while the daemon shows it and
+    runs it from its keypad (local control, the RUN key)."""
+    sock = tmp_path / "atv312d.sock"
+    start_daemon(bus, "--node-id", 5, "--canopen-off", "--node-id", NODE, "--control", sock,
+                 boot_ids=[NODE])
+    bus.nmt(NMT_START, 0)
+    bus.expect(0x180 + NODE, "4006")
+    bus.send(Frame(0x605, bytes.fromhex("4000100000000000")))
+    assert bus.sdo_read(NODE, 0x201E, 0x34) == NODE
+    for can_id in (0x705, 0x185, 0x585, 0x85):
+        bus.expect_none(can_id, 0.1)
+    s = state(sock, 5)
+    assert (s["nmt"], s["cia402"]) == ("Initialising", "Switch on disabled"), s
+    assert ctl(sock, "local", 5, "on")[0] == 0
+    assert ctl(sock, "run-key", 5)[0] == 0
+    assert state(sock, 5)["cia402"] == "Operation enabled"
+    assert ctl(sock, "fault", 5, "OHF")[0] == 0
+    assert state(sock, 5)["cia402"] == "Fault"
+    for can_id in (0x705, 0x185, 0x285, 0x85):
+        bus.expect_none(can_id, 0.1)

@@ -73,6 +73,11 @@ typedef struct co_app_hooks {
  * CiA 301's class bits (a device whose manual prints the error register as "error (1) or no error
  * (0)"). */
 #define CO_NODE_ERROR_REGISTER_GENERIC 0x40u
+/* The inhibit time (18xxh:03) of an asynchronous TPDO (types 254/255) is taken while the TPDO is
+ * valid, where CiA 301 table 72 takes it only while invalid (a device whose manual says "in
+ * asynchronous mode "Inhibit time" and "Event timer" can be modified"); the new value governs from
+ * the next transmission. */
+#define CO_NODE_ASYNC_TPDO_INHIBIT_WRITABLE 0x80u
 
 /* The code of the options (src/canopen/slave/node_options.c), one function for each option that
  * needs more than a test of its flag. */

@@ -1,10 +1,13 @@
 /* SPDX-License-Identifier: Apache-2.0 */
 /* The per-node options of an older profile (CO_NODE_*, co_node.h), each on the test dictionary
  * with and without it: 8-byte frames out and the lengths accepted in, the expedited-only SDO
- * server, long expedited writes, the DS301 V3 abort layout, NMT Disconnect remote node. */
+ * server, long expedited writes, the DS301 V3 abort layout, NMT Disconnect remote node, the
+ * generic error register, an asynchronous TPDO's inhibit time written while it runs. */
 #include "check_main.h"
 #include "test_bus.h"
 #include "test_od.h"
+
+#define MS 1000u
 
 static test_node_t t;
 
@@ -202,6 +205,55 @@ START_TEST(error_register_generic)
 }
 END_TEST
 
+/* The application changes mapped data and runs the node, as co_node.h asks. */
+static void app_set(uint16_t index, uint8_t sub, int64_t value)
+{
+    ck_assert(co_od_set_value(&t.node, index, sub, value));
+    t.bus.deadline = co_node_process(&t.node, t.bus.now);
+}
+
+/* A valid asynchronous TPDO's inhibit time (TPDO1, type 255, 300 = 30 ms) is taken by SDO with
+ * the option, the Altivar manuals' "In asynchronous mode "Inhibit time" and "Event timer" can be
+ * modified": the window of the last transmission runs out as it was (30 ms), the new value (100 ms)
+ * holds from the next transmission on. A valid synchronous TPDO (TPDO6, type 1) keeps CiA 301 table
+ * 72's rule, 0x06090030, and so does TPDO1 without the option. */
+START_TEST(async_tpdo_inhibit_writable)
+{
+    start(CO_NODE_ASYNC_TPDO_INHIBIT_WRITABLE);
+    ck_assert_uint_eq(test_write(&t, 0x1800, 5, 0, 2), 0); /* no event timer: changes only */
+    ck_assert_uint_eq(test_write(&t, 0x1805, 2, 1, 1), 0);
+    ck_assert_uint_eq(test_write(&t, 0x1805, 1, 0x284, 4), 0);
+    test_rx(&t, "604#2B05180364000000");
+    test_expect(&t, "584#8005180330000906");
+    ck_assert_int_eq(co_od_value(&t.node, 0x1805, 3), 300);
+    test_rx(&t, "000#0104");
+    ck_assert_uint_eq(test_expect(&t, "184#0000"), 0);
+    test_advance(&t, 5 * MS);
+    test_rx(&t, "604#2B001803E8030000");
+    ck_assert_uint_eq(test_expect(&t, "584#6000180300000000"), 5 * MS);
+    ck_assert_int_eq(co_od_value(&t.node, 0x1800, 3), 1000);
+    test_advance(&t, 5 * MS);
+    app_set(0x6041, 0, 0x0021);
+    test_expect_none(&t);
+    ck_assert_uint_eq(t.bus.deadline, 30 * MS);
+    test_advance(&t, 20 * MS - 1);
+    test_expect_none(&t);
+    test_advance(&t, 1);
+    ck_assert_uint_eq(test_expect(&t, "184#2100"), 30 * MS);
+    app_set(0x6041, 0, 0x0023);
+    test_advance(&t, 100 * MS - 1);
+    test_expect_none(&t);
+    test_advance(&t, 1);
+    ck_assert_uint_eq(test_expect(&t, "184#2300"), 130 * MS);
+    test_expect_none(&t);
+
+    start(0);
+    test_rx(&t, "604#2B001803E8030000");
+    test_expect(&t, "584#8000180330000906");
+    ck_assert_int_eq(co_od_value(&t.node, 0x1800, 3), 300);
+}
+END_TEST
+
 static void ignore_frame(void *user, const co_frame_t *frame)
 {
     (void)user;
@@ -221,7 +273,8 @@ START_TEST(options_without_their_code_are_refused)
                                 CO_NODE_SDO_ERROR_CLASS,
                                 CO_NODE_NMT_DISCONNECT,
                                 CO_NODE_HEARTBEAT_GRID,
-                                CO_NODE_ERROR_REGISTER_GENERIC};
+                                CO_NODE_ERROR_REGISTER_GENERIC,
+                                CO_NODE_ASYNC_TPDO_INHIBIT_WRITABLE};
     for (size_t i = 0; i < sizeof(options) / sizeof(options[0]); i++) {
         co_node_config_t config = {.node_id = 4,
                                    .od = &test_od,
@@ -247,6 +300,7 @@ int main(void)
     tcase_add_test(tc, error_class_layout);
     tcase_add_test(tc, nmt_disconnect);
     tcase_add_test(tc, error_register_generic);
+    tcase_add_test(tc, async_tpdo_inhibit_writable);
     tcase_add_test(tc, options_without_their_code_are_refused);
     suite_add_tcase(s, tc);
     return check_run_suite(s);

@@ -6,9 +6,11 @@ RFR and LFR, tUn. Every object against the EDS is test_canopen_master.py's scan.
 
 import time
 
+import pytest
 from conftest import NMT_START, Frame
 
 NODE = 4
+SDO_ABORT_VALUE_RANGE = 0x06090030
 CHCF, CD1 = (0x2036, 2), (0x2036, 0x18)
 STT = (0x2052, 4)
 COL, CNF = (0x2022, 2), (0x2022, 3)
@@ -185,6 +187,32 @@ def test_inhibit_time_in_the_unit_each_row_prints(bus, drive):
     assert second1.timestamp - first1.timestamp >= 0.028, "TPDO1's 30 ms inhibit not respected"
     assert second6.timestamp - first6.timestamp >= 0.002, "TPDO6's 3 ms inhibit not respected"
     assert second6.timestamp < second1.timestamp, "TPDO6 held back as long as TPDO1"
+
+
+@pytest.mark.parametrize("model", ["atv312", "atv31"])
+def test_inhibit_time_written_right_after_boot(bus, start_daemon, model):
+    """The PDO section of the ATV312 and ATV31 CANopen manuals: "In asynchronous mode "Inhibit time"
+    and "Event timer" can be modified" (D-ASYNC-INHIBIT-WRITE). Right after the boot-up, TPDO1 valid
+    and asynchronous, a PLC program writes 1800h:03 = 30 with no invalidation around it: taken (CiA
+    301 table 72 refused it, 0x06090030). 60 written in Operational holds TPDO1's next frames
+    60 ms apart; TPDO6 in synchronous mode (type 1) keeps CiA 301's refusal."""
+    start_daemon(bus, "--node-id", NODE, "--model", model)
+    bus.sdo_write(NODE, 0x1800, 3, 30, 2)
+    assert bus.sdo_read(NODE, 0x1800, 3) == 30
+    bus.sdo_write(NODE, 0x1805, 2, 1, 1)
+    bus.sdo_write(NODE, 0x1805, 1, 0x284, 4)
+    assert bus.sdo_abort_code(NODE, "2B0518031E000000") == SDO_ABORT_VALUE_RANGE
+    bus.sdo_write(NODE, 0x1800, 5, 0, 2)  # no event timer: changes only
+    bus.nmt(NMT_START, NODE)
+    bus.expect(0x180 + NODE, "4006")
+    bus.sdo_write(NODE, 0x1800, 3, 60, 2)
+    time.sleep(0.1)
+    mark = bus.mark()
+    bus.send(Frame(0x200 + NODE, bytes([0x06, 0x00])))
+    bus.send(Frame(0x200 + NODE, bytes([0x07, 0x00])))
+    first = bus.expect(0x180 + NODE, "2106", since=mark)
+    second = bus.expect(0x180 + NODE, "2306", since=mark)
+    assert second.timestamp - first.timestamp >= 0.058, "TPDO1's new 60 ms inhibit not respected"
 
 
 def test_core_emcy_carries_error_register_1(bus, drive):

@@ -218,9 +218,15 @@ static uint32_t tpdo_inhibit_unit_us(const co_node_t *node, uint16_t n)
     return in_ms ? PDO_INHIBIT_MS_UNIT_US : PDO_INHIBIT_UNIT_US;
 }
 
-/* A TPDO takes its parameters, and restarts unless only its event timer changed (then only the
- * timer restarts). */
-static void tpdo_load(co_node_t *node, uint16_t n, bool restart)
+/* What a parameter write changes in a running TPDO. */
+typedef enum tpdo_change {
+    TPDO_RESTART,         /* COB-ID, type, mapping...: the transmission state starts afresh */
+    TPDO_NEW_EVENT_TIMER, /* sub 5: only the event timer restarts */
+    TPDO_NEW_INHIBIT      /* sub 3 of a valid TPDO: the running inhibit window stays as it is */
+} tpdo_change_t;
+
+/* A TPDO takes its parameters and keeps of its transmission state what `change` leaves. */
+static void tpdo_load(co_node_t *node, uint16_t n, tpdo_change_t change)
 {
     co_tpdo_t *t = &node->pdo.tpdo[n];
     uint32_t param[PDO_SUB_SYNC_START + 1];
@@ -232,9 +238,9 @@ static void tpdo_load(co_node_t *node, uint16_t n, bool restart)
     t->inhibit_us = param[PDO_SUB_INHIBIT] * tpdo_inhibit_unit_us(node, n);
     t->event_us = param[PDO_SUB_EVENT_TIMER] * PDO_EVENT_UNIT_US;
     t->sync_start = (uint8_t)param[PDO_SUB_SYNC_START];
-    if (restart)
+    if (change == TPDO_RESTART)
         tpdo_restart(t);
-    else
+    else if (change == TPDO_NEW_EVENT_TIMER)
         t->event_due = t->event_us != 0 && t->sent ? node->now + t->event_us : CO_TIME_NEVER;
 }
 
@@ -243,7 +249,7 @@ void co_pdo_restart(co_node_t *node)
     for (uint16_t n = 0; n < CO_CONFIG_RPDO_MAX; n++)
         rpdo_reload(node, n);
     for (uint16_t n = 0; n < CO_CONFIG_TPDO_MAX; n++)
-        tpdo_load(node, n, true);
+        tpdo_load(node, n, TPDO_RESTART);
 }
 
 /* The errors were detected by the communication that the reset restarts from its restored
@@ -559,6 +565,16 @@ static uint32_t entry_value(const co_od_entry_t *entry, const uint8_t *data)
     return co_get_u32(data);
 }
 
+/* CiA 301 table 72: the inhibit time may only change while the PDO is invalid; a node with
+ * CO_NODE_ASYNC_TPDO_INHIBIT_WRITABLE takes it on a valid asynchronous TPDO (254/255) too. */
+static uint32_t tpdo_write_valid_inhibit(const co_node_t *node, uint16_t comm)
+{
+    uint8_t type = (uint8_t)co_od_param(node, comm, PDO_SUB_TYPE, CO_PDO_TYPE_EVENT_PROFILE);
+    bool writable =
+        (node->options & CO_NODE_ASYNC_TPDO_INHIBIT_WRITABLE) && tpdo_type_is_event(type);
+    return writable ? CO_SDO_OK : CO_SDO_ABORT_VALUE_RANGE;
+}
+
 static uint32_t pdo_write_comm(co_node_t *node, const co_od_entry_t *entry, const uint8_t *data,
                                pdo_dir_t dir)
 {
@@ -571,8 +587,7 @@ static uint32_t pdo_write_comm(co_node_t *node, const co_od_entry_t *entry, cons
     case PDO_SUB_TYPE:
         return pdo_write_type(cob_id, (uint8_t)value, dir);
     case PDO_SUB_INHIBIT:
-        /* CiA 301 table 72: the inhibit time may only change while the PDO is invalid. */
-        return dir == PDO_TX && valid ? CO_SDO_ABORT_VALUE_RANGE : CO_SDO_OK;
+        return dir == PDO_TX && valid ? tpdo_write_valid_inhibit(node, entry->index) : CO_SDO_OK;
     case PDO_SUB_SYNC_START:
         /* CiA 301 7.5.2.37: 0..240, only while the PDO is invalid. */
         if (dir == PDO_TX && valid)
@@ -616,11 +631,18 @@ static void rpdo_written(co_node_t *node, uint16_t n)
         rpdo_errors_end(node, r);
 }
 
-/* A new event timer (sub-index 5 of the communication parameter) only restarts the timer. */
+/* A new event timer (sub-index 5 of the communication parameter) only restarts the timer; a new
+ * inhibit time of a valid TPDO (CO_NODE_ASYNC_TPDO_INHIBIT_WRITABLE) leaves the window of the last
+ * transmission running and governs from the next one. */
 static void tpdo_written(co_node_t *node, uint16_t n, const co_od_entry_t *entry)
 {
-    bool event_timer = entry->index < CO_PDO_TPDO_MAP && entry->subindex == PDO_SUB_EVENT_TIMER;
-    tpdo_load(node, n, !event_timer);
+    bool comm = entry->index < CO_PDO_TPDO_MAP;
+    tpdo_change_t change = TPDO_RESTART;
+    if (comm && entry->subindex == PDO_SUB_EVENT_TIMER)
+        change = TPDO_NEW_EVENT_TIMER;
+    else if (comm && entry->subindex == PDO_SUB_INHIBIT && node->pdo.tpdo[n].valid)
+        change = TPDO_NEW_INHIBIT;
+    tpdo_load(node, n, change);
 }
 
 /* PDO n of the parameter just stored, an RPDO or a TPDO by the parameter's index. */

@@ -54,10 +54,14 @@ extern const drive_fault_table_t atv312_devicenet_faults;
 #define ATV312_AI3_HIGH DRIVE_PARAM(0x2010, 4)
 
 /* The family's node options: an expedited write longer than its object taken when the extra bytes
- * are 0 (D-ATV312-LONG-EXPEDITED), and 1001h in every EMCY, the core's RPDO and SYNC length errors
+ * are 0 (D-ATV312-LONG-EXPEDITED); 1001h in every EMCY, the core's RPDO and SYNC length errors
  * and the CAN bus conditions too, the manuals' byte 2, "=0 (no error) =1 (error)", the generic bit
- * alone (docs/decisions.md, D-ERROR-REGISTER). */
-#define ATV312_NODE_OPTIONS (CO_NODE_SDO_LONG_EXPEDITED | CO_NODE_ERROR_REGISTER_GENERIC)
+ * alone (D-ERROR-REGISTER); and an asynchronous TPDO's inhibit time written while the TPDO runs,
+ * the manuals' "In asynchronous mode "Inhibit time" and "Event timer" can be modified"
+ * (docs/decisions.md, D-ASYNC-INHIBIT-WRITE). */
+#define ATV312_NODE_OPTIONS                                                                        \
+    (CO_NODE_SDO_LONG_EXPEDITED | CO_NODE_ERROR_REGISTER_GENERIC |                                 \
+     CO_NODE_ASYNC_TPDO_INHIBIT_WRITABLE)
 
 /* The unit of each TPDO's inhibit time as the ATV312 manual's object table prints its row: TPDO1
  * (1800h:03) "unit = 1 ms", TPDO6 (1805h:03) "unit = 0,1 ms", CiA 301's (docs/decisions.md,

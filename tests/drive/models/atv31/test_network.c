@@ -139,6 +139,31 @@ START_TEST(inhibit_time_of_both_tpdos_in_ms)
 }
 END_TEST
 
+/* The ATV31 manual's PDO section says it as the ATV312's: "In asynchronous mode "Inhibit time"
+ * and "Event timer" can be modified" (docs/decisions.md, D-ASYNC-INHIBIT-WRITE): 1800h:03 = 30
+ * right after the boot-up and 1805h:03 of a valid asynchronous TPDO6 are taken, on both firmware
+ * versions; TPDO6 in synchronous mode keeps CiA 301's 0x06090030. */
+START_TEST(inhibit_time_written_while_async_tpdos_run)
+{
+    const drive_profile_t *profiles[] = {&atv31_profile, &atv31_v11_profile};
+    for (size_t i = 0; i < sizeof(profiles) / sizeof(profiles[0]); i++) {
+        bench_t b;
+        bench_start_model(&b, profiles[i], NULL);
+        bench_rx(&b, "604#2B0018031E000000");
+        bench_expect(&b, "584#6000180300000000");
+        ck_assert_uint_eq(bench_sdo_write(&b, 0x1805, 1, 0x284, 4), 0);
+        bench_rx(&b, "604#2B05180332000000");
+        bench_expect(&b, "584#6005180300000000");
+        ck_assert_uint_eq(bench_read(&b, 0x1805, 3), 50);
+        ck_assert_uint_eq(bench_sdo_write(&b, 0x1805, 2, 1, 1), 0);
+        bench_rx(&b, "604#2B0518031E000000");
+        bench_expect(&b, "584#8005180330000906");
+        ck_assert_uint_eq(bench_read(&b, 0x1805, 3), 50);
+        bench_expect_none(&b);
+    }
+}
+END_TEST
+
 /* Its manual's 1001h "Error (1) or no error (0)": the core's RPDO length EMCY carries 01h and
  * 1001h is 1, as the drive's own EMCYs (D-ERROR-REGISTER). */
 START_TEST(core_emcy_error_register_is_1)
@@ -257,6 +282,7 @@ int main(void)
     tcase_add_test(tc, manual_pl7_guarding_example);
     tcase_add_test(tc, core_emcy_error_register_is_1);
     tcase_add_test(tc, inhibit_time_of_both_tpdos_in_ms);
+    tcase_add_test(tc, inhibit_time_written_while_async_tpdos_run);
     tcase_add_test(tc, heartbeat_only_from_v1_2);
     tcase_add_test(tc, network_fault_fast_stop_with_col_3);
     suite_add_tcase(s, tc);

@@ -318,6 +318,48 @@ START_TEST(inhibit_time_in_the_unit_each_row_prints)
 }
 END_TEST
 
+/* The ATV312 manual's PDO section: "In asynchronous mode "Inhibit time" and "Event timer" can be
+ * modified" (docs/decisions.md, D-ASYNC-INHIBIT-WRITE). Right after the boot-up, TPDO1 valid and
+ * asynchronous (255), the PLC program's 1800h:03 = 30 is taken, where CiA 301 table 72 refused it
+ * (0x06090030); in Operational a new 50 ms leaves the 30 ms window of the last transmission
+ * running and holds the next one back 50 ms, each to the microsecond. TPDO6 in synchronous mode
+ * (type 1) keeps CiA 301's rule. */
+START_TEST(inhibit_time_written_while_tpdo1_runs)
+{
+    bench_t b;
+    bench_start(&b);
+    bench_rx(&b, "604#2B0018031E000000");
+    bench_expect(&b, "584#6000180300000000");
+    ck_assert_uint_eq(bench_read(&b, 0x1800, 3), 30);
+    ck_assert_uint_eq(bench_sdo_write(&b, 0x1805, 2, 1, 1), 0);
+    ck_assert_uint_eq(bench_sdo_write(&b, 0x1805, 1, 0x284, 4), 0);
+    bench_rx(&b, "604#2B0518031E000000");
+    bench_expect(&b, "584#8005180330000906");
+    ck_assert_uint_eq(bench_sdo_write(&b, 0x1800, 5, 0, 2), 0);
+    bench_operational(&b);
+    bench_expect(&b, "184#4006");
+    bench_advance(&b, 100000);
+    co_time_t t = b.now;
+    bench_rx(&b, "204#0600");
+    ck_assert_uint_eq(bench_expect(&b, "184#2106"), t);
+    bench_advance(&b, 1000);
+    bench_rx(&b, "604#2B00180332000000");
+    bench_expect(&b, "584#6000180300000000");
+    bench_advance(&b, 1000);
+    bench_rx(&b, "204#0700");
+    bench_advance(&b, 28000 - 1);
+    bench_expect_none(&b);
+    bench_advance(&b, 1);
+    ck_assert_uint_eq(bench_expect(&b, "184#2306"), t + 30000);
+    bench_rx(&b, "204#0600");
+    bench_advance(&b, 50000 - 1);
+    bench_expect_none(&b);
+    bench_advance(&b, 1);
+    ck_assert_uint_eq(bench_expect(&b, "184#2106"), t + 80000);
+    bench_expect_none(&b);
+}
+END_TEST
+
 static void enable_pdo6(bench_t *b)
 {
     ck_assert_uint_eq(bench_sdo_write(b, 0x1405, 1, 0x304, 4), 0);
@@ -473,6 +515,7 @@ int main(void)
     tcase_add_test(tc, error_code_follows_the_emcy);
     tcase_add_test(tc, tpdo1_follows_the_status_word);
     tcase_add_test(tc, inhibit_time_in_the_unit_each_row_prints);
+    tcase_add_test(tc, inhibit_time_written_while_tpdo1_runs);
     tcase_add_test(tc, manual_pdo6_default_mappings);
     tcase_add_test(tc, manual_tpdo6_user_mapping);
     tcase_add_test(tc, tpdo6_maps_readable_writable_variables);

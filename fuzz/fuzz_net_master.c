@@ -7,8 +7,10 @@
  * Input: a header of 9 bytes, then steps:
  *
  *     header[0]:  bits 0-1 the start (0 each, 1 all, 2 none, 3 each), bit 2 reset all, bit 3 SYNC
- *                 every 10 ms, bit 4 a process image, bits 5-6 the slaves (1 + value mod 3)
- *     header[1]:  the boot time, header[2] the retry delay, both in 50 ms
+ *                 every 10 ms, bit 4 a process image, bits 5-6 the slaves (1 + value mod 3), bit 7
+ *                 a mandatory slave's error control event is the network's (1F80h bit 6, stop
+ *                 all, or with header[1] bit 7 bit 4, reset all)
+ *     header[1]:  bits 0-6 the boot time, header[2] the retry delay, both in 50 ms
  *     per slave:  flags (bit 0 mandatory, bit 1 "report" (else "reboot"), bits 2-3 error
  *                 control (0 none, 1 and 3 heartbeat, 2 guarding), bits 4-5 how many of the
  *                 three configuration writes, bits 6-7 the identity checked (0 nothing, 1 the
@@ -23,6 +25,8 @@
  *     EFh:        co_net_master_sdo: a slave of the table (a byte), read (bit 0 of the next byte
  *                 clear) of 1018h:01, or write of 6060h = 2, each of 4 bytes
  *
+ * The start and the network's reaction reach the master as its 1F80h, each slave's assignment,
+ * guard time and factor as its 1F81h (co_net_master_config_from_1f80, _slave_config_from_1f81).
  * fuzz/seeds.py writes the seeds from readable frames. */
 #include "co/co_net_master.h"
 #include "rig.h"
@@ -40,6 +44,10 @@
 #define SYNC 0x08u
 #define PROCESS_IMAGE 0x10u
 #define SLAVES_SHIFT 5
+#define NETWORK_REACTION 0x80u
+/* header[1] */
+#define REACTION_RESET_ALL 0x80u
+#define BOOT_TIME_MASK 0x7Fu
 /* A slave's flags. */
 #define MANDATORY 0x01u
 #define REPORT 0x02u
@@ -149,9 +157,20 @@ static void check_nmt_command(const co_frame_t *frame)
         }
         return;
     }
-    rig_check(command == CO_NMT_CS_START || command == CO_NMT_CS_RESET_NODE ||
-                  command == CO_NMT_CS_RESET_COMMUNICATION,
+    rig_check(command == CO_NMT_CS_START || command == CO_NMT_CS_STOP ||
+                  command == CO_NMT_CS_RESET_NODE || command == CO_NMT_CS_RESET_COMMUNICATION,
               "an NMT command the master has no use for");
+    /* Only 1F80h's reaction to a mandatory slave's loss stops all nodes or resets them all. */
+    rig_check(command != CO_NMT_CS_STOP ||
+                  (node_id == CO_NMT_MASTER_ALL_NODES &&
+                   h.config.on_mandatory_error == CO_NET_MANDATORY_STOP_ALL),
+              "an NMT stop without 1F80h bit 6");
+    rig_check(command != CO_NMT_CS_RESET_NODE || node_id != CO_NMT_MASTER_ALL_NODES ||
+                  h.config.on_mandatory_error == CO_NET_MANDATORY_RESET_ALL,
+              "a reset of all nodes without 1F80h bit 4");
+    /* ... which boots the network again: a new start of all may go. */
+    if (command == CO_NMT_CS_RESET_NODE && node_id == CO_NMT_MASTER_ALL_NODES)
+        h.started_all = false;
     rig_check(node_id == CO_NMT_MASTER_ALL_NODES || slave_of(node_id) < SLAVES_MAX,
               "an NMT command to a node not in the table");
     if (command == CO_NMT_CS_START) {
@@ -162,7 +181,8 @@ static void check_nmt_command(const co_frame_t *frame)
         rig_check(node_id != CO_NMT_MASTER_ALL_NODES || !h.started_all, "two starts of all nodes");
         h.started_all = h.started_all || node_id == CO_NMT_MASTER_ALL_NODES;
     }
-    for (size_t i = 0; i < h.config.slave_count; i++) {
+    /* A stop leaves a slave's start standing: the master keeps its step (docs/net-master.md). */
+    for (size_t i = 0; i < h.config.slave_count && command != CO_NMT_CS_STOP; i++) {
         if (node_id == CO_NMT_MASTER_ALL_NODES || node_id == h.slaves[i].node_id)
             h.started[i] = command == CO_NMT_CS_START;
     }
@@ -206,6 +226,7 @@ static bool check_output(const co_frame_t *frame)
             continue;
         rig_check(h.state[slave_of(pdo->node_id)].step == CO_NET_STEP_OPERATIONAL,
                   "an output PDO to a slave that is not operational");
+        rig_check(!h.master.stopped_all, "an output PDO from a master stopped with all nodes");
         rig_check(frame->len == pdo->len, "an output PDO of another length than its own");
         if (h.writing) {
             rig_check(h.matched < h.expected_count && same_frame(frame, &h.expected[h.matched]),
@@ -243,6 +264,7 @@ static void on_send(void *user, const co_frame_t *frame)
                   "a guarding request to a slave that is not guarded");
     } else if (frame->id == CO_CAN_ID_SYNC && !rtr) {
         rig_check(h.config.sync_period_us != 0 && frame->len == 0, "a SYNC not configured");
+        rig_check(!h.master.stopped_all, "a SYNC from a master stopped with all nodes");
     } else {
         rig_check(!rtr && check_output(frame), "a frame the master has no reason to send");
     }
@@ -477,7 +499,7 @@ static void advance(co_time_t us, co_time_t *deadline)
 static void expect_outputs(size_t offset, const uint8_t *data, size_t len)
 {
     h.expected_count = h.matched = 0;
-    for (size_t p = 0; p < h.config.output_count; p++) {
+    for (size_t p = 0; p < h.config.output_count && !h.master.stopped_all; p++) {
         const co_net_pdo_t *pdo = &h.config.outputs[p];
         if (h.state[slave_of(pdo->node_id)].step != CO_NET_STEP_OPERATIONAL)
             continue;
@@ -522,20 +544,33 @@ static void configure_slave(size_t i, const uint8_t *header)
     h.error_control[i] = time == 0 || control == EC_NONE ? EC_NONE
                          : control == EC_GUARDING        ? EC_GUARDING
                                                          : EC_HEARTBEAT;
-    uint16_t ms = (uint16_t)(time * FAST_UNIT_MS);
+    uint32_t ms = time * FAST_UNIT_MS;
+    uint32_t assignment = CO_NET_1F81_SLAVE | ((flags & REPORT) ? 0 : CO_NET_1F81_BOOT) |
+                          ((flags & MANDATORY) ? CO_NET_1F81_MANDATORY : 0) |
+                          (uint32_t)LIFE_TIME_FACTOR << CO_NET_1F81_RETRY_SHIFT |
+                          (h.error_control[i] == EC_GUARDING ? ms : 0) << CO_NET_1F81_GUARD_SHIFT;
     h.slaves[i] = (co_net_slave_config_t){
         .node_id = (uint8_t)(i + 1),
-        .mandatory = (flags & MANDATORY) != 0,
-        .on_error = (flags & REPORT) ? CO_NET_ON_ERROR_REPORT : CO_NET_ON_ERROR_REBOOT,
-        .heartbeat_ms = h.error_control[i] == EC_HEARTBEAT ? ms : 0,
-        .guard_ms = h.error_control[i] == EC_GUARDING ? ms : 0,
-        .life_time_factor = LIFE_TIME_FACTOR,
+        .heartbeat_ms = h.error_control[i] == EC_HEARTBEAT ? (uint16_t)ms : 0,
         .writes = writes,
         .write_count = (flags >> WRITES_SHIFT) & 3u,
         .check = checks[flags >> CHECK_SHIFT],
         .device_type = device_type,
     };
     memcpy(h.slaves[i].identity, identity, sizeof identity);
+    rig_check(co_net_slave_config_from_1f81(&h.slaves[i], assignment) &&
+                  co_net_slave_1f81(&h.slaves[i]) == assignment,
+              "a slave's 1F81h refused, or not given back");
+}
+
+/* The master's 1F80h: the start and the reaction to a mandatory slave's loss. */
+static uint32_t startup(const uint8_t *header)
+{
+    static const uint32_t starts[] = {0, CO_NET_1F80_START_ALL, CO_NET_1F80_NO_SLAVE_START, 0};
+    uint32_t reaction = !(header[0] & NETWORK_REACTION)    ? 0
+                        : (header[1] & REACTION_RESET_ALL) ? CO_NET_1F80_RESET_ALL
+                                                           : CO_NET_1F80_STOP_ALL;
+    return CO_NET_1F80_NMT_MASTER | starts[header[0] & START_MASK] | reaction;
 }
 
 static void configure(const uint8_t *header)
@@ -543,7 +578,6 @@ static void configure(const uint8_t *header)
     uint8_t flags = header[0];
     size_t count = 1 + ((flags >> SLAVES_SHIFT) & 3u) % SLAVES_MAX;
     bool image = (flags & PROCESS_IMAGE) != 0;
-    uint8_t start = flags & START_MASK;
     for (size_t i = 0; i < count; i++)
         configure_slave(i, header + MASTER_HEADER + i * SLAVE_HEADER);
     h.config = (co_net_master_config_t){
@@ -553,9 +587,8 @@ static void configure(const uint8_t *header)
         .slave_state = h.state,
         .slave_count = count,
         .sdo_timeout_ms = SDO_TIMEOUT_MS,
-        .boot_time_ms = header[1] * SLOW_UNIT_MS,
+        .boot_time_ms = (header[1] & BOOT_TIME_MASK) * SLOW_UNIT_MS,
         .retry_delay_ms = header[2] * SLOW_UNIT_MS,
-        .start = start > CO_NET_START_NONE ? CO_NET_START_EACH : (co_net_start_t)start,
         .reset_all = (flags & RESET_ALL) != 0,
         .sync_period_us = (flags & SYNC) ? SYNC_PERIOD_US : 0,
         .inputs = image ? input_pdos : NULL,
@@ -567,6 +600,10 @@ static void configure(const uint8_t *header)
         .output_image = image ? h.output_image : NULL,
         .output_size = image ? sizeof h.output_image : 0,
     };
+    uint32_t value = startup(header);
+    rig_check(co_net_master_config_from_1f80(&h.config, value) &&
+                  co_net_master_1f80(&h.config) == value,
+              "the master's 1F80h refused, or not given back");
 }
 
 static void request_done(void *user, const co_net_request_t *request,

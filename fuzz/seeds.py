@@ -165,12 +165,18 @@ def slave(mandatory=False, report=False, control="heartbeat", time_ms=100, write
     return bytes([flags, time_ms // 10])
 
 
+REACTIONS = {"alone": (0, 0), "stop_all": (0x80, 0), "reset_all": (0x80, 0x80)}
+
+
 def net_header(slaves, start="each", reset_all=True, sync=False, image=False, boot_ms=200,
-               retry_ms=500):
+               retry_ms=500, on_mandatory_error="alone"):
+    """on_mandatory_error: 1F80h's reaction to a mandatory slave's loss (bit 6 stop all, bit 4
+    reset all), header[0] bit 7 and header[1] bit 7."""
+    network, reset = REACTIONS[on_mandatory_error]
     flags = STARTS[start] | (4 if reset_all else 0) | (8 if sync else 0) | (0x10 if image else 0) \
-        | (len(slaves) - 1) << 5
+        | (len(slaves) - 1) << 5 | network
     body = b"".join(slaves) + slave() * (3 - len(slaves))
-    return bytes([flags, boot_ms // 50, retry_ms // 50]) + body
+    return bytes([flags, boot_ms // 50 | reset, retry_ms // 50]) + body
 
 
 def configured(node, writes=1, check=1, device_type=0x00020192):
@@ -250,6 +256,20 @@ NET_MASTER = {
         net_header([slave()]),
         ["701#00"] + configured(1) + heartbeats(1, 2) + ["701#00"] + configured(1)
         + heartbeats(1, 2)),
+    # 1F80h bits 6 and 4: the mandatory slave 1 falls silent; all nodes stopped (SYNC and outputs
+    # stop), then started again by the application, or all reset and the network booted again.
+    "mandatory-loss-stop-all": (
+        net_header([slave(mandatory=True), slave(check=0)], sync=True, image=True,
+                   on_mandatory_error="stop_all"),
+        ["701#00", "702#00"] + configured(1) + configured(2, check=0)
+        + ["701#05", "+50ms", "701#05", "+200ms", write_output(0, "0102"), "+20ms", "701#05",
+           nmt_request(0, 0), "+1ms", "701#05", "702#05", "+20ms"]),
+    "mandatory-loss-reset-all": (
+        net_header([slave(mandatory=True, control="guarding", time_ms=50), slave(check=0)],
+                   start="all", on_mandatory_error="reset_all"),
+        ["701#00", "702#00"] + configured(1) + configured(2, check=0)
+        + ["701#05", "+50ms", "+200ms", "701#00", "702#00"] + configured(1)
+        + configured(2, check=0) + ["701#05", "+50ms", "701#85"]),
     "guarding": (
         net_header([slave(control="guarding", time_ms=50)]),
         ["701#00"] + configured(1) + ["701#05", "+50ms", "701#85", "+50ms", "701#05", "+50ms",

@@ -93,7 +93,8 @@ static void start(void)
     run();
 }
 
-static void configure(co_net_on_error_t on_error, co_net_start_t start_mode, size_t slaves)
+static void configure_network(co_net_on_error_t on_error, co_net_start_t start_mode, size_t slaves,
+                              co_net_mandatory_error_t on_mandatory_error)
 {
     memset(&bus, 0, sizeof(bus));
     table[0] = (co_net_slave_config_t){
@@ -118,9 +119,15 @@ static void configure(co_net_on_error_t on_error, co_net_start_t start_mode, siz
         .boot_time_ms = BOOT_TIME_MS,
         .retry_delay_ms = RETRY_DELAY_MS,
         .start = start_mode,
+        .on_mandatory_error = on_mandatory_error,
     };
     ck_assert(co_net_master_init(&master, &config));
     run();
+}
+
+static void configure(co_net_on_error_t on_error, co_net_start_t start_mode, size_t slaves)
+{
+    configure_network(on_error, start_mode, slaves, CO_NET_MANDATORY_ALONE);
 }
 
 /* ---- the situations: how node 4 gets there (all at time 0 unless said) ---------------------- */
@@ -229,6 +236,28 @@ static void enter_operational_report(void)
     deliver("704#05");
 }
 
+/* 1F80h bit 6 or 4: node 4, mandatory, running; its loss is the network's. */
+static void enter_operational_stop_all(void)
+{
+    configure_network(CO_NET_ON_ERROR_REBOOT, CO_NET_START_EACH, 1, CO_NET_MANDATORY_STOP_ALL);
+    boot_to_end();
+    deliver("704#05");
+}
+
+static void enter_operational_reset_all(void)
+{
+    configure_network(CO_NET_ON_ERROR_REBOOT, CO_NET_START_EACH, 1, CO_NET_MANDATORY_RESET_ALL);
+    boot_to_end();
+    deliver("704#05");
+}
+
+/* Its silence stopped every node at 100 ms: node 4 lost, the network stopped. */
+static void enter_stopped_all(void)
+{
+    enter_operational_stop_all();
+    advance_to(HEARTBEAT_MS * MS);
+}
+
 /* Started, heard once, then silent: lost at 100 ms. */
 static void enter_lost(void)
 {
@@ -282,6 +311,9 @@ typedef enum situation {
     S_WAIT_START_REPORT,
     S_OPERATIONAL,
     S_OPERATIONAL_REPORT,
+    S_OPERATIONAL_STOP_ALL,
+    S_OPERATIONAL_RESET_ALL,
+    S_STOPPED_ALL,
     S_LOST,
     S_LOST_FIRST_HEARTBEAT,
     S_LOST_WAITING_START,
@@ -308,6 +340,11 @@ static const struct {
     [S_WAIT_START_REPORT] = {"wait start all (report)", enter_wait_start_report, WAIT_START, 0x07},
     [S_OPERATIONAL] = {"operational (reboot)", enter_operational_reboot, OPERATIONAL, 0x0F},
     [S_OPERATIONAL_REPORT] = {"operational (report)", enter_operational_report, OPERATIONAL, 0x0F},
+    [S_OPERATIONAL_STOP_ALL] = {"operational (stop all)", enter_operational_stop_all, OPERATIONAL,
+                                0x0F},
+    [S_OPERATIONAL_RESET_ALL] = {"operational (reset all)", enter_operational_reset_all,
+                                 OPERATIONAL, 0x0F},
+    [S_STOPPED_ALL] = {"lost, all stopped", enter_stopped_all, LOST, 0x2F},
     [S_LOST] = {"lost", enter_lost, LOST, 0x2F},
     [S_LOST_FIRST_HEARTBEAT] = {"lost, never heard", enter_lost_first_heartbeat, LOST, 0x2F},
     [S_LOST_WAITING_START] = {"lost waiting start all", enter_lost_waiting_start, LOST, 0x27},
@@ -529,6 +566,37 @@ static const row_t rows[] = {
     {S_OPERATIONAL_REPORT, E_SDO_ABORT, OPERATIONAL, 0x0F, "", 100},
     {S_OPERATIONAL_REPORT, E_TIMEOUT, LOST, 0x2F, "", NEVER},
     {S_OPERATIONAL_REPORT, E_START, WAIT_BOOT, 0x00, "000#8204", 300},
+    /* A mandatory slave under 1F80h bit 6 or 4: its loss stops all nodes (the slave lost, not
+     * reset) or resets all and boots the network again; anything else as in OPERATIONAL. */
+    {S_OPERATIONAL_STOP_ALL, E_BOOT_UP, DEVICE_TYPE, 0x00, BOOT_AGAIN, 200},
+    {S_OPERATIONAL_STOP_ALL, E_HB_PREOP, OPERATIONAL, 0x0F, "", 100},
+    {S_OPERATIONAL_STOP_ALL, E_HB_OP, OPERATIONAL, 0x0F, "", 100},
+    {S_OPERATIONAL_STOP_ALL, E_HB_STOP, OPERATIONAL, 0x0F, "", 100},
+    {S_OPERATIONAL_STOP_ALL, E_SILENCE, LOST, 0x2F, "000#0200", NEVER},
+    {S_OPERATIONAL_STOP_ALL, E_SDO_DONE, OPERATIONAL, 0x0F, "", 100},
+    {S_OPERATIONAL_STOP_ALL, E_SDO_ABORT, OPERATIONAL, 0x0F, "", 100},
+    {S_OPERATIONAL_STOP_ALL, E_TIMEOUT, LOST, 0x2F, "000#0200", NEVER},
+    {S_OPERATIONAL_STOP_ALL, E_START, WAIT_BOOT, 0x00, "000#8204", 300},
+    {S_OPERATIONAL_RESET_ALL, E_BOOT_UP, DEVICE_TYPE, 0x00, BOOT_AGAIN, 200},
+    {S_OPERATIONAL_RESET_ALL, E_HB_PREOP, OPERATIONAL, 0x0F, "", 100},
+    {S_OPERATIONAL_RESET_ALL, E_HB_OP, OPERATIONAL, 0x0F, "", 100},
+    {S_OPERATIONAL_RESET_ALL, E_HB_STOP, OPERATIONAL, 0x0F, "", 100},
+    {S_OPERATIONAL_RESET_ALL, E_SILENCE, WAIT_BOOT, 0x20, "000#8100", 300},
+    {S_OPERATIONAL_RESET_ALL, E_SDO_DONE, OPERATIONAL, 0x0F, "", 100},
+    {S_OPERATIONAL_RESET_ALL, E_SDO_ABORT, OPERATIONAL, 0x0F, "", 100},
+    {S_OPERATIONAL_RESET_ALL, E_TIMEOUT, WAIT_BOOT, 0x20, "000#8100", 300},
+    {S_OPERATIONAL_RESET_ALL, E_START, WAIT_BOOT, 0x00, "000#8204", 300},
+    /* Every node stopped by the loss: a heartbeat resumes the slave (the network stays stopped
+     * until the application starts it); a boot-up boots it again. */
+    {S_STOPPED_ALL, E_BOOT_UP, DEVICE_TYPE, 0x20, BOOT_AGAIN, 200},
+    {S_STOPPED_ALL, E_HB_PREOP, OPERATIONAL, 0x0F, "", 100},
+    {S_STOPPED_ALL, E_HB_OP, OPERATIONAL, 0x0F, "", 100},
+    {S_STOPPED_ALL, E_HB_STOP, OPERATIONAL, 0x0F, "", 100},
+    {S_STOPPED_ALL, E_SILENCE, LOST, 0x2F, "", NEVER},
+    {S_STOPPED_ALL, E_SDO_DONE, LOST, 0x2F, "", NEVER},
+    {S_STOPPED_ALL, E_SDO_ABORT, LOST, 0x2F, "", NEVER},
+    {S_STOPPED_ALL, E_TIMEOUT, LOST, 0x2F, "", NEVER},
+    {S_STOPPED_ALL, E_START, WAIT_BOOT, 0x00, "000#8204", 300},
     /* Lost (report): any heartbeat resumes it where it was lost from; a boot-up boots it. */
     {S_LOST, E_BOOT_UP, DEVICE_TYPE, 0x20, BOOT_AGAIN, 200},
     {S_LOST, E_HB_PREOP, OPERATIONAL, 0x0F, "", 100},

@@ -263,6 +263,10 @@ static bool master_key(comaster_network_t *net, const ini_line_t *line, char *er
     } else if (strcasecmp(k, "boot_time") == 0) {
         if (!parse_number(line->value, 600000u, &c->boot_time_ms))
             return bad_value(line, "give 0..600000 ms", err, err_len);
+    } else if (strcasecmp(k, "network_boot_time") == 0) {
+        /* CiA 302-2's boot time 1F89h. */
+        if (!parse_number(line->value, 3600000u, &c->boot_limit_ms))
+            return bad_value(line, "give 0 (no limit) or 1..3600000 ms", err, err_len);
     } else if (strcasecmp(k, "retry_delay") == 0) {
         if (!parse_number(line->value, 600000u, &c->retry_delay_ms))
             return bad_value(line, "give 0..600000 ms", err, err_len);
@@ -316,7 +320,8 @@ static bool master_key(comaster_network_t *net, const ini_line_t *line, char *er
     } else {
         snprintf(err, err_len,
                  "%s:%u: unknown key '%s' in [Master] (cpj, interface, control, sdo_timeout, "
-                 "boot_time, retry_delay, sync_period, start, on_mandatory_error, nmt_startup, "
+                 "boot_time, network_boot_time, retry_delay, sync_period, start, "
+                 "on_mandatory_error, nmt_startup, "
                  "reset_all, node_id, heartbeat, bit_rate)",
                  line->path, line->number, k);
         return false;
@@ -353,17 +358,15 @@ static bool node_key_value(co_net_slave_config_t *c, const ini_line_t *line, cha
 {
     uint32_t v;
     const char *k = line->key;
+    /* The keys of the expected identity are CiA 302-2's 1F84h..1F88h, in check_names' order;
+     * 0 is no check of that value. */
     for (size_t i = 0; i < CHECK_NAMES; i++) {
         if (strcasecmp(k, check_names[i]) != 0)
             continue;
         if (!parse_number(line->value, UINT32_MAX, &v))
             return bad_value(line, "not a 32-bit number", err, err_len);
-        if (i == 0)
-            c->device_type = v;
-        else
-            c->identity[i - 1] = v;
-        c->check |= (uint8_t)(1u << i);
-        return true;
+        return co_net_slave_config_set_expected(
+            c, (uint16_t)(CO_NET_IDX_DEVICE_TYPE_IDENTIFICATION + i), v);
     }
     if (strcasecmp(k, "mandatory") == 0) {
         if (!parse_yes_no(line->value, &c->mandatory))

@@ -76,12 +76,17 @@ static const char *slave_name(const runner_t *r, uint8_t node_id)
     return "";
 }
 
+/* "identity mismatch (read 0x00000312), CiA 302 error M: product code differs from 1F86h". */
 static void format_failure(const co_net_slave_t *s, char *out, size_t cap)
 {
+    int n;
     if (s->failure == CO_NET_FAIL_DEVICE_TYPE || s->failure == CO_NET_FAIL_IDENTITY)
-        snprintf(out, cap, "%s (read 0x%08X)", co_net_failure_text(s->failure), s->read_value);
+        n = snprintf(out, cap, "%s (read 0x%08X)", co_net_failure_text(s->failure), s->read_value);
     else
-        snprintf(out, cap, "%s", co_net_failure_text(s->failure));
+        n = snprintf(out, cap, "%s", co_net_failure_text(s->failure));
+    if (s->boot_error != CO_NET_BOOT_ERROR_NONE && n > 0 && (size_t)n < cap)
+        snprintf(out + n, cap - (size_t)n, ", CiA 302 error %c: %s", s->boot_error,
+                 co_net_boot_error_text(s->boot_error));
 }
 
 static void format_sdo_error(const co_net_sdo_error_t *e, char *out, size_t cap)
@@ -162,6 +167,10 @@ static void on_event(void *user, const co_net_event_t *event)
     case CO_NET_EVENT_STARTED:
         printf("network: NMT start all\n");
         break;
+    case CO_NET_EVENT_BOOT_TIME:
+        printf("network: boot time 1F89h (%lu ms) over, a mandatory slave not configured\n",
+               (unsigned long)r->master.config.boot_limit_ms);
+        break;
     case CO_NET_EVENT_NMT_DONE:
         run_nmt_done(r);
         break;
@@ -214,16 +223,36 @@ static size_t append(char *out, size_t cap, size_t used, const char *format, ...
     return end < cap ? end : cap - 1;
 }
 
-/* status --json: one object, the records of the PLC300's 5.6.3-5.6.5. */
+/* A slave's expected identity, CiA 302-2's 1F84h..1F88h: {"1F84h": "0x00020192", ...}, the
+ * values checked only (a check of 0, which a DCF may imply, shown too). */
+static size_t append_expected(char *reply, size_t cap, size_t used, const co_net_slave_config_t *c)
+{
+    const char *separator = "";
+    used = append(reply, cap, used, "{");
+    for (unsigned k = 0; k <= CO_NET_IDENTITY_SUBS; k++) {
+        if ((c->check & (CO_NET_CHECK_DEVICE_TYPE << k)) == 0)
+            continue;
+        uint32_t value = k == 0 ? c->device_type : c->identity[k - 1];
+        used = append(reply, cap, used, "%s\"%04Xh\": \"0x%08lX\"", separator,
+                      CO_NET_IDX_DEVICE_TYPE_IDENTIFICATION + k, (unsigned long)value);
+        separator = ", ";
+    }
+    return append(reply, cap, used, "}");
+}
+
+/* status --json: one object, the records of the PLC300's 5.6.3-5.6.5, and CiA 302-2's boot time
+ * 1F89h, expected identity and error status of each slave. */
 static void reply_status_json(runner_t *r, uint16_t status, char *reply, size_t cap)
 {
     char name[CLI_JSON_QUOTED_MAX(COMASTER_NAME_MAX)], text[256];
-    char failure[CLI_JSON_QUOTED_MAX(sizeof text)], ec_error[32];
+    char failure[CLI_JSON_QUOTED_MAX(sizeof text)], ec_error[32], boot_error[96];
     uint8_t protocol = co_net_master_protocol_state(&r->master);
     size_t used = append(reply, cap, 0,
                          "{\"status\": \"0x%04X\", \"protocol_state\": {\"code\": %u, \"text\": "
-                         "\"%s\"}, \"slaves\": [",
-                         status, protocol, co_net_protocol_state_text(protocol));
+                         "\"%s\"}, \"boot_time\": {\"ms\": %lu, \"over\": %s}, \"slaves\": [",
+                         status, protocol, co_net_protocol_state_text(protocol),
+                         (unsigned long)r->master.config.boot_limit_ms,
+                         r->master.boot_time_over ? "true" : "false");
     for (size_t i = 0; i < r->net->slave_count; i++) {
         const co_net_slave_t *s = &r->net->slave_state[i];
         cli_json_quote(r->net->slave[i].name, name, sizeof name);
@@ -235,12 +264,19 @@ static void reply_status_json(runner_t *r, uint16_t status, char *reply, size_t 
         snprintf(ec_error, sizeof ec_error, "null");
         if (s->ec_error != CO_NET_EC_ERROR_NONE)
             snprintf(ec_error, sizeof ec_error, "\"%s\"", co_net_ec_error_text(s->ec_error));
+        snprintf(boot_error, sizeof boot_error, "null");
+        if (s->boot_error != CO_NET_BOOT_ERROR_NONE)
+            snprintf(boot_error, sizeof boot_error, "{\"code\": \"%c\", \"text\": \"%s\"}",
+                     s->boot_error, co_net_boot_error_text(s->boot_error));
         used = append(reply, cap, used,
-                      "%s{\"node\": %u, \"name\": %s, \"assignment\": \"0x%08lX\", \"status\": "
-                      "\"0x%04X\", \"step\": \"%s\", \"failure\": %s, \"error_control_error\": %s}",
+                      "%s{\"node\": %u, \"name\": %s, \"assignment\": \"0x%08lX\", \"expected\": ",
                       i ? ", " : "", r->net->slave_config[i].node_id, name,
-                      (unsigned long)co_net_slave_1f81(&r->net->slave_config[i]), s->status,
-                      co_net_step_text(s->step), failure, ec_error);
+                      (unsigned long)co_net_slave_1f81(&r->net->slave_config[i]));
+        used = append_expected(reply, cap, used, &r->net->slave_config[i]);
+        used = append(reply, cap, used,
+                      ", \"status\": \"0x%04X\", \"step\": \"%s\", \"failure\": %s, "
+                      "\"boot_error\": %s, \"error_control_error\": %s}",
+                      s->status, co_net_step_text(s->step), failure, boot_error, ec_error);
     }
     const co_net_sdo_error_t *e = &r->master.last_sdo_error;
     if (e->node_id == 0)

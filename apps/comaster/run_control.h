@@ -15,7 +15,7 @@
 
 #define COMASTER_CONTROL_LINE_MAX CO_LINE_MAX
 #define COMASTER_CONTROL_REPLY_MAX                                                                 \
-    32768u /* status --json of 127 slaves, 64-byte names, every field at its longest */
+    65536u /* status --json of 127 slaves, 64-byte names, every field at its longest */
 
 /* Answers one request line (without its newline) into `reply` (cap bytes, newline-terminated
  * lines; an error is one line "error: ...", an SDO abort "abort: ...", no answer in time

@@ -21,7 +21,7 @@ uint16_t run_bus_bits(const runner_t *r)
 
 static const char *const slave_bits[] = {"contacted",   "configured", "error-control-started",
                                          "initialised", "init-error", "error-control-error"};
-/* The PLC300's %SW3200 (bit 6 the project's own); NULL: reserved. */
+/* The PLC300's %SW3200 (bits 6 and 7 the project's own); NULL: reserved. */
 static const char *const master_bits[] = {"all-contacted",
                                           "all-configured",
                                           "all-error-control-started",
@@ -29,7 +29,7 @@ static const char *const master_bits[] = {"all-contacted",
                                           "init-error",
                                           "error-control-error",
                                           "mandatory-error",
-                                          NULL,
+                                          "boot-time-over",
                                           "nmt-toggle",
                                           NULL,
                                           NULL,

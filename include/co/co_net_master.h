@@ -31,9 +31,13 @@
 #define CO_NET_MASTER_INIT_ERROR 0x0010u      /* bit 4: some slave has bit 4 */
 #define CO_NET_MASTER_EC_ERROR 0x0020u        /* bit 5: some slave has bit 5 */
 #define CO_NET_MASTER_MANDATORY_ERROR 0x0040u /* bit 6: some mandatory slave has bit 4 */
-#define CO_NET_MASTER_NMT_TOGGLE 0x0100u      /* bit 8: flips after each co_net_master_nmt */
-#define CO_NET_MASTER_BUS_OFF 0x2000u         /* bit 13: the controller is bus off */
-#define CO_NET_MASTER_NO_BUS_POWER 0x4000u    /* bit 14: the interface has no bus power */
+#define CO_NET_MASTER_BOOT_TIME_OVER                                                               \
+    0x0080u                                /* bit 7 (the project's own): CiA 302-2's boot          \
+                                            * time 1F89h ended before every mandatory slave        \
+                                            * was configured */
+#define CO_NET_MASTER_NMT_TOGGLE 0x0100u   /* bit 8: flips after each co_net_master_nmt */
+#define CO_NET_MASTER_BUS_OFF 0x2000u      /* bit 13: the controller is bus off */
+#define CO_NET_MASTER_NO_BUS_POWER 0x4000u /* bit 14: the interface has no bus power */
 #define CO_NET_MASTER_DISABLED                                                                     \
     0x8000u /* bit 15: communication disabled (by the                                              \
              * application, bus off or no bus power) */
@@ -54,6 +58,28 @@
 #define CO_NET_CHECK_REVISION 0x08u    /* 1018h:03 */
 #define CO_NET_CHECK_SERIAL 0x10u      /* 1018h:04 */
 #define CO_NET_IDENTITY_SUBS 4u
+
+/* CiA 302-2's expected identity objects of an NMT master, each an array whose sub-index is the
+ * slave's node-id (co_net_slave_expected, co_net_slave_config_set_expected); 0: not checked. */
+#define CO_NET_IDX_DEVICE_TYPE_IDENTIFICATION 0x1F84u /* 1000h */
+#define CO_NET_IDX_VENDOR_IDENTIFICATION 0x1F85u      /* 1018h:01 */
+#define CO_NET_IDX_PRODUCT_CODE 0x1F86u               /* 1018h:02 */
+#define CO_NET_IDX_REVISION_NUMBER 0x1F87u            /* 1018h:03 */
+#define CO_NET_IDX_SERIAL_NUMBER 0x1F88u              /* 1018h:04 */
+/* CiA 302-2's boot time 1F89h (UNSIGNED32, ms; 0: no limit): co_net_master_config_t.boot_limit_ms.
+ */
+#define CO_NET_IDX_BOOT_TIME 0x1F89u
+
+/* CiA 302-2's error status of a failed "boot slave" (co_net_slave_t.boot_error), the letters of
+ * its table that this master can give. */
+#define CO_NET_BOOT_ERROR_NONE 0u
+#define CO_NET_BOOT_ERROR_B 'B' /* no answer to the read of 1000h (an abort or a timeout) */
+#define CO_NET_BOOT_ERROR_C 'C' /* 1000h differs from 1F84h */
+#define CO_NET_BOOT_ERROR_D 'D' /* 1018h:01 differs from 1F85h (or could not be read) */
+#define CO_NET_BOOT_ERROR_J 'J' /* the configuration download failed */
+#define CO_NET_BOOT_ERROR_M 'M' /* 1018h:02 differs from 1F86h (or could not be read) */
+#define CO_NET_BOOT_ERROR_N 'N' /* 1018h:03 differs from 1F87h (or could not be read) */
+#define CO_NET_BOOT_ERROR_O 'O' /* 1018h:04 differs from 1F88h (or could not be read) */
 
 /* The PLC300's CAN baud rate codes, its %CB3055 and Setup menu's BAUD RATE (section 8.2; 1 is
  * reserved, and 800 and 10 kbit/s have none): the master's bit rate marker, which the application
@@ -183,6 +209,8 @@ typedef enum co_net_event_kind {
     CO_NET_EVENT_EMCY,      /* last_emcy was updated */
     CO_NET_EVENT_INPUT,     /* a TPDO updated the input image (`pdo` is its index) */
     CO_NET_EVENT_STARTED,   /* NMT start all was sent */
+    CO_NET_EVENT_BOOT_TIME, /* the boot time 1F89h ended with a mandatory slave not configured
+                             * (node_id 0; master status bit 7) */
     CO_NET_EVENT_NMT_DONE   /* the co_net_master_nmt command ended: every addressed node
                              * confirmed, or its deadline passed (master.nmt_request says who) */
 } co_net_event_kind_t;
@@ -242,6 +270,8 @@ typedef struct co_net_slave {
     uint16_t status;     /* CO_NET_SLAVE_* */
     uint8_t failure;     /* co_net_failure_t of the last failed attempt */
     uint8_t ec_error;    /* co_net_ec_error_t of the last loss while bit 5 is set, else NONE */
+    uint8_t boot_error;  /* CiA 302-2's CO_NET_BOOT_ERROR_* of the last failed attempt; as bit 4,
+                          * kept until an attempt configures the slave or the master starts */
     uint32_t read_value; /* the value of the failed identity check (or the last one read) */
     bool booted;         /* the boot-up awaited since its last reset came */
     bool tried;          /* an attempt at its initialisation ended (successfully or not) */
@@ -278,6 +308,10 @@ typedef struct co_net_master_config {
     uint8_t node_id;
     uint16_t heartbeat_ms;
     co_net_mandatory_error_t on_mandatory_error;
+    /* CiA 302-2's boot time 1F89h: from co_net_master_start (or a reset of all), the time every
+     * mandatory slave has to be configured in, else CO_NET_EVENT_BOOT_TIME and master status bit
+     * 7; the boot goes on. 0: no limit. */
+    uint32_t boot_limit_ms;
 } co_net_master_config_t;
 
 typedef struct co_net_master {
@@ -286,13 +320,15 @@ typedef struct co_net_master {
     co_sdo_client_t sdo;
     co_emcy_consumer_t emcy;
     co_sync_producer_t sync;
-    size_t current;   /* the slave using the SDO client, config.slave_count when none */
-    size_t next_pick; /* where the search for the next slave to boot starts */
-    bool started;     /* co_net_master_start was called */
-    bool started_all; /* CO_NET_START_ALL: the start all was sent */
-    bool stopped_all; /* CO_NET_MANDATORY_STOP_ALL stopped every node, the master too */
-    co_time_t now;    /* of the call under way, for requests started from callbacks */
-    uint8_t value[4]; /* an identity value being read */
+    size_t current;       /* the slave using the SDO client, config.slave_count when none */
+    size_t next_pick;     /* where the search for the next slave to boot starts */
+    bool started;         /* co_net_master_start was called */
+    bool started_all;     /* CO_NET_START_ALL: the start all was sent */
+    bool stopped_all;     /* CO_NET_MANDATORY_STOP_ALL stopped every node, the master too */
+    bool boot_time_over;  /* the boot time 1F89h ended first: status bit 7 */
+    co_time_t boot_limit; /* its end, CO_TIME_NEVER once over or every mandatory slave is in */
+    co_time_t now;        /* of the call under way, for requests started from callbacks */
+    uint8_t value[4];     /* an identity value being read */
     co_net_sdo_error_t last_sdo_error;
     co_emcy_message_t last_emcy; /* node_id 0: none yet */
     co_time_t next_heartbeat;    /* CO_TIME_NEVER: none produced */
@@ -389,12 +425,21 @@ bool co_net_master_config_from_1f80(co_net_master_config_t *config, uint32_t val
 uint32_t co_net_slave_1f81(const co_net_slave_config_t *slave);
 bool co_net_slave_config_from_1f81(co_net_slave_config_t *slave, uint32_t value);
 
+/* The slave's expected identity object (CO_NET_IDX_DEVICE_TYPE_IDENTIFICATION .. _SERIAL_NUMBER)
+ * as CiA 302-2 holds it: the value checked, 0 when not checked (and for another index); and the
+ * reverse: the value and its check set, or the check cleared by 0; false, and `slave` untouched,
+ * for another index. An expected value of 0 cannot be checked: CiA 302-2's 0 means none. */
+uint32_t co_net_slave_expected(const co_net_slave_config_t *slave, uint16_t index);
+bool co_net_slave_config_set_expected(co_net_slave_config_t *slave, uint16_t index, uint32_t value);
+
 /* The bit rate of a CO_NET_BIT_RATE_* code in bit/s; 0 for the reserved code 1 and above 7. */
 uint32_t co_net_bit_rate(uint8_t code);
 
 /* "idle", "wait boot-up", ... and "SDO error", "device type mismatch", ... for printing. */
 const char *co_net_step_text(co_net_step_t step);
 const char *co_net_failure_text(co_net_failure_t failure);
+/* CiA 302-2's meaning of a CO_NET_BOOT_ERROR_* letter: "no answer to 1000h", ...; "none" for 0. */
+const char *co_net_boot_error_text(uint8_t boot_error);
 /* "none", "node guarding error", "heartbeat error"; "disabled", "CANopen enabled", "error control
  * enabled", and the two error texts for a protocol state: the PLC300's words. */
 const char *co_net_ec_error_text(co_net_ec_error_t error);

@@ -279,6 +279,28 @@ START_TEST(slave_assignment_1f81)
 }
 END_TEST
 
+/* The identity keys of [NodeN] are CiA 302-2's 1F84h..1F88h (0: no check), network_boot_time
+ * its 1F89h. */
+START_TEST(expected_identity_and_boot_time_objects)
+{
+    ck_assert_int_eq(load_with(""), 0);
+    ck_assert_uint_eq(net.config.boot_limit_ms, 0);
+    ck_assert_uint_eq(co_net_slave_expected(slave(0), CO_NET_IDX_DEVICE_TYPE_IDENTIFICATION),
+                      0x00010192); /* the DCF's */
+    ck_assert_uint_eq(co_net_slave_expected(slave(0), CO_NET_IDX_VENDOR_IDENTIFICATION), 0x5F);
+    ck_assert_int_eq(load_with("network_boot_time = 2500\n[Node4]\nproduct = 0x312\n"
+                               "device_type = 0\n"),
+                     0);
+    ck_assert_uint_eq(net.config.boot_limit_ms, 2500);
+    ck_assert_uint_eq(co_net_slave_expected(slave(0), CO_NET_IDX_PRODUCT_CODE), 0x312);
+    ck_assert_uint_eq(co_net_slave_expected(slave(0), CO_NET_IDX_DEVICE_TYPE_IDENTIFICATION), 0);
+    ck_assert_uint_eq(slave(0)->check, CO_NET_CHECK_VENDOR | CO_NET_CHECK_PRODUCT);
+    ck_assert_int_eq(load_with("network_boot_time = 3600001\n"), EX_DATAERR);
+    ck_assert_ptr_nonnull(strstr(err, "net.ini:3: network_boot_time = '3600001': give 0 (no limit) "
+                                      "or 1..3600000 ms"));
+}
+END_TEST
+
 /* The bit rate marker, the PLC300's %CB3055 codes: 0 = 1 Mbit/s, 1 reserved, 2..7 = 500..20
  * kbit/s. */
 START_TEST(master_bit_rate_code)
@@ -601,6 +623,7 @@ static Suite *network_suite(void)
     tcase_add_test(tc, master_bit_rate_code);
     tcase_add_test(tc, nmt_startup_options_and_1f80);
     tcase_add_test(tc, slave_assignment_1f81);
+    tcase_add_test(tc, expected_identity_and_boot_time_objects);
     tcase_add_test(tc, bad_files_are_refused);
     tcase_add_test(tc, option_file_and_nodelist_syntax);
     tcase_add_test(tc, option_file_and_nodelist_syntax_errors);

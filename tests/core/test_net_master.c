@@ -400,6 +400,152 @@ START_TEST(device_type_mismatch)
 }
 END_TEST
 
+/* CiA 302-2's error status of each identity check that fails, on node 5: the value expected is
+ * one more than the slave's, the read of that sub is the last request to node 5, and the slave
+ * gets no configuration. */
+static const struct {
+    uint16_t index; /* 1F84h..1F88h */
+    uint8_t boot_error;
+} identity_checks[] = {
+    {CO_NET_IDX_DEVICE_TYPE_IDENTIFICATION, 'C'},
+    {CO_NET_IDX_VENDOR_IDENTIFICATION, 'D'},
+    {CO_NET_IDX_PRODUCT_CODE, 'M'},
+    {CO_NET_IDX_REVISION_NUMBER, 'N'},
+    {CO_NET_IDX_SERIAL_NUMBER, 'O'},
+};
+
+START_TEST(identity_check_gives_its_boot_error)
+{
+    uint16_t index = identity_checks[_i].index;
+    uint8_t sub = (uint8_t)(index - CO_NET_IDX_DEVICE_TYPE_IDENTIFICATION);
+    uint32_t actual = sub == 0 ? slave_u32(5, 0x1000, 0) : slave_u32(5, 0x1018, sub);
+    table[1] = (co_net_slave_config_t){.node_id = 5, .writes = writes, .write_count = 2};
+    ck_assert(co_net_slave_config_set_expected(&table[1], index, actual + 1));
+    start_master();
+    char request[32], answer[32];
+    if (sub == 0) {
+        snprintf(request, sizeof request, "605#4000100000000000");
+        snprintf(answer, sizeof answer, "585#43001000%02X%02X%02X%02X", actual & 0xFF,
+                 (actual >> 8) & 0xFF, (actual >> 16) & 0xFF, actual >> 24);
+    } else {
+        snprintf(request, sizeof request, "605#401810%02X00000000", sub);
+        snprintf(answer, sizeof answer, "585#431810%02X%02X%02X%02X%02X", sub, actual & 0xFF,
+                 (actual >> 8) & 0xFF, (actual >> 16) & 0xFF, actual >> 24);
+    }
+    skip_to(request);
+    expect(answer);
+    expect_boot(6); /* node 5's boot ends there */
+    const co_net_slave_t *s = co_net_master_slave(&master, 5);
+    ck_assert_uint_eq(s->step, CO_NET_STEP_FAILED);
+    ck_assert_uint_eq(s->status, CO_NET_SLAVE_INIT_ERROR);
+    ck_assert_uint_eq(s->read_value, actual);
+    ck_assert_uint_eq(s->boot_error, identity_checks[_i].boot_error);
+}
+END_TEST
+
+/* B: 1000h unanswered; J: a write of the configuration refused; none once a boot succeeds. */
+START_TEST(boot_errors_of_a_silent_and_a_refusing_slave)
+{
+    slaves[2].present = false;
+    table[1].writes = refused_write;
+    table[1].write_count = 1;
+    start_master();
+    advance((BOOT_TIME_MS + SDO_TIMEOUT_MS) * MS);
+    ck_assert_uint_eq(co_net_master_slave(&master, 6)->boot_error, CO_NET_BOOT_ERROR_B);
+    ck_assert_uint_eq(co_net_master_slave(&master, 5)->boot_error, CO_NET_BOOT_ERROR_J);
+    ck_assert_uint_eq(co_net_master_slave(&master, 4)->boot_error, CO_NET_BOOT_ERROR_NONE);
+    ck_assert_str_eq(co_net_boot_error_text(CO_NET_BOOT_ERROR_B), "no answer to the read of 1000h");
+    ck_assert_str_eq(co_net_boot_error_text(CO_NET_BOOT_ERROR_J), "configuration download failed");
+    ck_assert_str_eq(co_net_boot_error_text(CO_NET_BOOT_ERROR_O),
+                     "serial number differs from 1F88h");
+    ck_assert_str_eq(co_net_boot_error_text(CO_NET_BOOT_ERROR_NONE), "none");
+    ck_assert_str_eq(co_net_boot_error_text('Z'), "unknown boot error");
+    /* Retried, node 6 keeps its boot error while it waits for its boot-up, as bit 4; it comes,
+     * and the boot that succeeds clears it. */
+    advance(RETRY_DELAY_MS * MS);
+    ck_assert_uint_eq(co_net_master_slave(&master, 6)->step, CO_NET_STEP_WAIT_BOOT);
+    ck_assert_uint_eq(co_net_master_slave(&master, 6)->boot_error, CO_NET_BOOT_ERROR_B);
+    slaves[2].present = true;
+    advance(BOOT_TIME_MS * MS);
+    ck_assert_uint_eq(co_net_master_slave(&master, 6)->step, CO_NET_STEP_OPERATIONAL);
+    ck_assert_uint_eq(co_net_master_slave(&master, 6)->boot_error, CO_NET_BOOT_ERROR_NONE);
+}
+END_TEST
+
+/* 1F84h..1F88h are the table's check and values, 0 being no check. */
+START_TEST(expected_identity_1f84_to_1f88_both_ways)
+{
+    co_net_slave_config_t slave = plain_slave(4);
+    ck_assert_uint_eq(co_net_slave_expected(&slave, 0x1F84), 0x00010192);
+    ck_assert_uint_eq(co_net_slave_expected(&slave, 0x1F85), 0x5F);
+    ck_assert_uint_eq(co_net_slave_expected(&slave, 0x1F86), 0x312);
+    ck_assert_uint_eq(co_net_slave_expected(&slave, 0x1F87), 0);
+    ck_assert_uint_eq(co_net_slave_expected(&slave, 0x1F88), 0);
+    ck_assert(co_net_slave_config_set_expected(&slave, 0x1F88, 0x12345678));
+    ck_assert_uint_eq(slave.check, CO_NET_CHECK_DEVICE_TYPE | CO_NET_CHECK_VENDOR |
+                                       CO_NET_CHECK_PRODUCT | CO_NET_CHECK_SERIAL);
+    ck_assert_uint_eq(slave.identity[3], 0x12345678);
+    ck_assert(co_net_slave_config_set_expected(&slave, 0x1F84, 0));
+    ck_assert_uint_eq(slave.check,
+                      CO_NET_CHECK_VENDOR | CO_NET_CHECK_PRODUCT | CO_NET_CHECK_SERIAL);
+    ck_assert_uint_eq(co_net_slave_expected(&slave, 0x1F84), 0);
+    co_net_slave_config_t before = slave;
+    ck_assert(!co_net_slave_config_set_expected(&slave, 0x1F83, 1));
+    ck_assert(!co_net_slave_config_set_expected(&slave, 0x1F89, 1));
+    ck_assert_mem_eq(&slave, &before, sizeof slave);
+    ck_assert_uint_eq(co_net_slave_expected(&slave, 0x1F89), 0);
+}
+END_TEST
+
+static size_t boot_time_events(void)
+{
+    size_t n = 0;
+    for (size_t e = 0; e < event_count; e++)
+        n += events[e].kind == CO_NET_EVENT_BOOT_TIME && events[e].node_id == 0;
+    return n;
+}
+
+/* 1F89h: the mandatory node 6 is missing; at the boot time's end, not a microsecond before, the
+ * application is told and status bit 7 set; the boot goes on, and bit 7 stays until a new start. */
+START_TEST(boot_time_1f89_ends_before_a_mandatory_slave)
+{
+    config.boot_limit_ms = 1000;
+    table[2].mandatory = true;
+    slaves[2].present = false;
+    start_master();
+    advance(1000 * MS - 1);
+    ck_assert_uint_eq(boot_time_events(), 0);
+    ck_assert_uint_eq(co_net_master_status(&master) & CO_NET_MASTER_BOOT_TIME_OVER, 0);
+    advance(1);
+    ck_assert_uint_eq(boot_time_events(), 1);
+    ck_assert_uint_eq(co_net_master_status(&master),
+                      CO_NET_MASTER_INIT_FINISHED | CO_NET_MASTER_INIT_ERROR |
+                          CO_NET_MASTER_MANDATORY_ERROR | CO_NET_MASTER_BOOT_TIME_OVER);
+    slaves[2].present = true;
+    advance(RETRY_DELAY_MS * MS);
+    ck_assert_uint_eq(co_net_master_slave(&master, 6)->step, CO_NET_STEP_OPERATIONAL);
+    ck_assert_uint_eq(co_net_master_status(&master), 0x0F | CO_NET_MASTER_BOOT_TIME_OVER);
+    ck_assert_uint_eq(boot_time_events(), 1);
+    co_net_master_start(&master, bus.now);
+    ck_assert_uint_eq(co_net_master_status(&master) & CO_NET_MASTER_BOOT_TIME_OVER, 0);
+}
+END_TEST
+
+/* Every mandatory slave configured in time: nothing told, and no deadline of the boot time left
+ * (the master's next deadline is the heartbeat consumer's, not 1F89h's). */
+START_TEST(boot_time_1f89_met)
+{
+    config.boot_limit_ms = 1000;
+    table[2].mandatory = true;
+    start_master();
+    ck_assert_uint_eq(co_net_master_slave(&master, 6)->step, CO_NET_STEP_OPERATIONAL);
+    ck_assert_uint_eq(master.boot_limit, CO_TIME_NEVER);
+    advance(2000 * MS);
+    ck_assert_uint_eq(boot_time_events(), 0);
+    ck_assert_uint_eq(co_net_master_status(&master), 0x0F);
+}
+END_TEST
+
 START_TEST(missing_optional_slave)
 {
     slaves[2].present = false;
@@ -1539,6 +1685,12 @@ static Suite *net_master_suite(void)
     tcase_add_test(tc, events_follow_the_steps);
     tcase_add_test(tc, identity_mismatch_is_an_init_error);
     tcase_add_test(tc, device_type_mismatch);
+    tcase_add_loop_test(tc, identity_check_gives_its_boot_error, 0,
+                        (int)(sizeof identity_checks / sizeof identity_checks[0]));
+    tcase_add_test(tc, boot_errors_of_a_silent_and_a_refusing_slave);
+    tcase_add_test(tc, expected_identity_1f84_to_1f88_both_ways);
+    tcase_add_test(tc, boot_time_1f89_ends_before_a_mandatory_slave);
+    tcase_add_test(tc, boot_time_1f89_met);
     tcase_add_test(tc, missing_optional_slave);
     tcase_add_test(tc, mandatory_slave_missing_blocks_start_all);
     tcase_add_test(tc, start_all_after_every_slave);

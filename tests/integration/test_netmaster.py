@@ -3,7 +3,7 @@
 examples/netmaster: the exact step and status lines (the PLC300's status bits), the configuration
 read back with python canopen, an output set from another comaster reaching the drive by RPDO, a
 drive killed (SIGKILL) and started again that the master boots and reconfigures, an identity
-mismatch. Every wait is deadline based."""
+mismatch, CiA 302-2's boot errors and boot time 1F89h. Every wait is deadline based."""
 
 import json
 import os
@@ -169,8 +169,10 @@ def test_run_boots_drives_4_to_6_from_their_dcfs(bus, start_daemon, run, remote)
     assert rc == 0
     assert json.loads(out) == {
         "status": "0x000F", "protocol_state": {"code": 3, "text": "error control enabled"},
-        "slaves": [{"node": n, "name": f"drive{n}", "assignment": assignment, "status": "0x000F",
-                    "step": "operational", "failure": None, "error_control_error": None}
+        "boot_time": {"ms": 0, "over": False},
+        "slaves": [{"node": n, "name": f"drive{n}", "assignment": assignment,
+                    "expected": {"1F84h": "0x00010192", "1F85h": "0x0000005F"}, "status": "0x000F",
+                    "step": "operational", "failure": None, "boot_error": None, "error_control_error": None}
                    for n, assignment in ((4, "0x0000000D"), (5, "0x00000005"), (6, "0x00000005"))],
         "last_sdo_error": None, "last_emcy": None}
 
@@ -313,11 +315,44 @@ def test_identity_mismatch_is_an_init_error(bus, start_daemon, run, tmp_path):
     ini = tmp_path / "bench.ini"
     ini.write_text(f"[Master]\ncpj = {NET / 'bench.cpj'}\nretry_delay = 60000\n[Node6]\nvendor = 0x99\n")
     r = run(ini)
-    r.expect("node 6 drive6: init error: identity mismatch (read 0x0000005F)")
+    failure = "identity mismatch (read 0x0000005F), CiA 302 error D: vendor-ID differs from 1F85h"
+    r.expect(f"node 6 drive6: init error: {failure}")
     r.expect("master: status 0x0018 init-finished init-error")
     rc, out, _ = r.request("status")
     assert rc == 0
-    assert "node 6 drive6 0x0010 init error: identity mismatch (read 0x0000005F)" in out.splitlines(), out
+    assert f"node 6 drive6 0x0010 init error: {failure}" in out.splitlines(), out
+
+
+def test_boot_time_1f89_and_the_boot_errors_of_cia_302(bus, start_daemon, run, tmp_path):
+    """CiA 302-2's boot time 1F89h ([Master] network_boot_time) and expected identity 1F84h
+    ([NodeN] device_type): drive 4, mandatory, is not on the bus (error B, no answer to 1000h),
+    drive 5 is expected to be another device (error C); at 1.5 s the run tells that the mandatory
+    drive is missing (status bit 7); drive 4, started later, is booted and the bit stays."""
+    start_daemon(bus, "--node-id", "5-6")
+    ini = tmp_path / "bench.ini"
+    ini.write_text(f"[Master]\ncpj = {NET / 'bench.cpj'}\nboot_time = 200\nretry_delay = 500\n"
+                   "network_boot_time = 1500\n[Node4]\nmandatory = yes\n[Node5]\ndevice_type = 0x00020192\n")
+    r = run(ini)
+    begun = time.monotonic()
+    r.expect_all(["node 4 drive4: init error: SDO error, CiA 302 error B: no answer to the read of 1000h",
+                  "node 5 drive5: init error: device type mismatch (read 0x00010192), CiA 302 error C: "
+                  "device type differs from 1F84h"])
+    r.expect("network: boot time 1F89h (1500 ms) over, a mandatory slave not configured", timeout=3.0)
+    assert time.monotonic() - begun > 1.2
+    state = json.loads(r.request("--json", "status")[1])
+    assert state["boot_time"] == {"ms": 1500, "over": True}
+    assert int(state["status"], 16) & 0x80
+    slaves = {s["node"]: s for s in state["slaves"]}
+    assert slaves[4]["boot_error"] == {"code": "B", "text": "no answer to the read of 1000h"}
+    assert slaves[5]["boot_error"] == {"code": "C", "text": "device type differs from 1F84h"}
+    assert slaves[5]["expected"] == {"1F84h": "0x00020192", "1F85h": "0x0000005F"}
+    assert slaves[6]["boot_error"] is None
+    start_daemon(bus, "--node-id", "4")
+    r.expect(f"node 4 drive4: {BOOTED}", timeout=10.0)
+    state = json.loads(r.request("--json", "status")[1])
+    assert {s["node"]: s["boot_error"] for s in state["slaves"]} == {
+        4: None, 5: {"code": "C", "text": "device type differs from 1F84h"}, 6: None}
+    assert state["boot_time"]["over"] is True
 
 
 def configured(dcf, section, value):

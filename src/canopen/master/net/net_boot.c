@@ -20,6 +20,20 @@ void co_net_release(co_net_master_t *m)
     m->current = m->config.slave_count;
 }
 
+/* CiA 302-2's error status of the step that failed: the read of 1000h (B, or C for another
+ * value), of a 1018h sub (its own letter, whether the value differs or could not be read: either
+ * way the slave is not shown to be the one expected), the download (J). */
+static uint8_t boot_error(const co_net_slave_t *s, co_net_failure_t failure)
+{
+    static const uint8_t identity_errors[CO_NET_IDENTITY_SUBS] = {
+        CO_NET_BOOT_ERROR_D, CO_NET_BOOT_ERROR_M, CO_NET_BOOT_ERROR_N, CO_NET_BOOT_ERROR_O};
+    if (failure == CO_NET_FAIL_DEVICE_TYPE)
+        return CO_NET_BOOT_ERROR_C;
+    if (s->step == CO_NET_STEP_IDENTITY)
+        return identity_errors[s->identity_sub];
+    return s->step == CO_NET_STEP_DOWNLOAD ? CO_NET_BOOT_ERROR_J : CO_NET_BOOT_ERROR_B;
+}
+
 /* A failed attempt keeps "contacted" when its identification succeeded (the attempt cleared it
  * when it began): the PLC300 (5.6.3) shows a slave that was found but refused its configuration
  * as contacted with an init error, one that was not found as an init error alone. */
@@ -27,6 +41,7 @@ static void fail(co_net_master_t *m, size_t i, co_net_failure_t failure)
 {
     co_net_slave_t *s = co_net_slave_at(m, i);
     s->failure = (uint8_t)failure;
+    s->boot_error = boot_error(s, failure);
     s->deadline = co_net_after_ms(m->now, m->config.retry_delay_ms);
     s->tried = true;
     co_net_set_step(m, i, CO_NET_STEP_FAILED);
@@ -100,6 +115,7 @@ void co_net_start_slave(co_net_master_t *m, size_t i)
 
 static void finish_boot(co_net_master_t *m, size_t i)
 {
+    co_net_slave_at(m, i)->boot_error = CO_NET_BOOT_ERROR_NONE;
     co_net_add_status(m, i, CO_NET_SLAVE_CONFIGURED);
     start_error_control(m, i);
     co_net_release(m);
@@ -295,6 +311,40 @@ static void start_all(co_net_master_t *m)
     }
 }
 
+void co_net_begin_boot_time(co_net_master_t *m)
+{
+    m->boot_time_over = false;
+    m->boot_limit = m->config.boot_limit_ms == 0 ? CO_TIME_NEVER
+                                                 : co_net_after_ms(m->now, m->config.boot_limit_ms);
+}
+
+static bool mandatory_configured(const co_net_master_t *m)
+{
+    for (size_t i = 0; i < m->config.slave_count; i++) {
+        uint8_t step = m->config.slave_state[i].step;
+        if (m->config.slaves[i].mandatory && step != CO_NET_STEP_WAIT_START &&
+            step != CO_NET_STEP_OPERATIONAL)
+            return false;
+    }
+    return true;
+}
+
+/* CiA 302-2's boot time 1F89h: it ends once, when every mandatory slave is configured or, first,
+ * at its end, which the application is told; the boot of the missing ones goes on, as the PLC300
+ * retries a failed slave (docs/decisions.md, D-NET-MASTER-BOOT-TIME). */
+static void check_boot_time(co_net_master_t *m)
+{
+    if (m->boot_limit == CO_TIME_NEVER)
+        return;
+    if (mandatory_configured(m)) {
+        m->boot_limit = CO_TIME_NEVER;
+    } else if (m->now >= m->boot_limit) {
+        m->boot_limit = CO_TIME_NEVER;
+        m->boot_time_over = true;
+        co_net_report(m, CO_NET_EVENT_BOOT_TIME, 0, 0);
+    }
+}
+
 bool co_net_client_free(const co_net_master_t *m)
 {
     return m->current == m->config.slave_count && !m->serving;
@@ -311,12 +361,13 @@ void co_net_boot_run(co_net_master_t *m)
         begin_attempt(m, i);
     }
     start_all(m);
+    check_boot_time(m);
 }
 
-/* retry_failed has just run the retries whose delay ended. */
+/* retry_failed has just run the retries whose delay ended, check_boot_time the boot time. */
 co_time_t co_net_boot_deadline(const co_net_master_t *m)
 {
-    co_time_t next = CO_TIME_NEVER;
+    co_time_t next = m->boot_limit;
     for (size_t i = 0; i < m->config.slave_count; i++) {
         const co_net_slave_t *s = &m->config.slave_state[i];
         if ((s->step == CO_NET_STEP_WAIT_BOOT && !co_net_ready(m, s)) ||

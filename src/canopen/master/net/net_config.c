@@ -64,6 +64,42 @@ bool co_net_slave_config_from_1f81(co_net_slave_config_t *slave, uint32_t value)
     return true;
 }
 
+/* 1F84h..1F88h in the order of the check bits: 1000h, then 1018h:01..04. */
+static bool expected_sub(uint16_t index, unsigned *k)
+{
+    if (index < CO_NET_IDX_DEVICE_TYPE_IDENTIFICATION || index > CO_NET_IDX_SERIAL_NUMBER)
+        return false;
+    *k = (unsigned)(index - CO_NET_IDX_DEVICE_TYPE_IDENTIFICATION);
+    return true;
+}
+
+static uint32_t *expected_value(co_net_slave_config_t *slave, unsigned k)
+{
+    return k == 0 ? &slave->device_type : &slave->identity[k - 1];
+}
+
+uint32_t co_net_slave_expected(const co_net_slave_config_t *slave, uint16_t index)
+{
+    unsigned k;
+    if (!expected_sub(index, &k) || (slave->check & (CO_NET_CHECK_DEVICE_TYPE << k)) == 0)
+        return 0;
+    return k == 0 ? slave->device_type : slave->identity[k - 1];
+}
+
+/* CiA 302-2, 1F84h..1F88h: a value of 0 is no check of that value. */
+bool co_net_slave_config_set_expected(co_net_slave_config_t *slave, uint16_t index, uint32_t value)
+{
+    unsigned k;
+    if (!expected_sub(index, &k))
+        return false;
+    *expected_value(slave, k) = value;
+    if (value == 0)
+        slave->check &= (uint8_t) ~(CO_NET_CHECK_DEVICE_TYPE << k);
+    else
+        slave->check |= (uint8_t)(CO_NET_CHECK_DEVICE_TYPE << k);
+    return true;
+}
+
 uint32_t co_net_bit_rate(uint8_t code)
 {
     /* kbit/s by code, as the PLC300 manual's table lists them. */

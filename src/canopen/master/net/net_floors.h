@@ -82,7 +82,9 @@ bool co_net_ready(const co_net_master_t *m, const co_net_slave_t *s);
 /* Retries the failed slaves whose delay ended, starts the boot of the slaves whose turn came
  * while the client is free, sends the start of all when the network is ready. */
 void co_net_boot_run(co_net_master_t *m);
-/* The end of a boot time not yet reached, or of a retry delay. */
+/* CiA 302-2's boot time 1F89h runs from now (the network's boot begins); status bit 7 clear. */
+void co_net_begin_boot_time(co_net_master_t *m);
+/* The end of a boot time not yet reached, of a retry delay, or of the boot time 1F89h. */
 co_time_t co_net_boot_deadline(const co_net_master_t *m);
 
 /* The supervision of the slaves (net_supervision.c): their error control, boot-ups and EMCYs,

@@ -19,6 +19,7 @@ bool co_net_master_init(co_net_master_t *master, const co_net_master_config_t *c
     }
     master->sync.next = CO_TIME_NEVER;
     master->next_heartbeat = CO_TIME_NEVER;
+    master->boot_limit = CO_TIME_NEVER;
     if (config->sync_period_us != 0)
         co_sync_producer_init(&master->sync, CO_CAN_ID_SYNC, config->sync_period_us, 0);
     co_net_release(master);
@@ -31,12 +32,14 @@ void co_net_master_start(co_net_master_t *master, co_time_t now)
     master->started = true;
     master->started_all = false;
     master->stopped_all = false;
+    co_net_begin_boot_time(master);
     if (master->config.heartbeat_ms != 0)
         master->next_heartbeat = now;
     if (master->config.reset_all)
         co_nmt_master_command(&master->nmt, CO_NMT_CS_RESET_COMMUNICATION, CO_NMT_MASTER_ALL_NODES);
     for (size_t i = 0; i < master->config.slave_count; i++) {
         co_net_slave_at(master, i)->tried = false;
+        co_net_slave_at(master, i)->boot_error = CO_NET_BOOT_ERROR_NONE;
         co_net_set_status(master, i, 0);
         if (master->config.reset_all)
             co_net_await_boot(master, i, false);
@@ -57,6 +60,8 @@ void co_net_master_disable(co_net_master_t *master, co_time_t now)
     master->started_all = false;
     master->next_heartbeat = CO_TIME_NEVER;
     master->sync.next = CO_TIME_NEVER;
+    master->boot_limit = CO_TIME_NEVER;
+    master->boot_time_over = false;
     if (master->serving)
         co_sdo_client_cancel(&master->sdo);
     for (size_t i = 0; i < master->config.slave_count; i++) {
@@ -65,6 +70,7 @@ void co_net_master_disable(co_net_master_t *master, co_time_t now)
         co_net_stop_error_control(master, i);
         s->booted = false;
         s->tried = false;
+        s->boot_error = CO_NET_BOOT_ERROR_NONE;
         co_net_set_status(master, i, 0);
         co_net_set_step(master, i, CO_NET_STEP_IDLE);
     }
@@ -157,6 +163,8 @@ uint16_t co_net_master_status(const co_net_master_t *master)
         if (master->config.slaves[i].mandatory && (s->status & CO_NET_SLAVE_INIT_ERROR) != 0)
             some |= CO_NET_MASTER_MANDATORY_ERROR;
     }
+    if (master->boot_time_over)
+        some |= CO_NET_MASTER_BOOT_TIME_OVER;
     return all | some | own;
 }
 
@@ -233,6 +241,30 @@ const char *co_net_failure_text(co_net_failure_t failure)
         return "identity mismatch";
     }
     return "unknown failure";
+}
+
+const char *co_net_boot_error_text(uint8_t boot_error)
+{
+    switch (boot_error) {
+    case CO_NET_BOOT_ERROR_NONE:
+        return "none";
+    case CO_NET_BOOT_ERROR_B:
+        return "no answer to the read of 1000h";
+    case CO_NET_BOOT_ERROR_C:
+        return "device type differs from 1F84h";
+    case CO_NET_BOOT_ERROR_D:
+        return "vendor-ID differs from 1F85h";
+    case CO_NET_BOOT_ERROR_J:
+        return "configuration download failed";
+    case CO_NET_BOOT_ERROR_M:
+        return "product code differs from 1F86h";
+    case CO_NET_BOOT_ERROR_N:
+        return "revision number differs from 1F87h";
+    case CO_NET_BOOT_ERROR_O:
+        return "serial number differs from 1F88h";
+    default:
+        return "unknown boot error";
+    }
 }
 
 const char *co_net_ec_error_text(co_net_ec_error_t error)

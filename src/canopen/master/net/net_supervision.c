@@ -11,6 +11,7 @@ static void reset_all(co_net_master_t *m)
 {
     co_nmt_master_command(&m->nmt, CO_NMT_CS_RESET_NODE, CO_NMT_MASTER_ALL_NODES);
     m->started_all = false;
+    co_net_begin_boot_time(m);
     for (size_t i = 0; i < m->config.slave_count; i++) {
         co_net_slave_at(m, i)->tried = false;
         co_net_await_boot(m, i, false);

@@ -11,6 +11,7 @@
 #ifndef CO_NET_MASTER_H
 #define CO_NET_MASTER_H
 
+#include "co_concise_dcf.h"
 #include "co_emcy_consumer.h"
 #include "co_nmt_master.h"
 #include "co_sdo_client.h"
@@ -120,6 +121,11 @@ typedef struct co_net_slave_config {
     uint32_t identity[CO_NET_IDENTITY_SUBS]; /* expected 1018h:01..04 */
     const co_net_write_t *writes;
     size_t write_count;
+    /* Or the configuration as CiA 302's concise DCF (1F22h, sub-index the node-id:
+     * co_concise_dcf.h), its entries downloaded in order as the writes would be; application memory
+     * that outlives the master. Not both. */
+    const uint8_t *concise_dcf;
+    size_t concise_dcf_len;
     uint16_t heartbeat_ms; /* consumer time, 0: no heartbeat monitoring */
     uint16_t guard_ms;     /* node guarding when heartbeat_ms is 0 and this is not */
     uint8_t life_time_factor;
@@ -275,7 +281,8 @@ typedef struct co_net_slave {
     uint32_t read_value; /* the value of the failed identity check (or the last one read) */
     bool booted;         /* the boot-up awaited since its last reset came */
     bool tried;          /* an attempt at its initialisation ended (successfully or not) */
-    size_t write_pos;
+    size_t write_pos;    /* the write, or the concise DCF's entry, being downloaded */
+    size_t dcf_pos;      /* the concise DCF's byte offset of that entry */
     uint8_t identity_sub;
     co_time_t deadline; /* WAIT_BOOT: the end of the boot time; FAILED: the retry */
 } co_net_slave_t;
@@ -344,7 +351,8 @@ typedef struct co_net_master {
 
 /* Checks and copies the configuration (the tables it points at are the application's and must
  * outlive the master); every slave idle. False, and nothing sent, for: no send callback, no slave
- * or more than 127, a node-id outside 1..127 or twice, a write without data, an SDO timeout
+ * or more than 127, a node-id outside 1..127 or twice, a write without data, a concise DCF that is
+ * not one (or with writes too), an SDO timeout
  * outside 5..5000 ms, a PDO of length 0 or above 8, outside its image or for a node not in the
  * table, a restricted CAN-ID, an image size or a PDO without an image. Sends nothing. */
 bool co_net_master_init(co_net_master_t *master, const co_net_master_config_t *config);
@@ -384,6 +392,17 @@ bool co_net_master_sdo(co_net_master_t *master, const co_net_request_t *request,
  * slave that restarts. */
 bool co_net_master_nmt(co_net_master_t *master, uint8_t command, uint8_t node_id,
                        uint32_t timeout_ms, co_time_t now);
+/* CiA 302-2's configuration request 1F25h (UNSIGNED32, write only): its value "conf" written to
+ * sub-index node-id configures that slave again, to sub-index 128 every slave of the table: each
+ * reset (communication) and booted again, its configuration downloaded anew. False, and nothing
+ * sent, for another value or sub-index, a node not in the table, a master not started or
+ * disabled. */
+#define CO_NET_IDX_CONFIGURATION_REQUEST 0x1F25u
+#define CO_NET_1F25_ALL 128u
+#define CO_NET_1F25_SIGNATURE 0x666E6F63u /* "conf" */
+bool co_net_master_request_configuration(co_net_master_t *master, uint8_t subindex, uint32_t value,
+                                         co_time_t now);
+
 /* Whether node_id is still awaited by the NMT command (false once it confirmed). */
 bool co_net_master_nmt_awaited(const co_net_master_t *master, uint8_t node_id);
 

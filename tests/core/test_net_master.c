@@ -546,6 +546,111 @@ START_TEST(boot_time_1f89_met)
 }
 END_TEST
 
+/* 1F22h: node 5 configured from a concise DCF of the same two writes: the same frames. */
+static uint8_t concise[64];
+
+static size_t concise_of(const co_net_write_t *w, size_t count)
+{
+    size_t used = co_concise_dcf_begin(concise, sizeof concise);
+    for (size_t k = 0; k < count; k++) {
+        co_concise_dcf_entry_t e = {w[k].index, w[k].subindex, w[k].data, w[k].len};
+        used = co_concise_dcf_add(concise, sizeof concise, used, &e);
+        ck_assert_uint_ne(used, 0);
+    }
+    return used;
+}
+
+START_TEST(concise_dcf_1f22_configures_a_slave)
+{
+    table[1].writes = NULL;
+    table[1].write_count = 0;
+    table[1].concise_dcf = concise;
+    table[1].concise_dcf_len = concise_of(writes, 2);
+    start_master();
+    expect("000#8200");
+    expect("704#00");
+    expect("705#00");
+    expect("706#00");
+    expect_boot(4);
+    expect_boot(5);
+    expect_boot(6);
+    ck_assert_uint_eq(co_net_master_slave_status(&master, 5), 0x0F);
+    ck_assert_uint_eq(slave_u32(5, 0x2000, 7), 0x12345678);
+}
+END_TEST
+
+/* An entry refused: the SDO error names it and its value, error J. */
+START_TEST(concise_dcf_entry_refused)
+{
+    const co_net_write_t refused[] = {writes[0], refused_write[0]};
+    table[1].writes = NULL;
+    table[1].write_count = 0;
+    table[1].concise_dcf = concise;
+    table[1].concise_dcf_len = concise_of(refused, 2);
+    start_master();
+    skip_to("605#2B17100064000000");
+    expect("585#6017100000000000");
+    expect("605#2B00201001000000");
+    expect("585#8000201021000008"); /* 0x08000021 */
+    const co_net_slave_t *s = co_net_master_slave(&master, 5);
+    ck_assert_uint_eq(s->step, CO_NET_STEP_FAILED);
+    ck_assert_uint_eq(s->boot_error, CO_NET_BOOT_ERROR_J);
+    ck_assert_uint_eq(master.last_sdo_error.index, 0x2000);
+    ck_assert_uint_eq(master.last_sdo_error.subindex, 0x10);
+    ck_assert_uint_eq(master.last_sdo_error.value, 1);
+}
+END_TEST
+
+START_TEST(concise_dcf_checked_at_init)
+{
+    uint8_t broken[] = {0x01, 0x00, 0x00, 0x00, 0x17, 0x10, 0x00, 0x02, 0x00, 0x00, 0x00, 0x64};
+    table[1].concise_dcf = broken;
+    table[1].concise_dcf_len = sizeof broken; /* and writes too */
+    ck_assert(!co_net_master_init(&master, &config));
+    table[1].writes = NULL;
+    table[1].write_count = 0;
+    ck_assert(!co_net_master_init(&master, &config)); /* its value cut short */
+    table[1].concise_dcf_len = concise_of(writes, 2);
+    table[1].concise_dcf = concise;
+    ck_assert(co_net_master_init(&master, &config));
+}
+END_TEST
+
+/* 1F25h: "conf" to node 5 boots it again, configuration and all; to 128 every slave. */
+START_TEST(configuration_request_1f25)
+{
+    ck_assert(!co_net_master_request_configuration(&master, 5, CO_NET_1F25_SIGNATURE, 0));
+    start_master();
+    skip_to("000#0106");
+    size_t sent = bus.count;
+    ck_assert(!co_net_master_request_configuration(&master, 5, 0x65766173, bus.now)); /* "save" */
+    ck_assert(!co_net_master_request_configuration(&master, 7, CO_NET_1F25_SIGNATURE, bus.now));
+    ck_assert(!co_net_master_request_configuration(&master, 0, CO_NET_1F25_SIGNATURE, bus.now));
+    ck_assert_uint_eq(bus.count, sent);
+    ck_assert(co_net_master_request_configuration(&master, 5, CO_NET_1F25_SIGNATURE, bus.now));
+    ck_assert_uint_eq(co_net_master_slave(&master, 5)->step, CO_NET_STEP_WAIT_BOOT);
+    advance(0);
+    expect("000#8205");
+    expect("705#00");
+    expect_boot(5);
+    ck_assert(co_net_master_request_configuration(&master, CO_NET_1F25_ALL, CO_NET_1F25_SIGNATURE,
+                                                  bus.now));
+    advance(0);
+    expect("000#8204");
+    expect("000#8205");
+    expect("000#8206");
+    expect("704#00");
+    expect("705#00");
+    expect("706#00");
+    expect_boot(4);
+    expect_boot(5);
+    expect_boot(6);
+    ck_assert_uint_eq(co_net_master_status(&master), 0x0F);
+    co_net_master_disable(&master, bus.now);
+    ck_assert(!co_net_master_request_configuration(&master, 5, CO_NET_1F25_SIGNATURE, bus.now));
+}
+END_TEST
+
 START_TEST(missing_optional_slave)
 {
     slaves[2].present = false;
@@ -1691,6 +1796,10 @@ static Suite *net_master_suite(void)
     tcase_add_test(tc, expected_identity_1f84_to_1f88_both_ways);
     tcase_add_test(tc, boot_time_1f89_ends_before_a_mandatory_slave);
     tcase_add_test(tc, boot_time_1f89_met);
+    tcase_add_test(tc, concise_dcf_1f22_configures_a_slave);
+    tcase_add_test(tc, concise_dcf_entry_refused);
+    tcase_add_test(tc, concise_dcf_checked_at_init);
+    tcase_add_test(tc, configuration_request_1f25);
     tcase_add_test(tc, missing_optional_slave);
     tcase_add_test(tc, mandatory_slave_missing_blocks_start_all);
     tcase_add_test(tc, start_all_after_every_slave);

@@ -122,23 +122,55 @@ static void finish_boot(co_net_master_t *m, size_t i)
     co_net_start_slave(m, i);
 }
 
+/* The write being downloaded: writes[write_pos], or the concise DCF's entry at dcf_pos (*next
+ * the offset after it); false past the last one. */
+static bool current_write(const co_net_master_t *m, size_t i, co_net_write_t *w, size_t *next)
+{
+    const co_net_slave_t *s = &m->config.slave_state[i];
+    const co_net_slave_config_t *c = &m->config.slaves[i];
+    if (c->concise_dcf == NULL) {
+        if (s->write_pos == c->write_count)
+            return false;
+        *w = c->writes[s->write_pos];
+        return true;
+    }
+    co_concise_dcf_entry_t e;
+    *next = s->dcf_pos;
+    if (!co_concise_dcf_next(c->concise_dcf, c->concise_dcf_len, next, &e))
+        return false;
+    *w = (co_net_write_t){e.index, e.subindex, e.data, e.len};
+    return true;
+}
+
 static void download_next(co_net_master_t *m, size_t i)
 {
-    co_net_slave_t *s = co_net_slave_at(m, i);
-    const co_net_slave_config_t *c = co_net_slave_config(m, i);
-    if (s->write_pos == c->write_count) {
+    co_net_write_t w;
+    size_t next = 0;
+    if (!current_write(m, i, &w, &next)) {
         finish_boot(m, i);
         return;
     }
-    const co_net_write_t *w = &c->writes[s->write_pos];
-    if (co_sdo_client_download(&m->sdo, w->index, w->subindex, w->data, w->len, CO_SDO_CLIENT_AUTO,
+    if (co_sdo_client_download(&m->sdo, w.index, w.subindex, w.data, w.len, CO_SDO_CLIENT_AUTO,
                                m->config.sdo_timeout_ms, m->now) != 0)
         fail(m, i, CO_NET_FAIL_SDO);
+}
+
+/* The write just confirmed: on to the next. */
+static void download_done(co_net_master_t *m, size_t i)
+{
+    co_net_slave_t *s = co_net_slave_at(m, i);
+    co_net_write_t w;
+    size_t next = s->dcf_pos;
+    if (current_write(m, i, &w, &next))
+        s->dcf_pos = next;
+    s->write_pos++;
+    download_next(m, i);
 }
 
 static void begin_download(co_net_master_t *m, size_t i)
 {
     co_net_slave_at(m, i)->write_pos = 0;
+    co_net_slave_at(m, i)->dcf_pos = CO_CONCISE_DCF_HEADER;
     co_net_set_step(m, i, CO_NET_STEP_DOWNLOAD);
     download_next(m, i);
 }
@@ -194,10 +226,11 @@ static void sdo_done(void *user, const co_sdo_client_result_t *result)
     co_net_slave_t *s = co_net_slave_at(m, i);
     if (result->status != CO_SDO_CLIENT_OK) {
         uint8_t node_id = co_net_slave_config(m, i)->node_id;
-        if (s->step == CO_NET_STEP_DOWNLOAD) {
-            const co_net_write_t *w = &co_net_slave_config(m, i)->writes[s->write_pos];
+        co_net_write_t w;
+        size_t next = 0;
+        if (s->step == CO_NET_STEP_DOWNLOAD && current_write(m, i, &w, &next)) {
             co_net_record_sdo_error(m, node_id, result, CO_NET_ACCESS_WRITE,
-                                    co_net_written_value(w->data, w->len));
+                                    co_net_written_value(w.data, w.len));
         } else {
             co_net_record_sdo_error(m, node_id, result, CO_NET_ACCESS_READ, 0);
         }
@@ -212,8 +245,7 @@ static void sdo_done(void *user, const co_sdo_client_result_t *result)
         identity_read(m, i, co_get_u32(m->value));
         break;
     case CO_NET_STEP_DOWNLOAD:
-        s->write_pos++;
-        download_next(m, i);
+        download_done(m, i);
         break;
     default:
         break;

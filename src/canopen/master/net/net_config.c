@@ -139,6 +139,9 @@ static bool slave_valid(const co_net_master_config_t *config, size_t i)
     }
     if (s->write_count > 0 && s->writes == NULL)
         return false;
+    if (s->concise_dcf != NULL &&
+        (s->write_count > 0 || !co_concise_dcf_valid(s->concise_dcf, s->concise_dcf_len, NULL)))
+        return false;
     for (size_t w = 0; w < s->write_count; w++) {
         if (s->writes[w].data == NULL || s->writes[w].len == 0)
             return false;

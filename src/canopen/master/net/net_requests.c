@@ -205,3 +205,25 @@ bool co_net_master_sdo(co_net_master_t *master, const co_net_request_t *request,
     master->requests[master->request_count++] = *request;
     return true;
 }
+
+/* ---- configuration request 1F25h --------------------------------------------------------------
+ */
+
+/* CiA 302-2: the slave is configured again, which here is its whole boot (reset communication,
+ * identification, download, error control, start), so that nothing of its old configuration or
+ * state is taken for granted (docs/net-master.md, "Configuration request 1F25h"). */
+bool co_net_master_request_configuration(co_net_master_t *master, uint8_t subindex, uint32_t value,
+                                         co_time_t now)
+{
+    size_t n = master->config.slave_count;
+    size_t i = subindex == CO_NET_1F25_ALL ? 0 : co_net_slave_index(master, subindex);
+    if (value != CO_NET_1F25_SIGNATURE || !master->started || master->disabled || i == n)
+        return false;
+    master->now = now;
+    for (; i < n; i++) {
+        co_net_reset_slave(master, i, CO_NMT_CS_RESET_COMMUNICATION);
+        if (subindex != CO_NET_1F25_ALL)
+            break;
+    }
+    return true;
+}

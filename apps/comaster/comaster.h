@@ -55,6 +55,7 @@ int comaster_monitor_main(comaster_options_t *opts, int argc, char **argv);
 int comaster_drive_main(comaster_options_t *opts, int argc, char **argv);
 int comaster_boot_main(comaster_options_t *opts, int argc, char **argv);
 int comaster_run_main(comaster_options_t *opts, int argc, char **argv);
+int comaster_concise_main(comaster_options_t *opts, int argc, char **argv);
 int comaster_set_main(comaster_options_t *opts, int argc, char **argv);
 int comaster_get_main(comaster_options_t *opts, int argc, char **argv);
 int comaster_status_main(comaster_options_t *opts, int argc, char **argv);

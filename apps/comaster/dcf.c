@@ -26,7 +26,7 @@ static bool is_configuration(const eds_entry_t *e)
 }
 
 /* The configuration writes being built: their bytes in one buffer that grows, so a write's data
- * is an offset into it until the list is complete (load_writes). */
+ * is an offset into it until the list is complete (load_concise). */
 typedef struct pending_write {
     uint16_t index;
     uint8_t sub;
@@ -260,31 +260,30 @@ static int build_writes(write_list_t *l, const comaster_slave_t *s, char *err, s
     return rc;
 }
 
-static int load_writes(comaster_slave_t *s, co_net_slave_config_t *c, char *err, size_t err_len)
+/* The writes as the slave's concise DCF (CiA 302's 1F22h), which the master downloads: its size is
+ * known from the list, each entry's header and bytes. */
+static int load_concise(comaster_slave_t *s, co_net_slave_config_t *c, char *err, size_t err_len)
 {
     write_list_t l = {0};
     int rc = build_writes(&l, s, err, err_len);
-    if (rc == 0) {
-        s->writes = calloc(l.count ? l.count : 1, sizeof *s->writes);
-        if (!s->writes) {
-            snprintf(err, err_len, "out of memory");
-            rc = EX_OSERR;
-        }
+    size_t size = CO_CONCISE_DCF_HEADER + l.count * CO_CONCISE_DCF_ENTRY_HEADER + l.used;
+    if (rc == 0 && (s->concise = malloc(size)) == NULL) {
+        snprintf(err, err_len, "out of memory");
+        rc = EX_OSERR;
     }
-    if (rc != 0) {
-        free(l.writes);
-        free(l.bytes);
-        return rc;
+    size_t used = rc == 0 ? co_concise_dcf_begin(s->concise, size) : 0;
+    for (size_t k = 0; rc == 0 && k < l.count; k++) {
+        co_concise_dcf_entry_t e = {l.writes[k].index, l.writes[k].sub, l.bytes + l.writes[k].at,
+                                    (uint32_t)l.writes[k].len};
+        used = co_concise_dcf_add(s->concise, size, used, &e);
     }
-    for (size_t k = 0; k < l.count; k++)
-        s->writes[k] = (co_net_write_t){.index = l.writes[k].index,
-                                        .subindex = l.writes[k].sub,
-                                        .data = l.bytes + l.writes[k].at,
-                                        .len = (uint32_t)l.writes[k].len};
     free(l.writes);
-    s->write_bytes = l.bytes;
-    c->writes = s->writes;
-    c->write_count = l.count;
+    free(l.bytes);
+    if (rc != 0)
+        return rc;
+    s->concise_len = used;
+    c->concise_dcf = s->concise;
+    c->concise_dcf_len = used;
     return 0;
 }
 
@@ -328,14 +327,13 @@ int comaster_slave_load(comaster_slave_t *s, co_net_slave_config_t *c, uint8_t n
     if (loaded != EDS_OK)
         return loaded == EDS_CANNOT_READ ? EX_NOINPUT : EX_DATAERR;
     slave_defaults(s, c);
-    return load_writes(s, c, err, err_len);
+    return load_concise(s, c, err, err_len);
 }
 
 void comaster_slave_free(comaster_slave_t *s)
 {
     eds_free(&s->dcf);
-    free(s->writes);
-    free(s->write_bytes);
-    s->writes = NULL;
-    s->write_bytes = NULL;
+    free(s->concise);
+    s->concise = NULL;
+    s->concise_len = 0;
 }

@@ -21,15 +21,17 @@ typedef struct comaster_slave {
     char name[COMASTER_NAME_MAX];
     char dcf_path[PATH_MAX];
     eds_t dcf;
-    co_net_write_t *writes; /* the DCF's configuration in file order, a PDO's as one group */
-    uint8_t *write_bytes;   /* the bytes the writes point at */
+    /* The DCF's configuration in file order, a PDO's as one group: the slave's concise DCF (CiA
+     * 302's 1F22h), which its co_net_slave_config_t points at. */
+    uint8_t *concise;
+    size_t concise_len;
 } comaster_slave_t;
 
 /* Reads the DCF `path` of node `node_id` into s (named `name`) and what it implies into c: the
- * identity to check, the error control to start, the configuration writes; the other members of
- * c are the defaults. Returns 0, or EX_NOINPUT (the file cannot be read) / EX_DATAERR (anything
- * wrong in it) / EX_OSERR with a one-line message naming the file, the line or the key. s holds
- * what it read either way: comaster_slave_free frees it. */
+ * identity to check, the error control to start, the configuration as a concise DCF; the other
+ * members of c are the defaults. Returns 0, or EX_NOINPUT (the file cannot be read) / EX_DATAERR
+ * (anything wrong in it) / EX_OSERR with a one-line message naming the file, the line or the key. s
+ * holds what it read either way: comaster_slave_free frees it. */
 int comaster_slave_load(comaster_slave_t *s, co_net_slave_config_t *c, uint8_t node_id,
                         const char *name, const char *path, char *err, size_t err_len);
 

@@ -20,6 +20,8 @@ static const comaster_command_t commands[] = {
      comaster_drive_main},
     {"boot", "boot NODE DCF: boot one slave from its DCF (network master)", comaster_boot_main},
     {"run", "run NETWORK: run the network master in the foreground", comaster_run_main},
+    {"concise", "concise encode|decode ...: a DCF to CiA 302's concise DCF and back",
+     comaster_concise_main},
     {"set", "set NODE NAME VALUE: set an output of a run's process image", comaster_set_main},
     {"get", "get NODE NAME: a variable of a run's process image", comaster_get_main},
     {"status", "status: the status bits of a run's master and slaves", comaster_status_main},

@@ -19,8 +19,8 @@ from control_stand_in import StandIn  # noqa: E402
 COMASTER = os.environ["COMASTER"]
 EX_USAGE, EX_UNAVAILABLE, EX_PROTOCOL = 64, 69, 76
 EXIT_REFUSED, EXIT_TIMEOUT = 1, 2
-COMMANDS = ("read, write, nmt, scan, monitor, drive, boot, run, set, get, status, disable, enable, "
-            "can, lss, time")
+COMMANDS = ("read, write, nmt, scan, monitor, drive, boot, run, concise, set, get, status, disable, "
+            "enable, can, lss, time")
 
 
 def run(*args):
@@ -163,6 +163,54 @@ class ControlSocket(unittest.TestCase):
             EX_UNAVAILABLE, "", f"comaster: error: no comaster run answers on {self.path} (No "
                                 "such file or directory): start one with comaster run NETWORK, "
                                 "or give its --control PATH\n"))
+
+
+class Concise(unittest.TestCase):
+    """comaster concise: drive4.dcf's configuration as CiA 302's concise DCF, byte for byte (1017h
+    = 100, the PDO6 COB-IDs of node 4, 203Ch:02 and 03 = 20), and back to a DCF through the
+    ATV312's EDS, which encodes to the same bytes."""
+
+    ROOT = Path(__file__).resolve().parents[2]
+    DRIVE4 = bytes.fromhex("05000000" "1710000200000064 00" "0514010400000004030000"
+                           "0518010400000084020000" "3C20020200000014 00" "3C20030200000014 00"
+                           .replace(" ", ""))
+
+    def test_encode_decode_and_encode_again(self):
+        with tempfile.TemporaryDirectory() as tmp:
+            cdcf, dcf, again = Path(tmp, "d4.cdcf"), Path(tmp, "d4.dcf"), Path(tmp, "again.cdcf")
+            result = run("concise", "encode", 4, self.ROOT / "examples/netmaster/drive4.dcf", cdcf)
+            self.assertEqual((result.returncode, result.stderr), (0, ""))
+            self.assertEqual(cdcf.read_bytes(), self.DRIVE4)
+            result = run("concise", "decode", cdcf, self.ROOT / "eds/ATV312.eds", dcf)
+            self.assertEqual((result.returncode, result.stderr), (0, ""))
+            text = dcf.read_text()
+            self.assertEqual([line for line in text.splitlines() if line.startswith("ParameterValue")],
+                             ["ParameterValue=0x64", "ParameterValue=0x304", "ParameterValue=0x284",
+                              "ParameterValue=0x14", "ParameterValue=0x14"])
+            self.assertIn("[1017]\nParameterValue=0x64\n", text)
+            result = run("concise", "encode", 4, dcf, again)
+            self.assertEqual((result.returncode, result.stderr), (0, ""))
+            self.assertEqual(again.read_bytes(), self.DRIVE4)
+            result = subprocess.run([COMASTER, "concise", "encode", "4",
+                                     str(self.ROOT / "examples/netmaster/drive4.dcf"), "-"],
+                                    capture_output=True, timeout=30, check=False)
+            self.assertEqual((result.returncode, result.stdout), (0, self.DRIVE4))
+
+    def test_what_is_refused(self):
+        with tempfile.TemporaryDirectory() as tmp:
+            cut = Path(tmp, "cut.cdcf")
+            cut.write_bytes(self.DRIVE4[:-1])
+            result = run("concise", "decode", cut, self.ROOT / "eds/ATV312.eds", Path(tmp, "x.dcf"))
+            self.assertEqual((result.returncode, result.stderr),
+                             (65, f"comaster: error: concise: {cut} is not a concise DCF\n"))
+            alien = Path(tmp, "alien.cdcf")
+            alien.write_bytes(bytes.fromhex("01000000" "0050000100000001"))
+            result = run("concise", "decode", alien, self.ROOT / "eds/ATV312.eds", "-")
+            self.assertEqual((result.returncode, result.stdout, result.stderr),
+                             (65, "", "comaster: error: concise: 5000h:00 is not an object of the EDS\n"))
+            result = run("concise", "turn", 4, "a", "b")
+            self.assertEqual(result.returncode, 64)
+            self.assertIn("'turn' is neither encode nor decode", result.stderr)
 
 
 class Help(unittest.TestCase):

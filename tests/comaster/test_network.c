@@ -73,6 +73,23 @@ static const co_net_slave_config_t *slave(size_t i)
     return &net.config.slaves[i];
 }
 
+/* A slave's configuration is its concise DCF (1F22h): its entries, and entry k as a write. */
+static size_t write_count(const co_net_slave_config_t *c)
+{
+    uint32_t count = 0;
+    ck_assert(co_concise_dcf_valid(c->concise_dcf, c->concise_dcf_len, &count));
+    return count;
+}
+
+static co_net_write_t write_at(const co_net_slave_config_t *c, size_t k)
+{
+    size_t pos = CO_CONCISE_DCF_HEADER;
+    co_concise_dcf_entry_t e = {0};
+    for (size_t i = 0; i <= k; i++)
+        ck_assert(co_concise_dcf_next(c->concise_dcf, c->concise_dcf_len, &pos, &e));
+    return (co_net_write_t){e.index, e.subindex, e.data, e.len};
+}
+
 START_TEST(bench_slaves_and_options)
 {
     ck_assert_int_eq(comaster_network_load(&net, DIR "/bench.ini", err, sizeof err), 0);
@@ -104,7 +121,8 @@ START_TEST(configuration_writes_from_the_dcf)
 {
     ck_assert_int_eq(comaster_network_load(&net, DIR "/bench.ini", err, sizeof err), 0);
     const co_net_slave_config_t *s = slave(1); /* node 5 */
-    ck_assert_uint_eq(s->write_count, 5);
+    ck_assert_uint_eq(write_count(s), 5);
+    ck_assert_uint_eq(s->write_count, 0);
     static const struct {
         uint16_t index;
         uint8_t sub;
@@ -116,10 +134,11 @@ START_TEST(configuration_writes_from_the_dcf)
                 {0x203C, 2, 2, "\x14\x00"},
                 {0x203C, 3, 2, "\x14\x00"}};
     for (size_t i = 0; i < 5; i++) {
-        ck_assert_uint_eq(s->writes[i].index, want[i].index);
-        ck_assert_uint_eq(s->writes[i].subindex, want[i].sub);
-        ck_assert_uint_eq(s->writes[i].len, want[i].len);
-        ck_assert_mem_eq(s->writes[i].data, want[i].bytes, want[i].len);
+        co_net_write_t w = write_at(s, i);
+        ck_assert_uint_eq(w.index, want[i].index);
+        ck_assert_uint_eq(w.subindex, want[i].sub);
+        ck_assert_uint_eq(w.len, want[i].len);
+        ck_assert_mem_eq(w.data, want[i].bytes, want[i].len);
     }
 }
 END_TEST
@@ -188,7 +207,7 @@ START_TEST(one_slave_for_boot)
     ck_assert_uint_eq(net.config.slave_count, 1);
     ck_assert(!net.config.reset_all);
     ck_assert_uint_eq(slave(0)->node_id, 4);
-    ck_assert_uint_eq(slave(0)->write_count, 5);
+    ck_assert_uint_eq(write_count(slave(0)), 5);
     /* 1017h = 100 ms in the DCF: consumed with 150 ms. */
     ck_assert_uint_eq(slave(0)->heartbeat_ms, 150);
     comaster_network_free(&net);
@@ -450,8 +469,9 @@ static const char *download_frames(void)
     static const uint8_t command[] = {0, 0x2F, 0x2B, 0x27, 0x23};
     size_t used = 0;
     text[0] = '\0';
-    for (size_t i = 0; i < slave(0)->write_count; i++) {
-        const co_net_write_t *w = &slave(0)->writes[i];
+    for (size_t i = 0; i < write_count(slave(0)); i++) {
+        co_net_write_t write = write_at(slave(0), i);
+        const co_net_write_t *w = &write;
         const char *blank = i ? " " : "";
         if (w->len > 4) {
             used += (size_t)snprintf(text + used, sizeof text - used, "%ssegmented", blank);
@@ -488,9 +508,9 @@ START_TEST(every_numeric_form_of_every_type)
                          "2006", "0x001B", "0xFFFFFFFFFFFFFFFF") VARIABLE("2007", "0x0011", "0.5")),
                      0);
     ck_assert_str_eq(download_frames(), "segmented segmented segmented");
-    ck_assert_mem_eq(slave(0)->writes[0].data, "\xFE\xFF\xFF\xFF\xFF\xFF\xFF\xFF", 8);
-    ck_assert_mem_eq(slave(0)->writes[1].data, "\xFF\xFF\xFF\xFF\xFF\xFF\xFF\xFF", 8);
-    ck_assert_mem_eq(slave(0)->writes[2].data, "\x00\x00\x00\x00\x00\x00\xE0\x3F", 8);
+    ck_assert_mem_eq(write_at(slave(0), 0).data, "\xFE\xFF\xFF\xFF\xFF\xFF\xFF\xFF", 8);
+    ck_assert_mem_eq(write_at(slave(0), 1).data, "\xFF\xFF\xFF\xFF\xFF\xFF\xFF\xFF", 8);
+    ck_assert_mem_eq(write_at(slave(0), 2).data, "\x00\x00\x00\x00\x00\x00\xE0\x3F", 8);
 }
 END_TEST
 

@@ -1,0 +1,252 @@
+/* SPDX-License-Identifier: Apache-2.0 */
+/* comaster concise: a DCF's configuration as the concise DCF (CiA 302's 1F22h) the network master
+ * downloads, and a concise DCF back to a DCF: the device's EDS (or DCF) with each entry as the
+ * ParameterValue of its object (docs/comaster.md "concise"). No bus. */
+#include "comaster/comaster.h"
+#include "comaster/network.h"
+
+#include <errno.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <strings.h>
+
+/* The largest concise DCF read back: 1F22h is a DOMAIN, as large as a DCF's configuration. */
+#define CONCISE_MAX (1024u * 1024u)
+/* CiA 301's data types that a ParameterValue writes as a signed number, a real or text. */
+#define TYPE_BOOLEAN 0x0001u
+#define TYPE_REAL32 0x0008u
+#define TYPE_VISIBLE_STRING 0x0009u
+#define TYPE_REAL64 0x0011u
+
+static const char concise_help[] =
+    "usage: comaster concise encode NODE DCF FILE\n"
+    "       comaster concise decode CDCF EDS FILE\n"
+    "\n"
+    "encode: writes the configuration of DCF for node NODE (1..127: $NODEID) as the\n"
+    "concise DCF of CiA 302 (1F22h) that comaster run and boot download: its\n"
+    "ParameterValue entries in file order, a PDO's as one group, each as index,\n"
+    "sub-index, size and bytes.\n"
+    "decode: writes the DCF that CDCF, a concise DCF, configures: the device's EDS\n"
+    "(or DCF) with each entry as the ParameterValue of its object.\n"
+    "\n"
+    "  FILE  the file written, '-': standard output\n"
+    "\n"
+    "Example: comaster concise encode 4 examples/netmaster/drive4.dcf drive4.cdcf\n";
+
+static FILE *open_output(const char *path)
+{
+    return strcmp(path, "-") == 0 ? stdout : fopen(path, "wb");
+}
+
+static int close_output(const comaster_options_t *opts, FILE *f, const char *path)
+{
+    bool failed = ferror(f) != 0;
+    if (f != stdout)
+        failed |= fclose(f) != 0;
+    else
+        failed |= fflush(f) != 0;
+    return failed ? comaster_fail(opts, EX_CANTCREAT, "concise: cannot write %s", path) : 0;
+}
+
+static int encode(const comaster_options_t *opts, const char *node_text, const char *dcf,
+                  const char *path)
+{
+    uint8_t node;
+    if (!comaster_parse_node(opts, node_text, false, &node))
+        return EX_USAGE;
+    static comaster_network_t net;
+    char err[512];
+    int rc = comaster_network_single(&net, node, dcf, err, sizeof err);
+    if (rc == 0) {
+        FILE *f = open_output(path);
+        if (f == NULL) {
+            rc = comaster_fail(opts, EX_CANTCREAT, "concise: cannot write %s: %s", path,
+                               strerror(errno));
+        } else {
+            fwrite(net.slave[0].concise, 1, net.slave[0].concise_len, f);
+            rc = close_output(opts, f, path);
+        }
+    } else {
+        rc = comaster_fail(opts, rc, "%s", err);
+    }
+    comaster_network_free(&net);
+    return rc;
+}
+
+/* Whether the data type is one of CiA 301's signed integers. */
+static bool signed_type(uint16_t type)
+{
+    return type == 0x0002 || type == 0x0003 || type == 0x0004 || (type >= 0x0010 && type <= 0x0015);
+}
+
+/* The entry's value as a ParameterValue of its object's data type; false for a type that has no
+ * ParameterValue form here (octets, domains) or a size that is not the type's. */
+static bool parameter_value(const co_concise_dcf_entry_t *e, uint16_t type, char *out, size_t cap)
+{
+    if (type == TYPE_VISIBLE_STRING) {
+        if (memchr(e->data, '\n', e->len) != NULL || memchr(e->data, '\0', e->len) != NULL)
+            return false;
+        snprintf(out, cap, "%.*s", (int)e->len, (const char *)e->data);
+        return true;
+    }
+    if (e->len > 8)
+        return false;
+    uint64_t v = 0;
+    for (uint32_t k = e->len; k-- > 0;)
+        v = v << 8 | e->data[k];
+    if (type == TYPE_REAL32 && e->len == 4) {
+        float f;
+        uint32_t bits = (uint32_t)v;
+        memcpy(&f, &bits, sizeof f);
+        snprintf(out, cap, "%.9g", (double)f);
+    } else if (type == TYPE_REAL64 && e->len == 8) {
+        double d;
+        memcpy(&d, &v, sizeof d);
+        snprintf(out, cap, "%.17g", d);
+    } else if (signed_type(type)) {
+        unsigned shift = 64u - 8u * e->len;
+        int64_t s = (int64_t)(v << shift) >> shift;
+        snprintf(out, cap, "%lld", (long long)s);
+    } else if (type != TYPE_REAL32 && type != TYPE_REAL64 && (type <= 0x0007 || type >= 0x0016) &&
+               type != 0x000A && type != 0x000F) {
+        snprintf(out, cap, "0x%llX", (unsigned long long)v);
+    } else {
+        return false;
+    }
+    return true;
+}
+
+/* "[1017]" -> 1017h:0, "[1405sub1]" -> 1405h:1 (CiA 306's object and sub-index sections). */
+static bool section_object(const char *line, uint16_t *index, uint8_t *sub)
+{
+    unsigned long i, s = 0;
+    char *end;
+    if (line[0] != '[')
+        return false;
+    i = strtoul(line + 1, &end, 16);
+    if (end != line + 5 || i > 0xFFFF)
+        return false;
+    if (strncasecmp(end, "sub", 3) == 0) {
+        s = strtoul(end + 3, &end, 16);
+        if (s > 0xFF)
+            return false;
+    }
+    if (*end != ']')
+        return false;
+    *index = (uint16_t)i;
+    *sub = (uint8_t)s;
+    return true;
+}
+
+/* The entry of the concise DCF for index:sub, or NULL. */
+static bool find_entry(const uint8_t *cdcf, size_t len, uint16_t index, uint8_t sub,
+                       co_concise_dcf_entry_t *e)
+{
+    size_t pos = CO_CONCISE_DCF_HEADER;
+    while (co_concise_dcf_next(cdcf, len, &pos, e)) {
+        if (e->index == index && e->subindex == sub)
+            return true;
+    }
+    return false;
+}
+
+/* The EDS text with ParameterValue lines: each object section of an entry gets its value after
+ * its header, and loses the ParameterValue it had. */
+static int write_dcf(const comaster_options_t *opts, const uint8_t *cdcf, size_t len,
+                     const eds_t *eds, const char *eds_path, FILE *out)
+{
+    FILE *in = fopen(eds_path, "r");
+    if (in == NULL)
+        return comaster_fail(opts, EX_NOINPUT, "concise: cannot read %s: %s", eds_path,
+                             strerror(errno));
+    char line[1024], value[512];
+    bool in_entry = false;
+    int rc = 0;
+    while (rc == 0 && fgets(line, sizeof line, in) != NULL) {
+        uint16_t index;
+        uint8_t sub;
+        co_concise_dcf_entry_t e;
+        if (line[0] == '[')
+            in_entry = false;
+        if (in_entry && strncasecmp(line, "ParameterValue", 14) == 0)
+            continue;
+        fputs(line, out);
+        if (!section_object(line, &index, &sub) || !find_entry(cdcf, len, index, sub, &e))
+            continue;
+        const eds_entry_t *object = eds_find(eds, index, sub);
+        if (object == NULL || !parameter_value(&e, object->data_type, value, sizeof value))
+            rc = comaster_fail(opts, EX_DATAERR,
+                               "concise: %04Xh:%02X, %u bytes, has no ParameterValue form as "
+                               "DataType 0x%04X",
+                               index, sub, e.len, object ? object->data_type : 0);
+        else
+            fprintf(out, "ParameterValue=%s\n", value);
+        in_entry = true;
+    }
+    fclose(in);
+    return rc;
+}
+
+/* Every entry must have its object in the EDS, or the DCF would lose it. */
+static int check_objects(const comaster_options_t *opts, const uint8_t *cdcf, size_t len,
+                         const eds_t *eds)
+{
+    size_t pos = CO_CONCISE_DCF_HEADER;
+    co_concise_dcf_entry_t e;
+    while (co_concise_dcf_next(cdcf, len, &pos, &e)) {
+        if (eds_find(eds, e.index, e.subindex) == NULL)
+            return comaster_fail(opts, EX_DATAERR,
+                                 "concise: %04Xh:%02X is not an object of the EDS", e.index,
+                                 e.subindex);
+    }
+    return 0;
+}
+
+static int decode(const comaster_options_t *opts, const char *cdcf_path, const char *eds_path,
+                  const char *path)
+{
+    FILE *f = fopen(cdcf_path, "rb");
+    if (f == NULL)
+        return comaster_fail(opts, EX_NOINPUT, "concise: cannot read %s: %s", cdcf_path,
+                             strerror(errno));
+    static uint8_t cdcf[CONCISE_MAX + 1];
+    size_t len = fread(cdcf, 1, sizeof cdcf, f);
+    fclose(f);
+    if (len > CONCISE_MAX || !co_concise_dcf_valid(cdcf, len, NULL))
+        return comaster_fail(opts, EX_DATAERR, "concise: %s is not a concise DCF", cdcf_path);
+    eds_t eds = {0};
+    char err[512];
+    eds_result_t loaded = eds_load(&eds, eds_path, 0, err, sizeof err);
+    if (loaded != EDS_OK) {
+        eds_free(&eds);
+        return comaster_fail(opts, loaded == EDS_CANNOT_READ ? EX_NOINPUT : EX_DATAERR, "%s", err);
+    }
+    int rc = check_objects(opts, cdcf, len, &eds);
+    FILE *out = rc == 0 ? open_output(path) : NULL;
+    if (rc == 0 && out == NULL)
+        rc = comaster_fail(opts, EX_CANTCREAT, "concise: cannot write %s: %s", path,
+                           strerror(errno));
+    if (out != NULL) {
+        rc = write_dcf(opts, cdcf, len, &eds, eds_path, out);
+        int closed = close_output(opts, out, path);
+        rc = rc != 0 ? rc : closed;
+    }
+    eds_free(&eds);
+    return rc;
+}
+
+int comaster_concise_main(comaster_options_t *opts, int argc, char **argv)
+{
+    comaster_args_t args;
+    int rc = comaster_parse_args(opts, &args, argc, argv, concise_help, "", 4, 4);
+    if (rc >= 0)
+        return rc;
+    const char *const *a = args.positional;
+    if (strcmp(a[0], "encode") == 0)
+        return encode(opts, a[1], a[2], a[3]);
+    if (strcmp(a[0], "decode") == 0)
+        return decode(opts, a[1], a[2], a[3]);
+    comaster_fail(opts, EX_USAGE, "concise: '%s' is neither encode nor decode", a[0]);
+    return EX_USAGE;
+}

@@ -451,6 +451,35 @@ bool co_net_slave_config_from_1f81(co_net_slave_config_t *slave, uint32_t value)
 uint32_t co_net_slave_expected(const co_net_slave_config_t *slave, uint16_t index);
 bool co_net_slave_config_set_expected(co_net_slave_config_t *slave, uint16_t index, uint32_t value);
 
+/* CiA 302-2's objects of an NMT master that describe its network, as a plain struct the
+ * application owns (static, in RAM or const in flash; no malloc, no dictionary needed): element
+ * n - 1 of each array is node-id n, as the objects' sub-index n is. A firmware may hold its
+ * master's objects here and serve them by SDO from it; co_net_config_from_objects makes the
+ * master's configuration of them, co_net_objects_from_config the objects of a configuration
+ * (docs/net-master.md, "The master's own objects"; D-NET-MASTER-OBJECTS). About 5.3 KiB. */
+typedef struct co_net_objects {
+    uint32_t nmt_startup;                                      /* 1F80h */
+    uint32_t boot_time_ms;                                     /* 1F89h */
+    uint32_t slave_assignment[CO_NMT_MASTER_NODE_ID_MAX];      /* 1F81h; bit 0 clear: none */
+    uint16_t consumer_heartbeat_ms[CO_NMT_MASTER_NODE_ID_MAX]; /* 1016h's entry of the node */
+    /* 1F84h + k, k = 0..4: device type, vendor-ID, product code, revision, serial number */
+    uint32_t expected[CO_NET_IDENTITY_SUBS + 1][CO_NMT_MASTER_NODE_ID_MAX];
+    const uint8_t *concise_dcf[CO_NMT_MASTER_NODE_ID_MAX]; /* 1F22h, NULL: none */
+    size_t concise_dcf_len[CO_NMT_MASTER_NODE_ID_MAX];
+} co_net_objects_t;
+
+/* The objects of `config` (its start, reaction, boot time and table of slaves). False, and
+ * `objects` left partly written, for a table these objects cannot hold: a slave configured by
+ * writes (not a concise DCF) or expecting an identity value of 0. */
+bool co_net_objects_from_config(co_net_objects_t *objects, const co_net_master_config_t *config);
+
+/* The master's configuration of its objects: start and reaction (1F80h), boot time, and a slave in
+ * `slaves` (up to `max`) for each node-id whose 1F81h has bit 0, in node-id order; config->slaves
+ * and slave_count are set, its other members left as they were. False for a 1F80h or 1F81h the
+ * master does not take or more slaves than `max` (config then undefined in those members). */
+bool co_net_config_from_objects(co_net_master_config_t *config, co_net_slave_config_t *slaves,
+                                size_t max, const co_net_objects_t *objects);
+
 /* The bit rate of a CO_NET_BIT_RATE_* code in bit/s; 0 for the reserved code 1 and above 7. */
 uint32_t co_net_bit_rate(uint8_t code);
 

@@ -651,6 +651,85 @@ START_TEST(configuration_request_1f25)
 }
 END_TEST
 
+/* The master's own objects: the table (each slave by its concise DCF) to the objects and back,
+ * and a master configured from them boots the same frames. */
+START_TEST(configuration_from_the_masters_objects)
+{
+    static co_net_objects_t objects;
+    static co_net_slave_config_t from_objects[SLAVES];
+    size_t len = concise_of(writes, 2);
+    for (size_t i = 0; i < SLAVES; i++) {
+        table[i].writes = NULL;
+        table[i].write_count = 0;
+        table[i].concise_dcf = concise;
+        table[i].concise_dcf_len = len;
+        table[i].heartbeat_ms = 0;
+    }
+    table[0].mandatory = true;
+    table[1].guard_ms = 100;
+    table[1].life_time_factor = 3;
+    table[2].heartbeat_ms = 300;
+    table[2].on_error = CO_NET_ON_ERROR_REPORT;
+    config.on_mandatory_error = CO_NET_MANDATORY_STOP_ALL;
+    config.boot_limit_ms = 2000;
+    ck_assert(co_net_objects_from_config(&objects, &config));
+    ck_assert_uint_eq(objects.nmt_startup, 0x41);
+    ck_assert_uint_eq(objects.boot_time_ms, 2000);
+    ck_assert_uint_eq(objects.slave_assignment[3], 0x0D);       /* node 4: slave, boot, mandatory */
+    ck_assert_uint_eq(objects.slave_assignment[4], 0x00640305); /* node 5: guarding 100 ms x 3 */
+    ck_assert_uint_eq(objects.slave_assignment[5], 0x01);       /* node 6: report */
+    ck_assert_uint_eq(objects.slave_assignment[6], 0);
+    ck_assert_uint_eq(objects.consumer_heartbeat_ms[5], 300);
+    ck_assert_uint_eq(objects.expected[0][3], 0x00010192);
+    ck_assert_uint_eq(objects.expected[2][4], 0x312);
+    ck_assert_uint_eq(objects.expected[3][4], 0);
+    ck_assert_ptr_eq(objects.concise_dcf[5], concise);
+    ck_assert_uint_eq(objects.concise_dcf_len[5], len);
+
+    co_net_master_config_t back = config;
+    back.start = CO_NET_START_ALL;
+    back.on_mandatory_error = CO_NET_MANDATORY_ALONE;
+    back.boot_limit_ms = 0;
+    ck_assert(!co_net_config_from_objects(&back, from_objects, 2, &objects)); /* no room */
+    ck_assert(co_net_config_from_objects(&back, from_objects, SLAVES, &objects));
+    ck_assert_uint_eq(back.slave_count, SLAVES);
+    ck_assert_ptr_eq(back.slaves, from_objects);
+    ck_assert_uint_eq(back.start, CO_NET_START_EACH);
+    ck_assert_uint_eq(back.on_mandatory_error, CO_NET_MANDATORY_STOP_ALL);
+    ck_assert_uint_eq(back.boot_limit_ms, 2000);
+    for (size_t i = 0; i < SLAVES; i++)
+        ck_assert_mem_eq(&from_objects[i], &table[i], sizeof table[i]);
+
+    /* Booted from its objects: the same frames as from the table (node 5's first guarding
+     * request between its start and node 6's boot). */
+    config = back;
+    start_master();
+    expect("000#8200");
+    expect("704#00");
+    expect("705#00");
+    expect("706#00");
+    expect_boot(4);
+    expect_boot(5);
+    expect("705#R1");
+    expect_boot(6);
+
+    /* What the objects cannot hold, or the master does not take. */
+    config.slaves = table;
+    table[0].writes = writes;
+    table[0].write_count = 2;
+    table[0].concise_dcf = NULL;
+    ck_assert(!co_net_objects_from_config(&objects, &config));
+    table[0] = from_objects[0];
+    table[0].check |= CO_NET_CHECK_SERIAL; /* a serial number of 0 expected */
+    ck_assert(!co_net_objects_from_config(&objects, &config));
+    objects.slave_assignment[9] = 0x03; /* bit 1, reserved */
+    ck_assert(!co_net_config_from_objects(&back, from_objects, SLAVES + 1, &objects));
+    objects.slave_assignment[9] = 0;
+    objects.nmt_startup = 0x04;
+    ck_assert(!co_net_config_from_objects(&back, from_objects, SLAVES, &objects));
+}
+END_TEST
+
 START_TEST(missing_optional_slave)
 {
     slaves[2].present = false;
@@ -1800,6 +1879,7 @@ static Suite *net_master_suite(void)
     tcase_add_test(tc, concise_dcf_entry_refused);
     tcase_add_test(tc, concise_dcf_checked_at_init);
     tcase_add_test(tc, configuration_request_1f25);
+    tcase_add_test(tc, configuration_from_the_masters_objects);
     tcase_add_test(tc, missing_optional_slave);
     tcase_add_test(tc, mandatory_slave_missing_blocks_start_all);
     tcase_add_test(tc, start_all_after_every_slave);

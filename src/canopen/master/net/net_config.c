@@ -171,3 +171,58 @@ bool co_net_config_valid(const co_net_master_config_t *config)
            pdos_valid(config, config->outputs, config->output_count, config->output_image,
                       config->output_size);
 }
+
+/* ---- the master's own objects (CiA 302-2) ------------------------------------------------------
+ */
+
+bool co_net_objects_from_config(co_net_objects_t *objects, const co_net_master_config_t *config)
+{
+    *objects = (co_net_objects_t){.nmt_startup = co_net_master_1f80(config),
+                                  .boot_time_ms = config->boot_limit_ms};
+    for (size_t i = 0; i < config->slave_count; i++) {
+        const co_net_slave_config_t *s = &config->slaves[i];
+        size_t n = (size_t)s->node_id - 1u;
+        if (s->write_count > 0)
+            return false;
+        objects->slave_assignment[n] = co_net_slave_1f81(s);
+        objects->consumer_heartbeat_ms[n] = s->heartbeat_ms;
+        for (unsigned k = 0; k <= CO_NET_IDENTITY_SUBS; k++) {
+            uint16_t index = (uint16_t)(CO_NET_IDX_DEVICE_TYPE_IDENTIFICATION + k);
+            uint32_t value = co_net_slave_expected(s, index);
+            if (value == 0 && (s->check & (CO_NET_CHECK_DEVICE_TYPE << k)) != 0)
+                return false;
+            objects->expected[k][n] = value;
+        }
+        objects->concise_dcf[n] = s->concise_dcf;
+        objects->concise_dcf_len[n] = s->concise_dcf_len;
+    }
+    return true;
+}
+
+bool co_net_config_from_objects(co_net_master_config_t *config, co_net_slave_config_t *slaves,
+                                size_t max, const co_net_objects_t *objects)
+{
+    if (!co_net_master_config_from_1f80(config, objects->nmt_startup))
+        return false;
+    config->boot_limit_ms = objects->boot_time_ms;
+    size_t count = 0;
+    for (size_t n = 0; n < CO_NMT_MASTER_NODE_ID_MAX; n++) {
+        if ((objects->slave_assignment[n] & CO_NET_1F81_SLAVE) == 0)
+            continue;
+        if (count == max)
+            return false;
+        co_net_slave_config_t *s = &slaves[count++];
+        *s = (co_net_slave_config_t){.node_id = (uint8_t)(n + 1u),
+                                     .heartbeat_ms = objects->consumer_heartbeat_ms[n],
+                                     .concise_dcf = objects->concise_dcf[n],
+                                     .concise_dcf_len = objects->concise_dcf_len[n]};
+        if (!co_net_slave_config_from_1f81(s, objects->slave_assignment[n]))
+            return false;
+        for (unsigned k = 0; k <= CO_NET_IDENTITY_SUBS; k++)
+            co_net_slave_config_set_expected(
+                s, (uint16_t)(CO_NET_IDX_DEVICE_TYPE_IDENTIFICATION + k), objects->expected[k][n]);
+    }
+    config->slaves = slaves;
+    config->slave_count = count;
+    return true;
+}

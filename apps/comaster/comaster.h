@@ -62,8 +62,8 @@ int comaster_status_main(comaster_options_t *opts, int argc, char **argv);
 int comaster_disable_main(comaster_options_t *opts, int argc, char **argv);
 int comaster_enable_main(comaster_options_t *opts, int argc, char **argv);
 int comaster_can_main(comaster_options_t *opts, int argc, char **argv);
+int comaster_configure_main(comaster_options_t *opts, int argc, char **argv);
 int comaster_lss_main(comaster_options_t *opts, int argc, char **argv);
-
 int comaster_time_main(comaster_options_t *opts, int argc, char **argv);
 
 /* Parses a command's arguments (argv[0] is the command): the common options, --help (prints

@@ -28,8 +28,9 @@ static const comaster_command_t commands[] = {
     {"disable", "disable: disable the communication of a run's master", comaster_disable_main},
     {"enable", "enable: enable it again (the network boots again)", comaster_enable_main},
     {"can", "can: the CAN controller's state and counters of a run", comaster_can_main},
+    {"configure", "configure NODE|all: configure a run's slave again (CiA 302's 1F25h)",
+     comaster_configure_main},
     {"lss", "lss SERVICE [ARGS...]: CiA 305 LSS: node-ids, bit rates, fastscan", comaster_lss_main},
-
     {"time", "time [PERIOD]: send TIME (100h) from the host's clock, once or every PERIOD ms",
      comaster_time_main},
 };

@@ -23,8 +23,9 @@ static const char run_help[] =
     "  NETWORK         the option file ([Master] cpj = the CiA 306-3 nodelist, whose\n"
     "                  DCFs configure the slaves; docs/comaster.md \"Network description\")\n"
     "  --control PATH  the control socket for comaster set, get, status, disable,\n"
-    "                  enable, can, and nmt, read and write with --run; default\n"
-    "                  [Master] control, else $XDG_RUNTIME_DIR/comaster-IFACE.sock\n"
+    "                  enable, can, configure, and nmt, read and write with --run;\n"
+    "                  default [Master] control, else\n"
+    "                  $XDG_RUNTIME_DIR/comaster-IFACE.sock\n"
     "\n"
     "Example: comaster -i vcan0 run examples/netmaster/bench.ini\n";
 
@@ -465,7 +466,7 @@ static bool handle_request(void *ctx, const char *request, char *reply, size_t c
         snprintf(reply, cap,
                  "error: unknown request (status, get NODE NAME, set NODE NAME VALUE, nmt "
                  "COMMAND NODE|all MS, read NODE OBJECT [TYPE], write NODE OBJECT [TYPE] VALUE, "
-                 "disable, enable, can)\n");
+                 "disable, enable, can, configure NODE|all)\n");
     /* A set, an NMT command, an SDO request or enable change what the master sends outside a
      * frame or a deadline: it sends it now. */
     co_linux_device_process(&r->bus.device);

@@ -374,6 +374,26 @@ static void reply_can(const runner_t *r, bool json, char *reply, size_t cap)
                  r->bus.loop.bus.conditions.bus_offs, markers);
 }
 
+/* CiA 302-2's configuration request 1F25h: "conf" to the node's sub-index, or 128 for all. */
+static void request_configure(runner_t *r, const char *target, bool json, char *reply, size_t cap)
+{
+    bool all = strcmp(target, "all") == 0;
+    char *end;
+    unsigned long node = all ? CO_NET_1F25_ALL : strtoul(target, &end, 0);
+    if (!all && (*end != '\0' || node == 0 || node > CO_NMT_MASTER_NODE_ID_MAX))
+        snprintf(reply, cap, "error: configure: '%s' is not a node-id 1..127 or all\n", target);
+    else if (r->master.disabled)
+        snprintf(reply, cap, "%s", disabled_error);
+    else if (!co_net_master_request_configuration(&r->master, (uint8_t)node, CO_NET_1F25_SIGNATURE,
+                                                  co_linux_now()))
+        snprintf(reply, cap, "error: configure: node %s is not a slave of the run\n", target);
+    else if (json)
+        snprintf(reply, cap, "{\"node\": %s%s%s, \"configuration_request\": \"0x%08X\"}\n",
+                 all ? "\"" : "", target, all ? "\"" : "", CO_NET_1F25_SIGNATURE);
+    else
+        snprintf(reply, cap, "ok\n");
+}
+
 bool run_request(runner_t *r, char **field, size_t count, bool json, char *reply, size_t cap,
                  bool *deferred)
 {
@@ -390,6 +410,8 @@ bool run_request(runner_t *r, char **field, size_t count, bool json, char *reply
         reply_master_status(r, json, reply, cap);
     } else if (count == 1 && strcmp(name, "can") == 0)
         reply_can(r, json, reply, cap);
+    else if (count == 2 && strcmp(name, "configure") == 0)
+        request_configure(r, field[1], json, reply, cap);
     else
         return false;
     return true;

@@ -355,6 +355,30 @@ def test_boot_time_1f89_and_the_boot_errors_of_cia_302(bus, start_daemon, run, t
     assert state["boot_time"]["over"] is True
 
 
+def test_configuration_request_1f25_configures_again(bus, start_daemon, run, remote):
+    """CiA 302-2's 1F25h through the run (comaster configure): drive 5's 1017h changed behind the
+    master's back; configure 5 resets it (000#8205) and downloads its concise DCF again (1017h =
+    100 back), the others untouched; configure all resets each slave; node 9 is refused."""
+    start_daemon(bus, "--node-id", "4-6")
+    r = run()
+    expect_booted(r)
+    remote(5).sdo[0x1017].raw = 250
+    bus.collect(0.2)
+    rc, out, err = r.request("configure", 5)
+    assert (rc, out, err) == (0, "ok\n", "")
+    bus.expect(0x000, "8205", timeout=1.0)
+    r.expect(f"node 5 drive5: {BOOTED}", timeout=10.0)
+    assert remote(5).sdo[0x1017].raw == 100
+    assert [f for f in bus.collect(0.3, 0x000) if f.data[0] == 0x82] == []
+    rc, out, _ = r.request("--json", "configure", "all")
+    assert (rc, json.loads(out)) == (0, {"node": "all", "configuration_request": "0x666E6F63"})
+    for node_id in (4, 5, 6):
+        bus.expect(0x000, f"82{node_id:02X}", timeout=1.0)
+    r.expect_all([f"node {node} drive{node}: {BOOTED}" for node in (4, 5, 6)], timeout=10.0)
+    rc, _, err = r.request("configure", 9)
+    assert (rc, err) == (EXIT_REFUSED, "comaster: error: configure: node 9 is not a slave of the run\n")
+
+
 def configured(dcf, section, value):
     """The DCF text with the DefaultValue of [section] turned into a ParameterValue of value."""
     start = dcf.index(f"[{section}]\n")

@@ -150,7 +150,7 @@ int main(void)
     if (failures)
         return 1;
     /* The slave's duplicate MAC ID check: two requests a second apart, then a second's wait. */
-    dn_node_start(&node, now);
+    dn_node_power_up(&node, now);
     for (int second = 0; second < 3; second++) {
         now += 1000000;
         dn_node_process(&node, now);

@@ -282,10 +282,14 @@ struct dn_node {
  * to the default) and leaves the node offline. The node keeps `config` (and what it points at):
  * it must outlive the node. An Identity Reset is the application's init and start again. */
 int dn_node_init(dn_node_t *node, const dn_config_t *config);
-/* Goes on the bus: the duplicate MAC ID check's first request, and the start-up LED test (1.25 s,
- * the LEDs' own state after it). On a node already started, its connections end first
- * (DN_END_OFFLINE). */
+/* Goes on the bus: the duplicate MAC ID check's first request. On a node already started, its
+ * connections end first (DN_END_OFFLINE). A restart on the bus (bus off with BOI, the interface
+ * back after an outage) starts so, without the LED test. */
 void dn_node_start(dn_node_t *node, co_time_t now);
+/* Powers up (power on, or an Identity Reset, which emulates a power cycle): the manual's start-up
+ * LED test (1.25 s, the LEDs' own state after it), then dn_node_start (docs/decisions.md,
+ * D-DEVICENET-LEDS). */
+void dn_node_power_up(dn_node_t *node, co_time_t now);
 /* Leaves the bus (the interface is gone, or the node is about to be initialised again): its
  * connections end (DN_END_OFFLINE) and it sends nothing until dn_node_start. */
 void dn_node_stop(dn_node_t *node, co_time_t now);

@@ -14,7 +14,7 @@ START_TEST(no_answer_goes_online)
     bench_init(&b, 63, defaults);
     ck_assert_int_eq(dn_node_ns_led(&b.node), DN_LED_OFF);
     ck_assert_int_eq(dn_node_ms_led(&b.node), DN_LED_OFF);
-    dn_node_start(&b.node, b.now);
+    dn_node_power_up(&b.node, b.now);
     b.deadline = dn_node_process(&b.node, b.now);
     ck_assert_uint_eq(bench_expect(&b, "5FF#00F30078563412"), 0);
     ck_assert_uint_eq(b.deadline, 250000); /* the LED test's next step; the check at 1 s */
@@ -43,7 +43,7 @@ END_TEST
 START_TEST(led_test_at_start_up)
 {
     bench_init(&b, 63, defaults);
-    dn_node_start(&b.node, b.now);
+    dn_node_power_up(&b.node, b.now);
     b.deadline = dn_node_process(&b.node, b.now);
     static const dn_led_t ms[] = {DN_LED_GREEN, DN_LED_RED, DN_LED_GREEN, DN_LED_GREEN,
                                   DN_LED_GREEN};
@@ -100,7 +100,7 @@ END_TEST
 START_TEST(response_means_duplicate)
 {
     bench_init(&b, 63, defaults);
-    dn_node_start(&b.node, b.now);
+    dn_node_power_up(&b.node, b.now);
     b.deadline = dn_node_process(&b.node, b.now);
     bench_expect(&b, "5FF#00F30078563412");
     bench_advance(&b, 500000);
@@ -187,6 +187,10 @@ START_TEST(bus_off_with_boi_checks_again)
     b.deadline = dn_node_process(&b.node, b.now);
     bench_expect(&b, "5FF#00F30078563412");
     ck_assert_int_eq(b.node.link, DN_LINK_DUP_CHECK_1);
+    /* On the bus again, not powered up: no LED test, the check's next request is the deadline. */
+    ck_assert_uint_eq(b.deadline, b.now + 1000000);
+    ck_assert_int_eq(dn_node_ms_led(&b.node), DN_LED_GREEN);
+    ck_assert_int_eq(dn_node_ns_led(&b.node), DN_LED_OFF);
     bench_advance(&b, 2000000);
     bench_expect(&b, "5FF#00F30078563412");
     ck_assert_int_eq(b.node.link, DN_LINK_ONLINE);

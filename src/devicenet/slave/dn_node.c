@@ -80,8 +80,13 @@ void dn_node_start(dn_node_t *node, co_time_t now)
     dn_connections_end(node, DN_END_OFFLINE);
     node->link = DN_LINK_DUP_CHECK_1;
     node->link_deadline = now + DN_DUP_MAC_WAIT_US;
-    node->led_test_start = now;
     send_duplicate_mac(node, 0);
+}
+
+void dn_node_power_up(dn_node_t *node, co_time_t now)
+{
+    node->led_test_start = now;
+    dn_node_start(node, now);
 }
 
 /* A check message with this node's MAC ID: while checking, another node has it (a request of a

@@ -255,7 +255,7 @@ void drive_dn_start(drive_dn_t *dn, co_time_t now)
 {
     dn->now = now;
     drive_start(dn->drive, now);
-    dn_node_start(&dn->node, now);
+    dn_node_power_up(&dn->node, now);
     report_faults(dn);
 }
 
@@ -281,7 +281,7 @@ static void carry_out_reset(drive_dn_t *dn, co_time_t now)
     dn->reverse = false;
     dn_node_stop(&dn->node, now); /* its connections end on a drive that no longer runs */
     (void)dn_node_init(&dn->node, &dn->config);
-    dn_node_start(&dn->node, now);
+    dn_node_power_up(&dn->node, now);
 }
 
 void drive_dn_receive(drive_dn_t *dn, const co_frame_t *frame, co_time_t now)

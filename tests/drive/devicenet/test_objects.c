@@ -3,7 +3,8 @@
  * 0x2A attribute by attribute with their refusals; the application objects by the manual's
  * address formula (read, write, refusals with their CIP codes); the assemblies 20/70 and 100/101
  * byte for byte after a stored selection and a restart; the I/O timeout as CnF and its reset;
- * the polled connection released while the drive runs as CnF too, not while it stands; the LEDs.
+ * the polled connection released while the drive runs as CnF too, not while it stands; the LEDs
+ * and their start-up test at power-up and Identity Reset only.
  */
 #include "check_main.h"
 #include "dn_drive_bench.h"
@@ -269,6 +270,44 @@ START_TEST(ms_flashes_green_while_the_configuration_is_incorrect)
 }
 END_TEST
 
+/* The manual's LED test runs "during start-up": at power-up and at an Identity Reset of either
+ * type, which CIP's Reset service defines as a power cycle (type 1 after the out-of-box values);
+ * not when the card goes on the bus again after bus off with BOI or an interface outage, which are
+ * no power-up (docs/decisions.md, D-DEVICENET-LEDS). 0.25 s into the test MS is red. */
+static void expect_led_test(bool running)
+{
+    b.next = b.count;
+    b.deadline = drive_dn_process(&b.dn, b.now);
+    db_advance(&b, 250000);
+    ck_assert_int_eq(dn_node_ms_led(&b.dn.node), running ? DN_LED_RED : DN_LED_GREEN);
+    ck_assert_int_eq(dn_node_ns_led(&b.dn.node), DN_LED_OFF);
+    db_advance(&b, 2000000);
+    ck_assert_int_eq(b.dn.node.link, DN_LINK_ONLINE);
+    b.next = b.count;
+}
+
+START_TEST(led_test_at_power_up_and_identity_reset_only)
+{
+    memset(&b, 0, sizeof b);
+    db_start(&b);
+    expect_led_test(true);
+    db_exchange(&b, "4CE#014B03010301", "4CB#01CB00");
+    db_exchange(&b, "4CC#011003010301", "4CB#0190"); /* BOI = 1 */
+    drive_dn_bus_off(&b.dn, b.now);
+    expect_led_test(false);
+    drive_dn_restart(&b.dn, b.now);
+    expect_led_test(false);
+    db_exchange(&b, "4CE#014B03010301", "4CB#01CB00");
+    db_rx(&b, "4CC#01050101"); /* type 0 */
+    db_expect(&b, "4CB#0185");
+    expect_led_test(true);
+    db_exchange(&b, "4CE#014B03010301", "4CB#01CB00");
+    db_rx(&b, "4CC#0105010101"); /* type 1 */
+    db_expect(&b, "4CB#0185");
+    expect_led_test(true);
+}
+END_TEST
+
 /* Connection class attributes 100 and 101: stored, used after the restart an Identity Reset is. */
 START_TEST(stored_selection_after_a_reset)
 {
@@ -321,6 +360,7 @@ static Suite *suite(void)
     tcase_add_test(tc, leds_before_and_after_the_check);
     tcase_add_test(tc, ms_flashes_green_while_the_configuration_is_incorrect);
     tcase_add_test(tc, stored_selection_after_a_reset);
+    tcase_add_test(tc, led_test_at_power_up_and_identity_reset_only);
     suite_add_tcase(s, tc);
     return s;
 }

@@ -233,6 +233,15 @@ typedef struct dn_connection {
 
 /* conn[0..2]: explicit (1), poll (2), COS/cyclic (4); conn[3..7]: the UCMM's 10-14. */
 #define DN_CONN_COUNT 8u
+/* The connections that can fragment: the explicit ones, instance 1 and the UCMM's five. I/O
+ * messages never do (an assembly fits a frame: DN_IO_MAX), so they have no buffers. */
+#define DN_EXPLICIT_COUNT 6u
+
+/* An explicit connection's fragmented messages: the request coming in, the response going out. */
+typedef struct dn_messages {
+    dn_fragments_t rx;
+    dn_fragments_t tx;
+} dn_messages_t;
 
 struct dn_node {
     const dn_config_t *config;
@@ -265,9 +274,9 @@ struct dn_node {
     co_time_t produce_deadline; /* the next cyclic production, or the COS heartbeat */
     co_time_t inhibit_until;
     uint8_t last_produced[DN_IO_MAX];
-    /* Explicit messaging: the fragmented message of each connection (the I/O ones' unused). */
-    dn_fragments_t rx[DN_CONN_COUNT];
-    dn_fragments_t tx[DN_CONN_COUNT];
+    /* Explicit messaging: each explicit connection's fragmented messages, conn[0]'s then
+     * conn[3..7]'s (dn_messages in src/devicenet/slave/dn_slave.h). */
+    dn_messages_t messages[DN_EXPLICIT_COUNT];
     int16_t pending_reset; /* Identity Reset type to hand over after the response, or -1 */
     co_time_t now;         /* the time of the call in progress */
 };

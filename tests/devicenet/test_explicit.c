@@ -103,7 +103,7 @@ START_TEST(identity_attributes)
     bench_exchange(&b, "5FC#81C000", "5FB#81813132");
     bench_rx(&b, "5FC#81C100");
     bench_expect_none(&b);
-    ck_assert(!b.node.tx[0].active);
+    ck_assert(!b.node.messages[0].tx.active);
 }
 END_TEST
 

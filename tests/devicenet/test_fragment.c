@@ -78,7 +78,7 @@ START_TEST(too_much_data)
         bench_exchange(&b, frame, ack);
     }
     bench_exchange(&b, "5FC#814A 000000000000", "5FB#81CA01");
-    ck_assert(!b.node.rx[0].active);
+    ck_assert(!b.node.messages[0].rx.active);
     bench_rx(&b, "5FC#818B 00");
     bench_expect_none(&b);
 }
@@ -103,7 +103,7 @@ START_TEST(response_in_four_fragments)
     bench_exchange(&b, "5FC#81C200", "5FB#8183 41544544");
     bench_rx(&b, "5FC#81C300");
     bench_expect_none(&b);
-    ck_assert(!b.node.tx[0].active);
+    ck_assert(!b.node.messages[0].tx.active);
 }
 END_TEST
 
@@ -121,7 +121,7 @@ START_TEST(lost_acknowledgement)
     ck_assert_uint_eq(bench_expect(&b, "5FB#81008E0641545633"), start + 1000000);
     bench_advance(&b, 1000000); /* one retransmission only, then given up */
     bench_expect_none(&b);
-    ck_assert(!b.node.tx[0].active);
+    ck_assert(!b.node.messages[0].tx.active);
     ck_assert_uint_eq(b.deadline, b.node.conn[0].watchdog);
     bench_rx(&b, "5FC#81C000");
     bench_expect_none(&b);
@@ -136,7 +136,7 @@ START_TEST(acknowledgement_with_error_ends_the_response)
     bench_expect(&b, "5FB#81008E0641545633");
     bench_rx(&b, "5FC#81C001");
     bench_expect_none(&b);
-    ck_assert(!b.node.tx[0].active);
+    ck_assert(!b.node.messages[0].tx.active);
 }
 END_TEST
 
@@ -149,7 +149,7 @@ START_TEST(retransmission_then_ack_continues)
     bench_exchange(&b, "5FC#81C000", "5FB#81813132");
     bench_rx(&b, "5FC#81C100");
     bench_expect_none(&b);
-    ck_assert(!b.node.tx[0].active);
+    ck_assert(!b.node.messages[0].tx.active);
 }
 END_TEST
 

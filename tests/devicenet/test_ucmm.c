@@ -57,7 +57,7 @@ START_TEST(open_then_get_and_set_on_the_connection)
     bench_exchange(&b, "641#99C000", "619#81813132");
     bench_rx(&b, "641#99C100");
     bench_expect_none(&b);
-    ck_assert(!b.node.tx[3].active);
+    ck_assert(!b.node.messages[1].tx.active);
     /* A fragmented request (a Set of the assembly's 8 bytes of body), acknowledged. */
     bench_exchange(&b, "641#9900100415036100", "619#81C000");
     bench_rx(&b, "641#9981B004");

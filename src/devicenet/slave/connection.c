@@ -101,8 +101,8 @@ void dn_connections_reset(dn_node_t *node)
     node->awaiting_ack = false;
     node->produce_deadline = CO_TIME_NEVER;
     node->idle = true;
-    for (unsigned i = 0; i < DN_CONN_COUNT; i++)
-        node->rx[i].active = node->tx[i].active = false;
+    for (unsigned i = 0; i < DN_EXPLICIT_COUNT; i++)
+        node->messages[i].rx.active = node->messages[i].tx.active = false;
 }
 
 void dn_connections_end(dn_node_t *node, dn_end_cause_t cause)
@@ -218,8 +218,7 @@ static void drop_owner_if_unused(dn_node_t *node)
 static void delete_explicit(dn_node_t *node, unsigned index)
 {
     clear(&node->conn[index]);
-    node->rx[index].active = false;
-    node->tx[index].active = false;
+    dn_messages_drop(node, index);
     if (index != DN_EXPLICIT)
         return;
     node->allocation &= (uint8_t)~DN_ALLOC_EXPLICIT;
@@ -546,8 +545,7 @@ static co_time_t explicit_watchdog(dn_node_t *node, unsigned index)
     if (c->timeout_action == DN_WATCHDOG_DEFERRED_DELETE && io_allocated(node)) {
         c->state = DN_CONN_DEFERRED_DELETE;
         c->watchdog = CO_TIME_NEVER;
-        node->rx[index].active = false;
-        node->tx[index].active = false;
+        dn_messages_drop(node, index);
     } else {
         delete_explicit(node, index);
     }

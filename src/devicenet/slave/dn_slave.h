@@ -21,6 +21,19 @@ static inline bool dn_is_explicit(unsigned index)
     return index == DN_EXPLICIT || index >= DN_UCMM_FIRST;
 }
 
+/* The fragmented messages of explicit connection conn[index]. */
+static inline dn_messages_t *dn_messages(dn_node_t *node, unsigned index)
+{
+    return &node->messages[index == DN_EXPLICIT ? 0u : index - DN_UCMM_FIRST + 1u];
+}
+
+/* An explicit connection's messages in progress are given up (it ended, or the node restarts). */
+static inline void dn_messages_drop(dn_node_t *node, unsigned index)
+{
+    dn_messages(node, index)->rx.active = false;
+    dn_messages(node, index)->tx.active = false;
+}
+
 /* Counts one event in the application's dn_stats_t, when it keeps one. */
 #define DN_COUNT(node, counter)                                                                    \
     do {                                                                                           \

@@ -24,7 +24,7 @@ typedef struct origin {
 static void send_fragment(dn_node_t *node, unsigned index)
 {
     uint8_t frame[8];
-    dn_fragments_t *tx = &node->tx[index];
+    dn_fragments_t *tx = &dn_messages(node, index)->tx;
     uint8_t len = dn_fragment_frame(tx, frame);
     dn_send(node, node->conn[index].produced_id, frame, len);
     DN_COUNT(node, fragments);
@@ -43,7 +43,7 @@ static void send_response(dn_node_t *node, const origin_t *origin, uint8_t heade
         dn_send(node, origin->response_id, frame, (uint8_t)(1 + len));
         return;
     }
-    dn_fragment_start(&node->tx[origin->index], header, body, len);
+    dn_fragment_start(&dn_messages(node, (unsigned)origin->index)->tx, header, body, len);
     send_fragment(node, (unsigned)origin->index);
 }
 
@@ -149,12 +149,13 @@ static void fragment_receive(dn_node_t *node, const origin_t *origin, const co_f
     uint8_t count = frame->data[1] & DN_FRAG_COUNT;
     if ((frame->data[1] & DN_FRAG_TYPE) == DN_FRAG_ACK) {
         uint8_t status = frame->len > 2 ? frame->data[2] : (uint8_t)DN_FRAG_ACK_SUCCESS;
-        if (dn_fragment_acknowledged(&node->tx[index], count, status) == DN_FRAGMENT_ACK_NEXT)
+        if (dn_fragment_acknowledged(&dn_messages(node, index)->tx, count, status) ==
+            DN_FRAGMENT_ACK_NEXT)
             send_fragment(node, index);
         return;
     }
     DN_COUNT(node, fragments);
-    dn_fragments_t *rx = &node->rx[index];
+    dn_fragments_t *rx = &dn_messages(node, index)->rx;
     uint8_t to_client = header_to_client(frame->data[0], origin) | DN_HDR_FRAG;
     switch (dn_fragment_receive(rx, frame->data, frame->len)) {
     case DN_FRAGMENT_RX_TAKEN:
@@ -208,7 +209,9 @@ co_time_t dn_explicit_process(dn_node_t *node)
 {
     co_time_t next = CO_TIME_NEVER;
     for (unsigned i = 0; i < DN_CONN_COUNT; i++) {
-        dn_fragments_t *tx = &node->tx[i];
+        if (!dn_is_explicit(i))
+            continue;
+        dn_fragments_t *tx = &dn_messages(node, i)->tx;
         if (!tx->active)
             continue;
         if (node->conn[i].state != DN_CONN_ESTABLISHED) {

@@ -270,11 +270,24 @@ int drive_init(drive_t *drive, const drive_config_t *config)
     return 0;
 }
 
+/* Switched on below the full access level, the drive needs no status chart procedure (ATV312
+ * DeviceNet manual, "In access level L1 or L2": "At switch-on, the drive is in control via the
+ * terminals and changes automatically to the 'Operation enabled' state"); at the full level it
+ * waits in Switch on disabled ("At switch-on, the drive configured for control via the bus changes
+ * to the 'Switch on disabled' state"). Only at switch-on: a reset node or a disable voltage
+ * leaves it in Switch on disabled, from where a run command still starts it. */
+static void switch_on(drive_t *drive)
+{
+    if (!drive_access_full(drive) && drive->cia402.state == CIA402_SWITCH_ON_DISABLED)
+        drive->cia402.state = CIA402_OPERATION_ENABLED;
+}
+
 void drive_start(drive_t *drive, co_time_t now)
 {
     if (!drive->can_off)
         co_node_start(&drive->node, now);
     update_channels(drive);
+    switch_on(drive);
     settle(drive);
 }
 

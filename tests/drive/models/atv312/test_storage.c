@@ -25,6 +25,28 @@ static void reset_node(void)
 
 /* The issue's frames: save all while running at 1200 rpm; after the reset the control word, CMD
  * and the reference are back at 0, and 0x0006, 0x0007, 0x000F never run the motor. */
+/* ATV312 DeviceNet manual, "In access level L1 or L2": "At switch-on, the drive ... changes
+ * automatically to the 'Operation enabled' state": a run command (CMD = 16#000F) starts it with no
+ * status chart procedure. LAC = L1 stored, the drive switched on again: 0x0627 at once, and the
+ * network's 000F with a reference runs the motor. A reset node is no switch-on. */
+START_TEST(lac_l1_switches_on_in_operation_enabled)
+{
+    ck_assert_uint_eq(bench_read(&b, 0x6041, 0), 0x0640); /* L3, the default */
+    ck_assert_uint_eq(bench_sdo_write(&b, 0x2036, 1, 1, 2), 0);
+    bench_rx(&b, "604#2310100173617665");
+    bench_expect(&b, "584#6010100100000000");
+    bench_start_model(&b, &atv312_profile, &storage);
+    ck_assert_uint_eq(bench_read(&b, 0x2036, 1), 1);
+    ck_assert_uint_eq(bench_read(&b, 0x6041, 0), 0x0627);
+    ck_assert_uint_eq(bench_sdo_write(&b, 0x6042, 0, 1200, 2), 0);
+    bench_command(&b, 0x000F);
+    bench_advance(&b, 3000000);
+    ck_assert_int_eq(bench_speed(&b), 1200);
+    reset_node();
+    ck_assert_uint_eq(bench_read(&b, 0x6041, 0), 0x0640);
+}
+END_TEST
+
 START_TEST(process_data_never_come_back_from_storage)
 {
     ck_assert_uint_eq(bench_sdo_write(&b, 0x6042, 0, 1200, 2), 0);
@@ -207,6 +229,7 @@ int main(void)
     TCase *tc = tcase_create("storage");
     tcase_add_checked_fixture(tc, setup, NULL);
     tcase_add_test(tc, process_data_never_come_back_from_storage);
+    tcase_add_test(tc, lac_l1_switches_on_in_operation_enabled);
     tcase_add_test(tc, control_word_and_cmd_stay_one_word_across_a_save);
     tcase_add_test(tc, profile_save_keeps_what_the_views_stand_for);
     tcase_add_test(tc, profile_restore_restores_what_the_views_stand_for);

@@ -124,6 +124,26 @@ END_TEST
 
 /* A running drive follows its input: TPDO6 (ETAD, RFRD) ramps from 750 to 1500 rpm on ACC (3.0 s
  * for 1500 rpm: 1.5 s), the last frame at the speed. The input outlives a reset node. */
+/* A lost 4-20 mA loop (AI3 at 0 mA) while the drive runs on it at 1500 rpm: the input's bottom,
+ * LSP (0 rpm by default, 300 rpm at LSP = 10 Hz), and no fault. The ATV312 DeviceNet manual names
+ * (LFF) [Fallback speed] only as its example of the terminal's notation ("Drive terminal
+ * displays"), with no address, range, default or trigger: no fallback speed is built
+ * (docs/decisions.md, D-ATV312-LFF). */
+START_TEST(lost_loop_is_the_bottom_of_the_range)
+{
+    bench_t b;
+    bench_start(&b);
+    ck_assert_uint_eq(bench_sdo_write(&b, 0x2001, 6, 100, 2), 0); /* LSP 10.0 Hz */
+    run_on_channel(&b, 3);
+    set_analog(&b, "AI3", 20000);
+    expect_speed(&b, "584#4B446000DC050000");
+    set_analog(&b, "AI3", 0);
+    expect_speed(&b, "584#4B4460002C010000");
+    ck_assert_ptr_null(drive_fault_latched(&b.drive));
+    ck_assert_uint_eq(bench_read(&b, 0x6041, 0), 0x0627);
+}
+END_TEST
+
 START_TEST(running_drive_follows_the_input)
 {
     bench_t b;
@@ -172,6 +192,7 @@ int main(void)
     TCase *tc = tcase_create("analog");
     tcase_add_test(tc, ai2_bipolar_voltage_gives_the_speed_and_direction);
     tcase_add_test(tc, ai3_current_between_crl3_and_crh3);
+    tcase_add_test(tc, lost_loop_is_the_bottom_of_the_range);
     tcase_add_test(tc, crl3_crh3_are_configuration_parameters);
     tcase_add_test(tc, inputs_and_ranges_the_model_has);
     tcase_add_test(tc, running_drive_follows_the_input);

@@ -90,7 +90,7 @@ def test_logic_input_from_the_control_surface(bus, start_daemon, tmp_path):
     # Refused by the daemon: atv312d ctl's error, exit 1.
     assert ctl("input", NODE, "LI4", "on") == (1, "atv312d: error: node 4 has no input LI4: its inputs are LI1..LI3")
     assert ctl("input", NODE, "AI2", "on") == (1, "atv312d: error: node 4 has no input AI2: its inputs are LI1..LI3")
-    assert ctl("input", NODE, "LI3") == (1, "atv312d: error: usage: input NODE LIn on|off (e.g. input 4 LI3 on)")
+    assert ctl("input", NODE, "LI3") == (1, "atv312d: error: usage: input NODE LIn|DIn on|off (e.g. input 4 LI3 on)")
     bus.expect_none(0x180 + NODE, 0.05)
 
 

@@ -189,10 +189,10 @@ the exit codes: dnscan.md in ${CO_DOCS_INSTALLED}."
   COMMAND $<TARGET_FILE:dnscan>
   DEPENDS dnscan)
 co_man_page(co-edstool
-  SUMMARY "generate the CANopen core's object dictionary from an EDS, check EDS files"
+  SUMMARY "generate the CANopen core's object dictionary from an EDS or DCF, check EDS files"
   SEE_ALSO "atv312d(1). eds-generator.md in ${CO_DOCS_INSTALLED}. The CMake package canopen runs \
-it at build time: co_generate_od(<target> EDS <file> PREFIX <name> [HOOKS <file>]). The EDS files \
-of the package are in ${CO_INSTALL_EDSDIR} under the installation prefix."
+it at build time: co_generate_od(<target> EDS <file>|DCF <file> PREFIX <name> [HOOKS <file>]). \
+The EDS files of the package are in ${CO_INSTALL_EDSDIR} under the installation prefix."
   SUBCOMMANDS generate check dump
   COMMAND ${CO_EDSTOOL_COMMAND}
   DEPENDS ${CO_EDSTOOL})

@@ -1,7 +1,8 @@
 # SPDX-License-Identifier: Apache-2.0
-# co_generate_od(<target> EDS <file> PREFIX <name> [HOOKS <file>] [OMIT <index>...])
+# co_generate_od(<target> EDS <file>|DCF <file> PREFIX <name> [HOOKS <file>] [OMIT <index>...])
 #
-# Generates the object dictionary <name>_od (edstool generate) from an EDS at build time, without
+# Generates the object dictionary <name>_od (edstool generate) from an EDS at build time, or from
+# a DCF (a configured device: its ParameterValues as the defaults, docs/eds-generator.md), without
 # the objects OMIT lists (a variant of the device that lacks them), into
 # ${CMAKE_CURRENT_BINARY_DIR}/<target>_gen/ and wraps it in <target>, an OBJECT library whose
 # include directory (for <name>_od.h) is PUBLIC and which links canopen::core PUBLIC.
@@ -13,7 +14,7 @@
 # together with it). Link <target> directly into one target per executable, or the table would be
 # defined twice.
 #
-# The command reruns when the EDS, the hooks file or the generator change.
+# The command reruns when the EDS (or DCF), the hooks file or the generator change.
 #
 # Whoever includes this file says which generator to run: CO_EDSTOOL (the script, a dependency of
 # the command) and CO_EDSTOOL_COMMAND (how to run it). The source tree runs tools/edstool.py with
@@ -29,9 +30,16 @@ set_property(GLOBAL PROPERTY CO_EDSTOOL ${CO_EDSTOOL})
 set_property(GLOBAL PROPERTY CO_EDSTOOL_COMMAND ${CO_EDSTOOL_COMMAND})
 
 function(co_generate_od target)
-  cmake_parse_arguments(PARSE_ARGV 1 ARG "" "EDS;PREFIX;HOOKS" "OMIT")
+  cmake_parse_arguments(PARSE_ARGV 1 ARG "" "EDS;DCF;PREFIX;HOOKS" "OMIT")
+  if(ARG_EDS AND ARG_DCF)
+    message(FATAL_ERROR "co_generate_od(${target}): EDS and DCF exclude each other")
+  endif()
+  if(ARG_DCF)
+    set(ARG_EDS ${ARG_DCF})
+  endif()
   if(NOT ARG_EDS OR NOT ARG_PREFIX)
-    message(FATAL_ERROR "co_generate_od(${target}): EDS <file> and PREFIX <name> are required")
+    message(FATAL_ERROR "co_generate_od(${target}): EDS <file> (or DCF <file>) and PREFIX <name> "
+                        "are required")
   endif()
   if(ARG_UNPARSED_ARGUMENTS)
     message(FATAL_ERROR "co_generate_od(${target}): unexpected arguments ${ARG_UNPARSED_ARGUMENTS}")

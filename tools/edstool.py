@@ -1,7 +1,8 @@
 #!/usr/bin/env python3
 # SPDX-License-Identifier: Apache-2.0
-"""edstool: turns a CiA 306 EDS into the object dictionary table of the CANopen core, and checks
-EDS files against the rules of CiA 306 that real tools (python canopen among them) rely on.
+"""edstool: turns a CiA 306 EDS, or a DCF (a configured device), into the object dictionary table
+of the CANopen core, and checks EDS files against the rules of CiA 306 that real tools (python
+canopen among them) rely on.
 
 Python 3 standard library only. Exit codes: 0 success, 1 invalid input, 2 usage error."""
 
@@ -103,6 +104,14 @@ MAX_ENTRY_SIZE = 0xFFFF
 # Objects an object list can hold: one per 16-bit index but 0000h.
 MAX_LISTED = 0xFFFF
 
+# CiA 306's DCF: the section (spelt so by CiA 306) whose NodeID is the node-id $NODEID stands for,
+# the value that configures an entry (over its DefaultValue), and the key naming a file that holds
+# the value to download into a DOMAIN, which the generator does not read.
+COMMISSIONING = "DeviceComissioning"
+PARAMETER_VALUE = "ParameterValue"
+DOMAIN_FILE_KEY = "DownloadFile"
+NODE_ID_RANGE = (1, 127)
+
 
 class EdsError(Exception):
     """A problem with an input file, reported as 'file: [section] key: message'."""
@@ -155,6 +164,7 @@ class Eds:
         self.path = path
         self.sections = {}      # lower-case name -> Section, in file order
         self.subs = {}          # object index -> {sub-index: Section}, the XXXXsubN sections
+        self.node_id = None     # a DCF's [DeviceComissioning] NodeID, once build_entries read it
 
     def section(self, name):
         return self.sections.get(name.lower())
@@ -443,10 +453,20 @@ def encode_default(eds, sec, key, dtype):
         value, is_hex, nodeid = parse_value(text)
     except ValueError as e:
         raise eds.error(sec.name, label, str(e))
+    value, nodeid, where = resolve_node_id(eds, value, nodeid)
     low, high = type_range(dtype)
     if not low <= value <= high:
-        raise eds.error(sec.name, label, "outside the range of %s (%d..%d)" % (name, low, high))
+        raise eds.error(sec.name, label, "outside the range of %s (%d..%d)%s"
+                        % (name, low, high, where))
     return (value & ((1 << (8 * size)) - 1)).to_bytes(size, "little"), nodeid
+
+
+def resolve_node_id(eds, value, nodeid):
+    """A $NODEID term of a DCF with a [DeviceComissioning] NodeID added in (CiA 306: $NODEID is
+    that node-id): (value, still node-id relative, words for a message)."""
+    if not nodeid or eds.node_id is None:
+        return value, nodeid, ""
+    return value + eds.node_id, False, " with [%s] NodeID=%d" % (COMMISSIONING, eds.node_id)
 
 
 def pack_real(value, size):
@@ -468,12 +488,14 @@ def parse_limit(eds, sec, dtype, key):
         value, is_hex, nodeid = parse_value(text)
     except ValueError as e:
         raise eds.error(sec.name, sec.label(key), str(e))
+    value = signed_limit(value, is_hex, dtype)
+    value, nodeid, where = resolve_node_id(eds, value, nodeid)
     if nodeid:
         raise eds.error(sec.name, sec.label(key), "node-id relative limits cannot be represented")
-    value = signed_limit(value, is_hex, dtype)
     low, high = type_range(dtype)
     if not low <= value <= high:
-        raise eds.error(sec.name, sec.label(key), "outside the range of %s" % DATA_TYPES[dtype][0])
+        raise eds.error(sec.name, sec.label(key), "outside the range of %s%s"
+                        % (DATA_TYPES[dtype][0], where))
     return value
 
 
@@ -486,8 +508,14 @@ def compact_value(eds, index, sub):
 def build_entry(eds, sec, index, sub, fallback=None, value=None):
     """One table entry from a VAR section or a sub-section. `fallback` is the section whose keys
     a compact array's sub-entries inherit, `value` the (section, key) of the default when it is
-    not DefaultValue (compact_value())."""
+    not DefaultValue (compact_value()). A DCF's ParameterValue, the device's configuration, is the
+    default over DefaultValue."""
     src = fallback or sec
+    if value is None and src.get(PARAMETER_VALUE):
+        value = (src, PARAMETER_VALUE)
+    if src.get(DOMAIN_FILE_KEY):
+        raise eds.error(src.name, src.label(DOMAIN_FILE_KEY), "a value in a file is not read: "
+                        "write it as %s, hex bytes" % PARAMETER_VALUE)
     name = src.get("ParameterName") or ""
     if fallback is not None:
         name = "%s %d" % (name, sub)
@@ -572,7 +600,23 @@ def compact_entries(eds, sec, index):
     return entries
 
 
+def commissioned_node_id(eds):
+    """A DCF's [DeviceComissioning] NodeID, or None (an EDS, or a DCF that names no node-id: its
+    $NODEID values stay node-id relative, as an EDS's)."""
+    sec = eds.section(COMMISSIONING)
+    if sec is None or not sec.get("NodeID"):
+        return None
+    try:
+        node_id, _ = parse_number(sec.get("NodeID"))
+    except ValueError as e:
+        raise eds.error(sec.name, sec.label("NodeID"), str(e))
+    if not NODE_ID_RANGE[0] <= node_id <= NODE_ID_RANGE[1]:
+        raise eds.error(sec.name, sec.label("NodeID"), "must be %d..%d" % NODE_ID_RANGE)
+    return node_id
+
+
 def build_entries(eds):
+    eds.node_id = commissioned_node_id(eds)
     listed = listed_objects(eds)
     present = {}
     for sec in eds.sections.values():
@@ -982,6 +1026,7 @@ class Checker:
         except EdsError as e:
             self.findings.append(("error", e))
             return
+        self.eds.node_id = self.shared(commissioned_node_id, self.eds)
         self.check_file_info()
         self.check_device_info()
         self.check_dummy_usage()
@@ -1239,10 +1284,16 @@ class Checker:
 
     def encoded_default(self, sec, dtype, value=None):
         """The default value as generate stores it, or None: generate's rules for the default
-        (DefaultValue, or `value` as build_entry() takes it) and the size of an entry. TIME_OF_DAY
-        and TIME_DIFFERENCE have no encoding (neither the core nor generate supports them)."""
+        (DefaultValue, a DCF's ParameterValue, or `value` as build_entry() takes it) and the size
+        of an entry. TIME_OF_DAY and TIME_DIFFERENCE have no encoding (neither the core nor
+        generate supports them)."""
         if DATA_TYPES[dtype][2] == "t":
             return None
+        if sec.get(DOMAIN_FILE_KEY):
+            self.error(sec.name, sec.label(DOMAIN_FILE_KEY), "a value in a file is not read: "
+                       "write it as %s, hex bytes" % PARAMETER_VALUE)
+        if value is None and sec.get(PARAMETER_VALUE):
+            value = (sec, PARAMETER_VALUE)
         encoded = self.shared(encode_default, self.eds, *(value or (sec, "DefaultValue")), dtype)
         if encoded is None:
             return None
@@ -1391,18 +1442,19 @@ class Parser(argparse.ArgumentParser):
 
 def make_parser():
     parser = Parser(
-        description="Generate the CANopen core's object dictionary table from a CiA 306 EDS, "
-                    "or check EDS files.",
+        description="Generate the CANopen core's object dictionary table from a CiA 306 EDS "
+                    "or DCF (its ParameterValues as the defaults, $NODEID its "
+                    "[DeviceComissioning] NodeID), or check EDS files.",
         epilog="Exit codes: 0 success, 1 invalid input (messages name file, section and key), "
                "2 usage error. See docs/eds-generator.md.")
     sub = parser.add_subparsers(dest="command", metavar="COMMAND", parser_class=Parser)
     sub.required = True
     gen = sub.add_parser(
-        "generate", help="write PREFIX_od.h and PREFIX_od.c from an EDS",
+        "generate", help="write PREFIX_od.h and PREFIX_od.c from an EDS or a DCF",
         description="Write DIR/PREFIX_od.h and DIR/PREFIX_od.c: the const co_od_t PREFIX_od "
                     "(sorted entries, default-value image, limits, flags) for include/co/co_od.h. "
                     "Files whose content would not change are left untouched.")
-    gen.add_argument("eds", metavar="EDS", help="the EDS file")
+    gen.add_argument("eds", metavar="EDS", help="the EDS file, or a DCF")
     gen.add_argument("--prefix", required=True, metavar="NAME",
                      help="C identifier prefixing every generated name (NAME_od, NAME_OD_...)")
     gen.add_argument("--out-dir", required=True, metavar="DIR", help="output directory")

@@ -1,7 +1,8 @@
 # SPDX-License-Identifier: Apache-2.0
-"""Unit tests of tools/edstool.py: the tables the generator writes, its refusals, the hooks file,
-every rule of the checker, and deterministic output. Standard library only; runs the tool with
-the interpreter running the tests."""
+"""Unit tests of tools/edstool.py: the tables the generator writes from an EDS or a DCF, its
+refusals, the hooks file, every rule of the checker, and deterministic output. Standard library
+only, but for python canopen, whose import of a DCF the generated values are compared with; runs
+the tool with the interpreter running the tests."""
 import contextlib
 import copy
 import os
@@ -854,6 +855,156 @@ class Dump(ToolCase):
         code, out, err = self.run_tool("dump", path, encoding="ascii")
         self.assertEqual((code, err), (0, ""))
         self.assertIn("| 1008h | 0 | Fan \\u2603 | VISIBLE_STRING |", out)
+
+
+try:
+    import canopen
+except ImportError:  # the DCF's comparison with python canopen needs it (the project's .venv)
+    canopen = None
+
+DRIVE4_DCF = os.path.normpath(os.path.join(HERE, "..", "..", "examples", "netmaster",
+                                           "drive4.dcf"))
+
+
+def dcf_edit(sections):
+    """BASE made the DCF of node 5: ParameterValues over some defaults, $NODEID in a value, a
+    limit and a ParameterValue."""
+    sections["DeviceComissioning"] = {"NodeID": "5", "NodeName": "t5", "Baudrate": "500"}
+    sections["1014"]["ParameterValue"] = "0x85"
+    sections["1800sub1"]["ParameterValue"] = "$NODEID+0x280"
+    sections["2000sub1"]["ParameterValue"] = "-50"
+    sections["2000sub2"]["ParameterValue"] = "xyz"
+    sections["2001"].update(ParameterValue="500", LowLimit="$NODEID+5")
+    sections["1008"]["ParameterValue"] = "Configured"
+
+
+class Dcf(ToolCase):
+    """A DCF as the source of a dictionary: the configured device's values as its defaults."""
+
+    def dcf(self, edit=None):
+        def both(sections):
+            dcf_edit(sections)
+            if edit is not None:
+                edit(sections)
+        return self.eds(both, name="t.dcf")
+
+    def refused(self, edit, message):
+        path = self.dcf(edit)
+        code, _, err = self.generate(path)
+        self.assertEqual(code, 1, err)
+        self.assertEqual(err.strip(), path + ": " + message)
+        self.assertFalse(os.path.exists(os.path.join(self.dir, "gen")))
+
+    def test_parameter_value_is_the_default(self):
+        entries = self.entries(self.dcf())
+        self.assertEqual(entries[(0x2001, 0)].default, (500).to_bytes(2, "little"))
+        self.assertEqual(entries[(0x2000, 1)].default, (-50 & 0xFFFF).to_bytes(2, "little"))
+        self.assertEqual(entries[(0x2000, 2)].default, b"xyz" + bytes(5))
+        # A string's size is its ParameterValue's when no ';size=' comment gives one.
+        self.assertEqual((entries[(0x1008, 0)].default, entries[(0x1008, 0)].size),
+                         (b"Configured", 10))
+        # No ParameterValue: the DefaultValue.
+        self.assertEqual(entries[(0x1000, 0)].default, bytes([0x92, 0x01, 0x01, 0x00]))
+
+    def test_node_id_terms_take_the_commissioned_node_id(self):
+        entries = self.entries(self.dcf())
+        for key, value in (((0x1014, 0), 0x85), ((0x1800, 1), 0x285), ((0x1400, 1), 0x205)):
+            e = entries[key]
+            self.assertEqual((int.from_bytes(e.default, "little"), e.flags & edstool.NODEID),
+                             (value, 0), key)
+        self.assertEqual(entries[(0x2001, 0)].limits, (10, 1000))
+        self.assertEqual(self.generate(self.dcf())[0], 0)
+        source = self.read("t_od.c")
+        self.assertNotIn("CO_OD_NODEID", source)
+        self.assertIn("/* 1400:01 */ 0x05, 0x02, 0x00, 0x00,", source)
+        self.assertIn("Generated from t.dcf by tools/edstool.py", source)
+
+    def test_without_a_node_id_terms_stay_relative(self):
+        entries = self.entries(self.dcf(lambda s: s["DeviceComissioning"].pop("NodeID")
+                                        and s["2001"].pop("LowLimit")))
+        e = entries[(0x1800, 1)]
+        self.assertEqual((int.from_bytes(e.default, "little"), e.flags & edstool.NODEID),
+                         (0x280, edstool.NODEID))
+
+    def test_objects_are_the_dcfs_own(self):
+        def edit(sections):
+            del sections["2001"]
+            sections["ManufacturerObjects"].update({"SupportedObjects": "2", "2": "0x2002"})
+            sections["2002"] = var("Added", "0x0007", "rw", "0", ParameterValue="0x12345678")
+        entries = self.entries(self.dcf(edit))
+        self.assertNotIn((0x2001, 0), entries)
+        self.assertEqual(entries[(0x2002, 0)].default, bytes([0x78, 0x56, 0x34, 0x12]))
+
+    def test_refuses_a_node_id_out_of_range(self):
+        self.refused(lambda s: s["DeviceComissioning"].update(NodeID="128"),
+                     "[DeviceComissioning] NodeID=128: must be 1..127")
+        self.refused(lambda s: s["DeviceComissioning"].update(NodeID="four"),
+                     "[DeviceComissioning] NodeID=four: not a number")
+
+    def test_refuses_a_resolved_value_beyond_its_type(self):
+        self.refused(lambda s: s["1001"].update(ParameterValue="$NODEID+0xFB"),
+                     "[1001] ParameterValue=$NODEID+0xFB: outside the range of UNSIGNED8 "
+                     "(0..255) with [DeviceComissioning] NodeID=5")
+
+    def test_refuses_a_bad_parameter_value(self):
+        self.refused(lambda s: s["2001"].update(ParameterValue="fast"),
+                     "[2001] ParameterValue=fast: not a number")
+
+    def test_refuses_a_domain_from_a_file(self):
+        def edit(sections):
+            sections["ManufacturerObjects"].update({"SupportedObjects": "3", "3": "0x2002"})
+            sections["2002"] = var("Program", "0x000F", "rw", DownloadFile="prog.bin",
+                                   **{";size": "16"})
+        self.refused(edit, "[2002] DownloadFile=prog.bin: a value in a file is not read: write "
+                           "it as ParameterValue, hex bytes")
+
+    def test_check_refuses_what_generate_refuses(self):
+        path = self.dcf(lambda s: s["1001"].update(ParameterValue="$NODEID+0xFB"))
+        code, out, _ = self.run_tool("check", path)
+        self.assertEqual(code, 1)
+        self.assertIn(path + ": [1001] ParameterValue=$NODEID+0xFB: outside the range of "
+                      "UNSIGNED8 (0..255) with [DeviceComissioning] NodeID=5\n", out)
+        path = self.dcf(lambda s: s["DeviceComissioning"].update(NodeID="0"))
+        code, out, _ = self.run_tool("check", path)
+        self.assertEqual(code, 1)
+        self.assertIn(path + ": [DeviceComissioning] NodeID=0: must be 1..127\n", out)
+
+
+@unittest.skipIf(canopen is None, "python canopen is not installed")
+class DcfAgainstCanopen(ToolCase):
+    """Every entry of a dictionary generated from a DCF holds the value python canopen's import
+    of the same DCF gives it: its ParameterValue, else its DefaultValue, $NODEID the DCF's
+    [DeviceComissioning] NodeID."""
+
+    def same_values(self, path):
+        od = canopen.import_od(path)
+        entries = edstool.build_entries(edstool.parse_eds(path))
+        for e in entries:
+            obj = od[e.index]
+            v = obj if isinstance(obj, canopen.objectdictionary.ODVariable) else obj[e.sub]
+            expected = v.value if v.value is not None else v.default
+            kind = edstool.DATA_TYPES[e.dtype][2]
+            if kind == "vs":
+                got = e.default.rstrip(b"\0").decode("ascii")
+            elif kind in ("os", "d"):
+                got = e.default
+            else:
+                got = int.from_bytes(e.default, "little", signed=kind == "i")
+            with self.subTest(index=hex(e.index), sub=e.sub):
+                self.assertEqual(e.flags & edstool.NODEID, 0)
+                self.assertEqual(got, expected)
+        return entries
+
+    def test_drive4(self):
+        entries = {(e.index, e.sub): e for e in self.same_values(DRIVE4_DCF)}
+        # Its ParameterValues (heartbeat 100 ms, RPDO6 on 304h) and its NodeID=4 in 1014h.
+        self.assertEqual(entries[(0x1017, 0)].default, (100).to_bytes(2, "little"))
+        self.assertEqual(entries[(0x1405, 1)].default, (0x304).to_bytes(4, "little"))
+        self.assertEqual(entries[(0x1014, 0)].default, (0x84).to_bytes(4, "little"))
+        self.assertEqual(len(entries), 96)
+
+    def test_hand_made(self):
+        self.assertEqual(len(self.same_values(self.eds(dcf_edit, name="t.dcf"))), 18)
 
 
 class Checker(ToolCase):

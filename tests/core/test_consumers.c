@@ -5,6 +5,7 @@
 #include "check_main.h"
 #include "co/co_consumers.h"
 #include "test_bus.h"
+#include "test_od.h"
 
 #include <stdio.h>
 
@@ -54,6 +55,37 @@ START_TEST(a_node_in_initialising_consumes_nothing)
     co_cob_t cobs[CO_CONSUMERS_MAX];
     ck_assert_uint_eq(co_node_consumers(&fresh.node, cobs), 0);
     ck_assert(!co_node_consumes(&fresh.node, 0x000, false));
+}
+END_TEST
+
+/* A node with LSS takes 7E5h in every NMT state (CiA 305), Initialising included: a node without
+ * node-id consumes that and nothing else, then its node's set once LSS has booted it. */
+START_TEST(a_node_with_lss_consumes_7e5_with_or_without_node_id)
+{
+    static test_node_t unconfigured;
+    static co_lss_slave_t lss;
+    char buf[256];
+    co_lss_slave_init(&lss, NULL, 3);
+    co_node_config_t config = {.node_id = CO_LSS_NODE_ID_UNCONFIGURED, .od = &test_od, .lss = &lss};
+    test_node_start_config(&unconfigured, &config);
+    co_cob_t cobs[CO_CONSUMERS_MAX];
+    ck_assert_uint_eq(co_node_consumers(&unconfigured.node, cobs), 1);
+    ck_assert_uint_eq(cobs[0].can_id, CO_LSS_ID_MASTER);
+    ck_assert(!cobs[0].rtr);
+    ck_assert(co_node_consumes(&unconfigured.node, CO_LSS_ID_MASTER, false));
+    uint32_t generation = co_node_consumer_generation(&unconfigured.node);
+    test_rx(&unconfigured, "7E5#0401000000000000"); /* configuration state */
+    test_rx(&unconfigured, "7E5#1106000000000000"); /* node-id 6 */
+    test_expect(&unconfigured, "7E4#1100000000000000");
+    test_rx(&unconfigured, "7E5#0400000000000000"); /* waiting: it boots */
+    test_expect(&unconfigured, "706#00");
+    ck_assert_uint_ne(co_node_consumer_generation(&unconfigured.node), generation);
+    size_t count = co_node_consumers(&unconfigured.node, cobs);
+    size_t used = 0;
+    for (size_t i = 0; i < count; i++)
+        used += (size_t)snprintf(buf + used, sizeof buf - used, "%s%03X%s", i ? " " : "",
+                                 (unsigned)cobs[i].can_id, cobs[i].rtr ? "R" : "");
+    ck_assert_str_eq(buf, "7E5 000 080 606 706R 206 186R");
 }
 END_TEST
 
@@ -138,6 +170,7 @@ int main(void)
     tcase_add_checked_fixture(tc, setup, NULL);
     tcase_add_test(tc, a_started_node_consumes_nmt_sync_sdo_guarding_and_its_valid_pdos);
     tcase_add_test(tc, a_node_in_initialising_consumes_nothing);
+    tcase_add_test(tc, a_node_with_lss_consumes_7e5_with_or_without_node_id);
     tcase_add_test(tc, writing_a_cob_id_object_changes_the_set_and_the_generation);
     tcase_add_test(tc, other_writes_and_refused_writes_keep_the_generation);
     tcase_add_test(tc, reset_communication_restores_the_set_and_changes_the_generation);

@@ -71,8 +71,12 @@ static void add_heartbeats(const co_node_t *node, cob_set_t *set)
 size_t co_node_consumers(const co_node_t *node, co_cob_t *cobs)
 {
     cob_set_t set = {.cobs = cobs, .count = 0};
+    /* LSS is taken in every NMT state (CiA 305): a node without node-id is in Initialising and
+     * consumes 7E5h alone, the frame that can give it one. */
+    if (node->lss != NULL)
+        add(&set, CO_LSS_ID_MASTER, false);
     if (node->nmt_state == CO_NMT_INITIALISING)
-        return 0;
+        return set.count;
     add(&set, CO_CAN_ID_NMT, false);
     add_sync(node, &set);
     add_time(node, &set);

@@ -87,8 +87,8 @@ static void list_nodes(const atv312d_control_t *control, char *buf, size_t len)
     size_t used = 0;
     buf[0] = '\0';
     for (size_t i = 0; i < control->count && used < len; i++)
-        used +=
-            (size_t)snprintf(buf + used, len - used, "%s%u", i ? "," : "", control->nodes[i].id);
+        used += (size_t)snprintf(buf + used, len - used, "%s%u", i ? "," : "",
+                                 atv312d_node_id(&control->nodes[i]));
 }
 
 static const atv312d_control_node_t *find_node(const atv312d_control_t *control, const char *word,
@@ -98,7 +98,7 @@ static const atv312d_control_node_t *find_node(const atv312d_control_t *control,
     long id = strtol(word, &end, 10);
     if (*word >= '0' && *word <= '9' && *end == '\0') {
         for (size_t i = 0; i < control->count; i++) {
-            if (control->nodes[i].id == id)
+            if (atv312d_node_id(&control->nodes[i]) == id)
                 return &control->nodes[i];
         }
     }
@@ -131,7 +131,7 @@ static const atv312d_control_node_t *find_drive(const atv312d_control_t *control
         char what[64];
         node_phrase(node, what, sizeof what);
         fail(r, "node %u is %s, not a drive: %s is a drive's command; its commands are %s",
-             node->id, what, command, plain_commands(node));
+             atv312d_node_id(node), what, command, plain_commands(node));
         return NULL;
     }
     return node;
@@ -155,7 +155,7 @@ static int find_fault(const atv312d_control_node_t *node, const char *code, repl
         return index;
     char codes[512];
     list_faults(drive, codes, sizeof codes);
-    fail(r, "unknown fault '%s': node %u knows %s", shown(code), node->id, codes);
+    fail(r, "unknown fault '%s': node %u knows %s", shown(code), atv312d_node_id(node), codes);
     return -1;
 }
 
@@ -174,11 +174,11 @@ static bool succeed_fault(const atv312d_control_node_t *node, const drive_fault_
 {
     const drive_dn_t *dn = node->devicenet;
     if (!dn)
-        return succeed(r, "node %u: %s (%s), EMCY %04X", node->id, def->code, def->meaning,
-                       def->emcy_code);
+        return succeed(r, "node %u: %s (%s), EMCY %04X", atv312d_node_id(node), def->code,
+                       def->meaning, def->emcy_code);
     bool major = (dn_node_identity_status(&dn->node) & DN_STATUS_MAJOR_RECOVERABLE) != 0;
-    return succeed(r, "node %u: %s (%s), supervisor %s, Identity %s", node->id, def->code,
-                   def->meaning, drive_dn_state_name(drive_dn_state(dn)),
+    return succeed(r, "node %u: %s (%s), supervisor %s, Identity %s", atv312d_node_id(node),
+                   def->code, def->meaning, drive_dn_state_name(drive_dn_state(dn)),
                    major ? "major recoverable fault" : "no fault");
 }
 
@@ -187,11 +187,12 @@ static bool inject(const atv312d_control_node_t *node, uint8_t index, reply_t *r
     drive_t *drive = node->drive;
     const drive_fault_def_t *def = &drive->profile->faults->faults[index];
     if (drive_fault_cause_present(drive, index))
-        return fail(r, "node %u: the cause of %s is present already", node->id, def->code);
+        return fail(r, "node %u: the cause of %s is present already", atv312d_node_id(node),
+                    def->code);
     drive_fault_inject(drive, index, node->device->loop->now);
     changed(node);
-    co_log(CO_LOG_INFO, "node %u: control: fault %s (%s) injected", node->id, def->code,
-           def->meaning);
+    co_log(CO_LOG_INFO, "node %u: control: fault %s (%s) injected", atv312d_node_id(node),
+           def->code, def->meaning);
     return succeed_fault(node, def, r);
 }
 
@@ -199,7 +200,7 @@ static void remove_cause(const atv312d_control_node_t *node, uint8_t index)
 {
     drive_fault_remove_cause(node->drive, index, node->device->loop->now);
     changed(node);
-    co_log(CO_LOG_INFO, "node %u: control: cause of %s removed", node->id,
+    co_log(CO_LOG_INFO, "node %u: control: cause of %s removed", atv312d_node_id(node),
            node->drive->profile->faults->faults[index].code);
 }
 
@@ -228,8 +229,8 @@ static bool clear_all(const atv312d_control_node_t *node, reply_t *r)
                                      table->faults[i].code);
     }
     if (used == 0)
-        return succeed(r, "node %u: no fault cause was present", node->id);
-    return succeed(r, "node %u: causes removed: %s", node->id, codes);
+        return succeed(r, "node %u: no fault cause was present", atv312d_node_id(node));
+    return succeed(r, "node %u: causes removed: %s", atv312d_node_id(node), codes);
 }
 
 static bool command_clear(const atv312d_control_t *control, char **words, size_t n, reply_t *r)
@@ -246,9 +247,9 @@ static bool command_clear(const atv312d_control_t *control, char **words, size_t
         return false;
     const char *code = node->drive->profile->faults->faults[index].code;
     if (!drive_fault_cause_present(node->drive, (uint8_t)index))
-        return fail(r, "node %u: no cause of %s is present", node->id, code);
+        return fail(r, "node %u: no cause of %s is present", atv312d_node_id(node), code);
     remove_cause(node, (uint8_t)index);
-    return succeed(r, "node %u: cause of %s removed", node->id, code);
+    return succeed(r, "node %u: cause of %s removed", atv312d_node_id(node), code);
 }
 
 /* The mains undervoltage is the model's USF fault. */
@@ -266,7 +267,7 @@ static bool command_mains(const atv312d_control_t *control, char **words, size_t
         return inject(node, (uint8_t)index, r);
     if (drive_fault_cause_present(node->drive, (uint8_t)index))
         remove_cause(node, (uint8_t)index);
-    return succeed(r, "node %u: mains normal", node->id);
+    return succeed(r, "node %u: mains normal", atv312d_node_id(node));
 }
 
 static bool command_stop_key(const atv312d_control_t *control, char **words, size_t n, reply_t *r)
@@ -280,14 +281,14 @@ static bool command_stop_key(const atv312d_control_t *control, char **words, siz
     const drive_fault_def_t *fault = drive_fault_latched(drive);
     drive_stop_key(drive, node->device->loop->now);
     changed(node);
-    co_log(CO_LOG_INFO, "node %u: control: STOP key", node->id);
+    co_log(CO_LOG_INFO, "node %u: control: STOP key", atv312d_node_id(node));
     if (fault && !drive_fault_latched(drive))
-        return succeed(r, "node %u: STOP/RESET key: fault %s reset (status word bit 14)", node->id,
-                       fault->code);
+        return succeed(r, "node %u: STOP/RESET key: fault %s reset (status word bit 14)",
+                       atv312d_node_id(node), fault->code);
     if (fault)
-        return succeed(r, "node %u: STOP key: still in fault %s (status word bit 14)", node->id,
-                       drive_fault_latched(drive)->code);
-    return succeed(r, "node %u: STOP key (%s stop, status word bit 14)", node->id,
+        return succeed(r, "node %u: STOP key: still in fault %s (status word bit 14)",
+                       atv312d_node_id(node), drive_fault_latched(drive)->code);
+    return succeed(r, "node %u: STOP key (%s stop, status word bit 14)", atv312d_node_id(node),
                    drive_local_control(drive) ? "ramp" : "freewheel");
 }
 
@@ -299,7 +300,7 @@ static bool command_run_key(const atv312d_control_t *control, char **words, size
     if (!node)
         return false;
     drive_t *drive = node->drive;
-    unsigned id = node->id;
+    unsigned id = atv312d_node_id(node);
     if (!drive_local_control(drive) && node->devicenet)
         return fail(r,
                     "node %u is under network control (CtrlFromNet 1): the RUN key works under "
@@ -331,12 +332,13 @@ static bool command_local(const atv312d_control_t *control, char **words, size_t
     drive_t *drive = node->drive;
     bool local = strcmp(words[2], "on") == 0;
     if (drive->local == local)
-        return fail(r, "node %u is under %s control already", node->id,
+        return fail(r, "node %u is under %s control already", atv312d_node_id(node),
                     local ? "local" : "network");
     drive_set_local(drive, local, node->device->loop->now);
     changed(node);
-    co_log(CO_LOG_INFO, "node %u: control: %s control", node->id, local ? "local" : "network");
-    return succeed(r, "node %u: %s control (status word bit 9 = %d)", node->id,
+    co_log(CO_LOG_INFO, "node %u: control: %s control", atv312d_node_id(node),
+           local ? "local" : "network");
+    return succeed(r, "node %u: %s control (status word bit 9 = %d)", atv312d_node_id(node),
                    local ? "local" : "network", local ? 0 : 1);
 }
 
@@ -357,8 +359,8 @@ static bool command_load(const atv312d_control_t *control, char **words, size_t 
                     LOAD_MAX_PERCENT);
     drive_set_load(node->drive, (uint8_t)percent, node->device->loop->now);
     changed(node);
-    co_log(CO_LOG_INFO, "node %u: control: load %ld %%", node->id, percent);
-    return succeed(r, "node %u: load %ld %%", node->id, percent);
+    co_log(CO_LOG_INFO, "node %u: control: load %ld %%", atv312d_node_id(node), percent);
+    return succeed(r, "node %u: load %ld %%", atv312d_node_id(node), percent);
 }
 
 /* A logic input's name, "LI3" in any case: its number, or 0. */
@@ -385,16 +387,16 @@ static bool plain_input(const atv312d_control_node_t *node, char **words, reply_
     char what[64];
     node_phrase(node, what, sizeof what);
     if (node->plain->model != &io401_model)
-        return fail(r, "node %u is %s: it has no inputs to set; its commands are %s", node->id,
-                    what, plain_commands(node));
+        return fail(r, "node %u is %s: it has no inputs to set; its commands are %s",
+                    atv312d_node_id(node), what, plain_commands(node));
     unsigned input = terminal_number(words[2], 'D', 'I');
     bool on = strcmp(words[3], "on") == 0;
     if (input == 0 || !io401_set_input(node->plain, (uint8_t)input, on))
-        return fail(r, "node %u has no input %s: its inputs are DI1..DI%u", node->id,
+        return fail(r, "node %u has no input %s: its inputs are DI1..DI%u", atv312d_node_id(node),
                     shown(words[2]), IO401_DIGITAL_INPUTS);
     changed(node);
-    co_log(CO_LOG_INFO, "node %u: control: DI%u %s", node->id, input, words[3]);
-    return succeed(r, "node %u: DI%u %s (6000h:01 = %02X)", node->id, input, words[3],
+    co_log(CO_LOG_INFO, "node %u: control: DI%u %s", atv312d_node_id(node), input, words[3]);
+    return succeed(r, "node %u: DI%u %s (6000h:01 = %02X)", atv312d_node_id(node), input, words[3],
                    io401_inputs(node->plain));
 }
 
@@ -404,12 +406,12 @@ static bool plain_analog(const atv312d_control_node_t *node, char **words, reply
     char what[64];
     node_phrase(node, what, sizeof what);
     if (node->plain->model != &io401_model)
-        return fail(r, "node %u is %s: it has no analogue inputs; its commands are %s", node->id,
-                    what, plain_commands(node));
+        return fail(r, "node %u is %s: it has no analogue inputs; its commands are %s",
+                    atv312d_node_id(node), what, plain_commands(node));
     unsigned input = terminal_number(words[2], 'A', 'I');
     if (input == 0 || input > IO401_ANALOG_INPUTS)
         return fail(r, "node %u has no analogue input %s: its analogue inputs are AI1..AI%u",
-                    node->id, shown(words[2]), IO401_ANALOG_INPUTS);
+                    atv312d_node_id(node), shown(words[2]), IO401_ANALOG_INPUTS);
     char *end;
     long value = strtol(words[3], &end, 10);
     if (end == words[3] || *end != '\0' || value < INT16_MIN || value > INT16_MAX)
@@ -417,8 +419,8 @@ static bool plain_analog(const atv312d_control_node_t *node, char **words, reply
                     shown(words[3]), input);
     io401_set_analog(node->plain, (uint8_t)input, (int16_t)value);
     changed(node);
-    co_log(CO_LOG_INFO, "node %u: control: AI%u %ld", node->id, input, value);
-    return succeed(r, "node %u: AI%u %ld (6401h:%02u)", node->id, input, value, input);
+    co_log(CO_LOG_INFO, "node %u: control: AI%u %ld", atv312d_node_id(node), input, value);
+    return succeed(r, "node %u: AI%u %ld (6401h:%02u)", atv312d_node_id(node), input, value, input);
 }
 
 static bool command_input(const atv312d_control_t *control, char **words, size_t n, reply_t *r)
@@ -431,7 +433,7 @@ static bool command_input(const atv312d_control_t *control, char **words, size_t
     if (node->plain)
         return plain_input(node, words, r);
     drive_t *drive = node->drive;
-    unsigned id = node->id;
+    unsigned id = atv312d_node_id(node);
     unsigned count = drive->profile->logic_inputs;
     unsigned input = input_number(words[2]);
     bool on = strcmp(words[3], "on") == 0;
@@ -520,8 +522,8 @@ static bool set_analog(const atv312d_control_node_t *node, uint8_t index, const 
     changed(node);
     char shown_value[32];
     atv312d_format_analog(in->kind, value, shown_value, sizeof shown_value);
-    co_log(CO_LOG_INFO, "node %u: control: %s %s", node->id, in->name, shown_value);
-    return succeed(r, "node %u: %s %s", node->id, in->name, shown_value);
+    co_log(CO_LOG_INFO, "node %u: control: %s %s", atv312d_node_id(node), in->name, shown_value);
+    return succeed(r, "node %u: %s %s", atv312d_node_id(node), in->name, shown_value);
 }
 
 static bool command_analog(const atv312d_control_t *control, char **words, size_t n, reply_t *r)
@@ -536,13 +538,13 @@ static bool command_analog(const atv312d_control_t *control, char **words, size_
         return plain_analog(node, words, r);
     const drive_t *drive = node->drive;
     if (drive->profile->analog_input_count == 0)
-        return fail(r, "node %u has no analogue inputs", node->id);
+        return fail(r, "node %u has no analogue inputs", atv312d_node_id(node));
     int index = drive_analog_find(drive, words[2]);
     if (index < 0) {
         char names[128];
         list_analog_inputs(drive, names, sizeof names);
-        return fail(r, "node %u has no analogue input %s: its analogue inputs are %s", node->id,
-                    shown(words[2]), names);
+        return fail(r, "node %u has no analogue input %s: its analogue inputs are %s",
+                    atv312d_node_id(node), shown(words[2]), names);
     }
     return set_analog(node, (uint8_t)index, words[3], "analog", r);
 }
@@ -560,7 +562,7 @@ static bool command_pot(const atv312d_control_t *control, char **words, size_t n
         if (profile->analog_inputs[i].kind == DRIVE_ANALOG_POTENTIOMETER)
             return set_analog(node, i, words[2], "pot", r);
     }
-    return fail(r, "node %u has no reference potentiometer", node->id);
+    return fail(r, "node %u has no reference potentiometer", atv312d_node_id(node));
 }
 
 /* A marker's value as written: decimal, or hexadecimal with 0x; false when it does not fit. */
@@ -589,7 +591,7 @@ static bool command_marker(const atv312d_control_t *control, char **words, size_
     if (!node->plain || node->plain->model != &plc300_model) {
         char what[64];
         node_phrase(node, what, sizeof what);
-        return fail(r, "node %u is %s: markers are a PLC300's", node->id, what);
+        return fail(r, "node %u is %s: markers are a PLC300's", atv312d_node_id(node), what);
     }
     plc300_marker_t marker;
     if (!plc300_marker_parse(words[2], &marker))
@@ -602,7 +604,7 @@ static bool command_marker(const atv312d_control_t *control, char **words, size_
     plc300_marker_name(&marker, name, sizeof name);
     if (n == 3) {
         uint32_t value = plc300_marker_get(node->plain, &marker);
-        return succeed(r, "node %u: %s = %lu (0x%0*lX, %04Xh)", node->id, name,
+        return succeed(r, "node %u: %s = %lu (0x%0*lX, %04Xh)", atv312d_node_id(node), name,
                        (unsigned long)value, marker.size * 2, (unsigned long)value, marker.index);
     }
     uint32_t value;
@@ -611,12 +613,13 @@ static bool command_marker(const atv312d_control_t *control, char **words, size_
                     marker.size == 4 ? 0xFFFFFFFFul : (1ul << (8 * marker.size)) - 1);
     uint32_t abort = plc300_marker_set(node->plain, &marker, value);
     if (abort != 0)
-        return fail(r, "node %u: %s refused (abort code %08lX)", node->id, name,
+        return fail(r, "node %u: %s refused (abort code %08lX)", atv312d_node_id(node), name,
                     (unsigned long)abort);
     changed(node);
-    co_log(CO_LOG_INFO, "node %u: control: %s = %lu", node->id, name, (unsigned long)value);
-    return succeed(r, "node %u: %s = %lu (%04Xh)", node->id, name, (unsigned long)value,
-                   marker.index);
+    co_log(CO_LOG_INFO, "node %u: control: %s = %lu", atv312d_node_id(node), name,
+           (unsigned long)value);
+    return succeed(r, "node %u: %s = %lu (%04Xh)", atv312d_node_id(node), name,
+                   (unsigned long)value, marker.index);
 }
 
 /* `state [NODE]`: the view of each drive (view.h), after the CAN controller's in JSON. */

@@ -154,10 +154,19 @@ static const co_node_t *slot_node(void *ctx)
     return &slot->drive.node;
 }
 
-/* A plain node's state changes: NMT, and the error control events its model reacts to. */
+/* A plain node's state changes: the node-id LSS gave it, NMT, and the error control events its
+ * model reacts to. The slot follows the node-id, so that every surface names the node by it. */
 static void log_plain_changes(atv312d_drive_t *slot)
 {
     const plain_node_t *plain = slot->plain;
+    if (plain->node.node_id != slot->id) {
+        if (slot->id == CO_LSS_NODE_ID_UNCONFIGURED)
+            co_log(CO_LOG_INFO, "node with serial number %08lXh: node-id %u from LSS",
+                   (unsigned long)plain->serial_number, plain->node.node_id);
+        else
+            co_log(CO_LOG_INFO, "node %u: node-id %u from LSS", slot->id, plain->node.node_id);
+        slot->id = plain->node.node_id;
+    }
     if (plain->node.nmt_state != slot->nmt_state) {
         co_log(CO_LOG_INFO, "node %u: NMT %s -> %s", slot->id, co_nmt_state_name(slot->nmt_state),
                co_nmt_state_name(plain->node.nmt_state));
@@ -400,11 +409,43 @@ static int init_devicenet_drive(atv312d_drive_t *slot, const drive_model_t *mode
     return EX_SOFTWARE;
 }
 
+/* CiA 305 store configuration: the pending node-id and bit timing in the --store file, under the
+ * node's key; without --store, not supported. */
+static uint8_t lss_store(co_node_t *node, uint8_t node_id, uint8_t bit_timing, uint8_t *specific)
+{
+    (void)specific;
+    atv312d_drive_t *slot = node->user;
+    if (!slot->store)
+        return CO_LSS_STORE_NOT_SUPPORTED;
+    if (co_file_store_set_lss(slot->store, slot->key, node_id, bit_timing) != 0) {
+        co_log(CO_LOG_ERROR, "node %u: LSS store of node-id %u: %s", slot->id, node_id,
+               slot->store->reason);
+        return CO_LSS_STORE_MEDIA_ERROR;
+    }
+    co_log(CO_LOG_INFO, "node %u: LSS stored node-id %u", slot->id, node_id);
+    return CO_LSS_OK;
+}
+
+static const co_lss_slave_hooks_t lss_hooks = {.store = lss_store};
+
+/* The node-id a node with LSS starts with: the one LSS stored for its key, else its own (FFh for
+ * one of --unconfigured). */
+static uint8_t lss_start_node_id(const atv312d_drive_t *slot)
+{
+    uint8_t node_id, bit_timing;
+    if (slot->store && co_file_store_get_lss(slot->store, slot->key, &node_id, &bit_timing))
+        return node_id;
+    return slot->id;
+}
+
 /* A plain node of `model` (a PLC300, an I/O node): its serial number the model's base plus its
- * node-id, the heartbeat grid as the drives'. */
+ * key (its node-id, or 80h + k for the k-th unconfigured node: docs/decisions.md,
+ * D-IO401-IDENTITY), the heartbeat grid as the drives'. */
 static int init_plain(atv312d_drive_t *slot, const plain_model_t *model,
                       const co_storage_t *storage)
 {
+    if (model->lss)
+        slot->id = lss_start_node_id(slot);
     slot->plain = calloc(1, sizeof *slot->plain);
     slot->od_data = calloc(1, model->od->data_size);
     if (!slot->plain || !slot->od_data)
@@ -413,7 +454,10 @@ static int init_plain(atv312d_drive_t *slot, const plain_model_t *model,
         .model = model,
         .od_data = slot->od_data,
         .node_id = slot->id,
-        .serial_number = model->serial_base + slot->id,
+        .serial_number = model->serial_base + slot->key,
+        .lss_hooks = &lss_hooks,
+        /* The daemon runs at whatever rate ip link gave the interface: table 0's "auto". */
+        .lss_bit_timing = CO_LSS_BIT_TIMING_AUTO,
         .send = slot_send,
         .send_user = slot,
         .storage = storage,
@@ -435,7 +479,7 @@ static int init_canopen(atv312d_drive_t *slot, const atv312d_model_t *model, boo
 {
     const co_storage_t *storage = NULL;
     if (slot->store) {
-        co_file_store_bind(slot->store, slot->id, &slot->store_node, &slot->storage);
+        co_file_store_bind(slot->store, slot->key, &slot->store_node, &slot->storage);
         storage = &slot->storage;
     }
     if (model->kind == ATV312D_KIND_NODE)
@@ -450,9 +494,13 @@ static int init_canopen(atv312d_drive_t *slot, const atv312d_model_t *model, boo
 int atv312d_drives_init(atv312d_drive_t *slots, const atv312d_options_t *opts,
                         co_file_store_t *store, co_linux_loop_t *loop)
 {
+    uint8_t unconfigured = 0;
     for (size_t i = 0; i < opts->node_count; i++) {
         atv312d_drive_t *slot = &slots[i];
         slot->id = opts->node_ids[i];
+        slot->key = slot->id == CO_LSS_NODE_ID_UNCONFIGURED
+                        ? (uint8_t)(CO_FILE_STORE_UNCONFIGURED_KEY + ++unconfigured)
+                        : slot->id;
         slot->store = store;
         int rc = opts->devicenet ? init_devicenet_drive(slot, opts->models[i].drive, opts)
                                  : init_canopen(slot, &opts->models[i], opts->can_off[i]);

@@ -23,8 +23,12 @@ typedef struct atv312d_drive {
     drive_t drive;       /* a drive's; unused by a plain node */
     plain_node_t *plain; /* a plain node's (its model's kind ATV312D_KIND_NODE); NULL: a drive */
     uint8_t *od_data;    /* the node's dictionary data block, of its model's size */
-    uint8_t id;          /* node-id on CANopen, MAC ID on DeviceNet */
-    drive_dn_t *dn;      /* its DeviceNet card, NULL on CANopen */
+    uint8_t id; /* node-id on CANopen (a node with LSS: the one it has now, FFh: none), MAC ID on
+                 * DeviceNet */
+    /* Its records' key in the --store file: its node-id as given, or for the k-th node of
+     * --unconfigured CO_FILE_STORE_UNCONFIGURED_KEY + k, whatever node-id LSS gives it. */
+    uint8_t key;
+    drive_dn_t *dn; /* its DeviceNet card, NULL on CANopen */
     co_file_store_t *store;
     co_linux_device_t device;
     co_file_store_node_t store_node;

@@ -159,12 +159,37 @@ typedef struct node_groups {
     uint8_t count;                                     /* groups so far */
     const char *first_node_id;                         /* the first --node-id's value, NULL: none */
     const char *first_mac_id;                          /* the first --mac-id's value, NULL: none */
+    /* --unconfigured N: a group of N nodes without node-id; 0 for a group of ids. */
+    uint8_t unconfigured_of[ATV312D_NODE_ID_MAX + 1];
+    const char *first_unconfigured; /* the first --unconfigured's value, NULL: none */
+    /* A --model with no group of its own before it, for the --unconfigured after it
+     * (`--model io --unconfigured 20`); name NULL: none. */
+    atv312d_model_t pending_model;
+    const char *pending_after; /* the model of the group before the pending one, NULL: none */
 } node_groups_t;
+
+/* A --model before a group other than --unconfigured's belongs to none. */
+static int refuse_pending_model(const node_groups_t *groups, char *err, size_t err_len)
+{
+    const char *name = groups->pending_model.name;
+    if (groups->pending_after)
+        return usage_error(err, err_len,
+                           "--model %s: the nodes of the --node-id before it are already %s: "
+                           "give one --model after each --node-id",
+                           name, groups->pending_after);
+    return usage_error(err, err_len,
+                       "--model %s: no --node-id before it: a model follows the node-ids of its "
+                       "drives, e.g. --node-id 4 --model %s (--mac-id 25 --model %s on DeviceNet), "
+                       "or comes just before --unconfigured: --model io --unconfigured 20",
+                       name, name, name);
+}
 
 /* One --node-id or --mac-id value: "N", "A-B" or a comma-separated list of those, a new group. */
 static int parse_ids(const id_kind_t *kind, const char *value, node_groups_t *groups, char *err,
                      size_t err_len)
 {
+    if (groups->pending_model.name)
+        return refuse_pending_model(groups, err, err_len);
     const char **first = kind == &mac_id_kind ? &groups->first_mac_id : &groups->first_node_id;
     if (!*first)
         *first = value;
@@ -213,7 +238,28 @@ static void list_models(char *buf, size_t len)
                                  atv312d_model_at(i).name);
 }
 
-/* --model names the model of the drives of the --node-id just before it. */
+/* --unconfigured N: N nodes without node-id (FFh) for an LSS master to number (docs/lss.md), a
+ * group of its own whose model is the --model just before or after it. */
+static int parse_unconfigured(const char *value, node_groups_t *groups, char *err, size_t err_len)
+{
+    char *end;
+    long count = strtol(value, &end, 10);
+    if (*value < '0' || *value > '9' || *end != '\0' || count < 1 || count > ATV312D_NODE_ID_MAX)
+        return usage_error(err, err_len,
+                           "--unconfigured %s: give the number of nodes without node-id, 1..%d, "
+                           "e.g. --model io --unconfigured 20",
+                           value, ATV312D_NODE_ID_MAX);
+    if (!groups->first_unconfigured)
+        groups->first_unconfigured = value;
+    groups->count++;
+    groups->unconfigured_of[groups->count] = (uint8_t)count;
+    groups->model_of[groups->count] = groups->pending_model;
+    groups->pending_model.name = NULL;
+    return 0;
+}
+
+/* --model names the model of the drives of the --node-id just before it, or of the
+ * --unconfigured just after it. */
 static int parse_model(const char *name, node_groups_t *groups, char *err, size_t err_len)
 {
     atv312d_model_t model;
@@ -223,17 +269,13 @@ static int parse_model(const char *name, node_groups_t *groups, char *err, size_
         return usage_error(err, err_len, "--model: unknown model '%s': the models are %s", name,
                            names);
     }
-    if (groups->count == 0)
-        return usage_error(err, err_len,
-                           "--model %s: no --node-id before it: a model follows the node-ids of "
-                           "its drives, e.g. --node-id 4 --model %s (--mac-id 25 --model %s on "
-                           "DeviceNet)",
-                           name, name, name);
-    if (groups->model_of[groups->count].name)
-        return usage_error(err, err_len,
-                           "--model %s: the nodes of the --node-id before it are already %s: "
-                           "give one --model after each --node-id",
-                           name, groups->model_of[groups->count].name);
+    if (groups->pending_model.name)
+        return refuse_pending_model(groups, err, err_len);
+    if (groups->count == 0 || groups->model_of[groups->count].name) {
+        groups->pending_model = model;
+        groups->pending_after = groups->count ? groups->model_of[groups->count].name : NULL;
+        return 0;
+    }
     groups->model_of[groups->count] = model;
     return 0;
 }
@@ -256,6 +298,7 @@ typedef enum {
     OPT_BAUD,
     OPT_MODEL,
     OPT_CANOPEN_OFF,
+    OPT_UNCONFIGURED,
     OPT_STORE,
     OPT_TRACE,
     OPT_CONTROL,
@@ -280,6 +323,7 @@ static const struct {
     {"--baud", OPT_BAUD, "RATE"},
     {"--model", OPT_MODEL, "M"},
     {"--canopen-off", OPT_CANOPEN_OFF, NULL},
+    {"--unconfigured", OPT_UNCONFIGURED, "N"},
     {"--store", OPT_STORE, "FILE"},
     {"--trace", OPT_TRACE, "FILE"},
     {"--control", OPT_CONTROL, "PATH"},
@@ -354,6 +398,8 @@ static int apply_option(opt_t opt, const char *value, atv312d_options_t *opts,
         return parse_model(value, groups, err, err_len);
     case OPT_CANOPEN_OFF:
         return parse_canopen_off(groups, err, err_len);
+    case OPT_UNCONFIGURED:
+        return parse_unconfigured(value, groups, err, err_len);
     case OPT_STORE:
         opts->store_path = value;
         return 0;
@@ -425,6 +471,12 @@ static int check_bus(atv312d_options_t *opts, node_groups_t *groups, char *err, 
             return usage_error(err, err_len,
                                "--canopen-off: AdCO is the CANopen port's address; a DeviceNet "
                                "drive is on the bus by its card's MAC ID: leave --canopen-off out");
+    if (groups->first_unconfigured)
+        return usage_error(err, err_len,
+                           "--unconfigured %s: nodes without node-id wait for a CANopen LSS "
+                           "master (CiA 305); --devicenet makes %s a DeviceNet bus, which has no "
+                           "LSS: leave --devicenet out, or give the drives --mac-id 0..63",
+                           groups->first_unconfigured, opts->iface);
     if (groups->first_node_id)
         return usage_error(err, err_len,
                            "--node-id %s: --devicenet makes %s a DeviceNet bus, whose drives have "
@@ -442,6 +494,36 @@ static int check_bus(atv312d_options_t *opts, node_groups_t *groups, char *err, 
                                "--model %s: the %s has no DeviceNet card here: on DeviceNet give "
                                "--model %s, or leave --model out",
                                model->name, model->name, names);
+        }
+    }
+    return 0;
+}
+
+/* The nodes of each --unconfigured, after those with node-ids: only a model with LSS starts
+ * without node-id (the drives' manuals list no LSS), and a bus numbers at most 127 nodes. */
+static int add_unconfigured(atv312d_options_t *opts, const node_groups_t *groups, char *err,
+                            size_t err_len)
+{
+    for (uint8_t g = 1; g <= groups->count; g++) {
+        uint8_t count = groups->unconfigured_of[g];
+        if (count == 0)
+            continue;
+        atv312d_model_t model =
+            groups->model_of[g].name ? groups->model_of[g] : atv312d_model_at(0);
+        if (!model.node || !model.node->lss)
+            return usage_error(err, err_len,
+                               "--unconfigured %u: the %s has no LSS (CiA 305), so it cannot start "
+                               "without node-id: give --model io --unconfigured %u, or give the %s "
+                               "--node-id",
+                               count, model.name, count, model.name);
+        if (opts->node_count + count > (size_t)ATV312D_NODE_ID_MAX)
+            return usage_error(err, err_len,
+                               "--unconfigured %u: with the other nodes that is %zu nodes, and a "
+                               "CANopen bus numbers at most %d",
+                               count, opts->node_count + count, ATV312D_NODE_ID_MAX);
+        for (uint8_t k = 0; k < count; k++) {
+            opts->models[opts->node_count] = model;
+            opts->node_ids[opts->node_count++] = CO_LSS_NODE_ID_UNCONFIGURED;
         }
     }
     return 0;
@@ -499,6 +581,8 @@ static int check_complete(atv312d_options_t *opts, node_groups_t *groups, char *
         return usage_error(err, err_len,
                            "interface name '%s' is too long: Linux allows at most %d characters",
                            opts->iface, IFNAMSIZ - 1);
+    if (groups->pending_model.name)
+        return refuse_pending_model(groups, err, err_len);
     int rc = check_bus(opts, groups, err, err_len);
     if (rc == 0)
         rc = check_http(opts, err, err_len);
@@ -521,6 +605,9 @@ static int check_complete(atv312d_options_t *opts, node_groups_t *groups, char *
             return rc;
         opts->node_ids[opts->node_count++] = (uint8_t)id;
     }
+    rc = add_unconfigured(opts, groups, err, err_len);
+    if (rc)
+        return rc;
     if (opts->node_count == 0)
         return usage_error(err, err_len,
                            "missing --node-id: give the drive's node-id (%d..%d), e.g. --node-id 4",
@@ -575,7 +662,8 @@ void atv312d_print_usage(FILE *out)
           "  IFACE               SocketCAN interface, e.g. can0 or vcan0\n"
           "  --node-id N         node-id 1..127 of a drive or node; a range 4-9 or a list\n"
           "                      4,6 puts several on one socket; may be repeated\n"
-          "  --model M           model of the nodes of the --node-id just before it\n",
+          "  --model M           model of the nodes of the --node-id just before it, or of\n"
+          "                      the --unconfigured just after it\n",
           out);
     fprintf(out, "                      (default %s), a drive or a node, one of:\n",
             atv312d_model_at(0).name);
@@ -592,6 +680,9 @@ void atv312d_print_usage(FILE *out)
     fputs("  --canopen-off       the drives of the --node-id just before it have CANopen\n"
           "                      off (AdCO = 0): present, controlled and shown by their\n"
           "                      node-id, silent on the bus (no boot-up, no answer)\n"
+          "  --unconfigured N    N nodes without node-id (FFh) for an LSS master to find and\n"
+          "                      number (CiA 305), each with its own serial number; only\n"
+          "                      a model with LSS (io)\n"
           "  --devicenet         the interface is a DeviceNet bus: the drives are DeviceNet\n"
           "                      slaves (Group 2 only servers) instead of CANopen nodes\n"
           "  --mac-id N          MAC ID 0..63 of a DeviceNet drive (default 63); ranges,\n"
@@ -622,6 +713,7 @@ void atv312d_print_usage(FILE *out)
           out);
     fputs("Example: atv312d vcan0 --node-id 4-5 --model atv312 --node-id 6\n"
           "         atv312d vcan0 --node-id 1 --model plc300 --node-id 10-12 --model io\n"
+          "         atv312d vcan0 --model io --unconfigured 20\n"
           "         atv312d vcan1 --devicenet --mac-id 25,63\n"
           "\n"
           "Control commands, for testing a master: atv312d ctl PATH COMMAND sends one to\n"
@@ -660,14 +752,17 @@ void atv312d_print_usage(FILE *out)
           "  marker NODE MARKER [VALUE]\n"
           "                      a PLC300's network marker (%IB2000, %QW2004, %QD2508)\n"
           "                      read, or written as its PLC program would: outputs go\n"
-          "                      out in TPDOs, inputs are what the master wrote\n"
-          "  state [NODE]        NMT and CiA 402 state, status word, speed, current, torque,\n"
+          "                      out in TPDOs, inputs are what the master wrote\n",
+          out);
+    fputs("  state [NODE]        NMT and CiA 402 state, status word, speed, current, torque,\n"
           "                      front panel display, RUN and ERR LEDs, latched fault, frame\n"
           "                      counters, inputs (on DeviceNet the MS and NS LEDs and the\n"
           "                      Control supervisor state replace the NMT state and the RUN\n"
           "                      and ERR LEDs, the card's counters the CANopen services');\n"
           "                      of a PLC300 or I/O node its NMT state, RUN and ERR LEDs,\n"
-          "                      error control event, counters, markers or terminals\n"
+          "                      error control event, counters, markers or terminals; a\n"
+          "                      node without node-id by its serial number until LSS gives\n"
+          "                      it one\n"
           "\n"
           "Example: atv312d ctl /tmp/atv312d.sock fault 4 OHF\n"
           "\n"

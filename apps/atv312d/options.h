@@ -43,7 +43,7 @@ typedef struct atv312d_http_address {
 typedef struct atv312d_options {
     const char *iface;
     /* The nodes, drives or plain nodes: node-ids on CANopen, MAC IDs on DeviceNet; ascending,
-     * each once. */
+     * each once, then the nodes of --unconfigured, each with node-id FFh (none). */
     uint8_t node_ids[ATV312D_NODE_ID_MAX];
     atv312d_model_t models[ATV312D_NODE_ID_MAX]; /* the model of node_ids[i] */
     /* --canopen-off: node_ids[i] is the drive's id in the daemon, its AdCO 0: silent on CAN. */

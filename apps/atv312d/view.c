@@ -93,11 +93,11 @@ static void put_bus_state(const atv312d_control_node_t *node, atv312d_text_t *t)
 {
     const drive_dn_t *dn = node->devicenet;
     if (!dn) {
-        atv312d_text_put(t, "node %u: nmt %s, ", node->id,
+        atv312d_text_put(t, "node %u: nmt %s, ", atv312d_node_id(node),
                          co_nmt_state_name(node->drive->node.nmt_state));
         return;
     }
-    atv312d_text_put(t, "node %u: ms %s, ns %s, supervisor %s, ", node->id,
+    atv312d_text_put(t, "node %u: ms %s, ns %s, supervisor %s, ", atv312d_node_id(node),
                      drive_dn_led_name(dn_node_ms_led(&dn->node)),
                      drive_dn_led_name(dn_node_ns_led(&dn->node)),
                      drive_dn_state_name(drive_dn_state(dn)));
@@ -243,7 +243,13 @@ static void put_io401(const plain_node_t *io, atv312d_text_t *t)
 static void plain_state_text(atv312d_text_t *t, const atv312d_control_node_t *node)
 {
     const plain_node_t *plain = node->plain;
-    atv312d_text_put(t, "node %u: nmt %s, model %s, RUN %s, ERR %s, ", node->id,
+    /* A node of --unconfigured is told by its serial number until LSS gives it a node-id. */
+    if (plain->node.node_id == CO_LSS_NODE_ID_UNCONFIGURED)
+        atv312d_text_put(t,
+                         "node unconfigured, serial %08lXh: ", (unsigned long)plain->serial_number);
+    else
+        atv312d_text_put(t, "node %u: ", atv312d_node_id(node));
+    atv312d_text_put(t, "nmt %s, model %s, RUN %s, ERR %s, ",
                      co_nmt_state_name(plain->node.nmt_state), node->model,
                      co_led_name(plain_node_run_led(plain)),
                      co_led_name(plain_node_err_led(plain)));
@@ -310,9 +316,15 @@ static void plain_state_json(cli_json_t *json, const atv312d_control_node_t *nod
 {
     const plain_node_t *plain = node->plain;
     cli_json_begin_object(json, NULL);
-    cli_json_uint(json, "node", node->id);
+    if (plain->node.node_id == CO_LSS_NODE_ID_UNCONFIGURED)
+        cli_json_null(json, "node");
+    else
+        cli_json_uint(json, "node", atv312d_node_id(node));
     cli_json_str(json, "kind", atv312d_kind_name(node->kind));
     cli_json_str(json, "model", node->model);
+    /* Its LSS address's serial number, what tells nodes without node-id apart. */
+    if (plain->model->lss)
+        cli_json_uint(json, "serial", plain->serial_number);
     cli_json_str(json, "nmt", co_nmt_state_name(plain->node.nmt_state));
     cli_json_str(json, "run_led", co_led_name(plain_node_run_led(plain)));
     cli_json_str(json, "err_led", co_led_name(plain_node_err_led(plain)));
@@ -456,7 +468,7 @@ void atv312d_state_json(cli_json_t *json, const atv312d_control_node_t *node)
     motion_t m = read_motion(drive);
     const drive_fault_def_t *fault = drive_fault_latched(drive);
     cli_json_begin_object(json, NULL);
-    cli_json_uint(json, "node", node->id);
+    cli_json_uint(json, "node", atv312d_node_id(node));
     if (dn) {
         cli_json_str(json, "ms", drive_dn_led_name(dn_node_ms_led(&dn->node)));
         cli_json_str(json, "ns", drive_dn_led_name(dn_node_ns_led(&dn->node)));
@@ -514,7 +526,7 @@ void atv312d_bench_drive_json(cli_json_t *json, const atv312d_control_node_t *no
         model[n++] = (char)toupper((unsigned char)*c);
     model[n] = '\0';
     cli_json_begin_object(json, NULL);
-    cli_json_uint(json, "node", node->id);
+    cli_json_uint(json, "node", atv312d_node_id(node));
     cli_json_str(json, "model", model);
     if (node->plain) {
         cli_json_str(json, "kind", atv312d_kind_name(node->kind));

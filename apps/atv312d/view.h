@@ -23,7 +23,8 @@
  * or a plain node (a PLC300, an I/O node) whose view is its NMT state, LEDs, error control event,
  * counters and its model's data (docs/atv312d.md, "Plain nodes"). */
 typedef struct atv312d_control_node {
-    uint8_t id;        /* what NODE names: the node-id on CANopen, the MAC ID on DeviceNet */
+    uint8_t id;        /* what NODE names: the node-id on CANopen, the MAC ID on DeviceNet (a plain
+                        * node's: atv312d_node_id) */
     const char *model; /* its --model name, "atv312" */
     atv312d_kind_t kind;
     drive_t *drive;              /* a drive's; NULL for a plain node */
@@ -32,6 +33,13 @@ typedef struct atv312d_control_node {
     co_linux_device_t *device;   /* processed after a command changed the drive; its frame counts */
     const atv312d_counters_t *counters;
 } atv312d_control_node_t;
+
+/* The id NODE names now: a plain node's is its node-id of the moment, which LSS may give it
+ * (FFh: none yet, a node of --unconfigured). */
+static inline uint8_t atv312d_node_id(const atv312d_control_node_t *node)
+{
+    return node->plain ? node->plain->node.node_id : node->id;
+}
 
 /* Text appended to a buffer: what does not fit is cut, the text stays NUL-terminated. */
 typedef struct atv312d_text {

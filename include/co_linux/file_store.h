@@ -30,6 +30,15 @@
 #define CO_FILE_STORE_DEVICENET_SIZE 5u
 #define CO_FILE_STORE_MAC_ID_MAX 63u
 
+/* A node's LSS configuration (CiA 305 store configuration, docs/lss.md): the node-id (1..127,
+ * or FFh: none) and the bit timing index of table 0 it starts with, in its own area. */
+#define CO_FILE_STORE_AREA_LSS 0x81u
+#define CO_FILE_STORE_LSS_SIZE 2u
+/* The key of the records of atv312d's k-th node started without node-id (--unconfigured, k =
+ * 1..127): this plus k, since such a node has no node-id to be keyed by and keeps its records
+ * across the node-ids LSS gives it. Keys 1..127 are node-ids. */
+#define CO_FILE_STORE_UNCONFIGURED_KEY 0x80u
+
 typedef struct co_file_devicenet {
     uint16_t consumed_assembly;
     uint16_t produced_assembly;
@@ -101,6 +110,14 @@ bool co_file_store_get_devicenet(const co_file_store_t *store, uint8_t mac_id,
  * co_file_store_update. */
 int co_file_store_set_devicenet(co_file_store_t *store, uint8_t mac_id,
                                 const co_file_devicenet_t *values);
+
+/* The LSS record of a node's key: true and the stored node-id and bit timing when there is
+ * one. */
+bool co_file_store_get_lss(const co_file_store_t *store, uint8_t key, uint8_t *node_id,
+                           uint8_t *bit_timing);
+/* Replaces the LSS record of a key and rewrites the file atomically; 0 or -1 as
+ * co_file_store_update. */
+int co_file_store_set_lss(co_file_store_t *store, uint8_t key, uint8_t node_id, uint8_t bit_timing);
 
 /* Fills a co_storage_t for one node of the store: the areas of one 1010h / 1011h write are
  * staged and written together in one file replacement (group_begin / group_end). */

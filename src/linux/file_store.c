@@ -97,7 +97,7 @@ static bool check_records(const uint8_t *p, uint32_t len, uint16_t count, co_fil
         offset += CO_FILE_STORE_RECORD_HEADER_SIZE;
         bool id_valid = r.area == CO_FILE_STORE_AREA_DEVICENET
                             ? r.node_id <= CO_FILE_STORE_MAC_ID_MAX
-                            : r.node_id >= 1 && r.node_id <= CO_NODE_ID_MAX;
+                            : r.node_id != 0 && r.node_id != CO_FILE_STORE_UNCONFIGURED_KEY;
         if (!id_valid || r.area == 0 || co_get_u16(h + 2) != 0)
             return fail(reason, reason_len,
                         "record %u: node-id %u, area %u or reserved bytes are invalid", i + 1,
@@ -164,6 +164,20 @@ static bool check_devicenet(const co_file_record_t *r, char *reason, size_t reas
     return true;
 }
 
+/* An LSS record: its length, a node-id CiA 305 can configure, an index of bit timing table 0. */
+static bool check_lss(const co_file_record_t *r, char *reason, size_t reason_len)
+{
+    if (r->len != CO_FILE_STORE_LSS_SIZE)
+        return fail(reason, reason_len, "node %u (LSS): %u bytes, its record has %u", r->node_id,
+                    r->len, CO_FILE_STORE_LSS_SIZE);
+    uint8_t id = r->data[0];
+    if (!((id >= 1 && id <= CO_NODE_ID_MAX) || id == CO_LSS_NODE_ID_UNCONFIGURED) ||
+        r->data[1] > CO_LSS_BIT_TIMING_INDEX_MAX)
+        return fail(reason, reason_len, "node %u (LSS): node-id %u or bit timing %u is invalid",
+                    r->node_id, id, r->data[1]);
+    return true;
+}
+
 /* Every image as the core checks it before applying it: a file that holds one the core would
  * refuse is ignored whole, as for a bad CRC, rather than applied in part. */
 static bool check_images(co_file_record_t *records, size_t count, char *reason, size_t reason_len)
@@ -172,6 +186,11 @@ static bool check_images(co_file_record_t *records, size_t count, char *reason, 
     for (size_t i = 0; i < count; i++) {
         if (records[i].area == CO_FILE_STORE_AREA_DEVICENET) {
             if (!check_devicenet(&records[i], reason, reason_len))
+                return false;
+            continue;
+        }
+        if (records[i].area == CO_FILE_STORE_AREA_LSS) {
+            if (!check_lss(&records[i], reason, reason_len))
                 return false;
             continue;
         }
@@ -509,6 +528,29 @@ int co_file_store_set_devicenet(co_file_store_t *store, uint8_t mac_id,
     data[4] = values->quick_connect ? 1u : 0u;
     return co_file_store_update(store, mac_id, CO_FILE_STORE_AREA_DEVICENET, data,
                                 CO_FILE_STORE_DEVICENET_SIZE);
+}
+
+bool co_file_store_get_lss(const co_file_store_t *store, uint8_t key, uint8_t *node_id,
+                           uint8_t *bit_timing)
+{
+    const co_file_record_t *r = co_file_store_find(store, key, CO_FILE_STORE_AREA_LSS);
+    if (!r)
+        return false;
+    *node_id = r->data[0];
+    *bit_timing = r->data[1];
+    return true;
+}
+
+int co_file_store_set_lss(co_file_store_t *store, uint8_t key, uint8_t node_id, uint8_t bit_timing)
+{
+    uint8_t *data = malloc(CO_FILE_STORE_LSS_SIZE);
+    if (!data) {
+        snprintf(store->reason, sizeof store->reason, "out of memory");
+        return -1;
+    }
+    data[0] = node_id;
+    data[1] = bit_timing;
+    return co_file_store_update(store, key, CO_FILE_STORE_AREA_LSS, data, CO_FILE_STORE_LSS_SIZE);
 }
 
 /* A change of the node's area: written at once, or staged while a group is open. */

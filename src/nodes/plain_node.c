@@ -77,6 +77,8 @@ int plain_node_init(plain_node_t *plain, const plain_node_config_t *config)
     plain->serial_number = config->serial_number;
     plain->loss = PLAIN_LOSS_NONE;
     plain->time_received = false;
+    if (config->model->lss)
+        co_lss_slave_init(&plain->lss, config->lss_hooks, config->lss_bit_timing);
     co_node_config_t node_config = {
         .node_id = config->node_id,
         .od = config->model->od,
@@ -88,6 +90,7 @@ int plain_node_init(plain_node_t *plain, const plain_node_config_t *config)
         .options = config->node_options,
         .options_code = config->node_options_code,
         .time_stamp = config->model->time_stamp ? &co_time_stamp : NULL,
+        .lss = config->model->lss ? &plain->lss : NULL,
     };
     int rc = co_node_init(&plain->node, &node_config);
     if (rc == 0)
@@ -95,9 +98,12 @@ int plain_node_init(plain_node_t *plain, const plain_node_config_t *config)
     return rc;
 }
 
+/* A node without node-id loads its dictionary at the start and stays in Initialising, so no NMT
+ * state change puts the serial number back: the start does, since LSS reads it (1018h:04). */
 void plain_node_start(plain_node_t *plain, co_time_t now)
 {
     co_node_start(&plain->node, now);
+    co_od_set_value(&plain->node, CO_IDX_IDENTITY, CO_IDENTITY_SERIAL, plain->serial_number);
 }
 
 void plain_node_receive(plain_node_t *plain, const co_frame_t *frame, co_time_t now)

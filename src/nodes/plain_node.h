@@ -17,8 +17,9 @@ typedef struct plain_model {
     const char *description; /* for --help */
     const co_od_t *od;
     uint8_t node_id_max; /* highest node-id the model takes */
-    /* 1018h:04 of a node is this plus the number the application gives it (atv312d: its node-id),
-     * so that every node of a bench has its own serial number. */
+    /* 1018h:04 of a node is this plus the number the application gives it (atv312d: its node-id,
+     * 80h + k for the k-th node without node-id), so that every node of a bench has its own
+     * serial number. */
     uint32_t serial_base;
     /* A lost heartbeat producer or life guarding enters Pre-operational from Stopped too (the
      * PLC300's manual, 6.5.2 and 6.5.3); false: only from Operational, CiA 301's error behaviour
@@ -31,6 +32,8 @@ typedef struct plain_model {
     /* The node consumes TIME (co_time_stamp.h) as its dictionary's 1012h says; false: the
      * service is not linked into the node and 1012h, if any, can neither consume nor produce. */
     bool time_stamp;
+    /* The node has a CiA 305 LSS slave (docs/lss.md), and may start without node-id (FFh). */
+    bool lss;
 } plain_model_t;
 
 /* The error control event the node saw last, until the producer or the master comes back or a
@@ -54,13 +57,18 @@ typedef struct plain_node {
      * network's, not the node's. */
     co_time_of_day_t time;
     bool time_received;
+    co_lss_slave_t lss; /* used when the model has LSS */
 } plain_node_t;
 
 typedef struct plain_node_config {
     const plain_model_t *model;
-    uint8_t *od_data; /* model->od->data_size bytes owned by the application */
-    uint8_t node_id;
+    uint8_t *od_data;       /* model->od->data_size bytes owned by the application */
+    uint8_t node_id;        /* 1..127, or FFh (none) for a model with LSS */
     uint32_t serial_number; /* 1018h:04 */
+    /* The LSS slave's hooks when the model has LSS (NULL: none, no store); its bit timing is
+     * lss_bit_timing, the index of CiA 305's table 0 the node runs at. */
+    const co_lss_slave_hooks_t *lss_hooks;
+    uint8_t lss_bit_timing;
     co_send_fn send;
     void *send_user;
     const co_storage_t *storage;                     /* may be NULL */

@@ -90,7 +90,8 @@ START_TEST(model_errors)
     ck_assert_int_eq(parse("vcan0", "--model", "atv312", "--node-id", "4", NULL), EX_USAGE);
     ck_assert_str_eq(err, "--model atv312: no --node-id before it: a model follows the node-ids "
                           "of its drives, e.g. --node-id 4 --model atv312 (--mac-id 25 --model "
-                          "atv312 on DeviceNet)");
+                          "atv312 on DeviceNet), or comes just before --unconfigured: --model io "
+                          "--unconfigured 20");
     ck_assert_int_eq(
         parse("vcan0", "--node-id", "4", "--model", "atv312", "--model", "atv312", NULL), EX_USAGE);
     ck_assert_str_eq(err, "--model atv312: the nodes of the --node-id before it are already "
@@ -195,6 +196,57 @@ START_TEST(plain_nodes_have_no_devicenet_card)
                      EX_USAGE);
     ck_assert_str_eq(err, "--model io: the io has no DeviceNet card here: on DeviceNet give "
                           "--model atv312, or leave --model out");
+}
+END_TEST
+
+/* --unconfigured N: N nodes with node-id FFh after those with node-ids, of the --model just
+ * before or after it, which must have LSS. */
+START_TEST(unconfigured_nodes_of_a_model_with_lss)
+{
+    ck_assert_int_eq(parse("vcan0", "--model", "io", "--unconfigured", "20", NULL), 0);
+    ck_assert_uint_eq(opts.node_count, 20);
+    for (size_t i = 0; i < 20; i++) {
+        ck_assert_uint_eq(opts.node_ids[i], CO_LSS_NODE_ID_UNCONFIGURED);
+        ck_assert_ptr_eq(opts.models[i].node, &io401_model);
+    }
+    ck_assert_int_eq(parse("vcan0", "--unconfigured", "2", "--model", "io", "--node-id", "4",
+                           "--node-id", "10", "--model", "io", NULL),
+                     0);
+    assert_ids(4, (const uint8_t[]){4, 10, 0xFF, 0xFF});
+    ck_assert_ptr_eq(opts.models[0].drive->profile, &atv312_profile);
+    ck_assert_ptr_eq(opts.models[1].node, &io401_model);
+    ck_assert_ptr_eq(opts.models[3].node, &io401_model);
+}
+END_TEST
+
+START_TEST(unconfigured_refused_without_lss)
+{
+    ck_assert_int_eq(parse("vcan0", "--unconfigured", "3", NULL), EX_USAGE);
+    ck_assert_str_eq(err, "--unconfigured 3: the atv312 has no LSS (CiA 305), so it cannot start "
+                          "without node-id: give --model io --unconfigured 3, or give the atv312 "
+                          "--node-id");
+    ck_assert_int_eq(parse("vcan0", "--model", "plc300", "--unconfigured", "3", NULL), EX_USAGE);
+    ck_assert_str_eq(err, "--unconfigured 3: the plc300 has no LSS (CiA 305), so it cannot start "
+                          "without node-id: give --model io --unconfigured 3, or give the plc300 "
+                          "--node-id");
+    ck_assert_int_eq(parse("vcan0", "--devicenet", "--model", "io", "--unconfigured", "3", NULL),
+                     EX_USAGE);
+    ck_assert_str_eq(err, "--unconfigured 3: nodes without node-id wait for a CANopen LSS master "
+                          "(CiA 305); --devicenet makes vcan0 a DeviceNet bus, which has no LSS: "
+                          "leave --devicenet out, or give the drives --mac-id 0..63");
+    ck_assert_int_eq(parse("vcan0", "--unconfigured", "0", NULL), EX_USAGE);
+    ck_assert_str_eq(err, "--unconfigured 0: give the number of nodes without node-id, 1..127, "
+                          "e.g. --model io --unconfigured 20");
+    ck_assert_int_eq(parse("vcan0", "--node-id", "1-10", "--model", "io", "--model", "io",
+                           "--unconfigured", "118", NULL),
+                     EX_USAGE);
+    ck_assert_str_eq(err, "--unconfigured 118: with the other nodes that is 128 nodes, and a "
+                          "CANopen bus numbers at most 127");
+    ck_assert_int_eq(parse("vcan0", "--model", "io", NULL), EX_USAGE);
+    ck_assert_str_eq(err, "--model io: no --node-id before it: a model follows the node-ids of its "
+                          "drives, e.g. --node-id 4 --model io (--mac-id 25 --model io on "
+                          "DeviceNet), or comes just before --unconfigured: --model io "
+                          "--unconfigured 20");
 }
 END_TEST
 
@@ -406,6 +458,8 @@ int main(void)
     tcase_add_test(tc, devicenet_defaults);
     tcase_add_test(tc, devicenet_mac_ids_and_baud);
     tcase_add_test(tc, devicenet_errors);
+    tcase_add_test(tc, unconfigured_nodes_of_a_model_with_lss);
+    tcase_add_test(tc, unconfigured_refused_without_lss);
     suite_add_tcase(s, tc);
     return check_run_suite(s);
 }

@@ -16,6 +16,7 @@ const plain_model_t io401_model = {
     .err_over_run = false,
     /* 1012h = 80000100h: consumes TIME on 100h (docs/io.md). */
     .time_stamp = true,
+    .lss = true,
 };
 
 bool io401_set_input(plain_node_t *io, uint8_t input, bool on)

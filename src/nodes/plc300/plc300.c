@@ -18,6 +18,7 @@ const plain_model_t plc300_model = {
     .serial_base = 0x30000000u,
     .loss_from_any_state = true,
     .err_over_run = true,
+    .lss = false,
 };
 
 /* The views of an area start at multiples of 400h (3000h, 3400h, 3800h; 4000h, ...). */

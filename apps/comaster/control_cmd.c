@@ -1,5 +1,6 @@
 /* SPDX-License-Identifier: Apache-2.0 */
 /* comaster set, get and status: requests to a comaster run through its control socket. */
+#include "co/co_image_address.h"
 #include "comaster/comaster.h"
 #include "comaster/run_control.h"
 
@@ -8,25 +9,35 @@
 
 static const char set_help[] =
     "usage: comaster set NODE NAME VALUE [--control PATH]\n"
+    "       comaster set MARKER VALUE [--control PATH]\n"
     "\n"
     "Sets an output of the process image of a comaster run: the run sends the RPDO\n"
     "that maps it when its bytes change (and after each SYNC when it produces SYNC).\n"
     "\n"
     "  NAME            the object's Denotation in the DCF (speed), its ParameterName or\n"
     "                  first word, or INDEX:SUB (0x6042)\n"
-    "  VALUE           a number in the object's data type\n"
+    "  MARKER          the 512-byte output image as the PLC300's markers: %QB byte,\n"
+    "                  %QW word, %QD double word, bytes 2000..2511, least significant\n"
+    "                  first (a word at an even address, a double word at 2000 + 4n:\n"
+    "                  %QW2002, %QD2004)\n"
+    "  VALUE           a number in the object's data type (a marker's: UNSIGNED8/16/32)\n"
     "  --control PATH  the run's control socket; default $XDG_RUNTIME_DIR (else /tmp)\n"
     "                  /comaster-IFACE.sock\n"
     "\n"
-    "Example: comaster -i vcan0 set 4 speed 1200\n";
+    "Examples: comaster -i vcan0 set 4 speed 1200\n"
+    "          comaster -i vcan0 set %QW2002 1200\n";
 
 static const char get_help[] =
     "usage: comaster get NODE NAME [--control PATH]\n"
+    "       comaster get MARKER [--control PATH]\n"
     "\n"
     "Prints a variable of the process image of a comaster run: an input (the last TPDO\n"
-    "of the slave that maps it) or an output.\n"
+    "of the slave that maps it) or an output; a MARKER (%IB, %IW, %ID inputs, %QB,\n"
+    "%QW, %QD outputs: the PLC300's, see comaster set --help) prints the unsigned\n"
+    "number of the byte, word or double word at that address.\n"
     "\n"
-    "Example: comaster -i vcan0 get 4 status\n";
+    "Examples: comaster -i vcan0 get 4 status\n"
+    "          comaster -i vcan0 get %IW2000\n";
 
 static const char status_help[] =
     "usage: comaster status [--control PATH]\n"
@@ -143,18 +154,33 @@ bool comaster_run_option(int *argc, char **argv, bool *via_run, const char **pat
     return true;
 }
 
-/* Parses the command's arguments and sends them, fields of the request after its name. */
-static int request(comaster_options_t *opts, int argc, char **argv, const char *help, int args_n)
+/* Parses the command's arguments and sends them, fields of the request after its name. With
+ * `marker`, a PLC300 marker (%QW2000) may stand for NODE NAME: one argument fewer. */
+static int request(comaster_options_t *opts, int argc, char **argv, const char *help, int args_n,
+                   bool marker)
 {
     const char *control = NULL;
     if (!comaster_control_take_option(&argc, argv, &control))
         return comaster_missing_value(opts, "--control");
     comaster_args_t args;
-    int rc = comaster_parse_args(opts, &args, argc, argv, help, "", args_n, args_n);
+    int rc = comaster_parse_args(opts, &args, argc, argv, help, "", marker ? args_n - 1 : args_n,
+                                 args_n);
     if (rc >= 0)
         return rc;
+    bool by_marker = marker && args.positional[0][0] == '%';
+    /* Each form has its own count: parsed again for the usual usage error. */
+    if (marker && args.count != (by_marker ? args_n - 1 : args_n)) {
+        int n = by_marker ? args_n - 1 : args_n;
+        rc = comaster_parse_args(opts, &args, argc, argv, help, "", n, n);
+        if (rc >= 0)
+            return rc;
+    }
+    co_image_address_t address;
+    if (by_marker && !co_image_address_parse(args.positional[0], &address))
+        return comaster_fail(opts, EX_USAGE, "%s: '%s' is not a process image address: %s", argv[0],
+                             args.positional[0], COMASTER_MARKER_SYNTAX);
     uint8_t node;
-    if (args_n > 0 && !comaster_parse_node(opts, args.positional[0], false, &node))
+    if (args_n > 0 && !by_marker && !comaster_parse_node(opts, args.positional[0], false, &node))
         return EX_USAGE;
     const char *fields[COMASTER_MAX_ARGS + 1] = {argv[0]};
     for (int i = 0; i < args.count; i++)
@@ -164,32 +190,32 @@ static int request(comaster_options_t *opts, int argc, char **argv, const char *
 
 int comaster_set_main(comaster_options_t *opts, int argc, char **argv)
 {
-    return request(opts, argc, argv, set_help, 3);
+    return request(opts, argc, argv, set_help, 3, true);
 }
 
 int comaster_get_main(comaster_options_t *opts, int argc, char **argv)
 {
-    return request(opts, argc, argv, get_help, 2);
+    return request(opts, argc, argv, get_help, 2, true);
 }
 
 int comaster_status_main(comaster_options_t *opts, int argc, char **argv)
 {
-    return request(opts, argc, argv, status_help, 0);
+    return request(opts, argc, argv, status_help, 0, false);
 }
 
 int comaster_disable_main(comaster_options_t *opts, int argc, char **argv)
 {
-    return request(opts, argc, argv, disable_help, 0);
+    return request(opts, argc, argv, disable_help, 0, false);
 }
 
 int comaster_enable_main(comaster_options_t *opts, int argc, char **argv)
 {
-    return request(opts, argc, argv, enable_help, 0);
+    return request(opts, argc, argv, enable_help, 0, false);
 }
 
 int comaster_can_main(comaster_options_t *opts, int argc, char **argv)
 {
-    return request(opts, argc, argv, can_help, 0);
+    return request(opts, argc, argv, can_help, 0, false);
 }
 
 int comaster_configure_main(comaster_options_t *opts, int argc, char **argv)

@@ -4,6 +4,7 @@
  * the control socket (run_control.c) to comaster set, get and status, and the requests of
  * run_requests.c. */
 #include "cli/json.h"
+#include "co/co_image_address.h"
 #include "comaster/runner.h"
 
 #include <stdarg.h>
@@ -422,6 +423,71 @@ static void reply_set(runner_t *r, uint8_t node, const char *name, const char *v
         snprintf(reply, cap, "ok\n");
 }
 
+/* ---- the process image by the PLC300's markers (co_image_address.h) ------------------------ */
+
+/* The marker, or false after the refusal in reply. */
+static bool marker_parse(const char *marker, co_image_address_t *a, char *reply, size_t cap)
+{
+    if (co_image_address_parse(marker, a))
+        return true;
+    snprintf(reply, cap, "error: '%s' is not a process image address: %s\n", marker,
+             COMASTER_MARKER_SYNTAX);
+    return false;
+}
+
+/* The marker's data type: the manual's objects 3000h-49FCh are UNSIGNED8, 16 or 32. */
+static const comaster_type_t *marker_type(const co_image_address_t *a)
+{
+    return comaster_type_by_code(a->size == 1   ? CO_DT_UNSIGNED8
+                                 : a->size == 2 ? CO_DT_UNSIGNED16
+                                                : CO_DT_UNSIGNED32);
+}
+
+static void marker_reply(const char *marker, uint32_t value, bool json, char *reply, size_t cap)
+{
+    char quoted[64];
+    cli_json_quote(marker, quoted, sizeof quoted);
+    if (json)
+        snprintf(reply, cap, "{\"address\": %s, \"value\": %lu}\n", quoted, (unsigned long)value);
+    else
+        snprintf(reply, cap, "%lu\n", (unsigned long)value);
+}
+
+static void reply_get_marker(runner_t *r, const char *marker, bool json, char *reply, size_t cap)
+{
+    co_image_address_t a;
+    if (!marker_parse(marker, &a, reply, cap))
+        return;
+    const uint8_t *image = a.area == CO_IMAGE_OUTPUT ? r->net->output_image : r->net->input_image;
+    marker_reply(marker, co_image_address_get(image, &a), json, reply, cap);
+}
+
+static void reply_set_marker(runner_t *r, const char *marker, const char *value, bool json,
+                             char *reply, size_t cap)
+{
+    co_image_address_t a;
+    if (!marker_parse(marker, &a, reply, cap))
+        return;
+    if (a.area == CO_IMAGE_INPUT) {
+        snprintf(reply, cap, "error: %s is an input (the slaves' TPDOs write it): get it\n",
+                 marker);
+        return;
+    }
+    uint8_t bytes[4];
+    size_t len;
+    char err[256];
+    if (!comaster_value_parse(marker_type(&a), value, bytes, sizeof bytes, &len, err, sizeof err)) {
+        snprintf(reply, cap, "error: %s: %s\n", marker, err);
+        return;
+    }
+    /* UNSIGNEDn's bytes, least significant first, are the marker's bytes (D-IMAGE-ADDRESS). */
+    co_net_master_write_output(&r->master, a.offset, bytes, len);
+    if (json)
+        marker_reply(marker, co_image_address_get(r->net->output_image, &a), json, reply, cap);
+    else
+        snprintf(reply, cap, "ok\n");
+}
+
 static bool parse_node_field(const char *text, uint8_t *node)
 {
     char *end;
@@ -456,6 +522,10 @@ static bool handle_request(void *ctx, const char *request, char *reply, size_t c
         ;
     else if (count == 1 && strcmp(fields[0], "status") == 0)
         reply_status(r, json, reply, cap);
+    else if (count == 2 && strcmp(fields[0], "get") == 0 && fields[1][0] == '%')
+        reply_get_marker(r, fields[1], json, reply, cap);
+    else if (count == 3 && strcmp(fields[0], "set") == 0 && fields[1][0] == '%')
+        reply_set_marker(r, fields[1], fields[2], json, reply, cap);
     else if (count >= 3 && !parse_node_field(fields[1], &node))
         snprintf(reply, cap, "error: '%s' is not a node-id 1..127\n", fields[1]);
     else if (count == 3 && strcmp(fields[0], "get") == 0)
@@ -463,10 +533,12 @@ static bool handle_request(void *ctx, const char *request, char *reply, size_t c
     else if (count == 4 && strcmp(fields[0], "set") == 0)
         reply_set(r, node, fields[2], fields[3], json, reply, cap);
     else
-        snprintf(reply, cap,
-                 "error: unknown request (status, get NODE NAME, set NODE NAME VALUE, nmt "
-                 "COMMAND NODE|all MS, read NODE OBJECT [TYPE], write NODE OBJECT [TYPE] VALUE, "
-                 "disable, enable, can, configure NODE|all)\n");
+        snprintf(
+            reply, cap,
+            "error: unknown request (status, get NODE NAME, get %%IW2002, set NODE NAME VALUE, "
+            "set %%QW2000 VALUE, nmt "
+            "COMMAND NODE|all MS, read NODE OBJECT [TYPE], write NODE OBJECT [TYPE] VALUE, "
+            "disable, enable, can, configure NODE|all)\n");
     /* A set, an NMT command, an SDO request or enable change what the master sends outside a
      * frame or a deadline: it sends it now. */
     co_linux_device_process(&r->bus.device);

@@ -14,6 +14,12 @@
 #include <stddef.h>
 
 #define COMASTER_CONTROL_LINE_MAX CO_LINE_MAX
+
+/* What a process image address is (D-IMAGE-ADDRESS), for the client's usage error and the run's
+ * refusal alike; a printf argument, not a format. */
+#define COMASTER_MARKER_SYNTAX                                                                     \
+    "%IB/%IW/%ID (inputs) or %QB/%QW/%QD (outputs), bytes 2000..2511, words even, double words "   \
+    "multiples of 4"
 #define COMASTER_CONTROL_REPLY_MAX                                                                 \
     65536u /* status --json of 127 slaves, 64-byte names, every field at its longest */
 

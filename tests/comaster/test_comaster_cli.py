@@ -54,6 +54,21 @@ class WrongArguments(unittest.TestCase):
         self.check(["get", "4", "speed", "x"], "get: too many arguments from 'x': usage: comaster "
                    "get NODE NAME [--control PATH]", "get")
 
+    def test_marker_arguments(self):
+        """A PLC300 marker stands for NODE NAME (D-IMAGE-ADDRESS): each form its own count, and
+        only the manual's addresses, before any run is asked."""
+        syntax = ("is not a process image address: %IB/%IW/%ID (inputs) or %QB/%QW/%QD (outputs), "
+                  "bytes 2000..2511, words even, double words multiples of 4")
+        for marker in ("%IW2001", "%ID2002", "%IB2512", "%QB1999", "%XB2000", "%IW02000"):
+            self.check(["get", marker], f"get: '{marker}' {syntax}", "get")
+        self.check(["set", "%QW2001", "5"], f"set: '%QW2001' {syntax}", "set")
+        self.check(["get", "%IW2000", "x"], "get: too many arguments from 'x': usage: comaster "
+                   "get NODE NAME [--control PATH]", "get")
+        self.check(["set", "%QW2000", "1", "2"], "set: too many arguments from '2': usage: comaster "
+                   "set NODE NAME VALUE [--control PATH]", "set")
+        self.check(["set", "4", "speed"], "set: missing arguments: usage: comaster set NODE NAME "
+                   "VALUE [--control PATH]", "set")
+
     def test_lss_arguments(self):
         services = ("switch, set-node-id, set-bit-timing, activate, store, inquire, identify or "
                     "fastscan")

@@ -17,7 +17,7 @@ import time
 import canopen
 import pytest
 
-from conftest import BOOT_TIMEOUT, EDS, IFACE, LOCAL_NODE, PERIODIC_LATENESS, ROOT, assert_periodic
+from conftest import BOOT_TIMEOUT, EDS, EX_USAGE, IFACE, LOCAL_NODE, PERIODIC_LATENESS, ROOT, assert_periodic
 
 COMASTER = os.environ.get("COMASTER") or str(ROOT / "build" / "apps" / "comaster" / "comaster")
 NET = ROOT / "examples" / "netmaster"
@@ -201,6 +201,60 @@ def test_set_speed_reaches_the_drive_by_rpdo(bus, start_daemon, run, remote):
     assert r.request("--json", "get", 4, "actual_speed") == (0, '{"node": 4, "name": "actual_speed", "value": 1200}\n', "")
     assert r.request("--json", "set", 5, "speed", "0x10") == (0, '{"node": 5, "name": "speed", "value": 16}\n', "")
     assert r.request("get", 5, "actual_speed") == (0, "0\n", "")
+
+
+def test_image_by_the_plc300_markers(bus, start_daemon, run):
+    """The process image as the PLC300 manual's network markers (5.4, 7.2): bytes from 2000, in
+    the order of the slaves and their PDOs (node 4's RPDO1 control at %QB2000..2001, its RPDO6
+    control and speed at %QB2002..2005; its TPDO1 status at %IB2000..2001, its TPDO6 status and
+    actual speed at %IB2002..2005), byte, word and double word over the same bytes, least
+    significant first (docs/decisions.md, D-IMAGE-ADDRESS)."""
+    start_daemon(bus, "--node-id", "4-6")
+    r = run()
+    expect_booted(r)
+    # One double word over two PDOs: shutdown in RPDO1, then switch on in RPDO6.
+    assert r.request("set", "%QD2000", "0x00070006") == (0, "ok\n", "")
+    bus.expect(0x204, "0600")
+    bus.expect(0x304, "07000000")
+    assert r.request("set", "%QW2002", 15) == (0, "ok\n", "")  # enable operation
+    bus.expect(0x304, "0F000000")
+    assert r.request("set", "%QW2004", 1200) == (0, "ok\n", "")
+    bus.expect(0x304, "0F00B004")
+    assert r.request("get", 4, "speed") == (0, "1200\n", "")
+    assert r.request("get", "%QW2004") == (0, "1200\n", "")
+    assert r.request("get", "%QB2004") == (0, "176\n", "")  # 0xB0, the low byte first
+    assert r.request("get", "%QB2005") == (0, "4\n", "")
+    assert r.request("get", "%QD2000") == (0, f"{0x000F0006}\n", "")
+    assert r.request("--json", "set", "%QB2005", 5) == (0, '{"address": "%QB2005", "value": 5}\n', "")
+    bus.expect(0x304, "0F00B005")  # speed 0x05B0 = 1456
+    assert r.request("set", "%QW2004", 1200) == (0, "ok\n", "")
+    bus.expect(0x304, "0F00B004")
+    deadline = time.monotonic() + 10
+    while True:
+        frame = bus.expect(0x284, timeout=1.0)
+        if int.from_bytes(frame.data[2:4], "little", signed=True) == 1200:
+            break
+        assert time.monotonic() < deadline, f"the drive did not reach 1200 rpm: {frame}"
+    bus.expect(0x284, timeout=1.0)  # one more TPDO6 and TPDO1 after the master had the last ones
+    bus.expect(0x184, "2706", timeout=1.0)
+    assert r.request("get", "%IW2004") == (0, "1200\n", "")
+    assert r.request("get", "%IW2002") == (0, "1575\n", "")  # 0x0627: operation enabled, at speed
+    assert r.request("get", "%ID2000") == (0, f"{0x06270627}\n", "")  # TPDO1's and TPDO6's status
+    assert r.request("--json", "get", "%iw2004") == (0, '{"address": "%iw2004", "value": 1200}\n', "")
+    assert r.request("get", "%IB2511") == (0, "0\n", "")  # past the PDOs, inside the 512 bytes
+    # Refused by the run (exit 1): an input to set, a value wider than the marker.
+    assert r.request("set", "%IW2000", 1) == (EXIT_REFUSED, "", "comaster: error: %IW2000 is an input "
+                                               "(the slaves' TPDOs write it): get it\n")
+    rc, _, err = r.request("set", "%QB2000", 256)
+    assert rc == EXIT_REFUSED and err.startswith("comaster: error: %QB2000: "), err
+    # Not a marker (exit 64, before the run is asked): misaligned, outside the image, a node too.
+    for args in (("get", "%IW2001"), ("get", "%ID2002"), ("get", "%QB2512"), ("set", "%QB1999", 1)):
+        rc, _, err = r.request(*args)
+        assert rc == EX_USAGE and f"'{args[1]}' is not a process image address" in err, (args, err)
+    rc, _, err = r.request("get", "%IW2000", 4)
+    assert rc == EX_USAGE and "too many arguments from '4'" in err, err
+    rc, out, _ = r.request("status")
+    assert "node 4 drive4 0x000F operational" in out
 
 
 def test_bad_requests_are_refused(bus, start_daemon, run):

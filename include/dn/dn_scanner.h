@@ -111,11 +111,18 @@ typedef struct dn_slave {
      * slave's response identifier). */
     bool busy;
     uint8_t service;
-    uint8_t xid;    /* the transaction bit of the last request: a late response is ignored */
-    uint8_t choice; /* Allocate/Release: the choice asked */
+    uint8_t xid;          /* the transaction bit of the last request: a late response is ignored */
+    uint8_t choice;       /* Allocate/Release: the choice asked */
+    bool to_ucmm;         /* sent to the UCMM: 4B/4C are Open/Close, not Allocate/Release */
+    uint16_t response_id; /* the CAN-ID its answer comes on */
     co_time_t deadline;
     dn_fragments_t tx;
     dn_fragments_t rx;
+    /* The explicit connection the UCMM opened (dn_scanner_ucmm_open), which the explicit
+     * requests use instead of the predefined set's while it is open (ucmm_instance not 0). */
+    uint16_t ucmm_instance; /* the slave's connection instance, 10..14; 0: none */
+    uint8_t ucmm_message;   /* the scanner's group 3 message ID on it, 0..4 */
+    uint16_t ucmm_response; /* the slave's CAN-ID on it */
     /* The polled connection. */
     uint8_t output[DN_FRAME_BODY + 1];
     uint8_t output_len;
@@ -204,6 +211,14 @@ bool dn_scanner_set(dn_scanner_t *scanner, uint8_t mac_id, uint8_t class_id, uin
  * the result's data are the rate the slave uses (UINT, ms). */
 bool dn_scanner_set_expected_packet_rate(dn_scanner_t *scanner, uint8_t mac_id, uint8_t connection,
                                          uint16_t ms, co_time_t now);
+
+/* Open Explicit Messaging Connection on the slave's UCMM (group 3 message 6), the scanner's
+ * group 3 message ID the lowest no other slave's UCMM connection uses (false when all five are
+ * taken); on success the explicit requests go over that connection, no Allocate needed. The
+ * result's data: body format, message IDs, instance (UINT). */
+bool dn_scanner_ucmm_open(dn_scanner_t *scanner, uint8_t mac_id, co_time_t now);
+/* Close of that connection on the UCMM; from then on the predefined set's again. */
+bool dn_scanner_ucmm_close(dn_scanner_t *scanner, uint8_t mac_id, co_time_t now);
 
 /* The output data of the slave's poll commands (0..8 bytes; 0 is the idle poll). */
 bool dn_scanner_set_output(dn_scanner_t *scanner, uint8_t mac_id, const uint8_t *data, uint8_t len);

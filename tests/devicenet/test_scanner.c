@@ -1,6 +1,7 @@
 /* SPDX-License-Identifier: Apache-2.0 */
 /* The scanner (src/devicenet/scanner): its duplicate MAC ID check; wired to a slave of the
- * bench (MAC ID 63), allocation, Get and Set with fragmentation both ways, the expected packet
+ * bench (MAC ID 63), allocation, Get and Set with fragmentation both ways, a UCMM connection
+ * opened, used and closed (and its message IDs per slave), the expected packet
  * rate, polls once and at a period, COS data acknowledged; with scripted frames instead of the
  * slave, the error paths: a CIP error, another master owning the set, timeouts, a lost and a
  * repeated response fragment, a request fragment unacknowledged or refused, missed polls, and
@@ -302,6 +303,71 @@ START_TEST(init_refusals)
 END_TEST
 
 /* ---- against the slave ------------------------------------------------------------------- */
+
+/* The UCMM: Open on group 3 message 6 (header: the slave's MAC ID), its response on message 5,
+ * a Get over the connection (the scanner's message 0, the slave's 0) with no Allocate, a Get
+ * whose response comes in fragments over it, then Close; afterwards the predefined set's IDs. */
+START_TEST(ucmm_open_get_close)
+{
+    setup_wired();
+    ck_assert(dn_scanner_ucmm_open(&w.scanner, SLAVE, w.now));
+    advance(&w, 0);
+    expect("780#3F4B0030");
+    expect("77F#00CB00000A00");
+    expect_result(0, DN_RESULT_OK, 0, 0, "00000A00");
+    ck_assert_uint_eq(w.slaves[0].ucmm_instance, 10);
+    ck_assert_uint_eq(w.slaves[0].allocated, 0);
+    ck_assert(dn_scanner_get(&w.scanner, SLAVE, DN_CLASS_IDENTITY, 1, 1, w.now));
+    advance(&w, 0);
+    expect("600#7F0E010101");
+    expect("63F#408EF300");
+    expect_result(1, DN_RESULT_OK, 0, 0, "F300");
+    ck_assert(dn_scanner_get(&w.scanner, SLAVE, DN_CLASS_IDENTITY, 1, 7, w.now)); /* name */
+    advance(&w, 0);
+    expect("600#3F0E010107");
+    expect("63F#80008E0641545633");
+    expect("600#BFC000"); /* acknowledged over the connection, the header naming the slave */
+    expect("63F#80813132");
+    expect("600#BFC100");
+    expect_result(2, DN_RESULT_OK, 0, 0, "06415456333132");
+    ck_assert(dn_scanner_ucmm_close(&w.scanner, SLAVE, w.now));
+    advance(&w, 0);
+    expect("780#7F4C0A00");
+    expect("77F#40CC");
+    expect_result(3, DN_RESULT_OK, 0, 0, "");
+    ck_assert_uint_eq(w.slaves[0].ucmm_instance, 0);
+    ck_assert(!dn_scanner_ucmm_close(&w.scanner, SLAVE, w.now));
+    ck_assert(dn_scanner_get(&w.scanner, SLAVE, DN_CLASS_IDENTITY, 1, 1, w.now));
+    advance(&w, 0);
+    expect("5FC#000E010101");
+}
+END_TEST
+
+/* A second slave's connection takes the scanner's next message ID; a response that is not the
+ * connection asked for (another message ID) is a bad response and opens nothing; an answer on
+ * another CAN-ID than the connection's is not taken. */
+START_TEST(ucmm_message_ids_and_bad_response)
+{
+    static const uint8_t macs[] = {SLAVE, 5};
+    wire_setup(macs, 2, false);
+    dn_scanner_start_online(&w.scanner, w.now);
+    ck_assert(dn_scanner_ucmm_open(&w.scanner, SLAVE, w.now));
+    expect("780#3F4B0030");
+    rx(&w, "77F#00CB00020B00");
+    expect_result(0, DN_RESULT_OK, 0, 0, "00020B00");
+    ck_assert(dn_scanner_ucmm_open(&w.scanner, 5, w.now));
+    expect("780#054B0031");
+    rx(&w, "745#00CB00000A00"); /* names message 0, the other slave's */
+    ck_assert_int_eq(result(1)->status, DN_RESULT_BAD_RESPONSE);
+    ck_assert_uint_eq(w.slaves[1].ucmm_instance, 0);
+    ck_assert(dn_scanner_get(&w.scanner, SLAVE, DN_CLASS_IDENTITY, 1, 1, w.now));
+    expect("600#7F0E010101");
+    rx(&w, "5FB#408EF300"); /* the predefined set's ID: not this request's */
+    ck_assert_uint_eq(w.result_count, 2);
+    rx(&w, "6BF#408EF300"); /* the slave's message 2 */
+    expect_result(2, DN_RESULT_OK, 0, 0, "F300");
+}
+END_TEST
 
 START_TEST(allocate_get_release)
 {
@@ -822,6 +888,8 @@ static Suite *suite(void)
     tcase_add_test(tc, duplicate_mac_answered_stays_off);
     tcase_add_test(tc, init_refusals);
     tcase_add_test(tc, allocate_get_release);
+    tcase_add_test(tc, ucmm_open_get_close);
+    tcase_add_test(tc, ucmm_message_ids_and_bad_response);
     tcase_add_test(tc, response_in_fragments);
     tcase_add_test(tc, request_in_fragments);
     tcase_add_test(tc, cip_error_and_another_master);

@@ -136,11 +136,21 @@ static void finish(dn_scanner_t *scanner, dn_slave_t *slave, dn_result_status_t 
     app->done(app->user, &result);
 }
 
+/* Where a request goes: the group 2 only unconnected port, the UCMM (group 3 message 6) or the
+ * explicit connection, the UCMM's when one is open. */
+typedef enum port { PORT_UNCONNECTED, PORT_UCMM, PORT_EXPLICIT } port_t;
+
+static uint16_t explicit_request_id(const dn_scanner_t *scanner, const dn_slave_t *slave)
+{
+    return slave->ucmm_instance ? dn_group3_id(slave->ucmm_message, scanner->config->mac_id)
+                                : slave->ids.explicit_request;
+}
+
 static void send_fragment(dn_scanner_t *scanner, dn_slave_t *slave)
 {
     uint8_t frame[8];
     uint8_t len = dn_fragment_frame(&slave->tx, frame);
-    send_frame(scanner, slave->ids.explicit_request, frame, len);
+    send_frame(scanner, explicit_request_id(scanner, slave), frame, len);
     slave->deadline = scanner->now + scanner->timeout;
 }
 
@@ -152,21 +162,28 @@ static dn_slave_t *idle_slave(dn_scanner_t *scanner, uint8_t mac_id)
     return slave;
 }
 
-/* Sends a request body (service first) on the unconnected port or the explicit connection, in
- * fragments above 7 bytes on the explicit connection. */
+/* Sends a request body (service first) on a port, in fragments above 7 bytes on the explicit
+ * connection. The header carries the MAC ID that the CAN-ID does not: on group 2 the
+ * scanner's (the CAN-ID has the slave's), on group 3 the slave's. */
 static bool start_request(dn_scanner_t *scanner, uint8_t mac_id, const uint8_t *body, uint8_t len,
-                          bool unconnected, co_time_t now)
+                          port_t port, co_time_t now)
 {
     scanner->now = now;
     dn_slave_t *slave = idle_slave(scanner, mac_id);
-    if (slave == NULL || len > DN_MESSAGE_MAX || (unconnected && len > DN_FRAME_BODY))
+    if (slave == NULL || len > DN_MESSAGE_MAX || (port != PORT_EXPLICIT && len > DN_FRAME_BODY))
         return false;
     slave->busy = true;
     slave->recovering_request = false;
     slave->service = body[0];
+    slave->to_ucmm = port == PORT_UCMM;
+    slave->response_id = port == PORT_UCMM ? dn_group3_id(DN_G3_UNCONNECTED_RESPONSE, mac_id)
+                         : port == PORT_EXPLICIT && slave->ucmm_instance
+                             ? slave->ucmm_response
+                             : slave->ids.explicit_response;
     slave->xid ^= DN_HDR_XID;
     slave->rx.active = false;
-    uint8_t header = (uint8_t)(slave->xid | scanner->config->mac_id);
+    bool group3 = port == PORT_UCMM || (port == PORT_EXPLICIT && slave->ucmm_instance);
+    uint8_t header = (uint8_t)(slave->xid | (group3 ? mac_id : scanner->config->mac_id));
     if (len > DN_FRAME_BODY) {
         dn_fragment_start(&slave->tx, header, body, len);
         send_fragment(scanner, slave);
@@ -175,8 +192,11 @@ static bool start_request(dn_scanner_t *scanner, uint8_t mac_id, const uint8_t *
     uint8_t frame[8];
     frame[0] = header;
     memcpy(&frame[1], body, len);
-    send_frame(scanner, unconnected ? slave->ids.unconnected : slave->ids.explicit_request, frame,
-               (uint8_t)(1 + len));
+    uint16_t can_id = port == PORT_UNCONNECTED ? slave->ids.unconnected
+                      : port == PORT_UCMM
+                          ? dn_group3_id(DN_G3_UNCONNECTED_REQUEST, scanner->config->mac_id)
+                          : explicit_request_id(scanner, slave);
+    send_frame(scanner, can_id, frame, (uint8_t)(1 + len));
     slave->deadline = now + scanner->timeout;
     return true;
 }
@@ -185,7 +205,7 @@ static bool start_request(dn_scanner_t *scanner, uint8_t mac_id, const uint8_t *
 bool dn_scanner_allocate(dn_scanner_t *scanner, uint8_t mac_id, uint8_t choice, co_time_t now)
 {
     uint8_t body[] = {DN_SVC_ALLOCATE, DN_CLASS_DEVICENET, 1, choice, scanner->config->mac_id};
-    if (!start_request(scanner, mac_id, body, sizeof(body), true, now))
+    if (!start_request(scanner, mac_id, body, sizeof(body), PORT_UNCONNECTED, now))
         return false;
     dn_scanner_slave(scanner, mac_id)->choice = choice;
     return true;
@@ -194,10 +214,52 @@ bool dn_scanner_allocate(dn_scanner_t *scanner, uint8_t mac_id, uint8_t choice, 
 bool dn_scanner_release(dn_scanner_t *scanner, uint8_t mac_id, uint8_t choice, co_time_t now)
 {
     uint8_t body[] = {DN_SVC_RELEASE, DN_CLASS_DEVICENET, 1, choice};
-    if (!start_request(scanner, mac_id, body, sizeof(body), true, now))
+    if (!start_request(scanner, mac_id, body, sizeof(body), PORT_UNCONNECTED, now))
         return false;
     dn_scanner_slave(scanner, mac_id)->choice = choice;
     return true;
+}
+
+/* The lowest group 3 message ID of the scanner's that no other slave's UCMM connection uses (the
+ * slaves tell their connections apart by the CAN-ID alone), or DN_G3_CONNECTED_LAST + 1. */
+static uint8_t free_ucmm_message(const dn_scanner_t *scanner)
+{
+    const dn_scanner_config_t *config = scanner->config;
+    uint8_t message = 0;
+    for (uint8_t i = 0; i < config->slave_count && message <= DN_G3_CONNECTED_LAST;)
+        if (config->slaves[i].ucmm_instance && config->slaves[i].ucmm_message == message) {
+            message++;
+            i = 0;
+        } else {
+            i++;
+        }
+    return message;
+}
+
+/* Open: [service][body format 8/8][group 3 | the scanner's message ID]. */
+bool dn_scanner_ucmm_open(dn_scanner_t *scanner, uint8_t mac_id, co_time_t now)
+{
+    dn_slave_t *slave = dn_scanner_slave(scanner, mac_id);
+    uint8_t message = free_ucmm_message(scanner);
+    if (slave == NULL || slave->ucmm_instance || message > DN_G3_CONNECTED_LAST)
+        return false;
+    uint8_t body[] = {DN_SVC_OPEN_EXPLICIT, DN_BODY_FORMAT_8_8,
+                      (uint8_t)(DN_UCMM_GROUP_3 << DN_UCMM_GROUP_SHIFT | message)};
+    if (!start_request(scanner, mac_id, body, sizeof(body), PORT_UCMM, now))
+        return false;
+    slave->ucmm_message = message;
+    return true;
+}
+
+/* Close: [service][instance UINT]. */
+bool dn_scanner_ucmm_close(dn_scanner_t *scanner, uint8_t mac_id, co_time_t now)
+{
+    dn_slave_t *slave = dn_scanner_slave(scanner, mac_id);
+    if (slave == NULL || slave->ucmm_instance == 0)
+        return false;
+    uint8_t body[3] = {DN_SVC_CLOSE};
+    co_put_u16(&body[1], slave->ucmm_instance);
+    return start_request(scanner, mac_id, body, sizeof(body), PORT_UCMM, now);
 }
 
 bool dn_scanner_request(dn_scanner_t *scanner, uint8_t mac_id, uint8_t service, uint8_t class_id,
@@ -211,7 +273,7 @@ bool dn_scanner_request(dn_scanner_t *scanner, uint8_t mac_id, uint8_t service, 
     body[2] = instance;
     if (len)
         memcpy(&body[3], data, len);
-    return start_request(scanner, mac_id, body, (uint8_t)(3 + len), false, now);
+    return start_request(scanner, mac_id, body, (uint8_t)(3 + len), PORT_EXPLICIT, now);
 }
 
 bool dn_scanner_get(dn_scanner_t *scanner, uint8_t mac_id, uint8_t class_id, uint8_t instance,
@@ -243,8 +305,26 @@ bool dn_scanner_set_expected_packet_rate(dn_scanner_t *scanner, uint8_t mac_id, 
                           DN_CONN_ATTR_EXPECTED_PACKET_RATE, value, sizeof(value), now);
 }
 
+/* Open's response: [service][body format][the scanner's | the slave's message ID][instance]:
+ * the connection the scanner asked for, 8/8, an instance of 10-14, else a bad response. */
+static bool ucmm_opened(dn_scanner_t *scanner, dn_slave_t *slave, const uint8_t *body, uint8_t len)
+{
+    uint8_t server = len == 5 ? body[2] & DN_UCMM_MESSAGE_ID : 0;
+    uint16_t instance = len == 5 ? co_get_u16(&body[3]) : 0;
+    if (len != 5 || (body[1] & DN_UCMM_BODY_FORMAT) != DN_BODY_FORMAT_8_8 ||
+        body[2] >> DN_UCMM_GROUP_SHIFT != slave->ucmm_message || server > DN_G3_CONNECTED_LAST ||
+        instance < DN_CONN_UCMM_FIRST || instance > DN_CONN_UCMM_LAST) {
+        finish(scanner, slave, DN_RESULT_BAD_RESPONSE, 0, DN_AC_NONE, NULL, 0);
+        return false;
+    }
+    slave->ucmm_instance = instance;
+    slave->ucmm_response = dn_group3_id(server, slave->mac_id);
+    return true;
+}
+
 /* A whole response body: success (the service with the response bit), the error response, or
- * something else. Allocate and Release keep what the slave granted. */
+ * something else. Allocate and Release keep what the slave granted, Open and Close the UCMM
+ * connection. */
 static void response_complete(dn_scanner_t *scanner, dn_slave_t *slave, const uint8_t *body,
                               uint8_t len)
 {
@@ -258,10 +338,16 @@ static void response_complete(dn_scanner_t *scanner, dn_slave_t *slave, const ui
         finish(scanner, slave, DN_RESULT_BAD_RESPONSE, 0, DN_AC_NONE, NULL, 0);
         return;
     }
-    if (slave->service == DN_SVC_ALLOCATE)
+    if (slave->to_ucmm) {
+        if (slave->service == DN_SVC_OPEN_EXPLICIT && !ucmm_opened(scanner, slave, body, len))
+            return;
+        if (slave->service == DN_SVC_CLOSE)
+            slave->ucmm_instance = 0;
+    } else if (slave->service == DN_SVC_ALLOCATE) {
         slave->allocated |= slave->choice;
-    else if (slave->service == DN_SVC_RELEASE)
+    } else if (slave->service == DN_SVC_RELEASE) {
         slave->allocated &= (uint8_t)~slave->choice;
+    }
     finish(scanner, slave, DN_RESULT_OK, 0, 0, &body[1], (uint8_t)(len - 1));
 }
 
@@ -269,8 +355,10 @@ static void send_ack(dn_scanner_t *scanner, dn_slave_t *slave, uint8_t header, u
                      uint8_t status)
 {
     uint8_t frame[8];
+    if (slave->ucmm_instance) /* group 3: the header names the slave */
+        header = (uint8_t)((header & ~DN_HDR_MAC) | slave->mac_id);
     uint8_t len = dn_fragment_ack_frame(header, count, status, frame);
-    send_frame(scanner, slave->ids.explicit_request, frame, len);
+    send_frame(scanner, explicit_request_id(scanner, slave), frame, len);
 }
 
 /* A fragment of the response, or the slave's acknowledgement of a fragment of the request. */
@@ -321,9 +409,10 @@ static void fragment_receive(dn_scanner_t *scanner, dn_slave_t *slave, const co_
     }
 }
 
-/* The slave's explicit or unconnected response (group 2 message 3): only one addressed to
- * this scanner (the header's MAC ID is the other end's: the master's) with the XID of the
- * request in progress. */
+/* The slave's answer on the CAN-ID of the request in progress (group 2 message 3, the UCMM's
+ * group 3 message 5 or the slave's ID on the UCMM connection): only one addressed to this scanner
+ * (the header's MAC ID is the other end's: the master's) with the XID of the request in progress.
+ */
 static void response_receive(dn_scanner_t *scanner, dn_slave_t *slave, const co_frame_t *frame)
 {
     if (!slave->busy || frame->len < 2 ||
@@ -602,7 +691,7 @@ void dn_scanner_receive(dn_scanner_t *scanner, const co_frame_t *frame, co_time_
     dn_slave_t *slave = dn_scanner_slave(scanner, id.mac_id);
     if (slave == NULL)
         return;
-    if (id.group == 2 && id.message_id == DN_G2_SLAVE_EXPLICIT_RESPONSE)
+    if (frame->id == slave->response_id)
         response_receive(scanner, slave, frame);
     else if (id.group == 1)
         io_receive(scanner, slave, id.message_id, frame);

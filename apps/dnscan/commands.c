@@ -162,13 +162,13 @@ static bool allocation_result(dnscan_run_t *run, dnscan_sequence_t *seq, const d
         seq->we_allocated = true;
         return true;
     }
-    if (r->status == DN_RESULT_CIP_ERROR && r->general == DN_GS_INVALID_PARAMETER &&
-        r->additional == DN_AC_INVALID_CHOICE &&
-        seq->steps[seq->next].choice == DN_ALLOC_EXPLICIT) {
+    const dnscan_step_t *step = &seq->steps[seq->next];
+    if (!step->ucmm && r->status == DN_RESULT_CIP_ERROR && r->general == DN_GS_INVALID_PARAMETER &&
+        r->additional == DN_AC_INVALID_CHOICE && step->choice == DN_ALLOC_EXPLICIT) {
         seq->count--; /* the release at the end is not ours */
         return true;
     }
-    step_error(run, seq, "allocate", r);
+    step_error(run, seq, step->ucmm ? "open by UCMM" : "allocate", r);
     return false;
 }
 
@@ -260,7 +260,9 @@ static int run_attribute(dnscan_options_t *opts, const attribute_command_t *a, u
     dnscan_run_init(&run, opts);
     run.on_result = attribute_result;
     dnscan_sequence_t *seq = dnscan_add_slave(&run, a->mac_id);
-    dnscan_add_step(seq, DNSCAN_ALLOCATE)->choice = DN_ALLOC_EXPLICIT;
+    dnscan_step_t *open = dnscan_add_step(seq, DNSCAN_ALLOCATE);
+    open->choice = DN_ALLOC_EXPLICIT;
+    open->ucmm = opts->ucmm;
     dnscan_step_t *step = dnscan_add_step(seq, DNSCAN_REQUEST);
     step->service = service;
     step->class_id = a->class_id;
@@ -269,7 +271,9 @@ static int run_attribute(dnscan_options_t *opts, const attribute_command_t *a, u
     if (len)
         memcpy(&step->data[1], value, len);
     step->len = (uint8_t)(1 + len);
-    dnscan_add_step(seq, DNSCAN_RELEASE)->choice = DN_ALLOC_EXPLICIT;
+    dnscan_step_t *close = dnscan_add_step(seq, DNSCAN_RELEASE);
+    close->choice = DN_ALLOC_EXPLICIT;
+    close->ucmm = opts->ucmm;
     return dnscan_run(&run);
 }
 

@@ -22,6 +22,7 @@ typedef struct dnscan_options {
     uint32_t timeout_ms;
     bool json;
     bool no_check;
+    bool ucmm;            /* --ucmm-connection: get and set over a connection the UCMM opens */
     const char *type;     /* get --type */
     const char *assembly; /* poll --assembly OUT/IN */
     const char *output;   /* poll --output HEX */

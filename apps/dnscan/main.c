@@ -12,11 +12,11 @@
 #include <string.h>
 
 static const char usage_text[] =
-    "usage: dnscan [-i IFACE] [--mac-id N] [--timeout MS] [--no-check] [--json]\n"
-    "              COMMAND [ARGS...]\n"
+    "usage: dnscan [-i IFACE] [--mac-id N] [--timeout MS] [--no-check]\n"
+    "              [--ucmm-connection] [--json] COMMAND [ARGS...]\n"
     "\n"
     "A DeviceNet scanner (master) on a SocketCAN interface, using the slaves'\n"
-    "predefined master/slave connection set.\n"
+    "predefined master/slave connection set, or their UCMM for get and set.\n"
     "\n"
     "Commands:\n"
     "  scan                         the slaves present and their identity\n"
@@ -45,6 +45,8 @@ static const char usage_text[] =
     "  --mac-id N     the scanner's own MAC ID (default 0)\n"
     "  --timeout MS   how long to wait for each answer (default 1000)\n"
     "  --no-check     skip the duplicate MAC ID check (2 s) of the scanner's MAC ID\n"
+    "  --ucmm-connection  get, set: open the explicit connection by the slave's\n"
+    "                     UCMM (group 3), not by Allocate, and close it after\n"
     "  --json         one JSON object per result line, for scripts\n"
     "  --type T       get: print the value as u8 u16 u32 i8 i16 i32 or string\n"
     "  --assembly OUT/IN  poll: the assemblies in use (default: read from the slave)\n"
@@ -148,6 +150,8 @@ static int parse(dnscan_options_t *opts, int argc, char **argv)
             opts->json = true;
         } else if (strcmp(arg, "--no-check") == 0) {
             opts->no_check = true;
+        } else if (strcmp(arg, "--ucmm-connection") == 0) {
+            opts->ucmm = true;
         } else if (value_name(arg)) {
             if (i + 1 == argc || argv[i + 1][0] == '\0')
                 return dnscan_fail(opts, EX_USAGE, "option %s needs a value: give %s %s", arg, arg,
@@ -210,6 +214,9 @@ int main(int argc, char **argv)
             return dnscan_fail(&opts, EX_USAGE,
                                "%s: too many arguments from '%s': usage: dnscan %s", name,
                                opts.args[c->max_args + 1], c->usage);
+        if (opts.ucmm && c->run != dnscan_get && c->run != dnscan_set)
+            return dnscan_fail(&opts, EX_USAGE, "--ucmm-connection: for get and set only, not %s",
+                               name);
         return c->run(&opts);
     }
     return dnscan_fail(&opts, EX_USAGE, "unknown command '%s': give one of %s", name,

@@ -41,10 +41,12 @@ static void start_step(dnscan_run_t *run, dnscan_sequence_t *seq, co_time_t now)
     bool started = false;
     switch (step->kind) {
     case DNSCAN_ALLOCATE:
-        started = dn_scanner_allocate(s, seq->mac_id, step->choice, now);
+        started = step->ucmm ? dn_scanner_ucmm_open(s, seq->mac_id, now)
+                             : dn_scanner_allocate(s, seq->mac_id, step->choice, now);
         break;
     case DNSCAN_RELEASE:
-        started = dn_scanner_release(s, seq->mac_id, step->choice, now);
+        started = step->ucmm ? dn_scanner_ucmm_close(s, seq->mac_id, now)
+                             : dn_scanner_release(s, seq->mac_id, step->choice, now);
         break;
     case DNSCAN_REQUEST:
         started = dn_scanner_request(s, seq->mac_id, step->service, step->class_id, step->instance,

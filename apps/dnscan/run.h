@@ -21,6 +21,7 @@ typedef enum dnscan_step_kind {
 
 typedef struct dnscan_step {
     dnscan_step_kind_t kind;
+    bool ucmm; /* ALLOCATE and RELEASE of the explicit connection: the UCMM's Open and Close */
     uint8_t choice;
     uint8_t service;
     uint8_t class_id;

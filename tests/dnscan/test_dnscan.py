@@ -123,6 +123,12 @@ class ArgumentErrors(unittest.TestCase):
         self.check(["poll", "63", "--output", "6x"], 65,
                    "--output: '6x' is not data: give hexadecimal bytes (61 00 B0 04)")
 
+    def test_ucmm_connection_for_get_and_set_only(self):
+        self.check(["--ucmm-connection", "scan"], 64,
+                   "--ucmm-connection: for get and set only, not scan")
+        self.check(["allocate", "63", "--ucmm-connection"], 64,
+                   "--ucmm-connection: for get and set only, not allocate")
+
 
 class Json(unittest.TestCase):
     def test_error_object(self):
@@ -148,7 +154,7 @@ class Help(unittest.TestCase):
         result = run("--help")
         self.assertEqual(result.returncode, 0)
         for word in ("scan", "get MAC", "set MAC", "allocate MAC", "release MAC", "poll MAC",
-                     "monitor", "else can0\n"
+                     "monitor", "--ucmm-connection", "else can0\n"
                      "                         (a real bus: the examples give -i vcan0"):
             self.assertIn(word, result.stdout)
         statuses = result.stdout.split("\nExit status:\n")[1]

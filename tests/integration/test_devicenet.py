@@ -2,7 +2,8 @@
 """atv312d --devicenet on real SocketCAN against the project's scanner, dnscan: the duplicate MAC ID
 check of several drives on one bus, scan, explicit get/set with a fragmented response, polled I/O
 to 1200 rpm, the transparent assemblies after selecting them and an Identity Reset, the stored
-selection across a restart, a UCMM connection (group 3) with its Get, Set and Close, an I/O
+selection across a restart, a UCMM connection (group 3) with its Get, Set and Close, dnscan's
+get and set over a connection it opens by UCMM, an I/O
 timeout faulting the drive with CnF and the scanner's fault reset, the connections released while the drive runs, bus off and the interface coming back as
 the same CnF, a drive killed and restarted, and the command lines that mix CANopen and DeviceNet.
 
@@ -160,6 +161,34 @@ def test_ucmm_opens_an_explicit_connection_that_gets_and_sets(start_dn, bus):
     bus.expect_none(0x619, 0.3)
     assert ctl_state(sock, 25)["ns"] == "flashing-green"
     assert ctl_state(sock, 63)["ns"] == "flashing-green"
+
+
+def test_dnscan_opens_its_explicit_connection_by_ucmm(start_dn, dump):
+    """dnscan --ucmm-connection: Open on the drive's UCMM (780h, the header naming MAC ID 25) and its
+    answer (759h: the scanner's message ID 0, the drive's 0, instance 10), the Get over the
+    connection (600h, answered on 619h in two fragments, each acknowledged on 600h), Close; no
+    Allocate on the unconnected port (4CEh). A Set the same way; the connection is gone after."""
+    _, sock = start_dn([25])
+    mark = dump.mark()
+    assert dnscan("--ucmm-connection", "get", 25, 1, 1, 7, "--type", "string") == (0, "ATV312\n", "")
+    dump.expect(0x780, "194B0030", since=mark)
+    dump.expect(0x759, "00CB00000A00")
+    dump.expect(0x600, "590E010107")
+    dump.expect(0x619, "C0008E0641545633")
+    dump.expect(0x600, "D9C000")
+    dump.expect(0x619, "C0813132")
+    dump.expect(0x600, "D9C100")
+    dump.expect(0x780, "194C0A00")
+    dump.expect(0x759, "00CC")
+    assert [f for f in dump.seen[mark:] if f.can_id in (0x4CE, 0x4CC)] == []
+    mark = dump.mark()
+    assert dnscan("--ucmm-connection", "set", 25, "0x8E", 1, 2, "u16:50") == (0, "", "")
+    dump.expect(0x600, "59108E01023200", since=mark)
+    dump.expect(0x619, "4090")
+    assert dnscan("--ucmm-connection", "get", 25, "0x8E", 1, 2, "--type", "u16") == (0, "50\n", "")
+    assert ctl_state(sock, 25)["ns"] == "flashing-green"  # closed: no connection left
+    assert dnscan("--ucmm-connection", "poll", 25) == (
+        EX_USAGE, "", "dnscan: error: --ucmm-connection: for get and set only, not poll\nTry 'dnscan --help'.\n")
 
 
 def test_poll_21_71_runs_the_drive_to_1200_rpm(start_dn):

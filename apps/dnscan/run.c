@@ -222,7 +222,8 @@ static int release_ahead(const dnscan_sequence_t *seq)
 }
 
 /* SIGINT or SIGTERM: each sequence not done stops (polls, a request in progress dropped) and
- * goes to its release at once, or ends when it has none (what `allocate` leaves allocated);
+ * goes to its release at once, or ends when it has none (what `allocate` leaves allocated, a
+ * UCMM connection whose Open is unanswered);
  * true when a release is under way. */
 static bool release_on_signal(dnscan_run_t *run)
 {
@@ -242,6 +243,9 @@ static bool release_on_signal(dnscan_run_t *run)
         }
         dn_scanner_poll_every(&run->scanner, seq->mac_id, 0, now);
         dn_scanner_abandon(&run->scanner, seq->mac_id);
+        if (release >= 0 && seq->steps[release].ucmm &&
+            dn_scanner_slave(&run->scanner, seq->mac_id)->ucmm_instance == 0)
+            release = -1; /* its Open was not answered: no connection to close */
         if (release < 0) {
             seq->done = true;
             continue;

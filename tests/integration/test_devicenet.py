@@ -187,6 +187,13 @@ def test_dnscan_opens_its_explicit_connection_by_ucmm(start_dn, dump):
     dump.expect(0x619, "4090")
     assert dnscan("--ucmm-connection", "get", 25, "0x8E", 1, 2, "--type", "u16") == (0, "50\n", "")
     assert ctl_state(sock, 25)["ns"] == "flashing-green"  # closed: no connection left
+    # SIGINT while the Open awaits its answer (no slave at MAC ID 40): nothing to close.
+    proc = subprocess.Popen([DNSCAN, "-i", IFACE, "--no-check", "--timeout", "5000", "--ucmm-connection", "get",
+                             "40", "1", "1", "1"], stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
+    dump.expect(0x780, "284B0030")
+    proc.send_signal(signal.SIGINT)
+    out, err = proc.communicate(timeout=5)
+    assert (proc.returncode, out, err) == (3, "", "dnscan: error: interrupted by a signal before the command finished\n")
     assert dnscan("--ucmm-connection", "poll", 25) == (
         EX_USAGE, "", "dnscan: error: --ucmm-connection: for get and set only, not poll\nTry 'dnscan --help'.\n")
 

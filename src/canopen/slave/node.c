@@ -117,7 +117,6 @@ int co_node_init(co_node_t *node, const co_node_config_t *config)
     node->lss = config->lss;
     if (node->lss != NULL)
         node->lss->pending_node_id = config->node_id;
-
     node->time_stamp = config->time_stamp;
     node->parameter_write = parameter_write;
     node->sync.deliver = co_sync_event;

@@ -282,6 +282,31 @@ START_TEST(ms_flashes_green_while_the_configuration_is_incorrect)
 }
 END_TEST
 
+/* The manual's "Drive behaviour at first Power on": CFF [Incorrect config.] until the restore
+ * (FCS = InI). The drive does not start in it (D-DEVICENET-FIRST-POWER-ON); the control surface
+ * makes it and ends it as the restore would: 603Fh 6300h, Fault, MS flashing green ("needs
+ * commissioning"), then Switch on disabled and MS green as soon as its cause is gone. */
+START_TEST(cff_is_made_and_ended_as_at_first_power_on)
+{
+    ck_assert_ptr_null(drive_fault_latched(&b.drive));
+    ck_assert_int_eq(dn_node_ms_led(&b.dn.node), DN_LED_GREEN);
+    int cff = drive_fault_find(&b.drive, "CFF");
+    ck_assert_int_ge(cff, 0);
+    drive_fault_inject(&b.drive, (uint8_t)cff, b.now);
+    b.deadline = drive_dn_process(&b.dn, b.now); /* as the daemon after a control command */
+    ck_assert_str_eq(drive_fault_latched(&b.drive)->code, "CFF");
+    ck_assert_int_eq(db_value(&b, 0x603F, 0), 0x6300);
+    ck_assert_int_eq(db_value(&b, 0x6041, 0), 0x0608);
+    ck_assert_int_eq(dn_node_ms_led(&b.dn.node), DN_LED_FLASHING_GREEN);
+    ck_assert_int_eq(drive_dn_state(&b.dn), DRIVE_DN_FAULTED);
+    drive_fault_remove_cause(&b.drive, (uint8_t)cff, b.now);
+    b.deadline = drive_dn_process(&b.dn, b.now);
+    ck_assert_ptr_null(drive_fault_latched(&b.drive));
+    ck_assert_int_eq(db_value(&b, 0x6041, 0) & 0x006F, 0x0040);
+    ck_assert_int_eq(dn_node_ms_led(&b.dn.node), DN_LED_GREEN);
+}
+END_TEST
+
 /* The manual's LED test runs "during start-up": at power-up and at an Identity Reset of either
  * type, which CIP's Reset service defines as a power cycle (type 1 after the out-of-box values);
  * not when the card goes on the bus again after bus off with BOI or an interface outage, which are
@@ -372,6 +397,7 @@ static Suite *suite(void)
     tcase_add_test(tc, release_of_a_standing_or_stopping_drive_keeps_it);
     tcase_add_test(tc, leds_before_and_after_the_check);
     tcase_add_test(tc, ms_flashes_green_while_the_configuration_is_incorrect);
+    tcase_add_test(tc, cff_is_made_and_ended_as_at_first_power_on);
     tcase_add_test(tc, stored_selection_after_a_reset);
     tcase_add_test(tc, led_test_at_power_up_and_identity_reset_only);
     suite_add_tcase(s, tc);

@@ -684,7 +684,7 @@ void atv312d_print_usage(FILE *out)
           "                      number (CiA 305), each with its own serial number; only\n"
           "                      a model with LSS (io)\n"
           "  --devicenet         the interface is a DeviceNet bus: the drives are DeviceNet\n"
-          "                      slaves (Group 2 only servers) instead of CANopen nodes\n"
+          "                      slaves (predefined set and UCMM) instead of CANopen nodes\n"
           "  --mac-id N          MAC ID 0..63 of a DeviceNet drive (default 63); ranges,\n"
           "                      lists, repeats and --model after it as for --node-id\n"
           "  --baud RATE         125k (default), 250k or 500k: the data rate the DeviceNet\n"

@@ -305,6 +305,26 @@ static uint32_t slave_u32(uint8_t id, uint16_t index, uint8_t sub)
     return (uint32_t)b[0] | (uint32_t)b[1] << 8 | (uint32_t)b[2] << 16 | (uint32_t)b[3] << 24;
 }
 
+/* Two slave descriptions alike field by field: memory compares would read their padding, which
+ * no assignment has to copy or set. */
+static void assert_slave_config_eq(const co_net_slave_config_t *a, const co_net_slave_config_t *b)
+{
+    ck_assert_uint_eq(a->node_id, b->node_id);
+    ck_assert_int_eq(a->mandatory, b->mandatory);
+    ck_assert_uint_eq(a->check, b->check);
+    ck_assert_uint_eq(a->device_type, b->device_type);
+    for (size_t i = 0; i < CO_NET_IDENTITY_SUBS; i++)
+        ck_assert_uint_eq(a->identity[i], b->identity[i]);
+    ck_assert_ptr_eq(a->writes, b->writes);
+    ck_assert_uint_eq(a->write_count, b->write_count);
+    ck_assert_ptr_eq(a->concise_dcf, b->concise_dcf);
+    ck_assert_uint_eq(a->concise_dcf_len, b->concise_dcf_len);
+    ck_assert_uint_eq(a->heartbeat_ms, b->heartbeat_ms);
+    ck_assert_uint_eq(a->guard_ms, b->guard_ms);
+    ck_assert_uint_eq(a->life_time_factor, b->life_time_factor);
+    ck_assert_int_eq(a->on_error, b->on_error);
+}
+
 START_TEST(full_boot_of_three_slaves)
 {
     start_master();
@@ -492,7 +512,7 @@ START_TEST(expected_identity_1f84_to_1f88_both_ways)
     co_net_slave_config_t before = slave;
     ck_assert(!co_net_slave_config_set_expected(&slave, 0x1F83, 1));
     ck_assert(!co_net_slave_config_set_expected(&slave, 0x1F89, 1));
-    ck_assert_mem_eq(&slave, &before, sizeof slave);
+    assert_slave_config_eq(&slave, &before);
     ck_assert_uint_eq(co_net_slave_expected(&slave, 0x1F89), 0);
 }
 END_TEST
@@ -698,7 +718,7 @@ START_TEST(configuration_from_the_masters_objects)
     ck_assert_uint_eq(back.on_mandatory_error, CO_NET_MANDATORY_STOP_ALL);
     ck_assert_uint_eq(back.boot_limit_ms, 2000);
     for (size_t i = 0; i < SLAVES; i++)
-        ck_assert_mem_eq(&from_objects[i], &table[i], sizeof table[i]);
+        assert_slave_config_eq(&from_objects[i], &table[i]);
 
     /* Booted from its objects: the same frames as from the table (node 5's first guarding
      * request between its start and node 6's boot). */

@@ -8,10 +8,12 @@
 
 #include "co_config.h"
 #include "co_emcy.h"
+#include "co_error_behaviour.h"
 #include "co_guarding.h"
 #include "co_heartbeat.h"
 #include "co_lss_slave.h"
 #include "co_nmt.h"
+#include "co_nmt_startup.h"
 #include "co_od.h"
 #include "co_pdo.h"
 #include "co_sdo.h"
@@ -118,6 +120,14 @@ typedef struct co_node_config {
     /* &co_time_stamp: the TIME consumer and the rules of 1012h (co_time_stamp.h); NULL links
      * none of it, and 1012h then refuses bits 31 and 30. */
     const co_time_stamp_code_t *time_stamp;
+    /* &co_error_behaviour: 1029h decides what a communication error (a heartbeat producer or life
+     * guarding lost) does to the NMT state, and the application raises device errors and bus off
+     * recoveries through it (co_error_behaviour.h); NULL links none of it, and the core then
+     * leaves the NMT state to the application's heartbeat and guarding hooks. */
+    const co_error_behaviour_code_t *error_behaviour;
+    /* &co_nmt_startup: the node starts itself into Operational as 1F80h bit 2 says
+     * (co_nmt_startup.h); NULL links none of it. */
+    const co_nmt_startup_code_t *nmt_startup;
     /* The TPDOs whose inhibit time (18xxh:03) counts in 1 ms instead of CiA 301's 100 us, bit n
      * for TPDO n+1 (TPDOs 1..32), as a device's manual prints the unit of each row (the ATV312's
      * TPDO1, docs/decisions.md D-INHIBIT-TIME); 0 for plain CiA 301. */
@@ -149,7 +159,9 @@ struct co_node {
      * after schedule_changed, in what was padding before the 8-byte aligned service states. */
     uint32_t (*parameter_write)(co_node_t *node, const co_od_entry_t *entry, const uint8_t *data,
                                 size_t len);
-    const co_time_stamp_code_t *time_stamp; /* co_node_config_t.time_stamp */
+    const co_time_stamp_code_t *time_stamp;           /* co_node_config_t.time_stamp */
+    const co_error_behaviour_code_t *error_behaviour; /* co_node_config_t.error_behaviour */
+    const co_nmt_startup_code_t *nmt_startup;         /* co_node_config_t.nmt_startup */
 
     co_sdo_server_t sdo;
     co_pdo_t pdo;

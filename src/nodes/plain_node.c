@@ -6,10 +6,13 @@
 #include "co/co_cia301.h"
 
 /* CiA 301 7.5.2.32: without 1029h a communication error takes an Operational node to
- * Pre-operational; the PLC300 goes there from any state (plain_model_t.loss_from_any_state). */
+ * Pre-operational; the PLC300 goes there from any state (plain_model_t.loss_from_any_state). A
+ * node with the core's error behaviour has already changed state as its 1029h:01 says. */
 static void react_to_loss(plain_node_t *plain)
 {
     co_node_t *node = &plain->node;
+    if (node->error_behaviour != NULL)
+        return;
     if (node->nmt_state == CO_NMT_OPERATIONAL ||
         (plain->model->loss_from_any_state && node->nmt_state == CO_NMT_STOPPED))
         co_nmt_enter(node, CO_NMT_PRE_OPERATIONAL);
@@ -91,6 +94,8 @@ int plain_node_init(plain_node_t *plain, const plain_node_config_t *config)
         .options_code = config->node_options_code,
         .time_stamp = config->model->time_stamp ? &co_time_stamp : NULL,
         .lss = config->model->lss ? &plain->lss : NULL,
+        .error_behaviour = config->model->error_behaviour ? &co_error_behaviour : NULL,
+        .nmt_startup = config->model->nmt_startup ? &co_nmt_startup : NULL,
     };
     int rc = co_node_init(&plain->node, &node_config);
     if (rc == 0)
@@ -122,6 +127,9 @@ void plain_node_bus_event(plain_node_t *plain, uint16_t emcy_code, bool active)
         plain->bus_passive = active;
     else if (emcy_code == CO_EMCY_BUS_OFF)
         plain->bus_off = active;
+    /* The recovery from bus off is a communication error (CiA 301 7.5.2.32) where 1029h rules. */
+    if (emcy_code == CO_EMCY_BUS_OFF && !active && plain->node.error_behaviour != NULL)
+        plain->node.error_behaviour->raise(&plain->node, CO_ERROR_CLASS_COMMUNICATION);
 }
 
 void plain_node_bus_warning(plain_node_t *plain, bool active)

@@ -34,6 +34,14 @@ typedef struct plain_model {
     bool time_stamp;
     /* The node has a CiA 305 LSS slave (docs/lss.md), and may start without node-id (FFh). */
     bool lss;
+    /* The core's error behaviour (co_error_behaviour.h): its dictionary's 1029h decides what a
+     * lost heartbeat producer or life guarding and a bus off recovery do, and
+     * loss_from_any_state is not used; false: the service is not linked into the node and the
+     * node reacts as loss_from_any_state says. */
+    bool error_behaviour;
+    /* The core's NMT start-up (co_nmt_startup.h): 1F80h bit 2 clear starts the node by itself;
+     * false: not linked, the node waits for the master's start. */
+    bool nmt_startup;
 } plain_model_t;
 
 /* The error control event the node saw last, until the producer or the master comes back or a

@@ -191,7 +191,7 @@ def test_io_node_pdos_follow_its_terminals(bus, mixed):
 
 
 def test_io_node_stays_stopped_on_a_heartbeat_loss(bus, mixed):
-    """CiA 301's error behaviour without 1029h: Pre-operational only from Operational."""
+    """1029h:01 = 0, CiA 301's default: Pre-operational only from Operational."""
     bus.sdo_write(IO, 0x1016, 1, (5 << 16) | 100, 4)
     bus.nmt(NMT_STOP, IO)
     heartbeat_then_silence(bus, 5)

@@ -1,7 +1,9 @@
 /* SPDX-License-Identifier: Apache-2.0 */
 /* The CiA 401 I/O node on its dictionary (eds/IO401.eds): its default PDOs following its
  * terminals, its serial number, CiA 301's error behaviour without 1029h (Pre-operational from
- * Operational only), its LEDs as CiA 303-3 has them (both show), TIME consumed on 100h. */
+ * Operational only) and the same by 1029h:01, which may say Stopped, for a heartbeat loss and a
+ * bus off recovery, 1F80h without self start, its LEDs as CiA 303-3 has them (both show), TIME
+ * consumed on 100h. */
 #include "check_main.h"
 #include "nodes/io/io401.h"
 #include "plain_bench.h"
@@ -85,6 +87,46 @@ START_TEST(a_heartbeat_loss_leaves_stopped_alone)
 }
 END_TEST
 
+/* 1029h:01 = 2 (CiA 301 7.5.2.32): a heartbeat loss and a bus off recovery stop the node. */
+START_TEST(error_behaviour_1029_stops_it)
+{
+    start_operational();
+    plain_bench_rx(&b, "60A#4029100100000000");
+    plain_bench_expect(&b, "58A#4F29100100000000");
+    plain_bench_rx(&b, "60A#2F29100103000000");
+    plain_bench_expect(&b, "58A#8029100130000906");
+    plain_bench_rx(&b, "60A#2F29100102000000");
+    plain_bench_expect(&b, "58A#6029100100000000");
+    plain_bench_rx(&b, "60A#2316100164000500");
+    plain_bench_expect(&b, "58A#6016100100000000");
+    plain_bench_rx(&b, "705#05");
+    plain_bench_advance(&b, 200000);
+    ck_assert_uint_eq(b.plain.node.nmt_state, CO_NMT_STOPPED);
+    ck_assert_uint_eq(b.plain.loss, PLAIN_LOSS_HEARTBEAT);
+    plain_bench_rx(&b, "000#010A");
+    plain_bench_expect(&b, "18A#00"); /* the TPDOs on entering Operational again */
+    plain_bench_expect(&b, "28A#00000000");
+    plain_node_bus_event(&b.plain, CO_EMCY_BUS_OFF, true);
+    ck_assert_uint_eq(b.plain.node.nmt_state, CO_NMT_OPERATIONAL);
+    plain_node_bus_event(&b.plain, CO_EMCY_BUS_OFF, false);
+    ck_assert_uint_eq(b.plain.node.nmt_state, CO_NMT_STOPPED);
+    plain_bench_expect_none(&b);
+}
+END_TEST
+
+START_TEST(nmt_startup_1f80_waits_for_the_master)
+{
+    plain_bench_start(&b, &io401_model, NODE, 0x4010000Au);
+    plain_bench_expect(&b, "70A#00");
+    ck_assert_uint_eq(b.plain.node.nmt_state, CO_NMT_PRE_OPERATIONAL);
+    plain_bench_rx(&b, "60A#40801F0000000000");
+    plain_bench_expect(&b, "58A#43801F0004000000");
+    plain_bench_rx(&b, "60A#23801F0001000000"); /* NMT master: not a slave's */
+    plain_bench_expect(&b, "58A#80801F0030000906");
+    plain_bench_expect_none(&b);
+}
+END_TEST
+
 static Suite *suite(void)
 {
     Suite *s = suite_create("io401");
@@ -94,6 +136,8 @@ static Suite *suite(void)
     tcase_add_test(tc, it_consumes_time_on_100h);
     tcase_add_test(tc, the_serial_number_is_the_nodes);
     tcase_add_test(tc, a_heartbeat_loss_leaves_stopped_alone);
+    tcase_add_test(tc, error_behaviour_1029_stops_it);
+    tcase_add_test(tc, nmt_startup_1f80_waits_for_the_master);
     suite_add_tcase(s, tc);
     return s;
 }

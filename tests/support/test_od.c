@@ -12,6 +12,7 @@ typedef struct test_od_data {
     uint8_t x1010_0[1], x1010[4][4], x1011_0[1], x1011[4][4], x1012[4], x1013[4], x1014[4],
         x1015[2];
     uint8_t x1016_0[1], x1016[2][4], x1017[2], x1018_0[1], x1018[4][4], x1019[1];
+    uint8_t x1029_0[1], x1029[2][1];
     uint8_t x1200_0[1], x1200[2][4];
     uint8_t x1400_0[1], x1400_1[4], x1400_2[1];
     uint8_t x1405_0[1], x1405_1[4], x1405_2[1], x1405_5[2];
@@ -23,6 +24,7 @@ typedef struct test_od_data {
     uint8_t r32[4], boolean[1], wo[4], vstring[32], ostring[200], i16lim[2], u16zero[2];
     uint8_t hooked[2], r64[8], bigstring[1000];
     uint8_t x2002_0[1], lcr[2], otr[2], x203c_0[1], acc[2], dec[2];
+    uint8_t x1f80[4];
     uint8_t x6040[2], x6041[2], x6042[2], x6044[2], x6046_0[1], x6046[2][4];
 } test_od_data_t;
 
@@ -55,6 +57,7 @@ static const test_od_data_t defaults = {
     .x1016_0 = U8(2),
     .x1018_0 = U8(4),
     .x1018 = {U32(0x5F), U32(0x312), U32(0x00010002), U32(0x12345678)},
+    .x1029_0 = U8(2),
     .x1200_0 = U8(2),
     .x1200 = {U32(0x600), U32(0x580)},
     .x1400_0 = U8(2),
@@ -81,6 +84,7 @@ static const test_od_data_t defaults = {
     .x1a00 = {U32(0x60410010)},
     .x1a05_0 = U8(2),
     .x1a05 = {U32(0x60410010), U32(0x60440010), U32(0), U32(0)},
+    .x1f80 = U32(0x04),
     .x2000_0 = U8(0x12),
     .u8lim = U8(50),
     .u16lim = U16(1000),
@@ -202,6 +206,9 @@ static const co_od_entry_t entries[] = {
     E(0x1018, 3, CO_DT_UNSIGNED32, RO, x1018[2], NULL, NULL),
     E(0x1018, 4, CO_DT_UNSIGNED32, RO, x1018[3], NULL, NULL),
     E(0x1019, 0, CO_DT_UNSIGNED8, RW, x1019, NULL, NULL),
+    E(0x1029, 0, CO_DT_UNSIGNED8, RO, x1029_0, NULL, NULL),
+    E(0x1029, 1, CO_DT_UNSIGNED8, RW, x1029[0], NULL, NULL),
+    E(0x1029, 2, CO_DT_UNSIGNED8, RW, x1029[1], NULL, NULL),
     E(0x1200, 0, CO_DT_UNSIGNED8, RO, x1200_0, NULL, NULL),
     E(0x1200, 1, CO_DT_UNSIGNED32, RO | NID, x1200[0], NULL, NULL),
     E(0x1200, 2, CO_DT_UNSIGNED32, RO | NID, x1200[1], NULL, NULL),
@@ -239,6 +246,7 @@ static const co_od_entry_t entries[] = {
     E(0x1A05, 2, CO_DT_UNSIGNED32, RW, x1a05[1], NULL, NULL),
     E(0x1A05, 3, CO_DT_UNSIGNED32, RW, x1a05[2], NULL, NULL),
     E(0x1A05, 4, CO_DT_UNSIGNED32, RW, x1a05[3], NULL, NULL),
+    E(0x1F80, 0, CO_DT_UNSIGNED32, RW, x1f80, NULL, NULL),
     E(0x2000, 0x00, CO_DT_UNSIGNED8, RO, x2000_0, NULL, NULL),
     E(0x2000, 0x01, CO_DT_INTEGER8, RWR, i8, NULL, NULL),
     E(0x2000, 0x02, CO_DT_INTEGER16, RWR, i16, NULL, NULL),

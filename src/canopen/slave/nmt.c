@@ -51,6 +51,8 @@ void co_nmt_reset(co_node_t *node, co_nmt_reset_t scope)
     co_consumers_changed(node);
     co_node_send_byte(node, CO_CAN_ID_ERROR_CONTROL + node->node_id, 0);
     co_nmt_enter(node, CO_NMT_PRE_OPERATIONAL);
+    if (node->nmt_startup != NULL)
+        node->nmt_startup->booted(node);
 }
 
 /* CiA 301 7.2.8.3.1: an NMT command is exactly two bytes; anything else is not one. A node of

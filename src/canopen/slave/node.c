@@ -49,6 +49,24 @@ static uint32_t time_write(co_node_t *node, const co_od_entry_t *entry, const ui
                : CO_SDO_OK;
 }
 
+/* 1029h and 1F80h: their service's rules; a node without the service takes any value, which
+ * changes nothing there. */
+static uint32_t error_behaviour_write(co_node_t *node, const co_od_entry_t *entry,
+                                      const uint8_t *data, size_t len)
+{
+    if (node->error_behaviour != NULL)
+        return node->error_behaviour->od_write(node, entry, data, len);
+    return CO_SDO_OK;
+}
+
+static uint32_t nmt_startup_write(co_node_t *node, const co_od_entry_t *entry, const uint8_t *data,
+                                  size_t len)
+{
+    if (node->nmt_startup != NULL)
+        return node->nmt_startup->od_write(node, entry, data, len);
+    return CO_SDO_OK;
+}
+
 static const service_range_t service_ranges[] = {
     {CO_IDX_ERROR_HISTORY, CO_IDX_ERROR_HISTORY, co_emcy_od_write},
     {CO_IDX_SYNC_COB_ID, CO_IDX_SYNC_WINDOW, co_sync_od_write},
@@ -58,7 +76,9 @@ static const service_range_t service_ranges[] = {
     {CO_IDX_EMCY_COB_ID, CO_IDX_EMCY_INHIBIT, co_emcy_od_write},
     {CO_IDX_HB_CONSUMER, CO_IDX_HB_PRODUCER, co_heartbeat_od_write},
     {CO_IDX_SYNC_OVERFLOW, CO_IDX_SYNC_OVERFLOW, co_sync_od_write},
+    {CO_IDX_ERROR_BEHAVIOUR, CO_IDX_ERROR_BEHAVIOUR, error_behaviour_write},
     {CO_PDO_RPDO_COMM, CO_PDO_LAST_INDEX, co_pdo_od_write},
+    {CO_IDX_NMT_STARTUP, CO_IDX_NMT_STARTUP, nmt_startup_write},
 };
 
 static uint32_t service_write(co_node_t *node, const co_od_entry_t *e, const uint8_t *data,
@@ -118,6 +138,8 @@ int co_node_init(co_node_t *node, const co_node_config_t *config)
     if (node->lss != NULL)
         node->lss->pending_node_id = config->node_id;
     node->time_stamp = config->time_stamp;
+    node->error_behaviour = config->error_behaviour;
+    node->nmt_startup = config->nmt_startup;
     node->parameter_write = parameter_write;
     node->sync.deliver = co_sync_event;
     node->sdo.timeout_us = CO_CONFIG_SDO_TIMEOUT_US;

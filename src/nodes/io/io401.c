@@ -17,6 +17,9 @@ const plain_model_t io401_model = {
     /* 1012h = 80000100h: consumes TIME on 100h (docs/io.md). */
     .time_stamp = true,
     .lss = true,
+    /* 1029h:01 = 0 and 1F80h = 4 by default: CiA 301's behaviour without them (docs/io.md). */
+    .error_behaviour = true,
+    .nmt_startup = true,
 };
 
 bool io401_set_input(plain_node_t *io, uint8_t input, bool on)

@@ -19,6 +19,8 @@ const plain_model_t plc300_model = {
     .loss_from_any_state = true,
     .err_over_run = true,
     .lss = false,
+    .error_behaviour = false, /* no 1029h or 1F80h in the manual's object list */
+    .nmt_startup = false,
 };
 
 /* The views of an area start at multiples of 400h (3000h, 3400h, 3800h; 4000h, ...). */

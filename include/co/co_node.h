@@ -159,9 +159,7 @@ struct co_node {
      * after schedule_changed, in what was padding before the 8-byte aligned service states. */
     uint32_t (*parameter_write)(co_node_t *node, const co_od_entry_t *entry, const uint8_t *data,
                                 size_t len);
-    const co_time_stamp_code_t *time_stamp;           /* co_node_config_t.time_stamp */
-    const co_error_behaviour_code_t *error_behaviour; /* co_node_config_t.error_behaviour */
-    const co_nmt_startup_code_t *nmt_startup;         /* co_node_config_t.nmt_startup */
+    const co_time_stamp_code_t *time_stamp; /* co_node_config_t.time_stamp */
 
     co_sdo_server_t sdo;
     co_pdo_t pdo;
@@ -169,6 +167,10 @@ struct co_node {
     co_emcy_t emcy;
     co_heartbeat_t heartbeat;
     co_guarding_t guarding;
+    /* Last, so that the services' states keep their offsets, and the short load instructions
+     * that reach them, whether a firmware uses these or not. */
+    const co_error_behaviour_code_t *error_behaviour; /* co_node_config_t.error_behaviour */
+    const co_nmt_startup_code_t *nmt_startup;         /* co_node_config_t.nmt_startup */
 };
 
 /* Results of co_node_init besides the object dictionary's own validation errors. */

@@ -18,15 +18,14 @@ static void raise_error(co_node_t *node, uint8_t subindex)
 
 /* CiA 301 7.5.2.32, table "Error behaviour value definition": 0, 1 and 2 are defined, 3..127
  * reserved (refused, 0x06090030), 128..255 manufacturer-specific, which no node of this project
- * defines, so they are taken and behave as 1, no change. Sub-index 0 is the dictionary's count,
- * read-only there. */
+ * defines, so they are taken and behave as 1, no change (docs/decisions.md, D-ERROR-BEHAVIOUR).
+ * Sub-index 0, the count, is read-only in the dictionary and never comes here. */
 static uint32_t od_write(co_node_t *node, const co_od_entry_t *entry, const uint8_t *data,
                          size_t len)
 {
     (void)node;
+    (void)entry;
     (void)len;
-    if (entry->subindex == 0)
-        return CO_SDO_OK;
     uint8_t value = data[0];
     if (value > CO_ERROR_BEHAVIOUR_STOPPED && value <= CO_ERROR_BEHAVIOUR_RESERVED_LAST)
         return CO_SDO_ABORT_VALUE_RANGE;

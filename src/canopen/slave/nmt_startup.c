@@ -13,8 +13,8 @@ static void booted(co_node_t *node)
 
 /* CiA 302-2, 1F80h: of its bits only bit 2 (self start) means something to a slave; the others
  * make the device an NMT master (bit 0) or configure one (bits 1, 3..6), which a slave is not,
- * so a value with any of them is refused with 0x06090030. The new value governs from the next
- * boot-up. */
+ * so a value with any of them is refused with 0x06090030 (docs/decisions.md,
+ * D-NMT-STARTUP-SLAVE). The new value governs from the next boot-up. */
 static uint32_t od_write(co_node_t *node, const co_od_entry_t *entry, const uint8_t *data,
                          size_t len)
 {

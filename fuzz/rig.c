@@ -22,7 +22,8 @@ void rig_check(bool ok, const char *what)
 }
 
 /* The error register is what the active errors say: the generic bit and each error's own bits
- * while any is active, 0 when none is (CiA 301 7.5.2.2). */
+ * while any is active, 0 when none is (CiA 301 7.5.2.2); the generic bit alone on a node with
+ * CO_NODE_ERROR_REGISTER_GENERIC. */
 static void check_error_register(const rig_t *rig)
 {
     const co_emcy_t *emcy = &rig->drive.node.emcy;
@@ -34,6 +35,8 @@ static void check_error_register(const rig_t *rig)
             rig_check(emcy->active[j].code != emcy->active[i].code, "an error active twice");
         want |= emcy->active[i].reg;
     }
+    if (rig->drive.node.options & CO_NODE_ERROR_REGISTER_GENERIC)
+        want &= CO_ERR_REG_GENERIC; /* the Altivars' 1001h is 0 or 1 (D-ERROR-REGISTER) */
     rig_check(co_od_value(&rig->drive.node, 0x1001, 0) == want,
               "1001h disagrees with the active errors");
 }

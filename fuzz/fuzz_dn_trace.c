@@ -179,10 +179,26 @@ static void check_node(const struct can_frame *f, const char *text)
         s->choice = shown_choice(text);
 }
 
-/* A frame outside group 2 changes no node; one of group 2 only its own. */
+/* The node a frame may change: a group 2 frame its own; a group 3 message on a connection the
+ * UCMM opened the server's, which a request names in its header and a response sends; -1 for
+ * none. */
+static int node_of(const struct can_frame *f)
+{
+    if (is_group2(f))
+        return (int)((f->can_id >> 3) & DN_MAC_ID_MAX);
+    if (f->can_id & (CAN_ERR_FLAG | CAN_EFF_FLAG | CAN_RTR_FLAG))
+        return -1;
+    dn_can_id_t id = dn_can_id_decode(f->can_id);
+    if (id.group != 3 || id.message_id == DN_G3_UNCONNECTED_REQUEST ||
+        id.message_id == DN_G3_UNCONNECTED_RESPONSE || f->len < 2 || f->data[0] & DN_HDR_FRAG)
+        return -1;
+    return f->data[1] & DN_SERVICE_RESPONSE ? id.mac_id : f->data[0] & DN_HDR_MAC;
+}
+
+/* A frame changes no node but the one it may (node_of). */
 static void check_other_nodes(const struct can_frame *f)
 {
-    int own = is_group2(f) ? (int)((f->can_id >> 3) & DN_MAC_ID_MAX) : -1;
+    int own = node_of(f);
     for (int i = 0; i <= (int)DN_MAC_ID_MAX; i++) {
         if (i != own)
             rig_check(memcmp(&h.a.node[i], &h.before.node[i], sizeof h.a.node[i]) == 0,

@@ -155,6 +155,9 @@ static void check_nmt_command(const co_frame_t *frame)
             if (node_id == CO_NMT_MASTER_ALL_NODES || node_id == h.slaves[i].node_id)
                 h.started[i] = h.started[i] || command == CO_NMT_CS_START;
         }
+        /* The same frame as the master's own start of all: either one has started them. */
+        if (command == CO_NMT_CS_START && node_id == CO_NMT_MASTER_ALL_NODES)
+            h.started_all = true;
         return;
     }
     rig_check(command == CO_NMT_CS_START || command == CO_NMT_CS_STOP ||

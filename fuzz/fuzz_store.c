@@ -23,7 +23,9 @@ static void load(const uint8_t *data, size_t size)
         rig_check(reason[0] != '\0', "a file refused without a reason");
         return;
     }
-    if (store.count > 0) {
+    /* A record's key may be an unconfigured node's (80h + k, an LSS-stored node-id:
+     * docs/atv312d.md), which no drive starts with. */
+    if (store.count > 0 && store.records[0].node_id >= 1 && store.records[0].node_id <= 127) {
         co_file_store_node_t node, fresh_node;
         co_storage_t storage, fresh_storage;
         uint8_t node_id = store.records[0].node_id;

@@ -106,12 +106,13 @@ static struct harness {
     uint8_t output_image[IMAGE_SIZE];
     co_time_t now;
     /* What the harness saw of each slave. */
-    uint8_t step[SLAVES_MAX];    /* as the last STEP event told it */
-    uint16_t status[SLAVES_MAX]; /* as the last STATUS event told it */
-    bool started[SLAVES_MAX];    /* an NMT start reached it since its last reset or boot-up */
-    bool rebooted[SLAVES_MAX];   /* it booted (lost its writes) since its first write went out */
-    bool started_all;            /* the start-all command was sent */
-    co_time_t heard[SLAVES_MAX]; /* heartbeat: error control started, or its last heartbeat */
+    uint8_t step[SLAVES_MAX];     /* as the last STEP event told it */
+    uint16_t status[SLAVES_MAX];  /* as the last STATUS event told it */
+    bool started[SLAVES_MAX];     /* an NMT start reached it since its last reset or boot-up */
+    bool rebooted[SLAVES_MAX];    /* it booted (lost its writes) since its first write went out */
+    bool started_all;             /* the start-all command was sent */
+    bool application_started_all; /* the application's own start of all was sent */
+    co_time_t heard[SLAVES_MAX];  /* heartbeat: error control started, or its last heartbeat */
     /* co_net_master_write_output under way: the frames it must send. */
     bool writing;
     co_frame_t expected[SLAVES_MAX];
@@ -157,7 +158,7 @@ static void check_nmt_command(const co_frame_t *frame)
         }
         /* The same frame as the master's own start of all: either one has started them. */
         if (command == CO_NMT_CS_START && node_id == CO_NMT_MASTER_ALL_NODES)
-            h.started_all = true;
+            h.application_started_all = true;
         return;
     }
     rig_check(command == CO_NMT_CS_START || command == CO_NMT_CS_STOP ||
@@ -173,7 +174,7 @@ static void check_nmt_command(const co_frame_t *frame)
               "a reset of all nodes without 1F80h bit 4");
     /* ... which boots the network again: a new start of all may go. */
     if (command == CO_NMT_CS_RESET_NODE && node_id == CO_NMT_MASTER_ALL_NODES)
-        h.started_all = false;
+        h.started_all = h.application_started_all = false;
     rig_check(node_id == CO_NMT_MASTER_ALL_NODES || slave_of(node_id) < SLAVES_MAX,
               "an NMT command to a node not in the table");
     if (command == CO_NMT_CS_START) {
@@ -281,7 +282,8 @@ static void on_event(void *user, const co_net_event_t *event)
         return;
     }
     if (event->kind == CO_NET_EVENT_STARTED) {
-        rig_check(h.started_all && event->node_id == 0, "a start-all event without the command");
+        rig_check((h.started_all || h.application_started_all) && event->node_id == 0,
+                  "a start-all event without the command");
         return;
     }
     size_t i = slave_of(event->node_id);

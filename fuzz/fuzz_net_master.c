@@ -664,6 +664,7 @@ static bool command(fuzz_input_t *input, uint8_t tag)
     case COMMAND_ENABLE:
         /* Enabling a disabled master boots the network again: a new start of all may go. */
         h.started_all = h.started_all && !h.master.disabled;
+        h.application_started_all = h.application_started_all && !h.master.disabled;
         co_net_master_enable(&h.master, h.now);
         return true;
     case COMMAND_NMT:

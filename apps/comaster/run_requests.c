@@ -387,9 +387,12 @@ static void request_configure(runner_t *r, const char *target, bool json, char *
     else if (!co_net_master_request_configuration(&r->master, (uint8_t)node, CO_NET_1F25_SIGNATURE,
                                                   co_linux_now()))
         snprintf(reply, cap, "error: configure: node %s is not a slave of the run\n", target);
-    else if (json)
-        snprintf(reply, cap, "{\"node\": %s%s%s, \"configuration_request\": \"0x%08X\"}\n",
-                 all ? "\"" : "", target, all ? "\"" : "", CO_NET_1F25_SIGNATURE);
+    else if (json && all)
+        snprintf(reply, cap, "{\"node\": \"all\", \"configuration_request\": \"0x%08X\"}\n",
+                 CO_NET_1F25_SIGNATURE);
+    else if (json) /* the number read, not the text given: 0x05 is no JSON */
+        snprintf(reply, cap, "{\"node\": %lu, \"configuration_request\": \"0x%08X\"}\n", node,
+                 CO_NET_1F25_SIGNATURE);
     else
         snprintf(reply, cap, "ok\n");
 }

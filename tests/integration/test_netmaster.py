@@ -431,6 +431,10 @@ def test_configuration_request_1f25_configures_again(bus, start_daemon, run, rem
     r.expect_all([f"node {node} drive{node}: {BOOTED}" for node in (4, 5, 6)], timeout=10.0)
     rc, _, err = r.request("configure", 9)
     assert (rc, err) == (EXIT_REFUSED, "comaster: error: configure: node 9 is not a slave of the run\n")
+    # A node-id written in hexadecimal is answered as the number it is, valid JSON.
+    rc, out, _ = r.request("--json", "configure", "0x05")
+    assert (rc, json.loads(out)) == (0, {"node": 5, "configuration_request": "0x666E6F63"})
+    bus.expect(0x000, "8205", timeout=1.0)
 
 
 def configured(dcf, section, value):

@@ -11,10 +11,6 @@
 #include <stdio.h>
 #include <string.h>
 
-/* Layer setting services (CiA 305), beside CiA 301's predefined connection set (co_cia301.h). */
-#define COB_LSS_SLAVE 0x7E4u
-#define COB_LSS_MASTER 0x7E5u
-
 static const eds_t *eds_of(const cotrace_decoder_t *dec, uint8_t node)
 {
     return dec->eds && node == dec->eds_node ? dec->eds : NULL;
@@ -732,8 +728,7 @@ static bool lss_confirmed(uint8_t cs)
 static void lss_request(const uint8_t *d, text_t *t)
 {
     uint8_t cs = d[0];
-    uint32_t value =
-        (uint32_t)d[1] | (uint32_t)d[2] << 8 | (uint32_t)d[3] << 16 | (uint32_t)d[4] << 24;
+    uint32_t value = co_get_u32(&d[1]);
     if (cs == CO_LSS_CS_SWITCH_GLOBAL) {
         if (d[1] == CO_LSS_WAITING)
             say(t, ": waiting");
@@ -778,9 +773,7 @@ static void lss_answer(const uint8_t *d, text_t *t)
         say(t, ": ");
         say_lss_error(t, cs, d);
     } else if (cs >= CO_LSS_CS_INQUIRE_VENDOR && cs <= CO_LSS_CS_INQUIRE_SERIAL) {
-        say(t, ": 0x%08X",
-            (unsigned)((uint32_t)d[1] | (uint32_t)d[2] << 8 | (uint32_t)d[3] << 16 |
-                       (uint32_t)d[4] << 24));
+        say(t, ": 0x%08X", (unsigned)co_get_u32(&d[1]));
     } else if (cs == CO_LSS_CS_INQUIRE_NODE_ID) {
         say(t, ": ");
         say_lss_node_id(t, d[1]);

@@ -136,7 +136,6 @@ static int open_surfaces(atv312d_control_socket_t *control_socket, atv312d_contr
     for (size_t i = 0; i < opts->node_count; i++)
         nodes[i] = (atv312d_control_node_t){.id = drives[i].id,
                                             .model = opts->models[i].name,
-                                            .kind = opts->models[i].kind,
                                             .plain = drives[i].plain,
                                             .drive = drives[i].plain ? NULL : &drives[i].drive,
                                             .devicenet = drives[i].dn,

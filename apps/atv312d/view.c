@@ -320,7 +320,7 @@ static void plain_state_json(cli_json_t *json, const atv312d_control_node_t *nod
         cli_json_null(json, "node");
     else
         cli_json_uint(json, "node", atv312d_node_id(node));
-    cli_json_str(json, "kind", atv312d_kind_name(node->kind));
+    cli_json_str(json, "kind", atv312d_kind_name(atv312d_node_kind(node)));
     cli_json_str(json, "model", node->model);
     /* Its LSS address's serial number, what tells nodes without node-id apart. */
     if (plain->model->lss)
@@ -497,7 +497,7 @@ void atv312d_state_json(cli_json_t *json, const atv312d_control_node_t *node)
     cli_json_end_array(json);
     analog_json(json, drive);
     /* Last, so that a reader of the drive's fields in their order finds them where they were. */
-    cli_json_str(json, "kind", atv312d_kind_name(node->kind));
+    cli_json_str(json, "kind", atv312d_kind_name(atv312d_node_kind(node)));
     cli_json_end_object(json);
 }
 
@@ -529,7 +529,7 @@ void atv312d_bench_drive_json(cli_json_t *json, const atv312d_control_node_t *no
     cli_json_uint(json, "node", atv312d_node_id(node));
     cli_json_str(json, "model", model);
     if (node->plain) {
-        cli_json_str(json, "kind", atv312d_kind_name(node->kind));
+        cli_json_str(json, "kind", atv312d_kind_name(atv312d_node_kind(node)));
         cli_json_begin_array(json, "faults");
         cli_json_end_array(json);
         cli_json_begin_array(json, "inputs");

@@ -26,13 +26,18 @@ typedef struct atv312d_control_node {
     uint8_t id;        /* what NODE names: the node-id on CANopen, the MAC ID on DeviceNet (a plain
                         * node's: atv312d_node_id) */
     const char *model; /* its --model name, "atv312" */
-    atv312d_kind_t kind;
-    drive_t *drive;              /* a drive's; NULL for a plain node */
+    drive_t *drive;    /* a drive's; NULL for a plain node */
     plain_node_t *plain;         /* a plain node's; NULL for a drive */
     const drive_dn_t *devicenet; /* its DeviceNet card; NULL on CANopen */
     co_linux_device_t *device;   /* processed after a command changed the drive; its frame counts */
     const atv312d_counters_t *counters;
 } atv312d_control_node_t;
+
+/* A drive, or a plain node: what its plain pointer says. */
+static inline atv312d_kind_t atv312d_node_kind(const atv312d_control_node_t *node)
+{
+    return node->plain != NULL ? ATV312D_KIND_NODE : ATV312D_KIND_DRIVE;
+}
 
 /* The id NODE names now: a plain node's is its node-id of the moment, which LSS may give it
  * (FFh: none yet, a node of --unconfigured). */

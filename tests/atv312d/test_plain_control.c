@@ -43,12 +43,8 @@ static void start_node(plain_node_t *plain, const plain_model_t *model, uint8_t 
     ck_assert_int_eq(plain_node_init(plain, &config), 0);
     plain_node_start(plain, loop.now);
     co_linux_loop_add(&loop, device, &plain_ops, plain);
-    *node = (atv312d_control_node_t){.id = id,
-                                     .model = model->name,
-                                     .kind = ATV312D_KIND_NODE,
-                                     .plain = plain,
-                                     .device = device,
-                                     .counters = &counters};
+    *node = (atv312d_control_node_t){
+        .id = id, .model = model->name, .plain = plain, .device = device, .counters = &counters};
 }
 
 static void setup(void)

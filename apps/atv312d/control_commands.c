@@ -119,7 +119,8 @@ static void node_phrase(const atv312d_control_node_t *node, char *buf, size_t le
 /* The commands a plain node of each model takes, for the refusal of a drive's command. */
 static const char *plain_commands(const atv312d_control_node_t *node)
 {
-    return node->plain->model == &plc300_model ? "marker, state" : "input, analog, state";
+    const atv312d_plain_surface_t *surface = atv312d_plain_surface(node->plain->model);
+    return surface ? surface->commands : "state";
 }
 
 /* The node NODE names when it is a drive: a plain node has no drive commands. */

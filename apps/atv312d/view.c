@@ -258,12 +258,9 @@ static void plain_state_text(atv312d_text_t *t, const atv312d_control_node_t *no
     else if (plain->loss != PLAIN_LOSS_NONE)
         atv312d_text_put(t, "error-control %s, ", plain_loss_by[plain->loss]);
     put_counters(node, t);
-    if (plain->model == &plc300_model) {
-        put_plc300_area(plain, false, t);
-        put_plc300_area(plain, true, t);
-    } else if (plain->model == &io401_model) {
-        put_io401(plain, t);
-    }
+    const atv312d_plain_surface_t *surface = atv312d_plain_surface(plain->model);
+    if (surface)
+        surface->text(plain, t);
 }
 
 /* {"%IB2000":231,...}: an area's bytes not at 0. */
@@ -312,6 +309,32 @@ static void io401_json(cli_json_t *json, const plain_node_t *io)
     }
 }
 
+static void plc300_text(const plain_node_t *plc, atv312d_text_t *t)
+{
+    put_plc300_area(plc, false, t);
+    put_plc300_area(plc, true, t);
+}
+
+static void plc300_json(cli_json_t *json, const plain_node_t *plc)
+{
+    plc300_area_json(json, plc, false);
+    plc300_area_json(json, plc, true);
+}
+
+/* Each plain model's part of the surfaces: a model added to src/nodes/node_models.c gets a row. */
+static const atv312d_plain_surface_t plain_surfaces[] = {
+    {&plc300_model, "marker, state", plc300_text, plc300_json},
+    {&io401_model, "input, analog, state", put_io401, io401_json},
+};
+
+const atv312d_plain_surface_t *atv312d_plain_surface(const plain_model_t *model)
+{
+    for (size_t i = 0; i < sizeof plain_surfaces / sizeof plain_surfaces[0]; i++)
+        if (plain_surfaces[i].model == model)
+            return &plain_surfaces[i];
+    return NULL;
+}
+
 static void plain_state_json(cli_json_t *json, const atv312d_control_node_t *node)
 {
     const plain_node_t *plain = node->plain;
@@ -338,12 +361,9 @@ static void plain_state_json(cli_json_t *json, const atv312d_control_node_t *nod
         cli_json_end_object(json);
     }
     counters_json(json, node);
-    if (plain->model == &plc300_model) {
-        plc300_area_json(json, plain, false);
-        plc300_area_json(json, plain, true);
-    } else if (plain->model == &io401_model) {
-        io401_json(json, plain);
-    }
+    const atv312d_plain_surface_t *surface = atv312d_plain_surface(plain->model);
+    if (surface)
+        surface->json(json, plain);
     cli_json_end_object(json);
 }
 

@@ -68,6 +68,19 @@ void atv312d_format_analog(drive_analog_kind_t kind, int32_t value, char *buf, s
 void atv312d_format_state(const atv312d_control_node_t *node, bool json, char *buf, size_t len);
 /* The same line appended to text. */
 void atv312d_state_text(atv312d_text_t *text, const atv312d_control_node_t *node);
+
+/* What the surfaces show and take of a plain node of one model: the commands it takes (for a
+ * refusal), its model's data in the state text and in the JSON. */
+typedef struct atv312d_plain_surface {
+    const plain_model_t *model;
+    const char *commands;
+    void (*text)(const plain_node_t *plain, atv312d_text_t *text);
+    void (*json)(cli_json_t *json, const plain_node_t *plain);
+} atv312d_plain_surface_t;
+
+/* The row of a model of src/nodes/node_models.c; NULL for a model without one (its state shows
+ * what every plain node has, and it takes `state` alone). */
+const atv312d_plain_surface_t *atv312d_plain_surface(const plain_model_t *model);
 /* The same JSON object as a value of the document being written. */
 void atv312d_state_json(cli_json_t *json, const atv312d_control_node_t *node);
 

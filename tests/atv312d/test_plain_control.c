@@ -3,8 +3,10 @@
  * and written as its program would, an I/O node's terminals, their state lines, and a drive's
  * commands refused on them. Each node is a device of an unopened loop: nothing reaches a socket. */
 #include "atv312d/control_commands.h"
+#include "atv312d/view.h"
 #include "check_main.h"
 #include "nodes/io/io401.h"
+#include "nodes/node_models.h"
 #include "nodes/plc300/plc300.h"
 
 #include <check.h>
@@ -93,6 +95,20 @@ START_TEST(terminals_of_the_io_node)
 }
 END_TEST
 
+/* Every plain model of the catalogue has its row in the surfaces: its commands for a refusal and
+ * its data in the state (a model without one would show and take only what every node has). */
+START_TEST(every_plain_model_has_its_surface)
+{
+    for (size_t i = 0; i < plain_model_count; i++) {
+        const atv312d_plain_surface_t *surface = atv312d_plain_surface(plain_models[i]);
+        ck_assert_msg(surface != NULL, "model %s has no surface", plain_models[i]->name);
+        ck_assert_ptr_eq(surface->model, plain_models[i]);
+    }
+    ck_assert_str_eq(atv312d_plain_surface(&plc300_model)->commands, "marker, state");
+    ck_assert_str_eq(atv312d_plain_surface(&io401_model)->commands, "input, analog, state");
+}
+END_TEST
+
 START_TEST(drive_commands_are_refused)
 {
     expect("fault 1 OHF", false,
@@ -125,6 +141,7 @@ int main(void)
     tcase_add_checked_fixture(tc, setup, NULL);
     tcase_add_test(tc, markers_read_and_written_as_the_program_would);
     tcase_add_test(tc, terminals_of_the_io_node);
+    tcase_add_test(tc, every_plain_model_has_its_surface);
     tcase_add_test(tc, drive_commands_are_refused);
     tcase_add_test(tc, state_lines);
     suite_add_tcase(s, tc);

@@ -281,8 +281,8 @@ typedef struct co_net_slave {
     uint32_t read_value; /* the value of the failed identity check (or the last one read) */
     bool booted;         /* the boot-up awaited since its last reset came */
     bool tried;          /* an attempt at its initialisation ended (successfully or not) */
-    size_t write_pos;    /* the write, or the concise DCF's entry, being downloaded */
-    size_t dcf_pos;      /* the concise DCF's byte offset of that entry */
+    size_t write_pos;    /* the write being downloaded: its index in writes, or for a concise
+                          * DCF the byte offset of its entry */
     uint8_t identity_sub;
     co_time_t deadline; /* WAIT_BOOT: the end of the boot time; FAILED: the retry */
 } co_net_slave_t;

@@ -122,31 +122,29 @@ static void finish_boot(co_net_master_t *m, size_t i)
     co_net_start_slave(m, i);
 }
 
-/* The write being downloaded: writes[write_pos], or the concise DCF's entry at dcf_pos (*next
- * the offset after it); false past the last one. */
-static bool current_write(const co_net_master_t *m, size_t i, co_net_write_t *w, size_t *next)
+/* The write at the slave's cursor write_pos (an index into writes, or a concise DCF's byte
+ * offset) into *w; returns the cursor past it, or 0 (no write's cursor) past the last one. */
+static size_t current_write(const co_net_master_t *m, size_t i, co_net_write_t *w)
 {
-    const co_net_slave_t *s = &m->config.slave_state[i];
+    size_t pos = m->config.slave_state[i].write_pos;
     const co_net_slave_config_t *c = &m->config.slaves[i];
     if (c->concise_dcf == NULL) {
-        if (s->write_pos == c->write_count)
-            return false;
-        *w = c->writes[s->write_pos];
-        return true;
+        if (pos == c->write_count)
+            return 0;
+        *w = c->writes[pos];
+        return pos + 1;
     }
     co_concise_dcf_entry_t e;
-    *next = s->dcf_pos;
-    if (!co_concise_dcf_next(c->concise_dcf, c->concise_dcf_len, next, &e))
-        return false;
+    if (!co_concise_dcf_next(c->concise_dcf, c->concise_dcf_len, &pos, &e))
+        return 0;
     *w = (co_net_write_t){e.index, e.subindex, e.data, e.len};
-    return true;
+    return pos;
 }
 
 static void download_next(co_net_master_t *m, size_t i)
 {
     co_net_write_t w;
-    size_t next = 0;
-    if (!current_write(m, i, &w, &next)) {
+    if (current_write(m, i, &w) == 0) {
         finish_boot(m, i);
         return;
     }
@@ -158,19 +156,15 @@ static void download_next(co_net_master_t *m, size_t i)
 /* The write just confirmed: on to the next. */
 static void download_done(co_net_master_t *m, size_t i)
 {
-    co_net_slave_t *s = co_net_slave_at(m, i);
     co_net_write_t w;
-    size_t next = s->dcf_pos;
-    if (current_write(m, i, &w, &next))
-        s->dcf_pos = next;
-    s->write_pos++;
+    co_net_slave_at(m, i)->write_pos = current_write(m, i, &w);
     download_next(m, i);
 }
 
 static void begin_download(co_net_master_t *m, size_t i)
 {
-    co_net_slave_at(m, i)->write_pos = 0;
-    co_net_slave_at(m, i)->dcf_pos = CO_CONCISE_DCF_HEADER;
+    co_net_slave_at(m, i)->write_pos =
+        co_net_slave_config(m, i)->concise_dcf == NULL ? 0 : CO_CONCISE_DCF_HEADER;
     co_net_set_step(m, i, CO_NET_STEP_DOWNLOAD);
     download_next(m, i);
 }
@@ -227,8 +221,7 @@ static void sdo_done(void *user, const co_sdo_client_result_t *result)
     if (result->status != CO_SDO_CLIENT_OK) {
         uint8_t node_id = co_net_slave_config(m, i)->node_id;
         co_net_write_t w;
-        size_t next = 0;
-        if (s->step == CO_NET_STEP_DOWNLOAD && current_write(m, i, &w, &next)) {
+        if (s->step == CO_NET_STEP_DOWNLOAD && current_write(m, i, &w) != 0) {
             co_net_record_sdo_error(m, node_id, result, CO_NET_ACCESS_WRITE,
                                     co_net_written_value(w.data, w.len));
         } else {

@@ -282,6 +282,26 @@ void co_net_reset_slave(co_net_master_t *m, size_t i, uint8_t command)
     co_net_await_boot(m, i, false);
 }
 
+void co_net_boot_network(co_net_master_t *m, uint8_t command, bool to_all, bool afresh)
+{
+    m->started_all = false;
+    co_net_begin_boot_time(m);
+    if (to_all)
+        co_nmt_master_command(&m->nmt, command, CO_NMT_MASTER_ALL_NODES);
+    for (size_t i = 0; i < m->config.slave_count; i++) {
+        co_net_slave_t *s = co_net_slave_at(m, i);
+        s->tried = false;
+        if (afresh) {
+            s->boot_error = CO_NET_BOOT_ERROR_NONE;
+            co_net_set_status(m, i, 0);
+        }
+        if (to_all)
+            co_net_await_boot(m, i, false);
+        else
+            co_net_reset_slave(m, i, command);
+    }
+}
+
 /* It then waits only for the SDO client, which a frame or a timeout of the slave holding it
  * frees, never a time of its own. */
 bool co_net_ready(const co_net_master_t *m, const co_net_slave_t *s)

@@ -74,6 +74,12 @@ void co_net_stop_error_control(co_net_master_t *m, size_t i);
 void co_net_await_boot(co_net_master_t *m, size_t i, bool booted);
 /* Sends `command` (reset node or communication) to the slave and awaits its boot-up. */
 void co_net_reset_slave(co_net_master_t *m, size_t i, uint8_t command);
+/* The network's boot from its beginning, the master's start or CiA 302-2's reset of all: no start
+ * of all sent yet, the boot time 1F89h running, every slave untried and awaiting its boot-up after
+ * `command` (reset node or communication), sent at once to all nodes (`to_all`) or to each slave
+ * alone. `afresh` (the start) also clears the slaves' status words and boot errors; a reset of
+ * all keeps them, so that the lost slave shows bit 5 until its boot succeeds. */
+void co_net_boot_network(co_net_master_t *m, uint8_t command, bool to_all, bool afresh);
 /* The last step of a configured slave's boot: NMT start, or the wait for the start of all. */
 void co_net_start_slave(co_net_master_t *m, size_t i);
 /* The slave waits for its boot-up and its turn has come: the boot-up came or the boot time

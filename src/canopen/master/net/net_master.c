@@ -30,22 +30,10 @@ void co_net_master_start(co_net_master_t *master, co_time_t now)
 {
     master->now = now;
     master->started = true;
-    master->started_all = false;
     master->stopped_all = false;
-    co_net_begin_boot_time(master);
     if (master->config.heartbeat_ms != 0)
         master->next_heartbeat = now;
-    if (master->config.reset_all)
-        co_nmt_master_command(&master->nmt, CO_NMT_CS_RESET_COMMUNICATION, CO_NMT_MASTER_ALL_NODES);
-    for (size_t i = 0; i < master->config.slave_count; i++) {
-        co_net_slave_at(master, i)->tried = false;
-        co_net_slave_at(master, i)->boot_error = CO_NET_BOOT_ERROR_NONE;
-        co_net_set_status(master, i, 0);
-        if (master->config.reset_all)
-            co_net_await_boot(master, i, false);
-        else
-            co_net_reset_slave(master, i, CO_NMT_CS_RESET_COMMUNICATION);
-    }
+    co_net_boot_network(master, CO_NMT_CS_RESET_COMMUNICATION, master->config.reset_all, true);
 }
 
 /* ---- disabling communication, the controller's state --------------------------------------- */

@@ -5,19 +5,6 @@
  * master's own heartbeat, which lets the slaves supervise it (docs/net-master.md). */
 #include "canopen/master/net/net_floors.h"
 
-/* CiA 302-2's 1F80h bit 4: every node reset, the master's network booted again from the
- * boot-ups (the lost slave keeps bit 5 until its boot succeeds). */
-static void reset_all(co_net_master_t *m)
-{
-    co_nmt_master_command(&m->nmt, CO_NMT_CS_RESET_NODE, CO_NMT_MASTER_ALL_NODES);
-    m->started_all = false;
-    co_net_begin_boot_time(m);
-    for (size_t i = 0; i < m->config.slave_count; i++) {
-        co_net_slave_at(m, i)->tried = false;
-        co_net_await_boot(m, i, false);
-    }
-}
-
 /* The kind is recorded before bit 5 is set, so that the event of the new status finds it. A
  * mandatory slave's loss is the network's when 1F80h says so (bits 6 and 4); any other the slave's
  * alone, as its on_error says. */
@@ -30,25 +17,24 @@ static void error_control_lost(co_net_master_t *m, size_t i, co_net_ec_error_t k
     co_net_mandatory_error_t network = co_net_slave_config(m, i)->mandatory
                                            ? m->config.on_mandatory_error
                                            : CO_NET_MANDATORY_ALONE;
-    if (network == CO_NET_MANDATORY_RESET_ALL) {
-        co_net_set_status(m, i,
-                          (uint16_t)((s->status & ~CO_NET_SLAVE_PROGRESS) | CO_NET_SLAVE_EC_ERROR));
-        reset_all(m);
-        return;
-    }
     if (network == CO_NET_MANDATORY_STOP_ALL) {
         co_nmt_master_command(&m->nmt, CO_NMT_CS_STOP, CO_NMT_MASTER_ALL_NODES);
         m->stopped_all = true;
     }
     if (network == CO_NET_MANDATORY_STOP_ALL ||
-        co_net_slave_config(m, i)->on_error == CO_NET_ON_ERROR_REPORT) {
+        (network == CO_NET_MANDATORY_ALONE &&
+         co_net_slave_config(m, i)->on_error == CO_NET_ON_ERROR_REPORT)) {
         co_net_add_status(m, i, CO_NET_SLAVE_EC_ERROR);
         co_net_set_step(m, i, CO_NET_STEP_LOST);
         return;
     }
     co_net_set_status(m, i,
                       (uint16_t)((s->status & ~CO_NET_SLAVE_PROGRESS) | CO_NET_SLAVE_EC_ERROR));
-    co_net_reset_slave(m, i, CO_NMT_CS_RESET_NODE);
+    /* CiA 302-2's 1F80h bit 4: every node reset, the network booted again from the boot-ups. */
+    if (network == CO_NET_MANDATORY_RESET_ALL)
+        co_net_boot_network(m, CO_NMT_CS_RESET_NODE, true, false);
+    else
+        co_net_reset_slave(m, i, CO_NMT_CS_RESET_NODE);
 }
 
 /* The boot-up the master awaits after its reset: in WAIT_BOOT, or late, once the boot time ended,

@@ -4,6 +4,7 @@
  * ParameterValue of its object (docs/comaster.md "concise"). No bus. */
 #include "comaster/comaster.h"
 #include "comaster/network.h"
+#include "comaster/value.h"
 
 #include <errno.h>
 #include <stdio.h>
@@ -13,11 +14,6 @@
 
 /* The largest concise DCF read back: 1F22h is a DOMAIN, as large as a DCF's configuration. */
 #define CONCISE_MAX (1024u * 1024u)
-/* CiA 301's data types that a ParameterValue writes as a signed number, a real or text. */
-#define TYPE_BOOLEAN 0x0001u
-#define TYPE_REAL32 0x0008u
-#define TYPE_VISIBLE_STRING 0x0009u
-#define TYPE_REAL64 0x0011u
 
 static const char concise_help[] =
     "usage: comaster concise encode NODE DCF FILE\n"
@@ -74,47 +70,21 @@ static int encode(const comaster_options_t *opts, const char *node_text, const c
     return rc;
 }
 
-/* Whether the data type is one of CiA 301's signed integers. */
-static bool signed_type(uint16_t type)
+/* The entry's value as the ParameterValue of its object's data type, in value.c's form (an
+ * unsigned integer in hexadecimal, as a DCF writes it); false for a type that comaster does not
+ * write, one that has no ParameterValue form here (OCTET_STRING, DOMAIN), a size that is not the
+ * type's, or a string that one line cannot hold. */
+static bool parameter_value(const co_concise_dcf_entry_t *e, uint16_t data_type, char *out,
+                            size_t cap)
 {
-    return type == 0x0002 || type == 0x0003 || type == 0x0004 || (type >= 0x0010 && type <= 0x0015);
-}
-
-/* The entry's value as a ParameterValue of its object's data type; false for a type that has no
- * ParameterValue form here (octets, domains) or a size that is not the type's. */
-static bool parameter_value(const co_concise_dcf_entry_t *e, uint16_t type, char *out, size_t cap)
-{
-    if (type == TYPE_VISIBLE_STRING) {
-        if (memchr(e->data, '\n', e->len) != NULL || memchr(e->data, '\0', e->len) != NULL)
-            return false;
-        snprintf(out, cap, "%.*s", (int)e->len, (const char *)e->data);
-        return true;
-    }
-    if (e->len > 8)
+    const comaster_type_t *type = comaster_type_by_code(data_type);
+    if (type == NULL || data_type == CO_DT_OCTET_STRING || data_type == CO_DT_DOMAIN)
         return false;
-    uint64_t v = 0;
-    for (uint32_t k = e->len; k-- > 0;)
-        v = v << 8 | e->data[k];
-    if (type == TYPE_REAL32 && e->len == 4) {
-        float f;
-        uint32_t bits = (uint32_t)v;
-        memcpy(&f, &bits, sizeof f);
-        snprintf(out, cap, "%.9g", (double)f);
-    } else if (type == TYPE_REAL64 && e->len == 8) {
-        double d;
-        memcpy(&d, &v, sizeof d);
-        snprintf(out, cap, "%.17g", d);
-    } else if (signed_type(type)) {
-        unsigned shift = 64u - 8u * e->len;
-        int64_t s = (int64_t)(v << shift) >> shift;
-        snprintf(out, cap, "%lld", (long long)s);
-    } else if (type != TYPE_REAL32 && type != TYPE_REAL64 && (type <= 0x0007 || type >= 0x0016) &&
-               type != 0x000A && type != 0x000F) {
-        snprintf(out, cap, "0x%llX", (unsigned long long)v);
-    } else {
+    if (data_type == CO_DT_VISIBLE_STRING &&
+        (memchr(e->data, '\n', e->len) != NULL || memchr(e->data, '\0', e->len) != NULL))
         return false;
-    }
-    return true;
+    bool is_text;
+    return comaster_value_format(type, e->data, e->len, COMASTER_VALUE_HEX, out, cap, &is_text);
 }
 
 /* "[1017]" -> 1017h:0, "[1405sub1]" -> 1405h:1 (CiA 306's object and sub-index sections). */

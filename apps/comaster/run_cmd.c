@@ -370,7 +370,8 @@ static void reply_get(runner_t *r, uint8_t node, const char *name, bool json, ch
     const uint8_t *image = v->output ? r->net->output_image : r->net->input_image;
     char text[128];
     bool is_text;
-    comaster_value_format(type, image + v->offset, v->size, text, sizeof text, &is_text);
+    comaster_value_format(type, image + v->offset, v->size, COMASTER_VALUE_DECIMAL, text,
+                          sizeof text, &is_text);
     if (json)
         variable_json(v, text, is_text, reply, cap);
     else
@@ -383,7 +384,7 @@ static void set_json(const comaster_variable_t *v, const comaster_type_t *type,
 {
     char text[128];
     bool is_text;
-    comaster_value_format(type, bytes, len, text, sizeof text, &is_text);
+    comaster_value_format(type, bytes, len, COMASTER_VALUE_DECIMAL, text, sizeof text, &is_text);
     variable_json(v, text, is_text, reply, cap);
 }
 

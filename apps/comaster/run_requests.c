@@ -190,7 +190,8 @@ static void format_sdo_reply(const runner_t *r, run_sdo_t *s, const co_net_reque
     }
     char text[RUN_SDO_VALUE_MAX * 3 + 1];
     bool is_text;
-    if (!comaster_value_format(type, s->data, result->size, text, sizeof text, &is_text)) {
+    if (!comaster_value_format(type, s->data, result->size, COMASTER_VALUE_DECIMAL, text,
+                               sizeof text, &is_text)) {
         snprintf(reply, cap, "error: %s: %s\n", where, text);
         return;
     }

@@ -142,7 +142,8 @@ static int print_value(const comaster_options_t *opts, const sdo_request_t *req,
 {
     static char text[3 * VALUE_MAX + 1];
     bool is_text;
-    if (!comaster_value_format(req->type, value_buffer, size, text, sizeof text, &is_text))
+    if (!comaster_value_format(req->type, value_buffer, size, COMASTER_VALUE_DECIMAL, text,
+                               sizeof text, &is_text))
         return comaster_fail(opts, EX_DATAERR, "node %u, %04X:%02X: %s: read it as octets",
                              req->node, req->object.index, req->object.sub, text);
     if (!opts->json) {

@@ -308,7 +308,8 @@ static void format_hex_bytes(const uint8_t *data, size_t len, char *out, size_t 
         used += (size_t)snprintf(out + used, cap - used, i ? " %02X" : "%02X", data[i]);
 }
 
-static void format_number(const comaster_type_t *type, uint64_t bits, char *out, size_t cap)
+static void format_number(const comaster_type_t *type, uint64_t bits, comaster_value_style_t style,
+                          char *out, size_t cap)
 {
     if (type->code == CO_DT_REAL32) {
         uint32_t u = (uint32_t)bits;
@@ -323,13 +324,15 @@ static void format_number(const comaster_type_t *type, uint64_t bits, char *out,
         unsigned shift = 64u - 8u * type->size;
         int64_t v = (int64_t)(bits << shift) >> shift; /* sign-extends the type's top bit */
         snprintf(out, cap, "%" PRId64, v);
+    } else if (style == COMASTER_VALUE_HEX) {
+        snprintf(out, cap, "0x%" PRIX64, bits);
     } else {
         snprintf(out, cap, "%" PRIu64, bits);
     }
 }
 
-bool comaster_value_format(const comaster_type_t *type, const uint8_t *data, size_t len, char *out,
-                           size_t cap, bool *is_text)
+bool comaster_value_format(const comaster_type_t *type, const uint8_t *data, size_t len,
+                           comaster_value_style_t style, char *out, size_t cap, bool *is_text)
 {
     *is_text = type->size == 0;
     if (is_hex_bytes(type)) {
@@ -347,9 +350,11 @@ bool comaster_value_format(const comaster_type_t *type, const uint8_t *data, siz
         snprintf(out, cap, "%zu bytes do not fit %s (%u bytes)", len, type->name, type->size);
         return false;
     }
-    format_number(type, get_le(data, len), out, cap);
-    /* A NaN or an infinity is no JSON number: it goes as the string printf wrote ("nan"). */
-    *is_text = is_real(type) && !isdigit((unsigned char)out[out[0] == '-']);
+    format_number(type, get_le(data, len), style, out, cap);
+    /* A NaN or an infinity is no JSON number: it goes as the string printf wrote ("nan"); nor is
+     * a hexadecimal one. */
+    *is_text = is_real(type) ? !isdigit((unsigned char)out[out[0] == '-'])
+                             : style == COMASTER_VALUE_HEX && !is_signed(type);
     return true;
 }
 

@@ -42,11 +42,19 @@ bool comaster_value_parse(const comaster_type_t *type, const char *text, uint8_t
 bool comaster_value_from_dcf(const eds_entry_t *e, uint8_t *out, size_t cap, size_t *len, char *err,
                              size_t err_len);
 
-/* Prints an upload's len bytes as `type` into out. Integers and reals in decimal, strings as
- * they are, OCTET_STRING / DOMAIN as hexadecimal bytes. *is_text tells a JSON writer to quote
- * the result. False, with the reason in out, when len does not fit the type. */
-bool comaster_value_format(const comaster_type_t *type, const uint8_t *data, size_t len, char *out,
-                           size_t cap, bool *is_text);
+/* How comaster_value_format prints BOOLEAN and the unsigned integers. */
+typedef enum comaster_value_style {
+    COMASTER_VALUE_DECIMAL = 0, /* 100: what read, get and status show */
+    COMASTER_VALUE_HEX          /* 0x64: a DCF's ParameterValue, as comaster concise decode
+                                 * writes it */
+} comaster_value_style_t;
+
+/* Prints an upload's len bytes as `type` into out. Integers and reals in decimal (BOOLEAN and
+ * the unsigned integers in 0x hexadecimal for COMASTER_VALUE_HEX), strings as they are,
+ * OCTET_STRING / DOMAIN as hexadecimal bytes. *is_text tells a JSON writer to quote the result.
+ * False, with the reason in out, when len does not fit the type. */
+bool comaster_value_format(const comaster_type_t *type, const uint8_t *data, size_t len,
+                           comaster_value_style_t style, char *out, size_t cap, bool *is_text);
 
 /* An object of the command line. */
 typedef struct comaster_object {

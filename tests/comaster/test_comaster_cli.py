@@ -223,6 +223,12 @@ class Concise(unittest.TestCase):
             result = run("concise", "decode", alien, self.ROOT / "eds/ATV312.eds", "-")
             self.assertEqual((result.returncode, result.stdout, result.stderr),
                              (65, "", "comaster: error: concise: 5000h:00 is not an object of the EDS\n"))
+            odd = Path(tmp, "odd.cdcf")  # 1017h is an UNSIGNED16: 3 bytes are no value of it
+            odd.write_bytes(bytes.fromhex("01000000" "1710000300000064 0000".replace(" ", "")))
+            result = run("concise", "decode", odd, self.ROOT / "eds/ATV312.eds", Path(tmp, "odd.dcf"))
+            self.assertEqual((result.returncode, result.stderr),
+                             (65, "comaster: error: concise: 1017h:00, 3 bytes, has no ParameterValue "
+                                  "form as DataType 0x0006\n"))
             result = run("concise", "turn", 4, "a", "b")
             self.assertEqual(result.returncode, 64)
             self.assertIn("'turn' is neither encode nor decode", result.stderr)

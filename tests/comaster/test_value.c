@@ -29,7 +29,8 @@ static void round_trip(const char *type_name, const char *text, const uint8_t *b
     ck_assert_mem_eq(out, bytes, n);
     char back[256];
     bool is_text;
-    ck_assert(comaster_value_format(type(type_name), out, len, back, sizeof back, &is_text));
+    ck_assert(comaster_value_format(type(type_name), out, len, COMASTER_VALUE_DECIMAL, back,
+                                    sizeof back, &is_text));
     ck_assert_str_eq(back, printed);
 }
 
@@ -92,27 +93,66 @@ START_TEST(format_errors_and_strings)
     char out[128];
     bool is_text;
     const uint8_t three[] = {1, 2, 3};
-    ck_assert(!comaster_value_format(type("u16"), three, 3, out, sizeof out, &is_text));
+    ck_assert(!comaster_value_format(type("u16"), three, 3, COMASTER_VALUE_DECIMAL, out, sizeof out,
+                                     &is_text));
     ck_assert_str_eq(out, "3 bytes do not fit UNSIGNED16 (2 bytes)");
     const uint8_t padded[] = {'A', 'T', 0, 'x'};
-    ck_assert(comaster_value_format(type("string"), padded, 4, out, sizeof out, &is_text));
+    ck_assert(comaster_value_format(type("string"), padded, 4, COMASTER_VALUE_DECIMAL, out,
+                                    sizeof out, &is_text));
     ck_assert_str_eq(out, "AT");
     ck_assert(is_text);
-    ck_assert(comaster_value_format(type("u8"), three, 1, out, sizeof out, &is_text));
+    ck_assert(comaster_value_format(type("u8"), three, 1, COMASTER_VALUE_DECIMAL, out, sizeof out,
+                                    &is_text));
     ck_assert(!is_text);
     const uint8_t nan32[] = {0x00, 0x00, 0xC0, 0x7F}, minus_inf[] = {0x00, 0x00, 0x80, 0xFF};
-    ck_assert(comaster_value_format(type("f32"), nan32, 4, out, sizeof out, &is_text));
+    ck_assert(comaster_value_format(type("f32"), nan32, 4, COMASTER_VALUE_DECIMAL, out, sizeof out,
+                                    &is_text));
     ck_assert_str_eq(out, "nan");
     ck_assert(is_text); /* not a JSON number */
-    ck_assert(comaster_value_format(type("f32"), minus_inf, 4, out, sizeof out, &is_text));
+    ck_assert(comaster_value_format(type("f32"), minus_inf, 4, COMASTER_VALUE_DECIMAL, out,
+                                    sizeof out, &is_text));
     ck_assert_str_eq(out, "-inf");
     ck_assert(is_text);
     const uint8_t minus_half[] = {0x00, 0x00, 0x00, 0xBF};
-    ck_assert(comaster_value_format(type("f32"), minus_half, 4, out, sizeof out, &is_text));
+    ck_assert(comaster_value_format(type("f32"), minus_half, 4, COMASTER_VALUE_DECIMAL, out,
+                                    sizeof out, &is_text));
     ck_assert_str_eq(out, "-0.5");
     ck_assert(!is_text);
     ck_assert_ptr_null(comaster_type_by_name("u7"));
     ck_assert_ptr_eq(comaster_type_by_code(CO_DT_INTEGER16), type("i16"));
+}
+END_TEST
+
+/* A DCF's ParameterValue (comaster concise decode): BOOLEAN and the unsigned integers in 0x
+ * hexadecimal, quoted by a JSON writer; signed integers and reals stay decimal numbers. */
+START_TEST(format_hex_style)
+{
+    char out[64];
+    bool is_text;
+    const uint8_t u16[] = {0x64, 0x00}, u32[] = {0x84, 0x02, 0x00, 0x00}, one[] = {1};
+    const uint8_t minus_one[] = {0xFF, 0xFF}, minus_half[] = {0x00, 0x00, 0x00, 0xBF};
+    ck_assert(
+        comaster_value_format(type("u16"), u16, 2, COMASTER_VALUE_HEX, out, sizeof out, &is_text));
+    ck_assert_str_eq(out, "0x64");
+    ck_assert(is_text);
+    ck_assert(
+        comaster_value_format(type("u32"), u32, 4, COMASTER_VALUE_HEX, out, sizeof out, &is_text));
+    ck_assert_str_eq(out, "0x284");
+    ck_assert(
+        comaster_value_format(type("bool"), one, 1, COMASTER_VALUE_HEX, out, sizeof out, &is_text));
+    ck_assert_str_eq(out, "0x1");
+    ck_assert(comaster_value_format(type("i16"), minus_one, 2, COMASTER_VALUE_HEX, out, sizeof out,
+                                    &is_text));
+    ck_assert_str_eq(out, "-1");
+    ck_assert(!is_text);
+    ck_assert(comaster_value_format(type("f32"), minus_half, 4, COMASTER_VALUE_HEX, out, sizeof out,
+                                    &is_text));
+    ck_assert_str_eq(out, "-0.5");
+    ck_assert(!is_text);
+    ck_assert(comaster_value_format(type("u16"), u16, 2, COMASTER_VALUE_DECIMAL, out, sizeof out,
+                                    &is_text));
+    ck_assert_str_eq(out, "100");
+    ck_assert(!is_text);
 }
 END_TEST
 
@@ -238,6 +278,7 @@ int main(void)
     tcase_add_test(tc, integer_errors);
     tcase_add_test(tc, reals_strings_bytes);
     tcase_add_test(tc, format_errors_and_strings);
+    tcase_add_test(tc, format_hex_style);
     tcase_add_test(tc, objects_by_index);
     suite_add_tcase(s, tc);
     TCase *named = tcase_create("names");

@@ -4,10 +4,9 @@
  * read its identity, identify slaves, and find and number the non-configured ones by fastscan. */
 #include "co/co_lss_master.h"
 #include "comaster/comaster.h"
+#include "comaster/value.h"
 
-#include <errno.h>
 #include <stdio.h>
-#include <stdlib.h>
 #include <string.h>
 
 static const char lss_help[] =
@@ -55,9 +54,17 @@ static const char lss_help[] =
 #define FASTSCAN_TRIES 3 /* scans of one slave before giving up on it */
 #define FASTSCAN_LOST (-1)
 
+/* fastscan's own options, taken out of argv before the common parser sees it. */
+typedef struct fastscan_options {
+    co_lss_fastscan_known_t known;
+    bool store;
+    uint32_t frame_ms;
+} fastscan_options_t;
+
 typedef struct lss_job {
     comaster_bus_t *bus;
     const comaster_options_t *opts;
+    fastscan_options_t fastscan;
     int open_status; /* the bus's opening: 0, or the exit status after its error */
     co_lss_master_t master;
     co_lss_master_result_t result;
@@ -129,22 +136,11 @@ static co_time_t timeout_us(const comaster_options_t *opts)
     return (co_time_t)opts->timeout_ms * 1000u;
 }
 
-static bool parse_u32(const char *text, uint32_t *value)
-{
-    char *end;
-    errno = 0;
-    unsigned long long v = strtoull(text, &end, 0);
-    if (errno || end == text || *end || text[0] == '-' || v > UINT32_MAX)
-        return false;
-    *value = (uint32_t)v;
-    return true;
-}
-
 static bool parse_address(const comaster_options_t *opts, const char *const *text, size_t count,
                           uint32_t *values)
 {
     for (size_t i = 0; i < count; i++) {
-        if (!parse_u32(text[i], &values[i])) {
+        if (!comaster_parse_number(text[i], UINT32_MAX, &values[i])) {
             comaster_fail(opts, EX_USAGE,
                           "lss: '%s' is not a 32-bit number: give decimal or 0x hex, "
                           "0..4294967295",
@@ -230,12 +226,13 @@ static int cmd_switch(lss_job_t *job, const comaster_options_t *opts, const coma
     return rc;
 }
 
-static int cmd_set_node_id(lss_job_t *job, const comaster_options_t *opts, const char *text)
+static int cmd_set_node_id(lss_job_t *job, const comaster_options_t *opts, const comaster_args_t *a)
 {
+    const char *text = a->positional[1];
     uint32_t id;
     if (strcmp(text, "none") == 0)
         id = CO_LSS_NODE_ID_UNCONFIGURED;
-    else if (!parse_u32(text, &id) || id < 1 || id > CO_NODE_ID_MAX)
+    else if (!comaster_parse_number(text, CO_NODE_ID_MAX, &id) || id < 1)
         return comaster_fail(opts, EX_USAGE,
                              "lss set-node-id: '%s' is not a node-id: give 1..127, or none", text);
     int rc = run(job, co_lss_master_configure_node_id(&job->master, (uint8_t)id, timeout_us(opts),
@@ -250,13 +247,15 @@ static int cmd_set_node_id(lss_job_t *job, const comaster_options_t *opts, const
     return 0;
 }
 
-static int cmd_set_bit_timing(lss_job_t *job, const comaster_options_t *opts, const char *text)
+static int cmd_set_bit_timing(lss_job_t *job, const comaster_options_t *opts,
+                              const comaster_args_t *a)
 {
+    const char *text = a->positional[1];
     uint32_t kbit = 0;
     uint8_t index;
     if (strcmp(text, "auto") == 0)
         index = CO_LSS_BIT_TIMING_AUTO;
-    else if (parse_u32(text, &kbit) && kbit <= UINT16_MAX)
+    else if (comaster_parse_number(text, UINT16_MAX, &kbit))
         index = co_lss_bit_timing_index((uint16_t)kbit);
     else
         index = CO_LSS_BIT_TIMING_INDEX_MAX + 1;
@@ -279,10 +278,11 @@ static int cmd_set_bit_timing(lss_job_t *job, const comaster_options_t *opts, co
     return 0;
 }
 
-static int cmd_activate(lss_job_t *job, const comaster_options_t *opts, const char *text)
+static int cmd_activate(lss_job_t *job, const comaster_options_t *opts, const comaster_args_t *a)
 {
+    const char *text = a->positional[1];
     uint32_t ms;
-    if (!parse_u32(text, &ms) || ms > UINT16_MAX)
+    if (!comaster_parse_number(text, UINT16_MAX, &ms))
         return comaster_fail(opts, EX_USAGE,
                              "lss activate: '%s' is not a switch delay: give milliseconds "
                              "0..65535",
@@ -291,8 +291,9 @@ static int cmd_activate(lss_job_t *job, const comaster_options_t *opts, const ch
     return send_now(job);
 }
 
-static int cmd_store(lss_job_t *job, const comaster_options_t *opts)
+static int cmd_store(lss_job_t *job, const comaster_options_t *opts, const comaster_args_t *a)
 {
+    (void)a; /* store takes no argument */
     int rc = run(job, co_lss_master_store(&job->master, timeout_us(opts), co_linux_now()));
     if (rc != 0)
         return rc;
@@ -308,8 +309,9 @@ static int cmd_store(lss_job_t *job, const comaster_options_t *opts)
     return 0;
 }
 
-static int cmd_inquire(lss_job_t *job, const comaster_options_t *opts, const char *what)
+static int cmd_inquire(lss_job_t *job, const comaster_options_t *opts, const comaster_args_t *a)
 {
+    const char *what = a->positional[1];
     bool identity = strcmp(what, "identity") == 0;
     if (!identity && strcmp(what, "node-id") != 0)
         return comaster_fail(opts, EX_USAGE,
@@ -377,13 +379,6 @@ static int cmd_identify(lss_job_t *job, const comaster_options_t *opts, const co
     return 0;
 }
 
-/* fastscan's own options, taken out of argv before the common parser sees it. */
-typedef struct fastscan_options {
-    co_lss_fastscan_known_t known;
-    bool store;
-    uint32_t frame_ms;
-} fastscan_options_t;
-
 static int take_fastscan_options(comaster_options_t *opts, int *argc, char **argv,
                                  fastscan_options_t *fo)
 {
@@ -409,7 +404,7 @@ static int take_fastscan_options(comaster_options_t *opts, int *argc, char **arg
         if (i + 1 == *argc)
             return comaster_missing_value(opts, arg);
         uint32_t value;
-        if (!parse_u32(argv[++i], &value))
+        if (!comaster_parse_number(argv[++i], UINT32_MAX, &value))
             return comaster_fail(opts, EX_USAGE,
                                  "lss fastscan: %s '%s' is not a 32-bit number: give decimal "
                                  "or 0x hex",
@@ -453,11 +448,12 @@ static int scan_one(lss_job_t *job, const fastscan_options_t *fo, uint32_t *fram
     return FASTSCAN_LOST;
 }
 
-static int cmd_fastscan(lss_job_t *job, const comaster_options_t *opts, const char *first_text,
-                        const fastscan_options_t *fo)
+static int cmd_fastscan(lss_job_t *job, const comaster_options_t *opts, const comaster_args_t *a)
 {
+    const char *first_text = a->positional[1];
+    const fastscan_options_t *fo = &job->fastscan;
     uint32_t first;
-    if (!parse_u32(first_text, &first) || first < 1 || first > CO_NODE_ID_MAX)
+    if (!comaster_parse_number(first_text, CO_NODE_ID_MAX, &first) || first < 1)
         return comaster_fail(opts, EX_USAGE,
                              "lss fastscan: '%s' is not a node-id: give the first node-id to "
                              "assign, 1..127",
@@ -542,8 +538,15 @@ int comaster_lss_main(comaster_options_t *opts, int argc, char **argv)
     static const struct {
         const char *name;
         int args; /* positional arguments after the service, -1: any */
-    } services[] = {{"switch", -1}, {"set-node-id", 1}, {"set-bit-timing", 1}, {"activate", 1},
-                    {"store", 0},   {"inquire", 1},     {"identify", -1},      {"fastscan", 1}};
+        int (*run)(lss_job_t *job, const comaster_options_t *opts, const comaster_args_t *a);
+    } services[] = {{"switch", -1, cmd_switch},
+                    {"set-node-id", 1, cmd_set_node_id},
+                    {"set-bit-timing", 1, cmd_set_bit_timing},
+                    {"activate", 1, cmd_activate},
+                    {"store", 0, cmd_store},
+                    {"inquire", 1, cmd_inquire},
+                    {"identify", -1, cmd_identify},
+                    {"fastscan", 1, cmd_fastscan}};
     const char *service = args.positional[0];
     size_t s = 0;
     while (s < sizeof services / sizeof services[0] && strcmp(services[s].name, service) != 0)
@@ -563,35 +566,10 @@ int comaster_lss_main(comaster_options_t *opts, int argc, char **argv)
     memset(&bus, 0, sizeof bus);
     job.bus = &bus;
     job.opts = opts;
+    job.fastscan = fo;
     co_lss_master_config_t config = {.send = job_send, .user = &job, .done = job_done};
     co_lss_master_init(&job.master, &config);
-    const char *arg = args.count > 1 ? args.positional[1] : NULL;
-    switch (s) {
-    case 0:
-        rc = cmd_switch(&job, opts, &args);
-        break;
-    case 1:
-        rc = cmd_set_node_id(&job, opts, arg);
-        break;
-    case 2:
-        rc = cmd_set_bit_timing(&job, opts, arg);
-        break;
-    case 3:
-        rc = cmd_activate(&job, opts, arg);
-        break;
-    case 4:
-        rc = cmd_store(&job, opts);
-        break;
-    case 5:
-        rc = cmd_inquire(&job, opts, arg);
-        break;
-    case 6:
-        rc = cmd_identify(&job, opts, &args);
-        break;
-    default:
-        rc = cmd_fastscan(&job, opts, arg, &fo);
-        break;
-    }
+    rc = services[s].run(&job, opts, &args);
     comaster_bus_close(&bus);
     return rc;
 }

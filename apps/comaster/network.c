@@ -46,17 +46,6 @@ static bool bad_value(const ini_line_t *line, const char *what, char *err, size_
     return false;
 }
 
-static bool parse_number(const char *text, uint32_t max, uint32_t *out)
-{
-    char *end;
-    errno = 0;
-    unsigned long long v = strtoull(text, &end, 0);
-    if (end == text || *end != '\0' || errno != 0 || text[0] == '-' || v > max)
-        return false;
-    *out = (uint32_t)v;
-    return true;
-}
-
 static bool parse_yes_no(const char *text, bool *out)
 {
     if (strcasecmp(text, "yes") == 0 || strcasecmp(text, "true") == 0 || strcmp(text, "1") == 0)
@@ -115,12 +104,12 @@ static bool topology_key(void *ctx, const ini_line_t *line, char *err, size_t er
     if (strcasecmp(line->key, "NetName") == 0) {
         snprintf(t->net->net_name, sizeof t->net->net_name, "%s", line->value);
     } else if (strcasecmp(line->key, "Nodes") == 0) {
-        if (!parse_number(line->value, CO_NMT_MASTER_NODE_ID_MAX, &t->nodes))
+        if (!comaster_parse_number(line->value, CO_NMT_MASTER_NODE_ID_MAX, &t->nodes))
             return bad_value(line, "not a number of nodes 0..127", err, err_len);
         t->has_nodes = true;
     } else if (node_key(line->key, &node, &rest)) {
         if (strcasecmp(rest, "Present") == 0) {
-            if (!parse_number(line->value, 1, &v))
+            if (!comaster_parse_number(line->value, 1, &v))
                 return bad_value(line, "give 0x01 (present) or 0x00", err, err_len);
             t->present[node] = v == 1;
         } else if (strcasecmp(rest, "Name") == 0) {
@@ -256,22 +245,22 @@ static bool master_key(comaster_network_t *net, const ini_line_t *line, char *er
             return bad_value(line, "a socket path is at most 107 characters", err, err_len);
         snprintf(net->control, sizeof net->control, "%s", line->value);
     } else if (strcasecmp(k, "sdo_timeout") == 0) {
-        if (!parse_number(line->value, CO_NET_SDO_TIMEOUT_MAX_MS, &v) ||
+        if (!comaster_parse_number(line->value, CO_NET_SDO_TIMEOUT_MAX_MS, &v) ||
             v < CO_NET_SDO_TIMEOUT_MIN_MS)
             return bad_value(line, "give 5..5000 ms", err, err_len);
         c->sdo_timeout_ms = (uint16_t)v;
     } else if (strcasecmp(k, "boot_time") == 0) {
-        if (!parse_number(line->value, 600000u, &c->boot_time_ms))
+        if (!comaster_parse_number(line->value, 600000u, &c->boot_time_ms))
             return bad_value(line, "give 0..600000 ms", err, err_len);
     } else if (strcasecmp(k, "network_boot_time") == 0) {
         /* CiA 302-2's boot time 1F89h. */
-        if (!parse_number(line->value, 3600000u, &c->boot_limit_ms))
+        if (!comaster_parse_number(line->value, 3600000u, &c->boot_limit_ms))
             return bad_value(line, "give 0 (no limit) or 1..3600000 ms", err, err_len);
     } else if (strcasecmp(k, "retry_delay") == 0) {
-        if (!parse_number(line->value, 600000u, &c->retry_delay_ms))
+        if (!comaster_parse_number(line->value, 600000u, &c->retry_delay_ms))
             return bad_value(line, "give 0..600000 ms", err, err_len);
     } else if (strcasecmp(k, "sync_period") == 0) {
-        if (!parse_number(line->value, 60000u, &v))
+        if (!comaster_parse_number(line->value, 60000u, &v))
             return bad_value(line, "give 0 (no SYNC) or 1..60000 ms", err, err_len);
         c->sync_period_us = v * 1000u;
     } else if (strcasecmp(k, "start") == 0) {
@@ -294,7 +283,8 @@ static bool master_key(comaster_network_t *net, const ini_line_t *line, char *er
             return bad_value(line, "give alone, stop_all or reset_all", err, err_len);
     } else if (strcasecmp(k, "nmt_startup") == 0) {
         /* CiA 302-2's 1F80h, the object start and on_mandatory_error stand for. */
-        if (!parse_number(line->value, UINT32_MAX, &v) || !co_net_master_config_from_1f80(c, v))
+        if (!comaster_parse_number(line->value, UINT32_MAX, &v) ||
+            !co_net_master_config_from_1f80(c, v))
             return bad_value(line,
                              "give CiA 302's 1F80h with bit 0 (NMT master) and any of bits 1 "
                              "(start all), 3 (start none), 4 (reset all), 6 (stop all)",
@@ -303,15 +293,15 @@ static bool master_key(comaster_network_t *net, const ini_line_t *line, char *er
         if (!parse_yes_no(line->value, &c->reset_all))
             return bad_value(line, "give yes or no", err, err_len);
     } else if (strcasecmp(k, "node_id") == 0) {
-        if (!parse_number(line->value, CO_NMT_MASTER_NODE_ID_MAX, &v) || v < 1)
+        if (!comaster_parse_number(line->value, CO_NMT_MASTER_NODE_ID_MAX, &v) || v < 1)
             return bad_value(line, "give the master's own node-id, 1..127", err, err_len);
         c->node_id = (uint8_t)v;
     } else if (strcasecmp(k, "heartbeat") == 0) {
-        if (!parse_number(line->value, UINT16_MAX, &v))
+        if (!comaster_parse_number(line->value, UINT16_MAX, &v))
             return bad_value(line, "give 0 (none) or 1..65535 ms", err, err_len);
         c->heartbeat_ms = (uint16_t)v;
     } else if (strcasecmp(k, "bit_rate") == 0) {
-        if (!parse_number(line->value, UINT8_MAX, &v) || co_net_bit_rate((uint8_t)v) == 0)
+        if (!comaster_parse_number(line->value, UINT8_MAX, &v) || co_net_bit_rate((uint8_t)v) == 0)
             return bad_value(line,
                              "give the PLC300's code: 0 = 1 Mbit/s, 2 = 500, 3 = 250, 4 = 125, "
                              "5 = 100, 6 = 50, 7 = 20 kbit/s (1 is reserved)",
@@ -363,7 +353,7 @@ static bool node_key_value(co_net_slave_config_t *c, const ini_line_t *line, cha
     for (size_t i = 0; i < CHECK_NAMES; i++) {
         if (strcasecmp(k, check_names[i]) != 0)
             continue;
-        if (!parse_number(line->value, UINT32_MAX, &v))
+        if (!comaster_parse_number(line->value, UINT32_MAX, &v))
             return bad_value(line, "not a 32-bit number", err, err_len);
         return co_net_slave_config_set_expected(
             c, (uint16_t)(CO_NET_IDX_DEVICE_TYPE_IDENTIFICATION + i), v);
@@ -372,15 +362,15 @@ static bool node_key_value(co_net_slave_config_t *c, const ini_line_t *line, cha
         if (!parse_yes_no(line->value, &c->mandatory))
             return bad_value(line, "give yes or no", err, err_len);
     } else if (strcasecmp(k, "heartbeat") == 0) {
-        if (!parse_number(line->value, UINT16_MAX, &v))
+        if (!comaster_parse_number(line->value, UINT16_MAX, &v))
             return bad_value(line, "give 0..65535 ms", err, err_len);
         c->heartbeat_ms = (uint16_t)v;
     } else if (strcasecmp(k, "guard_time") == 0) {
-        if (!parse_number(line->value, UINT16_MAX, &v))
+        if (!comaster_parse_number(line->value, UINT16_MAX, &v))
             return bad_value(line, "give 0..65535 ms", err, err_len);
         c->guard_ms = (uint16_t)v;
     } else if (strcasecmp(k, "life_time_factor") == 0) {
-        if (!parse_number(line->value, UINT8_MAX, &v))
+        if (!comaster_parse_number(line->value, UINT8_MAX, &v))
             return bad_value(line, "give 0..255", err, err_len);
         c->life_time_factor = (uint8_t)v;
     } else if (strcasecmp(k, "on_error") == 0) {
@@ -395,7 +385,8 @@ static bool node_key_value(co_net_slave_config_t *c, const ini_line_t *line, cha
     } else if (strcasecmp(k, "assignment") == 0) {
         /* CiA 302-2's 1F81h, the object mandatory, on_error, guard_time and life_time_factor
          * stand for. */
-        if (!parse_number(line->value, UINT32_MAX, &v) || !co_net_slave_config_from_1f81(c, v))
+        if (!comaster_parse_number(line->value, UINT32_MAX, &v) ||
+            !co_net_slave_config_from_1f81(c, v))
             return bad_value(line,
                              "give CiA 302's 1F81h with bit 0 (NMT slave) and any of bits 2 "
                              "(reboot on error), 3 (mandatory), 8..15 (retry factor), 16..31 "

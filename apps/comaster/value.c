@@ -54,6 +54,17 @@ const char *comaster_type_names(void)
            "names: UNSIGNED16, REAL32, VISIBLE_STRING ...)";
 }
 
+bool comaster_parse_number(const char *text, uint32_t max, uint32_t *out)
+{
+    char *end;
+    errno = 0;
+    unsigned long long v = strtoull(text, &end, 0);
+    if (end == text || *end != '\0' || errno != 0 || text[0] == '-' || v > max)
+        return false;
+    *out = (uint32_t)v;
+    return true;
+}
+
 static bool is_signed(const comaster_type_t *type)
 {
     return type->code == CO_DT_INTEGER8 || type->code == CO_DT_INTEGER16 ||

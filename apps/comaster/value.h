@@ -26,6 +26,10 @@ const comaster_type_t *comaster_type_by_code(uint16_t code);
 /* The names a user may give, for error messages: "u8 u16 ... domain". */
 const char *comaster_type_names(void);
 
+/* A number of the command line or of a network file: decimal, 0x hexadecimal or 0 octal, no
+ * sign, 0..max. */
+bool comaster_parse_number(const char *text, uint32_t max, uint32_t *out);
+
 /* Parses `text` as a value of `type` into out (cap bytes), *len its length. Integers in decimal
  * or 0x hexadecimal within the type's range, BOOLEAN 0/1/true/false, REAL32/REAL64 as numbers,
  * VISIBLE_STRING as is, OCTET_STRING and DOMAIN as hexadecimal bytes ("01 02 0A" or "01020A").

@@ -156,6 +156,30 @@ START_TEST(format_hex_style)
 }
 END_TEST
 
+/* The numbers of the command line (lss) and of a network file: decimal, 0x or 0 octal, no sign,
+ * nothing after them, 0..max. */
+START_TEST(numbers)
+{
+    uint32_t v = 7;
+    ck_assert(comaster_parse_number("0x5F", UINT32_MAX, &v));
+    ck_assert_uint_eq(v, 0x5F);
+    ck_assert(comaster_parse_number("4294967295", UINT32_MAX, &v));
+    ck_assert_uint_eq(v, UINT32_MAX);
+    ck_assert(comaster_parse_number("010", 127, &v));
+    ck_assert_uint_eq(v, 8);
+    ck_assert(comaster_parse_number("127", 127, &v));
+    ck_assert_uint_eq(v, 127);
+    v = 7;
+    ck_assert(!comaster_parse_number("128", 127, &v));
+    ck_assert(!comaster_parse_number("4294967296", UINT32_MAX, &v));
+    ck_assert(!comaster_parse_number("-1", UINT32_MAX, &v));
+    ck_assert(!comaster_parse_number("", UINT32_MAX, &v));
+    ck_assert(!comaster_parse_number("12a", UINT32_MAX, &v));
+    ck_assert(!comaster_parse_number("99999999999999999999999", UINT32_MAX, &v));
+    ck_assert_uint_eq(v, 7); /* untouched when refused */
+}
+END_TEST
+
 START_TEST(objects_by_index)
 {
     comaster_object_t o;
@@ -279,6 +303,7 @@ int main(void)
     tcase_add_test(tc, reals_strings_bytes);
     tcase_add_test(tc, format_errors_and_strings);
     tcase_add_test(tc, format_hex_style);
+    tcase_add_test(tc, numbers);
     tcase_add_test(tc, objects_by_index);
     suite_add_tcase(s, tc);
     TCase *named = tcase_create("names");

@@ -122,7 +122,13 @@ START_TEST(configuration_writes_from_the_dcf)
     ck_assert_int_eq(comaster_network_load(&net, DIR "/bench.ini", err, sizeof err), 0);
     const co_net_slave_config_t *s = slave(1); /* node 5 */
     ck_assert_uint_eq(write_count(s), 5);
-    ck_assert_uint_eq(s->write_count, 0);
+    /* The slave's configuration is comaster's concise DCF of it: the count, 5 entry headers and
+     * 14 bytes of values. */
+    ck_assert_ptr_nonnull(net.slave[1].concise);
+    ck_assert_ptr_eq(s->concise_dcf, net.slave[1].concise);
+    ck_assert_uint_eq(net.slave[1].concise_len,
+                      CO_CONCISE_DCF_HEADER + 5 * CO_CONCISE_DCF_ENTRY_HEADER + 14);
+    ck_assert_uint_eq(s->concise_dcf_len, net.slave[1].concise_len);
     static const struct {
         uint16_t index;
         uint8_t sub;

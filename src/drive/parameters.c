@@ -42,6 +42,19 @@ static int inconsistent_fault(const drive_t *drive)
     return code ? drive_fault_find(drive, code) : -1;
 }
 
+/* The configuration's cross check: a low speed above the high speed is the inconsistent
+ * configuration fault (CFI), consistent limits end its cause. */
+static void check_configuration(drive_t *drive, uint32_t low, uint32_t high, co_time_t now)
+{
+    int fault = inconsistent_fault(drive);
+    if (fault < 0)
+        return;
+    if (low > high)
+        drive_fault_inject(drive, (uint8_t)fault, now);
+    else if (drive_fault_cause_present(drive, (uint8_t)fault))
+        drive_fault_remove_cause(drive, (uint8_t)fault, now);
+}
+
 /* The low speed may not exceed the high speed (CiA 301 abort "maximum value is less than minimum
  * value"), unless the check is suspended; a write that makes them consistent again ends the
  * inconsistent configuration fault's cause. */
@@ -60,30 +73,24 @@ static uint32_t speed_limit_write(co_node_t *node, const co_od_entry_t *entry, c
         return CO_SDO_OK;
     if (low > high)
         return CO_SDO_ABORT_MAX_LESS_MIN;
-    int fault = inconsistent_fault(drive);
-    if (fault >= 0 && drive_fault_cause_present(drive, (uint8_t)fault))
-        drive_fault_remove_cause(drive, (uint8_t)fault, node->now);
+    check_configuration(drive, low, high, node->now);
     return CO_SDO_OK;
 }
 
 /* The internal control word (ATV312 DeviceNet manual, "Switch on disabled": "disable the
  * consistency check during the transfer: CMI W8504, bit 15 = 1 ... After the transfer,
- * re-enable it: CMI W8504, bit 15 = 0"): the check bit back to 0 checks what was loaded, and an
- * inconsistent configuration is the inconsistent configuration fault (CFI), which a consistent
- * write then ends. */
+ * re-enable it: CMI W8504, bit 15 = 0"): the check bit back to 0 checks what was loaded: an
+ * inconsistent configuration is the inconsistent configuration fault (CFI), a consistent one
+ * ends the fault an earlier transfer left. */
 static uint32_t internal_control_write(co_node_t *node, const co_od_entry_t *entry,
                                        const uint8_t *data, size_t len, co_od_origin_t origin)
 {
     (void)entry, (void)origin;
     drive_t *drive = drive_of(node);
     const drive_profile_t *profile = drive->profile;
-    bool resumed =
-        checks_suspended(drive) && !(written_value(data, len) & profile->internal_control_no_check);
-    int fault = inconsistent_fault(drive);
-    if (resumed && fault >= 0 &&
-        drive_param_value(drive, profile->low_speed) >
-            drive_param_value(drive, profile->high_speed))
-        drive_fault_inject(drive, (uint8_t)fault, node->now);
+    if (checks_suspended(drive) && !(written_value(data, len) & profile->internal_control_no_check))
+        check_configuration(drive, drive_param_value(drive, profile->low_speed),
+                            drive_param_value(drive, profile->high_speed), node->now);
     return CO_SDO_OK;
 }
 

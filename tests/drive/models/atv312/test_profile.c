@@ -255,6 +255,16 @@ START_TEST(cmi_bit_15_suspends_the_consistency_check)
     ck_assert_uint_eq(bench_sdo_write(&b, 0x2001, 5, 650, 2), 0);
     ck_assert_uint_eq(bench_sdo_write(&b, 0x2037, 5, 0x0000, 2), 0);
     ck_assert_ptr_null(drive_fault_latched(&b.drive));
+    /* A bad transfer (LSP 70.0 Hz > HSP 65.0), then the corrected one: its end removes CFI. */
+    ck_assert_uint_eq(bench_sdo_write(&b, 0x2037, 5, 0x8000, 2), 0);
+    ck_assert_uint_eq(bench_sdo_write(&b, 0x2001, 6, 700, 2), 0);
+    ck_assert_uint_eq(bench_sdo_write(&b, 0x2037, 5, 0x0000, 2), 0);
+    ck_assert_str_eq(drive_fault_latched(&b.drive)->code, "CFI");
+    ck_assert_uint_eq(bench_sdo_write(&b, 0x2037, 5, 0x8000, 2), 0);
+    ck_assert_uint_eq(bench_sdo_write(&b, 0x2001, 6, 100, 2), 0);
+    ck_assert_uint_eq(bench_sdo_write(&b, 0x2037, 5, 0x0000, 2), 0);
+    ck_assert_ptr_null(drive_fault_latched(&b.drive));
+    ck_assert_uint_eq(bench_read(&b, 0x6041, 0), 0x0640);
 }
 END_TEST
 

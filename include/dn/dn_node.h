@@ -278,7 +278,9 @@ struct dn_node {
      * conn[3..7]'s (dn_messages in src/devicenet/slave/dn_slave.h). */
     dn_messages_t messages[DN_EXPLICIT_COUNT];
     int16_t pending_reset; /* Identity Reset type to hand over after the response, or -1 */
-    co_time_t now;         /* the time of the call in progress */
+    /* The explicit connection instance (1, 10-14) of the request being executed, 0 otherwise. */
+    uint8_t request_connection;
+    co_time_t now; /* the time of the call in progress */
 };
 
 /* dn_node_init's refusals. */
@@ -329,6 +331,10 @@ dn_led_t dn_node_ns_led(const dn_node_t *node);
 /* The state (dn_conn_state_t) of connection instance 1, 2, 4 or 10-14; Non-existent for
  * another. */
 uint8_t dn_node_connection_state(const dn_node_t *node, uint8_t instance);
+/* The explicit connection (1, 10-14) whose request the node is executing, for the application's
+ * handlers and callbacks called from it (an object's Set, an assembly's write); 0 outside a
+ * request, and in an I/O message's write. */
+uint8_t dn_node_request_connection(const dn_node_t *node);
 /* The assembly table's entry of an instance, or NULL. */
 const dn_assembly_t *dn_node_assembly(const dn_node_t *node, uint16_t instance);
 

@@ -102,8 +102,9 @@ typedef struct drive_dn {
     co_send_fn send;
     bool (*store)(void *user, const dn_stored_t *stored);
     drive_dn_command_t command;
-    /* The explicit connection (1, or 10-14 the UCMM opened) whose Sets last changed the command:
-     * the one whose end is the drive's communication loss when no I/O carries the commands. */
+    /* The explicit connection (1, or 10-14 the UCMM opened) whose requests last changed the
+     * command (drive_dn_command), 0 once it ended: the one whose end is the drive's
+     * communication loss when no I/O carries the commands. */
     uint8_t command_connection;
     bool reverse;          /* the last run was Run2: 6042h is the negated speed reference */
     int16_t pending_reset; /* an Identity Reset type to carry out, or -1 */

@@ -117,7 +117,9 @@ static void execute(dn_node_t *node, const origin_t *origin, uint8_t header, con
         }
         request.data = &body[path];
         request.len = (uint8_t)(len - path);
+        node->request_connection = request.connection;
         status = dispatch(node, origin, &request, &reply);
+        node->request_connection = 0;
     }
     uint8_t response[DN_MESSAGE_MAX];
     uint8_t response_len;
@@ -229,4 +231,9 @@ co_time_t dn_explicit_process(dn_node_t *node)
         next = co_time_min(next, tx->deadline);
     }
     return next;
+}
+
+uint8_t dn_node_request_connection(const dn_node_t *node)
+{
+    return node->request_connection;
 }

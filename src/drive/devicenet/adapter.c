@@ -127,7 +127,8 @@ static bool runs_on_network_command(const drive_dn_t *dn)
 
 /* Whether a connection carried the commands the drive runs on: the I/O connection of instance 2
  * while it is Established (each of its messages carries the whole command), else the explicit
- * connection whose Sets last changed them, instance 1 until one the UCMM opened does
+ * connection whose requests last changed them (Sets of the Control supervisor, the AC/DC drive
+ * or the output assembly, the Control supervisor's Reset), instance 1 until another does
  * (docs/decisions.md, D-DEVICENET-CONNECTION-END). */
 static bool carried_the_commands(const drive_dn_t *dn, uint8_t instance)
 {
@@ -152,6 +153,8 @@ static void on_connection_ended(void *user, uint8_t instance, dn_end_cause_t cau
         cause == DN_END_TIMEOUT && (instance == DN_CONN_POLL || instance == DN_CONN_COS_CYCLIC);
     if (io_timeout || (carried_the_commands(dn, instance) && runs_on_network_command(dn)))
         drive_communication_loss(dn->drive, dn->now);
+    if (instance == dn->command_connection)
+        dn->command_connection = 0; /* a new connection of the instance carries nothing yet */
 }
 
 static void on_send(void *user, const co_frame_t *frame)

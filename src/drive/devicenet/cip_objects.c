@@ -223,20 +223,16 @@ static dn_status_t supervisor_handler(dn_node_t *node, const dn_object_t *object
 {
     (void)node;
     drive_dn_t *dn = object->user;
-    if (request->service == DN_SVC_RESET && request->instance == INSTANCE) {
-        dn->command_connection = request->connection;
+    if (request->service == DN_SVC_RESET && request->instance == INSTANCE)
         return supervisor_reset(dn);
-    }
     if (!is_attribute_service(request))
         return DN_ERROR(DN_GS_SERVICE_NOT_SUPPORTED);
     if (request->instance == 0) {
         dn_reply_u16(reply, CLASS_REVISION);
         return DN_OK;
     }
-    if (!is_get(request)) {
-        dn->command_connection = request->connection;
+    if (!is_get(request))
         return supervisor_set(dn, request->attribute, request->data[0]);
-    }
     dn_reply_u8(reply, supervisor_value(dn, request->attribute));
     return DN_OK;
 }
@@ -291,7 +287,6 @@ static dn_status_t drive_handler(dn_node_t *node, const dn_object_t *object,
         return DN_ERROR(DN_GS_SERVICE_NOT_SUPPORTED);
     if (is_get(request))
         return drive_get(dn, request->attribute, reply);
-    dn->command_connection = request->connection;
     drive_dn_command_t next = dn->command;
     if (request->attribute == NET_REF)
         return set_flag(dn, &next, &next.net_ref, request->data[0]);

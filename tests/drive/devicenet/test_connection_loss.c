@@ -177,6 +177,37 @@ START_TEST(ucmm_close_of_a_connection_that_carried_nothing_keeps_running)
 }
 END_TEST
 
+/* The output assembly's Set over a UCMM connection (instance 21, attribute 3: Run forward,
+ * NetCtrl and NetRef at 1200 rpm, in two fragments) commands the drive as the Control
+ * supervisor's Sets do: the connection's Close is CnF. */
+START_TEST(ucmm_close_after_an_assembly_set_is_cnf)
+{
+    db_exchange(&b, "781#194B0031", "759#01CB00100A00");
+    db_rx(&b, "641#9900100415036100");
+    db_expect(&b, "619#81C000");
+    db_rx(&b, "641#9981B004");
+    db_expect(&b, "619#81C100");
+    db_expect(&b, "619#0190");
+    db_advance(&b, 50000);
+    expect_running();
+    db_exchange(&b, "781#194C0A00", "759#01CC");
+    expect_cnf();
+}
+END_TEST
+
+/* A Set refused on instance 1 (Run1 = 2, "invalid attribute value") changes no command: the
+ * UCMM connection whose Sets run the drive still carries them, and its Close is CnF. */
+START_TEST(refused_set_elsewhere_leaves_the_commands_connection)
+{
+    run_by_ucmm_connection();
+    db_exchange(&b, "4CE#014B03010101", "4CB#01CB00");
+    db_exchange(&b, "4CC#011029010302", "4CB#019409FF");
+    expect_running();
+    db_exchange(&b, "781#194C0A00", "759#01CC");
+    expect_cnf();
+}
+END_TEST
+
 /* The polled connection allocated but still configuring carries nothing: bus off ends the
  * explicit connection the commands came on. */
 START_TEST(bus_off_with_a_configuring_poll_is_cnf)
@@ -247,6 +278,8 @@ static Suite *suite(void)
     tcase_add_test(tc, ucmm_close_while_running_is_cnf);
     tcase_add_test(tc, ucmm_watchdog_while_running_is_cnf);
     tcase_add_test(tc, ucmm_close_of_a_connection_that_carried_nothing_keeps_running);
+    tcase_add_test(tc, ucmm_close_after_an_assembly_set_is_cnf);
+    tcase_add_test(tc, refused_set_elsewhere_leaves_the_commands_connection);
     suite_add_tcase(s, tc);
     return s;
 }

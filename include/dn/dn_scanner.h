@@ -217,7 +217,8 @@ bool dn_scanner_set_expected_packet_rate(dn_scanner_t *scanner, uint8_t mac_id, 
  * taken); on success the explicit requests go over that connection, no Allocate needed. The
  * result's data: body format, message IDs, instance (UINT). */
 bool dn_scanner_ucmm_open(dn_scanner_t *scanner, uint8_t mac_id, co_time_t now);
-/* Close of that connection on the UCMM; from then on the predefined set's again. */
+/* Close of that connection on the UCMM; from then on the predefined set's again, whatever the
+ * answer (an error: the slave's watchdog deleted it already) or none. */
 bool dn_scanner_ucmm_close(dn_scanner_t *scanner, uint8_t mac_id, co_time_t now);
 
 /* The output data of the slave's poll commands (0..8 bytes; 0 is the idle poll). */

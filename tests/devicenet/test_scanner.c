@@ -1,7 +1,8 @@
 /* SPDX-License-Identifier: Apache-2.0 */
 /* The scanner (src/devicenet/scanner): its duplicate MAC ID check; wired to a slave of the
  * bench (MAC ID 63), allocation, Get and Set with fragmentation both ways, a UCMM connection
- * opened, used and closed (and its message IDs per slave), the expected packet
+ * opened, used and closed (and its message IDs per slave; a Close refused or unanswered
+ * forgets it), the expected packet
  * rate, polls once and at a period, COS data acknowledged; with scripted frames instead of the
  * slave, the error paths: a CIP error, another master owning the set, timeouts, a lost and a
  * repeated response fragment, a request fragment unacknowledged or refused, missed polls, and
@@ -366,6 +367,46 @@ START_TEST(ucmm_message_ids_and_bad_response)
     ck_assert_uint_eq(w.result_count, 2);
     rx(&w, "6BF#408EF300"); /* the slave's message 2 */
     expect_result(2, DN_RESULT_OK, 0, 0, "F300");
+}
+END_TEST
+
+/* A connection the slave's watchdog deleted: its Close is answered "object does not exist"
+ * (0x16), and the scanner forgets it all the same, so the next request goes on the predefined
+ * set rather than on a group 3 ID no one listens to. */
+START_TEST(ucmm_close_of_a_deleted_connection_forgets_it)
+{
+    setup_wired();
+    ck_assert(dn_scanner_ucmm_open(&w.scanner, SLAVE, w.now));
+    advance(&w, 0);
+    expect("780#3F4B0030");
+    expect("77F#00CB00000A00");
+    advance(&w, 10100 * MS); /* past 4 x 2504 ms */
+    ck_assert(dn_scanner_ucmm_close(&w.scanner, SLAVE, w.now));
+    advance(&w, 0);
+    expect("780#7F4C0A00");
+    expect("77F#409416FF");
+    expect_result(1, DN_RESULT_CIP_ERROR, 0x16, 0xFF, "");
+    ck_assert_uint_eq(w.slaves[0].ucmm_instance, 0);
+    ck_assert(dn_scanner_get(&w.scanner, SLAVE, DN_CLASS_IDENTITY, 1, 1, w.now));
+    advance(&w, 0);
+    expect("5FC#000E010101");
+}
+END_TEST
+
+/* A Close unanswered: the connection is forgotten too (the slave's watchdog ends it). */
+START_TEST(ucmm_close_timed_out_forgets_it)
+{
+    setup_scripted();
+    ck_assert(dn_scanner_ucmm_open(&w.scanner, SLAVE, w.now));
+    expect("780#3F4B0030");
+    rx(&w, "77F#00CB00000A00");
+    ck_assert(dn_scanner_ucmm_close(&w.scanner, SLAVE, w.now));
+    expect("780#7F4C0A00");
+    advance(&w, 1000 * MS);
+    ck_assert_int_eq(result(1)->status, DN_RESULT_TIMEOUT);
+    ck_assert_uint_eq(w.slaves[0].ucmm_instance, 0);
+    ck_assert(dn_scanner_get(&w.scanner, SLAVE, DN_CLASS_IDENTITY, 1, 1, w.now));
+    expect("5FC#000E010101");
 }
 END_TEST
 
@@ -889,6 +930,8 @@ static Suite *suite(void)
     tcase_add_test(tc, init_refusals);
     tcase_add_test(tc, allocate_get_release);
     tcase_add_test(tc, ucmm_open_get_close);
+    tcase_add_test(tc, ucmm_close_of_a_deleted_connection_forgets_it);
+    tcase_add_test(tc, ucmm_close_timed_out_forgets_it);
     tcase_add_test(tc, ucmm_message_ids_and_bad_response);
     tcase_add_test(tc, response_in_fragments);
     tcase_add_test(tc, request_in_fragments);

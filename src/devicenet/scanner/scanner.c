@@ -119,9 +119,14 @@ static void link_process(dn_scanner_t *scanner)
 
 static void recovery_result(dn_scanner_t *scanner, dn_slave_t *slave, const dn_result_t *result);
 
+/* A Close to the UCMM forgets the connection whatever its outcome: refused (the slave's watchdog
+ * already deleted it: 0x16) or unanswered, the connection is of no more use, and a scanner that
+ * kept it would send every later request to a group 3 ID no one consumes. */
 static void finish(dn_scanner_t *scanner, dn_slave_t *slave, dn_result_status_t status,
                    uint8_t general, uint8_t additional, const uint8_t *data, uint8_t len)
 {
+    if (slave->to_ucmm && slave->service == DN_SVC_CLOSE)
+        slave->ucmm_instance = 0;
     slave->busy = false;
     slave->tx.active = false;
     slave->rx.active = false;
@@ -323,8 +328,8 @@ static bool ucmm_opened(dn_scanner_t *scanner, dn_slave_t *slave, const uint8_t 
 }
 
 /* A whole response body: success (the service with the response bit), the error response, or
- * something else. Allocate and Release keep what the slave granted, Open and Close the UCMM
- * connection. */
+ * something else. Allocate and Release keep what the slave granted, Open the UCMM connection
+ * (finish forgets it after a Close). */
 static void response_complete(dn_scanner_t *scanner, dn_slave_t *slave, const uint8_t *body,
                               uint8_t len)
 {
@@ -341,8 +346,6 @@ static void response_complete(dn_scanner_t *scanner, dn_slave_t *slave, const ui
     if (slave->to_ucmm) {
         if (slave->service == DN_SVC_OPEN_EXPLICIT && !ucmm_opened(scanner, slave, body, len))
             return;
-        if (slave->service == DN_SVC_CLOSE)
-            slave->ucmm_instance = 0;
     } else if (slave->service == DN_SVC_ALLOCATE) {
         slave->allocated |= slave->choice;
     } else if (slave->service == DN_SVC_RELEASE) {

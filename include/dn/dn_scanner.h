@@ -213,9 +213,9 @@ bool dn_scanner_set_expected_packet_rate(dn_scanner_t *scanner, uint8_t mac_id, 
                                          uint16_t ms, co_time_t now);
 
 /* Open Explicit Messaging Connection on the slave's UCMM (group 3 message 6), the scanner's
- * group 3 message ID the lowest no other slave's UCMM connection uses (false when all five are
- * taken); on success the explicit requests go over that connection, no Allocate needed. The
- * result's data: body format, message IDs, instance (UINT). */
+ * group 3 message ID the lowest no other slave's UCMM connection uses or Open in flight asks
+ * for (false when all five are taken); on success the explicit requests go over that connection, no
+ * Allocate needed. The result's data: body format, message IDs, instance (UINT). */
 bool dn_scanner_ucmm_open(dn_scanner_t *scanner, uint8_t mac_id, co_time_t now);
 /* Close of that connection on the UCMM; from then on the predefined set's again, whatever the
  * answer (an error: the slave's watchdog deleted it already) or none. */

@@ -410,6 +410,27 @@ START_TEST(ucmm_close_timed_out_forgets_it)
 }
 END_TEST
 
+/* Two Opens in flight at once, to two slaves: each its own message ID of the scanner's. */
+START_TEST(ucmm_opens_in_flight_take_distinct_message_ids)
+{
+    static const uint8_t macs[] = {SLAVE, 5};
+    wire_setup(macs, 2, false);
+    dn_scanner_start_online(&w.scanner, w.now);
+    ck_assert(dn_scanner_ucmm_open(&w.scanner, SLAVE, w.now));
+    expect("780#3F4B0030");
+    ck_assert(dn_scanner_ucmm_open(&w.scanner, 5, w.now));
+    expect("780#054B0031");
+    rx(&w, "77F#00CB00000A00");
+    rx(&w, "745#00CB00100A00");
+    expect_result(0, DN_RESULT_OK, 0, 0, "00000A00");
+    ck_assert_int_eq(result(1)->status, DN_RESULT_OK);
+    ck_assert_uint_eq(w.slaves[0].ucmm_instance, 10);
+    ck_assert_uint_eq(w.slaves[1].ucmm_instance, 10);
+    ck_assert_uint_eq(w.slaves[0].ucmm_message, 0);
+    ck_assert_uint_eq(w.slaves[1].ucmm_message, 1);
+}
+END_TEST
+
 START_TEST(allocate_get_release)
 {
     setup_wired();
@@ -932,6 +953,7 @@ static Suite *suite(void)
     tcase_add_test(tc, ucmm_open_get_close);
     tcase_add_test(tc, ucmm_close_of_a_deleted_connection_forgets_it);
     tcase_add_test(tc, ucmm_close_timed_out_forgets_it);
+    tcase_add_test(tc, ucmm_opens_in_flight_take_distinct_message_ids);
     tcase_add_test(tc, ucmm_message_ids_and_bad_response);
     tcase_add_test(tc, response_in_fragments);
     tcase_add_test(tc, request_in_fragments);

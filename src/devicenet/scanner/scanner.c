@@ -225,14 +225,22 @@ bool dn_scanner_release(dn_scanner_t *scanner, uint8_t mac_id, uint8_t choice, c
     return true;
 }
 
-/* The lowest group 3 message ID of the scanner's that no other slave's UCMM connection uses (the
- * slaves tell their connections apart by the CAN-ID alone), or DN_G3_CONNECTED_LAST + 1. */
+/* Whether a slave holds its ucmm_message: a connection open, or an Open not answered yet. */
+static bool holds_ucmm_message(const dn_slave_t *slave)
+{
+    return slave->ucmm_instance != 0 ||
+           (slave->busy && slave->to_ucmm && slave->service == DN_SVC_OPEN_EXPLICIT);
+}
+
+/* The lowest group 3 message ID of the scanner's that no other slave's UCMM connection uses or
+ * asks for (the slaves tell their connections apart by the CAN-ID alone), or
+ * DN_G3_CONNECTED_LAST + 1. */
 static uint8_t free_ucmm_message(const dn_scanner_t *scanner)
 {
     const dn_scanner_config_t *config = scanner->config;
     uint8_t message = 0;
     for (uint8_t i = 0; i < config->slave_count && message <= DN_G3_CONNECTED_LAST;)
-        if (config->slaves[i].ucmm_instance && config->slaves[i].ucmm_message == message) {
+        if (holds_ucmm_message(&config->slaves[i]) && config->slaves[i].ucmm_message == message) {
             message++;
             i = 0;
         } else {

@@ -24,6 +24,9 @@
  * (ADL - address_first) % addresses_per_class + 1, and lives in the dictionary at index
  * index_first + (ADL - address_first) / addresses_per_index, sub-index
  * (ADL - address_first) % addresses_per_index + 1. */
+/* How many faults a profile may name as needing commissioning (the Altivars' CFF and CFI). */
+#define DRIVE_DN_COMMISSIONING_FAULTS 2u
+
 typedef struct drive_dn_profile {
     /* The drive behind the card: the model's profile as the card's manual names its faults (the
      * ATV312's communication loss is CnF here, COF on CANopen). */
@@ -38,7 +41,7 @@ typedef struct drive_dn_profile {
     drive_param_t rated_voltage; /* Motor data attribute 7, V: a parameter of the dictionary */
     /* The drive's faults of a missing or incorrect configuration: while one is latched the card's
      * MS LED flashes green (the manual's "Needs commissioning"). */
-    const char *commissioning_faults[2];
+    const char *commissioning_faults[DRIVE_DN_COMMISSIONING_FAULTS];
     uint8_t class_first;
     uint8_t class_last;
     uint16_t address_first;
@@ -106,6 +109,9 @@ typedef struct drive_dn {
      * command (drive_dn_command), 0 once it ended: the one whose end is the drive's
      * communication loss when no I/O carries the commands. */
     uint8_t command_connection;
+    /* The profile's commissioning_faults as indices of the drive's fault table (-1: none),
+     * resolved once at drive_dn_init: the Identity status is reported after every frame. */
+    int commissioning_fault[DRIVE_DN_COMMISSIONING_FAULTS];
     bool reverse;          /* the last run was Run2: 6042h is the negated speed reference */
     int16_t pending_reset; /* an Identity Reset type to carry out, or -1 */
     co_time_t now;

@@ -197,6 +197,10 @@ int drive_dn_init(drive_dn_t *dn, const drive_dn_config_t *config)
     dn->pending_reset = -1;
     dn->command.net_ctrl = dn->command.net_ref = true; /* the network, until told otherwise */
     dn->command_connection = DN_CONN_EXPLICIT;
+    for (size_t i = 0; i < DRIVE_DN_COMMISSIONING_FAULTS; i++) {
+        const char *code = config->profile->commissioning_faults[i];
+        dn->commissioning_fault[i] = code ? drive_fault_find(config->drive, code) : -1;
+    }
     dn->app = (dn_app_t){.user = dn,
                          .send = on_send,
                          .read_assembly = on_read_assembly,
@@ -234,14 +238,11 @@ int drive_dn_init(drive_dn_t *dn, const drive_dn_config_t *config)
 /* Whether the drive's latched fault is one of a missing or incorrect configuration. */
 static bool needs_commissioning(const drive_dn_t *dn)
 {
-    const drive_fault_def_t *fault = drive_fault_latched(dn->drive);
-    if (fault == NULL)
+    if (drive_fault_latched(dn->drive) == NULL)
         return false;
-    for (size_t i = 0; i < sizeof dn->profile->commissioning_faults / sizeof(const char *); i++) {
-        const char *code = dn->profile->commissioning_faults[i];
-        if (code && strcmp(code, fault->code) == 0)
+    for (size_t i = 0; i < DRIVE_DN_COMMISSIONING_FAULTS; i++)
+        if (dn->commissioning_fault[i] == dn->drive->fault_latched)
             return true;
-    }
     return false;
 }
 

@@ -308,8 +308,10 @@ void dn_node_stop(dn_node_t *node, co_time_t now);
  * 2, 4, 5, 6 and 7 (the predefined set's master-to-slave messages and the duplicate MAC ID
  * check), and group 3 messages 0-4 and 6 of every source MAC ID (the UCMM's requests, addressed
  * in their header, and the clients' requests on the connections it opens, whose message IDs the
- * clients choose). They depend on the MAC ID only, so a runtime can route by them once: the
- * others are no business of this node. Returns DN_NODE_CONSUMED_IDS. */
+ * clients choose). The group 2 ones follow the node's MAC ID, the group 3 ones are the same for
+ * every node; none changes while the node runs, so a runtime can route by them once (a frame of
+ * group 3 goes to every node, each keeping what is addressed to it): the others are no business
+ * of this node. Returns DN_NODE_CONSUMED_IDS. */
 #define DN_NODE_CONSUMED_IDS (5u + 6u * 64u)
 size_t dn_node_consumed_ids(const dn_node_t *node, uint16_t ids[DN_NODE_CONSUMED_IDS]);
 /* Every received frame; 29-bit and remote frames, and a length over 8, are ignored. */

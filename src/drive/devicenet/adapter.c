@@ -103,6 +103,7 @@ static void on_write_assembly(void *user, uint16_t instance, const uint8_t *data
     drive_dn_t *dn = user;
     (void)drive_process(dn->drive, dn->now); /* the drive's time is the frame's */
     if (instance == DRIVE_DN_TRANSPARENT_OUTPUT) {
+        drive_dn_note_command_connection(dn);
         write_transparent(dn, data);
         return;
     }

@@ -24,6 +24,9 @@ int16_t drive_dn_speed_actual(const drive_t *drive);
 /* A new ODVA command: the Run/Stop events, the fault reset edge, the switching bits and the
  * reference, written to 6040h and 6042h as the card does. */
 void drive_dn_command(drive_dn_t *dn, const drive_dn_command_t *next);
+/* The explicit connection of the request being carried out, if any, as the one the commands now
+ * come on (drive_dn_t.command_connection): every path that changes the command calls it. */
+void drive_dn_note_command_connection(drive_dn_t *dn);
 /* Status bits of the Control supervisor and the AC/DC drive. */
 bool drive_dn_running1(drive_dn_state_t state);
 bool drive_dn_ready(drive_dn_state_t state);

@@ -121,13 +121,18 @@ static void fault_reset(drive_dn_t *dn)
     write_word(dn, 0x6040, word);
 }
 
+void drive_dn_note_command_connection(drive_dn_t *dn)
+{
+    uint8_t connection = dn_node_request_connection(&dn->node);
+    if (connection != 0) /* an explicit request's, not an I/O message's */
+        dn->command_connection = connection;
+}
+
 void drive_dn_command(drive_dn_t *dn, const drive_dn_command_t *next)
 {
     drive_dn_command_t was = dn->command;
     dn->command = *next;
-    uint8_t connection = dn_node_request_connection(&dn->node);
-    if (connection != 0) /* an explicit request's, not an I/O message's */
-        dn->command_connection = connection;
+    drive_dn_note_command_connection(dn);
     run_event_t event = run_event(&was, next);
     if (event == RUN_FORWARD || event == RUN_REVERSE)
         dn->reverse = event == RUN_REVERSE;

@@ -9,6 +9,8 @@
 #include "check_main.h"
 #include "dn_drive_bench.h"
 
+#include <stdio.h>
+
 static dn_drive_bench_t b;
 
 static void setup(void)
@@ -195,6 +197,39 @@ START_TEST(ucmm_close_after_an_assembly_set_is_cnf)
 }
 END_TEST
 
+/* A Set of the transparent output assembly (100: 6040h, 6042h) over UCMM instance 10, in two
+ * fragments (header, then the 4 bytes' last two): the commands ran through the card's
+ * transparent path, not the ODVA one, and the connection's Close is CnF all the same. */
+static void set_transparent_by_ucmm(uint16_t control, uint16_t speed, bool xid)
+{
+    char frame[32];
+    unsigned header = xid ? 0xD9u : 0x99u, answer = xid ? 0xC1u : 0x81u;
+    snprintf(frame, sizeof frame, "641#%02X00100464%02X%02X%02X", header, 3u, control & 0xFFu,
+             control >> 8);
+    db_rx(&b, frame);
+    snprintf(frame, sizeof frame, "619#%02XC000", answer);
+    db_expect(&b, frame);
+    snprintf(frame, sizeof frame, "641#%02X81%02X%02X", header, speed & 0xFFu, speed >> 8);
+    db_rx(&b, frame);
+    snprintf(frame, sizeof frame, "619#%02XC100", answer);
+    db_expect(&b, frame);
+    snprintf(frame, sizeof frame, "619#%02X90", answer & 0x7Fu);
+    db_expect(&b, frame);
+}
+
+START_TEST(ucmm_close_after_a_transparent_set_is_cnf)
+{
+    db_exchange(&b, "781#194B0031", "759#01CB00100A00");
+    set_transparent_by_ucmm(0x0006, 300, false);
+    set_transparent_by_ucmm(0x0007, 300, true);
+    set_transparent_by_ucmm(0x000F, 300, false);
+    db_advance(&b, 50000);
+    expect_running();
+    db_exchange(&b, "781#194C0A00", "759#01CC");
+    expect_cnf();
+}
+END_TEST
+
 /* A Set refused on instance 1 (Run1 = 2, "invalid attribute value") changes no command: the
  * UCMM connection whose Sets run the drive still carries them, and its Close is CnF. */
 START_TEST(refused_set_elsewhere_leaves_the_commands_connection)
@@ -280,6 +315,7 @@ static Suite *suite(void)
     tcase_add_test(tc, ucmm_close_of_a_connection_that_carried_nothing_keeps_running);
     tcase_add_test(tc, ucmm_close_after_an_assembly_set_is_cnf);
     tcase_add_test(tc, refused_set_elsewhere_leaves_the_commands_connection);
+    tcase_add_test(tc, ucmm_close_after_a_transparent_set_is_cnf);
     suite_add_tcase(s, tc);
     return s;
 }

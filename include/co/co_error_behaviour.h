@@ -1,11 +1,11 @@
 /* SPDX-License-Identifier: Apache-2.0 */
 /* The error behaviour object 1029h (CiA 301 7.5.2.32): what an error of each class does to the
  * node's NMT state. Sub-index 1 is the communication error (a heartbeat producer or life guarding
- * lost, the recovery from bus off), further sub-indexes are the device profile's or the
- * manufacturer's error classes. Selectable per node: a node gets the service with
- * co_node_config_t.error_behaviour = &co_error_behaviour, and one without it links none of it;
- * its application keeps CiA 301's behaviour without 1029h itself (nodes/plain_node.h).
- * docs/error-control.md. */
+ * lost, an RPDO time-out, the recovery from bus off; co_node_communication_error), further
+ * sub-indexes are the device profile's or the manufacturer's error classes. Selectable per node: a
+ * node gets the service with co_node_config_t.error_behaviour = &co_error_behaviour, and one
+ * without it links none of it; its application keeps CiA 301's behaviour without 1029h itself
+ * (nodes/plain_node.h). docs/error-control.md. */
 #ifndef CO_ERROR_BEHAVIOUR_H
 #define CO_ERROR_BEHAVIOUR_H
 

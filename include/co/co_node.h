@@ -207,6 +207,16 @@ static inline void co_node_reschedule(co_node_t *node)
 {
     node->schedule_changed = true;
 }
+/* A communication error (1029h:01, CiA 301 7.5.2.32): a heartbeat producer or life guarding
+ * lost, an RPDO time-out, the recovery from bus off. The NMT state changes as 1029h:01 says on a
+ * node with the error behaviour service; a node without it keeps its state (its application
+ * keeps CiA 301's behaviour without 1029h). Inline: one test and one call. */
+static inline void co_node_communication_error(co_node_t *node)
+{
+    if (node->error_behaviour != NULL)
+        node->error_behaviour->raise(node, CO_ERROR_CLASS_COMMUNICATION);
+}
+
 /* The name of release 0.1, which stays for one more release: use co_node_reschedule. */
 #define co_node_changed co_node_reschedule
 

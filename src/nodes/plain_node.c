@@ -128,8 +128,8 @@ void plain_node_bus_event(plain_node_t *plain, uint16_t emcy_code, bool active)
     else if (emcy_code == CO_EMCY_BUS_OFF)
         plain->bus_off = active;
     /* The recovery from bus off is a communication error (CiA 301 7.5.2.32) where 1029h rules. */
-    if (emcy_code == CO_EMCY_BUS_OFF && !active && plain->node.error_behaviour != NULL)
-        plain->node.error_behaviour->raise(&plain->node, CO_ERROR_CLASS_COMMUNICATION);
+    if (emcy_code == CO_EMCY_BUS_OFF && !active)
+        co_node_communication_error(&plain->node);
 }
 
 void plain_node_bus_warning(plain_node_t *plain, bool active)

@@ -114,6 +114,25 @@ START_TEST(life_guarding_loss_is_a_communication_error)
 }
 END_TEST
 
+/* RPDO 6 monitored for 100 ms (1405h:05), silent after one frame: the EMCY 8250h, then Stopped. */
+START_TEST(rpdo_timeout_is_a_communication_error)
+{
+    ck_assert_uint_eq(test_write(&t, 0x1029, 1, 2, 1), 0);
+    ck_assert_uint_eq(test_write(&t, 0x1405, 5, 100, 2), 0);
+    ck_assert_uint_eq(test_write(&t, 0x1405, 1, 0x305, 4), 0);
+    test_rx(&t, "000#0104");
+    test_drain(&t);
+    test_rx(&t, "305#0F00B004");
+    test_advance(&t, 99999);
+    ck_assert_uint_eq(t.node.nmt_state, CO_NMT_OPERATIONAL);
+    test_advance(&t, 1);
+    test_expect(&t, "084#5082110600000400");
+    test_rx(&t, "704#R");
+    test_expect(&t, "704#04");
+    test_expect_none(&t);
+}
+END_TEST
+
 /* A device error class of the dictionary (1029h:02), raised by the application. */
 START_TEST(device_error_class_raised_by_the_application)
 {
@@ -167,6 +186,7 @@ int main(void)
     tcase_add_test(tc, communication_error_1_no_change);
     tcase_add_test(tc, communication_error_2_to_stopped_from_any_state);
     tcase_add_test(tc, life_guarding_loss_is_a_communication_error);
+    tcase_add_test(tc, rpdo_timeout_is_a_communication_error);
     tcase_add_test(tc, device_error_class_raised_by_the_application);
     tcase_add_test(tc, reserved_values_refused);
     tcase_add_test(tc, node_without_the_service_keeps_its_state);

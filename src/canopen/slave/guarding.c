@@ -29,8 +29,8 @@ static void restart_life_timer(co_node_t *node)
 /* A loss is a communication error (1029h:01) before the application hears of it. */
 static void guarding_report(co_node_t *node, bool lost)
 {
-    if (lost && node->error_behaviour != NULL)
-        node->error_behaviour->raise(node, CO_ERROR_CLASS_COMMUNICATION);
+    if (lost)
+        co_node_communication_error(node);
     if (node->hooks != NULL && node->hooks->guarding != NULL)
         node->hooks->guarding(node, lost);
 }

@@ -78,8 +78,8 @@ void co_heartbeat_reset(co_node_t *node)
 /* A loss is a communication error (1029h:01) before the application hears of it. */
 static void heartbeat_report(co_node_t *node, uint8_t producer, bool lost)
 {
-    if (lost && node->error_behaviour != NULL)
-        node->error_behaviour->raise(node, CO_ERROR_CLASS_COMMUNICATION);
+    if (lost)
+        co_node_communication_error(node);
     if (node->hooks != NULL && node->hooks->heartbeat != NULL)
         node->hooks->heartbeat(node, producer, lost);
 }

@@ -494,7 +494,8 @@ void co_pdo_sync(co_node_t *node, uint8_t counter)
     }
 }
 
-/* RPDO deadline monitoring (event timer, CiA 301 7.5.2.35): EMCY 0x8250 once per silence. */
+/* RPDO deadline monitoring (event timer, CiA 301 7.5.2.35): EMCY 0x8250 once per silence, and a
+ * communication error (1029h:01) after the EMCY, which a Stopped node could no longer send. */
 static co_time_t rpdo_process_deadline(co_node_t *node, uint16_t n, co_time_t now)
 {
     co_rpdo_t *r = &node->pdo.rpdo[n];
@@ -502,6 +503,7 @@ static co_time_t rpdo_process_deadline(co_node_t *node, uint16_t n, co_time_t no
         r->deadline = CO_TIME_NEVER;
         r->timed_out = true;
         rpdo_emcy(node, n, CO_EMCY_RPDO_TIMEOUT, 0);
+        co_node_communication_error(node);
     }
     return r->deadline;
 }

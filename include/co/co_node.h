@@ -171,6 +171,9 @@ struct co_node {
      * that reach them, whether a firmware uses these or not. */
     const co_error_behaviour_code_t *error_behaviour; /* co_node_config_t.error_behaviour */
     const co_nmt_startup_code_t *nmt_startup;         /* co_node_config_t.nmt_startup */
+    /* 1012h as the TIME service keeps it (co_time_stamp_code_t.reset and its write rules), so
+     * that a received frame is matched without a dictionary look-up; 0 without the service. */
+    uint32_t time_cob_id;
 };
 
 /* Results of co_node_init besides the object dictionary's own validation errors. */

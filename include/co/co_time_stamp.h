@@ -52,6 +52,9 @@ void co_time_of_day_civil(const co_time_of_day_t *time, co_civil_time_t *civil);
 
 /* The consumer's and the 1012h rules' code, for co_node_config_t.time_stamp. */
 typedef struct co_time_stamp_code {
+    /* At each reset, after the defaults and the stored values are in place: 1012h into
+     * co_node_t.time_cob_id. */
+    void (*reset)(co_node_t *node);
     /* A TIME frame for this node (1012h bit 31, its CAN-ID): to the application; true when the
      * frame was the TIME's (a wrong length is consumed and ignored). */
     bool (*receive)(co_node_t *node, const co_frame_t *frame);

@@ -170,6 +170,13 @@ START_TEST(consumed_cob_ids_follow_1012h)
     co_put_u32(data, 0x40000100u); /* produced only */
     ck_assert_uint_eq(co_od_write(&t.node, CO_IDX_TIME_COB_ID, 0, data, 4, CO_OD_ORIGIN_SDO), 0);
     ck_assert(!consumes(0x100));
+    /* A reset communication brings the default back, for the consumer as for the dictionary. */
+    ck_assert_uint_eq(write_cob_id(0x80000100u), 0);
+    test_rx(&t, "000#8204");
+    test_drain(&t);
+    ck_assert(!consumes(0x100));
+    test_rx(&t, "100#000000000000");
+    ck_assert_uint_eq(time_calls, 0);
 }
 END_TEST
 

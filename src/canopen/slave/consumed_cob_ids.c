@@ -33,9 +33,8 @@ static void add_sync(const co_node_t *node, cob_set_t *set)
 /* TIME, for a node given the service whose 1012h says consume (bit 31). */
 static void add_time(const co_node_t *node, cob_set_t *set)
 {
-    uint32_t cob_id = (uint32_t)co_od_value(node, CO_IDX_TIME_COB_ID, 0);
-    if (node->time_stamp != NULL && (cob_id & CO_TIME_COBID_CONSUMER))
-        add(set, cob_id, false);
+    if (node->time_stamp != NULL && (node->time_cob_id & CO_TIME_COBID_CONSUMER))
+        add(set, node->time_cob_id, false);
 }
 
 static void add_guarding(const co_node_t *node, cob_set_t *set)

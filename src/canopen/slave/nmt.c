@@ -14,6 +14,8 @@ static void reset_services(co_node_t *node, co_nmt_reset_t scope)
     co_heartbeat_reset(node);
     co_guarding_reset(node);
     co_pdo_reset(node);
+    if (node->time_stamp != NULL)
+        node->time_stamp->reset(node);
 }
 
 void co_nmt_enter(co_node_t *node, co_nmt_state_t state)

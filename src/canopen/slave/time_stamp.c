@@ -55,9 +55,14 @@ static uint32_t time_cob_id(const co_node_t *node)
     return (uint32_t)co_od_value(node, CO_IDX_TIME_COB_ID, 0);
 }
 
+static void time_reset(co_node_t *node)
+{
+    node->time_cob_id = time_cob_id(node);
+}
+
 static bool time_receive(co_node_t *node, const co_frame_t *frame)
 {
-    uint32_t cob_id = time_cob_id(node);
+    uint32_t cob_id = node->time_cob_id;
     if (!(cob_id & CO_TIME_COBID_CONSUMER) || frame->id != (cob_id & CO_TIME_COBID_CAN_ID) ||
         (frame->flags & CO_FRAME_RTR))
         return false;
@@ -75,20 +80,24 @@ static bool time_receive(co_node_t *node, const co_frame_t *frame)
 static uint32_t time_od_write(co_node_t *node, const co_od_entry_t *entry, const uint8_t *data,
                               size_t len)
 {
-    (void)len;
     if (entry->index != CO_IDX_TIME_COB_ID)
         return CO_SDO_OK;
-    uint32_t old = time_cob_id(node);
+    uint32_t old = node->time_cob_id;
     uint32_t value = co_get_u32(data);
     const uint32_t exists = CO_TIME_COBID_CONSUMER | CO_TIME_COBID_PRODUCER;
     uint32_t abort = co_cob_id_check(old, value, 0, exists);
     if (abort == CO_SDO_OK && (old & exists) && (value & exists) &&
         ((old ^ value) & CO_TIME_COBID_CAN_ID) != 0)
         abort = CO_SDO_ABORT_VALUE_RANGE;
-    return abort;
+    if (abort != CO_SDO_OK)
+        return abort;
+    co_od_store(node, entry, data, len);
+    node->time_cob_id = value;
+    return CO_OD_HANDLED;
 }
 
 const co_time_stamp_code_t co_time_stamp = {
+    .reset = time_reset,
     .receive = time_receive,
     .od_write = time_od_write,
 };

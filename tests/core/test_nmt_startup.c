@@ -68,12 +68,17 @@ START_TEST(master_bits_refused)
 }
 END_TEST
 
+/* Bit 2 clear, stored so that the reset keeps it: without the service, still no start. */
 START_TEST(node_without_the_service_waits)
 {
     start(NULL);
     ck_assert_uint_eq(test_write(&t, 0x1F80, 0, 0, 4), 0);
+    ck_assert_uint_eq(test_write(&t, 0x1800, 1, 0x80000184, 4), 0); /* no TPDO in Operational */
+    ck_assert_uint_eq(test_write(&t, 0x1010, 2, 0x65766173, 4), 0);
+    test_drain(&t);
     test_rx(&t, "000#8104");
     test_expect(&t, "704#00");
+    ck_assert_int_eq(co_od_value(&t.node, 0x1F80, 0), 0);
     expect_first_heartbeat("704#7F");
 }
 END_TEST

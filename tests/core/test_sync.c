@@ -277,12 +277,15 @@ START_TEST(consumer_timeout_emcy_8100)
     test_rx(&t, "000#8004");
     test_advance(&t, 100 * MS);
     test_expect_none(&t);
-    /* A producer does not watch its own SYNC. */
+    /* A producer watches no SYNC, neither its own nor one received. */
     ck_assert_uint_eq(write_param(0x1005, 0, 0x40000080, 4), 0);
+    co_time_t from = t.bus.now;
+    test_rx(&t, "080#");
     test_advance(&t, 100 * MS);
-    ck_assert_uint_eq(test_expect(&t, "080#"), t.bus.now - 90 * MS);
-    test_drain(&t);
+    for (co_time_t n = 1; n <= 10; n++)
+        ck_assert_uint_eq(test_expect(&t, "080#"), from + n * 10 * MS);
     test_expect_none(&t);
+    ck_assert_uint_eq(co_od_value(&t.node, 0x1001, 0), 0);
 }
 END_TEST
 

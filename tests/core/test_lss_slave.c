@@ -7,6 +7,7 @@
  * The test dictionary's identity (1018h): vendor 5Fh, product 312h, revision 00010002h, serial
  * 12345678h. */
 #include "check_main.h"
+#include "co/co_consumers.h"
 #include "test_bus.h"
 #include "test_od.h"
 
@@ -149,9 +150,12 @@ START_TEST(new_node_id_waits_for_an_nmt_reset)
     /* FFh takes the node-id away: after the next reset the node is silent but for LSS. */
     test_rx(&t, "7E5#11FF000000000000");
     test_expect(&t, "7E4#1100000000000000");
+    uint32_t generation = co_node_consumer_generation(&t.node);
     test_rx(&t, "000#8100");
     test_expect_none(&t);
     ck_assert_uint_eq(t.node.nmt_state, CO_NMT_INITIALISING);
+    /* The runtime's filter must narrow to 7E5h. */
+    ck_assert_uint_ne(co_node_consumer_generation(&t.node), generation);
     test_rx(&t, "7E5#5E00000000000000");
     test_expect(&t, "7E4#5EFF000000000000");
 }

@@ -47,10 +47,12 @@ void co_nmt_reset(co_node_t *node, co_nmt_reset_t scope)
     }
     co_od_restore_defaults(node, CO_IDX_COMM_FIRST, CO_IDX_COMM_LAST);
     co_store_apply(node, CO_IDX_COMM_FIRST, CO_IDX_COMM_LAST);
+    /* Every reset changes the consumed set, a node left without node-id's too (7E5h alone); the
+     * runtime reads the set after the reset. */
+    co_consumers_changed(node);
     if (node->node_id == CO_LSS_NODE_ID_UNCONFIGURED)
         return;
     reset_services(node, scope);
-    co_consumers_changed(node);
     co_node_send_byte(node, CO_CAN_ID_ERROR_CONTROL + node->node_id, 0);
     co_nmt_enter(node, CO_NMT_PRE_OPERATIONAL);
     if (node->nmt_startup != NULL)

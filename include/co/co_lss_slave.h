@@ -44,8 +44,14 @@ typedef struct co_lss_slave {
     uint8_t selected;      /* switch state selective: parts of the address matched in order */
     uint8_t identified;    /* identify remote slave: conditions met in order */
     uint8_t fastscan_part; /* fastscan: the part (LSS sub) this slave answers for */
-    bool silent;           /* activate bit timing: no frame leaves the node */
 } co_lss_slave_t;
+
+/* Activate bit timing: no frame leaves the node from the command until one delay after the
+ * switch, that is while a switch or the end of the silence is due. */
+static inline bool co_lss_slave_silent(const co_lss_slave_t *lss)
+{
+    return lss->switch_at != CO_TIME_NEVER || lss->resume_at != CO_TIME_NEVER;
+}
 
 /* Prepares the slave in waiting state with the node's present bit timing (index of table 0) and
  * the hooks (NULL: none). co_node_init sets the pending node-id to the node's. */

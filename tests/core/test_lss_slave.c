@@ -302,11 +302,11 @@ START_TEST(activate_bit_timing_keeps_still_on_its_delays)
     start(5, NULL);
     to_configuration();
     test_rx(&t, "7E5#1564000000000000");
-    ck_assert(!lss.silent);
+    ck_assert(!co_lss_slave_silent(&lss));
     /* In the waiting state too. */
     start(5, &all_hooks);
     test_rx(&t, "7E5#1564000000000000");
-    ck_assert(!lss.silent);
+    ck_assert(!co_lss_slave_silent(&lss));
 }
 END_TEST
 

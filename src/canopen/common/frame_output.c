@@ -7,7 +7,7 @@
 void co_node_send(co_node_t *node, const co_frame_t *frame)
 {
     /* CiA 305 activate bit timing: the node keeps still while the bit rate changes. */
-    if (node->lss != NULL && node->lss->silent)
+    if (node->lss != NULL && co_lss_slave_silent(node->lss))
         return;
     if ((node->options & CO_NODE_PAD_DLC8) && !(frame->flags & CO_FRAME_RTR))
         node->options_code->send_padded(node, frame);

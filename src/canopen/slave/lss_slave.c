@@ -148,7 +148,6 @@ static void configure(co_node_t *node, const uint8_t *data)
     case CO_LSS_CS_ACTIVATE_BIT_TIMING:
         if (lss->hooks == NULL || lss->hooks->switch_bit_timing == NULL)
             break;
-        lss->silent = true;
         lss->switch_delay = (co_time_t)co_get_u16(&data[1]) * 1000u;
         lss->switch_at = node->now + lss->switch_delay;
         lss->resume_at = CO_TIME_NEVER;
@@ -215,10 +214,8 @@ static co_time_t lss_process(co_node_t *node, co_time_t now)
         lss->resume_at = lss->switch_at + lss->switch_delay;
         lss->switch_at = CO_TIME_NEVER;
     }
-    if (now >= lss->resume_at) {
-        lss->silent = false;
+    if (now >= lss->resume_at)
         lss->resume_at = CO_TIME_NEVER;
-    }
     return co_time_min(lss->switch_at, lss->resume_at);
 }
 
@@ -235,5 +232,4 @@ void co_lss_slave_init(co_lss_slave_t *lss, const co_lss_slave_hooks_t *hooks, u
     lss->selected = 0;
     lss->identified = 0;
     lss->fastscan_part = CO_LSS_VENDOR;
-    lss->silent = false;
 }

@@ -135,6 +135,12 @@ START_TEST(new_node_id_waits_for_an_nmt_reset)
 {
     start(5, NULL);
     to_configuration();
+    /* An LSS frame moves no deadline of the services. */
+    ck_assert(!t.node.schedule_changed);
+    co_frame_t inquire = test_frame("7E5#5E00000000000000");
+    co_node_receive(&t.node, &inquire, t.bus.now);
+    ck_assert(!t.node.schedule_changed);
+    test_expect(&t, "7E4#5E05000000000000");
     test_rx(&t, "7E5#1109000000000000");
     test_expect(&t, "7E4#1100000000000000");
     test_rx(&t, "7E5#0400000000000000");

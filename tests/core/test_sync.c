@@ -289,6 +289,29 @@ START_TEST(consumer_timeout_emcy_8100)
 }
 END_TEST
 
+/* A SYNC in time moves the armed watch later: the services keep their deadline (the watch's
+ * former one, looked at once early), so that a SYNC does not run every service; the time-out
+ * still comes 15 ms after the last SYNC. */
+START_TEST(sync_in_time_reschedules_no_service)
+{
+    start();
+    ck_assert_uint_eq(write_param(0x1006, 0, 10 * MS, 4), 0);
+    test_rx(&t, "080#");
+    ck_assert_uint_eq(t.bus.deadline, t.bus.now + 15 * MS);
+    test_advance(&t, 10 * MS);
+    co_frame_t sync = test_frame("080#");
+    co_node_receive(&t.node, &sync, t.bus.now);
+    ck_assert(!t.node.schedule_changed);
+    co_time_t last = t.bus.now;
+    t.bus.deadline = co_node_process(&t.node, t.bus.now);
+    test_advance(&t, 15 * MS - 1);
+    test_expect_none(&t);
+    test_advance(&t, 1);
+    ck_assert_uint_eq(test_expect(&t, "084#0081110000000000"), last + 15 * MS);
+    test_expect_none(&t);
+}
+END_TEST
+
 /* Issue 7, item 7, with its frames (node 5): reset communication ends the SYNC length error
  * together with its EMCY, so 1001h does not keep bits that no correct SYNC would ever clear, and
  * the next wrong SYNC raises the EMCY again. */
@@ -386,6 +409,7 @@ int main(void)
     tcase_add_test(tc, parameters_follow_writes_and_resets);
     tcase_add_test(tc, consumer_ignored_when_stopped);
     tcase_add_test(tc, consumer_timeout_emcy_8100);
+    tcase_add_test(tc, sync_in_time_reschedules_no_service);
     tcase_add_test(tc, produced_sync_drives_synchronous_tpdo);
     suite_add_tcase(s, tc);
     return check_run_suite(s);

@@ -179,9 +179,10 @@ void co_node_receive(co_node_t *node, const co_frame_t *frame, co_time_t now)
     if ((frame->flags & CO_FRAME_EFF) || frame->len > CO_FRAME_DLC_MAX)
         return;
     /* LSS works in every NMT state, Initialising included (CiA 305). */
+    /* Its deadlines are looked at by every co_node_process, and the reset that boots a node
+     * reschedules by its state change. */
     if (node->lss != NULL && frame->id == CO_LSS_ID_MASTER) {
         node->lss->receive(node, frame);
-        co_node_reschedule(node);
         return;
     }
     if (node->nmt_state == CO_NMT_INITIALISING)

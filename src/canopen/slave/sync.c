@@ -116,12 +116,16 @@ bool co_sync_receive(co_node_t *node, const co_frame_t *frame)
         node->sync.length_error = true;
         return true;
     }
+    bool watched = node->sync.timeout_at != CO_TIME_NEVER;
     sync_length_error_end(node);
     sync_timeout_end(node);
     uint32_t period = sync_period_us(node);
     if (period != 0 && !(sync_cob_id(node) & CO_SYNC_COBID_PRODUCER)) {
         node->sync.timeout_at = node->now + period + period / 2;
-        co_node_reschedule(node);
+        /* Only a first watch can be due before the node's kept deadline; a watch moved later
+         * costs one early look at most, not a run of every service at each SYNC. */
+        if (!watched)
+            co_node_reschedule(node);
     }
     node->sync.deliver(node, overflow != 0 ? frame->data[0] : 0);
     return true;

@@ -210,15 +210,6 @@ static void put_plc300_area(const plain_node_t *plc, bool output, atv312d_text_t
 }
 
 /* The I/O node's terminals: ", inputs DI1 DI3, outputs DO2, analog AI1 100 AI2 -5". */
-/* "2026-11-29 12:34:56.789", the last TIME an I/O node received. */
-static void format_time(char *buf, size_t size, const co_time_of_day_t *time)
-{
-    co_civil_time_t c;
-    co_time_of_day_civil(time, &c);
-    snprintf(buf, size, "%04d-%02u-%02u %02u:%02u:%02u.%03u", c.year, c.month, c.day, c.hour,
-             c.minute, c.second, c.ms);
-}
-
 static void put_io401(const plain_node_t *io, atv312d_text_t *t)
 {
     uint8_t bits[2] = {io401_inputs(io), io401_outputs(io)};
@@ -234,9 +225,9 @@ static void put_io401(const plain_node_t *io, atv312d_text_t *t)
     atv312d_text_put(t, ", analog");
     for (uint8_t i = 1; i <= IO401_ANALOG_INPUTS; i++)
         atv312d_text_put(t, " AI%u %d", i, io401_analog(io, i));
-    char time[32] = "none";
+    char time[CO_TIME_OF_DAY_TEXT_SIZE] = "none";
     if (io->time_received)
-        format_time(time, sizeof time, &io->time);
+        co_time_of_day_format(&io->time, time);
     atv312d_text_put(t, ", time %s", time);
 }
 
@@ -301,8 +292,8 @@ static void io401_json(cli_json_t *json, const plain_node_t *io)
     }
     cli_json_end_object(json);
     if (io->time_received) {
-        char time[32];
-        format_time(time, sizeof time, &io->time);
+        char time[CO_TIME_OF_DAY_TEXT_SIZE];
+        co_time_of_day_format(&io->time, time);
         cli_json_str(json, "time", time);
     } else {
         cli_json_null(json, "time");

@@ -1,7 +1,7 @@
 /* SPDX-License-Identifier: Apache-2.0 */
 /* comaster time: the TIME producer of a network (CiA 301 7.2.6): one TIME frame on 100h with the
  * host's clock, or one every PERIOD milliseconds until SIGINT or SIGTERM. docs/time.md. */
-#include "co/co_time_stamp.h"
+#include "co/co_time_of_day.h"
 #include "co_linux/loop.h"
 #include "comaster/comaster.h"
 
@@ -48,11 +48,8 @@ static int send_time(time_job_t *job)
     co_frame_t frame = {.id = CO_CAN_ID_TIME, .len = CO_TIME_OF_DAY_LEN};
     co_time_of_day_encode(&time, frame.data);
     comaster_bus_send(job->bus, &frame);
-    co_civil_time_t c;
-    co_time_of_day_civil(&time, &c);
-    char text[32];
-    snprintf(text, sizeof text, "%04d-%02u-%02u %02u:%02u:%02u.%03u", c.year, c.month, c.day,
-             c.hour, c.minute, c.second, c.ms);
+    char text[CO_TIME_OF_DAY_TEXT_SIZE];
+    co_time_of_day_format(&time, text);
     if (job->opts->json)
         printf("{\"time\": \"%s\", \"ms\": %lu, \"days\": %u}\n", text, (unsigned long)time.ms,
                time.days);

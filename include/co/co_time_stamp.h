@@ -1,54 +1,22 @@
 /* SPDX-License-Identifier: Apache-2.0 */
 /* The TIME service (CiA 301 7.2.6, time stamp object): 1012h COB-ID TIME, a node's consumer
  * (bit 31) and producer (bit 30), and the TIME_OF_DAY of its frame, milliseconds after midnight
- * and days since 1984-01-01. The core reads no clock: the producer sends the time of day the
- * application hands in, the consumer hands the one received to the application (its time_stamp
- * hook). Selectable per node: a node gets the service with co_node_config_t.time_stamp =
- * &co_time_stamp, and a firmware that names neither it nor co_time_stamp_send links none of
- * it. docs/time.md. */
+ * and days since 1984-01-01 (its codec: co_time_of_day.h). The core reads no clock: the producer
+ * sends the time of day the application hands in, the consumer hands the one received to the
+ * application (its time_stamp hook). Selectable per node: a node gets the service with
+ * co_node_config_t.time_stamp = &co_time_stamp, and a firmware that names neither it nor
+ * co_time_stamp_send links none of it. docs/time.md. */
 #ifndef CO_TIME_STAMP_H
 #define CO_TIME_STAMP_H
 
 #include "co_od.h"
+#include "co_time_of_day.h"
 
 /* 1012h bits (CiA 301 7.5.2.12, table "Description of TIME COB-ID entry"). */
 #define CO_TIME_COBID_CONSUMER 0x80000000u
 #define CO_TIME_COBID_PRODUCER 0x40000000u
 #define CO_TIME_COBID_FRAME 0x20000000u /* 29-bit CAN-ID: refused, as for every COB-ID */
 #define CO_TIME_COBID_CAN_ID 0x000007FFu
-
-/* TIME_OF_DAY (CiA 301 7.1.6.5): 28 bits of milliseconds after midnight, 4 bits reserved (0),
- * then 16 bits of days since 1984-01-01: 6 bytes, little-endian. */
-#define CO_TIME_OF_DAY_LEN 6u
-#define CO_TIME_OF_DAY_MS_MASK 0x0FFFFFFFu
-#define CO_TIME_MS_PER_DAY 86400000u
-/* 1984-01-01 is day 5113 of the Unix epoch (1970-01-01). */
-#define CO_TIME_EPOCH_DAYS_FROM_1970 5113u
-
-typedef struct co_time_of_day {
-    uint32_t ms;   /* after midnight, 0..86 399 999 */
-    uint16_t days; /* since 1984-01-01 */
-} co_time_of_day_t;
-
-/* A TIME_OF_DAY as a calendar date and time (proleptic Gregorian, no time zone). */
-typedef struct co_civil_time {
-    int year;
-    uint8_t month; /* 1..12 */
-    uint8_t day;   /* 1..31 */
-    uint8_t hour;
-    uint8_t minute;
-    uint8_t second;
-    uint16_t ms;
-} co_civil_time_t;
-
-/* The 6 bytes of a TIME frame. */
-void co_time_of_day_encode(const co_time_of_day_t *time, uint8_t data[CO_TIME_OF_DAY_LEN]);
-/* False for a frame of another length than 6; the reserved bits are ignored. */
-bool co_time_of_day_decode(const uint8_t *data, size_t len, co_time_of_day_t *time);
-/* Milliseconds since 1970-01-01 (a host's clock in UTC) to a TIME_OF_DAY; false before 1984 or
- * after the last day 16 bits count (2163-06-06). */
-bool co_time_of_day_from_unix_ms(uint64_t unix_ms, co_time_of_day_t *time);
-void co_time_of_day_civil(const co_time_of_day_t *time, co_civil_time_t *civil);
 
 /* The consumer's and the 1012h rules' code, for co_node_config_t.time_stamp. */
 typedef struct co_time_stamp_code {

@@ -61,11 +61,12 @@ bool co_can_id_restricted(uint32_t can_id);
 /* Bit 31 of a COB-ID parameter (PDO, EMCY, SDO channel): the object is not valid (disabled). */
 #define CO_COB_ID_INVALID 0x80000000u
 
-/* CiA 301's rules of a COB-ID write shared by PDO, SYNC and EMCY: only CO_COB_ID_ALLOWED bits, no
- * restricted CAN-ID, and no new CAN-ID while the old and the new value are both in use, which
- * (cob_id & in_use_mask) == in_use says (the PDO or EMCY valid, bit 31 clear; the SYNC produced,
- * bit 30 set). 0 or CO_SDO_ABORT_VALUE_RANGE. */
-uint32_t co_cob_id_check(uint32_t old, uint32_t value, uint32_t in_use_mask, uint32_t in_use);
+/* CiA 301's rules of a COB-ID write shared by PDO, SYNC, EMCY and TIME: only CO_COB_ID_ALLOWED
+ * bits, no restricted CAN-ID, and no new CAN-ID while the old and the new value are both in use,
+ * which (cob_id & in_use_mask) != idle says (the PDO or EMCY valid: bit 31 not set; the SYNC
+ * produced: bit 30 not clear; the TIME consumed or produced: bits 31 and 30 not both clear).
+ * 0 or CO_SDO_ABORT_VALUE_RANGE. */
+uint32_t co_cob_id_check(uint32_t old, uint32_t value, uint32_t in_use_mask, uint32_t idle);
 
 /* CiA 301 table 44: static data types, by their object dictionary index. */
 typedef enum co_dtype {

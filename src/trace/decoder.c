@@ -6,7 +6,7 @@
 #include "co/co_lss.h"
 #include "co/co_nmt.h"
 #include "co/co_pdo.h"
-#include "co/co_time_stamp.h"
+#include "co/co_time_of_day.h"
 
 #include <stdio.h>
 #include <string.h>
@@ -80,10 +80,9 @@ static void decode_time(const struct can_frame *f, text_t *t)
         say(t, "TIME malformed: %u bytes, a TIME_OF_DAY has %u", f->len, CO_TIME_OF_DAY_LEN);
         return;
     }
-    co_civil_time_t c;
-    co_time_of_day_civil(&time, &c);
-    say(t, "TIME %04d-%02u-%02u %02u:%02u:%02u.%03u", c.year, c.month, c.day, c.hour, c.minute,
-        c.second, c.ms);
+    char text[CO_TIME_OF_DAY_TEXT_SIZE];
+    co_time_of_day_format(&time, text);
+    say(t, "TIME %s", text);
 }
 
 static void say_error_register(text_t *t, uint8_t reg)

@@ -69,6 +69,14 @@ START_TEST(time_of_day_codec_and_calendar)
     ck_assert_uint_eq(c.day, 29);
     ck_assert_uint_eq(c.hour, 23);
     ck_assert_uint_eq(c.ms, 999);
+    /* The text, zeros in front; the last day 16 bits count. */
+    char text[CO_TIME_OF_DAY_TEXT_SIZE];
+    co_time_of_day_format(&time, text);
+    ck_assert_str_eq(text, "2026-11-29 12:34:56.789");
+    co_time_of_day_format(&(co_time_of_day_t){.ms = 3723004u, .days = 59}, text);
+    ck_assert_str_eq(text, "1984-02-29 01:02:03.004");
+    co_time_of_day_format(&(co_time_of_day_t){.ms = 86399999u, .days = 65535u}, text);
+    ck_assert_str_eq(text, "2163-06-06 23:59:59.999");
     /* 2026-11-29T12:34:56.789Z is 1 795 955 696 789 ms after 1970-01-01. */
     ck_assert(co_time_of_day_from_unix_ms(1795955696789ull, &back));
     ck_assert_uint_eq(back.days, 15673u);

@@ -1,5 +1,5 @@
 /* SPDX-License-Identifier: Apache-2.0 */
-/* The COB-ID rules of CiA 301 that PDO, SYNC and EMCY share, with the restricted CAN-IDs as a
+/* The COB-ID rules of CiA 301 that PDO, SYNC, EMCY and TIME share, with the restricted CAN-IDs as a
  * table (7.3.5). */
 #include "co/co_types.h"
 
@@ -21,11 +21,11 @@ bool co_can_id_restricted(uint32_t can_id)
     return false;
 }
 
-uint32_t co_cob_id_check(uint32_t old, uint32_t value, uint32_t in_use_mask, uint32_t in_use)
+uint32_t co_cob_id_check(uint32_t old, uint32_t value, uint32_t in_use_mask, uint32_t idle)
 {
     if ((value & ~CO_COB_ID_ALLOWED) || co_can_id_restricted(value & CO_COB_ID_CAN_ID))
         return CO_SDO_ABORT_VALUE_RANGE;
-    bool both_in_use = (value & in_use_mask) == in_use && (old & in_use_mask) == in_use;
+    bool both_in_use = (value & in_use_mask) != idle && (old & in_use_mask) != idle;
     return both_in_use && ((old ^ value) & CO_COB_ID_CAN_ID) != 0 ? CO_SDO_ABORT_VALUE_RANGE
                                                                   : CO_SDO_OK;
 }

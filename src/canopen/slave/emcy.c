@@ -166,7 +166,7 @@ void co_emcy_reset(co_node_t *node, co_nmt_reset_t scope)
 static uint32_t write_cobid(co_node_t *node, uint32_t cobid)
 {
     return co_cob_id_check((uint32_t)co_od_value(node, CO_IDX_EMCY_COB_ID, 0), cobid,
-                           CO_COB_ID_INVALID, 0);
+                           CO_COB_ID_INVALID, CO_COB_ID_INVALID);
 }
 
 /* CiA 301 1003h: only 0 may be written to sub-index 0, and it clears the history. */

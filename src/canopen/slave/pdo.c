@@ -539,7 +539,7 @@ static uint32_t pdo_write_cob_id(const co_node_t *node, uint16_t comm, uint32_t 
 {
     if (!pdo_cob_id_valid(value))
         return value & ~CO_COB_ID_ALLOWED ? CO_SDO_ABORT_VALUE_RANGE : CO_SDO_OK;
-    uint32_t abort = co_cob_id_check(cob_id, value, CO_PDO_COBID_INVALID, 0);
+    uint32_t abort = co_cob_id_check(cob_id, value, CO_PDO_COBID_INVALID, CO_PDO_COBID_INVALID);
     if (abort != CO_SDO_OK)
         return abort;
     uint8_t type = (uint8_t)co_od_param(node, comm, PDO_SUB_TYPE, CO_PDO_TYPE_EVENT_PROFILE);

@@ -140,8 +140,7 @@ static uint32_t sync_write_cob_id(co_node_t *node, uint32_t value)
 {
     if ((value & CO_SYNC_COBID_PRODUCER) && node->od->sync_producer == NULL)
         return CO_SDO_ABORT_VALUE_RANGE;
-    return co_cob_id_check(sync_cob_id(node), value, CO_SYNC_COBID_PRODUCER,
-                           CO_SYNC_COBID_PRODUCER);
+    return co_cob_id_check(sync_cob_id(node), value, CO_SYNC_COBID_PRODUCER, 0);
 }
 
 /* CiA 301 7.5.2.41: 0 or 2..240, and only while no SYNC period is set (1006h = 0). */

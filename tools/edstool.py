@@ -164,7 +164,7 @@ class Eds:
         self.path = path
         self.sections = {}      # lower-case name -> Section, in file order
         self.subs = {}          # object index -> {sub-index: Section}, the XXXXsubN sections
-        self.node_id = None     # a DCF's [DeviceComissioning] NodeID, once build_entries read it
+        self.node_id = None     # a DCF's [DeviceComissioning] NodeID, as parse_eds read it
 
     def section(self, name):
         return self.sections.get(name.lower())
@@ -228,6 +228,7 @@ def parse_eds(path):
         if key.lower() in current.keys:
             raise EdsError(path, current.name, key, "line %d: duplicate key" % number)
         current.keys[key.lower()] = Key(key, value, number)
+    eds.node_id = commissioned_node_id(eds)
     return eds
 
 
@@ -505,17 +506,21 @@ def compact_value(eds, index, sub):
     return (values, str(sub)) if values is not None and values.has(str(sub)) else None
 
 
+def default_key(eds, sec):
+    """The key holding an entry's default, for generate and check alike: a DCF's ParameterValue,
+    the device's configuration, over DefaultValue. A DownloadFile is refused."""
+    if sec.get(DOMAIN_FILE_KEY):
+        raise eds.error(sec.name, sec.label(DOMAIN_FILE_KEY), "a value in a file is not read: "
+                        "write it as %s, hex bytes" % PARAMETER_VALUE)
+    return PARAMETER_VALUE if sec.get(PARAMETER_VALUE) else "DefaultValue"
+
+
 def build_entry(eds, sec, index, sub, fallback=None, value=None):
     """One table entry from a VAR section or a sub-section. `fallback` is the section whose keys
     a compact array's sub-entries inherit, `value` the (section, key) of the default when it is
-    not DefaultValue (compact_value()). A DCF's ParameterValue, the device's configuration, is the
-    default over DefaultValue."""
+    not default_key()'s (compact_value())."""
     src = fallback or sec
-    if value is None and src.get(PARAMETER_VALUE):
-        value = (src, PARAMETER_VALUE)
-    if src.get(DOMAIN_FILE_KEY):
-        raise eds.error(src.name, src.label(DOMAIN_FILE_KEY), "a value in a file is not read: "
-                        "write it as %s, hex bytes" % PARAMETER_VALUE)
+    value = value or (src, default_key(eds, src))
     name = src.get("ParameterName") or ""
     if fallback is not None:
         name = "%s %d" % (name, sub)
@@ -548,7 +553,7 @@ def build_entry(eds, sec, index, sub, fallback=None, value=None):
     if mapping:
         entry.flags |= PDO_FLAGS[access]
 
-    entry.default, nodeid = encode_default(eds, *(value or (src, "DefaultValue")), dtype)
+    entry.default, nodeid = encode_default(eds, *value, dtype)
     if nodeid:
         entry.flags |= NODEID
     entry.size = entry_size(eds, src, dtype, len(entry.default))
@@ -616,7 +621,6 @@ def commissioned_node_id(eds):
 
 
 def build_entries(eds):
-    eds.node_id = commissioned_node_id(eds)
     listed = listed_objects(eds)
     present = {}
     for sec in eds.sections.values():
@@ -1026,7 +1030,6 @@ class Checker:
         except EdsError as e:
             self.findings.append(("error", e))
             return
-        self.eds.node_id = self.shared(commissioned_node_id, self.eds)
         self.check_file_info()
         self.check_device_info()
         self.check_dummy_usage()
@@ -1256,27 +1259,31 @@ class Checker:
         if kind in ("vs", "os", "us", "d", "t", "f"):
             self.check_non_integer(sec, dtype, mapping)
             return dtype
-        default = self.value_of(sec, "DefaultValue", dtype)
+        key = self.shared(default_key, self.eds, sec)
+        default = self.value_of(sec, key, dtype) if key else None
         low = self.value_of(sec, "LowLimit", dtype)
         high = self.value_of(sec, "HighLimit", dtype)
-        for node_id in NODE_IDS:
+        # A DCF's $NODEID is its own node-id (CiA 306); an EDS's, any node-id it may be given.
+        node_ids = NODE_IDS if self.eds.node_id is None else (self.eds.node_id,)
+        for node_id in node_ids:
             d, lo, hi = (None if v is None else v[0] + (node_id if v[1] else 0)
                          for v in (default, low, high))
-            where = " with node-id %d" % node_id if any(v and v[1] for v in
-                                                        (default, low, high)) else ""
+            where = ""
+            if any(v and v[1] for v in (default, low, high)):
+                where = resolve_node_id(self.eds, 0, True)[2] or " with node-id %d" % node_id
             type_low, type_high = type_range(dtype)
-            for key, v in (("DefaultValue", d), ("LowLimit", lo), ("HighLimit", hi)):
+            for name, v in ((key, d), ("LowLimit", lo), ("HighLimit", hi)):
                 if v is not None and not type_low <= v <= type_high:
-                    self.error(sec.name, sec.label(key), "outside the range of %s (%d..%d)%s"
+                    self.error(sec.name, sec.label(name), "outside the range of %s (%d..%d)%s"
                                % (DATA_TYPES[dtype][0], type_low, type_high, where))
             if lo is not None and hi is not None and lo > hi:
                 self.error(sec.name, sec.label("LowLimit"), "above HighLimit%s" % where)
             if d is not None and lo is not None and d < lo:
-                self.error(sec.name, sec.label("DefaultValue"), "below LowLimit%s" % where)
+                self.error(sec.name, sec.label(key), "below LowLimit%s" % where)
             if d is not None and hi is not None and d > hi:
-                self.error(sec.name, sec.label("DefaultValue"), "above HighLimit%s" % where)
+                self.error(sec.name, sec.label(key), "above HighLimit%s" % where)
             if d is not None and is_cob_id_entry(index, sub):
-                self.check_cob_id(sec, d, node_id, where)
+                self.check_cob_id(sec, key, d, where)
             if not where:
                 break
         self.encoded_default(sec, dtype)
@@ -1289,12 +1296,10 @@ class Checker:
         generate supports them)."""
         if DATA_TYPES[dtype][2] == "t":
             return None
-        if sec.get(DOMAIN_FILE_KEY):
-            self.error(sec.name, sec.label(DOMAIN_FILE_KEY), "a value in a file is not read: "
-                       "write it as %s, hex bytes" % PARAMETER_VALUE)
-        if value is None and sec.get(PARAMETER_VALUE):
-            value = (sec, PARAMETER_VALUE)
-        encoded = self.shared(encode_default, self.eds, *(value or (sec, "DefaultValue")), dtype)
+        key = self.shared(default_key, self.eds, sec)
+        if value is None and key is None:
+            return None
+        encoded = self.shared(encode_default, self.eds, *(value or (sec, key)), dtype)
         if encoded is None:
             return None
         self.shared(entry_size, self.eds, sec, dtype, len(encoded[0]))
@@ -1313,7 +1318,7 @@ class Checker:
         if text.replace(" ", "").upper() == "$NODEID":
             self.error(sec.name, sec.label(key),
                        "python canopen cannot read a bare $NODEID: write $NODEID+0")
-        if key == "DefaultValue":
+        if key in ("DefaultValue", PARAMETER_VALUE):
             name, size, kind = DATA_TYPES[dtype]
             if kind == "i" and is_hex and value > type_range(dtype)[1]:
                 self.error(sec.name, sec.label(key), "hex default above the %s maximum (python "
@@ -1323,14 +1328,14 @@ class Checker:
             value = signed_limit(value, is_hex, dtype)
         return value, nodeid
 
-    def check_cob_id(self, sec, value, node_id, where):
+    def check_cob_id(self, sec, key, value, where):
         # CiA 301 7.5.2.5: bit 31 valid, bit 30 RTR (PDO) or frame (SYNC), bit 29 frame (29-bit
         # identifier), bits 28..11 zero for an 11-bit identifier.
         if value & (1 << 29):
-            self.error(sec.name, sec.label("DefaultValue"),
+            self.error(sec.name, sec.label(key),
                        "bit 29 set: 29-bit identifiers are not supported%s" % where)
         elif value & 0x1FFFF800:
-            self.error(sec.name, sec.label("DefaultValue"),
+            self.error(sec.name, sec.label(key),
                        "0x%X is not an 11-bit identifier%s" % (value & 0x1FFFFFFF, where))
 
     def check_non_integer(self, sec, dtype, mapping):

@@ -969,6 +969,15 @@ class Dcf(ToolCase):
         self.assertEqual(code, 1)
         self.assertIn(path + ": [DeviceComissioning] NodeID=0: must be 1..127\n", out)
 
+    def test_check_takes_the_parameter_value_as_the_default(self):
+        # LowLimit=$NODEID+5 is 10 at NodeID=5: a ParameterValue of 9 is below it, though the
+        # DefaultValue (100) is not and 9 is not below 6, the limit at node-id 1.
+        path = self.dcf(lambda s: s["2001"].update(ParameterValue="9"))
+        code, out, _ = self.run_tool("check", path)
+        self.assertEqual((code, out), (1, path + ": [2001] ParameterValue=9: below LowLimit "
+                                       "with [DeviceComissioning] NodeID=5\n"))
+        self.assertEqual(self.run_tool("check", self.dcf())[:2], (0, ""))
+
 
 @unittest.skipIf(canopen is None, "python canopen is not installed")
 class DcfAgainstCanopen(ToolCase):

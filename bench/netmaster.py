@@ -110,7 +110,7 @@ def main():
         per_cycle.append(len(inside) + 1)
     slaves = json.loads(status)["slaves"] if status else []
     print(json.dumps({
-        "nodes": len(nodes), **counts, "sync_ms": a.sync,
+        "nodes": len(nodes), **counts, "sync_ms": a.sync, "seconds": a.seconds,
         "boot_ms": round(boot * 1000),
         "operational": sum(1 for s in slaves if s["step"] == "operational"),
         "sync_period_ms": {"mean": round(statistics.mean(periods), 3), "max": round(max(periods), 3),

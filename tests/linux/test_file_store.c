@@ -2,8 +2,9 @@
 /* The storage file: save/load round trip through the co_storage_t callbacks, several nodes in
  * one file, atomic replacement, and files that fail a check (truncated, bad CRC, wrong magic,
  * unknown version, bad record, an image the core would refuse) ignored as a whole with the
- * reason. */
+ * reason; DeviceNet and LSS records beside the images. */
 #include "check_main.h"
+#include "co/co_lss.h"
 #include "co_linux/file_store.h"
 #include "test_bus.h"
 
@@ -484,6 +485,22 @@ START_TEST(devicenet_records_beside_images)
 }
 END_TEST
 
+/* Writes a file of one record, its CRC right, as another program could. */
+static void write_one_record(uint8_t key, uint8_t area, const uint8_t *data, uint32_t len)
+{
+    uint8_t buf[64];
+    ck_assert_uint_le(len, sizeof buf - 24);
+    memcpy(buf, "CoSF", 4);
+    co_put_u16(buf + 4, 1);
+    co_put_u16(buf + 6, 1);
+    co_put_u32(buf + 8, 8 + len);
+    uint8_t header[8] = {key, area, 0, 0, (uint8_t)len, 0, 0, 0};
+    memcpy(buf + 12, header, 8);
+    memcpy(buf + 20, data, len);
+    co_put_u32(buf + 20 + len, co_crc32(buf, 20 + len));
+    write_file(buf, 24 + len);
+}
+
 /* A DeviceNet record with a MAC ID above 63, another length or a Quick Connect other than 0/1
  * makes the file ignored like any other bad record. */
 START_TEST(bad_devicenet_record_is_ignored)
@@ -500,19 +517,99 @@ START_TEST(bad_devicenet_record_is_ignored)
         {25, {21, 0, 71, 0, 2}, 5, "MAC ID 25 (DeviceNet): Quick Connect 2 is not 0 or 1"},
     };
     for (size_t i = 0; i < sizeof cases / sizeof cases[0]; i++) {
-        uint8_t buf[64];
-        uint32_t len = cases[i].len;
-        memcpy(buf, "CoSF", 4);
-        co_put_u16(buf + 4, 1);
-        co_put_u16(buf + 6, 1);
-        co_put_u32(buf + 8, 8 + len);
-        uint8_t header[8] = {cases[i].mac_id, 0x80, 0, 0, (uint8_t)len, 0, 0, 0};
-        memcpy(buf + 12, header, 8);
-        memcpy(buf + 20, cases[i].data, len);
-        co_put_u32(buf + 20 + len, co_crc32(buf, 20 + len));
-        write_file(buf, 24 + len);
+        write_one_record(cases[i].mac_id, CO_FILE_STORE_AREA_DEVICENET, cases[i].data,
+                         cases[i].len);
         assert_ignored(cases[i].why);
     }
+}
+END_TEST
+
+/* An LSS record (CiA 305 store configuration, docs/lss.md): under a node-id's key or an
+ * unconfigured node's (80h + k), beside the images, byte for byte, and read back after a
+ * reopen; a node-id FFh (none) and the table's last bit timing are values it can hold. */
+START_TEST(lss_records_round_trip)
+{
+    uint8_t buf[256];
+    make_valid_file(buf, sizeof buf);
+    co_file_store_t store;
+    ck_assert_int_eq(co_file_store_open(&store, path), CO_FILE_STORE_LOADED);
+    uint8_t node_id = 0, bit_timing = 0;
+    ck_assert(!co_file_store_get_lss(&store, 4, &node_id, &bit_timing));
+    const uint8_t unconfigured = CO_FILE_STORE_UNCONFIGURED_KEY + 1;
+    ck_assert_int_eq(co_file_store_set_lss(&store, 4, 20, 2), 0);
+    ck_assert_int_eq(co_file_store_set_lss(&store, unconfigured, CO_LSS_NODE_ID_UNCONFIGURED,
+                                           CO_LSS_BIT_TIMING_INDEX_MAX),
+                     0);
+    co_file_store_close(&store);
+
+    size_t len = read_file(buf, sizeof buf);
+    /* Sorted by key then area: node 4 area 2, node 4 LSS (area 81h), node 5 area 4, key 81h. */
+    static const uint8_t node4_lss[10] = {4, 0x81, 0, 0, 2, 0, 0, 0, 20, 2};
+    size_t image = 8 + strlen(IMAGE("COMM"));
+    ck_assert_mem_eq(buf + 12 + image, node4_lss, sizeof node4_lss);
+    static const uint8_t key81_lss[10] = {0x81, 0x81, 0, 0, 2, 0, 0, 0, 0xFF, 9};
+    ck_assert_mem_eq(buf + len - 4 - sizeof key81_lss, key81_lss, sizeof key81_lss);
+
+    ck_assert_int_eq(co_file_store_open(&store, path), CO_FILE_STORE_LOADED);
+    ck_assert_uint_eq(store.count, 4);
+    ck_assert(co_file_store_get_lss(&store, 4, &node_id, &bit_timing));
+    ck_assert_uint_eq(node_id, 20);
+    ck_assert_uint_eq(bit_timing, 2);
+    ck_assert(co_file_store_get_lss(&store, unconfigured, &node_id, &bit_timing));
+    ck_assert_uint_eq(node_id, CO_LSS_NODE_ID_UNCONFIGURED);
+    ck_assert_uint_eq(bit_timing, CO_LSS_BIT_TIMING_INDEX_MAX);
+    ck_assert(!co_file_store_get_lss(&store, 5, &node_id, &bit_timing));
+    co_file_store_node_t n4;
+    co_storage_t s4;
+    co_file_store_bind(&store, 4, &n4, &s4);
+    assert_loads(&s4, 2, IMAGE("COMM"));
+    co_file_store_unbind(&n4);
+    co_file_store_close(&store);
+}
+END_TEST
+
+/* An LSS record of another length, a node-id LSS cannot configure (0, 128) or a bit timing
+ * beyond table 0 makes the file ignored like any other bad record. */
+START_TEST(bad_lss_record_is_ignored)
+{
+    static const struct {
+        uint8_t data[3];
+        uint32_t len;
+        const char *why;
+    } cases[] = {
+        {{20}, 1, "node 4 (LSS): 1 bytes, its record has 2"},
+        {{20, 2, 0}, 3, "node 4 (LSS): 3 bytes, its record has 2"},
+        {{0, 2}, 2, "node 4 (LSS): node-id 0 or bit timing 2 is invalid"},
+        {{128, 2}, 2, "node 4 (LSS): node-id 128 or bit timing 2 is invalid"},
+        {{20, CO_LSS_BIT_TIMING_INDEX_MAX + 1},
+         2,
+         "node 4 (LSS): node-id 20 or bit timing 10 is invalid"},
+    };
+    for (size_t i = 0; i < sizeof cases / sizeof cases[0]; i++) {
+        write_one_record(4, CO_FILE_STORE_AREA_LSS, cases[i].data, cases[i].len);
+        assert_ignored(cases[i].why);
+    }
+}
+END_TEST
+
+/* An unconfigured node's parameters are kept under its key (80h + k), which no node-id is;
+ * 80h itself is no node's key. */
+START_TEST(parameters_under_an_unconfigured_key)
+{
+    const char *comm = IMAGE("COMM");
+    write_one_record(CO_FILE_STORE_UNCONFIGURED_KEY + 1, CO_STORE_AREA_COMMUNICATION,
+                     (const uint8_t *)comm, (uint32_t)strlen(comm));
+    co_file_store_t store;
+    ck_assert_int_eq(co_file_store_open(&store, path), CO_FILE_STORE_LOADED);
+    co_file_store_node_t node;
+    co_storage_t storage;
+    co_file_store_bind(&store, CO_FILE_STORE_UNCONFIGURED_KEY + 1, &node, &storage);
+    assert_loads(&storage, CO_STORE_AREA_COMMUNICATION, comm);
+    co_file_store_unbind(&node);
+    co_file_store_close(&store);
+    write_one_record(CO_FILE_STORE_UNCONFIGURED_KEY, CO_STORE_AREA_COMMUNICATION,
+                     (const uint8_t *)comm, (uint32_t)strlen(comm));
+    assert_ignored("record 1: node-id 128, area 2");
 }
 END_TEST
 
@@ -536,6 +633,9 @@ int main(void)
     tcase_add_test(tc, damaged_file_is_kept_aside_at_next_save);
     tcase_add_test(tc, devicenet_records_beside_images);
     tcase_add_test(tc, bad_devicenet_record_is_ignored);
+    tcase_add_test(tc, lss_records_round_trip);
+    tcase_add_test(tc, bad_lss_record_is_ignored);
+    tcase_add_test(tc, parameters_under_an_unconfigured_key);
     suite_add_tcase(s, tc);
     return check_run_suite(s);
 }

@@ -515,6 +515,19 @@ STORES = {
                                                      (0x7FFF, 0, u16(1))]))]),
     "node9-version1": store_file([(9, 2, b"COS\x01" + struct.pack("<HBH", 0x1017, 0, 2)
                                    + u16(250))]),
+    # LSS records (area 81h: node-id, bit timing) under a node-id's key and an unconfigured
+    # node's (80h + k), its parameters under that key too.
+    "node4-lss-unconfigured": store_file([
+        (4, 2, image(1, 0, [(0x1017, 0, u16(100))])),
+        (4, 0x81, bytes([20, 2])),
+        (0x81, 2, image(1, 0, [(0x1017, 0, u16(200))])),
+        (0x81, 0x81, bytes([0xFF, 9])),
+    ]),
+    # A DeviceNet record of MAC ID 0 (area 80h) first: the drive bound is node 4's.
+    "mac0-then-node4": store_file([
+        (0, 0x80, bytes([100, 0, 101, 0, 1])),
+        (4, 2, image(1, 0, [(0x1017, 0, u16(100))])),
+    ]),
 }
 
 

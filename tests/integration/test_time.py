@@ -3,6 +3,7 @@
 ms on a fixed grid, the I/O node of atv312d as the consumer showing the time it received in its
 state, and cotrace decoding the frame as a date and time."""
 
+import calendar
 import json
 import os
 import signal
@@ -57,7 +58,7 @@ def test_io_node_consumes_the_time_comaster_sends(bus, io):
     assert len(frame.data) == 6 and frame.data[3] & 0xF0 == 0
     assert p.stdout == f"TIME {decode(frame.data)}\n"
     host = time.time()
-    sent = time.mktime(time.strptime(decode(frame.data)[:19], "%Y-%m-%d %H:%M:%S")) - time.timezone
+    sent = calendar.timegm(time.strptime(decode(frame.data)[:19], "%Y-%m-%d %H:%M:%S"))
     assert abs(sent - host) < 5, "comaster sends the host's clock in UTC"
     wait_for_time(io, decode(frame.data))
     status, reply = ctl(io, "state", IO)

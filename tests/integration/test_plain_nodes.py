@@ -13,7 +13,7 @@ import pytest
 from canopen.sdo.exceptions import SdoAbortedError
 
 from conftest import IFACE, NMT_START, NMT_STOP, ROOT, Frame
-from test_control import ctl
+from test_control import ctl, state
 
 PLC = 1
 IO = 10
@@ -22,12 +22,6 @@ IO401_EDS = ROOT / "eds" / "IO401.eds"
 SDO_ABORT_READ_ONLY = 0x06010002
 # 1018h:04 of each model: its base plus the node-id (D-PLC300-IDENTITY, D-IO401-IDENTITY).
 SERIAL_BASE = {"plc300": 0x30000000, "io": 0x40100000}
-
-
-def state(sock, node):
-    status, reply = ctl(sock, "--json", "state", node)
-    assert status == 0, reply
-    return json.loads(reply)["nodes"][0]
 
 
 @pytest.fixture

@@ -1,27 +1,16 @@
 /* SPDX-License-Identifier: Apache-2.0 */
-/* comaster drive: runs the CiA 402 power state machine of a drive by SDO writes of the control
- * word 6040h, or with --rpdo through the drive's RPDO that maps it, and waits (deadline) for the
- * status word 6041h to show each state on the way, printing every state it sees. */
+/* comaster drive: runs the CiA 402 power state machine of a drive with the core's CiA 402 master
+ * helper (co_cia402_master.h), writing the control words it asks for by SDO to 6040h, or with
+ * --rpdo in the drive's RPDO that maps 6040h, and feeding it the status word 6041h read over SDO
+ * until the target state, printing every state it sees. */
+#include "co/co_cia402_master.h"
 #include "co/co_pdo.h"
 #include "comaster/comaster.h"
-#include "trace/decoder.h"
 
 #include <errno.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
-
-#define CIA402_CONTROL_WORD 0x6040u
-#define CIA402_STATUS_WORD 0x6041u
-#define CIA402_TARGET_VELOCITY 0x6042u
-
-/* Control word commands (CiA 402 device control; ATV312 DeviceNet manual, CMD). */
-#define CW_DISABLE_VOLTAGE 0x0000u
-#define CW_QUICK_STOP 0x0002u
-#define CW_SHUTDOWN 0x0006u
-#define CW_SWITCH_ON 0x0007u
-#define CW_ENABLE_OPERATION 0x000Fu
-#define CW_FAULT_RESET 0x0080u /* acts on the 0 -> 1 edge of bit 7 */
 
 /* How often the status word is read while a transition is awaited. */
 #define POLL_MS 10u
@@ -30,8 +19,8 @@
 #define RPDO_COUNT 8u
 #define PDO_MAPPED_MAX 8u
 /* A mapping entry: index << 16 | sub-index << 8 | length in bits. */
-#define MAP_CONTROL_WORD 0x60400010u
-#define MAP_TARGET_VELOCITY 0x60420010u
+#define MAP_CONTROL_WORD ((uint32_t)CO_CIA402_CONTROL_WORD << 16 | 16u)
+#define MAP_TARGET_VELOCITY ((uint32_t)CO_CIA402_VL_TARGET_VELOCITY << 16 | 16u)
 
 static const char drive_help[] =
     "usage: comaster drive NODE enable|disable|quick-stop|fault-reset|speed RPM [--rpdo]\n"
@@ -52,16 +41,10 @@ static const char drive_help[] =
     "               valid RPDO whose mapping holds 6040h, read over SDO, its other\n"
     "               objects at their current values: the node must be Operational\n"
     "\n"
-    "A drive in Fault is left alone by every command but fault-reset (exit 4).\n"
+    "A drive in Fault is left alone by every command but fault-reset, and a fault\n"
+    "on the way ends the command (exit 4).\n"
     "\n"
     "Example: comaster -i vcan0 drive 4 speed 1200\n";
-
-typedef enum target {
-    TARGET_SWITCH_ON_DISABLED,
-    TARGET_OPERATION_ENABLED,
-    TARGET_QUICK_STOP,
-    TARGET_NO_FAULT
-} target_t;
 
 /* The RPDO that carries the control word (--rpdo). */
 typedef struct rpdo {
@@ -82,15 +65,9 @@ typedef struct drive_session {
     const char *last_shown; /* the state last printed */
 } drive_session_t;
 
-static bool state_is(uint16_t status, const char *name)
-{
-    const char *state = cotrace_status_word_state(status);
-    return state && strcmp(state, name) == 0;
-}
-
 static void show_state(drive_session_t *d)
 {
-    const char *state = cotrace_status_word_state(d->status);
+    const char *state = co_cia402_state_name(co_cia402_state(d->status));
     if (!state)
         state = "no CiA 402 state";
     if (d->last_shown && strcmp(d->last_shown, state) == 0)
@@ -108,7 +85,7 @@ static int read_status(drive_session_t *d)
 {
     uint8_t buf[2];
     co_sdo_client_result_t result;
-    int rc = comaster_sdo_upload(d->bus, d->node, CIA402_STATUS_WORD, 0, buf, sizeof buf,
+    int rc = comaster_sdo_upload(d->bus, d->node, CO_CIA402_STATUS_WORD, 0, buf, sizeof buf,
                                  CO_SDO_CLIENT_AUTO, d->opts->timeout_ms, &result);
     if (rc == 0)
         rc = comaster_sdo_status(d->opts, d->node, &result);
@@ -146,31 +123,9 @@ static int send_rpdo(drive_session_t *d)
 static int write_control(drive_session_t *d, uint16_t control)
 {
     if (!d->rpdo.used)
-        return write_u16(d, CIA402_CONTROL_WORD, control);
+        return write_u16(d, CO_CIA402_CONTROL_WORD, control);
     co_put_u16(&d->rpdo.data[d->rpdo.control_at], control);
     return send_rpdo(d);
-}
-
-/* Writes a control word and reads the status word until it shows `state` (deadline). */
-static int command(drive_session_t *d, uint16_t control, const char *state)
-{
-    int rc = write_control(d, control);
-    co_time_t deadline = co_linux_now() + (co_time_t)d->opts->timeout_ms * 1000u;
-    while (rc == 0) {
-        rc = read_status(d);
-        if (rc != 0 || state_is(d->status, state))
-            return rc;
-        if (co_linux_now() >= deadline)
-            return comaster_fail(d->opts, CLI_EXIT_TIMEOUT,
-                                 "node %u: control word 0x%04X: no %s within %u ms (6041h = "
-                                 "0x%04X)%s (--timeout MS waits longer)",
-                                 d->node, control, state, d->opts->timeout_ms, d->status,
-                                 d->rpdo.used ? ": RPDOs count only in Operational: comaster "
-                                                "nmt start NODE"
-                                              : "");
-        rc = comaster_bus_pause(d->bus, POLL_MS);
-    }
-    return rc;
 }
 
 static int refuse_fault(drive_session_t *d)
@@ -181,49 +136,49 @@ static int refuse_fault(drive_session_t *d)
                          d->node, d->status, d->node);
 }
 
-/* Every step from the current state to Operation enabled. */
-static int enable(drive_session_t *d)
+static int timed_out(drive_session_t *d, const co_cia402_master_t *m)
 {
-    int rc = 0;
-    while (rc == 0 && !state_is(d->status, "Operation enabled")) {
-        if (state_is(d->status, "Switch on disabled"))
-            rc = command(d, CW_SHUTDOWN, "Ready to switch on");
-        else if (state_is(d->status, "Ready to switch on"))
-            rc = command(d, CW_SWITCH_ON, "Switched on");
-        else if (state_is(d->status, "Switched on"))
-            rc = command(d, CW_ENABLE_OPERATION, "Operation enabled");
-        else if (state_is(d->status, "Quick stop active"))
-            rc = command(d, CW_DISABLE_VOLTAGE, "Switch on disabled");
-        else
-            return refuse_fault(d);
-    }
-    return rc;
+    const char *awaited = co_cia402_state_name(m->awaited);
+    char command[32] = "";
+    if (m->sent)
+        snprintf(command, sizeof command, "control word 0x%04X: ", m->control);
+    return comaster_fail(d->opts, CLI_EXIT_TIMEOUT,
+                         "node %u: %sno %s within %u ms (6041h = 0x%04X)%s (--timeout MS waits "
+                         "longer)",
+                         d->node, command, awaited ? awaited : "CiA 402 state", d->opts->timeout_ms,
+                         d->status,
+                         d->rpdo.used && m->sent ? ": RPDOs count only in Operational: comaster "
+                                                   "nmt start NODE"
+                                                 : "");
 }
 
-static int run_target(drive_session_t *d, target_t target)
+/* The helper's run from the status word read last: each control word it asks for is written and
+ * the status word read at once; while it waits, read again every POLL_MS. */
+static int run_target(drive_session_t *d, co_cia402_target_t target)
 {
-    bool in_fault = state_is(d->status, "Fault") || state_is(d->status, "Fault reaction active");
-    if (in_fault && target != TARGET_NO_FAULT)
-        return refuse_fault(d);
-    switch (target) {
-    case TARGET_OPERATION_ENABLED:
-        return enable(d);
-    case TARGET_SWITCH_ON_DISABLED:
-        return command(d, CW_DISABLE_VOLTAGE, "Switch on disabled");
-    case TARGET_QUICK_STOP:
-        return command(d, CW_QUICK_STOP,
-                       state_is(d->status, "Operation enabled") ||
-                               state_is(d->status, "Quick stop active")
-                           ? "Quick stop active"
-                           : "Switch on disabled");
-    case TARGET_NO_FAULT:
-        if (!in_fault)
+    co_cia402_master_t m;
+    co_cia402_master_start(&m, target, (co_time_t)d->opts->timeout_ms * 1000u);
+    int rc = 0;
+    while (rc == 0) {
+        uint16_t control;
+        switch (co_cia402_master_step(&m, d->status, co_linux_now(), &control)) {
+        case CO_CIA402_WRITE:
+            rc = write_control(d, control);
+            break;
+        case CO_CIA402_WAIT:
+            rc = comaster_bus_pause(d->bus, POLL_MS);
+            break;
+        case CO_CIA402_REACHED:
             return 0;
-        /* The reset acts on the rising edge of bit 7: the bit is cleared first. */
-        int rc = write_control(d, CW_DISABLE_VOLTAGE);
-        return rc ? rc : command(d, CW_FAULT_RESET, "Switch on disabled");
+        case CO_CIA402_FAULTED:
+            return refuse_fault(d);
+        case CO_CIA402_TIMED_OUT:
+            return timed_out(d, &m);
+        }
+        if (rc == 0)
+            rc = read_status(d);
     }
-    return 0;
+    return rc;
 }
 
 /* ---- --rpdo: the RPDO mapping 6040h, read over SDO ------------------------------------------ */
@@ -335,12 +290,12 @@ int comaster_drive_main(comaster_options_t *opts, int argc, char **argv)
         return rc;
     static const struct {
         const char *name;
-        target_t target;
-    } actions[] = {{"enable", TARGET_OPERATION_ENABLED},
-                   {"disable", TARGET_SWITCH_ON_DISABLED},
-                   {"quick-stop", TARGET_QUICK_STOP},
-                   {"fault-reset", TARGET_NO_FAULT},
-                   {"speed", TARGET_OPERATION_ENABLED}};
+        co_cia402_target_t target;
+    } actions[] = {{"enable", CO_CIA402_TO_OPERATION_ENABLED},
+                   {"disable", CO_CIA402_TO_SWITCH_ON_DISABLED},
+                   {"quick-stop", CO_CIA402_TO_QUICK_STOP},
+                   {"fault-reset", CO_CIA402_TO_FAULT_RESET},
+                   {"speed", CO_CIA402_TO_OPERATION_ENABLED}};
     const char *action = args.positional[1];
     size_t a = 0;
     while (a < sizeof actions / sizeof actions[0] && strcmp(actions[a].name, action) != 0)
@@ -370,7 +325,7 @@ int comaster_drive_main(comaster_options_t *opts, int argc, char **argv)
         co_put_u16(&d.rpdo.data[d.rpdo.speed_at], (uint16_t)rpm);
         rc = send_rpdo(&d);
     } else if (rc == 0 && speed) {
-        rc = write_u16(&d, CIA402_TARGET_VELOCITY, (uint16_t)rpm);
+        rc = write_u16(&d, CO_CIA402_VL_TARGET_VELOCITY, (uint16_t)rpm);
     }
     if (rc == 0)
         rc = read_status(&d);

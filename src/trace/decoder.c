@@ -2,6 +2,7 @@
 #include "trace/decoder.h"
 #include "trace/text.h"
 
+#include "co/co_cia402_master.h"
 #include "co/co_emcy.h"
 #include "co/co_lss.h"
 #include "co/co_nmt.h"
@@ -478,8 +479,6 @@ static void sdo_reply(cotrace_decoder_t *dec, uint8_t node, const struct can_fra
 #define PDO_COB_ID_SUB 1u
 /* Mapping entries below 0x0020 are data type indices: "dummy" entries that fill a gap. */
 #define PDO_DUMMY_LIMIT 0x0020u
-#define CIA402_CONTROL_WORD 0x6040u
-#define CIA402_STATUS_WORD 0x6041u
 
 /* The PDO of the EDS whose COB-ID is `cob_id`. */
 static bool pdo_from_eds(const cotrace_decoder_t *dec, uint16_t cob_id, cotrace_pdo_t *ref)
@@ -552,29 +551,12 @@ const char *cotrace_control_word_command(uint16_t word)
     return NULL;
 }
 
-const char *cotrace_status_word_state(uint16_t word)
-{
-    static const struct {
-        uint16_t mask, value;
-        const char *name;
-    } states[] = {
-        {0x004F, 0x0000, "Not ready to switch on"}, {0x004F, 0x0040, "Switch on disabled"},
-        {0x006F, 0x0021, "Ready to switch on"},     {0x006F, 0x0023, "Switched on"},
-        {0x006F, 0x0027, "Operation enabled"},      {0x006F, 0x0007, "Quick stop active"},
-        {0x004F, 0x000F, "Fault reaction active"},  {0x004F, 0x0008, "Fault"}};
-    for (size_t i = 0; i < sizeof states / sizeof states[0]; i++) {
-        if ((word & states[i].mask) == states[i].value)
-            return states[i].name;
-    }
-    return NULL;
-}
-
 static void say_mapped_value(text_t *t, uint16_t index, uint16_t type, uint64_t v, unsigned bits)
 {
-    if (index == CIA402_CONTROL_WORD || index == CIA402_STATUS_WORD) {
-        const char *meaning = index == CIA402_CONTROL_WORD
+    if (index == CO_CIA402_CONTROL_WORD || index == CO_CIA402_STATUS_WORD) {
+        const char *meaning = index == CO_CIA402_CONTROL_WORD
                                   ? cotrace_control_word_command((uint16_t)v)
-                                  : cotrace_status_word_state((uint16_t)v);
+                                  : co_cia402_state_name(co_cia402_state((uint16_t)v));
         say(t, "0x%04llX%s%s", (unsigned long long)v, meaning ? " " : "", meaning ? meaning : "");
         return;
     }

@@ -65,12 +65,9 @@ typedef struct cotrace_decoder {
 void cotrace_decoder_init(cotrace_decoder_t *dec, const eds_t *eds, uint8_t eds_node,
                           const co_emcy_code_table_t *vendor);
 
-/* The CiA 402 state a status word 6041h shows (mask 006Fh): "Switch on disabled", "Operation
- * enabled", ...; NULL for a combination CiA 402 does not define. Also comaster's. */
-const char *cotrace_status_word_state(uint16_t word);
-
 /* The CiA 402 command a control word 6040h gives: "Shutdown", "Enable operation", ...; NULL for
- * one CiA 402 does not define. */
+ * one CiA 402 does not define. The state a status word shows is the CiA 402 master helper's
+ * (co_cia402_master.h), as comaster drive prints it. */
 const char *cotrace_control_word_command(uint16_t word);
 
 /* Writes the meaning of `frame` into out (always NUL-terminated, truncated to cap). */

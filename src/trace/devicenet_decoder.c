@@ -3,9 +3,10 @@
  * and status texts by cip_text.h, I/O data by the Altivar 312 card's assemblies. */
 #include "trace/devicenet_decoder.h"
 
+#include "co/co_cia402_master.h" /* co_cia402_state_name */
 #include "trace/cip_assembly.h"
 #include "trace/cip_text.h"
-#include "trace/decoder.h" /* cotrace_control_word_command, cotrace_status_word_state */
+#include "trace/decoder.h" /* cotrace_control_word_command */
 #include "trace/text.h"
 
 #include <string.h>
@@ -115,7 +116,7 @@ static void say_assembly(text_t *t, uint16_t instance, const uint8_t *data, size
         case CIP_FIELD_STATUS_WORD:
             meaning = f->kind == CIP_FIELD_CONTROL_WORD
                           ? cotrace_control_word_command((uint16_t)value)
-                          : cotrace_status_word_state((uint16_t)value);
+                          : co_cia402_state_name(co_cia402_state((uint16_t)value));
             say(t, "%s%s 0x%04X%s%s", sep, f->name, (unsigned)value, meaning ? " " : "",
                 meaning ? meaning : "");
             break;

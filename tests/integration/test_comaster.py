@@ -265,7 +265,7 @@ def test_drive_speed_runs_the_state_machine_by_sdo(drives, dump):
     assert comaster("read", 5, "0x6042", "i16") == (0, "0\n", "")  # the other drive untouched
 
 
-def test_drive_quick_stop_disable_and_json(drives):
+def test_drive_quick_stop_disable_and_json(drives, dump):
     assert comaster("drive", 4, "enable")[0] == 0
     assert comaster("drive", 4, "quick-stop") == (
         0, "node 4: Operation enabled (6041h = 0x0627)\n"
@@ -275,6 +275,16 @@ def test_drive_quick_stop_disable_and_json(drives):
     assert [json.loads(line) for line in out.splitlines()] == [
         {"node": 4, "state": "Quick stop active", "statusword": "0x0607"},
         {"node": 4, "state": "Switch on disabled", "statusword": "0x0640"}]
+    # Already where disable and quick-stop lead: the status word is read, no control word written.
+    # A read of 1000h before and after: every frame of the commands between is seen.
+    assert comaster("read", 4, "0x1000", "u32")[0] == 0
+    dump.expect(0x584, "4300100092010100")
+    mark = dump.mark()
+    for action in ("disable", "quick-stop"):
+        assert comaster("drive", 4, action) == (0, "node 4: Switch on disabled (6041h = 0x0640)\n", "")
+    assert comaster("read", 4, "0x1000", "u32")[0] == 0
+    dump.expect(0x584, "4300100092010100", since=mark)
+    assert [str(f) for f in dump.seen[mark:] if f.can_id == 0x604 and f.data[0] == 0x2B] == []
 
 
 def test_drive_in_fault_needs_fault_reset(drives, bus):

@@ -43,7 +43,9 @@ static const char lss_help[] =
     "                 fastscan: the part of the address known, checked in one frame\n"
     "                 instead of 32\n"
     "  --store        fastscan: store each node-id given\n"
-    "  --frame-ms MS  fastscan: how long each frame waits for answers (default 20)\n"
+    "  --frame-ms MS  fastscan: how long the first frame waits for answers, and the\n"
+    "                 most any other waits (default 20); those wait twice the slowest\n"
+    "                 answer so far, at least 5 ms\n"
     "\n"
     "Numbers are decimal or 0x hex. Identify and fastscan end when their wait ends\n"
     "with no answer: exit status 2 when nothing answered at all.\n"
@@ -51,6 +53,8 @@ static const char lss_help[] =
     "Example: comaster -i vcan0 lss fastscan 20 --vendor 0x5F\n";
 
 #define FRAME_MS_DEFAULT 20u
+/* The floor of a fastscan frame's wait after the reset (docs/decisions.md, D-LSS-FASTSCAN-WAIT). */
+#define FRAME_MIN_US 5000u
 #define FASTSCAN_TRIES 3 /* scans of one slave before giving up on it */
 #define FASTSCAN_LOST (-1)
 
@@ -425,19 +429,24 @@ static int take_fastscan_options(comaster_options_t *opts, int *argc, char **arg
     return -1;
 }
 
-/* One slave found (0, its address in job->result), none left (CLI_EXIT_TIMEOUT), or an error. A
- * scan that lost the slave that answered its first frame (an answer later than the frame's wait:
- * a busy bus or node) is repeated with twice the wait, all slaves back in waiting first in case
- * the lost one reached configuration; FASTSCAN_LOST after FASTSCAN_TRIES scans. */
-static int scan_one(lss_job_t *job, const fastscan_options_t *fo, uint32_t *frame_ms)
+/* One slave found (0, its address in job->result), none left (CLI_EXIT_TIMEOUT), or an error. In
+ * the first scan the frames after the reset wait as long as the slaves' answers need, within
+ * FRAME_MIN_US..frame_ms (docs/decisions.md, D-LSS-FASTSCAN-WAIT). A scan that lost the slave that
+ * answered its first frame (an answer later than the frame's wait: a busy bus or node) is
+ * repeated with every frame waiting frame_ms, then twice that (kept for the next slaves), all
+ * slaves back in waiting first in case the lost one reached configuration; FASTSCAN_LOST after
+ * FASTSCAN_TRIES scans. */
+static int scan_one(lss_job_t *job, const co_lss_fastscan_known_t *known, uint32_t *frame_ms)
 {
     for (int attempt = 0; attempt < FASTSCAN_TRIES; attempt++) {
-        if (attempt > 0) {
+        if (attempt > 1)
             *frame_ms *= 2;
+        co_time_t wait_us = (co_time_t)*frame_ms * 1000u;
+        co_time_t min_wait_us = attempt == 0 && wait_us > FRAME_MIN_US ? FRAME_MIN_US : wait_us;
+        if (attempt > 0)
             co_lss_master_switch_global(&job->master, CO_LSS_WAITING);
-        }
-        int rc = run(job, co_lss_master_fastscan(&job->master, &fo->known,
-                                                 (co_time_t)*frame_ms * 1000u, co_linux_now()));
+        int rc = run(
+            job, co_lss_master_fastscan(&job->master, known, wait_us, min_wait_us, co_linux_now()));
         if (rc != 0)
             return rc;
         if (job->result.status == CO_LSS_MASTER_OK)
@@ -460,8 +469,9 @@ static int cmd_fastscan(lss_job_t *job, const comaster_options_t *opts, const co
                              first_text);
     unsigned found = 0;
     uint32_t frame_ms = fo->frame_ms;
+    co_lss_fastscan_known_t known = fo->known;
     for (uint32_t node = first;; node++) {
-        int rc = scan_one(job, fo, &frame_ms);
+        int rc = scan_one(job, &known, &frame_ms);
         if (rc == CLI_EXIT_TIMEOUT)
             break;
         if (rc == FASTSCAN_LOST)
@@ -473,6 +483,11 @@ static int cmd_fastscan(lss_job_t *job, const comaster_options_t *opts, const co
         if (rc != 0)
             return rc;
         co_lss_address_t address = job->result.address;
+        /* The next slave is likely the same device: its vendor-ID, product code and revision
+         * are tried in one frame each (the serial differs). */
+        known.guessed = (uint8_t)(((1u << CO_LSS_SERIAL) - 1u) & ~known.known);
+        for (unsigned part = 0; part < CO_LSS_SERIAL; part++)
+            known.address.part[part] = address.part[part];
         if (node > CO_NODE_ID_MAX) {
             co_lss_master_switch_global(&job->master, CO_LSS_WAITING);
             send_now(job);

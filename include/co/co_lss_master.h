@@ -38,9 +38,12 @@ typedef struct co_lss_master_config {
 } co_lss_master_config_t;
 
 /* Fastscan: the parts of the address the master already knows (bit n of `known` for part n,
- * co_lss_part_t), each checked with one frame instead of 32; NULL scans all four. */
+ * co_lss_part_t), each checked with one frame instead of 32, and those it guesses (bit n of
+ * `guessed`: for instance the last slave's, the same device), each tried with one frame and
+ * scanned bit by bit when no slave has it; NULL scans all four. */
 typedef struct co_lss_fastscan_known {
     uint8_t known;
+    uint8_t guessed;
     co_lss_address_t address;
 } co_lss_fastscan_known_t;
 
@@ -55,10 +58,14 @@ typedef struct co_lss_master {
     co_lss_master_result_t result;
     /* fastscan */
     co_lss_fastscan_known_t known;
-    uint8_t part;           /* the part under scan */
+    uint8_t part;           /* the part under scan, or inquired */
     uint8_t bit;            /* the bit checked by the frame in flight */
     bool confirming;        /* the frame in flight moves the slave to the next part */
+    bool guessing;          /* ... and its part is a guess, scanned when nobody answers */
     uint16_t reset_answers; /* the answers to the scan's first frame */
+    co_time_t min_wait_us;  /* the shortest wait of a frame after the reset */
+    co_time_t sent_at;      /* when the frame in flight was sent */
+    co_time_t slowest_us;   /* the longest time from a frame of this scan to an answer */
 } co_lss_master_t;
 
 /* Results of co_lss_master_init and the requests; 0 when the request was sent. */
@@ -92,12 +99,17 @@ int co_lss_master_identify_remote(co_lss_master_t *master, const co_lss_address_
 int co_lss_master_identify_non_configured(co_lss_master_t *master, co_time_t timeout_us,
                                           co_time_t now);
 /* Finds one non-configured slave in the waiting state and leaves it in the configuration state,
- * its address in the result; TIMEOUT when there is none (answers 0), or when a slave answered the
- * first frame and a later one went unanswered (answers > 0: scan again, with a longer timeout).
- * Each frame waits the whole timeout, since several slaves may answer one frame (docs/lss.md,
- * "Fastscan"). */
+ * its address in the result, checked by inquiring its four parts (5Ah..5Dh, each waiting up to
+ * timeout_us); TIMEOUT when there is none (answers 0), or when a slave answered the first frame
+ * and a later frame or inquiry went unanswered or the inquiry gave another address (answers > 0:
+ * switch all to waiting and scan again, with longer waits).
+ * Each frame waits until its wait ends, an answer never ending it, since several slaves may
+ * answer one frame: the reset timeout_us, every later frame twice the slowest answer of the scan
+ * (from a frame's sending), at least min_wait_us (1..timeout_us; timeout_us: each frame waits the
+ * whole timeout) and at most timeout_us (docs/lss.md, "Fastscan"; docs/decisions.md,
+ * D-LSS-FASTSCAN-WAIT). */
 int co_lss_master_fastscan(co_lss_master_t *master, const co_lss_fastscan_known_t *known,
-                           co_time_t timeout_us, co_time_t now);
+                           co_time_t timeout_us, co_time_t min_wait_us, co_time_t now);
 
 /* Handles a frame; returns whether it was on 7E4h. */
 bool co_lss_master_receive(co_lss_master_t *master, const co_frame_t *frame, co_time_t now);

@@ -245,12 +245,26 @@ START_TEST(frames_that_are_not_answers)
 }
 END_TEST
 
+/* Answers the master's inquiry `f` (5Ah..5Dh) with that part of `address`. */
+static void answer_inquiry(const co_frame_t *f, const co_lss_address_t *address, co_time_t now)
+{
+    ck_assert_uint_eq(f->id, 0x7E5);
+    ck_assert_uint_eq(f->len, 8);
+    ck_assert_uint_ge(f->data[0], CO_LSS_CS_INQUIRE_VENDOR);
+    ck_assert_uint_le(f->data[0], CO_LSS_CS_INQUIRE_SERIAL);
+    uint8_t data[4];
+    co_put_u32(data, address->part[f->data[0] - CO_LSS_CS_INQUIRE_VENDOR]);
+    co_frame_t a;
+    co_lss_frame(&a, CO_LSS_ID_SLAVE, f->data[0], data, sizeof(data));
+    ck_assert(co_lss_master_receive(&m, &a, now));
+}
+
 /* A scripted fastscan: the master's frames against one slave's rules, answered by the test. */
 START_TEST(fastscan_frames_exact)
 {
     static const co_lss_address_t address = {{0x5F, 0x312, 0x00010002, 0x12345679}};
     scripted_setup();
-    ck_assert_int_eq(co_lss_master_fastscan(&m, NULL, TIMEOUT, 0), 0);
+    ck_assert_int_eq(co_lss_master_fastscan(&m, NULL, TIMEOUT, TIMEOUT, 0), 0);
     expect_sent("7E5#5100000000800000");
     co_time_t now = 0;
     /* Nobody there: one frame and its timeout. */
@@ -260,7 +274,7 @@ START_TEST(fastscan_frames_exact)
     ck_assert_uint_eq(done_result.answers, 0);
     expect_nothing_sent();
 
-    ck_assert_int_eq(co_lss_master_fastscan(&m, NULL, TIMEOUT, now), 0);
+    ck_assert_int_eq(co_lss_master_fastscan(&m, NULL, TIMEOUT, TIMEOUT, now), 0);
     expect_sent("7E5#5100000000800000");
     ck_assert(answer("7E4#4F00000000000000", now));
     size_t frames = 1;
@@ -271,9 +285,17 @@ START_TEST(fastscan_frames_exact)
             break;
         const co_frame_t *f = &sent[sent_next++];
         frames++;
+        while (f->data[0] != CO_LSS_CS_FASTSCAN && done_calls == 1) {
+            answer_inquiry(f, &address, now);
+            if (sent_next < sent_count) {
+                f = &sent[sent_next++];
+                frames++;
+            }
+        }
+        if (done_calls != 1)
+            break;
         ck_assert_uint_eq(f->id, 0x7E5);
         ck_assert_uint_eq(f->len, 8);
-        ck_assert_uint_eq(f->data[0], 0x51);
         uint32_t id = co_get_u32(&f->data[1]);
         uint8_t bit = f->data[5], sub = f->data[6], next = f->data[7];
         ck_assert_uint_le(bit, 31);
@@ -286,13 +308,13 @@ START_TEST(fastscan_frames_exact)
     ck_assert_uint_eq(done_result.status, CO_LSS_MASTER_OK);
     for (int i = 0; i < 4; i++)
         ck_assert_uint_eq(done_result.address.part[i], address.part[i]);
-    /* The reset, 32 bit checks a part, and a confirmation for each part whose bit 0 is 1 (the
-     * revision's and the serial's). */
-    ck_assert_uint_eq(frames, 1 + 4 * 32 + 2);
+    /* The reset, 32 bit checks a part, a confirmation for each part whose bit 0 is 1 (the
+     * revision's and the serial's), and the four inquiries of the address found. */
+    ck_assert_uint_eq(frames, 1 + 4 * 32 + 2 + 4);
 
     /* Known vendor-ID, product code and revision: one frame each. */
-    static const co_lss_fastscan_known_t known = {0x07, {{0x5F, 0x312, 0x00010002, 0}}};
-    ck_assert_int_eq(co_lss_master_fastscan(&m, &known, TIMEOUT, now), 0);
+    static const co_lss_fastscan_known_t known = {0x07, 0, {{0x5F, 0x312, 0x00010002, 0}}};
+    ck_assert_int_eq(co_lss_master_fastscan(&m, &known, TIMEOUT, TIMEOUT, now), 0);
     expect_sent("7E5#5100000000800000");
     ck_assert(answer("7E4#4F00000000000000", now));
     co_lss_master_process(&m, now += TIMEOUT);
@@ -306,6 +328,152 @@ START_TEST(fastscan_frames_exact)
     ck_assert_uint_eq(done_result.status, CO_LSS_MASTER_TIMEOUT);
     ck_assert_uint_eq(done_result.answers, 1);
     expect_nothing_sent();
+}
+END_TEST
+
+/* The address found is the one the slave in configuration state gives, part by part; another
+ * one, or no answer, and the scan lost its slave. */
+START_TEST(fastscan_checks_the_address_found)
+{
+    static const co_lss_fastscan_known_t known = {0x0F, 0, {{0x5F, 0x312, 0x00010002, 0x12345679}}};
+    for (int run = 0; run < 3; run++) {
+        scripted_setup();
+        co_time_t now = 0;
+        ck_assert_int_eq(co_lss_master_fastscan(&m, &known, TIMEOUT, TIMEOUT, now), 0);
+        expect_sent("7E5#5100000000800000");
+        static const char *const confirmations[] = {"7E5#515F000000000001", "7E5#5112030000000102",
+                                                    "7E5#5102000100000203", "7E5#5179563412000300"};
+        for (int i = 0; i < 5; i++) {
+            ck_assert(answer("7E4#4F00000000000000", now));
+            co_lss_master_process(&m, now += TIMEOUT);
+            if (i < 4)
+                expect_sent(confirmations[i]);
+        }
+        expect_sent("7E5#5A00000000000000");
+        /* A late answer of fastscan is not the inquiry's. */
+        ck_assert(answer("7E4#4F00000000000000", now));
+        if (run == 0) {
+            co_lss_master_process(&m, now + TIMEOUT - 1);
+            ck_assert_uint_eq(done_calls, 0);
+            co_lss_master_process(&m, now + TIMEOUT);
+            ck_assert_uint_eq(done_result.status, CO_LSS_MASTER_TIMEOUT);
+            ck_assert_uint_eq(done_result.answers, 1);
+            expect_nothing_sent();
+            continue;
+        }
+        ck_assert(answer("7E4#5A5F000000000000", now));
+        expect_sent("7E5#5B00000000000000");
+        ck_assert(answer("7E4#5B12030000000000", now));
+        expect_sent("7E5#5C00000000000000");
+        ck_assert(answer("7E4#5C02000100000000", now));
+        expect_sent("7E5#5D00000000000000");
+        ck_assert_uint_eq(done_calls, 0);
+        ck_assert(answer(run == 1 ? "7E4#5D78563412000000" : "7E4#5D79563412000000", now));
+        ck_assert_uint_eq(done_calls, 1);
+        ck_assert_uint_eq(done_result.status, run == 1 ? CO_LSS_MASTER_TIMEOUT : CO_LSS_MASTER_OK);
+        ck_assert_uint_eq(done_result.answers, 1);
+        ck_assert_uint_eq(done_result.address.part[CO_LSS_SERIAL], 0x12345679);
+        ck_assert(!co_lss_master_busy(&m));
+        expect_nothing_sent();
+    }
+}
+END_TEST
+
+#define MIN_WAIT 1000u /* 1 ms: the shortest wait of a frame after the reset */
+
+/* The reset waits the whole timeout; every later frame twice the slowest answer so far, at least
+ * MIN_WAIT and at most the timeout, an answer later than half the wait stretching its own frame. */
+START_TEST(fastscan_waits_twice_the_slowest_answer)
+{
+    static const co_lss_fastscan_known_t known = {0x07, 0, {{0x5F, 0x312, 0x00010002, 0}}};
+    scripted_setup();
+    ck_assert_int_eq(co_lss_master_fastscan(&m, &known, TIMEOUT, 0, 0), CO_LSS_MASTER_ERR_ARG);
+    ck_assert_int_eq(co_lss_master_fastscan(&m, &known, TIMEOUT, TIMEOUT + 1, 0),
+                     CO_LSS_MASTER_ERR_ARG);
+    expect_nothing_sent();
+    co_time_t now = 100000;
+    ck_assert_int_eq(co_lss_master_fastscan(&m, &known, TIMEOUT, MIN_WAIT, now), 0);
+    expect_sent("7E5#5100000000800000");
+    ck_assert(answer("7E4#4F00000000000000", now + 200));
+    ck_assert(answer("7E4#4F00000000000000", now + 300));
+    ck_assert_uint_eq(co_lss_master_process(&m, now + TIMEOUT - 1), now + TIMEOUT);
+    expect_nothing_sent();
+    /* 2 x 300 us is below the floor: the vendor-ID's confirmation waits MIN_WAIT. */
+    now += TIMEOUT;
+    ck_assert_uint_eq(co_lss_master_process(&m, now), now + MIN_WAIT);
+    expect_sent("7E5#515F000000000001");
+    ck_assert(answer("7E4#4F00000000000000", now + 100));
+    ck_assert_uint_eq(co_lss_master_process(&m, now + MIN_WAIT - 1), now + MIN_WAIT);
+    expect_nothing_sent();
+    now += MIN_WAIT;
+    ck_assert_uint_eq(co_lss_master_process(&m, now), now + MIN_WAIT);
+    expect_sent("7E5#5112030000000102");
+    /* An answer after 700 us stretches this frame's wait to 1.4 ms, and the next frame's. */
+    ck_assert(answer("7E4#4F00000000000000", now + 700));
+    ck_assert_uint_eq(co_lss_master_process(&m, now + MIN_WAIT), now + 1400);
+    expect_nothing_sent();
+    now += 1400;
+    ck_assert_uint_eq(co_lss_master_process(&m, now), now + 1400);
+    expect_sent("7E5#5102000100000203");
+    /* 2 x 6 ms is beyond the timeout: it caps the wait. */
+    ck_assert(answer("7E4#4F00000000000000", now + 6000));
+    ck_assert_uint_eq(co_lss_master_process(&m, now + 6000), now + TIMEOUT);
+    now += TIMEOUT;
+    ck_assert_uint_eq(co_lss_master_process(&m, now), now + TIMEOUT);
+    expect_sent("7E5#51000000001F0303");
+    /* No answer: bit 31 is 1, after the whole (capped) wait. */
+    now += TIMEOUT;
+    ck_assert_uint_eq(co_lss_master_process(&m, now), now + TIMEOUT);
+    expect_sent("7E5#51000000801E0303");
+    expect_nothing_sent();
+    ck_assert_uint_eq(done_calls, 0);
+}
+END_TEST
+
+/* A guessed part answered is confirmed in one frame; unanswered, it is scanned bit by bit. */
+START_TEST(fastscan_tries_a_guessed_part_then_scans_it)
+{
+    static const co_lss_fastscan_known_t guess = {0, 0x07, {{0x5F, 0x999, 0x00010002, 0}}};
+    static const co_lss_address_t address = {{0x5F, 0x312, 0x00010002, 0x12345678}};
+    scripted_setup();
+    co_time_t now = 0;
+    ck_assert_int_eq(co_lss_master_fastscan(&m, &guess, TIMEOUT, TIMEOUT, now), 0);
+    expect_sent("7E5#5100000000800000");
+    ck_assert(answer("7E4#4F00000000000000", now));
+    co_lss_master_process(&m, now += TIMEOUT);
+    expect_sent("7E5#515F000000000001");
+    ck_assert(answer("7E4#4F00000000000000", now));
+    co_lss_master_process(&m, now += TIMEOUT);
+    /* Nobody has product 999h: the slaves stay on the product code, scanned from bit 31. */
+    expect_sent("7E5#5199090000000102");
+    co_lss_master_process(&m, now += TIMEOUT);
+    expect_sent("7E5#51000000001F0101");
+    size_t frames = 4;
+    while (done_calls == 0) {
+        const co_frame_t *f = &sent[sent_next - 1];
+        if (f->data[0] != CO_LSS_CS_FASTSCAN) {
+            answer_inquiry(f, &address, now);
+            if (sent_next < sent_count) {
+                sent_next++;
+                frames++;
+            }
+            continue;
+        }
+        uint32_t mask = UINT32_MAX << f->data[5];
+        if (((co_get_u32(&f->data[1]) ^ address.part[f->data[6]]) & mask) == 0)
+            ck_assert(answer("7E4#4F00000000000000", now));
+        co_lss_master_process(&m, now += TIMEOUT);
+        if (sent_next < sent_count) {
+            sent_next++;
+            frames++;
+        }
+    }
+    ck_assert_uint_eq(done_result.status, CO_LSS_MASTER_OK);
+    for (int i = 0; i < 4; i++)
+        ck_assert_uint_eq(done_result.address.part[i], address.part[i]);
+    /* The reset, the vendor-ID, the guess of the product, its 32 bit checks, the revision, the
+     * serial's 32 bit checks, and the four inquiries. */
+    ck_assert_uint_eq(frames, 1 + 1 + 1 + 32 + 1 + 32 + 4);
 }
 END_TEST
 
@@ -478,16 +646,23 @@ START_TEST(every_service_against_the_core_slave)
 }
 END_TEST
 
-/* Finds, numbers 1..20 and boots the twenty slaves; returns the master's frames. */
-static size_t fastscan_all(const co_lss_fastscan_known_t *known)
+static co_time_t scan_time; /* fastscan_all's scans, on the bus's clock */
+
+/* Finds, numbers 1..20 and boots the twenty slaves, each frame after a reset waiting at least
+ * min_wait, the parts of the slave found guessed for the next scan when `guess`; returns the
+ * master's frames. */
+static size_t fastscan_all(const co_lss_fastscan_known_t *known, co_time_t min_wait, bool guess)
 {
     bus_setup(SLAVES, CO_LSS_NODE_ID_UNCONFIGURED, 0x10203040);
     bool found[SLAVES] = {false};
-    co_time_t scan_time = 0;
+    co_lss_fastscan_known_t parts = {0};
+    if (known != NULL)
+        parts = *known;
     size_t scan_frames = 0;
+    scan_time = 0;
     for (uint8_t n = 1; n <= SLAVES + 1; n++) {
         size_t before = master_frames;
-        ck_assert_int_eq(co_lss_master_fastscan(&m, known, TIMEOUT, bus_now), 0);
+        ck_assert_int_eq(co_lss_master_fastscan(&m, &parts, TIMEOUT, min_wait, bus_now), 0);
         scan_time += run_until_idle();
         scan_frames += master_frames - before;
         if (n == SLAVES + 1) {
@@ -504,6 +679,10 @@ static size_t fastscan_all(const co_lss_fastscan_known_t *known)
         ck_assert_uint_eq(done_result.address.part[CO_LSS_PRODUCT], 0x312);
         ck_assert_uint_eq(done_result.address.part[CO_LSS_REVISION], 0x00010002);
         ck_assert_uint_eq(slaves[which].lss.state, CO_LSS_CONFIGURATION);
+        if (guess) {
+            parts.guessed = (uint8_t)(0x07 & ~parts.known);
+            parts.address = done_result.address;
+        }
         ck_assert_int_eq(co_lss_master_configure_node_id(&m, n, TIMEOUT, bus_now), 0);
         run_until_idle();
         ck_assert_uint_eq(done_result.error, CO_LSS_OK);
@@ -516,26 +695,46 @@ static size_t fastscan_all(const co_lss_fastscan_known_t *known)
         ck_assert(found[i]);
         ck_assert_uint_eq(slaves[i].node.nmt_state, CO_NMT_PRE_OPERATIONAL);
     }
-    printf("fastscan of %u slaves%s: %zu master frames, %.2f s of bus time at %u ms a frame\n",
-           SLAVES, known != NULL ? " (vendor, product, revision known)" : "", scan_frames,
-           (double)scan_time / 1e6, TIMEOUT / 1000);
+    printf("fastscan of %u slaves%s%s: %zu master frames, %.2f s of bus time, %u ms a reset, "
+           "%u us a frame at least\n",
+           SLAVES, known != NULL ? " (vendor, product, revision known)" : "",
+           guess ? " (the last one's parts guessed)" : "", scan_frames, (double)scan_time / 1e6,
+           TIMEOUT / 1000, (unsigned)min_wait);
     return scan_frames;
 }
 
 /* Each scan: the reset, 32 bit checks for each part, a confirmation for each part whose bit 0
- * is 1 (the vendor-ID 5Fh's, the odd serials': 10 of 20); and the last scan's reset that nobody
- * answers. */
+ * is 1 (the vendor-ID 5Fh's, the odd serials': 10 of 20), the four inquiries of the address
+ * found; and the last scan's reset that nobody answers. */
 START_TEST(fastscan_twenty_slaves)
 {
-    ck_assert_uint_eq(fastscan_all(NULL), 20 * (1 + 4 * 32 + 1) + 10 + 1);
+    size_t frames = fastscan_all(NULL, TIMEOUT, false);
+    ck_assert_uint_eq(frames, 20 * (1 + 4 * 32 + 1 + 4) + 10 + 1);
+    /* The inquiries are answered at once, every other frame waits the whole timeout. */
+    ck_assert_uint_eq(scan_time, (frames - 20 * 4) * TIMEOUT);
 }
 END_TEST
 
 /* Vendor, product and revision known: one frame each instead of 32. */
 START_TEST(fastscan_twenty_slaves_of_a_known_product)
 {
-    static const co_lss_fastscan_known_t known = {0x07, {{0x5F, 0x312, 0x00010002, 0}}};
-    ck_assert_uint_eq(fastscan_all(&known), 20 * (1 + 3 + 32) + 10 + 1);
+    static const co_lss_fastscan_known_t known = {0x07, 0, {{0x5F, 0x312, 0x00010002, 0}}};
+    ck_assert_uint_eq(fastscan_all(&known, TIMEOUT, false), 20 * (1 + 3 + 32 + 4) + 10 + 1);
+}
+END_TEST
+
+/* Nothing known: the first slave's vendor-ID, product code and revision, guessed for the next
+ * ones, take one frame each from the second scan on; the slaves answer at once, so every frame
+ * after a reset waits MIN_WAIT (the inquiries none): 21 resets of 10 ms and 804 frames of 1 ms,
+ * 1.01 s of bus time instead of the 26.11 s of the fixed wait. */
+START_TEST(fastscan_twenty_slaves_guessing_and_waiting_the_least)
+{
+    size_t frames = fastscan_all(NULL, MIN_WAIT, true);
+    /* The first scan as without guesses (the vendor-ID's bit 0 is 1, its serial's 0), then 19 of
+     * a reset, three confirmations, 32 bit checks and four inquiries, 10 odd serials confirmed,
+     * the last reset. */
+    ck_assert_uint_eq(frames, (1 + 4 * 32 + 1 + 4) + 19 * (1 + 3 + 32 + 4) + 10 + 1);
+    ck_assert_uint_eq(scan_time, 21 * TIMEOUT + (frames - 21 - 20 * 4) * MIN_WAIT);
 }
 END_TEST
 
@@ -551,9 +750,13 @@ static Suite *suite(void)
     tcase_add_test(tc, identify_counts_answers_until_the_timeout);
     tcase_add_test(tc, frames_that_are_not_answers);
     tcase_add_test(tc, fastscan_frames_exact);
+    tcase_add_test(tc, fastscan_checks_the_address_found);
+    tcase_add_test(tc, fastscan_waits_twice_the_slowest_answer);
+    tcase_add_test(tc, fastscan_tries_a_guessed_part_then_scans_it);
     tcase_add_test(tc, every_service_against_the_core_slave);
     tcase_add_test(tc, fastscan_twenty_slaves);
     tcase_add_test(tc, fastscan_twenty_slaves_of_a_known_product);
+    tcase_add_test(tc, fastscan_twenty_slaves_guessing_and_waiting_the_least);
     suite_add_tcase(s, tc);
     return s;
 }

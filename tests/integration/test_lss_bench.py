@@ -62,7 +62,9 @@ def test_comaster_fastscan_numbers_twenty_unconfigured_io_nodes(bus, start_daemo
     bus.collect(0.3)
     assert [str(f) for f in bus.seen if 0x701 <= f.can_id <= 0x77F] == []
     started = time.monotonic()
-    # The known parts of the address take one frame each: 20 x 37 frames instead of 20 x 133.
+    # The known parts of the address take one frame each: 20 x 37 frames instead of 20 x 133,
+    # and four inquiries of the address found; after the reset, a frame waits twice the slowest
+    # answer, at least 5 ms, at most --frame-ms (docs/decisions.md, D-LSS-FASTSCAN-WAIT).
     # 50 ms a frame: inside User-Mode Linux on a loaded host answers come later than the default
     # 20 ms often enough that comaster's three scans a slave now and then all lost it.
     done = subprocess.run([COMASTER, "-i", IFACE, "lss", "fastscan", "30", "--store", "--frame-ms",

@@ -1,6 +1,6 @@
 /* SPDX-License-Identifier: Apache-2.0 */
 /* CiA 305 LSS master: the requests, their answers and timeouts, and fastscan's walk through the
- * 128 bits of an LSS address. */
+ * 128 bits of an LSS address, its waits, and the check of the address found. */
 #include "co/co_lss_master.h"
 
 #include <string.h>
@@ -10,7 +10,8 @@ enum step {
     STEP_ANSWER,         /* the first answer of `expect` ends the request */
     STEP_COUNT,          /* identify: answers of `expect` are counted until the deadline */
     STEP_FASTSCAN_RESET, /* fastscan: is any non-configured slave there */
-    STEP_FASTSCAN        /* fastscan: a bit check or a confirmation in flight */
+    STEP_FASTSCAN,       /* fastscan: a bit check or a confirmation in flight */
+    STEP_FASTSCAN_VERIFY /* fastscan: the slave found inquired for the part `part` */
 };
 
 int co_lss_master_init(co_lss_master_t *master, const co_lss_master_config_t *config)
@@ -169,7 +170,18 @@ int co_lss_master_identify_non_configured(co_lss_master_t *master, co_time_t tim
     return err;
 }
 
-/* One fastscan frame, whose answers are counted until the timeout. */
+/* The wait of a fastscan frame after the reset (docs/decisions.md, D-LSS-FASTSCAN-WAIT): twice
+ * the slowest answer of this scan, the reset's included, within min_wait_us..timeout_us. */
+static co_time_t fastscan_wait(const co_lss_master_t *master)
+{
+    co_time_t wait = 2 * master->slowest_us;
+    if (wait < master->min_wait_us)
+        wait = master->min_wait_us;
+    return wait < master->timeout_us ? wait : master->timeout_us;
+}
+
+/* One fastscan frame, whose answers are counted until its wait ends; the reset waits the whole
+ * timeout, since its answers are the first measure of the slaves' answer time. */
 static void fastscan_send(co_lss_master_t *master, uint8_t bit, uint8_t next, co_time_t now)
 {
     uint8_t data[7];
@@ -179,8 +191,21 @@ static void fastscan_send(co_lss_master_t *master, uint8_t bit, uint8_t next, co
     data[6] = next;
     master->bit = bit;
     master->result.answers = 0;
-    master->deadline = now + master->timeout_us;
+    master->sent_at = now;
+    master->deadline =
+        now + (bit == CO_LSS_FASTSCAN_RESET ? master->timeout_us : fastscan_wait(master));
     send(master, CO_LSS_CS_FASTSCAN, data, sizeof(data));
+}
+
+/* An answer to a fastscan frame: the slowest one so far stretches the wait of this frame and of
+ * the next, so that the answers of other slaves queued behind it still count for this frame. */
+static void fastscan_answer(co_lss_master_t *master, co_time_t now)
+{
+    co_time_t delay = now > master->sent_at ? now - master->sent_at : 0;
+    if (delay > master->slowest_us)
+        master->slowest_us = delay;
+    if (master->step == STEP_FASTSCAN)
+        master->deadline = master->sent_at + fastscan_wait(master);
 }
 
 static uint8_t next_part(uint8_t part)
@@ -188,31 +213,75 @@ static uint8_t next_part(uint8_t part)
     return (uint8_t)((part + 1) % CO_LSS_FASTSCAN_PARTS);
 }
 
-/* A known part is confirmed in one frame; an unknown one is scanned from bit 31 with the guess
- * 0, which the slaves whose bits so far match answer. */
+/* An unknown part is scanned from bit 31 with the guess 0, which the slaves whose bits so far
+ * match answer. */
+static void fastscan_scan_part(co_lss_master_t *master, co_time_t now)
+{
+    master->result.address.part[master->part] = 0;
+    master->confirming = false;
+    master->guessing = false;
+    fastscan_send(master, CO_LSS_FASTSCAN_BIT_MAX, master->part, now);
+}
+
+/* A known or guessed part is confirmed in one frame (bit 0 checked, the next part named). */
 static void fastscan_part(co_lss_master_t *master, co_time_t now)
 {
     uint8_t part = master->part;
-    if (master->known.known & (1u << part)) {
+    uint8_t mask = (uint8_t)(1u << part);
+    if ((master->known.known | master->known.guessed) & mask) {
         master->result.address.part[part] = master->known.address.part[part];
         master->confirming = true;
+        master->guessing = !(master->known.known & mask);
         fastscan_send(master, 0, next_part(part), now);
     } else {
-        master->result.address.part[part] = 0;
-        master->confirming = false;
-        fastscan_send(master, CO_LSS_FASTSCAN_BIT_MAX, part, now);
+        fastscan_scan_part(master, now);
     }
 }
 
+/* The scan lost its slave: TIMEOUT with the answers to the reset, to be told from none found. */
+static void fastscan_lost(co_lss_master_t *master)
+{
+    master->result.answers = master->reset_answers;
+    finish(master, CO_LSS_MASTER_TIMEOUT);
+}
+
+/* Inquires the part `part` of the slave now in the configuration state (5Ah + part). */
+static void fastscan_inquire(co_lss_master_t *master, co_time_t now)
+{
+    master->expect = (uint8_t)(CO_LSS_CS_INQUIRE_VENDOR + master->part);
+    master->deadline = now + master->timeout_us;
+    send(master, master->expect, NULL, 0);
+}
+
+/* The serial scanned, the slave that matched all 128 bits is in the configuration state; it is
+ * asked its address, part by part, which must be the one scanned: an answer taken for a frame it
+ * did not answer (a slave's answer later than the frame's wait) would otherwise give an address
+ * that no slave has (docs/decisions.md, D-LSS-FASTSCAN-WAIT). */
 static void fastscan_next_part(co_lss_master_t *master, co_time_t now)
 {
     master->part++;
-    if (master->part == CO_LSS_FASTSCAN_PARTS) {
-        master->result.answers = 1;
-        finish(master, CO_LSS_MASTER_OK);
-    } else {
+    if (master->part < CO_LSS_FASTSCAN_PARTS) {
         fastscan_part(master, now);
+        return;
     }
+    master->step = STEP_FASTSCAN_VERIFY;
+    master->part = 0;
+    fastscan_inquire(master, now);
+}
+
+static void fastscan_verify(co_lss_master_t *master, uint32_t value, co_time_t now)
+{
+    if (value != master->result.address.part[master->part]) {
+        fastscan_lost(master);
+        return;
+    }
+    master->part++;
+    if (master->part < CO_LSS_FASTSCAN_PARTS) {
+        fastscan_inquire(master, now);
+        return;
+    }
+    master->result.answers = 1;
+    finish(master, CO_LSS_MASTER_OK);
 }
 
 /* The end of one fastscan frame's timeout. The check of bit 0 carries the next part already, so
@@ -232,13 +301,20 @@ static void fastscan_step(co_lss_master_t *master, co_time_t now)
         fastscan_part(master, now);
         return;
     }
+    if (master->step == STEP_FASTSCAN_VERIFY) {
+        fastscan_lost(master);
+        return;
+    }
     uint8_t part = master->part;
     if (master->confirming) {
         if (answered) {
             fastscan_next_part(master, now);
+        } else if (master->guessing) {
+            /* No slave has the guessed part; all of them are still on it (CiA 305: a slave
+             * moves to the next part only when its whole part matched). */
+            fastscan_scan_part(master, now);
         } else {
-            master->result.answers = master->reset_answers;
-            finish(master, CO_LSS_MASTER_TIMEOUT);
+            fastscan_lost(master);
         }
         return;
     }
@@ -256,12 +332,18 @@ static void fastscan_step(co_lss_master_t *master, co_time_t now)
 }
 
 int co_lss_master_fastscan(co_lss_master_t *master, const co_lss_fastscan_known_t *known,
-                           co_time_t timeout_us, co_time_t now)
+                           co_time_t timeout_us, co_time_t min_wait_us, co_time_t now)
 {
+    if (master->step != STEP_IDLE)
+        return CO_LSS_MASTER_ERR_BUSY;
+    if (min_wait_us == 0 || min_wait_us > timeout_us)
+        return CO_LSS_MASTER_ERR_ARG;
     int err = start(master, CO_LSS_CS_FASTSCAN, STEP_FASTSCAN_RESET, CO_LSS_CS_IDENTIFY_SLAVE,
                     timeout_us, now);
     if (err != 0)
         return err;
+    master->min_wait_us = min_wait_us;
+    master->slowest_us = 0;
     if (known != NULL)
         master->known = *known;
     else
@@ -273,16 +355,21 @@ int co_lss_master_fastscan(co_lss_master_t *master, const co_lss_fastscan_known_
 
 bool co_lss_master_receive(co_lss_master_t *master, const co_frame_t *frame, co_time_t now)
 {
-    (void)now;
     if (frame->id != CO_LSS_ID_SLAVE || (frame->flags & CO_FRAME_EFF))
         return false;
     if ((frame->flags & CO_FRAME_RTR) || frame->len != CO_LSS_FRAME_LEN ||
         master->step == STEP_IDLE || frame->data[0] != master->expect)
         return true;
     const uint8_t *data = frame->data;
+    if (master->step == STEP_FASTSCAN_VERIFY) {
+        fastscan_verify(master, co_get_u32(&data[1]), now);
+        return true;
+    }
     if (master->step != STEP_ANSWER) {
         if (master->result.answers < UINT16_MAX)
             master->result.answers++;
+        if (master->step != STEP_COUNT)
+            fastscan_answer(master, now);
         return true;
     }
     uint8_t cs = data[0];

@@ -30,6 +30,11 @@
  * co_node_t, and every node then needs an application buffer, which several nodes may share. */
 #define CO_CONFIG_SDO_BUFFER 1024
 #endif
+#ifndef CO_CONFIG_SDO_SERVERS_MAX
+/* Most additional SDO server channels (1201h..) a node may be given (co_sdo_servers_t): they size
+ * the consumed COB-ID list (co_consumers.h), not co_node_t; CiA 301 allows up to 127. */
+#define CO_CONFIG_SDO_SERVERS_MAX 8
+#endif
 #ifndef CO_CONFIG_STORE_VALUE_MAX
 #define CO_CONFIG_STORE_VALUE_MAX 64 /* largest stored value checked at a reset, bytes */
 #endif

@@ -1,14 +1,14 @@
 /* SPDX-License-Identifier: Apache-2.0 */
 /* The COB-IDs a node consumes: what a runtime needs to hand a node only the frames it acts on
  * (routing among several nodes, a receive filter in the CAN controller or the kernel). The set
- * follows the node's configuration: NMT 000h, the SYNC COB-ID (1005h), the SDO server's request
- * COB-ID (1200h), the valid RPDOs' COB-IDs (1400h..), remote requests for the valid TPDOs that
- * allow them (1800h.. bit 30 clear), the node guarding RTR (100Eh, else 700h + node-id) and the
- * heartbeats of the monitored producers (1016h), and the LSS master's 7E5h for a node with LSS
- * (CiA 305). It does not depend on the NMT state: a frame the state does not allow is still the
- * node's to ignore. A generation number changes whenever the
- * set may have changed (a write of one of those objects, a reset), so a runtime compares it
- * instead of enumerating after every frame. */
+ * follows the node's configuration: NMT 000h, the SYNC COB-ID (1005h), the SDO servers' request
+ * COB-IDs (1200h, and 1201h.. of the additional channels while valid), the valid RPDOs' COB-IDs
+ * (1400h..), remote requests for the valid TPDOs that allow them (1800h.. bit 30 clear), the node
+ * guarding RTR (100Eh, else 700h + node-id) and the heartbeats of the monitored producers (1016h),
+ * and the LSS master's 7E5h for a node with LSS (CiA 305). It does not depend on the NMT state: a
+ * frame the state does not allow is still the node's to ignore. A generation number changes
+ * whenever the set may have changed (a write of one of those objects, a reset), so a runtime
+ * compares it instead of enumerating after every frame. */
 #ifndef CO_CONSUMERS_H
 #define CO_CONSUMERS_H
 
@@ -21,9 +21,11 @@ typedef struct co_cob {
     bool rtr;
 } co_cob_t;
 
-/* Most COB-IDs a node can consume: LSS, NMT, SYNC, TIME, SDO, guarding, one per RPDO, TPDO and
- * heartbeat consumer. */
-#define CO_CONSUMERS_MAX (6 + CO_CONFIG_RPDO_MAX + CO_CONFIG_TPDO_MAX + CO_CONFIG_HB_CONSUMERS)
+/* Most COB-IDs a node can consume: LSS, NMT, SYNC, TIME, SDO, guarding, one per RPDO, TPDO,
+ * heartbeat consumer and additional SDO server. */
+#define CO_CONSUMERS_MAX                                                                           \
+    (6 + CO_CONFIG_RPDO_MAX + CO_CONFIG_TPDO_MAX + CO_CONFIG_HB_CONSUMERS +                        \
+     CO_CONFIG_SDO_SERVERS_MAX)
 
 /* Fills cobs (CO_CONSUMERS_MAX entries) with the COB-IDs the node consumes now, each once, and
  * returns how many. A node in Initialising (before co_node_start, or without node-id) consumes

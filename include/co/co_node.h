@@ -17,6 +17,7 @@
 #include "co_od.h"
 #include "co_pdo.h"
 #include "co_sdo.h"
+#include "co_sdo_servers.h"
 #include "co_store.h"
 #include "co_sync.h"
 #include "co_time_stamp.h"
@@ -111,6 +112,10 @@ typedef struct co_node_config {
     /* SDO transfer buffer, which several nodes may share (co_sdo_buffer_t). NULL: the node's own
      * CO_CONFIG_SDO_BUFFER bytes; required when CO_CONFIG_SDO_BUFFER is 0. */
     co_sdo_buffer_t *sdo_buffer;
+    /* The additional SDO server channels 1201h.. (co_sdo_servers.h), which the application owns
+     * and has prepared with co_sdo_servers_init (else CO_NODE_ERR_CONFIG); NULL: the default
+     * channel 1200h alone. */
+    co_sdo_servers_t *sdo_servers;
     uint32_t options; /* CO_NODE_* behaviour options, 0 for plain CiA 301 */
     /* &co_node_options when options is not 0 (else co_node_init refuses the node with
      * CO_NODE_ERR_OPTIONS); NULL links none of the options' code. */
@@ -160,8 +165,11 @@ struct co_node {
     uint32_t (*parameter_write)(co_node_t *node, const co_od_entry_t *entry, const uint8_t *data,
                                 size_t len);
     const co_time_stamp_code_t *time_stamp; /* co_node_config_t.time_stamp */
+    /* co_node_config_t.sdo_servers: on a 32-bit processor in what was padding before the 8-byte
+     * aligned service states, so that a node keeps its size (docs/footprint.md). */
+    co_sdo_servers_t *sdo_servers;
 
-    co_sdo_server_t sdo;
+    co_sdo_server_t sdo; /* the default channel, 1200h */
     co_pdo_t pdo;
     co_sync_t sync;
     co_emcy_t emcy;
@@ -179,7 +187,8 @@ struct co_node {
 /* Results of co_node_init besides the object dictionary's own validation errors. */
 /* node-id outside 1..127, and not FFh of a node with LSS */
 #define CO_NODE_ERR_NODE_ID 0x100
-#define CO_NODE_ERR_CONFIG 0x101 /* missing od, data block, send callback or SDO buffer */
+/* missing od, data block, send callback or SDO buffer; SDO servers not prepared */
+#define CO_NODE_ERR_CONFIG 0x101
 /* The dictionary has more RPDOs or TPDOs than co_config.h gives a node (CO_CONFIG_RPDO_MAX,
  * CO_CONFIG_TPDO_MAX). */
 #define CO_NODE_ERR_TABLES 0x102

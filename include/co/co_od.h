@@ -12,6 +12,7 @@
 #include "co_types.h"
 
 typedef struct co_node co_node_t;
+struct co_sdo_server; /* co_sdo.h: a server channel, for the streaming code below */
 typedef struct co_od_entry co_od_entry_t;
 
 /* Entry flags. Access types follow CiA 306: ro, wo, rw, rwr, rww, const. */
@@ -111,23 +112,27 @@ struct co_od_entry {
 };
 
 /* The code of streamed DOMAIN entries (src/canopen/common/od_stream.c): the dictionary's validation
- * and write, and the SDO server's transfers of a streamed entry, whose state is node->sdo. */
+ * and write, and the SDO server's transfers of a streamed entry, whose state is the server channel
+ * `sdo` (co_sdo_server_t) of the transfer. */
 typedef struct co_od_streaming {
     /* Whether a CO_OD_STREAM entry is a DOMAIN of size 0 with the functions of its access. */
     bool (*entry_valid)(const co_od_entry_t *entry);
     /* The value written in one piece (co_od_write of a streamed entry). */
     uint32_t (*write)(co_node_t *node, const co_od_entry_t *entry, const uint8_t *data, size_t len);
-    /* SDO server: a download of the entry starts (node->sdo.size_indicated, size), an upload
-     * opens (the size into node->sdo.size); both make it node->sdo.stream. */
-    uint32_t (*sdo_begin)(co_node_t *node, const co_od_entry_t *entry);
-    uint32_t (*sdo_open)(co_node_t *node, const co_od_entry_t *entry);
-    /* SDO server: bytes of node->sdo.stream read or written at `offset`. */
-    uint32_t (*sdo_read)(co_node_t *node, uint32_t offset, uint8_t *buf, uint32_t len);
-    uint32_t (*sdo_write)(co_node_t *node, uint32_t offset, const uint8_t *data, uint32_t len);
+    /* SDO server: a download of the entry starts (sdo->size_indicated, size), an upload opens
+     * (the size into sdo->size); both make it sdo->stream. */
+    uint32_t (*sdo_begin)(co_node_t *node, struct co_sdo_server *sdo, const co_od_entry_t *entry);
+    uint32_t (*sdo_open)(co_node_t *node, struct co_sdo_server *sdo, const co_od_entry_t *entry);
+    /* SDO server: bytes of sdo->stream read or written at `offset`. */
+    uint32_t (*sdo_read)(co_node_t *node, struct co_sdo_server *sdo, uint32_t offset, uint8_t *buf,
+                         uint32_t len);
+    uint32_t (*sdo_write)(co_node_t *node, struct co_sdo_server *sdo, uint32_t offset,
+                          const uint8_t *data, uint32_t len);
     /* SDO server: the download completed; the application's end decides. */
-    uint32_t (*sdo_commit)(co_node_t *node);
+    uint32_t (*sdo_commit)(co_node_t *node, struct co_sdo_server *sdo);
     /* SDO server: the transfer of `entry` ended otherwise, a download or an upload. */
-    void (*sdo_abandoned)(co_node_t *node, const co_od_entry_t *entry, bool download);
+    void (*sdo_abandoned)(co_node_t *node, struct co_sdo_server *sdo, const co_od_entry_t *entry,
+                          bool download);
 } co_od_streaming_t;
 
 /* The code of streamed entries, for co_od_t.streaming. */

@@ -1,6 +1,8 @@
 /* SPDX-License-Identifier: Apache-2.0 */
 /* SDO server: expedited, segmented and block transfers (CiA 301 section 7.2.4) on the default SDO
- * channel 0x600+id / 0x580+id, with the protocol timeout and the complete set of abort codes.
+ * channel 0x600+id / 0x580+id (1200h) and on the additional server channels 1201h.. a node is
+ * given (co_sdo_servers.h), each with its own transfer, with the protocol timeout and the complete
+ * set of abort codes.
  * Segmented and block transfers go through the transfer buffer, except those of a streamed DOMAIN
  * (co_od_stream_t, co_od.h), which pass segment by segment between the client and the
  * application: any size up to 2^32-1 bytes (a block download: 2^32-8). */
@@ -27,22 +29,28 @@ typedef enum co_sdo_state {
  * value is copied into it at initiate. One buffer may serve several nodes of an application (their
  * co_node_config_t.sdo_buffer), since a node needs it only during such a transfer: the transfer
  * holds it from its initiate until it ends (completed, aborted, timed out, replaced by a new
- * request or by a reset), and another node's transfer that needs it meanwhile is refused with
- * CO_SDO_ABORT_NO_RESOURCE. Expedited transfers never use it. The nodes sharing a buffer must be
- * run from one thread, like the calls of one node. Set `data` and `size`, and `owner` to NULL. */
+ * request or by a reset), and another transfer that needs it meanwhile, of another node or of
+ * another server channel of the same node, is refused with CO_SDO_ABORT_NO_RESOURCE. Expedited
+ * transfers never use it. The nodes sharing a buffer must be run from one thread, like the calls
+ * of one node. Set `data` and `size`, and `owner` to NULL. */
 typedef struct co_sdo_buffer {
     uint8_t *data;
-    uint32_t size;          /* largest segmented or block transfer, bytes */
-    const co_node_t *owner; /* the node whose transfer holds the buffer, NULL when free */
+    uint32_t size; /* largest segmented or block transfer, bytes */
+    /* The server channel whose transfer holds the buffer, NULL when free. */
+    const struct co_sdo_server *owner;
 } co_sdo_buffer_t;
 
 typedef struct co_sdo_server {
     uint8_t state; /* co_sdo_state_t */
     uint16_t index;
     uint8_t subindex;
-    uint16_t rx_id;       /* client -> server COB-ID, from 1200h:01 at reset */
-    uint16_t tx_id;       /* server -> client COB-ID, from 1200h:02 at reset */
-    co_time_t timeout_us; /* protocol timeout, restarted by every received frame */
+    uint16_t rx_id; /* client -> server COB-ID, from 12xxh:01 at reset (1201h..: on its write) */
+    uint16_t tx_id; /* server -> client COB-ID, from 12xxh:02 at reset (1201h..: on its write) */
+    /* An additional channel takes requests while both its COB-IDs are valid (bit 31 clear); the
+     * default channel does not look at it. In what was padding. */
+    bool valid;
+    /* The default channel's: the protocol timeout of every channel of the node. */
+    co_time_t timeout_us; /* restarted by every received frame */
     co_time_t deadline;
     uint8_t toggle;          /* segmented transfers: toggle bit expected in the next frame */
     bool size_indicated;     /* downloads: the client announced `size` */
@@ -67,11 +75,23 @@ typedef struct co_sdo_server {
 #endif
 } co_sdo_server_t;
 
+/* The server channels of a node: reset (COB-IDs reloaded, transfers dropped), a received frame
+ * routed to the channel whose client -> server COB-ID it has (true when one took it), the
+ * timeouts. */
 void co_sdo_reset(co_node_t *node);
 bool co_sdo_receive(co_node_t *node, const co_frame_t *frame);
 co_time_t co_sdo_process(co_node_t *node, co_time_t now);
 
-/* Sets the server's protocol timeout (default CO_CONFIG_SDO_TIMEOUT_US). */
+/* One channel, for the additional channels' module (co_sdo_servers.h): its transfer buffer (NULL:
+ * its own CO_CONFIG_SDO_BUFFER bytes) on a zeroed state, a frame of its client, its transfer
+ * ended silently, its timeout run. */
+void co_sdo_channel_init(co_sdo_server_t *sdo, co_sdo_buffer_t *buffer);
+void co_sdo_channel_receive(co_node_t *node, co_sdo_server_t *sdo, const co_frame_t *frame);
+void co_sdo_channel_idle(co_node_t *node, co_sdo_server_t *sdo);
+co_time_t co_sdo_channel_process(co_node_t *node, co_sdo_server_t *sdo, co_time_t now);
+
+/* Sets the protocol timeout of the node's server channels, one for all of them (default
+ * CO_CONFIG_SDO_TIMEOUT_US). */
 void co_sdo_set_timeout(co_node_t *node, co_time_t timeout_us);
 
 /* CRC-16-CCITT (polynomial 0x1021, initial value 0) of SDO block transfers (CiA 301). */

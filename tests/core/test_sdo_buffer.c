@@ -49,7 +49,7 @@ static void a_takes_buffer(void)
 {
     test_rx(&a, "604#4008100000000000");
     test_expect(&a, "584#4108100006000000");
-    ck_assert_ptr_eq(shared.owner, &a.node);
+    ck_assert_ptr_eq(shared.owner, &a.node.sdo);
 }
 
 /* Node 5 is refused every transfer that needs the buffer, and not the expedited ones. */
@@ -68,7 +68,7 @@ static void b_refused_buffer(void)
     test_rx(&b, "605#2F00200514000000"); /* expedited download */
     test_expect(&b, "585#6000200500000000");
     test_expect_none(&b);
-    ck_assert_ptr_eq(shared.owner, &a.node);
+    ck_assert_ptr_eq(shared.owner, &a.node.sdo);
 }
 
 /* Node 5 can take the free buffer: its segmented upload of 1008h completes. */
@@ -161,7 +161,7 @@ START_TEST(holder_may_start_another_transfer)
     a_takes_buffer();
     test_rx(&a, "604#2100200C03000000");
     test_expect(&a, "584#6000200C00000000");
-    ck_assert_ptr_eq(shared.owner, &a.node);
+    ck_assert_ptr_eq(shared.owner, &a.node.sdo);
     test_rx(&a, "604#0978790000000000");
     test_expect(&a, "584#2000000000000000");
     ck_assert_mem_eq(co_od_bytes(&a.node, co_od_find(a.node.od, 0x2000, 0x0C)), "xy", 3);

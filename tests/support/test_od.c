@@ -4,6 +4,7 @@
 #include "co/co_sync.h"
 
 #include <stddef.h>
+#include <string.h>
 
 /* Every value is a byte array in CANopen (little-endian) order, so the struct has no padding. */
 typedef struct test_od_data {
@@ -309,5 +310,56 @@ const co_od_t *test_od_without(uint16_t index)
     od.count = count;
     if (index == 0x1006) /* as the generator leaves it out */
         od.sync_producer = NULL;
+    return &od;
+}
+
+/* 1201h and 1202h: sub-index 0 (3), the two COB-IDs, the client's node-id. */
+typedef struct sdo_server_data {
+    uint8_t sub0[1], cob_id[2][4], client[1];
+} sdo_server_data_t;
+
+static const sdo_server_data_t sdo_server_defaults[2] = {
+    {.sub0 = U8(3), .cob_id = {U32(0x690), U32(0x6A0)}},
+    {.sub0 = U8(3), .cob_id = {U32(0x80000000u), U32(0x80000000u)}},
+};
+
+#define SDO_SERVER_ENTRIES 4u
+
+const co_od_t *test_od_with_sdo_servers(void)
+{
+    static co_od_entry_t all[ENTRY_COUNT + 2 * SDO_SERVER_ENTRIES];
+    static uint8_t data_defaults[sizeof(test_od_data_t) + sizeof(sdo_server_defaults)];
+    static co_od_t od;
+    static const uint8_t types[SDO_SERVER_ENTRIES] = {CO_DT_UNSIGNED8, CO_DT_UNSIGNED32,
+                                                      CO_DT_UNSIGNED32, CO_DT_UNSIGNED8};
+    static const uint32_t offsets[SDO_SERVER_ENTRIES] = {
+        offsetof(sdo_server_data_t, sub0), offsetof(sdo_server_data_t, cob_id[0]),
+        offsetof(sdo_server_data_t, cob_id[1]), offsetof(sdo_server_data_t, client)};
+    uint16_t count = 0;
+    for (size_t i = 0; i < ENTRY_COUNT; i++) {
+        all[count++] = entries[i];
+        if (entries[i].index != 0x1200 || entries[i].subindex != 2)
+            continue;
+        for (uint16_t n = 0; n < 2; n++) {
+            for (uint8_t sub = 0; sub < SDO_SERVER_ENTRIES; sub++) {
+                all[count++] = (co_od_entry_t){
+                    .index = (uint16_t)(0x1201 + n),
+                    .subindex = sub,
+                    .type = types[sub],
+                    .flags = sub == 0 ? RO : RW,
+                    .size = (uint16_t)co_od_type_size(types[sub]),
+                    .offset = (uint32_t)(sizeof(test_od_data_t) + n * sizeof(sdo_server_data_t) +
+                                         offsets[sub]),
+                };
+            }
+        }
+    }
+    memcpy(data_defaults, &defaults, sizeof(defaults));
+    memcpy(data_defaults + sizeof(defaults), sdo_server_defaults, sizeof(sdo_server_defaults));
+    od = test_od;
+    od.entries = all;
+    od.count = count;
+    od.data_size = sizeof(data_defaults);
+    od.defaults = data_defaults;
     return &od;
 }

@@ -18,6 +18,12 @@ extern const co_od_t test_od;
  * lives in static storage that the next call overwrites. */
 const co_od_t *test_od_without(uint16_t index);
 
+/* test_od with the parameters of two additional SDO servers (co_sdo_servers_t): 1201h valid,
+ * 690h client -> server and 6A0h server -> client, and 1202h with both COB-IDs 80000000h (not
+ * valid); sub-index 3 of each, the client's node-id, 0. Its data block is test_od's followed by
+ * theirs. Static storage, built once. */
+const co_od_t *test_od_with_sdo_servers(void);
+
 /* A hook on 2000:10 that refuses every write with CO_SDO_ABORT_DATA_LOCAL, and counts reads. */
 extern unsigned test_od_hook_reads;
 

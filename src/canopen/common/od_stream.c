@@ -48,9 +48,8 @@ static uint32_t write_whole(co_node_t *node, const co_od_entry_t *e, const uint8
 }
 
 /* A download starts: the application may refuse the announced size. */
-static uint32_t sdo_begin(co_node_t *node, const co_od_entry_t *e)
+static uint32_t sdo_begin(co_node_t *node, co_sdo_server_t *sdo, const co_od_entry_t *e)
 {
-    co_sdo_server_t *sdo = &node->sdo;
     uint32_t abort = co_od_stream(e)->begin(node, e, sdo->size_indicated, sdo->size);
     if (abort == CO_SDO_OK)
         sdo->stream = e;
@@ -58,24 +57,24 @@ static uint32_t sdo_begin(co_node_t *node, const co_od_entry_t *e)
 }
 
 /* An upload starts: its size from the application. */
-static uint32_t sdo_open(co_node_t *node, const co_od_entry_t *e)
+static uint32_t sdo_open(co_node_t *node, co_sdo_server_t *sdo, const co_od_entry_t *e)
 {
-    co_sdo_server_t *sdo = &node->sdo;
     sdo->stream = e;
     return co_od_stream(e)->size(node, e, &sdo->size);
 }
 
-static uint32_t sdo_read(co_node_t *node, uint32_t offset, uint8_t *buf, uint32_t len)
+static uint32_t sdo_read(co_node_t *node, co_sdo_server_t *sdo, uint32_t offset, uint8_t *buf,
+                         uint32_t len)
 {
-    const co_od_entry_t *e = node->sdo.stream;
+    const co_od_entry_t *e = sdo->stream;
     return co_od_stream(e)->read(node, e, offset, buf, len);
 }
 
 /* The application gets no byte past the announced size (0x06070010, as when the amount differs
  * at the end) nor past 4 GiB. */
-static uint32_t sdo_write(co_node_t *node, uint32_t offset, const uint8_t *data, uint32_t len)
+static uint32_t sdo_write(co_node_t *node, co_sdo_server_t *sdo, uint32_t offset,
+                          const uint8_t *data, uint32_t len)
 {
-    co_sdo_server_t *sdo = &node->sdo;
     uint64_t end = (uint64_t)offset + len;
     if (sdo->size_indicated && end > sdo->size)
         return CO_SDO_ABORT_TYPE_LENGTH;
@@ -86,9 +85,8 @@ static uint32_t sdo_write(co_node_t *node, uint32_t offset, const uint8_t *data,
 
 /* The download completed: the application's end, once (the transfer no longer counts as a stream
  * to abort). */
-static uint32_t sdo_commit(co_node_t *node)
+static uint32_t sdo_commit(co_node_t *node, co_sdo_server_t *sdo)
 {
-    co_sdo_server_t *sdo = &node->sdo;
     const co_od_entry_t *e = sdo->stream;
     sdo->stream = NULL;
     return co_od_stream(e)->end(node, e, sdo->offset, true);
@@ -96,10 +94,11 @@ static uint32_t sdo_commit(co_node_t *node)
 
 /* The transfer of a stream ended otherwise (abort by either side, timeout, new request, reset):
  * a download's application hears of it. */
-static void sdo_abandoned(co_node_t *node, const co_od_entry_t *e, bool download)
+static void sdo_abandoned(co_node_t *node, co_sdo_server_t *sdo, const co_od_entry_t *e,
+                          bool download)
 {
     if (download)
-        co_od_stream(e)->end(node, e, node->sdo.offset, false);
+        co_od_stream(e)->end(node, e, sdo->offset, false);
 }
 
 const co_od_streaming_t co_od_streaming = {

@@ -44,6 +44,17 @@ static void add_guarding(const co_node_t *node, cob_set_t *set)
         true);
 }
 
+/* The default SDO server channel, and the additional ones while valid. */
+static void add_sdo_servers(const co_node_t *node, cob_set_t *set)
+{
+    add(set, node->sdo.rx_id, false);
+    const co_sdo_servers_t *servers = node->sdo_servers;
+    for (uint8_t n = 0; servers != NULL && n < servers->count; n++) {
+        if (servers->channels[n].valid)
+            add(set, servers->channels[n].rx_id, false);
+    }
+}
+
 static void add_pdos(const co_node_t *node, cob_set_t *set)
 {
     for (size_t n = 0; n < CO_CONFIG_RPDO_MAX; n++) {
@@ -79,7 +90,7 @@ size_t co_node_consumers(const co_node_t *node, co_cob_t *cobs)
     add(&set, CO_CAN_ID_NMT, false);
     add_sync(node, &set);
     add_time(node, &set);
-    add(&set, node->sdo.rx_id, false);
+    add_sdo_servers(node, &set);
     add_guarding(node, &set);
     add_pdos(node, &set);
     add_heartbeats(node, &set);

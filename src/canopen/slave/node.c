@@ -30,7 +30,7 @@ static bool tables_fit(const co_od_t *od)
 /* The service that owns each communication parameter and enforces its CiA 301 rules, by index
  * range. 1200h, the default SDO server channel, has none: CiA 301 makes its COB-IDs read-only,
  * which the dictionary's access type enforces; a dictionary that makes them writable gets the
- * new values at the next reset (co_sdo_reset). */
+ * new values at the next reset (co_sdo_reset). The additional channels' 1201h..127Fh have. */
 typedef struct service_range {
     uint16_t first;
     uint16_t last;
@@ -59,6 +59,16 @@ static uint32_t error_behaviour_write(co_node_t *node, const co_od_entry_t *entr
     return CO_SDO_OK;
 }
 
+/* 1201h..127Fh: the additional SDO servers' rules (co_sdo_servers.h); a node given none takes
+ * any value, which changes nothing there. */
+static uint32_t sdo_servers_write(co_node_t *node, const co_od_entry_t *entry, const uint8_t *data,
+                                  size_t len)
+{
+    if (node->sdo_servers != NULL)
+        return node->sdo_servers->od_write(node, entry, data, len);
+    return CO_SDO_OK;
+}
+
 static uint32_t nmt_startup_write(co_node_t *node, const co_od_entry_t *entry, const uint8_t *data,
                                   size_t len)
 {
@@ -75,6 +85,7 @@ static const service_range_t service_ranges[] = {
     {CO_IDX_TIME_COB_ID, CO_IDX_TIME_COB_ID, time_write},
     {CO_IDX_EMCY_COB_ID, CO_IDX_EMCY_INHIBIT, co_emcy_od_write},
     {CO_IDX_HB_CONSUMER, CO_IDX_HB_PRODUCER, co_heartbeat_od_write},
+    {CO_IDX_SDO_SERVER + 1u, CO_IDX_SDO_SERVER_LAST, sdo_servers_write},
     {CO_IDX_SYNC_OVERFLOW, CO_IDX_SYNC_OVERFLOW, co_sync_od_write},
     {CO_IDX_ERROR_BEHAVIOUR, CO_IDX_ERROR_BEHAVIOUR, error_behaviour_write},
     {CO_PDO_RPDO_COMM, CO_PDO_LAST_INDEX, co_pdo_od_write},
@@ -117,6 +128,8 @@ int co_node_init(co_node_t *node, const co_node_config_t *config)
         return CO_NODE_ERR_CONFIG;
     if (config->options != 0 && config->options_code == NULL)
         return CO_NODE_ERR_OPTIONS;
+    if (config->sdo_servers != NULL && config->sdo_servers->receive == NULL)
+        return CO_NODE_ERR_CONFIG; /* not prepared by co_sdo_servers_init */
     uint16_t position;
     co_od_error_t err = co_od_validate(config->od, &position);
     if (err != CO_OD_VALID)
@@ -144,17 +157,8 @@ int co_node_init(co_node_t *node, const co_node_config_t *config)
     node->sync.deliver = co_sync_event;
     node->sdo.timeout_us = CO_CONFIG_SDO_TIMEOUT_US;
     node->pdo.inhibit_ms = config->tpdo_inhibit_ms;
-    node->sdo.buffer = config->sdo_buffer;
-#if CO_CONFIG_SDO_BUFFER > 0
-    if (node->sdo.buffer == NULL) {
-        /* Member by member on the zeroed node: a compound literal copied in would bring its
-         * padding from the stack (clang -O0), and the node's bytes would depend on what the
-         * stack held (tests/drive/test_init.c). */
-        node->sdo.own.data = node->sdo.own_data;
-        node->sdo.own.size = CO_CONFIG_SDO_BUFFER;
-        node->sdo.buffer = &node->sdo.own;
-    }
-#endif
+    co_sdo_channel_init(&node->sdo, config->sdo_buffer);
+    node->sdo_servers = config->sdo_servers;
     co_od_restore_defaults(node, 0x0000, 0xFFFF);
     co_sync_init(node);
     return 0;
@@ -200,14 +204,8 @@ void co_node_receive(co_node_t *node, const co_frame_t *frame, co_time_t now)
         return;
     if (node->time_stamp != NULL && node->time_stamp->receive(node, frame))
         return;
-    bool sdo_was_busy = node->sdo.state != CO_SDO_IDLE;
-    if (co_sdo_receive(node, frame)) {
-        /* A transfer under way has a timeout, which each of its frames moves; an expedited
-         * transfer leaves the server idle, with none. */
-        if (sdo_was_busy || node->sdo.state != CO_SDO_IDLE)
-            co_node_reschedule(node);
+    if (co_sdo_receive(node, frame))
         return;
-    }
     if (node->nmt_state == CO_NMT_OPERATIONAL)
         co_pdo_receive(node, frame);
 }

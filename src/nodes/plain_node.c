@@ -82,6 +82,10 @@ int plain_node_init(plain_node_t *plain, const plain_node_config_t *config)
     plain->time_received = false;
     if (config->model->lss)
         co_lss_slave_init(&plain->lss, config->lss_hooks, config->lss_bit_timing);
+    uint8_t sdo_servers = config->model->sdo_servers;
+    if (sdo_servers > 0 &&
+        co_sdo_servers_init(&plain->sdo_servers, plain->sdo_channels, sdo_servers, NULL) != 0)
+        return CO_NODE_ERR_CONFIG;
     co_node_config_t node_config = {
         .node_id = config->node_id,
         .od = config->model->od,
@@ -96,6 +100,7 @@ int plain_node_init(plain_node_t *plain, const plain_node_config_t *config)
         .lss = config->model->lss ? &plain->lss : NULL,
         .error_behaviour = config->model->error_behaviour ? &co_error_behaviour : NULL,
         .nmt_startup = config->model->nmt_startup ? &co_nmt_startup : NULL,
+        .sdo_servers = sdo_servers > 0 ? &plain->sdo_servers : NULL,
     };
     int rc = co_node_init(&plain->node, &node_config);
     if (rc == 0)

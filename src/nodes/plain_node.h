@@ -42,7 +42,13 @@ typedef struct plain_model {
     /* The core's NMT start-up (co_nmt_startup.h): 1F80h bit 2 clear starts the node by itself;
      * false: not linked, the node waits for the master's start. */
     bool nmt_startup;
+    /* Additional SDO servers (co_sdo_servers.h), 1201h.. of the dictionary, each with its own
+     * buffer: 0..PLAIN_SDO_SERVERS_MAX. */
+    uint8_t sdo_servers;
 } plain_model_t;
+
+/* Most additional SDO servers of a plain node: the I/O node's one. */
+#define PLAIN_SDO_SERVERS_MAX 1
 
 /* The error control event the node saw last, until the producer or the master comes back or a
  * reset (the ERR LED's double flash). */
@@ -66,6 +72,9 @@ typedef struct plain_node {
     co_time_of_day_t time;
     bool time_received;
     co_lss_slave_t lss; /* used when the model has LSS */
+    /* The additional SDO servers, when the model has them. */
+    co_sdo_servers_t sdo_servers;
+    co_sdo_server_t sdo_channels[PLAIN_SDO_SERVERS_MAX];
 } plain_node_t;
 
 typedef struct plain_node_config {
@@ -90,7 +99,8 @@ static inline plain_node_t *plain_node_of(co_node_t *node)
     return (plain_node_t *)(void *)node;
 }
 
-/* Prepares the node in Initialising; 0 or co_node_init's error. */
+/* Prepares the node in Initialising; 0 or co_node_init's error (CO_NODE_ERR_CONFIG for a model
+ * with more than PLAIN_SDO_SERVERS_MAX additional SDO servers). */
 int plain_node_init(plain_node_t *plain, const plain_node_config_t *config);
 void plain_node_start(plain_node_t *plain, co_time_t now);
 void plain_node_receive(plain_node_t *plain, const co_frame_t *frame, co_time_t now);

@@ -3,7 +3,7 @@
  * terminals, its serial number, CiA 301's error behaviour without 1029h (Pre-operational from
  * Operational only) and the same by 1029h:01, which may say Stopped, for a heartbeat loss and a
  * bus off recovery, 1F80h without self start, its LEDs as CiA 303-3 has them (both show), TIME
- * consumed on 100h. */
+ * consumed on 100h, its second SDO server 1201h. */
 #include "check_main.h"
 #include "nodes/io/io401.h"
 #include "plain_bench.h"
@@ -127,6 +127,30 @@ START_TEST(nmt_startup_1f80_waits_for_the_master)
 }
 END_TEST
 
+/* 1201h, the second SDO server: not valid until a master gives it COB-IDs, then a client on 68Ah
+ * and 6CAh talks to the node as one on 60Ah does; reset communication makes it not valid again. */
+START_TEST(a_second_sdo_server_on_1201h)
+{
+    start_operational();
+    plain_bench_rx(&b, "60A#4001120100000000");
+    plain_bench_expect(&b, "58A#4301120180060080");
+    plain_bench_rx(&b, "680#4018100400000000");
+    plain_bench_expect_none(&b);
+    plain_bench_rx(&b, "60A#230112018A060000");
+    plain_bench_expect(&b, "58A#6001120100000000");
+    plain_bench_rx(&b, "60A#23011202CA060000");
+    plain_bench_expect(&b, "58A#6001120200000000");
+    plain_bench_rx(&b, "68A#4018100400000000");
+    plain_bench_expect(&b, "6CA#431810040A001040");
+    plain_bench_rx(&b, "60A#230112018B060000"); /* a new CAN-ID while valid */
+    plain_bench_expect(&b, "58A#8001120130000906");
+    plain_bench_rx(&b, "000#820A");
+    plain_bench_expect(&b, "70A#00");
+    plain_bench_rx(&b, "68A#4018100400000000");
+    plain_bench_expect_none(&b);
+}
+END_TEST
+
 static Suite *suite(void)
 {
     Suite *s = suite_create("io401");
@@ -138,6 +162,7 @@ static Suite *suite(void)
     tcase_add_test(tc, a_heartbeat_loss_leaves_stopped_alone);
     tcase_add_test(tc, error_behaviour_1029_stops_it);
     tcase_add_test(tc, nmt_startup_1f80_waits_for_the_master);
+    tcase_add_test(tc, a_second_sdo_server_on_1201h);
     suite_add_tcase(s, tc);
     return s;
 }

@@ -20,6 +20,8 @@ const plain_model_t io401_model = {
     /* 1029h:01 = 0 and 1F80h = 4 by default: CiA 301's behaviour without them (docs/io.md). */
     .error_behaviour = true,
     .nmt_startup = true,
+    /* 1201h, a second SDO server for a second client (docs/io.md). */
+    .sdo_servers = 1,
 };
 
 bool io401_set_input(plain_node_t *io, uint8_t input, bool on)

@@ -67,11 +67,13 @@
 #define CO_IDX_SYNC_OVERFLOW 0x1019u
 #define CO_IDX_SDO_SERVER 0x1200u
 #define CO_IDX_SDO_SERVER_LAST 0x127Fu /* the last additional SDO server parameter */
-/* Sub-indices of an SDO server parameter (CiA 301 7.5.2.33, 7.5.2.34). */
+/* Sub-indices of an SDO server parameter (CiA 301 7.5.2.33, 7.5.2.34) and of an SDO client
+ * parameter (1280h..12FFh), whose sub-index 3 is the server's node-id. */
 #define CO_SDO_PARAM_RX 1u      /* COB-ID client -> server */
 #define CO_SDO_PARAM_TX 2u      /* COB-ID server -> client */
 #define CO_SDO_PARAM_NODE_ID 3u /* node-id of the SDO client, 1..127 */
 #define CO_IDX_SDO_CLIENT 0x1280u
+#define CO_IDX_SDO_CLIENT_LAST 0x12FFu /* the last SDO client parameter */
 
 /* PDO parameters (CiA 301 7.5.2.35-7.5.2.38): the RPDO communication (1400h) and mapping (1600h)
  * parameters, then the TPDO communication (1800h) and mapping (1A00h) parameters, each

@@ -35,6 +35,11 @@
  * the consumed COB-ID list (co_consumers.h), not co_node_t; CiA 301 allows up to 127. */
 #define CO_CONFIG_SDO_SERVERS_MAX 8
 #endif
+#ifndef CO_CONFIG_SDO_CLIENTS_MAX
+/* Most SDO client channels (1280h..) a node may be given (co_sdo_clients_t): they size the
+ * consumed COB-ID list (co_consumers.h), not co_node_t; CiA 301 allows up to 128. */
+#define CO_CONFIG_SDO_CLIENTS_MAX 4
+#endif
 #ifndef CO_CONFIG_STORE_VALUE_MAX
 #define CO_CONFIG_STORE_VALUE_MAX 64 /* largest stored value checked at a reset, bytes */
 #endif

@@ -2,7 +2,8 @@
 /* The COB-IDs a node consumes: what a runtime needs to hand a node only the frames it acts on
  * (routing among several nodes, a receive filter in the CAN controller or the kernel). The set
  * follows the node's configuration: NMT 000h, the SYNC COB-ID (1005h), the SDO servers' request
- * COB-IDs (1200h, and 1201h.. of the additional channels while valid), the valid RPDOs' COB-IDs
+ * COB-IDs (1200h, and 1201h.. of the additional channels while valid), the server -> client
+ * COB-IDs of the node's SDO client channels while valid (1280h..), the valid RPDOs' COB-IDs
  * (1400h..), remote requests for the valid TPDOs that allow them (1800h.. bit 30 clear), the node
  * guarding RTR (100Eh, else 700h + node-id) and the heartbeats of the monitored producers (1016h),
  * and the LSS master's 7E5h for a node with LSS (CiA 305). It does not depend on the NMT state: a
@@ -22,10 +23,10 @@ typedef struct co_cob {
 } co_cob_t;
 
 /* Most COB-IDs a node can consume: LSS, NMT, SYNC, TIME, SDO, guarding, one per RPDO, TPDO,
- * heartbeat consumer and additional SDO server. */
+ * heartbeat consumer, additional SDO server and SDO client channel. */
 #define CO_CONSUMERS_MAX                                                                           \
     (6 + CO_CONFIG_RPDO_MAX + CO_CONFIG_TPDO_MAX + CO_CONFIG_HB_CONSUMERS +                        \
-     CO_CONFIG_SDO_SERVERS_MAX)
+     CO_CONFIG_SDO_SERVERS_MAX + CO_CONFIG_SDO_CLIENTS_MAX)
 
 /* Fills cobs (CO_CONSUMERS_MAX entries) with the COB-IDs the node consumes now, each once, and
  * returns how many. A node in Initialising (before co_node_start, or without node-id) consumes
@@ -55,7 +56,7 @@ static inline void co_consumers_written(co_node_t *node, uint16_t index)
 {
     if (index == CO_IDX_SYNC_COB_ID || index == CO_IDX_TIME_COB_ID ||
         index == CO_IDX_GUARD_COB_ID || index == CO_IDX_HB_CONSUMER ||
-        (index >= CO_IDX_SDO_SERVER && index <= 0x12FFu) ||
+        (index >= CO_IDX_SDO_SERVER && index <= CO_IDX_SDO_CLIENT_LAST) ||
         (index >= CO_PDO_RPDO_COMM && index <= CO_PDO_LAST_INDEX))
         co_consumers_changed(node);
 }

@@ -17,6 +17,7 @@
 #include "co_od.h"
 #include "co_pdo.h"
 #include "co_sdo.h"
+#include "co_sdo_clients.h"
 #include "co_sdo_servers.h"
 #include "co_store.h"
 #include "co_sync.h"
@@ -116,6 +117,9 @@ typedef struct co_node_config {
      * and has prepared with co_sdo_servers_init (else CO_NODE_ERR_CONFIG); NULL: the default
      * channel 1200h alone. */
     co_sdo_servers_t *sdo_servers;
+    /* The SDO client channels 1280h.. (co_sdo_clients.h), which the application owns and has
+     * prepared with co_sdo_clients_init (else CO_NODE_ERR_CONFIG); NULL: none. */
+    co_sdo_clients_t *sdo_clients;
     uint32_t options; /* CO_NODE_* behaviour options, 0 for plain CiA 301 */
     /* &co_node_options when options is not 0 (else co_node_init refuses the node with
      * CO_NODE_ERR_OPTIONS); NULL links none of the options' code. */
@@ -182,12 +186,15 @@ struct co_node {
     /* 1012h as the TIME service keeps it (co_time_stamp_code_t.reset and its write rules), so
      * that a received frame is matched without a dictionary look-up; 0 without the service. */
     uint32_t time_cob_id;
+    /* co_node_config_t.sdo_clients: on a 32-bit processor in what was the padding after
+     * time_cob_id, so that a node keeps its size (docs/footprint.md). */
+    co_sdo_clients_t *sdo_clients;
 };
 
 /* Results of co_node_init besides the object dictionary's own validation errors. */
 /* node-id outside 1..127, and not FFh of a node with LSS */
 #define CO_NODE_ERR_NODE_ID 0x100
-/* missing od, data block, send callback or SDO buffer; SDO servers not prepared */
+/* missing od, data block, send callback or SDO buffer; SDO servers or clients not prepared */
 #define CO_NODE_ERR_CONFIG 0x101
 /* The dictionary has more RPDOs or TPDOs than co_config.h gives a node (CO_CONFIG_RPDO_MAX,
  * CO_CONFIG_TPDO_MAX). */

@@ -75,9 +75,10 @@ typedef struct co_sdo_server {
 #endif
 } co_sdo_server_t;
 
-/* The server channels of a node: reset (COB-IDs reloaded, transfers dropped), a received frame
- * routed to the channel whose client -> server COB-ID it has (true when one took it), the
- * timeouts. */
+/* The server channels of a node, and its SDO client channels (co_sdo_clients.h) after them:
+ * reset (COB-IDs reloaded, transfers ended), a received frame routed to the server channel whose
+ * client -> server COB-ID it has or to the client channel whose server -> client COB-ID it has
+ * (true when one took it), the timeouts. */
 void co_sdo_reset(co_node_t *node);
 bool co_sdo_receive(co_node_t *node, const co_frame_t *frame);
 co_time_t co_sdo_process(co_node_t *node, co_time_t now);

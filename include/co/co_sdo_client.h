@@ -141,4 +141,9 @@ bool co_sdo_client_busy(const co_sdo_client_t *client);
  * any other end of a transfer is an abort (CiA 301). */
 void co_sdo_client_cancel(co_sdo_client_t *client);
 
+/* Ends the transfer under way as the client's abort with `code`, without the abort frame: for a
+ * channel that can no longer send one (its COB-ID made not valid, the node's reset:
+ * co_sdo_clients.h). The `done` call follows; nothing when idle. */
+void co_sdo_client_end(co_sdo_client_t *client, uint32_t code);
+
 #endif

@@ -68,6 +68,11 @@ bool co_can_id_restricted(uint32_t can_id);
  * 0 or CO_SDO_ABORT_VALUE_RANGE. */
 uint32_t co_cob_id_check(uint32_t old, uint32_t value, uint32_t in_use_mask, uint32_t idle);
 
+/* The same rules for a COB-ID of an SDO client parameter (1280h..12FFh, valid while bit 31 is
+ * clear), whose CAN-ID may also be one of a server's default channel, 600h + node-id or
+ * 580h + node-id. */
+uint32_t co_sdo_client_cob_id_check(uint32_t old, uint32_t value);
+
 /* CiA 301 table 44: static data types, by their object dictionary index. */
 typedef enum co_dtype {
     CO_DT_BOOLEAN = 0x01,

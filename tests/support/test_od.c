@@ -313,53 +313,76 @@ const co_od_t *test_od_without(uint16_t index)
     return &od;
 }
 
-/* 1201h and 1202h: sub-index 0 (3), the two COB-IDs, the client's node-id. */
-typedef struct sdo_server_data {
-    uint8_t sub0[1], cob_id[2][4], client[1];
-} sdo_server_data_t;
+/* Two SDO parameter records (1201h/1202h or 1280h/1281h): sub-index 0 (3), the two COB-IDs, the
+ * other side's node-id. */
+typedef struct sdo_param_data {
+    uint8_t sub0[1], cob_id[2][4], node_id[1];
+} sdo_param_data_t;
 
-static const sdo_server_data_t sdo_server_defaults[2] = {
-    {.sub0 = U8(3), .cob_id = {U32(0x690), U32(0x6A0)}},
-    {.sub0 = U8(3), .cob_id = {U32(0x80000000u), U32(0x80000000u)}},
-};
+#define SDO_PARAM_ENTRIES 4u
 
-#define SDO_SERVER_ENTRIES 4u
+/* A dictionary built once in `built`: test_od with two SDO parameter records at `first` and
+ * `first` + 1, right after 1200h:02 (and 1201h.. when first is 1280h, which the test dictionary
+ * lacks), their data after test_od's. */
+typedef struct with_records {
+    co_od_entry_t all[ENTRY_COUNT + 2 * SDO_PARAM_ENTRIES];
+    uint8_t data_defaults[sizeof(test_od_data_t) + 2 * sizeof(sdo_param_data_t)];
+    co_od_t od;
+} with_records_t;
 
-const co_od_t *test_od_with_sdo_servers(void)
+static const co_od_t *with_sdo_records(with_records_t *built, uint16_t first,
+                                       const sdo_param_data_t records[2])
 {
-    static co_od_entry_t all[ENTRY_COUNT + 2 * SDO_SERVER_ENTRIES];
-    static uint8_t data_defaults[sizeof(test_od_data_t) + sizeof(sdo_server_defaults)];
-    static co_od_t od;
-    static const uint8_t types[SDO_SERVER_ENTRIES] = {CO_DT_UNSIGNED8, CO_DT_UNSIGNED32,
-                                                      CO_DT_UNSIGNED32, CO_DT_UNSIGNED8};
-    static const uint32_t offsets[SDO_SERVER_ENTRIES] = {
-        offsetof(sdo_server_data_t, sub0), offsetof(sdo_server_data_t, cob_id[0]),
-        offsetof(sdo_server_data_t, cob_id[1]), offsetof(sdo_server_data_t, client)};
+    static const uint8_t types[SDO_PARAM_ENTRIES] = {CO_DT_UNSIGNED8, CO_DT_UNSIGNED32,
+                                                     CO_DT_UNSIGNED32, CO_DT_UNSIGNED8};
+    static const uint32_t offsets[SDO_PARAM_ENTRIES] = {
+        offsetof(sdo_param_data_t, sub0), offsetof(sdo_param_data_t, cob_id[0]),
+        offsetof(sdo_param_data_t, cob_id[1]), offsetof(sdo_param_data_t, node_id)};
     uint16_t count = 0;
     for (size_t i = 0; i < ENTRY_COUNT; i++) {
-        all[count++] = entries[i];
+        built->all[count++] = entries[i];
         if (entries[i].index != 0x1200 || entries[i].subindex != 2)
             continue;
         for (uint16_t n = 0; n < 2; n++) {
-            for (uint8_t sub = 0; sub < SDO_SERVER_ENTRIES; sub++) {
-                all[count++] = (co_od_entry_t){
-                    .index = (uint16_t)(0x1201 + n),
+            for (uint8_t sub = 0; sub < SDO_PARAM_ENTRIES; sub++) {
+                built->all[count++] = (co_od_entry_t){
+                    .index = (uint16_t)(first + n),
                     .subindex = sub,
                     .type = types[sub],
                     .flags = sub == 0 ? RO : RW,
                     .size = (uint16_t)co_od_type_size(types[sub]),
-                    .offset = (uint32_t)(sizeof(test_od_data_t) + n * sizeof(sdo_server_data_t) +
+                    .offset = (uint32_t)(sizeof(test_od_data_t) + n * sizeof(sdo_param_data_t) +
                                          offsets[sub]),
                 };
             }
         }
     }
-    memcpy(data_defaults, &defaults, sizeof(defaults));
-    memcpy(data_defaults + sizeof(defaults), sdo_server_defaults, sizeof(sdo_server_defaults));
-    od = test_od;
-    od.entries = all;
-    od.count = count;
-    od.data_size = sizeof(data_defaults);
-    od.defaults = data_defaults;
-    return &od;
+    memcpy(built->data_defaults, &defaults, sizeof(defaults));
+    memcpy(built->data_defaults + sizeof(defaults), records, 2 * sizeof(sdo_param_data_t));
+    built->od = test_od;
+    built->od.entries = built->all;
+    built->od.count = count;
+    built->od.data_size = sizeof(built->data_defaults);
+    built->od.defaults = built->data_defaults;
+    return &built->od;
+}
+
+const co_od_t *test_od_with_sdo_servers(void)
+{
+    static const sdo_param_data_t records[2] = {
+        {.sub0 = U8(3), .cob_id = {U32(0x690), U32(0x6A0)}},
+        {.sub0 = U8(3), .cob_id = {U32(0x80000000u), U32(0x80000000u)}},
+    };
+    static with_records_t built;
+    return with_sdo_records(&built, 0x1201, records);
+}
+
+const co_od_t *test_od_with_sdo_clients(void)
+{
+    static const sdo_param_data_t records[2] = {
+        {.sub0 = U8(3), .cob_id = {U32(0x605), U32(0x585)}, .node_id = U8(5)},
+        {.sub0 = U8(3), .cob_id = {U32(0x80000000u), U32(0x80000000u)}, .node_id = U8(6)},
+    };
+    static with_records_t built;
+    return with_sdo_records(&built, 0x1280, records);
 }

@@ -24,6 +24,11 @@ const co_od_t *test_od_without(uint16_t index);
  * theirs. Static storage, built once. */
 const co_od_t *test_od_with_sdo_servers(void);
 
+/* test_od with two SDO client parameters (co_sdo_clients_t): 1280h valid, 605h client -> server,
+ * 585h server -> client, server node-id 5, and 1281h with both COB-IDs 80000000h (not valid),
+ * server node-id 6. Laid out as test_od_with_sdo_servers's. Static storage, built once. */
+const co_od_t *test_od_with_sdo_clients(void);
+
 /* A hook on 2000:10 that refuses every write with CO_SDO_ABORT_DATA_LOCAL, and counts reads. */
 extern unsigned test_od_hook_reads;
 

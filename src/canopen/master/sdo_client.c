@@ -603,6 +603,12 @@ void co_sdo_client_cancel(co_sdo_client_t *client)
     client->state = CO_SDO_CLIENT_IDLE;
 }
 
+void co_sdo_client_end(co_sdo_client_t *client, uint32_t code)
+{
+    if (client->state != CO_SDO_CLIENT_IDLE)
+        finish(client, CO_SDO_CLIENT_CLIENT_ABORT, code);
+}
+
 co_time_t co_sdo_client_process(co_sdo_client_t *client, co_time_t now)
 {
     if (client->state == CO_SDO_CLIENT_IDLE)

@@ -55,6 +55,16 @@ static void add_sdo_servers(const co_node_t *node, cob_set_t *set)
     }
 }
 
+/* The responses of the node's SDO client channels while valid. */
+static void add_sdo_clients(const co_node_t *node, cob_set_t *set)
+{
+    const co_sdo_clients_t *clients = node->sdo_clients;
+    for (uint8_t n = 0; clients != NULL && n < clients->count; n++) {
+        if (clients->channels[n].valid)
+            add(set, clients->channels[n].client.response_id, false);
+    }
+}
+
 static void add_pdos(const co_node_t *node, cob_set_t *set)
 {
     for (size_t n = 0; n < CO_CONFIG_RPDO_MAX; n++) {
@@ -91,6 +101,7 @@ size_t co_node_consumers(const co_node_t *node, co_cob_t *cobs)
     add_sync(node, &set);
     add_time(node, &set);
     add_sdo_servers(node, &set);
+    add_sdo_clients(node, &set);
     add_guarding(node, &set);
     add_pdos(node, &set);
     add_heartbeats(node, &set);

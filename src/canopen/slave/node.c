@@ -30,7 +30,8 @@ static bool tables_fit(const co_od_t *od)
 /* The service that owns each communication parameter and enforces its CiA 301 rules, by index
  * range. 1200h, the default SDO server channel, has none: CiA 301 makes its COB-IDs read-only,
  * which the dictionary's access type enforces; a dictionary that makes them writable gets the
- * new values at the next reset (co_sdo_reset). The additional channels' 1201h..127Fh have. */
+ * new values at the next reset (co_sdo_reset). The additional channels' 1201h..127Fh have, and
+ * so have the client channels' 1280h..12FFh. */
 typedef struct service_range {
     uint16_t first;
     uint16_t last;
@@ -69,6 +70,16 @@ static uint32_t sdo_servers_write(co_node_t *node, const co_od_entry_t *entry, c
     return CO_SDO_OK;
 }
 
+/* 1280h..12FFh: the SDO client channels' rules (co_sdo_clients.h); a node given none takes any
+ * value, which changes nothing there. */
+static uint32_t sdo_clients_write(co_node_t *node, const co_od_entry_t *entry, const uint8_t *data,
+                                  size_t len)
+{
+    if (node->sdo_clients != NULL)
+        return node->sdo_clients->od_write(node, entry, data, len);
+    return CO_SDO_OK;
+}
+
 static uint32_t nmt_startup_write(co_node_t *node, const co_od_entry_t *entry, const uint8_t *data,
                                   size_t len)
 {
@@ -86,6 +97,7 @@ static const service_range_t service_ranges[] = {
     {CO_IDX_EMCY_COB_ID, CO_IDX_EMCY_INHIBIT, co_emcy_od_write},
     {CO_IDX_HB_CONSUMER, CO_IDX_HB_PRODUCER, co_heartbeat_od_write},
     {CO_IDX_SDO_SERVER + 1u, CO_IDX_SDO_SERVER_LAST, sdo_servers_write},
+    {CO_IDX_SDO_CLIENT, CO_IDX_SDO_CLIENT_LAST, sdo_clients_write},
     {CO_IDX_SYNC_OVERFLOW, CO_IDX_SYNC_OVERFLOW, co_sync_od_write},
     {CO_IDX_ERROR_BEHAVIOUR, CO_IDX_ERROR_BEHAVIOUR, error_behaviour_write},
     {CO_PDO_RPDO_COMM, CO_PDO_LAST_INDEX, co_pdo_od_write},
@@ -130,6 +142,8 @@ int co_node_init(co_node_t *node, const co_node_config_t *config)
         return CO_NODE_ERR_OPTIONS;
     if (config->sdo_servers != NULL && config->sdo_servers->receive == NULL)
         return CO_NODE_ERR_CONFIG; /* not prepared by co_sdo_servers_init */
+    if (config->sdo_clients != NULL && config->sdo_clients->receive == NULL)
+        return CO_NODE_ERR_CONFIG; /* not prepared by co_sdo_clients_init */
     uint16_t position;
     co_od_error_t err = co_od_validate(config->od, &position);
     if (err != CO_OD_VALID)
@@ -159,6 +173,7 @@ int co_node_init(co_node_t *node, const co_node_config_t *config)
     node->pdo.inhibit_ms = config->tpdo_inhibit_ms;
     co_sdo_channel_init(&node->sdo, config->sdo_buffer);
     node->sdo_servers = config->sdo_servers;
+    node->sdo_clients = config->sdo_clients;
     co_od_restore_defaults(node, 0x0000, 0xFFFF);
     co_sync_init(node);
     return 0;

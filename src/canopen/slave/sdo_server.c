@@ -5,9 +5,10 @@
  * to the dictionary in one co_od_write() when complete; uploads other than expedited take a
  * snapshot of the value into the buffer at initiate, so the client reads one consistent value. The
  * buffer may be shared by several nodes (co_sdo_buffer_t): a transfer holds it until it goes idle.
- * A streamed DOMAIN (co_od_stream_t) needs no buffer: its segments are read from and written to the
- * application as they go, and its download's end is reported to the application however the
- * transfer ends. */
+ * A streamed DOMAIN (co_od_stream_t) needs no buffer: its segments are read from and written to
+ * the application as they go, and its download's end is reported to the application however the
+ * transfer ends. The node's SDO client channels (co_sdo_clients_t) are reset, fed and timed from
+ * here too, after the servers, so that the node has one SDO entry for each. */
 #include "co/co_node.h"
 
 #include <string.h>
@@ -88,6 +89,8 @@ void co_sdo_reset(co_node_t *node)
     sdo->tx_id = default_cob_id(node, CO_SDO_PARAM_TX, CO_CAN_ID_SDO_TX);
     if (node->sdo_servers != NULL)
         node->sdo_servers->reset(node);
+    if (node->sdo_clients != NULL)
+        node->sdo_clients->reset(node);
 }
 
 void co_sdo_channel_init(co_sdo_server_t *sdo, co_sdo_buffer_t *buffer)
@@ -720,7 +723,9 @@ bool co_sdo_receive(co_node_t *node, const co_frame_t *frame)
         co_sdo_channel_receive(node, &node->sdo, frame);
         return true;
     }
-    return node->sdo_servers != NULL && node->sdo_servers->receive(node, frame);
+    if (node->sdo_servers != NULL && node->sdo_servers->receive(node, frame))
+        return true;
+    return node->sdo_clients != NULL && node->sdo_clients->receive(node, frame);
 }
 
 co_time_t co_sdo_channel_process(co_node_t *node, co_sdo_server_t *sdo, co_time_t now)
@@ -739,5 +744,7 @@ co_time_t co_sdo_process(co_node_t *node, co_time_t now)
     co_time_t next = co_sdo_channel_process(node, &node->sdo, now);
     if (node->sdo_servers != NULL)
         next = co_time_min(next, node->sdo_servers->process(node, now));
+    if (node->sdo_clients != NULL)
+        next = co_time_min(next, node->sdo_clients->process(node, now));
     return next;
 }

@@ -38,6 +38,8 @@ typedef struct comaster_args {
     bool rpdo;             /* drive: --rpdo */
     uint16_t heartbeat_ms; /* monitor: --heartbeat MS, 0 when not given */
     const char *output;    /* read: --output FILE for a DOMAIN */
+    const char *listen;    /* gateway: --listen [ADDR:]PORT */
+    const char *socket;    /* gateway: --socket PATH */
 } comaster_args_t;
 
 /* One command: its name, the line of the usage listing and its handler. */
@@ -65,6 +67,7 @@ int comaster_can_main(comaster_options_t *opts, int argc, char **argv);
 int comaster_configure_main(comaster_options_t *opts, int argc, char **argv);
 int comaster_lss_main(comaster_options_t *opts, int argc, char **argv);
 int comaster_time_main(comaster_options_t *opts, int argc, char **argv);
+int comaster_gateway_main(comaster_options_t *opts, int argc, char **argv);
 
 /* Parses a command's arguments (argv[0] is the command): the common options, --help (prints
  * `help` and returns 0), the command's flags named in `flags` (" --block --output "), and at

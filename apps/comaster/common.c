@@ -65,10 +65,20 @@ static bool is_flag(const char *flags, const char *arg)
 }
 
 /* The options that take a value, and what --help calls it. */
-static const cli_valued_option_t valued[] = {
-    {"-i", "IFACE"},      {"--interface", "IFACE"}, {"--timeout", "MS"},   {"--eds", "FILE"},
-    {"--eds-dir", "DIR"}, {"--output", "FILE"},     {"--heartbeat", "MS"}, {"--control", "PATH"},
-    {"--vendor", "N"},    {"--product", "N"},       {"--revision", "N"},   {"--frame-ms", "MS"}};
+static const cli_valued_option_t valued[] = {{"-i", "IFACE"},
+                                             {"--interface", "IFACE"},
+                                             {"--timeout", "MS"},
+                                             {"--eds", "FILE"},
+                                             {"--eds-dir", "DIR"},
+                                             {"--output", "FILE"},
+                                             {"--heartbeat", "MS"},
+                                             {"--control", "PATH"},
+                                             {"--vendor", "N"},
+                                             {"--product", "N"},
+                                             {"--revision", "N"},
+                                             {"--frame-ms", "MS"},
+                                             {"--listen", "[ADDR:]PORT"},
+                                             {"--socket", "PATH"}};
 
 int comaster_missing_value(const comaster_options_t *opts, const char *option)
 {
@@ -114,7 +124,9 @@ int comaster_parse_args(comaster_options_t *opts, comaster_args_t *args, int arg
                    strcmp(arg, "--timeout") == 0 || strcmp(arg, "--eds") == 0 ||
                    strcmp(arg, "--eds-dir") == 0 ||
                    (strcmp(arg, "--output") == 0 && is_flag(flags, arg)) ||
-                   (strcmp(arg, "--heartbeat") == 0 && is_flag(flags, arg))) {
+                   (strcmp(arg, "--heartbeat") == 0 && is_flag(flags, arg)) ||
+                   (strcmp(arg, "--listen") == 0 && is_flag(flags, arg)) ||
+                   (strcmp(arg, "--socket") == 0 && is_flag(flags, arg))) {
             if (!value || value[0] == '\0')
                 return comaster_missing_value(opts, arg);
             i++;
@@ -130,6 +142,10 @@ int comaster_parse_args(comaster_options_t *opts, comaster_args_t *args, int arg
                 opts->eds_dir = value;
             } else if (strcmp(arg, "--output") == 0) {
                 args->output = value;
+            } else if (strcmp(arg, "--listen") == 0) {
+                args->listen = value;
+            } else if (strcmp(arg, "--socket") == 0) {
+                args->socket = value;
             } else if (strcmp(arg, "--heartbeat") == 0) {
                 uint32_t ms;
                 if (!parse_ms(value, UINT16_MAX, &ms))

@@ -34,6 +34,8 @@ static const comaster_command_t commands[] = {
     {"lss", "lss SERVICE [ARGS...]: CiA 305 LSS: node-ids, bit rates, fastscan", comaster_lss_main},
     {"time", "time [PERIOD]: send TIME (100h) from the host's clock, once or every PERIOD ms",
      comaster_time_main},
+    {"gateway", "gateway [--listen [ADDR:]PORT] [--socket PATH]: a CiA 309-3 ASCII gateway",
+     comaster_gateway_main},
 };
 
 #define COMMAND_COUNT (sizeof commands / sizeof commands[0])
@@ -45,8 +47,9 @@ static void print_usage(void)
            "\n"
            "A CANopen master on a SocketCAN interface: SDO read and write by index or by\n"
            "name, NMT commands, a scan of the nodes present, a monitor of heartbeats,\n"
-           "emergencies, SYNC and PDOs, a CiA 402 drive helper, and the CiA 305 layer\n"
-           "setting services (node-ids and bit rates, fastscan).\n"
+           "emergencies, SYNC and PDOs, a CiA 402 drive helper, the CiA 305 layer\n"
+           "setting services (node-ids and bit rates, fastscan) and a CiA 309-3 ASCII\n"
+           "gateway.\n"
            "\n"
            "Commands (comaster COMMAND --help tells more):\n");
     /* The names in a column as wide as the longest: two spaces or more before each summary,

@@ -20,7 +20,7 @@ COMASTER = os.environ["COMASTER"]
 EX_USAGE, EX_UNAVAILABLE, EX_PROTOCOL = 64, 69, 76
 EXIT_REFUSED, EXIT_TIMEOUT = 1, 2
 COMMANDS = ("read, write, nmt, scan, monitor, drive, boot, run, concise, set, get, status, disable, "
-            "enable, can, configure, lss, time")
+            "enable, can, configure, lss, time, gateway")
 
 
 def run(*args):

@@ -107,7 +107,7 @@ def test_usage_errors():
         "Try 'comaster read --help'.\n")
     assert comaster("frobnicate")[0::2] == (
         EX_USAGE, "comaster: error: unknown command 'frobnicate': give one of read, write, nmt, scan, monitor, "
-        "drive, boot, run, concise, set, get, status, disable, enable, can, configure, lss, time\nTry 'comaster --help'.\n")
+        "drive, boot, run, concise, set, get, status, disable, enable, can, configure, lss, time, gateway\nTry 'comaster --help'.\n")
     assert comaster("read", 4, "0x1000", "u7")[0] == EX_USAGE
     # An object the EDS does not have: no data type to write VALUE as (read would guess by size).
     assert comaster("--eds", EDS, "write", 4, "0x1234:1", "5")[0::2] == (

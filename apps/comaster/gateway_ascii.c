@@ -33,6 +33,31 @@ static const gw_type_t types[] = {
  * "request not supported", not "syntax error". */
 static const char *const unsupported_types[] = {"os", "us", "d", "t", "td"};
 
+/* The LSS commands: their name, service and how many numbers they take (min..max), each within
+ * its bound. */
+typedef struct lss_command {
+    const char *name;
+    gw_lss_t lss;
+    int min, max;
+    uint32_t bound[4];
+} lss_command_t;
+
+static const lss_command_t lss_commands[] = {
+    {"lss_switch_glob", GW_LSS_SWITCH_GLOBAL, 1, 1, {1, 0, 0, 0}},
+    {"lss_switch_sel",
+     GW_LSS_SWITCH_SELECTIVE,
+     4,
+     4,
+     {UINT32_MAX, UINT32_MAX, UINT32_MAX, UINT32_MAX}},
+    {"lss_set_node", GW_LSS_SET_NODE, 1, 1, {255, 0, 0, 0}},
+    {"lss_conf_bitrate", GW_LSS_CONF_BITRATE, 2, 2, {0, 9, 0, 0}},
+    {"lss_activate_bitrate", GW_LSS_ACTIVATE_BITRATE, 1, 1, {UINT16_MAX, 0, 0, 0}},
+    {"lss_store", GW_LSS_STORE, 0, 0, {0, 0, 0, 0}},
+    {"lss_inquire_addr", GW_LSS_INQUIRE, 0, 1, {3, 0, 0, 0}},
+    {"lss_get_node", GW_LSS_GET_NODE, 0, 0, {0, 0, 0, 0}},
+    {"_lss_fastscan", GW_LSS_FASTSCAN, 0, 1, {UINT16_MAX, 0, 0, 0}},
+};
+
 static const char help_text[] =
     "comaster gateway: CiA 309-3 ASCII commands, one a line:\n"
     "[<sequence>] [[<net>] <node>] r[ead] <index> <subindex> [<datatype>]\n"
@@ -41,12 +66,18 @@ static const char help_text[] =
     "[<sequence>] [[<net>] <node>] reset node | reset comm[unication]\n"
     "[<sequence>] [<net>] set network 1 | set node <1..127>\n"
     "[<sequence>] [<net>] set sdo_timeout <ms> | set sdo_block <0|1>\n"
+    "[<sequence>] [<net>] lss_switch_glob <0|1>\n"
+    "[<sequence>] [<net>] lss_switch_sel <vendor> <product> <revision> <serial>\n"
+    "[<sequence>] [<net>] lss_set_node <1..127|255> | lss_store | lss_get_node\n"
+    "[<sequence>] [<net>] lss_conf_bitrate 0 <index> | lss_activate_bitrate <ms>\n"
+    "[<sequence>] [<net>] lss_inquire_addr [<0..3>] | _lss_fastscan [<ms>]\n"
     "[<sequence>] help\n"
     "Node 0 sends an NMT command to all nodes. Data types: b i8 i16 i32 i64 u8 u16\n"
     "u32 u64 x8 x16 x32 x64 (hexadecimal) r32 r64 vs (quoted when it has blanks)\n"
     "hex (bytes); without one a read prints hex. Replies: [<sequence>] OK, a value,\n"
     "ERROR:0x<SDO abort code> or ERROR:<code>: 100 not supported, 101 syntax,\n"
-    "102 busy, 105 no default node, 106 unsupported net, 107 unsupported node.\r\n";
+    "102 busy, 103 time-out, 105 no default node, 106 unsupported net, 107\n"
+    "unsupported node, 501..504 the LSS slave's error.\r\n";
 
 void gw_session_init(gw_session_t *session)
 {
@@ -287,6 +318,44 @@ static void parse_nmt(gw_request_t *req, const char *command, char **arg, int co
     req->action = GW_NMT;
 }
 
+static void parse_lss(gw_request_t *req, const lss_command_t *cmd, char **arg, int count)
+{
+    if (count < cmd->min || count > cmd->max) {
+        reply_error(req, GW_ERROR_SYNTAX);
+        return;
+    }
+    for (int i = 0; i < count; i++) {
+        if (!comaster_parse_number(arg[i], cmd->bound[i], &req->args[i])) {
+            reply_error(req, GW_ERROR_SYNTAX);
+            return;
+        }
+    }
+    req->lss = cmd->lss;
+    if (cmd->lss == GW_LSS_INQUIRE && count == 0)
+        req->lss = GW_LSS_INQUIRE_ALL;
+    if (cmd->lss == GW_LSS_FASTSCAN && count == 0)
+        req->args[0] = GW_DEFAULT_FASTSCAN_MS;
+    /* Node-id 0 is none, as index 5 of the bit timing table (reserved) and a fastscan without
+     * time. */
+    bool invalid = (cmd->lss == GW_LSS_SET_NODE &&
+                    (req->args[0] == 0 || (req->args[0] > 127 && req->args[0] < 255))) ||
+                   (cmd->lss == GW_LSS_CONF_BITRATE && req->args[1] == 5) ||
+                   (cmd->lss == GW_LSS_FASTSCAN && req->args[0] == 0);
+    if (invalid) {
+        reply_error(req, GW_ERROR_SYNTAX);
+        return;
+    }
+    req->action = GW_LSS;
+}
+
+static const lss_command_t *lss_by_name(const char *name)
+{
+    for (size_t i = 0; i < sizeof lss_commands / sizeof lss_commands[0]; i++)
+        if (strcasecmp(lss_commands[i].name, name) == 0)
+            return &lss_commands[i];
+    return NULL;
+}
+
 /* The sequence "[N]", then up to two numbers before the command: [[net] node]. Returns 0, a
  * CiA 309-3 error code, or -1 when the line has no sequence. */
 static int parse_head(gw_request_t *req, char **tokens, int count, int *at, int *node)
@@ -313,11 +382,17 @@ static int parse_head(gw_request_t *req, char **tokens, int count, int *at, int 
     }
     if (*at == count)
         return GW_ERROR_SYNTAX;
-    if (n == 2 && numbers[0] != GW_NET)
+    /* set and the LSS commands take a net alone: [<net>] set ... */
+    const char *command = tokens[*at];
+    bool net_only = strcasecmp(command, "set") == 0 || lss_by_name(command) != NULL ||
+                    strcasecmp(command, "lss_allnodes") == 0;
+    if (net_only && n == 2)
+        return GW_ERROR_SYNTAX;
+    if ((n == 2 || net_only) && n > 0 && numbers[0] != GW_NET)
         return GW_ERROR_UNSUPPORTED_NET;
-    if (n > 0 && numbers[n - 1] > 127)
+    if (!net_only && n > 0 && numbers[n - 1] > 127)
         return GW_ERROR_UNSUPPORTED_NODE;
-    if (n > 0)
+    if (!net_only && n > 0)
         *node = (int)numbers[n - 1];
     return 0;
 }
@@ -365,6 +440,8 @@ void gw_parse(gw_session_t *session, uint32_t *last_sequence, const char *line, 
                       5)) {
         if (take_node(req, node, 0))
             parse_nmt(req, command, arg, args);
+    } else if (lss_by_name(command)) {
+        parse_lss(req, lss_by_name(command), arg, args);
     } else if (strcasecmp(command, "help") == 0) {
         req->help = help_text;
         snprintf(req->reply, sizeof req->reply, "[%" PRIu32 "] ", req->sequence);
@@ -387,6 +464,17 @@ size_t gw_reply_abort(char *out, size_t cap, uint32_t sequence, uint32_t abort_c
 {
     return (size_t)snprintf(out, cap, "[%" PRIu32 "] ERROR:0x%08" PRIX32 "\r\n", sequence,
                             abort_code);
+}
+
+size_t gw_reply_words(char *out, size_t cap, uint32_t sequence, const uint32_t *words,
+                      unsigned count, unsigned digits)
+{
+    size_t used = (size_t)snprintf(out, cap, "[%" PRIu32 "]", sequence);
+    for (unsigned i = 0; i < count && used < cap; i++)
+        used += (size_t)snprintf(out + used, cap - used, " 0x%0*" PRIX32, (int)digits, words[i]);
+    if (used < cap)
+        used += (size_t)snprintf(out + used, cap - used, "\r\n");
+    return used;
 }
 
 static uint64_t get_le(const uint8_t *data, size_t len)

@@ -3,6 +3,7 @@
  * a UNIX socket. Every connection's lines run one at a time in their order, all of them in the
  * bus's epoll loop: an SDO transfer runs on the gateway's one SDO client while the loop goes on
  * reading the other connections, whose lines wait their turn (docs/comaster.md). */
+#include "co/co_lss_master.h"
 #include "co/co_nmt_master.h"
 #include "co/co_sdo_client.h"
 #include "co_linux/log.h"
@@ -24,6 +25,8 @@
 /* Connections at once (standard input or the clients of the listeners); the loop watches each
  * and the two listeners (CO_LINUX_WATCH_MAX). */
 #define GW_CONNECTIONS 8
+/* The shortest wait of a fastscan frame after the reset, as comaster lss fastscan's. */
+#define FASTSCAN_MIN_WAIT_US 5000u
 /* Input a connection may have waiting: lines beyond it stay in the socket until their turn. */
 #define GW_INPUT_MAX (4u * GW_LINE_MAX)
 
@@ -35,11 +38,14 @@ static const char gateway_help[] =
     "(CR LF ended, as CANopenNode's canopend answers). Lines are read from standard\n"
     "input and answered on standard output until the end of the input, or with\n"
     "--listen or --socket from the clients of a TCP port or a UNIX socket until\n"
-    "SIGINT or SIGTERM. '[1] help' lists the commands; docs/comaster.md tells the\n"
-    "syntax, the error codes and what is not supported (LSS, base64 types).\n"
+    "SIGINT or SIGTERM. '[1] help' lists the commands (SDO, NMT, LSS, set);\n"
+    "docs/comaster.md tells the syntax, the error codes and what is not supported\n"
+    "(lss_allnodes, the base64 types).\n"
     "\n"
     "  --listen [ADDR:]PORT  accept TCP clients on PORT of ADDR (default 127.0.0.1)\n"
     "  --socket PATH         accept clients on the UNIX socket PATH\n"
+    "  --timeout MS          how long an LSS service waits for its answer (an SDO\n"
+    "                        transfer: 'set sdo_timeout', 500 ms before)\n"
     "\n"
     "Example: comaster -i vcan0 gateway --listen 6000\n";
 
@@ -61,11 +67,17 @@ typedef struct gateway {
     int listeners[2];
     bool stdio;
     size_t next;       /* the connection whose line goes first, round robin */
-    gw_conn_t *active; /* the one whose SDO transfer runs, NULL when none */
+    gw_conn_t *active; /* the one whose SDO transfer or LSS service runs, NULL when none */
+    bool orphan;       /* ... which closed: the transfer runs to its end, unanswered */
     co_sdo_client_t client;
     co_sdo_client_result_t result;
     bool done;
     co_nmt_master_t nmt;
+    co_lss_master_t lss;
+    co_lss_master_result_t lss_result;
+    uint32_t address[4]; /* lss_inquire_addr without LSSSUB: the parts inquired so far */
+    unsigned part;
+    co_time_t lss_timeout_us; /* --timeout */
     gw_request_t req;
     uint8_t upload[GW_VALUE_MAX];
     char reply[3 * GW_VALUE_MAX + 64];
@@ -80,7 +92,7 @@ static void conn_close(gateway_t *gw, gw_conn_t *c)
     if (c->in_fd > STDERR_FILENO)
         close(c->in_fd);
     if (gw->active == c)
-        gw->active = NULL; /* its transfer ends unanswered */
+        gw->orphan = true; /* its transfer runs to its end, which frees the client */
     c->in_fd = -1;
     c->watching = false;
 }
@@ -145,7 +157,7 @@ static void reply_too_long(gateway_t *gw, gw_conn_t *c)
     conn_write(gw, c, gw->reply, n);
 }
 
-static void sdo_send(void *user, const co_frame_t *frame)
+static void bus_send(void *user, const co_frame_t *frame)
 {
     gateway_t *gw = user;
     comaster_bus_send(gw->bus, frame);
@@ -156,6 +168,105 @@ static void sdo_done(void *user, const co_sdo_client_result_t *result)
     gateway_t *gw = user;
     gw->result = *result;
     gw->done = true;
+}
+
+static void lss_done(void *user, const co_lss_master_result_t *result)
+{
+    gateway_t *gw = user;
+    gw->lss_result = *result;
+    gw->done = true;
+}
+
+/* Starts an LSS service: the unconfirmed ones are answered at once, the others when their
+ * answer or timeout comes (finish_lss). */
+static int start_lss(gateway_t *gw, const gw_request_t *req, bool *confirmed)
+{
+    co_lss_master_t *m = &gw->lss;
+    co_time_t now = co_linux_now();
+    co_time_t t = gw->lss_timeout_us;
+    *confirmed = true;
+    switch (req->lss) {
+    case GW_LSS_SWITCH_GLOBAL:
+        *confirmed = false;
+        return co_lss_master_switch_global(m, req->args[0] ? CO_LSS_CONFIGURATION : CO_LSS_WAITING);
+    case GW_LSS_ACTIVATE_BITRATE:
+        *confirmed = false;
+        return co_lss_master_activate_bit_timing(m, (uint16_t)req->args[0]);
+    case GW_LSS_SWITCH_SELECTIVE: {
+        co_lss_address_t address;
+        memcpy(address.part, req->args, sizeof address.part);
+        return co_lss_master_switch_selective(m, &address, t, now);
+    }
+    case GW_LSS_SET_NODE:
+        return co_lss_master_configure_node_id(m, (uint8_t)req->args[0], t, now);
+    case GW_LSS_CONF_BITRATE:
+        return co_lss_master_configure_bit_timing(m, (uint8_t)req->args[0], (uint8_t)req->args[1],
+                                                  t, now);
+    case GW_LSS_STORE:
+        return co_lss_master_store(m, t, now);
+    case GW_LSS_INQUIRE:
+        return co_lss_master_inquire(m, (uint8_t)(CO_LSS_CS_INQUIRE_VENDOR + req->args[0]), t, now);
+    case GW_LSS_INQUIRE_ALL:
+        gw->part = 0;
+        return co_lss_master_inquire(m, CO_LSS_CS_INQUIRE_VENDOR, t, now);
+    case GW_LSS_GET_NODE:
+        return co_lss_master_inquire(m, CO_LSS_CS_INQUIRE_NODE_ID, t, now);
+    case GW_LSS_FASTSCAN: {
+        /* The timeout is the reset frame's wait and the longest of the others, which wait twice
+         * the slowest answer, at least FASTSCAN_MIN_WAIT_US (D-LSS-FASTSCAN-WAIT). */
+        co_time_t wait = (co_time_t)req->args[0] * 1000u;
+        return co_lss_master_fastscan(
+            m, NULL, wait, wait < FASTSCAN_MIN_WAIT_US ? wait : FASTSCAN_MIN_WAIT_US, now);
+    }
+    }
+    return CO_LSS_MASTER_ERR_ARG;
+}
+
+/* The reply of a confirmed LSS service; false when it goes on (the next part of an address). */
+static bool finish_lss(gateway_t *gw, char *out, size_t cap)
+{
+    const gw_request_t *req = &gw->req;
+    const co_lss_master_result_t *r = &gw->lss_result;
+    if (r->status != CO_LSS_MASTER_OK) {
+        gw_reply_error(out, cap, req->sequence, GW_ERROR_TIMEOUT);
+        return true;
+    }
+    /* The slave's error (CiA 305: 1 not supported, 255 its own), in 309-3's LSS codes. */
+    unsigned refused = req->lss == GW_LSS_SET_NODE       ? GW_ERROR_LSS_NODE_ID
+                       : req->lss == GW_LSS_CONF_BITRATE ? GW_ERROR_LSS_BIT_RATE
+                                                         : GW_ERROR_LSS_STORE;
+    switch (req->lss) {
+    case GW_LSS_SET_NODE:
+    case GW_LSS_CONF_BITRATE:
+    case GW_LSS_STORE:
+        if (r->error == CO_LSS_SPECIFIC_ERROR)
+            gw_reply_error(out, cap, req->sequence, GW_ERROR_LSS_MANUFACTURER);
+        else if (r->error != CO_LSS_OK)
+            gw_reply_error(out, cap, req->sequence, refused);
+        else
+            gw_reply_ok(out, cap, req->sequence);
+        return true;
+    case GW_LSS_INQUIRE:
+        gw_reply_words(out, cap, req->sequence, &r->value, 1, 8);
+        return true;
+    case GW_LSS_GET_NODE:
+        gw_reply_words(out, cap, req->sequence, &r->value, 1, 2);
+        return true;
+    case GW_LSS_INQUIRE_ALL:
+        gw->address[gw->part++] = r->value;
+        if (gw->part < 4 &&
+            co_lss_master_inquire(&gw->lss, (uint8_t)(CO_LSS_CS_INQUIRE_VENDOR + gw->part),
+                                  gw->lss_timeout_us, co_linux_now()) == 0)
+            return false;
+        gw_reply_words(out, cap, req->sequence, gw->address, 4, 8);
+        return true;
+    case GW_LSS_FASTSCAN:
+        gw_reply_words(out, cap, req->sequence, r->address.part, 4, 8);
+        return true;
+    default:
+        gw_reply_ok(out, cap, req->sequence);
+        return true;
+    }
 }
 
 /* Runs a parsed line: replies at once, or starts its SDO transfer. */
@@ -174,8 +285,22 @@ static void start_request(gateway_t *gw, gw_conn_t *c)
         conn_write(gw, c, gw->reply, n);
         return;
     }
+    if (req->action == GW_LSS) {
+        bool confirmed;
+        int rc = start_lss(gw, req, &confirmed);
+        if (rc == 0 && confirmed) {
+            gw->done = false;
+            gw->active = c;
+            return;
+        }
+        size_t n = rc == 0 ? gw_reply_ok(gw->reply, sizeof gw->reply, req->sequence)
+                           : gw_reply_error(gw->reply, sizeof gw->reply, req->sequence,
+                                            GW_ERROR_INTERNAL_STATE);
+        conn_write(gw, c, gw->reply, n);
+        return;
+    }
     co_sdo_client_config_t config = {
-        .server_node_id = req->node, .send = sdo_send, .user = gw, .done = sdo_done};
+        .server_node_id = req->node, .send = bus_send, .user = gw, .done = sdo_done};
     co_sdo_client_init(&gw->client, &config);
     co_sdo_client_mode_t mode = c->session.sdo_block ? CO_SDO_CLIENT_BLOCK : CO_SDO_CLIENT_AUTO;
     co_time_t now = co_linux_now();
@@ -202,11 +327,18 @@ static void finish_transfer(gateway_t *gw)
     gw_conn_t *c = gw->active;
     gw->active = NULL;
     gw->done = false;
-    if (!c)
+    if (gw->orphan) {
+        gw->orphan = false;
         return;
+    }
     const gw_request_t *req = &gw->req;
     const co_sdo_client_result_t *r = &gw->result;
-    if (r->status != CO_SDO_CLIENT_OK)
+    if (req->action == GW_LSS) {
+        if (!finish_lss(gw, gw->reply, sizeof gw->reply)) {
+            gw->active = c; /* the next part of the address is inquired */
+            return;
+        }
+    } else if (r->status != CO_SDO_CLIENT_OK)
         gw_reply_abort(gw->reply, sizeof gw->reply, req->sequence, r->abort_code);
     else if (req->action == GW_WRITE)
         gw_reply_ok(gw->reply, sizeof gw->reply, req->sequence);
@@ -313,22 +445,32 @@ static void accept_ready(void *ctx, int fd)
 static void gw_receive(void *ctx, const co_frame_t *frame, co_time_t now)
 {
     gateway_t *gw = ctx;
-    if (gw->active)
+    if (gw->active && gw->req.action == GW_LSS)
+        co_lss_master_receive(&gw->lss, frame, now);
+    else if (gw->active)
         co_sdo_client_receive(&gw->client, frame, now);
+}
+
+/* The deadline of the transfer or LSS service under way. */
+static co_time_t active_process(gateway_t *gw, co_time_t now)
+{
+    if (!gw->active)
+        return CO_TIME_NEVER;
+    return gw->req.action == GW_LSS ? co_lss_master_process(&gw->lss, now)
+                                    : co_sdo_client_process(&gw->client, now);
 }
 
 static co_time_t gw_process(void *ctx, co_time_t now)
 {
     gateway_t *gw = ctx;
-    co_time_t deadline = CO_TIME_NEVER;
-    if (gw->active)
-        deadline = co_sdo_client_process(&gw->client, now);
-    if (gw->done)
+    co_time_t deadline = active_process(gw, now);
+    if (gw->done) {
         finish_transfer(gw);
+        deadline = active_process(gw, now);
+    }
     if (!gw->active) {
         pump(gw);
-        if (gw->active)
-            deadline = co_sdo_client_process(&gw->client, now);
+        deadline = active_process(gw, now);
     }
     return deadline;
 }
@@ -464,6 +606,9 @@ int comaster_gateway_main(comaster_options_t *opts, int argc, char **argv)
         gw->conns[i].in_fd = -1;
     co_nmt_master_config_t nmt = {.send = comaster_bus_send, .user = &bus};
     co_nmt_master_init(&gw->nmt, &nmt);
+    co_lss_master_config_t lss = {.send = bus_send, .user = gw, .done = lss_done};
+    co_lss_master_init(&gw->lss, &lss);
+    gw->lss_timeout_us = (co_time_t)opts->timeout_ms * 1000u;
     bus.signal_is_the_end = !!(args.listen || args.socket);
     rc = open_inputs(gw, opts, &args);
     if (rc == 0) {

@@ -125,13 +125,56 @@ START_TEST(errors_of_lines)
     replies("[9] 4 write 0x1000 0 u8 256", "[9] ERROR:101\r\n");
     replies("[10] 4 write 0x1000 0 u8", "[10] ERROR:101\r\n");
     replies("[11] 4 write 0x1000 0 vs \"open", "[10] ERROR:101\r\n");
-    replies("[12] lss_get_node", "[12] ERROR:100\r\n");
+    replies("[12] lss_allnodes", "[12] ERROR:100\r\n");
     replies("[13] 4 frobnicate", "[13] ERROR:100\r\n");
     replies("[14] 1 2 3 start", "[14] ERROR:101\r\n");
     parse("[15] help");
     ck_assert_str_eq(req.reply, "[15] ");
     ck_assert_ptr_nonnull(req.help);
     ck_assert(strstr(req.help, "r[ead] <index> <subindex>") != NULL);
+}
+END_TEST
+
+START_TEST(lss_requests)
+{
+    parse("[1] lss_switch_sel 0 401 0x10000 0x40100081");
+    ck_assert_int_eq(req.action, GW_LSS);
+    ck_assert_int_eq(req.lss, GW_LSS_SWITCH_SELECTIVE);
+    ck_assert_uint_eq(req.args[1], 401);
+    ck_assert_uint_eq(req.args[3], 0x40100081);
+    parse("[2] 1 lss_set_node 255");
+    ck_assert_int_eq(req.lss, GW_LSS_SET_NODE);
+    ck_assert_uint_eq(req.args[0], 255);
+    parse("[3] lss_inquire_addr");
+    ck_assert_int_eq(req.lss, GW_LSS_INQUIRE_ALL);
+    parse("[4] lss_inquire_addr 3");
+    ck_assert_int_eq(req.lss, GW_LSS_INQUIRE);
+    ck_assert_uint_eq(req.args[0], 3);
+    parse("[5] _lss_fastscan");
+    ck_assert_int_eq(req.lss, GW_LSS_FASTSCAN);
+    ck_assert_uint_eq(req.args[0], GW_DEFAULT_FASTSCAN_MS);
+    parse("[6] lss_conf_bitrate 0 4");
+    ck_assert_int_eq(req.lss, GW_LSS_CONF_BITRATE);
+    ck_assert_uint_eq(req.args[1], 4);
+    replies("[7] lss_set_node 0", "[7] ERROR:101\r\n");
+    replies("[8] lss_set_node 128", "[8] ERROR:101\r\n");
+    replies("[9] lss_conf_bitrate 0 5", "[9] ERROR:101\r\n");
+    replies("[10] lss_conf_bitrate 1 4", "[10] ERROR:101\r\n");
+    replies("[11] lss_inquire_addr 4", "[11] ERROR:101\r\n");
+    replies("[12] lss_switch_glob", "[12] ERROR:101\r\n");
+    replies("[13] lss_store now", "[13] ERROR:101\r\n");
+    replies("[14] 2 lss_store", "[14] ERROR:106\r\n");
+    replies("[15] 1 4 lss_store", "[15] ERROR:101\r\n");
+    replies("[16] 200 set node 3", "[16] ERROR:106\r\n");
+    parse("[17] 1 lss_store");
+    ck_assert_int_eq(req.action, GW_LSS);
+    char out[128];
+    const uint32_t address[] = {0, 401, 0x10000, 0x40100081};
+    gw_reply_words(out, sizeof out, 3, address, 4, 8);
+    ck_assert_str_eq(out, "[3] 0x00000000 0x00000191 0x00010000 0x40100081\r\n");
+    const uint32_t node = 0xFF;
+    gw_reply_words(out, sizeof out, 4, &node, 1, 2);
+    ck_assert_str_eq(out, "[4] 0xFF\r\n");
 }
 END_TEST
 
@@ -180,6 +223,7 @@ int main(void)
     tcase_add_test(tc, set_commands_keep_defaults);
     tcase_add_test(tc, errors_of_lines);
     tcase_add_test(tc, values_as_canopend_prints_them);
+    tcase_add_test(tc, lss_requests);
     suite_add_tcase(s, tc);
     return check_run_suite(s);
 }

@@ -116,7 +116,7 @@ def test_default_node_sequences_and_bad_lines(drive4, gateway):
     assert gateway.ask("4 read 0x1000 0 u32") == b"[13] ERROR:101\r\n"
     assert gateway.ask("[14] 200 start") == b"[14] ERROR:107\r\n"
     assert gateway.ask("[15] 2 4 start") == b"[15] ERROR:106\r\n"
-    assert gateway.ask("[16] lss_get_node") == b"[16] ERROR:100\r\n"
+    assert gateway.ask("[16] lss_allnodes") == b"[16] ERROR:100\r\n"
     assert gateway.ask("[17] 4 read 0x1000 0 d") == b"[17] ERROR:100\r\n"
     assert gateway.ask("[18] 4 bogus") == b"[18] ERROR:100\r\n"
     assert gateway.ask("# a comment") == b"\r\n"
@@ -137,6 +137,33 @@ def test_lines_in_one_write_answered_in_order(drive4, gateway):
     gateway.proc.stdin.close()
     assert gateway.reply() == b"[4] OK\r\n"
     assert gateway.proc.wait(timeout=5) == 0
+
+
+# D-IO401-IDENTITY: the first unconfigured I/O node's address.
+IO_ADDRESS = b"0x00000000 0x00000191 0x00010000 0x40100081"
+
+
+def test_lss_commissions_an_unconfigured_node(bus, start_daemon, tmp_path):
+    start_daemon(bus, "--model", "io", "--unconfigured", 1, "--store", tmp_path / "io.store",
+                 boot_ids=[])
+    g = Gateway("--timeout", "200")
+    try:
+        assert g.ask("[1] lss_get_node") == b"[1] ERROR:103\r\n"  # nobody in configuration
+        assert g.ask("[2] _lss_fastscan 200") == b"[2] " + IO_ADDRESS + b"\r\n"
+        assert g.ask("[3] lss_get_node") == b"[3] 0xFF\r\n"
+        assert g.ask("[4] lss_inquire_addr") == b"[4] " + IO_ADDRESS + b"\r\n"
+        assert g.ask("[5] lss_inquire_addr 3") == b"[5] 0x40100081\r\n"
+        assert g.ask("[6] lss_set_node 9") == b"[6] OK\r\n"
+        assert g.ask("[7] lss_store") == b"[7] OK\r\n"
+        assert g.ask("[8] lss_switch_glob 0") == b"[8] OK\r\n"
+        bus.expect(0x709, "00", timeout=REPLY_TIMEOUT)  # the pending node-id is active
+        assert g.ask("[9] lss_switch_sel 0 401 0x10000 0x40100081") == b"[9] OK\r\n"
+        assert g.ask("[10] lss_get_node") == b"[10] 0x09\r\n"
+        assert g.ask("[11] lss_switch_glob 0") == b"[11] OK\r\n"
+        g.close()
+    finally:
+        if g.proc.poll() is None:
+            g.proc.kill()
 
 
 def test_help(gateway):

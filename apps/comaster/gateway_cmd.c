@@ -77,6 +77,7 @@ typedef struct gateway {
     co_lss_master_result_t lss_result;
     uint32_t address[4]; /* lss_inquire_addr without LSSSUB: the parts inquired so far */
     unsigned part;
+    bool rescanning; /* _lss_fastscan lost its slave: scanning again, every frame its whole time */
     co_time_t lss_timeout_us; /* --timeout */
     gw_request_t req;
     uint8_t upload[GW_VALUE_MAX];
@@ -227,6 +228,16 @@ static bool finish_lss(gateway_t *gw, char *out, size_t cap)
 {
     const gw_request_t *req = &gw->req;
     const co_lss_master_result_t *r = &gw->lss_result;
+    if (req->lss == GW_LSS_FASTSCAN && r->status != CO_LSS_MASTER_OK && r->answers > 0 &&
+        !gw->rescanning) {
+        /* A slave answered, then an answer came later than the shortened wait: once more with
+         * every frame waiting the whole time, as comaster lss fastscan does. */
+        co_time_t wait = (co_time_t)req->args[0] * 1000u;
+        gw->rescanning = true;
+        co_lss_master_switch_global(&gw->lss, CO_LSS_WAITING);
+        if (co_lss_master_fastscan(&gw->lss, NULL, wait, wait, co_linux_now()) == 0)
+            return false;
+    }
     if (r->status != CO_LSS_MASTER_OK) {
         gw_reply_error(out, cap, req->sequence, GW_ERROR_TIMEOUT);
         return true;

@@ -75,10 +75,9 @@ static co_time_t clients_process(co_node_t *node, co_time_t now)
  * refused, and so are a restricted CAN-ID other than a server's default channel (600h + node-id,
  * 580h + node-id) and a new CAN-ID while the COB-ID is valid before and after (0x06090030,
  * co_sdo_client_cob_id_check, co_cob_id_check's rules for PDO, SYNC, EMCY, TIME and the SDO
- * servers). The
- * server's node-id (sub-index 3) is 1..127. A channel whose COB-ID becomes not valid ends its
- * transfer (channel_stop). An object beyond the node's channels gets the rules without a channel
- * to follow them. */
+ * servers). The server's node-id (sub-index 3) is 1..127. A channel whose COB-ID becomes not
+ * valid ends its transfer (channel_stop). An object beyond the node's channels gets the rules
+ * without a channel to follow them. */
 static uint32_t clients_od_write(co_node_t *node, const co_od_entry_t *entry, const uint8_t *data,
                                  size_t len)
 {
